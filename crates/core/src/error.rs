@@ -1,0 +1,56 @@
+//! The one error type of agesim-core. Every variant names the file, line or value at fault,
+//! so the app can print it as is.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in agesim-core.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// An image file could not be decoded or encoded.
+    #[error("{}: {message}", path.display())]
+    Image { path: PathBuf, message: String },
+
+    /// A requested map size is 0 or larger than the maximum.
+    #[error(
+        "map size {width_px}×{height_px} is out of range: each side must be 1..={max_px} pixels"
+    )]
+    InvalidSize {
+        width_px: u32,
+        height_px: u32,
+        max_px: u32,
+    },
+
+    /// The machine could not give the memory an operation needs.
+    #[error("not enough memory for the {what}: it needs {} MiB", bytes / (1024 * 1024))]
+    OutOfMemory { bytes: u64, what: &'static str },
+
+    /// A parameter is outside its valid range.
+    #[error("{what} = {value} is invalid: expected {expected}")]
+    InvalidValue {
+        what: String,
+        value: String,
+        expected: String,
+    },
+
+    /// A wrinkle description file has errors (all of them are listed).
+    #[error("{0}")]
+    WrinkleFile(#[from] crate::wrinkle_file::ParseErrors),
+}
+
+impl Error {
+    /// Wraps an I/O error with the path it happened on.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Self::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}

@@ -1,0 +1,185 @@
+//! A square or rectangular grid of `f32` heights in UV space (SPEC §0).
+//!
+//! Row 0 is the top of the image; pixel (x, y) has its centre at
+//! u = (x + 0.5)/W, v = 1 − (y + 0.5)/H. Heights are signed height units:
+//! 0 is undisturbed skin, negative is into the skin.
+
+use crate::error::Error;
+
+/// The largest map side agesim will allocate, in pixels (an issue-level limit: a
+/// 16384² f32 map is 1 GiB).
+pub const MAX_SIZE_PX: u32 = 16384;
+
+/// A row-major grid of heights, `width_px × height_px`, row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HeightMap {
+    width_px: u32,
+    height_px: u32,
+    data: Vec<f32>,
+}
+
+impl HeightMap {
+    /// A zeroed map. Fails (without allocating) when a side is 0 or above
+    /// [`MAX_SIZE_PX`], or when the allocation cannot be made.
+    pub fn zeros(width_px: u32, height_px: u32) -> Result<Self, Error> {
+        check_size(width_px, height_px)?;
+        let len = width_px as usize * height_px as usize;
+        let mut data = Vec::new();
+        data.try_reserve_exact(len)
+            .map_err(|_| Error::OutOfMemory {
+                bytes: len as u64 * 4,
+                what: "height map",
+            })?;
+        data.resize(len, 0.0);
+        Ok(Self {
+            width_px,
+            height_px,
+            data,
+        })
+    }
+
+    /// Wraps existing data; `data.len()` must be `width_px * height_px`.
+    pub fn from_vec(width_px: u32, height_px: u32, data: Vec<f32>) -> Result<Self, Error> {
+        check_size(width_px, height_px)?;
+        if data.len() != width_px as usize * height_px as usize {
+            return Err(Error::InvalidValue {
+                what: "height map data length".into(),
+                value: data.len().to_string(),
+                expected: format!("{}", width_px as usize * height_px as usize),
+            });
+        }
+        Ok(Self {
+            width_px,
+            height_px,
+            data,
+        })
+    }
+
+    pub fn width_px(&self) -> u32 {
+        self.width_px
+    }
+
+    pub fn height_px(&self) -> u32 {
+        self.height_px
+    }
+
+    /// All heights, row-major, row 0 at the top.
+    pub fn data(&self) -> &[f32] {
+        &self.data
+    }
+
+    pub fn data_mut(&mut self) -> &mut [f32] {
+        &mut self.data
+    }
+
+    pub fn into_vec(self) -> Vec<f32> {
+        self.data
+    }
+
+    /// One row (row 0 at the top).
+    pub fn row(&self, y: u32) -> &[f32] {
+        let w = self.width_px as usize;
+        &self.data[y as usize * w..(y as usize + 1) * w]
+    }
+
+    /// The height at pixel (x, y); panics when out of bounds like slice indexing.
+    #[inline]
+    pub fn get(&self, x: u32, y: u32) -> f32 {
+        self.data[y as usize * self.width_px as usize + x as usize]
+    }
+
+    /// Smallest and largest height; (0, 0) for a map of only NaN (never produced here).
+    pub fn min_max(&self) -> (f32, f32) {
+        let (lo, hi) = self
+            .data
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| {
+                (lo.min(h), hi.max(h))
+            });
+        if lo > hi { (0.0, 0.0) } else { (lo, hi) }
+    }
+
+    /// Box-downsamples by an integer `factor` (both sides must divide).
+    pub fn downsample_box(&self, factor: u32) -> Result<Self, Error> {
+        if factor == 0 || self.width_px % factor != 0 || self.height_px % factor != 0 {
+            return Err(Error::InvalidValue {
+                what: "downsample factor".into(),
+                value: factor.to_string(),
+                expected: format!("a divisor of {}×{}", self.width_px, self.height_px),
+            });
+        }
+        let (w, h) = (self.width_px / factor, self.height_px / factor);
+        let mut out = Self::zeros(w, h)?;
+        let inv = 1.0 / (factor * factor) as f64;
+        for y in 0..h {
+            for x in 0..w {
+                let mut sum = 0.0f64;
+                for yy in 0..factor {
+                    for xx in 0..factor {
+                        sum += self.get(x * factor + xx, y * factor + yy) as f64;
+                    }
+                }
+                out.data[(y * w + x) as usize] = (sum * inv) as f32;
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// Centre of pixel `x` of `width_px` in u (SPEC §0).
+#[inline]
+pub fn pixel_to_u(x: u32, width_px: u32) -> f32 {
+    (x as f32 + 0.5) / width_px as f32
+}
+
+/// Centre of pixel row `y` of `height_px` in v (SPEC §0: row 0 at the top, v up).
+#[inline]
+pub fn pixel_to_v(y: u32, height_px: u32) -> f32 {
+    1.0 - (y as f32 + 0.5) / height_px as f32
+}
+
+/// Checks a requested map size against [`MAX_SIZE_PX`] before any work starts.
+pub fn check_size(width_px: u32, height_px: u32) -> Result<(), Error> {
+    for side in [width_px, height_px] {
+        if side == 0 || side > MAX_SIZE_PX {
+            return Err(Error::InvalidSize {
+                width_px,
+                height_px,
+                max_px: MAX_SIZE_PX,
+            });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pixel_centres_follow_spec_0() {
+        assert_eq!(pixel_to_u(0, 4), 0.125);
+        assert_eq!(pixel_to_v(0, 4), 0.875);
+        assert_eq!(pixel_to_v(3, 4), 0.125);
+    }
+
+    #[test]
+    fn oversized_maps_are_refused_without_allocating() {
+        assert!(matches!(
+            HeightMap::zeros(80000, 80000),
+            Err(Error::InvalidSize { .. })
+        ));
+        assert!(matches!(
+            HeightMap::zeros(0, 4),
+            Err(Error::InvalidSize { .. })
+        ));
+    }
+
+    #[test]
+    fn box_downsample_averages() {
+        let m = HeightMap::from_vec(2, 2, vec![0.0, 1.0, 2.0, 3.0]).unwrap();
+        let d = m.downsample_box(2).unwrap();
+        assert_eq!(d.data(), &[1.5]);
+        assert!(m.downsample_box(3).is_err());
+    }
+}

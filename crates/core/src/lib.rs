@@ -1,0 +1,14 @@
+//! agesim-core: the models of agesim, pure CPU (no GPU, no UI).
+//!
+//! Every model follows `SPEC.md` (kept in the project's shared docs); each module cites
+//! the section it implements. Conventions (SPEC §0): UV with v up, pixel centres at
+//! ((x + 0.5)/W, 1 − (y + 0.5)/H), heights in signed height units, age t ∈ [0,1].
+
+pub mod error;
+pub mod heightmap;
+pub mod mask;
+pub mod wrinkle_file;
+
+pub use error::Error;
+pub use heightmap::HeightMap;
+pub use mask::Mask;

@@ -1,0 +1,133 @@
+//! Grey-scale masks in UV space (SPEC §1 "Mask", §6 hair masks).
+//!
+//! A mask is any image, any size, read as luminance in [0,1] and sampled bilinearly in UV
+//! (SPEC §0 conventions: v up, row 0 at the top), clamped at the borders.
+
+use std::path::Path;
+
+use crate::error::Error;
+
+/// A grey-scale image with values in [0,1], sampled in UV.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mask {
+    width_px: u32,
+    height_px: u32,
+    values: Vec<f32>,
+}
+
+impl Mask {
+    /// Builds a mask from row-major values (row 0 at the top); values are clamped to [0,1]
+    /// and NaN becomes 0.
+    pub fn from_values(width_px: u32, height_px: u32, mut values: Vec<f32>) -> Result<Self, Error> {
+        if width_px == 0 || height_px == 0 || values.len() != width_px as usize * height_px as usize
+        {
+            return Err(Error::InvalidValue {
+                what: "mask size".into(),
+                value: format!("{width_px}×{height_px} with {} values", values.len()),
+                expected: "a non-empty image with width×height values".into(),
+            });
+        }
+        for v in &mut values {
+            *v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+        }
+        Ok(Self {
+            width_px,
+            height_px,
+            values,
+        })
+    }
+
+    /// Reads any image `image` can decode (PNG, JPEG, TIFF, BMP, TGA; 8 or 16 bit) as
+    /// luminance. Colour images are converted with Rec. 709 weights; alpha is ignored.
+    pub fn load(path: &Path) -> Result<Self, Error> {
+        let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+        let img = image::load_from_memory(&bytes).map_err(|e| Error::Image {
+            path: path.to_owned(),
+            message: e.to_string(),
+        })?;
+        let grey = img.into_luma16();
+        let (w, h) = grey.dimensions();
+        let values = grey
+            .into_raw()
+            .into_iter()
+            .map(|p| p as f32 / 65535.0)
+            .collect();
+        Self::from_values(w, h, values)
+    }
+
+    pub fn width_px(&self) -> u32 {
+        self.width_px
+    }
+
+    pub fn height_px(&self) -> u32 {
+        self.height_px
+    }
+
+    /// Row-major values in [0,1], row 0 at the top.
+    pub fn values(&self) -> &[f32] {
+        &self.values
+    }
+
+    /// Bilinear sample at (u, v), clamped to the border texels.
+    pub fn sample(&self, u: f32, v: f32) -> f32 {
+        let (w, h) = (self.width_px as usize, self.height_px as usize);
+        // Continuous pixel coordinates whose integer points are texel centres.
+        let fx = (u * w as f32 - 0.5).clamp(0.0, (w - 1) as f32);
+        let fy = ((1.0 - v) * h as f32 - 0.5).clamp(0.0, (h - 1) as f32);
+        let (x0, y0) = (fx.floor() as usize, fy.floor() as usize);
+        let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
+        let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+        let at = |x: usize, y: usize| self.values[y * w + x];
+        let top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * tx;
+        let bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * tx;
+        top + (bottom - top) * ty
+    }
+
+    /// Resamples to `width_px × height_px` by bilinear sampling at the new pixel centres.
+    pub fn resampled(&self, width_px: u32, height_px: u32) -> Result<Self, Error> {
+        if width_px == self.width_px && height_px == self.height_px {
+            return Ok(self.clone());
+        }
+        crate::heightmap::check_size(width_px, height_px)?;
+        let mut values = Vec::with_capacity(width_px as usize * height_px as usize);
+        for y in 0..height_px {
+            let v = crate::heightmap::pixel_to_v(y, height_px);
+            for x in 0..width_px {
+                values.push(self.sample(crate::heightmap::pixel_to_u(x, width_px), v));
+            }
+        }
+        Self::from_values(width_px, height_px, values)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn samples_texel_centres_exactly_and_interpolates_between() {
+        // 2×1: left texel 0, right texel 1.
+        let m = Mask::from_values(2, 1, vec![0.0, 1.0]).unwrap();
+        assert_eq!(m.sample(0.25, 0.5), 0.0);
+        assert_eq!(m.sample(0.75, 0.5), 1.0);
+        assert!((m.sample(0.5, 0.5) - 0.5).abs() < 1e-6);
+        assert_eq!(m.sample(-3.0, 0.5), 0.0, "clamped at the border");
+    }
+
+    #[test]
+    fn v_is_up() {
+        // 1×2: top row 1, bottom row 0 → v near 1 is bright.
+        let m = Mask::from_values(1, 2, vec![1.0, 0.0]).unwrap();
+        assert_eq!(m.sample(0.5, 0.75), 1.0);
+        assert_eq!(m.sample(0.5, 0.25), 0.0);
+    }
+
+    #[test]
+    fn unreadable_image_names_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("broken.png");
+        std::fs::write(&p, b"not a png").unwrap();
+        let err = Mask::load(&p).unwrap_err().to_string();
+        assert!(err.contains("broken.png"), "{err}");
+    }
+}

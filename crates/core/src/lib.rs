@@ -7,6 +7,7 @@
 pub mod error;
 pub mod heightmap;
 pub mod mask;
+pub mod rng;
 pub mod wrinkle_file;
 
 pub use error::Error;

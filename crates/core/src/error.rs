@@ -40,6 +40,14 @@ pub enum Error {
         expected: String,
     },
 
+    /// A project file (`*.agesim.json`) or a `--set` edit is malformed, names an unknown
+    /// field, or holds a value out of range; the message names the field (and its range).
+    #[error("{source_name}: {message}")]
+    Project {
+        source_name: String,
+        message: String,
+    },
+
     /// A wrinkle description file has errors (all of them are listed).
     #[error("{0}")]
     WrinkleFile(#[from] crate::wrinkle_file::ParseErrors),

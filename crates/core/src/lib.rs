@@ -8,8 +8,10 @@ pub mod error;
 pub mod export;
 pub mod heightmap;
 pub mod mask;
+pub mod micro;
 pub mod muscle;
 pub mod normal_map;
+pub mod project;
 pub mod rng;
 pub mod wrinkle_file;
 

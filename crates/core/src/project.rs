@@ -20,6 +20,7 @@ use crate::error::Error;
 use crate::micro::furrows::FurrowParams;
 use crate::micro::noise::FbmParams;
 use crate::micro::pores::{Placement, PoreProfile, PoreStats, Rim};
+use crate::normal_map::Convention;
 
 /// The only project-file version this build reads and writes.
 pub const PROJECT_VERSION: u32 = 1;
@@ -166,20 +167,11 @@ pub struct OverlapSection {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct NormalSection {
-    /// Slope per height unit per millimetre, 0–100 (resolution independent: the baker
-    /// converts it to per-texel).
-    pub strength_per_mm: f32,
+    /// s of SPEC §4: UV units per height unit, 0–1000 (resolution independent; see
+    /// `normal_map`). The micro-relief default 0.002 reads as moderate relief on a 50 mm map.
+    pub strength: f32,
     /// `opengl` (green up, default) or `directx`.
-    pub convention: NormalConvention,
-}
-
-/// Green channel convention of exported normal maps.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum NormalConvention {
-    #[default]
-    Opengl,
-    Directx,
+    pub convention: Convention,
 }
 
 impl Default for Project {
@@ -275,8 +267,8 @@ impl Default for OverlapSection {
 impl Default for NormalSection {
     fn default() -> Self {
         Self {
-            strength_per_mm: 0.5,
-            convention: NormalConvention::Opengl,
+            strength: 0.002,
+            convention: Convention::OpenGl,
         }
     }
 }
@@ -311,7 +303,7 @@ impl Project {
         let schema = serde_json::to_value(Self::default()).map_err(|e| err(e.to_string()))?;
         check_known_fields(&value, &schema, "")?.map_or(Ok(()), |m| Err(err(m)))?;
         let p: Self = serde_json::from_value(value).map_err(|e| err(e.to_string()))?;
-        p.validate().map_err(|m| err(m))?;
+        p.validate().map_err(err)?;
         Ok(p)
     }
 
@@ -407,12 +399,7 @@ impl Project {
         c.range("warp.scale_mm", w.scale_mm, 0.01, 1000.0);
         c.range("overlap.beta", self.overlap.beta, 0.01, 40.0);
         c.range("overlap.n", self.overlap.n, 1.0, 100.0);
-        c.range(
-            "normal.strength_per_mm",
-            self.normal.strength_per_mm,
-            0.0,
-            100.0,
-        );
+        c.range("normal.strength", self.normal.strength, 0.0, 1000.0);
         // Finest noise cell no smaller than 1 µm, so lattice coordinates stay exact in f32.
         for (name, s) in [
             ("noise", n.scale_mm / n.lacunarity.max(1.0).powf(n.details)),

@@ -22,7 +22,7 @@
 use rayon::prelude::*;
 
 use super::furrows::{Furrow, build_network};
-use super::noise::{FbmField, RowSampler, RowScratch};
+use super::noise::{FbmField, LANES, RowSampler, RowScratch};
 use super::overlap::{resolve, term};
 use super::pores::{Pore, PoreProfile, Rim, place_pores, rim_window};
 use crate::error::Error;
@@ -167,6 +167,7 @@ enum Stamp {
         inv_r2: f32,
         depth: f32,
         falloff: f32,
+        radius: f32,
         reach: f32,
     },
     Furrow {
@@ -215,7 +216,10 @@ impl<'a> Context<'a> {
         let us: Vec<f32> = (0..w)
             .map(|x| crate::heightmap::pixel_to_u(x as u32, w as u32))
             .collect();
-        let x_mm: Vec<f32> = us.iter().map(|u| u * size_mm).collect();
+        // Pixel-centre x in mm, padded by LANES columns so stamps can work in whole chunks.
+        let x_mm: Vec<f32> = (0..w + LANES)
+            .map(|x| (x as f32 + 0.5) / w as f32 * size_mm)
+            .collect();
         let warp_on =
             parts.features && p.warp.strength_mm > 0.0 && relief.warp[0].octave_count() > 0;
         let warp = warp_on.then(|| {
@@ -249,6 +253,7 @@ impl<'a> Context<'a> {
                     inv_r2: 1.0 / (pore.radius_mm * pore.radius_mm),
                     depth: pore.depth,
                     falloff: pore.falloff,
+                    radius: pore.radius_mm,
                     reach: pore.radius_mm + reach,
                 });
             }
@@ -393,9 +398,9 @@ impl Scratch {
         let cols = ctx.warp.as_ref().map_or(0, |w| w.cols);
         let coarse_rows = BAND_ROWS / ctx.warp.as_ref().map_or(BAND_ROWS, |w| w.step) + 2;
         Self {
-            acc: vec![0.0; ctx.w],
-            wx: vec![0.0; ctx.w],
-            wy: vec![0.0; ctx.w],
+            acc: vec![0.0; ctx.w + LANES],
+            wx: vec![0.0; ctx.w + LANES],
+            wy: vec![0.0; ctx.w + LANES],
             coarse: [vec![0.0; cols * coarse_rows], vec![0.0; cols * coarse_rows]],
             noise: RowScratch::default(),
         }
@@ -447,6 +452,22 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], scratch: &mut Scratch)
         }
         j0
     });
+    // The warp of this band is a convex blend of its coarse values, so their largest
+    // magnitude bounds it: stamps only visit pixels within that reach (pixels outside a
+    // stamp's support add exactly 0, so the bound changes speed, never the bytes).
+    let band_reach = match (ctx.warp.as_ref(), warp_first) {
+        (Some(warp), Some(j0)) => {
+            let rows_used = (y_first + rows - 1) / warp.step + 2 - j0;
+            let max_abs = |g: &[f32]| {
+                g[..rows_used * warp.cols]
+                    .iter()
+                    .fold(0.0f32, |m, v| m.max(v.abs()))
+            };
+            let (mx, my) = (max_abs(&coarse[0]), max_abs(&coarse[1]));
+            (mx * mx + my * my).sqrt() * 1.0001
+        }
+        _ => 0.0,
+    };
     let stamps = &ctx.bands[band];
     for r in 0..rows {
         let y = y_first + r;
@@ -461,13 +482,13 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], scratch: &mut Scratch)
                     &grid[j * warp.cols..(j + 1) * warp.cols],
                     &grid[(j + 1) * warp.cols..(j + 2) * warp.cols],
                 );
-                interpolate_row(a, b, fy, warp.step, dst);
+                interpolate_row(a, b, fy, warp.step, &mut dst[..w]);
             }
         }
         if !stamps.is_empty() {
             acc.fill(0.0);
             for &k in stamps {
-                stamp_row(ctx, &ctx.stamps[k as usize], y_mm, acc, wx, wy);
+                stamp_row(ctx, &ctx.stamps[k as usize], y_mm, band_reach, acc, wx, wy);
             }
             let (beta, inv_n) = (ctx.beta, ctx.inv_n);
             for (o, &a) in out_row.iter_mut().zip(acc.iter()) {
@@ -495,7 +516,16 @@ fn interpolate_row(a: &[f32], b: &[f32], fy: f32, step: usize, dst: &mut [f32]) 
 
 /// Adds one stamp's exp(β·m) − 1 to the row accumulator over its x-interval.
 #[inline(always)]
-fn stamp_row(ctx: &Context, s: &Stamp, y_mm: f32, acc: &mut [f32], wx: &[f32], wy: &[f32]) {
+#[allow(clippy::too_many_arguments)]
+fn stamp_row(
+    ctx: &Context,
+    s: &Stamp,
+    y_mm: f32,
+    band_reach: f32,
+    acc: &mut [f32],
+    wx: &[f32],
+    wy: &[f32],
+) {
     let beta = ctx.beta;
     match *s {
         Stamp::Pore {
@@ -503,8 +533,10 @@ fn stamp_row(ctx: &Context, s: &Stamp, y_mm: f32, acc: &mut [f32], wx: &[f32], w
             inv_r2,
             depth,
             falloff,
-            reach,
+            radius,
+            ..
         } => {
+            let reach = radius + band_reach;
             let dy = y_mm - centre[1];
             let hw2 = reach * reach - dy * dy;
             if hw2 <= 0.0 {
@@ -515,12 +547,7 @@ fn stamp_row(ctx: &Context, s: &Stamp, y_mm: f32, acc: &mut [f32], wx: &[f32], w
             if x0 >= x1 {
                 return;
             }
-            let span = Span {
-                acc: &mut acc[x0..x1],
-                x_mm: &ctx.x_mm[x0..x1],
-                wx: &wx[x0..x1],
-                wy: &wy[x0..x1],
-            };
+            let span = Span::new(acc, &ctx.x_mm, wx, wy, x0, x1);
             let (cx, cy) = (centre[0], centre[1] - y_mm);
             match (ctx.profile, ctx.rim) {
                 (PoreProfile::Gaussian, Rim::Smooth) => {
@@ -551,8 +578,9 @@ fn stamp_row(ctx: &Context, s: &Stamp, y_mm: f32, acc: &mut [f32], wx: &[f32], w
             width,
             inv_w2,
             inv_taper,
-            reach,
+            ..
         } => {
+            let reach = band_reach;
             // Along a row, cross(x) and along(x) are linear in x: intersect their bands.
             let py = y_mm - start[1];
             let r = width + reach;
@@ -578,12 +606,7 @@ fn stamp_row(ctx: &Context, s: &Stamp, y_mm: f32, acc: &mut [f32], wx: &[f32], w
             if x0 >= x1 {
                 return;
             }
-            let span = Span {
-                acc: &mut acc[x0..x1],
-                x_mm: &ctx.x_mm[x0..x1],
-                wx: &wx[x0..x1],
-                wy: &wy[x0..x1],
-            };
+            let span = Span::new(acc, &ctx.x_mm, wx, wy, x0, x1);
             span.furrow(start[0], py, dir, inv_len, depth, inv_w2, inv_taper, beta);
         }
     }
@@ -597,8 +620,27 @@ struct Span<'s> {
     wy: &'s [f32],
 }
 
-impl Span<'_> {
-    /// Pore at (cx, row + cy_rel)… with `cy` = centre_y − row_y: m = depth·shape(r²/R²).
+impl<'s> Span<'s> {
+    /// Columns [x0, x1) rounded up to whole LANES chunks (the buffers are padded).
+    #[inline(always)]
+    fn new(
+        acc: &'s mut [f32],
+        x_mm: &'s [f32],
+        wx: &'s [f32],
+        wy: &'s [f32],
+        x0: usize,
+        x1: usize,
+    ) -> Self {
+        let x1 = x0 + (x1 - x0).div_ceil(LANES) * LANES;
+        Self {
+            acc: &mut acc[x0..x1],
+            x_mm: &x_mm[x0..x1],
+            wx: &wx[x0..x1],
+            wy: &wy[x0..x1],
+        }
+    }
+
+    /// Pore centred `cy` mm above this row at x = `cx`: m = depth·shape(r²/R²).
     #[inline(always)]
     fn pore(
         self,
@@ -610,11 +652,13 @@ impl Span<'_> {
         shape: impl Fn(f32) -> f32,
     ) {
         for (((a, &x), &wx), &wy) in self.acc.iter_mut().zip(self.x_mm).zip(self.wx).zip(self.wy) {
-            let dx = x + wx - cx;
-            let dy = wy - cy;
-            let t = (dx * dx + dy * dy) * inv_r2;
-            let m = if t < 1.0 { depth * shape(t) } else { 0.0 };
-            *a += term(m, beta);
+            {
+                let dx = x + wx - cx;
+                let dy = wy - cy;
+                let t = (dx * dx + dy * dy) * inv_r2;
+                let m = if t < 1.0 { depth * shape(t) } else { 0.0 };
+                *a += term(m, beta);
+            }
         }
     }
 
@@ -633,19 +677,21 @@ impl Span<'_> {
         beta: f32,
     ) {
         for (((a, &x), &wx), &wy) in self.acc.iter_mut().zip(self.x_mm).zip(self.wx).zip(self.wy) {
-            let px = x + wx - sx;
-            let py = py + wy;
-            let along = (px * dir[0] + py * dir[1]) * inv_len;
-            let cross = px * dir[1] - py * dir[0];
-            let q = cross * cross * inv_w2;
-            let e = (along.min(1.0 - along) * inv_taper).clamp(0.0, 1.0);
-            let taper = e * e * (3.0 - 2.0 * e);
-            let m = if q < 1.0 {
-                depth * (1.0 - q) * taper
-            } else {
-                0.0
-            };
-            *a += term(m, beta);
+            {
+                let px = x + wx - sx;
+                let py = py + wy;
+                let along = (px * dir[0] + py * dir[1]) * inv_len;
+                let cross = px * dir[1] - py * dir[0];
+                let q = cross * cross * inv_w2;
+                let e = (along.min(1.0 - along) * inv_taper).clamp(0.0, 1.0);
+                let taper = e * e * (3.0 - 2.0 * e);
+                let m = if q < 1.0 {
+                    depth * (1.0 - q) * taper
+                } else {
+                    0.0
+                };
+                *a += term(m, beta);
+            }
         }
     }
 }
@@ -655,8 +701,10 @@ mod tests {
     use super::*;
 
     fn project(tile: bool) -> Project {
-        let mut p = Project::default();
-        p.tile = tile;
+        let mut p = Project {
+            tile,
+            ..Project::default()
+        };
         p.pores.count = 300;
         p
     }

@@ -237,6 +237,9 @@ pub struct RowScratch {
     grads: Vec<[f32; 2]>,
 }
 
+/// Padding (in columns) kept after every per-column table and row buffer.
+pub(crate) const LANES: usize = 8;
+
 impl<'a> RowSampler<'a> {
     /// Precomputes the column tables for the positions `us` (must be non-decreasing).
     pub fn new(field: &'a FbmField, us: &[f32]) -> Self {
@@ -260,6 +263,9 @@ impl<'a> RowSampler<'a> {
                         Some(last) if last.0 == i => last.2 = c as u32 + 1,
                         _ => runs.push((i, c as u32, c as u32 + 1)),
                     }
+                }
+                for b in &mut basis {
+                    b.resize(us.len() + LANES, 0.0);
                 }
                 OctaveColumns { runs, basis }
             })
@@ -304,10 +310,8 @@ impl<'a> RowSampler<'a> {
                     break;
                 }
                 let dst = &mut out[x0..x1];
-                let b0 = &cols.basis[0][x0..x1];
-                let b1 = &cols.basis[1][x0..x1];
-                let b2 = &cols.basis[2][x0..x1];
-                let b3 = &cols.basis[3][x0..x1];
+                let (b0, b1) = (&cols.basis[0][x0..x1], &cols.basis[1][x0..x1]);
+                let (b2, b3) = (&cols.basis[2][x0..x1], &cols.basis[3][x0..x1]);
                 for ((((d, &p), &q), &r), &s) in dst.iter_mut().zip(b0).zip(b1).zip(b2).zip(b3) {
                     *d += c0 * p + c1 * q + d0 * r + d1 * s;
                 }

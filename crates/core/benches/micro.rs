@@ -1,0 +1,180 @@
+//! Issue 3's benchmark: [P]'s workload (4096², 1000 pores, 500 furrows, 5 octaves of noise,
+//! plus the normal map) and a 1024² preview, against the `noise` crate's fBm as baseline.
+//!
+//! `cargo bench -p agesim-core --bench micro` prints our medians, the baseline's median,
+//! their ratio, the stage split and the peak memory of an 8192² bake.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::time::Instant;
+
+use agesim_core::micro::MicroRelief;
+use agesim_core::micro::bake::Parts;
+use agesim_core::normal_map::{self, NormalSettings};
+use agesim_core::project::Project;
+use noise::MultiFractal as _;
+use rayon::prelude::*;
+
+const RUNS: usize = 9;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn time_ms(runs: usize, mut f: impl FnMut()) -> f64 {
+    f(); // warm-up: page faults, thread pool
+    median(
+        (0..runs)
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64() * 1e3
+            })
+            .collect(),
+    )
+}
+
+/// [P]'s workload as a project: 1000 pores, 500 furrows, 5 octaves, domain warp on.
+fn workload() -> Project {
+    let mut p = Project::default();
+    for (k, v) in [
+        ("pores.count", "1000"),
+        ("pores.radius_mm.mean", "0.35"),
+        ("furrows.max_count", "500"),
+        ("noise.details", "5"),
+        ("noise.roughness", "0.667"),
+    ] {
+        p = p.set(k, v).unwrap();
+    }
+    p
+}
+
+/// Full bake: height map + 8-bit normal map.
+fn bake(relief: &MicroRelief, size: u32, normals: &NormalSettings) -> (f64, f64, f64) {
+    let t = Instant::now();
+    let (map, timings) = relief.bake(size).unwrap();
+    let t_height = t.elapsed().as_secs_f64() * 1e3;
+    let rgb = normal_map::encode_rgb8(&map, normals).unwrap();
+    std::hint::black_box(&rgb);
+    let total = t.elapsed().as_secs_f64() * 1e3;
+    let _ = timings;
+    (total, t_height, total - t_height)
+}
+
+fn peak_rss_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+fn main() {
+    let threads = rayon::current_num_threads();
+    let avx2 = std::arch::is_x86_feature_detected!("avx2");
+    println!("micro-relief bake, {threads} threads, AVX2 path: {avx2}");
+    let project = workload();
+    let normals = NormalSettings {
+        strength: project.normal.strength,
+        tiling: project.tile,
+        ..Default::default()
+    };
+
+    let t = Instant::now();
+    let relief = MicroRelief::new(&project).unwrap();
+    let features_ms = t.elapsed().as_secs_f64() * 1e3;
+    println!(
+        "features: {} pores, {} furrows, placed in {features_ms:.2} ms",
+        relief.pores().len(),
+        relief.furrows().len()
+    );
+
+    for size in [4096u32, 1024] {
+        let mut totals = Vec::new();
+        let mut heights = Vec::new();
+        let mut normal_ms = Vec::new();
+        bake(&relief, size, &normals);
+        for _ in 0..RUNS {
+            let (a, b, c) = bake(&relief, size, &normals);
+            totals.push(a);
+            heights.push(b);
+            normal_ms.push(c);
+        }
+        let only = |parts: Parts| time_ms(RUNS, || drop(relief.bake_parts(size, parts).unwrap()));
+        let stamps = only(Parts {
+            features: true,
+            noise: false,
+        });
+        let noise = only(Parts {
+            features: false,
+            noise: true,
+        });
+        let empty = only(Parts {
+            features: false,
+            noise: false,
+        });
+        println!(
+            "{size}²: total {:.1} ms median (height {:.1} + normal map {:.1}); height alone split: \
+             pores+furrows {:.1}, noise {:.1}, empty pass (alloc + page faults) {:.1}",
+            median(totals),
+            median(heights),
+            median(normal_ms),
+            stamps,
+            noise,
+            empty
+        );
+    }
+
+    // Baseline: the `noise` crate's fBm, same octaves, 4096², rows in parallel on the same pool.
+    let fbm = noise::Fbm::<noise::Perlin>::new(1)
+        .set_octaves(5)
+        .set_persistence(0.667);
+    let size = 4096usize;
+    let baseline = time_ms(3, || {
+        let mut out = vec![0.0f32; size * size];
+        out.par_chunks_mut(size).enumerate().for_each(|(y, row)| {
+            for (x, h) in row.iter_mut().enumerate() {
+                *h = noise::NoiseFn::get(&fbm, [x as f64 * 0.005, y as f64 * 0.005]) as f32;
+            }
+        });
+        std::hint::black_box(&out);
+    });
+    let ours_noise = time_ms(RUNS, || {
+        drop(
+            relief
+                .bake_parts(
+                    4096,
+                    Parts {
+                        features: false,
+                        noise: true,
+                    },
+                )
+                .unwrap(),
+        )
+    });
+    println!(
+        "baseline noise-crate fBm (5 octaves, 4096², {threads} threads): {baseline:.1} ms median; \
+         our noise alone {ours_noise:.1} ms: ratio {:.1}×",
+        baseline / ours_noise
+    );
+    let mut totals = Vec::new();
+    for _ in 0..RUNS {
+        totals.push(bake(&relief, 4096, &normals).0);
+    }
+    let ours = median(totals);
+    println!(
+        "ours (4096², full workload + normal map) {ours:.1} ms vs baseline noise alone {baseline:.1} ms: ratio {:.1}×",
+        baseline / ours
+    );
+
+    let t = Instant::now();
+    let (map, _) = relief.bake(8192).unwrap();
+    let rgb = normal_map::encode_rgb8(&map, &normals).unwrap();
+    std::hint::black_box((&map, &rgb));
+    drop((map, rgb));
+    println!(
+        "8192²: {:.0} ms, peak RSS of this process {:.0} MiB",
+        t.elapsed().as_secs_f64() * 1e3,
+        peak_rss_mib().unwrap_or(f64::NAN)
+    );
+}

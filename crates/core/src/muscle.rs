@@ -436,6 +436,11 @@ pub fn finish(map: &mut HeightMap, settings: &LargeWrinkleSettings<'_>) -> Resul
         .for_each(|(y, row)| {
             let v = pixel_to_v(y as u32, h);
             for (x, p) in row.iter_mut().enumerate() {
+                // Most of a face map is untouched skin: 0^γ = 0, skip the powf.
+                if *p <= 0.0 {
+                    *p = 0.0;
+                    continue;
+                }
                 let mut value = (*p * inv).clamp(0.0, 1.0).powf(gamma);
                 if let Some(mask) = settings.mask {
                     value *= mask.sample(pixel_to_u(x as u32, w), v);

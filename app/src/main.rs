@@ -1,6 +1,7 @@
 //! The `agesim` binary: the editor (later) and the command line.
 
 mod cli;
+mod defaults;
 
 use clap::Parser as _;
 

@@ -1,5 +1,7 @@
 //! The command line: one binary, one subcommand per task.
 
+mod bake;
+
 use clap::{CommandFactory as _, Parser, Subcommand};
 
 /// agesim: age a human head — wrinkles, skin micro-relief, hair recession and graying.
@@ -11,7 +13,10 @@ pub struct Cli {
 }
 
 #[derive(Debug, Subcommand)]
-pub enum Command {}
+pub enum Command {
+    /// Bake height and normal maps from wrinkle description files.
+    Bake(bake::BakeArgs),
+}
 
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
@@ -20,5 +25,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             Cli::command().print_help()?;
             Ok(())
         }
+        Some(Command::Bake(args)) => bake::run(&args),
     }
 }

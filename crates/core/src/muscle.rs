@@ -436,6 +436,11 @@ pub fn finish(map: &mut HeightMap, settings: &LargeWrinkleSettings<'_>) -> Resul
         .for_each(|(y, row)| {
             let v = pixel_to_v(y as u32, h);
             for (x, p) in row.iter_mut().enumerate() {
+                // Most of a face map is untouched skin: 0^γ = 0, skip the powf.
+                if *p <= 0.0 {
+                    *p = 0.0;
+                    continue;
+                }
                 let mut value = (*p * inv).clamp(0.0, 1.0).powf(gamma);
                 if let Some(mask) = settings.mask {
                     value *= mask.sample(pixel_to_u(x as u32, w), v);
@@ -765,7 +770,8 @@ mod tests {
     #[test]
     fn resolution_independent_within_stated_rms() {
         // SPEC §0: the same fibres at 1024² and at 4096² box-downsampled to 1024² agree.
-        // Stated tolerance: RMS difference < 0.02 of the [0,1] range (measured ≈ see below).
+        // Stated tolerance: RMS difference < 0.005 of the [0,1] range (measured 0.0023; the
+        // rest is the γ = 0.4 curve's steep foot, which box filtering averages differently).
         let fibres = vec![
             Fibre::new([0.423, 0.727], [0.439, 0.640], 3)
                 .unwrap()
@@ -792,6 +798,6 @@ mod tests {
             .sum::<f64>()
             / n)
             .sqrt();
-        assert!(rms < 0.02, "RMS difference 1024² vs 4096²↓: {rms}");
+        assert!(rms < 0.005, "RMS difference 1024² vs 4096²↓: {rms}");
     }
 }

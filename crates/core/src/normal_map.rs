@@ -105,12 +105,28 @@ fn row_normals(
     let below = &data[below_v * w..(below_v + 1) * w];
     let su = settings.strength * w as f32;
     let sv = settings.strength * h as f32 * fy;
-    for x in 0..w {
-        let (xl, xr, fx) = neighbours(x, w, settings.tiling);
-        let dhu = (row[xr] - row[xl]) * fx * su;
-        let dhv = (above[x] - below[x]) * sv;
+    let normal = |dhu: f32, dhv: f32| {
         let inv = 1.0 / (dhu * dhu + dhv * dhv + 1.0).sqrt();
-        emit(x, [-dhu * inv, -dhv * inv, inv]);
+        [-dhu * inv, -dhv * inv, inv]
+    };
+    // The interior is a plain central difference, without the border rule's branches.
+    let half_su = 0.5 * su;
+    for x in 1..w.saturating_sub(1) {
+        emit(
+            x,
+            normal(
+                (row[x + 1] - row[x - 1]) * half_su,
+                (above[x] - below[x]) * sv,
+            ),
+        );
+    }
+    // The borders need the one-sided (or wrapped) rule.
+    for x in [0, w - 1].into_iter().take(w.min(2)) {
+        let (xl, xr, fx) = neighbours(x, w, settings.tiling);
+        emit(
+            x,
+            normal((row[xr] - row[xl]) * fx * su, (above[x] - below[x]) * sv),
+        );
     }
 }
 

@@ -35,7 +35,8 @@ fn default_bake_writes_the_four_files() {
     );
     assert_eq!(report["inputs"]["size"], 256);
     assert_eq!(report["inputs"]["gamma"], 0.4);
-    assert!(report["timings_ms"]["rasterize"].as_f64().unwrap() >= 0.0);
+    assert!(report["timings_ms"]["large_wrinkles"].as_f64().unwrap() >= 0.0);
+    assert_eq!(report["inputs"]["layers"], serde_json::json!(["large"]));
     assert!(
         report["inputs"]["wrinkles"][0]["file"]
             .as_str()
@@ -173,4 +174,197 @@ fn no_subcommand_prints_help() {
     let o = agesim(&[]);
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stdout).contains("bake"));
+}
+
+/// The f32 heights of a bake's height.exr.
+fn exr_heights(dir: &Path) -> Vec<f32> {
+    let exr = exr::prelude::read_first_flat_layer_from_file(dir.join("height.exr")).unwrap();
+    exr.layer_data.channel_data.list[0]
+        .sample_data
+        .values_as_f32()
+        .collect()
+}
+
+#[test]
+fn every_preset_bakes_micro_relief() {
+    let dir = tempfile::tempdir().unwrap();
+    for preset in ["fine", "rough", "goose-skin", "deep-pores", "article-fig14"] {
+        let out = dir.path().join(preset);
+        let o = agesim(&[
+            "bake",
+            "--preset",
+            preset,
+            "--size",
+            "128",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{preset}: {}", stderr(&o));
+        let report: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+        let layers = report["inputs"]["layers"].as_array().unwrap();
+        assert!(
+            layers.contains(&"pores".into()) && !layers.contains(&"large".into()),
+            "{preset}: {layers:?}"
+        );
+        let h = exr_heights(&out);
+        let (lo, hi) = h
+            .iter()
+            .fold((f32::MAX, f32::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+        assert!(hi - lo > 0.1, "{preset}: flat map {lo}..{hi}");
+        if preset == "goose-skin" {
+            assert!(hi > 0.1, "goose skin has raised bumps: max {hi}");
+        } else {
+            assert!(lo < -0.5, "{preset}: pores go into the skin: min {lo}");
+        }
+    }
+}
+
+#[test]
+fn bake_json_alone_reproduces_the_bake() {
+    let dir = tempfile::tempdir().unwrap();
+    let first = dir.path().join("first");
+    let o = agesim(&[
+        "bake",
+        "--preset",
+        "rough",
+        "--layers",
+        "all",
+        "--set",
+        "pores.count=300",
+        "--seed",
+        "7",
+        "--size",
+        "96",
+        "--out",
+        first.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(first.join("bake.json")).unwrap()).unwrap();
+    assert_eq!(report["seed"], 7);
+    assert_eq!(report["project"]["pores"]["count"], 300);
+    assert_eq!(report["project"]["large"]["enabled"], true);
+    let project = dir.path().join("again.agesim.json");
+    std::fs::write(&project, serde_json::to_string(&report["project"]).unwrap()).unwrap();
+    let second = dir.path().join("second");
+    let o = agesim(&[
+        "bake",
+        "--project",
+        project.to_str().unwrap(),
+        "--size",
+        "96",
+        "--out",
+        second.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read(first.join("height.exr")).unwrap(),
+        std::fs::read(second.join("height.exr")).unwrap()
+    );
+    assert_eq!(
+        std::fs::read(first.join("normal.png")).unwrap(),
+        std::fs::read(second.join("normal.png")).unwrap()
+    );
+}
+
+#[test]
+fn layers_select_what_is_baked() {
+    let dir = tempfile::tempdir().unwrap();
+    let bake = |layers: &str| {
+        let out = dir.path().join(layers);
+        let o = agesim(&[
+            "bake",
+            "--layers",
+            layers,
+            "--size",
+            "64",
+            "--set",
+            "pores.count=200",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        exr_heights(&out)
+    };
+    let (large, micro, all) = (bake("large"), bake("micro"), bake("all"));
+    // all = micro + depth·large, pixel for pixel (large.depth defaults to 1).
+    for ((a, m), l) in all.iter().zip(&micro).zip(&large) {
+        assert!((a - (m + l)).abs() < 1e-5, "{a} vs {m} + {l}");
+    }
+    assert!(
+        large.iter().all(|&h| h >= 0.0),
+        "large wrinkles alone are crests, never pores"
+    );
+    assert!(micro.iter().any(|&h| h < -0.1));
+}
+
+#[test]
+fn tiled_bake_matches_across_opposite_edges() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("tile");
+    let o = agesim(&[
+        "bake",
+        "--preset",
+        "rough",
+        "--tile",
+        "--size",
+        "128",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let h = exr_heights(&out);
+    let n = 128;
+    // Continuity across the seam: the jump from the last column to the first is no larger
+    // than the largest jump between neighbouring columns inside the map.
+    let jump = |a: usize, b: usize| {
+        (0..n)
+            .map(|y| (h[y * n + a] - h[y * n + b]).abs())
+            .sum::<f32>()
+    };
+    let inside = (1..n).map(|x| jump(x - 1, x)).fold(0.0, f32::max);
+    assert!(
+        jump(n - 1, 0) <= inside,
+        "seam jump {} vs largest inner {}",
+        jump(n - 1, 0),
+        inside
+    );
+    let rows = |a: usize, b: usize| {
+        (0..n)
+            .map(|x| (h[a * n + x] - h[b * n + x]).abs())
+            .sum::<f32>()
+    };
+    let inside_rows = (1..n).map(|y| rows(y - 1, y)).fold(0.0, f32::max);
+    assert!(rows(n - 1, 0) <= inside_rows);
+}
+
+#[test]
+fn bad_project_input_names_the_field_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("maps");
+    let project = dir.path().join("p.agesim.json");
+    std::fs::write(&project, r#"{"version": 1, "pores": {"cuont": 3}}"#).unwrap();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["--project", project.to_str().unwrap()], "pores.cuont"),
+        (
+            vec!["--set", "pores.radius_mm.mean=7"],
+            "pores.radius_mm.mean",
+        ),
+        (vec!["--set", "noise.octaves=3"], "noise.octaves"),
+        (vec!["--set", "nonsense"], "PATH=VALUE"),
+        (vec!["--preset", "wrinkly"], "article-fig14"),
+        (
+            vec!["--project", "/no/such.agesim.json"],
+            "/no/such.agesim.json",
+        ),
+    ];
+    for (args, needle) in cases {
+        let mut all = vec!["bake", "--size", "32", "--out", out.to_str().unwrap()];
+        all.extend(&args);
+        let o = agesim(&all);
+        assert!(!o.status.success(), "{args:?} accepted");
+        assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
+        assert!(!out.exists(), "{args:?} wrote output");
+    }
 }

@@ -1,19 +1,40 @@
-//! `agesim bake`: wrinkle files in, height and normal maps out (SPEC §1, §2, §4).
+//! `agesim bake`: a project (or flags) in, height and normal maps out (SPEC §1–§4).
+//!
+//! Settings resolve in this order, each step validated like the project file:
+//! the default project, or `--preset NAME`, or `--project FILE`; then the shorthand flags
+//! (`--wrinkles`, `--mask`, `--gamma`, `--tile`, `--seed`, `--normal-*`); then every
+//! `--set path=value` in order; then `--layers`. The resolved project is recorded in
+//! `bake.json`, so a bake can be reproduced from that file alone.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use agesim_core::micro::MicroRelief;
 use agesim_core::muscle::{self, Fibre, LargeWrinkleSettings};
-use agesim_core::normal_map::{self, Convention, NormalSettings};
+use agesim_core::normal_map::{self, NormalSettings};
+use agesim_core::project::Project;
 use agesim_core::wrinkle_file::{self, ParseErrors};
 use agesim_core::{HeightMap, Mask, export, heightmap};
 use anyhow::{Context as _, bail};
 use serde_json::json;
 
-/// Bake height and normal maps from wrinkle description files.
+/// Bake height and normal maps from a project, a preset or wrinkle files.
 #[derive(Debug, clap::Args)]
 pub struct BakeArgs {
-    /// Wrinkle description file (repeatable). Default: the wrinkle files shipped in assets/.
+    /// Project file (`*.agesim.json`) with every setting; see docs/project-file.md.
+    #[arg(long, value_name = "FILE", conflicts_with = "preset")]
+    pub project: Option<PathBuf>,
+
+    /// A shipped preset: fine, rough, goose-skin, deep-pores, article-fig14.
+    #[arg(long, value_name = "NAME")]
+    pub preset: Option<String>,
+
+    /// Override one project field by its JSON path, e.g. `--set pores.count=1000` (repeatable).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<String>,
+
+    /// Wrinkle description file (repeatable); sets `large.wrinkles`. Default: the wrinkle
+    /// files shipped in assets/.
     #[arg(long = "wrinkles", value_name = "FILE.wrk")]
     pub wrinkles: Vec<PathBuf>,
 
@@ -25,21 +46,30 @@ pub struct BakeArgs {
     #[arg(long, default_value_t = 2048, value_name = "N")]
     pub size: u32,
 
-    /// Crest-flattening exponent γ of the large wrinkles, in [0.01, 10].
-    #[arg(long, default_value_t = muscle::DEFAULT_GAMMA, value_name = "G")]
-    pub gamma: f32,
+    /// Crest-flattening exponent γ of the large wrinkles, in [0.01, 10] (`large.gamma`).
+    #[arg(long, value_name = "G")]
+    pub gamma: Option<f32>,
 
-    /// Normal-map strength: UV units per height unit, in [0, 1000].
-    #[arg(long, default_value_t = normal_map::DEFAULT_STRENGTH, value_name = "S")]
-    pub normal_strength: f32,
+    /// Normal-map strength: UV units per height unit, in [0, 1000] (`normal.strength`).
+    #[arg(long, value_name = "S")]
+    pub normal_strength: Option<f32>,
 
-    /// Green-channel convention of normal.png.
-    #[arg(long, value_enum, default_value_t = ConventionArg::Opengl)]
-    pub normal_convention: ConventionArg,
+    /// Green-channel convention of normal.png (`normal.convention`).
+    #[arg(long, value_enum)]
+    pub normal_convention: Option<ConventionArg>,
 
-    /// Layers to bake into the height map.
-    #[arg(long, value_enum, default_value_t = LayersArg::Large)]
-    pub layers: LayersArg,
+    /// Layers in the height map. Default: `large` without --project/--preset, otherwise
+    /// the layers the project enables.
+    #[arg(long, value_enum)]
+    pub layers: Option<LayersArg>,
+
+    /// Make the map tile (periodic noise, features wrap around the edges).
+    #[arg(long)]
+    pub tile: bool,
+
+    /// Seed of every random choice (`seed`).
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u64>,
 
     /// Output directory (created if missing).
     #[arg(long, value_name = "DIR")]
@@ -54,8 +84,119 @@ pub enum ConventionArg {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum LayersArg {
-    /// Large wrinkles (muscle fibres).
+    /// Large wrinkles (muscle fibres) only.
     Large,
+    /// Skin micro-relief only: pores, furrows, noise.
+    Micro,
+    /// Both.
+    All,
+}
+
+/// Where a project came from, for bake.json.
+fn project_source(args: &BakeArgs) -> String {
+    match (&args.project, &args.preset) {
+        (Some(p), _) => p.display().to_string(),
+        (None, Some(name)) => format!("preset {name}"),
+        (None, None) => "default project".into(),
+    }
+}
+
+/// The project of `args`, fully resolved and validated.
+fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
+    let mut project = match (&args.project, &args.preset) {
+        (Some(path), _) => Project::load(path)?,
+        (None, Some(name)) => {
+            let Some((_, file, text)) = crate::defaults::PRESETS.iter().find(|(n, _, _)| n == name)
+            else {
+                let names: Vec<&str> = crate::defaults::PRESETS
+                    .iter()
+                    .map(|(n, _, _)| *n)
+                    .collect();
+                bail!(
+                    "unknown preset `{name}`: expected one of {}",
+                    names.join(", ")
+                );
+            };
+            Project::from_json_str(text, file)?
+        }
+        (None, None) => Project::default(),
+    };
+    let mut edits: Vec<(String, String)> = Vec::new();
+    let mut edit =
+        |path: &str, value: serde_json::Value| edits.push((path.into(), value.to_string()));
+    if !args.wrinkles.is_empty() {
+        edit("large.wrinkles", json!(args.wrinkles));
+    }
+    if let Some(mask) = &args.mask {
+        edit("large.mask", json!(mask));
+    }
+    if let Some(g) = args.gamma {
+        edit("large.gamma", f32_json(g));
+    }
+    if let Some(s) = args.normal_strength {
+        edit("normal.strength", f32_json(s));
+    }
+    if let Some(c) = args.normal_convention {
+        edit(
+            "normal.convention",
+            json!(if c == ConventionArg::Directx {
+                "directx"
+            } else {
+                "opengl"
+            }),
+        );
+    }
+    if args.tile {
+        edit("tile", json!(true));
+    }
+    if let Some(seed) = args.seed {
+        edit("seed", json!(seed));
+    }
+    for (path, value) in edits {
+        project = project.set(&path, &value)?;
+    }
+    for assignment in &args.set {
+        let Some((path, value)) = assignment.split_once('=') else {
+            bail!("--set {assignment}: expected PATH=VALUE, e.g. --set pores.count=1000");
+        };
+        project = project.set(path.trim(), value.trim())?;
+    }
+    let layers = args
+        .layers
+        .or(if args.project.is_none() && args.preset.is_none() {
+            Some(LayersArg::Large)
+        } else {
+            None
+        });
+    if let Some(layers) = layers {
+        let large = layers != LayersArg::Micro;
+        let micro = layers != LayersArg::Large;
+        project.large.enabled = large;
+        project.pores.enabled &= micro;
+        project.furrows.enabled &= micro;
+        if !micro {
+            project.noise.details = 0.0;
+        }
+    }
+    Ok(project)
+}
+
+/// The layer names a resolved project bakes.
+fn layer_names(project: &Project) -> Vec<&'static str> {
+    let mut names = Vec::new();
+    if project.large.enabled {
+        names.push("large");
+    }
+    if project.pores.enabled {
+        names.push("pores");
+    }
+    if project.furrows.enabled {
+        names.push("furrows");
+    }
+    if project.noise.details > 0.0 && project.noise.strength > 0.0 {
+        names.push("noise");
+    }
+    names
 }
 
 /// A wrinkle file as loaded: where it came from and its fibres.
@@ -64,10 +205,10 @@ struct LoadedWrinkles {
     fibres: Vec<Fibre>,
 }
 
-/// Bytes a bake of `size_px`² needs at its peak: f32 heights, the u16 copy and its PNG
-/// byte buffer, and the RGB normals.
+/// Bytes a bake of `size_px`² needs at its peak: the f32 large and total heights, the u16
+/// copy and its PNG byte buffer, and the RGB normals.
 fn peak_bytes(size_px: u32) -> u64 {
-    (size_px as u64).pow(2) * (4 + 2 + 2 + 3)
+    (size_px as u64).pow(2) * (4 + 4 + 2 + 2 + 3)
 }
 
 /// MemAvailable from /proc/meminfo, when the platform has it.
@@ -78,7 +219,9 @@ fn available_memory_bytes() -> Option<u64> {
     Some(kib * 1024)
 }
 
-fn load_wrinkles(args: &BakeArgs) -> anyhow::Result<Vec<LoadedWrinkles>> {
+/// Reads every wrinkle file of the project (the shipped defaults when it names none) and
+/// reports all their errors together.
+fn load_wrinkles(project: &Project) -> anyhow::Result<Vec<LoadedWrinkles>> {
     let mut loaded = Vec::new();
     let mut diagnostics = Vec::new();
     let mut push =
@@ -89,12 +232,12 @@ fn load_wrinkles(args: &BakeArgs) -> anyhow::Result<Vec<LoadedWrinkles>> {
             }),
             Err(errors) => diagnostics.extend(errors.0),
         };
-    if args.wrinkles.is_empty() {
+    if project.large.wrinkles.is_empty() {
         for (name, text) in crate::defaults::WRINKLE_FILES {
             push(name.to_string(), wrinkle_file::parse(text, Path::new(name)));
         }
     } else {
-        for path in &args.wrinkles {
+        for path in &project.large.wrinkles {
             let bytes = std::fs::read(path)
                 .with_context(|| format!("cannot read wrinkle file {}", path.display()))?;
             push(
@@ -130,32 +273,47 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         }
     }
     let t = Instant::now();
-    let wrinkles = load_wrinkles(args)?;
-    let mask = args.mask.as_deref().map(Mask::load).transpose()?;
+    let project = resolve_project(args)?;
+    let (wrinkles, mask) = if project.large.enabled {
+        (
+            load_wrinkles(&project)?,
+            project.large.mask.as_deref().map(Mask::load).transpose()?,
+        )
+    } else {
+        (Vec::new(), None)
+    };
+    // Generates pores and furrows (size independent) and validates the micro settings.
+    let micro = MicroRelief::new(&project)?;
     let parse_ms = ms(t);
     let fibres: Vec<Fibre> = wrinkles
         .iter()
         .flat_map(|w| w.fibres.iter().cloned())
         .collect();
     let settings = LargeWrinkleSettings {
-        gamma: args.gamma,
+        gamma: project.large.gamma,
         mask: mask.as_ref(),
     };
     let normal_settings = NormalSettings {
-        strength: args.normal_strength,
-        convention: match args.normal_convention {
-            ConventionArg::Opengl => Convention::OpenGl,
-            ConventionArg::Directx => Convention::DirectX,
-        },
-        tiling: false,
+        strength: project.normal.strength,
+        convention: project.normal.convention,
+        tiling: project.tile,
     };
-    // Validate the numeric settings on an empty 1×1 bake before creating any file.
+    // Validate the numeric settings on a 1×1 bake before creating any file.
     muscle::rasterize(&[], 1, 1, &settings)?;
     normal_map::normals(&HeightMap::zeros(1, 1)?, &normal_settings)?;
 
     let t = Instant::now();
-    let height = muscle::rasterize(&fibres, args.size, args.size, &settings)?;
-    let rasterize_ms = ms(t);
+    let (mut height, micro_timings) = micro.bake(args.size)?;
+    let micro_ms = ms(t);
+    let t = Instant::now();
+    if project.large.enabled {
+        let large = muscle::rasterize(&fibres, args.size, args.size, &settings)?;
+        let depth = project.large.depth;
+        for (h, l) in height.data_mut().iter_mut().zip(large.data()) {
+            *h += depth * l;
+        }
+    }
+    let large_ms = ms(t);
     let t = Instant::now();
     let normal_rgb = normal_map::encode_rgb8(&height, &normal_settings)?;
     let normal_ms = ms(t);
@@ -180,21 +338,27 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let report = json!({
         "agesim_version": env!("CARGO_PKG_VERSION"),
         "inputs": {
+            "project_source": project_source(args),
             "wrinkles": wrinkles.iter().map(|w| json!({"file": w.source, "fibres": w.fibres.len()})).collect::<Vec<_>>(),
-            "mask": args.mask.as_ref().map(|p| p.display().to_string()),
+            "mask": project.large.mask.as_ref().map(|p| p.display().to_string()),
             "size": args.size,
-            "gamma": f32_json(args.gamma),
-            "normal_strength": f32_json(args.normal_strength),
+            "gamma": f32_json(project.large.gamma),
+            "normal_strength": f32_json(project.normal.strength),
             "normal_convention": normal_settings.convention,
-            "layers": ["large"],
+            "layers": layer_names(&project),
+            "pores": micro.pores().len(),
+            "furrows": micro.furrows().len(),
         },
-        "seed": 0,
+        "seed": project.seed,
+        "project": project.to_value(),
         "height_range": [lo, hi],
         "height_range_meaning": "height = lo + (hi - lo) * p / 65535 for a height.png value p",
         "outputs": ["height.png", "height.exr", "normal.png", "bake.json"],
         "timings_ms": {
-            "parse": parse_ms,
-            "rasterize": rasterize_ms,
+            "parse_and_features": parse_ms,
+            "micro_relief": micro_ms,
+            "micro_relief_band_pass": micro_timings.relief_ms,
+            "large_wrinkles": large_ms,
             "normal_map": normal_ms,
             "write_height_png": png_ms,
             "write_height_exr": exr_ms,
@@ -208,12 +372,14 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         std::io::Write::write_all(w, text.as_bytes())
     })?;
     println!(
-        "baked {} fibres from {} file(s) at {2}×{2} in {3:.0} ms → {4}",
-        fibres.len(),
-        wrinkles.len(),
-        args.size,
-        ms(total),
-        args.out.display()
+        "baked {layers} ({fibres} fibres, {pores} pores, {furrows} furrows) at {size}×{size} in {total_ms:.0} ms → {out}",
+        layers = layer_names(&project).join("+"),
+        fibres = fibres.len(),
+        pores = micro.pores().len(),
+        furrows = micro.furrows().len(),
+        size = args.size,
+        total_ms = ms(total),
+        out = args.out.display()
     );
     Ok(())
 }

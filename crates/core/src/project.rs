@@ -27,7 +27,7 @@ pub const PROJECT_VERSION: u32 = 1;
 /// Default side of the skin patch, mm.
 pub const DEFAULT_MAP_SIZE_MM: f32 = 50.0;
 /// Default large-wrinkle crest flattening γ (SPEC §1).
-pub const DEFAULT_GAMMA: f32 = 0.4;
+pub const DEFAULT_GAMMA: f32 = crate::muscle::DEFAULT_GAMMA;
 
 /// A value drawn uniformly in `mean ± spread` per feature.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -72,11 +72,13 @@ pub struct Project {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LargeSection {
+    /// Bake the large-wrinkle layer at all (the skin-patch presets turn it off).
+    pub enabled: bool,
     /// Wrinkle description files (SPEC §2); relative paths are relative to the project file.
     pub wrinkles: Vec<PathBuf>,
     /// Optional grey mask image multiplying the large wrinkles.
     pub mask: Option<PathBuf>,
-    /// Crest flattening γ, 0.05–4.
+    /// Crest flattening γ, 0.01–10 (`muscle::GAMMA_RANGE`).
     pub gamma: f32,
     /// Height units of a normalised wrinkle height of 1; 0–10.
     pub depth: f32,
@@ -195,6 +197,7 @@ impl Default for Project {
 impl Default for LargeSection {
     fn default() -> Self {
         Self {
+            enabled: true,
             wrinkles: Vec::new(),
             mask: None,
             gamma: DEFAULT_GAMMA,
@@ -360,7 +363,8 @@ impl Project {
             c.fail("version", self.version, &format!("{PROJECT_VERSION}"));
         }
         c.range("map_size_mm", self.map_size_mm, 1.0, 1000.0);
-        c.range("large.gamma", self.large.gamma, 0.05, 4.0);
+        let (gamma_lo, gamma_hi) = crate::muscle::GAMMA_RANGE;
+        c.range("large.gamma", self.large.gamma, gamma_lo, gamma_hi);
         c.range("large.depth", self.large.depth, 0.0, 10.0);
         let p = &self.pores;
         c.range("pores.count", p.count as f32, 0.0, 200_000.0);

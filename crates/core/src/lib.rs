@@ -5,11 +5,15 @@
 //! ((x + 0.5)/W, 1 − (y + 0.5)/H), heights in signed height units, age t ∈ [0,1].
 
 pub mod error;
+pub mod head;
 pub mod heightmap;
 pub mod mask;
+pub mod mesh;
+pub mod preview;
 pub mod rng;
 pub mod wrinkle_file;
 
 pub use error::Error;
 pub use heightmap::HeightMap;
 pub use mask::Mask;
+pub use mesh::Mesh;

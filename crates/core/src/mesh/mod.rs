@@ -16,7 +16,7 @@
 //! Conventions (SPEC §0): UV v up (glTF's v is flipped on load), counter-clockwise front
 //! faces, tangent `w` = ±1 with bitangent = `w · cross(normal, tangent)`.
 
-// pub mod gltf;
+pub mod gltf;
 pub mod normals;
 pub mod obj;
 pub mod spherical_uv;
@@ -90,7 +90,8 @@ pub enum MeshWarning {
     DegenerateTriangles(usize),
     /// Vertices removed because no remaining triangle used them.
     UnusedVertices(usize),
-    /// Normals (given but NaN, infinite or zero) replaced by computed ones.
+    /// Vertices whose normal was missing (a part without normals) or NaN, infinite or
+    /// zero: computed ones were used.
     BadNormalsReplaced(usize),
     /// UVs (given but NaN or infinite) replaced by (0, 0).
     BadUvsReplaced(usize),
@@ -120,7 +121,10 @@ impl fmt::Display for MeshWarning {
             Self::DegenerateTriangles(n) => write!(f, "dropped {n} degenerate triangles"),
             Self::UnusedVertices(n) => write!(f, "removed {n} unused vertices"),
             Self::BadNormalsReplaced(n) => {
-                write!(f, "replaced {n} invalid normals by computed ones")
+                write!(
+                    f,
+                    "computed normals for {n} vertices that had none or invalid ones"
+                )
             }
             Self::BadUvsReplaced(n) => write!(f, "replaced {n} invalid UVs by (0, 0)"),
             Self::DegenerateUvTriangles(n) => write!(
@@ -215,7 +219,7 @@ impl Mesh {
             .unwrap_or_default();
         let raw = match ext.as_str() {
             "obj" => obj::load(path)?,
-            // "gltf" | "glb" => gltf::load(path)?,
+            "gltf" | "glb" => gltf::load(path)?,
             _ => {
                 return Err(Error::UnsupportedMeshFormat {
                     path: path.to_owned(),

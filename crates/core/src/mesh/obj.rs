@@ -88,3 +88,160 @@ fn merge(models: &[tobj::Model]) -> RawMesh {
     }
     raw
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::test_util::{assert_close, assert_vec_close};
+    use crate::mesh::{Mesh, MeshWarning};
+
+    fn write(dir: &Path, name: &str, text: &str) -> std::path::PathBuf {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+
+    /// Two objects: a quad with UVs and normals, and a quad (a polygon, triangulated)
+    /// with neither, sharing the position list.
+    const TWO_OBJECTS: &str = "\
+# two objects
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 2 0 0
+v 3 0 0
+v 3 1 0
+v 2 1 0
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+vn 0 0 1
+o A
+f 1/1/1 2/2/1 3/3/1 4/4/1
+o B
+f 5 6 7 8
+";
+
+    #[test]
+    fn objects_merge_and_a_part_without_normals_and_uvs_is_completed() {
+        let dir = tempfile::tempdir().unwrap();
+        let m = Mesh::load(&write(dir.path(), "two.obj", TWO_OBJECTS)).unwrap();
+        assert_eq!(m.triangle_count(), 4);
+        let names: Vec<&str> = m.parts().iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(names, ["object \"A\"", "object \"B\""]);
+        assert_vec_close(m.bounds().size(), Vec3::new(3.0, 1.0, 0.0), 0.0, "size");
+        for n in m.normals() {
+            assert_vec_close(*n, Vec3::Z, 1e-6, "normal");
+        }
+        // B had no UVs: the whole layout was regenerated, and said so.
+        assert!(m.report().uvs_generated);
+        assert!(
+            m.report()
+                .warnings
+                .contains(&MeshWarning::PartialUvsReplaced {
+                    parts_without_uvs: 1
+                })
+        );
+    }
+
+    #[test]
+    fn obj_uvs_are_kept_as_written_v_up() {
+        let dir = tempfile::tempdir().unwrap();
+        let text = TWO_OBJECTS.split("o B").next().unwrap();
+        let m = Mesh::load(&write(dir.path(), "a.obj", text)).unwrap();
+        for (p, uv) in m.positions().iter().zip(m.uvs()) {
+            assert_close(uv.x, p.x, 0.0, "u");
+            assert_close(uv.y, p.y, 0.0, "v (OBJ is v up already)");
+        }
+        assert!(!m.report().normals_generated);
+    }
+
+    #[test]
+    fn mirrored_uvs_give_orthonormal_tangents_with_flipped_handedness() {
+        // A strip of two quads whose right half mirrors the left's UVs.
+        let text = "\
+v 0 0 0
+v 1 0 0
+v 2 0 0
+v 0 1 0
+v 1 1 0
+v 2 1 0
+vt 0 0
+vt 1 0
+vt 0 1
+vt 1 1
+f 1/1 2/2 5/4 4/3
+f 2/2 3/1 6/3 5/4
+";
+        let dir = tempfile::tempdir().unwrap();
+        let m = Mesh::load(&write(dir.path(), "mirror.obj", text)).unwrap();
+        for (t, (n, p)) in m
+            .tangents()
+            .iter()
+            .zip(m.normals().iter().zip(m.positions()))
+        {
+            assert_close(t.truncate().dot(*n), 0.0, 1e-6, "t ⟂ n");
+            assert_close(t.truncate().length(), 1.0, 1e-6, "|t|");
+            // Bitangent (w · n × t) points along +v = +y on both halves.
+            let b = t.w * n.cross(t.truncate());
+            assert_vec_close(b, Vec3::Y, 1e-5, "bitangent");
+        }
+        // Per triangle: the left half has u along +x (w = +1), the right along −x (w = −1).
+        for tri in m.triangles() {
+            let cx: f32 = tri
+                .iter()
+                .map(|&i| m.positions()[i as usize].x)
+                .sum::<f32>()
+                / 3.0;
+            for &i in &tri {
+                let t = m.tangents()[i as usize];
+                let (dir, w) = if cx < 1.0 {
+                    (Vec3::X, 1.0)
+                } else {
+                    (Vec3::NEG_X, -1.0)
+                };
+                assert_vec_close(t.truncate(), dir, 1e-5, "tangent");
+                assert_close(t.w, w, 0.0, "handedness");
+            }
+        }
+    }
+
+    #[test]
+    fn bad_input_is_an_error_or_a_counted_warning() {
+        let dir = tempfile::tempdir().unwrap();
+        // Missing file.
+        let err = Mesh::load(&dir.path().join("none.obj"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("none.obj"), "{err}");
+        // Unsupported extension.
+        let err = Mesh::load(&write(dir.path(), "a.stl", "solid"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("unsupported mesh format"), "{err}");
+        // Out-of-range face index: tobj refuses the file.
+        let err = Mesh::load(&write(
+            dir.path(),
+            "oob.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
+        ))
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("oob.obj"), "{err}");
+        // Zero triangles.
+        let err = Mesh::load(&write(dir.path(), "empty.obj", "v 0 0 0\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("empty"), "{err}");
+        // NaN and infinite positions: those triangles go, the rest stays.
+        let text =
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\nv inf 1 1\nf 1 2 3\nf 1 2 4\nf 1 5 3\nf 1 1 2\n";
+        let m = Mesh::load(&write(dir.path(), "nan.obj", text)).unwrap();
+        assert_eq!(m.triangle_count(), 1);
+        let w = &m.report().warnings;
+        assert!(w.contains(&MeshWarning::NonFiniteTriangles(2)), "{w:?}");
+        assert!(w.contains(&MeshWarning::DegenerateTriangles(1)), "{w:?}");
+    }
+}

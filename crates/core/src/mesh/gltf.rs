@@ -392,7 +392,7 @@ mod tests {
         let mut accessors = Vec::new();
         let mut push =
             |bytes: &[u8], acc: String, views: &mut Vec<String>, accessors: &mut Vec<String>| {
-                while bin.len() % 4 != 0 {
+                while !bin.len().is_multiple_of(4) {
                     bin.push(0);
                 }
                 views.push(format!(
@@ -472,7 +472,7 @@ mod tests {
                 prim_json.join(",")
             ));
         }
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         let json = format!(
@@ -512,7 +512,7 @@ mod tests {
     fn write_glb(dir: &Path, name: &str, json: &str, bin: &[u8]) -> std::path::PathBuf {
         // GLB: the buffer has no uri.
         let mut json = json.replace(r#","uri":"URI""#, "").into_bytes();
-        while json.len() % 4 != 0 {
+        while !json.len().is_multiple_of(4) {
             json.push(b' ');
         }
         let total = 12 + 8 + json.len() + 8 + bin.len();

@@ -177,11 +177,7 @@ f 2/2 3/1 6/3 5/4
 ";
         let dir = tempfile::tempdir().unwrap();
         let m = Mesh::load(&write(dir.path(), "mirror.obj", text)).unwrap();
-        for (t, (n, p)) in m
-            .tangents()
-            .iter()
-            .zip(m.normals().iter().zip(m.positions()))
-        {
+        for (t, n) in m.tangents().iter().zip(m.normals()) {
             assert_close(t.truncate().dot(*n), 0.0, 1e-6, "t ⟂ n");
             assert_close(t.truncate().length(), 1.0, 1e-6, "|t|");
             // Bitangent (w · n × t) points along +v = +y on both halves.

@@ -5,10 +5,13 @@
 //! ((x + 0.5)/W, 1 − (y + 0.5)/H), heights in signed height units, age t ∈ [0,1].
 
 pub mod error;
+pub mod export;
 pub mod head;
 pub mod heightmap;
 pub mod mask;
 pub mod mesh;
+pub mod muscle;
+pub mod normal_map;
 pub mod preview;
 pub mod rng;
 pub mod wrinkle_file;

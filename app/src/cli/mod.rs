@@ -1,5 +1,8 @@
 //! The command line: one binary, one subcommand per task.
 
+mod gen_assets;
+mod mesh_info;
+
 use clap::{CommandFactory as _, Parser, Subcommand};
 
 /// agesim: age a human head — wrinkles, skin micro-relief, hair recession and graying.
@@ -11,10 +14,18 @@ pub struct Cli {
 }
 
 #[derive(Debug, Subcommand)]
-pub enum Command {}
+pub enum Command {
+    /// Print what a head mesh (OBJ, glTF, GLB) contains: counts, size, attributes, repairs.
+    MeshInfo(mesh_info::MeshInfoArgs),
+    /// Regenerate the default assets (masks, fine-wrinkle tile, pictures) into a folder.
+    #[command(hide = true)]
+    GenAssets(gen_assets::GenAssetsArgs),
+}
 
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
+        Some(Command::MeshInfo(args)) => mesh_info::run(&args),
+        Some(Command::GenAssets(args)) => gen_assets::run(&args),
         // Until the editor exists, no subcommand prints the help.
         None => {
             Cli::command().print_help()?;

@@ -6,7 +6,9 @@
 
 pub mod error;
 pub mod export;
+pub mod fine_wrinkles;
 pub mod head;
+pub mod head_assets;
 pub mod heightmap;
 pub mod mask;
 pub mod mesh;

@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use agesim_core::Mesh;
 use agesim_core::mesh::TangentSource;
-use anyhow::Context as _;
 
 /// Print vertex/triangle counts, bounding box and size, which attributes the file had and
 /// what was generated or dropped. Without FILE (or with --default-head): the default head.
@@ -19,10 +18,7 @@ pub struct MeshInfoArgs {
 
 pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
     let (name, mesh) = match &args.file {
-        Some(path) if !args.default_head => (
-            path.display().to_string(),
-            Mesh::load(path).with_context(|| format!("cannot load the mesh {}", path.display()))?,
-        ),
+        Some(path) if !args.default_head => (path.display().to_string(), Mesh::load(path)?),
         _ => (
             "default head (generated, metres)".to_owned(),
             agesim_core::head::default_head(),

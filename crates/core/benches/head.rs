@@ -41,6 +41,20 @@ fn main() {
     });
     let m = agesim_core::head::default_head();
     let p = agesim_core::head::skin_patch();
+    let normals = time(5, || {
+        std::hint::black_box(agesim_core::mesh::normals::smooth_normals(
+            m.positions(),
+            m.indices(),
+        ));
+    });
+    let mikk = time(5, || {
+        std::hint::black_box(agesim_core::mesh::tangents::mikktspace(
+            m.positions(),
+            m.normals(),
+            m.uvs(),
+            m.indices(),
+        ));
+    });
     println!("threads: {threads}");
     println!(
         "default head ({} triangles): median {:.1} ms (shape only, before Mesh::build: {:.1} ms)",
@@ -52,6 +66,11 @@ fn main() {
         "baseline skin patch ({} triangles, Mesh::build only): median {:.1} ms",
         p.triangle_count(),
         patch.as_secs_f64() * 1e3
+    );
+    println!(
+        "  of which smooth normals {:.1} ms, MikkTSpace tangents {:.1} ms",
+        normals.as_secs_f64() * 1e3,
+        mikk.as_secs_f64() * 1e3
     );
     println!(
         "ratio head / baseline: {:.2}",

@@ -2,11 +2,41 @@
 //! Each is a file under `assets/`; the name printed in diagnostics and `bake.json` is its
 //! path in the repository.
 
-/// The default wrinkle description files: (repository path, contents).
-pub const WRINKLE_FILES: &[(&str, &str)] = &[(
-    "assets/wrinkles/thesis-forehead.wrk",
-    include_str!("../../assets/wrinkles/thesis-forehead.wrk"),
-)];
+/// The default wrinkle description files of the default head: (repository path, contents).
+/// `forehead.wrk` contains [T]'s own example (SPEC §2), which is also kept unchanged as
+/// `assets/wrinkles/thesis-forehead.wrk` (not in this list, so it is not counted twice).
+pub const WRINKLE_FILES: &[(&str, &str)] = &[
+    (
+        "assets/wrinkles/forehead.wrk",
+        include_str!("../../assets/wrinkles/forehead.wrk"),
+    ),
+    (
+        "assets/wrinkles/glabella.wrk",
+        include_str!("../../assets/wrinkles/glabella.wrk"),
+    ),
+    (
+        "assets/wrinkles/crows-feet.wrk",
+        include_str!("../../assets/wrinkles/crows-feet.wrk"),
+    ),
+    (
+        "assets/wrinkles/nasolabial.wrk",
+        include_str!("../../assets/wrinkles/nasolabial.wrk"),
+    ),
+    (
+        "assets/wrinkles/marionette.wrk",
+        include_str!("../../assets/wrinkles/marionette.wrk"),
+    ),
+    (
+        "assets/wrinkles/neck.wrk",
+        include_str!("../../assets/wrinkles/neck.wrk"),
+    ),
+];
+
+/// The default large-wrinkle mask of the default head: (repository path, PNG bytes).
+pub const WRINKLE_MASK: (&str, &[u8]) = (
+    "assets/masks/wrinkles.png",
+    include_bytes!("../../assets/masks/wrinkles.png"),
+);
 
 /// The project presets of `assets/presets/`: (name, repository path, contents).
 pub const PRESETS: &[(&str, &str, &str)] = &[

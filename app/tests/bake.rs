@@ -41,7 +41,7 @@ fn default_bake_writes_the_four_files() {
         report["inputs"]["wrinkles"][0]["file"]
             .as_str()
             .unwrap()
-            .contains("thesis-forehead.wrk")
+            .contains("forehead.wrk")
     );
 
     let height = image::open(out.join("height.png")).unwrap();
@@ -49,8 +49,47 @@ fn default_bake_writes_the_four_files() {
     assert_eq!((height.width(), height.height()), (256, 256));
     let normal = image::open(out.join("normal.png")).unwrap();
     assert_eq!(normal.color(), image::ColorType::Rgb8);
-    // The forehead wrinkles of the thesis example sit around u 0.42–0.56, v 0.64–0.73.
+    // The default files are the default head's: every wrinkle group, with its mask.
+    assert_eq!(report["inputs"]["wrinkles"].as_array().unwrap().len(), 6);
+    assert_eq!(report["inputs"]["mask"], "assets/masks/wrinkles.png");
+    // Wrinkles on the forehead (u 0.42–0.56, v 0.64–0.73 on the default head's layout),
+    // none on the back of the head (u < 0.1).
     let h = height.into_luma16();
+    let at = |u: f32, v: f32| h.get_pixel((u * 256.0) as u32, ((1.0 - v) * 256.0) as u32)[0];
+    let forehead = (0..20)
+        .map(|i| at(0.43 + i as f32 * 0.006, 0.69) as u32)
+        .max()
+        .unwrap();
+    assert!(forehead > 20000, "forehead crest {forehead}");
+    assert!((0..50).all(|i| at(0.05, 0.1 + i as f32 * 0.016) == 0));
+}
+
+#[test]
+fn thesis_example_crests_on_its_forehead() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("maps");
+    let wrk = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/wrinkles/thesis-forehead.wrk"
+    );
+    let o = agesim(&[
+        "bake",
+        "--wrinkles",
+        wrk,
+        "--size",
+        "256",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    assert_eq!(
+        report["inputs"]["mask"],
+        serde_json::Value::Null,
+        "own files: no default mask"
+    );
+    let h = image::open(out.join("height.png")).unwrap().into_luma16();
     let crest = (0..256u32)
         .flat_map(|x| (0..256u32).map(move |y| (x, y)))
         .filter(|&(x, y)| h.get_pixel(x, y)[0] == 65535)

@@ -33,8 +33,8 @@ pub struct BakeArgs {
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub set: Vec<String>,
 
-    /// Wrinkle description file (repeatable); sets `large.wrinkles`. Default: the wrinkle
-    /// files shipped in assets/.
+    /// Wrinkle description file (repeatable); sets `large.wrinkles`. Default: the default
+    /// head's wrinkle files and mask shipped in assets/.
     #[arg(long = "wrinkles", value_name = "FILE.wrk")]
     pub wrinkles: Vec<PathBuf>,
 
@@ -275,10 +275,16 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let t = Instant::now();
     let project = resolve_project(args)?;
     let (wrinkles, mask) = if project.large.enabled {
-        (
-            load_wrinkles(&project)?,
-            project.large.mask.as_deref().map(Mask::load).transpose()?,
-        )
+        let mask = match &project.large.mask {
+            Some(path) => Some(Mask::load(path)?),
+            // The default wrinkle files come with the default head's mask.
+            None if project.large.wrinkles.is_empty() => {
+                let (name, bytes) = crate::defaults::WRINKLE_MASK;
+                Some(Mask::decode(bytes, Path::new(name))?)
+            }
+            None => None,
+        };
+        (load_wrinkles(&project)?, mask)
     } else {
         (Vec::new(), None)
     };
@@ -340,7 +346,11 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         "inputs": {
             "project_source": project_source(args),
             "wrinkles": wrinkles.iter().map(|w| json!({"file": w.source, "fibres": w.fibres.len()})).collect::<Vec<_>>(),
-            "mask": project.large.mask.as_ref().map(|p| p.display().to_string()),
+            "mask": match (&project.large.mask, project.large.enabled && project.large.wrinkles.is_empty()) {
+                (Some(p), _) => Some(p.display().to_string()),
+                (None, true) => Some(crate::defaults::WRINKLE_MASK.0.to_string()),
+                (None, false) => None,
+            },
             "size": args.size,
             "gamma": f32_json(project.large.gamma),
             "normal_strength": f32_json(project.normal.strength),

@@ -6,11 +6,16 @@
 
 pub mod error;
 pub mod export;
+pub mod fine_wrinkles;
+pub mod head;
+pub mod head_assets;
 pub mod heightmap;
 pub mod mask;
+pub mod mesh;
 pub mod micro;
 pub mod muscle;
 pub mod normal_map;
+pub mod preview;
 pub mod project;
 pub mod rng;
 pub mod wrinkle_file;
@@ -18,3 +23,4 @@ pub mod wrinkle_file;
 pub use error::Error;
 pub use heightmap::HeightMap;
 pub use mask::Mask;
+pub use mesh::Mesh;

@@ -101,7 +101,10 @@ impl HeightMap {
 
     /// Box-downsamples by an integer `factor` (both sides must divide).
     pub fn downsample_box(&self, factor: u32) -> Result<Self, Error> {
-        if factor == 0 || !self.width_px.is_multiple_of(factor) || !self.height_px.is_multiple_of(factor) {
+        if factor == 0
+            || !self.width_px.is_multiple_of(factor)
+            || !self.height_px.is_multiple_of(factor)
+        {
             return Err(Error::InvalidValue {
                 what: "downsample factor".into(),
                 value: factor.to_string(),

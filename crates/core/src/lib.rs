@@ -5,9 +5,11 @@
 //! ((x + 0.5)/W, 1 − (y + 0.5)/H), heights in signed height units, age t ∈ [0,1].
 
 pub mod error;
+pub mod hair;
 pub mod heightmap;
 pub mod mask;
 pub mod rng;
+pub mod transition;
 pub mod wrinkle_file;
 
 pub use error::Error;

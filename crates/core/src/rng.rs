@@ -18,7 +18,9 @@ impl Rng {
 
     /// An independent generator for item `stream` under `seed`.
     pub fn for_stream(seed: u64, stream: u64) -> Self {
-        Self { state: mix64(seed ^ mix64(stream.wrapping_add(0x9E37_79B9_7F4A_7C15))) }
+        Self {
+            state: mix64(seed ^ mix64(stream.wrapping_add(0x9E37_79B9_7F4A_7C15))),
+        }
     }
 
     /// The next 64 random bits.
@@ -89,7 +91,13 @@ mod tests {
 
     #[test]
     fn streams_differ() {
-        assert_ne!(Rng::for_stream(1, 0).next_u64(), Rng::for_stream(1, 1).next_u64());
-        assert_ne!(Rng::for_stream(1, 0).next_u64(), Rng::for_stream(2, 0).next_u64());
+        assert_ne!(
+            Rng::for_stream(1, 0).next_u64(),
+            Rng::for_stream(1, 1).next_u64()
+        );
+        assert_ne!(
+            Rng::for_stream(1, 0).next_u64(),
+            Rng::for_stream(2, 0).next_u64()
+        );
     }
 }

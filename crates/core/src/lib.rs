@@ -5,9 +5,12 @@
 //! ((x + 0.5)/W, 1 − (y + 0.5)/H), heights in signed height units, age t ∈ [0,1].
 
 pub mod error;
+pub mod export;
 pub mod hair;
 pub mod heightmap;
 pub mod mask;
+pub mod muscle;
+pub mod normal_map;
 pub mod rng;
 pub mod transition;
 pub mod wrinkle_file;

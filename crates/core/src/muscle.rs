@@ -1,0 +1,797 @@
+//! Large wrinkles: the muscle-fibre model (SPEC §1, [T] §5.1).
+//!
+//! A wrinkle group ("fibre") is a segment mA → mB in UV space. Wrinkles run across it,
+//! `n` of them along its length, fading out over a capsule of half-width `W·L` around it.
+//! [`Fibre::height_at`] evaluates one fibre at a UV point; [`rasterize`] sums all fibres
+//! into a [`HeightMap`], normalises by the maximum, applies γ and an optional mask.
+
+use std::f32::consts::{FRAC_PI_2, PI};
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::error::Error;
+use crate::heightmap::{HeightMap, pixel_to_u, pixel_to_v};
+use crate::mask::Mask;
+
+/// Default relative half-width `W` of the influence area (SPEC §1).
+pub const DEFAULT_REL_WIDTH: f32 = 0.5;
+/// Default end-angle limit αmax, in units of π/2 (SPEC §1, **Choice** 1.5).
+pub const DEFAULT_MAX_ANGLE: f32 = 1.5;
+/// Default relative frequency at the edge of the influence area (SPEC §1).
+pub const DEFAULT_OMEGA_LOW: f32 = 0.5;
+/// Default per-fibre amplitude `A` (an agesim extension; [T] has A = 1).
+pub const DEFAULT_DEPTH: f32 = 1.0;
+/// Default crest-flattening exponent γ (SPEC §1 "Blending").
+pub const DEFAULT_GAMMA: f32 = 0.4;
+
+/// Smallest allowed relative width (SPEC §1: W ≥ 1e-6).
+pub const MIN_REL_WIDTH: f32 = 1e-6;
+/// Largest wrinkle count per fibre we accept (beyond it a fibre is noise, not wrinkles).
+pub const MAX_WRINKLE_COUNT: u32 = 1000;
+/// Valid range of the per-fibre amplitude.
+pub const DEPTH_RANGE: (f32, f32) = (0.0, 100.0);
+/// Valid range of γ. γ < 1 flattens crests, γ > 1 sharpens them.
+pub const GAMMA_RANGE: (f32, f32) = (0.01, 10.0);
+
+/// The cross-section of the wrinkles along a fibre (SPEC §1 "Alternative cross-section
+/// profiles"). Every profile is a function of the phase x = n·ω(d)·t with period 1, equal
+/// to 0 at integer x (between wrinkles) and 1 at half-integer x (the crest).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Profile {
+    /// |sin(πx)| — [T] 5.3, the default: rounded crests, sharp creases between them.
+    #[default]
+    AbsSin,
+    /// 0.5 + 0.5·sin(π(2x − 0.5)) — [T] 5.2: smooth crests and creases.
+    Sin,
+    /// exp(−x'²/2σ²) with x' = frac(x) − 0.5 and σ = 1/6 — [P] eq. 2 applied per wrinkle
+    /// (**Choice**: σ so that the crest reaches ≈ 0.011 at the wrinkle's edge).
+    Gauss,
+    /// 1 − x'²/ω² with x' = frac(x) − 0.5 and ω = 0.5 — [P] eq. 16 applied per wrinkle.
+    Parabola,
+}
+
+impl Profile {
+    /// All profiles, in the order the wrinkle file documents them.
+    pub const ALL: [Profile; 4] = [
+        Profile::AbsSin,
+        Profile::Sin,
+        Profile::Gauss,
+        Profile::Parabola,
+    ];
+
+    /// The name used in wrinkle files (`profile=abs_sin`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Profile::AbsSin => "abs_sin",
+            Profile::Sin => "sin",
+            Profile::Gauss => "gauss",
+            Profile::Parabola => "parabola",
+        }
+    }
+
+    /// Parses a wrinkle-file name, case-insensitively.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|p| p.name().eq_ignore_ascii_case(name))
+    }
+
+    /// The profile at phase `x` (any real; period 1), in [0, 1].
+    #[inline]
+    pub fn eval(self, x: f32) -> f32 {
+        match self {
+            Profile::AbsSin => (PI * x).sin().abs(),
+            Profile::Sin => 0.5 + 0.5 * (PI * (2.0 * x - 0.5)).sin(),
+            Profile::Gauss => {
+                let xc = x - x.floor() - 0.5;
+                const SIGMA: f32 = 1.0 / 6.0;
+                (-(xc * xc) / (2.0 * SIGMA * SIGMA)).exp()
+            }
+            Profile::Parabola => {
+                let xc = x - x.floor() - 0.5;
+                (1.0 - xc * xc / 0.25).max(0.0)
+            }
+        }
+    }
+}
+
+/// The smoothstep S(x) = 3x² − 2x³ ([T] 5.7), for x in [0,1].
+#[inline]
+pub fn smoothstep(x: f32) -> f32 {
+    x * x * (3.0 - 2.0 * x)
+}
+
+/// The radial attenuation At(d) = 1 − min(d/(W·L), 1) ([T] 5.5). `half_width` is W·L.
+#[inline]
+pub fn attenuation(d: f32, half_width: f32) -> f32 {
+    1.0 - (d / half_width).min(1.0)
+}
+
+/// The relative frequency ω(d) = fmin + (1 − fmin)·S(At(d)) ([T] 5.6).
+#[inline]
+pub fn relative_frequency(at: f32, omega_low: f32) -> f32 {
+    omega_low + (1.0 - omega_low) * smoothstep(at)
+}
+
+/// The end-angle attenuation Aα (SPEC §1). `alpha` is the angle, in radians, between the
+/// direction pointing back into the fibre and the vector from the end to the point
+/// (π/2 ≤ α ≤ π beyond an end); `max_angle` is αmax in units of π/2, in [1, 2].
+/// With αmax = 1 nothing passes the ends (Aα = 0 for every α > π/2).
+#[inline]
+pub fn angle_attenuation(alpha: f32, max_angle: f32) -> f32 {
+    let over = (alpha - FRAC_PI_2).max(0.0);
+    let span = max_angle * FRAC_PI_2 - FRAC_PI_2;
+    if span <= 0.0 {
+        return if over > 0.0 { 0.0 } else { 1.0 };
+    }
+    1.0 - (over / span).min(1.0)
+}
+
+/// A validated muscle fibre (one wrinkle group of a wrinkle file).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fibre {
+    ma: [f32; 2],
+    mb: [f32; 2],
+    n: u32,
+    rel_width: f32,
+    max_angle: f32,
+    omega_low: f32,
+    profile: Profile,
+    depth: f32,
+}
+
+/// Why a fibre parameter is invalid: the value's expected form, for error messages.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RangeError {
+    /// What a valid value looks like, e.g. "a number in [1, 2]".
+    pub expected: String,
+}
+
+fn check_range(v: f32, lo: f32, hi: f32, expected: &str) -> Result<f32, RangeError> {
+    if v.is_finite() && v >= lo && v <= hi {
+        Ok(v)
+    } else {
+        Err(RangeError {
+            expected: expected.to_owned(),
+        })
+    }
+}
+
+/// Validates an end point: two finite numbers.
+pub fn check_point(p: [f32; 2]) -> Result<[f32; 2], RangeError> {
+    if p.iter().all(|c| c.is_finite()) {
+        Ok(p)
+    } else {
+        Err(RangeError {
+            expected: "a UV point `u;v` of two finite numbers".into(),
+        })
+    }
+}
+
+/// Validates the wrinkle count: an integer in 2..=[`MAX_WRINKLE_COUNT`] (SPEC §1: n > 1).
+pub fn check_count(n: i64) -> Result<u32, RangeError> {
+    if (2..=MAX_WRINKLE_COUNT as i64).contains(&n) {
+        Ok(n as u32)
+    } else {
+        Err(RangeError {
+            expected: format!("an integer in 2..={MAX_WRINKLE_COUNT}"),
+        })
+    }
+}
+
+/// Validates W: (0, 1], at least [`MIN_REL_WIDTH`].
+pub fn check_rel_width(w: f32) -> Result<f32, RangeError> {
+    check_range(w, MIN_REL_WIDTH, 1.0, "a number in [1e-6, 1]")
+}
+
+/// Validates αmax: [1, 2] (units of π/2).
+pub fn check_max_angle(a: f32) -> Result<f32, RangeError> {
+    check_range(a, 1.0, 2.0, "a number in [1, 2]")
+}
+
+/// Validates fmin: [0, 1].
+pub fn check_omega_low(f: f32) -> Result<f32, RangeError> {
+    check_range(f, 0.0, 1.0, "a number in [0, 1]")
+}
+
+/// Validates the per-fibre amplitude A: [0, 100].
+pub fn check_depth(a: f32) -> Result<f32, RangeError> {
+    check_range(a, DEPTH_RANGE.0, DEPTH_RANGE.1, "a number in [0, 100]")
+}
+
+impl Fibre {
+    /// A fibre from `ma` to `mb` with `n` wrinkles and the SPEC §1 defaults.
+    /// Fails when a point is not finite, `n` is outside 2..=1000 or `ma == mb`.
+    pub fn new(ma: [f32; 2], mb: [f32; 2], n: u32) -> Result<Self, Error> {
+        let invalid = |what: &str, value: String, e: RangeError| Error::InvalidValue {
+            what: what.into(),
+            value,
+            expected: e.expected,
+        };
+        check_point(ma).map_err(|e| invalid("ma", format!("{ma:?}"), e))?;
+        check_point(mb).map_err(|e| invalid("mb", format!("{mb:?}"), e))?;
+        check_count(n as i64).map_err(|e| invalid("n", n.to_string(), e))?;
+        if ma == mb {
+            return Err(Error::InvalidValue {
+                what: "mb".into(),
+                value: format!("{};{}", mb[0], mb[1]),
+                expected: "a point different from ma".into(),
+            });
+        }
+        Ok(Self {
+            ma,
+            mb,
+            n,
+            rel_width: DEFAULT_REL_WIDTH,
+            max_angle: DEFAULT_MAX_ANGLE,
+            omega_low: DEFAULT_OMEGA_LOW,
+            profile: Profile::AbsSin,
+            depth: DEFAULT_DEPTH,
+        })
+    }
+
+    /// Sets W, the half-width relative to the fibre length, in [1e-6, 1].
+    pub fn with_rel_width(mut self, w: f32) -> Result<Self, Error> {
+        self.rel_width = check_rel_width(w).map_err(|e| range_err("relWidth", w, e))?;
+        Ok(self)
+    }
+
+    /// Sets αmax in units of π/2, in [1, 2].
+    pub fn with_max_angle(mut self, a: f32) -> Result<Self, Error> {
+        self.max_angle = check_max_angle(a).map_err(|e| range_err("maxAngle", a, e))?;
+        Ok(self)
+    }
+
+    /// Sets fmin, the relative frequency at the edge of the influence area, in [0, 1].
+    pub fn with_omega_low(mut self, f: f32) -> Result<Self, Error> {
+        self.omega_low = check_omega_low(f).map_err(|e| range_err("omegaLow", f, e))?;
+        Ok(self)
+    }
+
+    /// Sets the per-fibre amplitude A, in [0, 100] (relative: the layer is normalised).
+    pub fn with_depth(mut self, a: f32) -> Result<Self, Error> {
+        self.depth = check_depth(a).map_err(|e| range_err("depth", a, e))?;
+        Ok(self)
+    }
+
+    /// Sets the cross-section profile.
+    pub fn with_profile(mut self, profile: Profile) -> Self {
+        self.profile = profile;
+        self
+    }
+
+    pub fn ma(&self) -> [f32; 2] {
+        self.ma
+    }
+    pub fn mb(&self) -> [f32; 2] {
+        self.mb
+    }
+    /// Number of wrinkles along the fibre (ω0 of [T]).
+    pub fn n(&self) -> u32 {
+        self.n
+    }
+    pub fn rel_width(&self) -> f32 {
+        self.rel_width
+    }
+    pub fn max_angle(&self) -> f32 {
+        self.max_angle
+    }
+    pub fn omega_low(&self) -> f32 {
+        self.omega_low
+    }
+    pub fn profile(&self) -> Profile {
+        self.profile
+    }
+    pub fn depth(&self) -> f32 {
+        self.depth
+    }
+
+    /// Length L = ‖mB − mA‖ in UV units.
+    pub fn length_uv(&self) -> f32 {
+        let (dx, dy) = (self.mb[0] - self.ma[0], self.mb[1] - self.ma[1]);
+        (dx * dx + dy * dy).sqrt()
+    }
+
+    /// The UV rectangle `[u0, v0, u1, v1]` outside which the fibre is exactly 0: the
+    /// bounding box of the capsule of radius W·L around the segment.
+    pub fn bounds_uv(&self) -> [f32; 4] {
+        let r = self.rel_width * self.length_uv();
+        [
+            self.ma[0].min(self.mb[0]) - r,
+            self.ma[1].min(self.mb[1]) - r,
+            self.ma[0].max(self.mb[0]) + r,
+            self.ma[1].max(self.mb[1]) + r,
+        ]
+    }
+
+    /// The wrinkle height h(t,d)·Aα of SPEC §1 at UV point (u, v), in [0, A]; exactly 0
+    /// outside the region where At(d)·Aα > 0.
+    #[inline]
+    pub fn height_at(&self, u: f32, v: f32) -> f32 {
+        let (ex, ey) = (self.mb[0] - self.ma[0], self.mb[1] - self.ma[1]);
+        let len2 = ex * ex + ey * ey;
+        let len = len2.sqrt();
+        let (px, py) = (u - self.ma[0], v - self.ma[1]);
+        // Position along the fibre, 0 at mA and 1 at mB, before and after the clamp.
+        let t_raw = (px * ex + py * ey) / len2;
+        let t = t_raw.clamp(0.0, 1.0);
+        let (dx, dy) = (px - t * ex, py - t * ey);
+        let d = (dx * dx + dy * dy).sqrt();
+        let at = attenuation(d, self.rel_width * len);
+        if at <= 0.0 {
+            return 0.0;
+        }
+        let a_alpha = if !(0.0..=1.0).contains(&t_raw) {
+            // Beyond an end: α is the angle between the direction back into the fibre and
+            // the vector end → point. (dx, dy) is exactly that vector here, and the back
+            // direction is ∓e, so cos α = ∓(d·e)/(|d|·L).
+            let sign = if t_raw > 1.0 { -1.0 } else { 1.0 };
+            let cos_alpha = (sign * (dx * ex + dy * ey) / (d * len)).clamp(-1.0, 1.0);
+            let a = angle_attenuation(cos_alpha.acos(), self.max_angle);
+            if a <= 0.0 {
+                return 0.0;
+            }
+            a
+        } else {
+            1.0
+        };
+        let s = smoothstep(at);
+        let omega = relative_frequency(at, self.omega_low);
+        self.depth * s * self.profile.eval(self.n as f32 * omega * t) * a_alpha
+    }
+}
+
+fn range_err(what: &str, value: f32, e: RangeError) -> Error {
+    Error::InvalidValue {
+        what: what.into(),
+        value: value.to_string(),
+        expected: e.expected,
+    }
+}
+
+/// Settings of the large-wrinkle layer (SPEC §1 "Blending" and "Mask").
+#[derive(Clone, Debug)]
+pub struct LargeWrinkleSettings<'a> {
+    /// Crest-flattening exponent γ, in [0.01, 10]; default 0.4.
+    pub gamma: f32,
+    /// Optional grey mask multiplied in after γ (sampled bilinearly in UV).
+    pub mask: Option<&'a Mask>,
+}
+
+impl Default for LargeWrinkleSettings<'_> {
+    fn default() -> Self {
+        Self {
+            gamma: DEFAULT_GAMMA,
+            mask: None,
+        }
+    }
+}
+
+/// Pixel rectangle `[x0, y0, x1, y1)` of the map that can hold non-zero values of `fibre`.
+fn pixel_bounds(fibre: &Fibre, width_px: u32, height_px: u32) -> Option<[u32; 4]> {
+    let [u0, v0, u1, v1] = fibre.bounds_uv();
+    let (w, h) = (width_px as f32, height_px as f32);
+    // Pixel x has its centre at (x + 0.5)/W, so it is inside [u0, u1] when
+    // u0·W − 0.5 ≤ x ≤ u1·W − 0.5. One pixel of margin absorbs rounding.
+    let x0 = ((u0 * w - 0.5).floor() - 1.0).max(0.0);
+    let x1 = ((u1 * w - 0.5).ceil() + 2.0).min(w);
+    // Row y has v = 1 − (y + 0.5)/H, so v in [v0, v1] ⇔ (1 − v1)·H − 0.5 ≤ y ≤ (1 − v0)·H − 0.5.
+    let y0 = (((1.0 - v1) * h - 0.5).floor() - 1.0).max(0.0);
+    let y1 = (((1.0 - v0) * h - 0.5).ceil() + 2.0).min(h);
+    if x0 >= x1 || y0 >= y1 {
+        return None;
+    }
+    Some([x0 as u32, y0 as u32, x1 as u32, y1 as u32])
+}
+
+/// Σ_i h_i(p) over `fibres` into a zeroed map (SPEC §1 "Rasterising"), before
+/// normalisation. Each fibre is evaluated only over its bounding rectangle, where it covers
+/// the whole region with At·Aα > 0 (and adds exact zeros elsewhere in the rectangle, so the
+/// sums equal those of [T]'s seed fill). Rows are processed in parallel; within a pixel the
+/// fibres are summed in file order, so the result is byte-identical on any thread count.
+pub fn accumulate(fibres: &[Fibre], map: &mut HeightMap) {
+    let (w, h) = (map.width_px(), map.height_px());
+    let bounds: Vec<Option<[u32; 4]>> = fibres.iter().map(|f| pixel_bounds(f, w, h)).collect();
+    let us: Vec<f32> = (0..w).map(|x| pixel_to_u(x, w)).collect();
+    map.data_mut()
+        .par_chunks_mut(w as usize)
+        .enumerate()
+        .for_each(|(y, row)| {
+            let y = y as u32;
+            let v = pixel_to_v(y, h);
+            for (fibre, b) in fibres.iter().zip(&bounds) {
+                let Some([x0, y0, x1, y1]) = *b else { continue };
+                if y < y0 || y >= y1 {
+                    continue;
+                }
+                for x in x0 as usize..x1 as usize {
+                    row[x] += fibre.height_at(us[x], v);
+                }
+            }
+        });
+}
+
+/// Applies H := (H/h_max)^γ and the optional mask in place (SPEC §1 "Blending", "Mask").
+/// A map whose maximum is ≤ 0 (no fibre covers it) stays all zeros.
+pub fn finish(map: &mut HeightMap, settings: &LargeWrinkleSettings<'_>) -> Result<(), Error> {
+    let gamma = check_range(
+        settings.gamma,
+        GAMMA_RANGE.0,
+        GAMMA_RANGE.1,
+        "a number in [0.01, 10]",
+    )
+    .map_err(|e| range_err("gamma", settings.gamma, e))?;
+    let (w, h) = (map.width_px(), map.height_px());
+    let (_, h_max) = map.min_max();
+    if h_max <= 0.0 {
+        map.data_mut().fill(0.0);
+        return Ok(());
+    }
+    let inv = 1.0 / h_max;
+    map.data_mut()
+        .par_chunks_mut(w as usize)
+        .enumerate()
+        .for_each(|(y, row)| {
+            let v = pixel_to_v(y as u32, h);
+            for (x, p) in row.iter_mut().enumerate() {
+                let mut value = (*p * inv).clamp(0.0, 1.0).powf(gamma);
+                if let Some(mask) = settings.mask {
+                    value *= mask.sample(pixel_to_u(x as u32, w), v);
+                }
+                *p = value;
+            }
+        });
+    Ok(())
+}
+
+/// The whole large-wrinkle layer: a `width_px × height_px` map in [0,1].
+pub fn rasterize(
+    fibres: &[Fibre],
+    width_px: u32,
+    height_px: u32,
+    settings: &LargeWrinkleSettings<'_>,
+) -> Result<HeightMap, Error> {
+    let mut map = HeightMap::zeros(width_px, height_px)?;
+    accumulate(fibres, &mut map);
+    finish(&mut map, settings)?;
+    Ok(map)
+}
+
+/// The simple baseline: every pixel against every fibre, one thread, no bounds. Used as
+/// the brute-force reference in tests and as the benchmark's baseline.
+pub fn accumulate_brute_force(fibres: &[Fibre], map: &mut HeightMap) {
+    let (w, h) = (map.width_px(), map.height_px());
+    for y in 0..h {
+        let v = pixel_to_v(y, h);
+        for x in 0..w {
+            let u = pixel_to_u(x, w);
+            let mut sum = 0.0;
+            for f in fibres {
+                sum += f.height_at(u, v);
+            }
+            map.data_mut()[(y * w + x) as usize] = sum;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[track_caller]
+    fn close(actual: f32, expected: f32, tol: f32) {
+        assert!(
+            (actual - expected).abs() <= tol,
+            "expected {expected}, got {actual} (difference {})",
+            actual - expected
+        );
+    }
+
+    /// A horizontal fibre from (0.25, 0.5) to (0.75, 0.5): L = 0.5.
+    fn horizontal(n: u32) -> Fibre {
+        Fibre::new([0.25, 0.5], [0.75, 0.5], n).unwrap()
+    }
+
+    #[test]
+    fn attenuation_at_hand_points() {
+        // W·L = 0.25: At(0) = 1, At(0.125) = 0.5, At(0.25) = 0, beyond stays 0.
+        close(attenuation(0.0, 0.25), 1.0, 0.0);
+        close(attenuation(0.125, 0.25), 0.5, 1e-7);
+        close(attenuation(0.25, 0.25), 0.0, 0.0);
+        close(attenuation(1.0, 0.25), 0.0, 0.0);
+    }
+
+    #[test]
+    fn smoothstep_at_hand_points() {
+        close(smoothstep(0.0), 0.0, 0.0);
+        close(smoothstep(0.5), 0.5, 1e-7);
+        close(smoothstep(0.25), 0.15625, 1e-7); // 3/16 − 2/64
+        close(smoothstep(1.0), 1.0, 0.0);
+    }
+
+    #[test]
+    fn frequency_at_hand_points() {
+        // ω = fmin + (1 − fmin)·S(At): fmin = 0.5, At = 0.25 → 0.5 + 0.5·0.15625.
+        close(relative_frequency(0.25, 0.5), 0.578125, 1e-7);
+        close(relative_frequency(1.0, 0.6), 1.0, 1e-7);
+        close(relative_frequency(0.0, 0.6), 0.6, 1e-7);
+    }
+
+    #[test]
+    fn height_on_the_fibre_line() {
+        // On the line d = 0 → At = 1, S = 1, ω = 1: h = |sin(π n t)|.
+        let f = horizontal(3);
+        // t = 0.5 at u = 0.5: |sin(1.5π)| = 1.
+        close(f.height_at(0.5, 0.5), 1.0, 1e-6);
+        // t = 1/6 at u = 0.25 + 0.5/6: |sin(π/2)| = 1.
+        close(f.height_at(0.25 + 0.5 / 6.0, 0.5), 1.0, 1e-5);
+        // t = 1/3: between wrinkles, 0.
+        close(f.height_at(0.25 + 0.5 / 3.0, 0.5), 0.0, 1e-5);
+    }
+
+    #[test]
+    fn height_off_the_line() {
+        // d = 0.0625 with W·L = 0.25 → At = 0.75, S = 0.84375, ω = 0.5 + 0.5·0.84375.
+        let f = horizontal(3);
+        let (at, s) = (0.75f32, 0.84375f32);
+        let omega = 0.5 + 0.5 * s;
+        let t = 0.4f32;
+        let expected = s * (PI * 3.0 * omega * t).sin().abs();
+        close(attenuation(0.0625, 0.25), at, 1e-7);
+        close(f.height_at(0.25 + t * 0.5, 0.5 + 0.0625), expected, 1e-5);
+        // Outside the capsule: exactly 0.
+        assert_eq!(f.height_at(0.5, 0.5 + 0.26), 0.0);
+    }
+
+    #[test]
+    fn end_angle_limit_at_hand_points() {
+        // α = π/2 → 1; α = π → 0 for every αmax < 2... and at αmax = 2, π → 0 exactly.
+        close(angle_attenuation(FRAC_PI_2, 1.5), 1.0, 0.0);
+        // αmax = 1.5: zero at 3π/4, half at 5π/8.
+        close(angle_attenuation(5.0 * PI / 8.0, 1.5), 0.5, 1e-6);
+        close(angle_attenuation(3.0 * PI / 4.0, 1.5), 0.0, 1e-6);
+        close(angle_attenuation(PI, 1.5), 0.0, 0.0);
+        // αmax = 2: linear over [π/2, π].
+        close(angle_attenuation(3.0 * PI / 4.0, 2.0), 0.5, 1e-6);
+        // αmax = 1: nothing passes an end, but the perpendicular itself is kept.
+        assert_eq!(angle_attenuation(FRAC_PI_2 + 1e-3, 1.0), 0.0);
+        assert_eq!(angle_attenuation(FRAC_PI_2, 1.0), 1.0);
+    }
+
+    #[test]
+    fn beyond_the_ends_uses_radial_distance_and_the_angle() {
+        // A point 0.05 past mB on the axis: α = π → 0 with the default αmax 1.5.
+        let f = horizontal(3);
+        assert_eq!(f.height_at(0.80, 0.5), 0.0);
+        // With αmax = 2 still 0 on the axis (α = π), but off-axis it passes:
+        // point at 45° beyond mB, distance 0.05 → α = 3π/4 → Aα = 0.5 with αmax = 2.
+        let f2 = horizontal(3).with_max_angle(2.0).unwrap();
+        let k = 0.05 / 2f32.sqrt();
+        let (u, v) = (0.75 + k, 0.5 + k);
+        let at = attenuation(0.05, 0.25);
+        let s = smoothstep(at);
+        let omega = 0.5 + 0.5 * s;
+        let expected = s * (PI * 3.0 * omega * 1.0).sin().abs() * 0.5;
+        close(f2.height_at(u, v), expected, 1e-5);
+        // αmax = 1: nothing past the ends at all.
+        let f1 = horizontal(3).with_max_angle(1.0).unwrap();
+        assert_eq!(f1.height_at(u, v), 0.0);
+        assert_eq!(f1.height_at(0.76, 0.5001), 0.0);
+    }
+
+    #[test]
+    fn profiles_at_hand_points() {
+        for p in Profile::ALL {
+            close(p.eval(0.0), 0.0, 0.012);
+            close(p.eval(0.5), 1.0, 1e-6);
+            close(p.eval(1.5), 1.0, 1e-5);
+        }
+        close(Profile::Sin.eval(0.25), 0.5, 1e-6);
+        close(Profile::Parabola.eval(0.25), 0.75, 1e-6); // 1 − 0.25²/0.25
+        close(Profile::Gauss.eval(1.0 / 3.0), (-0.5f32).exp(), 1e-5); // x' = −σ
+        close(
+            Profile::AbsSin.eval(0.25),
+            std::f32::consts::FRAC_1_SQRT_2,
+            1e-6,
+        );
+    }
+
+    #[test]
+    fn invalid_fibres_are_refused() {
+        assert!(Fibre::new([0.1, 0.1], [0.1, 0.1], 3).is_err());
+        assert!(Fibre::new([0.1, 0.1], [0.2, 0.1], 1).is_err());
+        assert!(Fibre::new([f32::NAN, 0.1], [0.2, 0.1], 3).is_err());
+        assert!(horizontal(3).with_rel_width(0.0).is_err());
+        assert!(horizontal(3).with_max_angle(2.5).is_err());
+        assert!(horizontal(3).with_omega_low(-0.1).is_err());
+    }
+
+    /// The formula of SPEC §1 written out independently of `height_at`, in f64.
+    fn reference_height(f: &Fibre, u: f64, v: f64) -> f64 {
+        let (ma, mb) = (f.ma(), f.mb());
+        let (ax, ay, bx, by) = (ma[0] as f64, ma[1] as f64, mb[0] as f64, mb[1] as f64);
+        let l = ((bx - ax).powi(2) + (by - ay).powi(2)).sqrt();
+        let (ex, ey) = ((bx - ax) / l, (by - ay) / l);
+        let t_raw = ((u - ax) * ex + (v - ay) * ey) / l;
+        let t = t_raw.clamp(0.0, 1.0);
+        let (cx, cy) = (ax + t * l * ex, ay + t * l * ey);
+        let d = ((u - cx).powi(2) + (v - cy).powi(2)).sqrt();
+        let at = 1.0 - (d / (f.rel_width() as f64 * l)).min(1.0);
+        let s = |x: f64| 3.0 * x * x - 2.0 * x * x * x;
+        let omega = f.omega_low() as f64 + (1.0 - f.omega_low() as f64) * s(at);
+        let h = s(at)
+            * (std::f64::consts::PI * f.n() as f64 * omega * t)
+                .sin()
+                .abs();
+        let a_alpha = if !(0.0..=1.0).contains(&t_raw) {
+            let (back_x, back_y, ox, oy) = if t_raw > 1.0 {
+                (-ex, -ey, bx, by)
+            } else {
+                (ex, ey, ax, ay)
+            };
+            let (vx, vy) = (u - ox, v - oy);
+            let alpha = ((back_x * vx + back_y * vy) / (vx * vx + vy * vy).sqrt())
+                .clamp(-1.0, 1.0)
+                .acos();
+            let half_pi = std::f64::consts::FRAC_PI_2;
+            let span = f.max_angle() as f64 * half_pi - half_pi;
+            if span <= 0.0 {
+                if alpha > half_pi { 0.0 } else { 1.0 }
+            } else {
+                1.0 - ((alpha - half_pi).max(0.0) / span).min(1.0)
+            }
+        } else {
+            1.0
+        };
+        h * a_alpha
+    }
+
+    #[test]
+    fn baked_single_fibre_matches_brute_force_formula_at_every_pixel() {
+        let f = Fibre::new([0.3, 0.62], [0.71, 0.44], 5)
+            .unwrap()
+            .with_rel_width(0.4)
+            .unwrap()
+            .with_omega_low(0.6)
+            .unwrap();
+        let (w, h) = (256u32, 192u32);
+        let mut map = HeightMap::zeros(w, h).unwrap();
+        accumulate(std::slice::from_ref(&f), &mut map);
+        let mut worst = 0.0f64;
+        let mut nonzero = 0;
+        for y in 0..h {
+            for x in 0..w {
+                let u = (x as f64 + 0.5) / w as f64;
+                let v = 1.0 - (y as f64 + 0.5) / h as f64;
+                let expected = reference_height(&f, u, v);
+                let got = map.get(x, y) as f64;
+                worst = worst.max((got - expected).abs());
+                if got > 0.0 {
+                    nonzero += 1;
+                }
+            }
+        }
+        assert!(
+            worst < 2e-4,
+            "largest difference to the f64 formula: {worst}"
+        );
+        assert!(nonzero > 3000, "the fibre covers only {nonzero} pixels");
+    }
+
+    #[test]
+    fn bounded_rasterising_equals_brute_force_bytes() {
+        let fibres = vec![
+            Fibre::new([0.423, 0.727], [0.439, 0.640], 3)
+                .unwrap()
+                .with_rel_width(1.0)
+                .unwrap(),
+            Fibre::new([0.556, 0.727], [0.537, 0.638], 3)
+                .unwrap()
+                .with_rel_width(1.0)
+                .unwrap(),
+            Fibre::new([0.05, 0.05], [0.2, 0.1], 4)
+                .unwrap()
+                .with_max_angle(2.0)
+                .unwrap(),
+        ];
+        let mut fast = HeightMap::zeros(300, 200).unwrap();
+        let mut slow = HeightMap::zeros(300, 200).unwrap();
+        accumulate(&fibres, &mut fast);
+        accumulate_brute_force(&fibres, &mut slow);
+        assert_eq!(fast, slow);
+    }
+
+    #[test]
+    fn normalised_with_gamma_and_mask() {
+        let f = horizontal(3);
+        let mask = Mask::from_values(2, 1, vec![0.0, 1.0]).unwrap();
+        let settings = LargeWrinkleSettings {
+            gamma: 0.4,
+            mask: Some(&mask),
+        };
+        let map = rasterize(std::slice::from_ref(&f), 64, 64, &settings).unwrap();
+        let (lo, hi) = map.min_max();
+        assert!(lo >= 0.0 && hi <= 1.0);
+        assert!(hi > 0.5, "masked right half keeps the crests: max {hi}");
+        // Left quarter of the map is fully masked.
+        for y in 0..64 {
+            for x in 0..16 {
+                assert_eq!(map.get(x, y), 0.0);
+            }
+        }
+        let none = rasterize(&[], 8, 8, &LargeWrinkleSettings::default()).unwrap();
+        assert!(none.data().iter().all(|&h| h == 0.0));
+        assert!(
+            rasterize(
+                &[],
+                8,
+                8,
+                &LargeWrinkleSettings {
+                    gamma: 0.0,
+                    mask: None
+                }
+            )
+            .is_err()
+        );
+    }
+
+    #[test]
+    fn byte_identical_on_one_and_many_threads() {
+        let fibres: Vec<Fibre> = (0..12)
+            .map(|i| {
+                let a = i as f32 * 0.07;
+                Fibre::new(
+                    [0.1 + a * 0.5, 0.2 + a],
+                    [0.5 + a * 0.3, 0.25 + a * 0.9],
+                    3 + i % 4,
+                )
+                .unwrap()
+            })
+            .collect();
+        let bake = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| rasterize(&fibres, 200, 200, &LargeWrinkleSettings::default()).unwrap())
+        };
+        let one = bake(1);
+        assert_eq!(one.data(), bake(4).data());
+        assert_eq!(one.data(), bake(3).data());
+    }
+
+    #[test]
+    fn resolution_independent_within_stated_rms() {
+        // SPEC §0: the same fibres at 1024² and at 4096² box-downsampled to 1024² agree.
+        // Stated tolerance: RMS difference < 0.02 of the [0,1] range (measured ≈ see below).
+        let fibres = vec![
+            Fibre::new([0.423, 0.727], [0.439, 0.640], 3)
+                .unwrap()
+                .with_rel_width(1.0)
+                .unwrap(),
+            Fibre::new([0.556, 0.727], [0.537, 0.638], 3)
+                .unwrap()
+                .with_rel_width(1.0)
+                .unwrap(),
+            Fibre::new([0.2, 0.3], [0.8, 0.35], 8).unwrap(),
+        ];
+        let s = LargeWrinkleSettings::default();
+        let small = rasterize(&fibres, 1024, 1024, &s).unwrap();
+        let large = rasterize(&fibres, 4096, 4096, &s)
+            .unwrap()
+            .downsample_box(4)
+            .unwrap();
+        let n = small.data().len() as f64;
+        let rms = (small
+            .data()
+            .iter()
+            .zip(large.data())
+            .map(|(a, b)| ((a - b) as f64).powi(2))
+            .sum::<f64>()
+            / n)
+            .sqrt();
+        assert!(rms < 0.02, "RMS difference 1024² vs 4096²↓: {rms}");
+    }
+}

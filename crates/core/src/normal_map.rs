@@ -1,0 +1,345 @@
+//! Height → normal map (SPEC §4, [T] §7.1.1, [P] eqs. 12–13).
+//!
+//! The surface is (u, v, s·h): UV in [0,1], heights h in height units scaled by the
+//! strength s. Its normal is n = normalize(−s·∂h/∂u, −s·∂h/∂v, 1), with the derivatives
+//! taken by central differences inside and one-sided differences at the borders (wrapped
+//! when the map tiles). Derivatives are per UV unit, not per texel, so the same height
+//! field gives the same normals at any resolution (SPEC §0).
+//!
+//! n.y points toward +v (up in the image): that is the OpenGL convention ("green up"),
+//! the default; DirectX flips the green channel on export.
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::error::Error;
+use crate::heightmap::HeightMap;
+
+/// Default strength s: the height, in UV units, of one height unit. 0.01 makes a [0,1]
+/// large-wrinkle layer stand 1 % of the UV range tall, about [T]'s dispScale (0.005) at
+/// full intensity ×2.
+pub const DEFAULT_STRENGTH: f32 = 0.01;
+/// Valid strength range (0 gives a flat normal map).
+pub const STRENGTH_RANGE: (f32, f32) = (0.0, 1000.0);
+
+/// Which way the green channel points in an exported normal map.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Convention {
+    /// +Y = +v, green up (Blender, Maya, OpenGL engines). The default.
+    #[default]
+    OpenGl,
+    /// +Y = −v, green down (Unreal, 3ds Max, DirectX engines).
+    DirectX,
+}
+
+/// How to turn heights into normals.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NormalSettings {
+    /// s: UV units per height unit, in [0, 1000].
+    pub strength: f32,
+    pub convention: Convention,
+    /// Wrap the differences around the edges (for tileable maps).
+    pub tiling: bool,
+}
+
+impl Default for NormalSettings {
+    fn default() -> Self {
+        Self {
+            strength: DEFAULT_STRENGTH,
+            convention: Convention::OpenGl,
+            tiling: false,
+        }
+    }
+}
+
+impl NormalSettings {
+    fn validate(&self) -> Result<(), Error> {
+        let s = self.strength;
+        if s.is_finite() && (STRENGTH_RANGE.0..=STRENGTH_RANGE.1).contains(&s) {
+            Ok(())
+        } else {
+            Err(Error::InvalidValue {
+                what: "normal strength".into(),
+                value: s.to_string(),
+                expected: format!("a number in [{}, {}]", STRENGTH_RANGE.0, STRENGTH_RANGE.1),
+            })
+        }
+    }
+}
+
+/// Index of the neighbours of `i` in 0..n and the UV-step factor of their difference:
+/// (lower, upper, factor) with ∂h ≈ (h[upper] − h[lower])·factor·n.
+#[inline]
+fn neighbours(i: usize, n: usize, tiling: bool) -> (usize, usize, f32) {
+    if n == 1 {
+        return (0, 0, 0.0);
+    }
+    if tiling {
+        return ((i + n - 1) % n, (i + 1) % n, 0.5);
+    }
+    match i {
+        0 => (0, 1, 1.0),
+        _ if i == n - 1 => (n - 2, n - 1, 1.0),
+        _ => (i - 1, i + 1, 0.5),
+    }
+}
+
+/// Calls `emit(x, n)` for every pixel of row `y` with its unit normal n (OpenGL frame).
+#[inline]
+fn row_normals(
+    map: &HeightMap,
+    y: usize,
+    settings: &NormalSettings,
+    mut emit: impl FnMut(usize, [f32; 3]),
+) {
+    let (w, h) = (map.width_px() as usize, map.height_px() as usize);
+    let data = map.data();
+    // Row y − 1 is toward +v (the row above), y + 1 toward −v.
+    let (below_v, above_v, fy) = {
+        let (lo, hi, f) = neighbours(y, h, settings.tiling);
+        (hi, lo, f) // index order flips because rows grow downward
+    };
+    let row = &data[y * w..(y + 1) * w];
+    let above = &data[above_v * w..(above_v + 1) * w];
+    let below = &data[below_v * w..(below_v + 1) * w];
+    let su = settings.strength * w as f32;
+    let sv = settings.strength * h as f32 * fy;
+    for x in 0..w {
+        let (xl, xr, fx) = neighbours(x, w, settings.tiling);
+        let dhu = (row[xr] - row[xl]) * fx * su;
+        let dhv = (above[x] - below[x]) * sv;
+        let inv = 1.0 / (dhu * dhu + dhv * dhv + 1.0).sqrt();
+        emit(x, [-dhu * inv, -dhv * inv, inv]);
+    }
+}
+
+/// Unit normals of every pixel, row-major (OpenGL frame: y toward +v).
+pub fn normals(map: &HeightMap, settings: &NormalSettings) -> Result<Vec<[f32; 3]>, Error> {
+    settings.validate()?;
+    let w = map.width_px() as usize;
+    let mut out = vec![[0.0f32; 3]; map.data().len()];
+    out.par_chunks_mut(w).enumerate().for_each(|(y, dst)| {
+        row_normals(map, y, settings, |x, n| dst[x] = n);
+    });
+    Ok(out)
+}
+
+/// 8-bit encoding of a component in [−1, 1]: round((c·0.5 + 0.5)·255).
+#[inline]
+pub fn encode_unorm8(c: f32) -> u8 {
+    ((c * 0.5 + 0.5) * 255.0 + 0.5).clamp(0.0, 255.0) as u8
+}
+
+/// The exported normal map: 8-bit RGB, RGB = n·0.5 + 0.5 in the chosen convention.
+pub fn encode_rgb8(map: &HeightMap, settings: &NormalSettings) -> Result<Vec<u8>, Error> {
+    settings.validate()?;
+    let w = map.width_px() as usize;
+    let flip = settings.convention == Convention::DirectX;
+    let mut out = Vec::new();
+    out.try_reserve_exact(map.data().len() * 3)
+        .map_err(|_| Error::OutOfMemory {
+            bytes: map.data().len() as u64 * 3,
+            what: "normal map",
+        })?;
+    out.resize(map.data().len() * 3, 0);
+    out.par_chunks_mut(w * 3).enumerate().for_each(|(y, dst)| {
+        row_normals(map, y, settings, |x, n| {
+            let ny = if flip { -n[1] } else { n[1] };
+            dst[x * 3..x * 3 + 3].copy_from_slice(&[
+                encode_unorm8(n[0]),
+                encode_unorm8(ny),
+                encode_unorm8(n[2]),
+            ]);
+        });
+    });
+    Ok(out)
+}
+
+/// [T]'s renderer packing (SPEC §4): RGBA8 = (n.x·0.5 + 0.5, n.y·0.5 + 0.5, n.z, h01), with
+/// n in the OpenGL frame (the renderer's convention, whatever the export setting) and h01
+/// the height mapped from `height_range` = (lo, hi) to [0, 1] so POM can read it from alpha.
+pub fn pack_rgba8(
+    map: &HeightMap,
+    settings: &NormalSettings,
+    height_range: (f32, f32),
+) -> Result<Vec<u8>, Error> {
+    settings.validate()?;
+    let w = map.width_px() as usize;
+    let (lo, hi) = height_range;
+    let inv = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
+    let mut out = vec![0u8; map.data().len() * 4];
+    out.par_chunks_mut(w * 4).enumerate().for_each(|(y, dst)| {
+        let row = map.row(y as u32);
+        row_normals(map, y, settings, |x, n| {
+            let h01 = ((row[x] - lo) * inv).clamp(0.0, 1.0);
+            dst[x * 4..x * 4 + 4].copy_from_slice(&[
+                encode_unorm8(n[0]),
+                encode_unorm8(n[1]),
+                (n[2] * 255.0 + 0.5).clamp(0.0, 255.0) as u8,
+                (h01 * 255.0 + 0.5) as u8,
+            ]);
+        });
+    });
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::heightmap::{pixel_to_u, pixel_to_v};
+
+    #[track_caller]
+    fn close(actual: f32, expected: f32, tol: f32) {
+        assert!(
+            (actual - expected).abs() <= tol,
+            "expected {expected}, got {actual} (difference {})",
+            actual - expected
+        );
+    }
+
+    fn from_fn(w: u32, h: u32, f: impl Fn(f32, f32) -> f32) -> HeightMap {
+        let mut data = Vec::new();
+        for y in 0..h {
+            for x in 0..w {
+                data.push(f(pixel_to_u(x, w), pixel_to_v(y, h)));
+            }
+        }
+        HeightMap::from_vec(w, h, data).unwrap()
+    }
+
+    fn dome() -> HeightMap {
+        from_fn(64, 64, |u, v| {
+            let r2 = (u - 0.5).powi(2) + (v - 0.5).powi(2);
+            (0.09 - r2).max(0.0)
+        })
+    }
+
+    #[test]
+    fn dome_convention_check_from_spec_4() {
+        let settings = NormalSettings {
+            strength: 1.0,
+            ..Default::default()
+        };
+        let rgb = encode_rgb8(&dome(), &settings).unwrap();
+        let px = |x: usize, y: usize| &rgb[(y * 64 + x) * 3..(y * 64 + x) * 3 + 3];
+        // Above the centre (toward +v, smaller row index): green > 0.5 in OpenGL.
+        assert!(
+            px(32, 20)[1] > 140,
+            "green above the dome: {:?}",
+            px(32, 20)
+        );
+        // To the right of it: red > 0.5.
+        assert!(
+            px(44, 32)[0] > 140,
+            "red right of the dome: {:?}",
+            px(44, 32)
+        );
+        // DirectX flips green only.
+        let dx = encode_rgb8(
+            &dome(),
+            &NormalSettings {
+                convention: Convention::DirectX,
+                ..settings
+            },
+        )
+        .unwrap();
+        assert!(dx[(20 * 64 + 32) * 3 + 1] < 115);
+        assert_eq!(dx[(32 * 64 + 44) * 3], px(44, 32)[0]);
+    }
+
+    #[test]
+    fn plane_slope_gives_the_analytic_normal() {
+        // h = 0.5·u → ∂h/∂u = 0.5; with s = 2: n ∝ (−1, 0, 1).
+        let map = from_fn(16, 8, |u, _| 0.5 * u);
+        let n = normals(
+            &map,
+            &NormalSettings {
+                strength: 2.0,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        for (i, n) in n.iter().enumerate() {
+            close(n[0], -std::f32::consts::FRAC_1_SQRT_2, 1e-5);
+            close(n[1], 0.0, 1e-6);
+            close(n[2], std::f32::consts::FRAC_1_SQRT_2, 1e-5);
+            assert!(i < 128);
+        }
+        // h = v: ∂h/∂v = 1 (the row above is higher) → n.y < 0.
+        let map = from_fn(8, 16, |_, v| v);
+        let n = normals(
+            &map,
+            &NormalSettings {
+                strength: 1.0,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        for n in &n {
+            close(n[1], -std::f32::consts::FRAC_1_SQRT_2, 1e-5);
+        }
+    }
+
+    #[test]
+    fn border_differences_are_one_sided_or_wrapped() {
+        // A ramp 0, 1, 2, 3 along u: one-sided at the borders gives the same slope.
+        let map = HeightMap::from_vec(4, 1, vec![0.0, 1.0, 2.0, 3.0]).unwrap();
+        let s = NormalSettings {
+            strength: 0.25,
+            ..Default::default()
+        }; // slope 4·0.25 = 1
+        let n = normals(&map, &s).unwrap();
+        for n in &n {
+            close(n[0], -std::f32::consts::FRAC_1_SQRT_2, 1e-6);
+        }
+        // Wrapped: at x = 0 the neighbours are x = 3 and x = 1 → ∂h = (1 − 3)·0.5·4·0.25 = −1.
+        let n = normals(&map, &NormalSettings { tiling: true, ..s }).unwrap();
+        close(n[0][0] / n[0][2], 1.0, 1e-6);
+        close(n[1][0] / n[1][2], -1.0, 1e-6);
+    }
+
+    #[test]
+    fn resolution_independent() {
+        let f = |u: f32, v: f32| (u * 6.0).sin() * 0.1 + v * v * 0.2;
+        let s = NormalSettings {
+            strength: 1.0,
+            ..Default::default()
+        };
+        let a = normals(&from_fn(64, 64, f), &s).unwrap();
+        let b = normals(&from_fn(256, 256, f), &s).unwrap();
+        // Pixel (10, 20) of 64² has the same centre as the 2×2 block at (41, 81) of 256²...
+        // compare at pixel centres that coincide in u: x64 = 10 ↔ u = 10.5/64 = 42/256.
+        let na = a[20 * 64 + 10];
+        let nb0 = b[81 * 256 + 41];
+        let nb1 = b[82 * 256 + 42];
+        for k in 0..3 {
+            close(na[k], 0.5 * (nb0[k] + nb1[k]), 2e-3);
+        }
+    }
+
+    #[test]
+    fn packing_puts_height_in_alpha() {
+        let map = HeightMap::from_vec(2, 1, vec![-1.0, 1.0]).unwrap();
+        let px = pack_rgba8(
+            &map,
+            &NormalSettings {
+                strength: 0.0,
+                ..Default::default()
+            },
+            (-1.0, 1.0),
+        )
+        .unwrap();
+        assert_eq!(px, vec![128, 128, 255, 0, 128, 128, 255, 255]);
+        assert!(
+            normals(
+                &map,
+                &NormalSettings {
+                    strength: f32::NAN,
+                    ..Default::default()
+                }
+            )
+            .is_err()
+        );
+    }
+}

@@ -145,9 +145,9 @@ impl HairParams {
 /// A triangle mesh as plain slices: what hair placement needs, whatever type holds it.
 #[derive(Clone, Copy, Debug)]
 pub struct SurfaceRef<'a> {
-    positions: &'a [[f32; 3]],
-    normals: &'a [[f32; 3]],
-    uvs: &'a [[f32; 2]],
+    positions: &'a [Vec3],
+    normals: &'a [Vec3],
+    uvs: &'a [Vec2],
     indices: &'a [u32],
 }
 
@@ -156,9 +156,9 @@ impl<'a> SurfaceRef<'a> {
     /// (SPEC §0, v up) and a triangle list. `normals` and `uvs` must have one entry per
     /// position; `indices.len()` must be a multiple of 3, every index < `positions.len()`.
     pub fn new(
-        positions: &'a [[f32; 3]],
-        normals: &'a [[f32; 3]],
-        uvs: &'a [[f32; 2]],
+        positions: &'a [Vec3],
+        normals: &'a [Vec3],
+        uvs: &'a [Vec2],
         indices: &'a [u32],
     ) -> Result<Self, Error> {
         let n = positions.len();
@@ -301,7 +301,7 @@ impl HairInstances {
             .indices
             .par_chunks_exact(3)
             .map(|tri| {
-                let [a, b, c] = [0, 1, 2].map(|k| Vec3::from(surface.positions[tri[k] as usize]));
+                let [a, b, c] = [0, 1, 2].map(|k| surface.positions[tri[k] as usize]);
                 0.5 * (b - a).cross(c - a).length() as f64
             })
             .collect();
@@ -424,9 +424,9 @@ fn triangle_hairs(
     let whole = expected.floor();
     let n = whole as u32 + u32::from(rng.next_f64() < expected - whole);
     let [i0, i1, i2] = [0, 1, 2].map(|k| tri[k] as usize);
-    let p = [i0, i1, i2].map(|i| Vec3::from(surface.positions[i]));
-    let nrm = [i0, i1, i2].map(|i| Vec3::from(surface.normals[i]));
-    let uv = [i0, i1, i2].map(|i| Vec2::from(surface.uvs[i]));
+    let p = [i0, i1, i2].map(|i| surface.positions[i]);
+    let nrm = [i0, i1, i2].map(|i| surface.normals[i]);
+    let uv = [i0, i1, i2].map(|i| surface.uvs[i]);
     let face_normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
     let mut out = Vec::new();
     for _ in 0..n {
@@ -584,9 +584,9 @@ mod tests {
     /// A flat grid of `n × n` quads over [0, side]² (mesh units) in the z = 0 plane, UV =
     /// position / side, normals +z.
     struct Grid {
-        positions: Vec<[f32; 3]>,
-        normals: Vec<[f32; 3]>,
-        uvs: Vec<[f32; 2]>,
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        uvs: Vec<Vec2>,
         indices: Vec<u32>,
     }
 
@@ -600,9 +600,9 @@ mod tests {
         for y in 0..=n {
             for x in 0..=n {
                 let (u, v) = (x as f32 / n as f32, y as f32 / n as f32);
-                g.positions.push([u * side, v * side, 0.0]);
-                g.normals.push([0.0, 0.0, 1.0]);
-                g.uvs.push([u, v]);
+                g.positions.push(Vec3::new(u * side, v * side, 0.0));
+                g.normals.push(Vec3::Z);
+                g.uvs.push(Vec2::new(u, v));
             }
         }
         for y in 0..n {
@@ -882,7 +882,7 @@ mod tests {
         let huge = HairParams::new(10_000.0, 1.0).unwrap();
         assert!(HairInstances::generate(&g.surface(), &tex, &huge).is_err());
         let mut nan = grid(1, 1.0);
-        nan.positions[0][0] = f32::NAN;
+        nan.positions[0].x = f32::NAN;
         assert!(HairInstances::generate(&nan.surface(), &tex, &HairParams::default()).is_err());
     }
 

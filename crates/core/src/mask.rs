@@ -41,7 +41,13 @@ impl Mask {
     /// luminance. Colour images are converted with Rec. 709 weights; alpha is ignored.
     pub fn load(path: &Path) -> Result<Self, Error> {
         let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-        let img = image::load_from_memory(&bytes).map_err(|e| Error::Image {
+        Self::decode(&bytes, path)
+    }
+
+    /// Decodes an image file already in memory, as [`Mask::load`] does; `path` only names
+    /// it in errors (e.g. a mask built into the binary).
+    pub fn decode(bytes: &[u8], path: &Path) -> Result<Self, Error> {
+        let img = image::load_from_memory(bytes).map_err(|e| Error::Image {
             path: path.to_owned(),
             message: e.to_string(),
         })?;

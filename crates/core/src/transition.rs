@@ -140,12 +140,18 @@ impl HairRegions {
         check_size(width_px, height_px)?;
         let w = width_px as usize;
         let mut bits = try_vec(w * height_px as usize, 0u8, "hair region image")?;
+        let (outer_x, inner_x) = (
+            BilinearAxis::columns(outer, width_px),
+            BilinearAxis::columns(inner, width_px),
+        );
         bits.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
-            let v = pixel_to_v(y as u32, height_px);
+            let (oy, iy) = (
+                BilinearAxis::row(outer, y as u32, height_px),
+                BilinearAxis::row(inner, y as u32, height_px),
+            );
             for (x, b) in row.iter_mut().enumerate() {
-                let u = pixel_to_u(x as u32, width_px);
-                let o = outer.sample(u, v) >= REGION_THRESHOLD;
-                let i = inner.sample(u, v) >= REGION_THRESHOLD;
+                let o = sample_at(outer, &outer_x[x], &oy) >= REGION_THRESHOLD;
+                let i = sample_at(inner, &inner_x[x], &iy) >= REGION_THRESHOLD;
                 *b = region_bits(o, i);
             }
         });
@@ -217,6 +223,48 @@ impl HairRegions {
         }
         (out, pw)
     }
+}
+
+/// One axis of [`Mask::sample`] at a pixel centre of the working size, precomputed once
+/// per column (and per row) instead of once per pixel. Same arithmetic as `Mask::sample`,
+/// so the result is bit-identical to sampling each pixel.
+struct BilinearAxis {
+    i0: usize,
+    i1: usize,
+    t: f32,
+}
+
+impl BilinearAxis {
+    fn from_continuous(f: f32, len: u32) -> Self {
+        let f = f.clamp(0.0, (len - 1) as f32);
+        let i0 = f.floor() as usize;
+        Self {
+            i0,
+            i1: (i0 + 1).min(len as usize - 1),
+            t: f - i0 as f32,
+        }
+    }
+
+    fn columns(mask: &Mask, width_px: u32) -> Vec<Self> {
+        let w = mask.width_px();
+        (0..width_px)
+            .map(|x| Self::from_continuous(pixel_to_u(x, width_px) * w as f32 - 0.5, w))
+            .collect()
+    }
+
+    fn row(mask: &Mask, y: u32, height_px: u32) -> Self {
+        let h = mask.height_px();
+        Self::from_continuous((1.0 - pixel_to_v(y, height_px)) * h as f32 - 0.5, h)
+    }
+}
+
+fn sample_at(mask: &Mask, x: &BilinearAxis, y: &BilinearAxis) -> f32 {
+    let w = mask.width_px() as usize;
+    let values = mask.values();
+    let at = |xi: usize, yi: usize| values[yi * w + xi];
+    let top = at(x.i0, y.i0) + (at(x.i1, y.i0) - at(x.i0, y.i0)) * x.t;
+    let bottom = at(x.i0, y.i1) + (at(x.i1, y.i1) - at(x.i0, y.i1)) * x.t;
+    top + (bottom - top) * y.t
 }
 
 /// Marks a pixel with no generation: outside both regions, or (before the unreachable rule
@@ -550,6 +598,29 @@ impl TransitionTexture {
             .par_iter()
             .map(|&a| (a * 65535.0).round() as u16)
             .collect()
+    }
+
+    /// Writes [`Self::to_luma16`] as a 16-bit grey PNG, atomically
+    /// ([`crate::export::write_atomically`]).
+    pub fn write_png16(&self, path: &std::path::Path) -> Result<(), Error> {
+        use image::ImageEncoder as _;
+        use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+        // `image` takes 16-bit samples in native byte order and swaps them for PNG itself.
+        let bytes: Vec<u8> = self
+            .to_luma16()
+            .iter()
+            .flat_map(|v| v.to_ne_bytes())
+            .collect();
+        crate::export::write_atomically(path, |w| {
+            PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
+                .write_image(
+                    &bytes,
+                    self.width_px,
+                    self.height_px,
+                    image::ExtendedColorType::L16,
+                )
+                .map_err(|e| std::io::Error::other(format!("PNG encoding failed: {e}")))
+        })
     }
 }
 
@@ -912,6 +983,35 @@ mod tests {
         assert!((t.age_at_pixel(0, 7) - 0.2).abs() < 1e-6);
         assert!(t.hair_present(0.1, 0.9, 1.0), "top-left is inner");
         assert!(!t.hair_present(0.9, 0.9, 0.0), "right half has no hair");
+    }
+
+    #[test]
+    fn fast_resampling_equals_mask_sample() {
+        let mut rng = Rng::new(4);
+        let (ow, oh, iw, ih) = (37, 23, 5, 61);
+        let outer =
+            Mask::from_values(ow, oh, (0..ow * oh).map(|_| rng.next_f32()).collect()).unwrap();
+        let inner =
+            Mask::from_values(iw, ih, (0..iw * ih).map(|_| rng.next_f32()).collect()).unwrap();
+        for (w, h) in [(1, 1), (37, 23), (100, 77), (16, 200)] {
+            let r = HairRegions::from_masks(&outer, &inner, w, h).unwrap();
+            for y in 0..h {
+                for x in 0..w {
+                    let (u, v) = (pixel_to_u(x, w), pixel_to_v(y, h));
+                    let i = (y * w + x) as usize;
+                    assert_eq!(
+                        r.is_outer(i),
+                        outer.sample(u, v) >= REGION_THRESHOLD,
+                        "({x},{y}) of {w}×{h}"
+                    );
+                    assert_eq!(
+                        r.is_inner(i),
+                        inner.sample(u, v) >= REGION_THRESHOLD,
+                        "({x},{y}) of {w}×{h}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

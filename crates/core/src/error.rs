@@ -40,6 +40,19 @@ pub enum Error {
         expected: String,
     },
 
+    /// A mesh file has an extension agesim cannot load.
+    #[error("{}: unsupported mesh format \"{extension}\": expected .obj, .gltf or .glb", path.display())]
+    UnsupportedMeshFormat { path: PathBuf, extension: String },
+
+    /// A mesh file could not be parsed (the message comes from the OBJ or glTF reader,
+    /// or names the mesh, primitive and attribute at fault).
+    #[error("{}: {message}", path.display())]
+    MeshFile { path: PathBuf, message: String },
+
+    /// A mesh has no usable triangle left after cleaning.
+    #[error("{source_name}: the mesh is empty: {reason}")]
+    EmptyMesh { source_name: String, reason: String },
+
     /// A wrinkle description file has errors (all of them are listed).
     #[error("{0}")]
     WrinkleFile(#[from] crate::wrinkle_file::ParseErrors),

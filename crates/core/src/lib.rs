@@ -7,10 +7,13 @@
 pub mod error;
 pub mod export;
 pub mod hair;
+pub mod head;
 pub mod heightmap;
 pub mod mask;
+pub mod mesh;
 pub mod muscle;
 pub mod normal_map;
+pub mod preview;
 pub mod rng;
 pub mod transition;
 pub mod wrinkle_file;
@@ -18,3 +21,4 @@ pub mod wrinkle_file;
 pub use error::Error;
 pub use heightmap::HeightMap;
 pub use mask::Mask;
+pub use mesh::Mesh;

@@ -1,0 +1,707 @@
+//! glTF 2.0 (`.gltf` with embedded `data:` or external buffers, `.glb`) through the
+//! `gltf` crate.
+//!
+//! Every triangle primitive (triangles, strips and fans) of every node of the default
+//! scene (the first scene when none is marked default; every mesh untransformed when the
+//! file has no scene) is merged into one mesh, with the node's world transform applied to
+//! positions, normals (inverse transpose) and tangents; a mirroring transform (negative
+//! determinant) flips the triangle winding so faces stay outward. Texture coordinates
+//! set 0 are read and v is flipped to v-up (SPEC §0). Points and lines are skipped and
+//! counted. Images and materials are not read, so a missing texture file is no error.
+//!
+//! Attribute formats: POSITION, NORMAL and TANGENT must be float; TEXCOORD_0 may be
+//! float or normalised unsigned byte/short (core glTF). The signed and non-normalised
+//! integer forms that `KHR_mesh_quantization` allows are refused with a clear error
+//! naming the mesh, primitive and attribute: the `gltf` crate's typed readers do not
+//! decode them. Re-export such a file without quantization (e.g. `gltf-transform
+//! dequantize`). Other required extensions (Draco, meshopt) are refused the same way.
+
+use std::path::Path;
+
+use ::gltf::Semantic;
+use ::gltf::accessor::{DataType, Dimensions};
+use ::gltf::mesh::Mode;
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
+
+use super::{MeshPart, MeshWarning, RawMesh};
+use crate::error::Error;
+
+/// Reads `path` into a [`RawMesh`] (see the module docs).
+pub fn load(path: &Path) -> Result<RawMesh, Error> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let fail = |message: String| Error::MeshFile {
+        path: path.to_owned(),
+        message,
+    };
+    let gltf = ::gltf::Gltf::from_slice(&bytes)
+        .map_err(|e| fail(format!("not a valid glTF 2.0 file: {e}")))?;
+    for ext in gltf.document.extensions_required() {
+        if ext != "KHR_mesh_quantization" {
+            return Err(fail(format!("requires the unsupported extension {ext}")));
+        }
+    }
+    let buffers = ::gltf::import_buffers(&gltf.document, path.parent(), gltf.blob.clone())
+        .map_err(|e| fail(format!("cannot read its buffers: {e}")))?;
+    let mut loader = Loader {
+        buffers: &buffers,
+        acc: Accumulator::default(),
+    };
+    match gltf
+        .document
+        .default_scene()
+        .or_else(|| gltf.document.scenes().next())
+    {
+        Some(scene) => {
+            for node in scene.nodes() {
+                loader.node(&node, Mat4::IDENTITY, 0).map_err(fail)?;
+            }
+        }
+        None => {
+            loader.acc.warnings.push(MeshWarning::Note(
+                "the file has no scene: every mesh loaded without transform".to_owned(),
+            ));
+            for mesh in gltf.document.meshes() {
+                loader
+                    .mesh(&mesh, Mat4::IDENTITY, "no node")
+                    .map_err(fail)?;
+            }
+        }
+    }
+    Ok(loader.acc.finish())
+}
+
+/// Per-vertex data of all primitives so far; `None` entries are vertices of primitives
+/// without that attribute.
+#[derive(Default)]
+struct Accumulator {
+    positions: Vec<Vec3>,
+    normals: Vec<Option<Vec3>>,
+    uvs: Vec<Option<Vec2>>,
+    tangents: Vec<Option<Vec4>>,
+    indices: Vec<u32>,
+    parts: Vec<MeshPart>,
+    warnings: Vec<MeshWarning>,
+    non_triangle: usize,
+}
+
+impl Accumulator {
+    fn finish(mut self) -> RawMesh {
+        if self.non_triangle > 0 {
+            self.warnings
+                .push(MeshWarning::NonTriangleParts(self.non_triangle));
+        }
+        fn column<T: Copy>(v: Vec<Option<T>>, missing: T) -> Option<Vec<T>> {
+            v.iter()
+                .any(Option::is_some)
+                .then(|| v.into_iter().map(|x| x.unwrap_or(missing)).collect())
+        }
+        RawMesh {
+            positions: self.positions,
+            normals: column(self.normals, Vec3::NAN),
+            uvs: column(self.uvs, Vec2::NAN),
+            tangents: column(self.tangents, Vec4::NAN),
+            indices: self.indices,
+            parts: self.parts,
+            warnings: self.warnings,
+        }
+    }
+}
+
+struct Loader<'a> {
+    buffers: &'a [::gltf::buffer::Data],
+    acc: Accumulator,
+}
+
+/// Deeper node hierarchies than this are refused (a cyclic or hostile file).
+const MAX_NODE_DEPTH: usize = 256;
+
+impl Loader<'_> {
+    fn node(&mut self, node: &::gltf::Node, parent: Mat4, depth: usize) -> Result<(), String> {
+        if depth > MAX_NODE_DEPTH {
+            return Err(format!("node hierarchy deeper than {MAX_NODE_DEPTH}"));
+        }
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if let Some(mesh) = node.mesh() {
+            let name = node
+                .name()
+                .map_or_else(|| format!("#{}", node.index()), |n| format!("\"{n}\""));
+            self.mesh(&mesh, world, &format!("node {name}"))?;
+        }
+        for child in node.children() {
+            self.node(&child, world, depth + 1)?;
+        }
+        Ok(())
+    }
+
+    fn mesh(&mut self, mesh: &::gltf::Mesh, world: Mat4, node: &str) -> Result<(), String> {
+        let mesh_name = mesh
+            .name()
+            .map_or_else(|| format!("#{}", mesh.index()), |n| format!("\"{n}\""));
+        for prim in mesh.primitives() {
+            let what = format!("mesh {mesh_name} primitive {} ({node})", prim.index());
+            self.primitive(&prim, world, what)?;
+        }
+        Ok(())
+    }
+
+    fn primitive(
+        &mut self,
+        prim: &::gltf::Primitive,
+        world: Mat4,
+        what: String,
+    ) -> Result<(), String> {
+        if !matches!(
+            prim.mode(),
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        ) {
+            self.acc.non_triangle += 1;
+            return Ok(());
+        }
+        let check = |semantic: Semantic, allowed: &[(DataType, Dimensions, Option<bool>)]| {
+            let Some(acc) = prim.get(&semantic) else {
+                return Ok(None);
+            };
+            let ok = allowed.iter().any(|&(ty, dim, normalized)| {
+                acc.data_type() == ty
+                    && acc.dimensions() == dim
+                    && normalized.is_none_or(|n| n == acc.normalized())
+            });
+            if !ok {
+                let quantized = !matches!(acc.data_type(), DataType::F32);
+                return Err(format!(
+                    "{what}: attribute {semantic:?} is {:?} {:?}{}; supported: {}{}",
+                    acc.dimensions(),
+                    acc.data_type(),
+                    if acc.normalized() { " normalized" } else { "" },
+                    allowed
+                        .iter()
+                        .map(|(t, d, n)| format!(
+                            "{d:?} {t:?}{}",
+                            if *n == Some(true) { " normalized" } else { "" }
+                        ))
+                        .collect::<Vec<_>>()
+                        .join(" or "),
+                    if quantized {
+                        " (quantized attributes of KHR_mesh_quantization are not supported)"
+                    } else {
+                        ""
+                    }
+                ));
+            }
+            Ok(Some(acc.count()))
+        };
+        let Some(count) = check(
+            Semantic::Positions,
+            &[(DataType::F32, Dimensions::Vec3, None)],
+        )?
+        else {
+            return Err(format!("{what}: has no POSITION attribute"));
+        };
+        let normal_count = check(
+            Semantic::Normals,
+            &[(DataType::F32, Dimensions::Vec3, None)],
+        )?;
+        let tangent_count = check(
+            Semantic::Tangents,
+            &[(DataType::F32, Dimensions::Vec4, None)],
+        )?;
+        let uv_count = check(
+            Semantic::TexCoords(0),
+            &[
+                (DataType::F32, Dimensions::Vec2, None),
+                (DataType::U8, Dimensions::Vec2, Some(true)),
+                (DataType::U16, Dimensions::Vec2, Some(true)),
+            ],
+        )?;
+        for (name, c) in [
+            ("NORMAL", normal_count),
+            ("TANGENT", tangent_count),
+            ("TEXCOORD_0", uv_count),
+        ] {
+            if let Some(c) = c
+                && c != count
+            {
+                return Err(format!(
+                    "{what}: {name} has {c} entries but POSITION has {count}"
+                ));
+            }
+        }
+        if count == 0 {
+            self.acc
+                .warnings
+                .push(MeshWarning::Note(format!("{what}: no vertices, skipped")));
+            return Ok(());
+        }
+        if let Some(ix) = prim.indices()
+            && (ix.count() == 0
+                || !matches!(ix.data_type(), DataType::U8 | DataType::U16 | DataType::U32)
+                || ix.dimensions() != Dimensions::Scalar)
+        {
+            return Err(format!(
+                "{what}: indices are not unsigned scalars, or empty"
+            ));
+        }
+
+        let reader = prim.reader(|b| self.buffers.get(b.index()).map(|d| d.0.as_slice()));
+        let missing = |attr: &str| format!("{what}: the data of {attr} lies outside its buffer");
+        let positions: Vec<Vec3> = reader
+            .read_positions()
+            .ok_or_else(|| missing("POSITION"))?
+            .map(Vec3::from_array)
+            .collect();
+        let normals: Option<Vec<Vec3>> = match normal_count {
+            Some(_) => Some(
+                reader
+                    .read_normals()
+                    .ok_or_else(|| missing("NORMAL"))?
+                    .map(Vec3::from_array)
+                    .collect(),
+            ),
+            None => None,
+        };
+        let tangents: Option<Vec<Vec4>> = match tangent_count {
+            Some(_) => Some(
+                reader
+                    .read_tangents()
+                    .ok_or_else(|| missing("TANGENT"))?
+                    .map(Vec4::from_array)
+                    .collect(),
+            ),
+            None => None,
+        };
+        let uvs: Option<Vec<Vec2>> = match uv_count {
+            Some(_) => Some(
+                reader
+                    .read_tex_coords(0)
+                    .ok_or_else(|| missing("TEXCOORD_0"))?
+                    .into_f32()
+                    // glTF's v points down; ours up (SPEC §0).
+                    .map(|[u, v]| Vec2::new(u, 1.0 - v))
+                    .collect(),
+            ),
+            None => None,
+        };
+        let n = positions.len();
+        let raw_indices: Vec<u32> = match reader.read_indices() {
+            Some(ix) => ix.into_u32().collect(),
+            None if prim.indices().is_some() => return Err(missing("indices")),
+            None => (0..n as u32).collect(),
+        };
+        let mut tris = triangulate(prim.mode(), &raw_indices);
+
+        let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
+        let det = Mat3::from_mat4(world).determinant();
+        if det < 0.0 {
+            for t in tris.chunks_exact_mut(3) {
+                t.swap(1, 2);
+            }
+        }
+        let base = self.acc.positions.len() as u32;
+        let first_triangle = (self.acc.indices.len() / 3) as u32;
+        self.acc
+            .positions
+            .extend(positions.iter().map(|&p| world.transform_point3(p)));
+        match normals {
+            Some(ns) => self.acc.normals.extend(
+                ns.iter()
+                    .map(|&n| Some((normal_matrix * n).normalize_or_zero())),
+            ),
+            None => self.acc.normals.extend(std::iter::repeat_n(None, n)),
+        }
+        match uvs {
+            Some(uvs) => self.acc.uvs.extend(uvs.into_iter().map(Some)),
+            None => self.acc.uvs.extend(std::iter::repeat_n(None, n)),
+        }
+        match tangents {
+            Some(ts) => self.acc.tangents.extend(ts.iter().map(|t| {
+                let xyz = (Mat3::from_mat4(world) * t.truncate()).normalize_or_zero();
+                Some(xyz.extend(if det < 0.0 { -t.w } else { t.w }))
+            })),
+            None => self.acc.tangents.extend(std::iter::repeat_n(None, n)),
+        }
+        // Out-of-range indices stay out of range (Mesh::build drops and counts them).
+        self.acc.indices.extend(
+            tris.iter()
+                .map(|&i| if (i as usize) < n { base + i } else { u32::MAX }),
+        );
+        self.acc.parts.push(MeshPart {
+            name: what,
+            first_triangle,
+            triangle_count: (tris.len() / 3) as u32,
+        });
+        Ok(())
+    }
+}
+
+/// A triangle list from the indices of a triangle list, strip or fan (glTF §3.7.2.1).
+fn triangulate(mode: Mode, ix: &[u32]) -> Vec<u32> {
+    match mode {
+        Mode::TriangleStrip => (2..ix.len())
+            .flat_map(|i| {
+                // Every other triangle is reversed to keep a consistent winding.
+                if i % 2 == 0 {
+                    [ix[i - 2], ix[i - 1], ix[i]]
+                } else {
+                    [ix[i - 1], ix[i - 2], ix[i]]
+                }
+            })
+            .collect(),
+        Mode::TriangleFan => (2..ix.len())
+            .flat_map(|i| [ix[0], ix[i - 1], ix[i]])
+            .collect(),
+        _ => ix[..ix.len() - ix.len() % 3].to_vec(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Fixtures are written by the tests: small glTF files with `data:` buffers, an
+    //! external `.bin`, and a GLB.
+    use super::*;
+    use crate::mesh::test_util::{assert_close, assert_vec_close};
+    use crate::mesh::{Mesh, TangentSource};
+
+    /// One primitive's data for a fixture.
+    struct Prim {
+        positions: Vec<[f32; 3]>,
+        normals: Option<Vec<[f32; 3]>>,
+        uvs: Option<Vec<[f32; 2]>>,
+        indices: Vec<u16>,
+    }
+
+    fn quad_prim(normals: bool, uvs: bool) -> Prim {
+        Prim {
+            positions: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ],
+            normals: normals.then(|| vec![[0.0, 0.0, 1.0]; 4]),
+            // glTF v down: the top edge (y = 1) has v = 0.
+            uvs: uvs.then(|| vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]),
+            indices: vec![0, 1, 2, 0, 2, 3],
+        }
+    }
+
+    /// Builds the JSON (and the binary buffer) of a file with one mesh per entry of
+    /// `meshes` (each a list of primitives) and the given `nodes` JSON.
+    fn fixture(meshes: &[Vec<Prim>], nodes: &str) -> (String, Vec<u8>) {
+        let mut bin = Vec::new();
+        let mut views = Vec::new();
+        let mut accessors = Vec::new();
+        let mut push =
+            |bytes: &[u8], acc: String, views: &mut Vec<String>, accessors: &mut Vec<String>| {
+                while !bin.len().is_multiple_of(4) {
+                    bin.push(0);
+                }
+                views.push(format!(
+                    r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
+                    bin.len(),
+                    bytes.len()
+                ));
+                bin.extend_from_slice(bytes);
+                accessors.push(acc.replace("VIEW", &(views.len() - 1).to_string()));
+                accessors.len() - 1
+            };
+        let mut mesh_json = Vec::new();
+        for prims in meshes {
+            let mut prim_json = Vec::new();
+            for p in prims {
+                let mut attrs = Vec::new();
+                let (lo, hi) =
+                    p.positions
+                        .iter()
+                        .fold(([f32::MAX; 3], [f32::MIN; 3]), |(lo, hi), q| {
+                            (
+                                [lo[0].min(q[0]), lo[1].min(q[1]), lo[2].min(q[2])],
+                                [hi[0].max(q[0]), hi[1].max(q[1]), hi[2].max(q[2])],
+                            )
+                        });
+                let a = push(
+                    bytemuck::cast_slice(&p.positions),
+                    format!(
+                        r#"{{"bufferView":VIEW,"componentType":5126,"count":{},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#,
+                        p.positions.len()
+                    ),
+                    &mut views,
+                    &mut accessors,
+                );
+                attrs.push(format!(r#""POSITION":{a}"#));
+                if let Some(n) = &p.normals {
+                    let a = push(
+                        bytemuck::cast_slice(n),
+                        format!(
+                            r#"{{"bufferView":VIEW,"componentType":5126,"count":{},"type":"VEC3"}}"#,
+                            n.len()
+                        ),
+                        &mut views,
+                        &mut accessors,
+                    );
+                    attrs.push(format!(r#""NORMAL":{a}"#));
+                }
+                if let Some(t) = &p.uvs {
+                    let a = push(
+                        bytemuck::cast_slice(t),
+                        format!(
+                            r#"{{"bufferView":VIEW,"componentType":5126,"count":{},"type":"VEC2"}}"#,
+                            t.len()
+                        ),
+                        &mut views,
+                        &mut accessors,
+                    );
+                    attrs.push(format!(r#""TEXCOORD_0":{a}"#));
+                }
+                let i = push(
+                    bytemuck::cast_slice(&p.indices),
+                    format!(
+                        r#"{{"bufferView":VIEW,"componentType":5123,"count":{},"type":"SCALAR"}}"#,
+                        p.indices.len()
+                    ),
+                    &mut views,
+                    &mut accessors,
+                );
+                prim_json.push(format!(
+                    r#"{{"attributes":{{{}}},"indices":{i}}}"#,
+                    attrs.join(",")
+                ));
+            }
+            mesh_json.push(format!(
+                r#"{{"name":"m{}","primitives":[{}]}}"#,
+                mesh_json.len(),
+                prim_json.join(",")
+            ));
+        }
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        let json = format!(
+            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":{nodes},"meshes":[{}],"accessors":[{}],"bufferViews":[{}],"buffers":[{{"byteLength":{},"uri":"URI"}}]}}"#,
+            mesh_json.join(","),
+            accessors.join(","),
+            views.join(","),
+            bin.len()
+        );
+        (json, bin)
+    }
+
+    fn base64(bytes: &[u8]) -> String {
+        const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        let mut out = String::new();
+        for c in bytes.chunks(3) {
+            let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
+            let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
+            for k in 0..4 {
+                if k <= c.len() {
+                    out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
+                } else {
+                    out.push('=');
+                }
+            }
+        }
+        out
+    }
+
+    fn write_embedded(dir: &Path, name: &str, json: &str, bin: &[u8]) -> std::path::PathBuf {
+        let path = dir.join(name);
+        let uri = format!("data:application/octet-stream;base64,{}", base64(bin));
+        std::fs::write(&path, json.replace("URI", &uri)).unwrap();
+        path
+    }
+
+    fn write_glb(dir: &Path, name: &str, json: &str, bin: &[u8]) -> std::path::PathBuf {
+        // GLB: the buffer has no uri.
+        let mut json = json.replace(r#","uri":"URI""#, "").into_bytes();
+        while !json.len().is_multiple_of(4) {
+            json.push(b' ');
+        }
+        let total = 12 + 8 + json.len() + 8 + bin.len();
+        let mut out = Vec::new();
+        out.extend_from_slice(b"glTF");
+        out.extend_from_slice(&2u32.to_le_bytes());
+        out.extend_from_slice(&(total as u32).to_le_bytes());
+        out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"JSON");
+        out.extend_from_slice(&json);
+        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"BIN\0");
+        out.extend_from_slice(bin);
+        let path = dir.join(name);
+        std::fs::write(&path, out).unwrap();
+        path
+    }
+
+    /// Two meshes: "m0" with two primitives (a quad with normals and UVs, a quad with
+    /// UVs only), "m1" one quad; node 0 translates by (10, 0, 0) and has a child scaling
+    /// by 2 that holds m1.
+    fn two_level_fixture() -> (String, Vec<u8>) {
+        fixture(
+            &[
+                vec![quad_prim(true, true), quad_prim(false, true)],
+                vec![quad_prim(true, true)],
+            ],
+            r#"[{"name":"root","mesh":0,"translation":[10,0,0],"children":[1]},{"name":"child","mesh":1,"scale":[2,2,2]}]"#,
+        )
+    }
+
+    fn check_two_level(m: &Mesh) {
+        assert_eq!(m.triangle_count(), 6);
+        assert_eq!(m.parts().len(), 3, "{:?}", m.parts());
+        assert!(
+            m.parts()[0].name.contains("m0") && m.parts()[0].name.contains("root"),
+            "{:?}",
+            m.parts()
+        );
+        assert!(m.parts()[2].name.contains("child"));
+        // Node transforms: m0 at x ∈ [10, 11]; m1 under translate·scale at x ∈ [10, 12].
+        assert_vec_close(m.bounds().min, Vec3::new(10.0, 0.0, 0.0), 1e-6, "min");
+        assert_vec_close(m.bounds().max, Vec3::new(12.0, 2.0, 0.0), 1e-6, "max");
+        // v flipped: the vertex at y = 1 of the first quad (glTF v = 0) has v = 1.
+        for part in m.parts() {
+            let scale = if part.name.contains("child") {
+                2.0
+            } else {
+                1.0
+            };
+            let first = part.first_triangle as usize * 3;
+            for &v in &m.indices()[first..first + part.triangle_count as usize * 3] {
+                let (p, uv) = (m.positions()[v as usize], m.uvs()[v as usize]);
+                assert_close(uv.y, p.y / scale, 1e-6, "v up");
+            }
+        }
+        // The primitive without normals got computed ones; all face +z.
+        for n in m.normals() {
+            assert_vec_close(*n, Vec3::Z, 1e-6, "normal");
+        }
+        assert!(!m.report().uvs_generated);
+        assert_eq!(m.report().tangent_source, Some(TangentSource::MikkTSpace));
+        for t in m.tangents() {
+            assert_vec_close(t.truncate(), Vec3::X, 1e-5, "tangent");
+        }
+    }
+
+    #[test]
+    fn embedded_buffers_several_primitives_node_transforms_and_v_flip() {
+        let dir = tempfile::tempdir().unwrap();
+        let (json, bin) = two_level_fixture();
+        let m = Mesh::load(&write_embedded(dir.path(), "a.gltf", &json, &bin)).unwrap();
+        check_two_level(&m);
+        assert!(
+            m.report()
+                .warnings
+                .iter()
+                .any(|w| matches!(w, MeshWarning::BadNormalsReplaced(4))),
+            "the normals of the second primitive were computed: {:?}",
+            m.report().warnings
+        );
+    }
+
+    #[test]
+    fn glb_and_external_buffers_load_the_same() {
+        let dir = tempfile::tempdir().unwrap();
+        let (json, bin) = two_level_fixture();
+        let glb = Mesh::load(&write_glb(dir.path(), "a.glb", &json, &bin)).unwrap();
+        check_two_level(&glb);
+        std::fs::write(dir.path().join("a.bin"), &bin).unwrap();
+        let path = dir.path().join("b.gltf");
+        std::fs::write(&path, json.replace("URI", "a.bin")).unwrap();
+        let ext = Mesh::load(&path).unwrap();
+        assert_eq!(ext.positions(), glb.positions());
+        // A missing external buffer is an error naming the file.
+        std::fs::remove_file(dir.path().join("a.bin")).unwrap();
+        let err = Mesh::load(&path).unwrap_err().to_string();
+        assert!(err.contains("b.gltf") && err.contains("buffer"), "{err}");
+    }
+
+    #[test]
+    fn without_normals_and_uvs_both_are_generated() {
+        let dir = tempfile::tempdir().unwrap();
+        let (json, bin) = fixture(&[vec![quad_prim(false, false)]], r#"[{"mesh":0}]"#);
+        let m = Mesh::load(&write_embedded(dir.path(), "bare.gltf", &json, &bin)).unwrap();
+        assert!(m.report().normals_generated && m.report().uvs_generated);
+        assert!(m.uvs().iter().all(|uv| uv.is_finite()));
+    }
+
+    #[test]
+    fn a_mirroring_node_keeps_faces_outward() {
+        let dir = tempfile::tempdir().unwrap();
+        let (json, bin) = fixture(
+            &[vec![quad_prim(true, true)]],
+            r#"[{"mesh":0,"scale":[-1,1,1]}]"#,
+        );
+        let m = Mesh::load(&write_embedded(dir.path(), "mirror.gltf", &json, &bin)).unwrap();
+        for t in m.triangles() {
+            let [a, b, c] = t.map(|i| m.positions()[i as usize]);
+            assert!(
+                (b - a).cross(c - a).z > 0.0,
+                "winding flipped back to face +z"
+            );
+        }
+        for n in m.normals() {
+            assert_vec_close(*n, Vec3::Z, 1e-6, "normal");
+        }
+        // u now runs along −x: the tangent follows it, handedness flips.
+        for t in m.tangents() {
+            assert_vec_close(t.truncate(), Vec3::NEG_X, 1e-5, "tangent");
+            assert_close(t.w, -1.0, 0.0, "w");
+        }
+    }
+
+    #[test]
+    fn quantized_positions_are_refused_clearly() {
+        let dir = tempfile::tempdir().unwrap();
+        let (json, bin) = fixture(&[vec![quad_prim(true, true)]], r#"[{"mesh":0}]"#);
+        // Re-type the position accessor as normalized shorts (KHR_mesh_quantization).
+        let json = json.replacen(
+            r#""componentType":5126,"count":4,"type":"VEC3""#,
+            r#""componentType":5122,"normalized":true,"count":4,"type":"VEC3""#,
+            1,
+        );
+        let err = Mesh::load(&write_embedded(dir.path(), "q.gltf", &json, &bin))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("KHR_mesh_quantization") && err.contains("Positions"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn out_of_range_indices_are_dropped_and_the_rest_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut prim = quad_prim(true, true);
+        prim.indices = vec![0, 1, 2, 0, 2, 9];
+        let (json, bin) = fixture(&[vec![prim]], r#"[{"mesh":0}]"#);
+        let m = Mesh::load(&write_embedded(dir.path(), "oob.gltf", &json, &bin)).unwrap();
+        assert_eq!(m.triangle_count(), 1);
+        assert!(
+            m.report()
+                .warnings
+                .contains(&MeshWarning::OutOfRangeTriangles(1))
+        );
+    }
+
+    #[test]
+    fn garbage_is_an_error_not_a_panic() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.glb");
+        std::fs::write(&path, b"glTF\x02\0\0\0garbage").unwrap();
+        assert!(Mesh::load(&path).is_err());
+        let path = dir.path().join("x.gltf");
+        std::fs::write(&path, b"{}").unwrap();
+        assert!(Mesh::load(&path).is_err());
+    }
+
+    #[test]
+    fn strips_and_fans_become_lists() {
+        assert_eq!(
+            triangulate(Mode::TriangleStrip, &[0, 1, 2, 3]),
+            vec![0, 1, 2, 2, 1, 3]
+        );
+        assert_eq!(
+            triangulate(Mode::TriangleFan, &[0, 1, 2, 3]),
+            vec![0, 1, 2, 0, 2, 3]
+        );
+        assert_eq!(triangulate(Mode::Triangles, &[0, 1, 2, 3]), vec![0, 1, 2]);
+    }
+}

@@ -1,5 +1,7 @@
 //! The command line: one binary, one subcommand per task.
 
+mod hair;
+
 use clap::{CommandFactory as _, Parser, Subcommand};
 
 /// agesim: age a human head — wrinkles, skin micro-relief, hair recession and graying.
@@ -11,7 +13,10 @@ pub struct Cli {
 }
 
 #[derive(Debug, Subcommand)]
-pub enum Command {}
+pub enum Command {
+    /// Hair aging (SPEC §6): transition texture, hair instances and their counts per age.
+    Hair(hair::HairArgs),
+}
 
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
@@ -20,5 +25,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             Cli::command().print_help()?;
             Ok(())
         }
+        Some(Command::Hair(args)) => hair::run(&args),
     }
 }

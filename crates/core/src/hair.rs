@@ -198,6 +198,19 @@ impl<'a> SurfaceRef<'a> {
     }
 }
 
+impl<'a> From<&'a crate::mesh::Mesh> for SurfaceRef<'a> {
+    /// A [`crate::mesh::Mesh`] is already validated (one normal and UV per vertex, indices
+    /// in range). Its units are whatever it was loaded in: the default head is in metres.
+    fn from(mesh: &'a crate::mesh::Mesh) -> Self {
+        Self {
+            positions: mesh.positions(),
+            normals: mesh.normals(),
+            uvs: mesh.uvs(),
+            indices: mesh.indices(),
+        }
+    }
+}
+
 /// One hair, ready for the GPU: 32 bytes, `#[repr(C)]`, no padding.
 ///
 /// WGSL (as vertex attributes with `step_mode: Instance`, or as a storage-buffer struct):
@@ -907,6 +920,43 @@ mod tests {
         close(c.x, 0.5, 1e-6);
         close(c.y, 0.35, 1e-6);
         close(c.z, 0.275, 1e-6);
+    }
+
+    #[test]
+    fn the_default_head_in_metres_gets_a_plausible_scalp() {
+        let head = crate::head::default_head();
+        let surface = SurfaceRef::from(&head);
+        // The scalp of the default head lies above v ≈ 0.79 at the front and 0.45 at the
+        // nape (head module docs): an outer mask v > 0.6 and an inner band 0.6 < v < 0.7.
+        let n = 64u32;
+        let outer: Vec<f32> = (0..n * n)
+            .map(|i| f32::from(crate::heightmap::pixel_to_v(i / n, n) > 0.6))
+            .collect();
+        let inner: Vec<f32> = (0..n * n)
+            .map(|i| {
+                let v = crate::heightmap::pixel_to_v(i / n, n);
+                f32::from(v > 0.6 && v < 0.7)
+            })
+            .collect();
+        let tex = TransitionTexture::from_masks(
+            &Mask::from_values(n, n, outer).unwrap(),
+            &Mask::from_values(n, n, inner).unwrap(),
+            n,
+            n,
+            DistanceMetric::Chebyshev,
+        )
+        .unwrap();
+        let hairs =
+            HairInstances::generate(&surface, &tex, &HairParams::new(10.0, 1.0).unwrap()).unwrap();
+        // A head's crown above v = 0.6 is a few hundred cm²: thousands of hairs at 10 /cm².
+        assert!((1_000..20_000).contains(&hairs.len()), "{}", hairs.len());
+        // Hairs point away from the head: upward on the crown.
+        let top = hairs.instances().iter().filter(|h| h.uv().y > 0.97);
+        assert!(top.clone().count() > 10);
+        assert!(
+            top.clone().all(|h| h.direction().y > 0.8),
+            "crown hairs point up"
+        );
     }
 
     #[test]

@@ -1,6 +1,8 @@
 //! The command line: one binary, one subcommand per task.
 
+mod gen_assets;
 mod hair;
+mod mesh_info;
 
 use clap::{CommandFactory as _, Parser, Subcommand};
 
@@ -16,15 +18,22 @@ pub struct Cli {
 pub enum Command {
     /// Hair aging (SPEC §6): transition texture, hair instances and their counts per age.
     Hair(hair::HairArgs),
+    /// Print what a head mesh (OBJ, glTF, GLB) contains: counts, size, attributes, repairs.
+    MeshInfo(mesh_info::MeshInfoArgs),
+    /// Regenerate the default assets (masks, fine-wrinkle tile, pictures) into a folder.
+    #[command(hide = true)]
+    GenAssets(gen_assets::GenAssetsArgs),
 }
 
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
+        Some(Command::MeshInfo(args)) => mesh_info::run(&args),
+        Some(Command::GenAssets(args)) => gen_assets::run(&args),
+        Some(Command::Hair(args)) => hair::run(&args),
         // Until the editor exists, no subcommand prints the help.
         None => {
             Cli::command().print_help()?;
             Ok(())
         }
-        Some(Command::Hair(args)) => hair::run(&args),
     }
 }

@@ -21,13 +21,18 @@
 //!   (the subject's left, +X, is on the right of the image).
 //! - v goes up along each profile, proportional to arc length: v = 0 is the open edge of
 //!   the neck, v = 1 the crown.
-//! - Regions (measured on this mesh by the tests of this module):
-//!   - face rectangle: u ∈ [0.36, 0.64], v ∈ [0.30, 0.80] — chin at v ≈ 0.36, mouth
-//!     ≈ 0.43, nose tip ≈ 0.51, eyes ≈ 0.59, brows ≈ 0.63, front hairline ≈ 0.79;
-//!   - forehead: u ∈ [0.40, 0.60], v ∈ [0.63, 0.79] (the example fibres of SPEC §2,
+//! - Regions (measured on this mesh; the tests of this module and of `head_assets`
+//!   check the key ones, `assets/docs/uv-layout.png` shows them):
+//!   - face rectangle: u ∈ [0.36, 0.64], v ∈ [0.25, 0.78] — at u = 0.5: under the chin
+//!     v ≈ 0.20–0.26, chin front ≈ 0.30, lips ≈ 0.37–0.43, base of the nose ≈ 0.47, nose
+//!     tip ≈ 0.50, eyes ≈ 0.555 (centres at u ≈ 0.446 / 0.554), brows ≈ 0.60, front
+//!     hairline ≈ 0.78;
+//!   - forehead: u ∈ [0.40, 0.60], v ∈ [0.61, 0.77] (the example fibres of SPEC §2,
 //!     u 0.42–0.56, v 0.64–0.73, lie on it);
-//!   - scalp: v > 0.79 at the front, descending to v ≈ 0.45 at the nape (u ≈ 0 / 1);
-//!   - neck: v < 0.30 in front, v < 0.40 at the back.
+//!   - ears: around u ≈ 0.25 and 0.75, v ≈ 0.47–0.60;
+//!   - scalp: v > 0.78 at the front, down to v ≈ 0.31 at the nape (u = 0 ≡ 1); exactly
+//!     the white of `assets/masks/hair-outer.png`;
+//!   - neck: v < 0.24 in front (u ∈ [0.35, 0.65]), up to the hairline at the back.
 //!
 //! Generation takes a few tens of milliseconds in release builds (see
 //! `benches/head.rs` and BENCHMARKS.md), so the head is built at start-up instead of

@@ -6,8 +6,10 @@
 
 pub mod error;
 pub mod export;
+pub mod fine_wrinkles;
 pub mod hair;
 pub mod head;
+pub mod head_assets;
 pub mod heightmap;
 pub mod mask;
 pub mod mesh;

@@ -1,0 +1,96 @@
+//! `agesim mesh-info [FILE]`: what a head mesh contains and what loading it repaired.
+
+use std::path::PathBuf;
+
+use agesim_core::Mesh;
+use agesim_core::mesh::TangentSource;
+
+/// Print vertex/triangle counts, bounding box and size, which attributes the file had and
+/// what was generated or dropped. Without FILE (or with --default-head): the default head.
+#[derive(Debug, clap::Args)]
+pub struct MeshInfoArgs {
+    /// An OBJ, glTF or GLB file.
+    pub file: Option<PathBuf>,
+    /// Report the built-in default head (the default when no FILE is given).
+    #[arg(long, conflicts_with = "file")]
+    pub default_head: bool,
+}
+
+pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
+    let (name, mesh) = match &args.file {
+        Some(path) if !args.default_head => (path.display().to_string(), Mesh::load(path)?),
+        _ => (
+            "default head (generated, metres)".to_owned(),
+            agesim_core::head::default_head(),
+        ),
+    };
+    print!("{}", describe(&name, &mesh));
+    Ok(())
+}
+
+/// The report printed by `mesh-info`, one fact per line.
+pub fn describe(name: &str, mesh: &Mesh) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let b = mesh.bounds();
+    let r = mesh.report();
+    let origin = |generated: bool, what: &str| {
+        if generated {
+            format!("generated ({what})")
+        } else {
+            "from the file".to_owned()
+        }
+    };
+    let _ = writeln!(s, "mesh:      {name}");
+    let _ = writeln!(s, "vertices:  {}", mesh.vertex_count());
+    let _ = writeln!(s, "triangles: {}", mesh.triangle_count());
+    let _ = writeln!(
+        s,
+        "bounds:    min ({:.4}, {:.4}, {:.4}) max ({:.4}, {:.4}, {:.4})",
+        b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z
+    );
+    let size = b.size();
+    let _ = writeln!(
+        s,
+        "size:      {:.4} × {:.4} × {:.4} (file units; metres for glTF and the default head)",
+        size.x, size.y, size.z
+    );
+    let _ = writeln!(
+        s,
+        "normals:   {}",
+        origin(r.normals_generated, "angle-weighted smooth")
+    );
+    let uv = if r.uvs_generated {
+        format!(
+            "generated (inverse spherical mapping, SPEC §5; {} seam/pole vertices added)",
+            r.seam_vertices_added
+        )
+    } else {
+        "from the file".to_owned()
+    };
+    let _ = writeln!(s, "uvs:       {uv}");
+    let tangents = match r.tangent_source {
+        Some(TangentSource::File) => "from the file".to_owned(),
+        _ => format!(
+            "generated (MikkTSpace; {} vertices split at UV seams/mirrors)",
+            r.tangent_split_vertices
+        ),
+    };
+    let _ = writeln!(s, "tangents:  {tangents}");
+    let _ = writeln!(s, "parts:     {}", mesh.parts().len());
+    for part in mesh.parts().iter().take(20) {
+        let _ = writeln!(s, "  - {} ({} triangles)", part.name, part.triangle_count);
+    }
+    if mesh.parts().len() > 20 {
+        let _ = writeln!(s, "  … {} more", mesh.parts().len() - 20);
+    }
+    if r.warnings.is_empty() {
+        let _ = writeln!(s, "repairs:   none");
+    } else {
+        let _ = writeln!(s, "repairs:");
+        for w in &r.warnings {
+            let _ = writeln!(s, "  - {w}");
+        }
+    }
+    s
+}

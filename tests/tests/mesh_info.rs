@@ -1,0 +1,142 @@
+//! `agesim mesh-info` end to end: the built binary on the default head, an OBJ and a
+//! glTF written by the test, and on bad input.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The `agesim` binary of this build. `CARGO_BIN_EXE_*` only exists for a package's own
+/// binaries, so it is found next to the test executable (`target/<profile>/deps/..`),
+/// and built with `cargo build -p agesim` when it is not there yet (e.g. when only this
+/// package's tests were asked for). Works under plain `cargo test --workspace`.
+fn agesim_bin() -> PathBuf {
+    let exe = std::env::current_exe().unwrap();
+    let profile_dir = exe.parent().and_then(Path::parent).unwrap().to_path_buf();
+    let bin = profile_dir.join(format!("agesim{}", std::env::consts::EXE_SUFFIX));
+    if !bin.exists() {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let status = Command::new(cargo)
+            .args(["build", "-p", "agesim"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .status()
+            .unwrap();
+        assert!(status.success(), "cargo build -p agesim failed");
+    }
+    assert!(bin.exists(), "no agesim binary at {}", bin.display());
+    bin
+}
+
+fn mesh_info(args: &[&str]) -> Output {
+    Command::new(agesim_bin())
+        .arg("mesh-info")
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+#[test]
+fn reports_the_default_head() {
+    for args in [&[][..], &["--default-head"][..]] {
+        let out = mesh_info(args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = stdout(&out);
+        assert!(text.contains("default head"), "{text}");
+        let triangles: usize = text
+            .lines()
+            .find_map(|l| l.strip_prefix("triangles:"))
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap();
+        assert!((50_000..=200_000).contains(&triangles), "{text}");
+        assert!(text.contains("tangents:  generated (MikkTSpace"), "{text}");
+        assert!(text.contains("repairs:   none"), "{text}");
+    }
+}
+
+#[test]
+fn reports_an_obj_without_normals_and_uvs() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("tet.obj");
+    // A tetrahedron of 2 m, plus a degenerate face.
+    std::fs::write(
+        &path,
+        "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 0 0 2\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 1 1 2\n",
+    )
+    .unwrap();
+    let out = mesh_info(&[path.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = stdout(&out);
+    assert!(text.contains("triangles: 4"), "{text}");
+    assert!(
+        text.contains("size:      2.0000 × 2.0000 × 2.0000"),
+        "{text}"
+    );
+    assert!(text.contains("normals:   generated"), "{text}");
+    assert!(
+        text.contains("uvs:       generated (inverse spherical mapping"),
+        "{text}"
+    );
+    assert!(text.contains("dropped 1 degenerate triangles"), "{text}");
+}
+
+#[test]
+fn reports_a_gltf_with_a_node_transform() {
+    let dir = tempfile::tempdir().unwrap();
+    // One triangle, positions as little-endian f32, scaled by 3 by its node.
+    let positions: [f32; 9] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    let bytes: Vec<u8> = positions.iter().flat_map(|f| f.to_le_bytes()).collect();
+    std::fs::write(dir.path().join("tri.bin"), &bytes).unwrap();
+    let json = r#"{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+        "nodes":[{"name":"big","mesh":0,"scale":[3,3,3]}],
+        "meshes":[{"name":"tri","primitives":[{"attributes":{"POSITION":0}}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+        "bufferViews":[{"buffer":0,"byteLength":36}],
+        "buffers":[{"byteLength":36,"uri":"tri.bin"}]}"#;
+    let path = dir.path().join("tri.gltf");
+    std::fs::write(&path, json).unwrap();
+    let out = mesh_info(&[path.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = stdout(&out);
+    assert!(text.contains("triangles: 1"), "{text}");
+    assert!(
+        text.contains("size:      3.0000 × 3.0000 × 0.0000"),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#"mesh "tri" primitive 0 (node "big")"#),
+        "{text}"
+    );
+}
+
+#[test]
+fn fails_with_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing.obj");
+    let out = mesh_info(&[missing.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("missing.obj"), "{err}");
+
+    let stl = dir.path().join("head.stl");
+    std::fs::write(&stl, "solid x").unwrap();
+    let out = mesh_info(&[stl.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unsupported mesh format"));
+}

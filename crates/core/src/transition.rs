@@ -59,6 +59,14 @@
 //! obstacles it follows the shortest path, as the growth does. **Choice** over an exact
 //! Euclidean transform, which is not geodesic (it would let fronts pass through holes),
 //! and over fast marching, which is O(n log n) and harder to make byte-identical.
+//!
+//! # Limits
+//!
+//! Growth happens in UV pixels, as SPEC §6 says, so it inherits the UV layout's stretch:
+//! where the layout squeezes the surface (near a pole, e.g. the crown row of the default
+//! head) a generation covers less skin than elsewhere. Growth does not wrap around UV
+//! seams: a front stops at u = 0/1 even where the mesh continues across the seam. Ages are
+//! constant per texel; the working size sets how fine the steps of the recession are.
 
 use rayon::prelude::*;
 
@@ -1011,6 +1019,34 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    #[test]
+    fn identical_textures_on_one_and_many_threads() {
+        let mut rng = Rng::new(8);
+        let outer = Mask::from_values(50, 40, (0..2000).map(|_| rng.next_f32()).collect()).unwrap();
+        let inner =
+            Mask::from_values(13, 9, (0..117).map(|_| rng.next_f32() * 0.6).collect()).unwrap();
+        for metric in [DistanceMetric::Chebyshev, DistanceMetric::Euclidean] {
+            let run = |threads: usize| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap()
+                    .install(|| {
+                        TransitionTexture::from_masks(&outer, &inner, 300, 211, metric).unwrap()
+                    })
+            };
+            let (one, many) = (run(1), run(3));
+            assert!(one.max_generation_px() > 3.0);
+            assert_eq!(one.to_luma16(), many.to_luma16());
+            assert!(
+                one.ages()
+                    .iter()
+                    .zip(many.ages())
+                    .all(|(a, b)| a.to_bits() == b.to_bits())
+            );
         }
     }
 

@@ -507,15 +507,14 @@ impl TransitionTexture {
     /// Applies the unreachable rule and the mapping r → a to distances in `metric` units.
     fn from_distances(regions: &HairRegions, dist: &[u32], metric: DistanceMetric) -> Self {
         let unit = metric.units_per_px() as u64;
-        let reached_max = dist
-            .iter()
-            .filter(|&&d| d != NO_GENERATION)
-            .max()
-            .copied()
-            .unwrap_or(0) as u64;
-        let unreachable_px = (0..dist.len())
-            .filter(|&i| dist[i] == NO_GENERATION && regions.is_outer(i))
-            .count() as u64;
+        let (reached_max, unreachable_px) = dist
+            .par_iter()
+            .enumerate()
+            .map(|(i, &d)| match d {
+                NO_GENERATION => (0, u64::from(regions.is_outer(i))),
+                d => (d as u64, 0),
+            })
+            .reduce(|| (0, 0), |a, b| (a.0.max(b.0), a.1 + b.1));
         let unreachable_dist = reached_max + unit;
         let max_dist = if unreachable_px > 0 {
             unreachable_dist

@@ -2,6 +2,7 @@
 
 mod bake;
 mod gen_assets;
+mod hair;
 mod mesh_info;
 
 use clap::{CommandFactory as _, Parser, Subcommand};
@@ -18,6 +19,8 @@ pub struct Cli {
 pub enum Command {
     /// Bake height and normal maps from wrinkle description files.
     Bake(bake::BakeArgs),
+    /// Hair aging (SPEC §6): transition texture, hair instances and their counts per age.
+    Hair(hair::HairArgs),
     /// Print what a head mesh (OBJ, glTF, GLB) contains: counts, size, attributes, repairs.
     MeshInfo(mesh_info::MeshInfoArgs),
     /// Regenerate the default assets (masks, fine-wrinkle tile, pictures) into a folder.
@@ -29,6 +32,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Some(Command::MeshInfo(args)) => mesh_info::run(&args),
         Some(Command::GenAssets(args)) => gen_assets::run(&args),
+        Some(Command::Hair(args)) => hair::run(&args),
         // Until the editor exists, no subcommand prints the help.
         None => {
             Cli::command().print_help()?;

@@ -7,6 +7,7 @@
 pub mod error;
 pub mod export;
 pub mod fine_wrinkles;
+pub mod hair;
 pub mod head;
 pub mod head_assets;
 pub mod heightmap;
@@ -18,6 +19,7 @@ pub mod normal_map;
 pub mod preview;
 pub mod project;
 pub mod rng;
+pub mod transition;
 pub mod wrinkle_file;
 
 pub use error::Error;

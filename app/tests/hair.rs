@@ -1,0 +1,155 @@
+//! End-to-end tests of `agesim hair` (SPEC §6): the real binary on real files.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn agesim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_agesim"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn ok(args: &[&str]) -> Output {
+    let out = agesim(args);
+    assert!(
+        out.status.success(),
+        "agesim {args:?} failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+fn read_json(dir: &Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(dir.join("hair.json")).unwrap()).unwrap()
+}
+
+fn counts(report: &serde_json::Value) -> Vec<(f64, u64)> {
+    report["counts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| (c["t"].as_f64().unwrap(), c["count"].as_u64().unwrap()))
+        .collect()
+}
+
+/// A 10 cm × 10 cm square in the z = 0 plane, metres, UV over [0,1]².
+const SQUARE_OBJ: &str = "v 0 0 0\nv 0.1 0 0\nv 0.1 0.1 0\nv 0 0.1 0\n\
+vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n\
+f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+
+#[test]
+fn default_head_writes_a_16_bit_transition_and_decreasing_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("hair");
+    ok(&["hair", "--density", "20", "--out", out.to_str().unwrap()]);
+    let png = image::open(out.join("transition.png")).unwrap();
+    assert_eq!(png.color(), image::ColorType::L16);
+    let grey = png.into_luma16();
+    // The three kinds of texel are all there: no hair, receding hair, inner hair.
+    assert!(grey.pixels().any(|p| p.0[0] == 0));
+    assert!(grey.pixels().any(|p| p.0[0] == 65535));
+    assert!(grey.pixels().any(|p| p.0[0] > 0 && p.0[0] < 65535));
+
+    let report = read_json(&out);
+    let c = counts(&report);
+    assert_eq!(
+        c.iter().map(|c| c.0).collect::<Vec<_>>(),
+        [0.0, 0.25, 0.5, 0.75, 1.0]
+    );
+    assert_eq!(c[0].1, report["instances"].as_u64().unwrap());
+    assert!(c.windows(2).all(|w| w[1].1 <= w[0].1), "{c:?}");
+    assert!(
+        c[4].1 > 0 && c[4].1 < c[0].1,
+        "inner hair stays, outer goes: {c:?}"
+    );
+    assert!(report["timings_ms"]["transition"].as_f64().unwrap() >= 0.0);
+    assert_eq!(report["mesh"], "default head");
+}
+
+#[test]
+fn custom_mesh_and_masks_of_different_sizes() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("square.obj");
+    std::fs::write(&mesh, SQUARE_OBJ).unwrap();
+    // Outer: all white, 64×64. Inner: left half white, 32×16 (another size and aspect).
+    let outer = dir.path().join("outer.png");
+    image::GrayImage::from_pixel(64, 64, image::Luma([255]))
+        .save(&outer)
+        .unwrap();
+    let inner = dir.path().join("inner.png");
+    image::GrayImage::from_fn(32, 16, |x, _| image::Luma([if x < 16 { 255 } else { 0 }]))
+        .save(&inner)
+        .unwrap();
+    let out = dir.path().join("out");
+    #[rustfmt::skip]
+    ok(&["hair", "--mesh", mesh.to_str().unwrap(), "--outer", outer.to_str().unwrap(),
+        "--inner", inner.to_str().unwrap(), "--density", "50", "--metric", "euclidean",
+        "--out", out.to_str().unwrap()]);
+    let report = read_json(&out);
+    assert_eq!(report["size_px"], 64, "the larger side of the masks");
+    assert_eq!(report["metric"], "euclidean");
+    let c = counts(&report);
+    // 100 cm² × 50 /cm² ≈ 5000 hairs, all present at t = 0; half stay.
+    assert!((4800..=5200).contains(&c[0].1), "{c:?}");
+    let half = c[4].1 as f64 / c[0].1 as f64;
+    assert!((0.45..0.55).contains(&half), "{c:?}");
+    let grey = image::open(out.join("transition.png"))
+        .unwrap()
+        .into_luma16();
+    assert_eq!(grey.dimensions(), (64, 64));
+    // Left half inner (white), right half recedes from the middle outward.
+    assert_eq!(grey.get_pixel(10, 30).0[0], 65535);
+    assert!(grey.get_pixel(40, 30).0[0] > grey.get_pixel(60, 30).0[0]);
+}
+
+#[test]
+fn same_seed_same_files_other_seed_other_hairs() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("square.obj");
+    std::fs::write(&mesh, SQUARE_OBJ).unwrap();
+    let run = |name: &str, seed: &str| {
+        let out = dir.path().join(name);
+        #[rustfmt::skip]
+        ok(&["hair", "--mesh", mesh.to_str().unwrap(), "--density", "30", "--seed", seed,
+            "--size", "256", "--out", out.to_str().unwrap()]);
+        (
+            std::fs::read(out.join("transition.png")).unwrap(),
+            counts(&read_json(&out)),
+        )
+    };
+    let a = run("a", "5");
+    let b = run("b", "5");
+    assert_eq!(a, b);
+    let c = run("c", "6");
+    assert_eq!(a.0, c.0, "the texture does not depend on the seed");
+}
+
+#[test]
+fn bad_inputs_fail_with_a_message_naming_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let missing = dir.path().join("no-such-mask.png");
+    let o = agesim(&[
+        "hair",
+        "--outer",
+        missing.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no-such-mask.png"));
+    let o = agesim(&[
+        "hair",
+        "--metric",
+        "manhattan",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("manhattan"));
+    let o = agesim(&["hair", "--density=-3", "--out", out.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("density"));
+}

@@ -1,0 +1,1026 @@
+//! Hair instances, the count table and graying (SPEC §6 "Hair instances", "Graying";
+//! [T §6.1, §6.2, §7.3]).
+//!
+//! Hairs are scattered over a triangle mesh in proportion to triangle area, where the
+//! transition texture says there is hair at t = 0. Each gets a disappearance age `a_k` from
+//! the texture, a graying onset `t_k < a_k`, and a direction. They are sorted by `a_k`
+//! descending, so the hairs present at age t are exactly the first [`HairInstances::count`]
+//! of them: the renderer uploads [`HairInstances::as_bytes`] once as an instance buffer and
+//! draws `count(t)` instances in one instanced draw call.
+//!
+//! Determinism (SPEC §0): triangle `i` draws its hairs from `Rng::for_stream(seed, i)`, the
+//! triangles are generated in parallel and concatenated in triangle order, then sorted by a
+//! stable sort on `a_k`: the bytes are the same on any number of threads.
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::error::Error;
+use crate::rng::Rng;
+use crate::transition::{TransitionTexture, clamp_age};
+
+/// Default hair density, hairs per cm² of surface. The human scalp has about 150–300
+/// follicular hairs per cm²; [T] draws fewer for speed. This is the middle of that range.
+pub const DEFAULT_DENSITY_PER_CM2: f32 = 200.0;
+/// Default largest angle between a hair's direction and the surface normal, radians (≈ 10°).
+pub const DEFAULT_MAX_DEVIATION_RAD: f32 = 0.175;
+/// Default range of the graying onset, as a fraction of the hair's disappearance age:
+/// `t_k = a_k · U[min, max)` (**Choice**: SPEC §6 only says "random, below a_k"). Hair
+/// that stays (a_k = 1) starts graying between t = 0.2 and t = 0.9; receding hair starts
+/// proportionally earlier and is partly gray when it goes.
+pub const DEFAULT_GRAYING_ONSET_MIN: f32 = 0.2;
+/// See [`DEFAULT_GRAYING_ONSET_MIN`].
+pub const DEFAULT_GRAYING_ONSET_MAX: f32 = 0.9;
+/// The largest number of hairs one generation may produce (32 bytes each: 2 GiB). [T]
+/// notes about 20 million instances fit in instance data on current hardware.
+pub const MAX_INSTANCES: u64 = 64 << 20;
+
+/// Parameters of hair placement (SPEC §6 "Hair instances").
+#[derive(Clone, Debug, PartialEq)]
+pub struct HairParams {
+    density_per_cm2: f32,
+    metres_per_unit: f32,
+    max_deviation_rad: f32,
+    graying_onset_min: f32,
+    graying_onset_max: f32,
+    seed: u64,
+}
+
+impl Default for HairParams {
+    /// Default density and deviation, a mesh in metres, seed 0.
+    fn default() -> Self {
+        Self {
+            density_per_cm2: DEFAULT_DENSITY_PER_CM2,
+            metres_per_unit: 1.0,
+            max_deviation_rad: DEFAULT_MAX_DEVIATION_RAD,
+            graying_onset_min: DEFAULT_GRAYING_ONSET_MIN,
+            graying_onset_max: DEFAULT_GRAYING_ONSET_MAX,
+            seed: 0,
+        }
+    }
+}
+
+impl HairParams {
+    /// `density_per_cm2`: hairs per cm² of surface, finite and ≥ 0 (0 gives no hairs).
+    /// `metres_per_unit`: the length of one mesh unit in metres (1 for a mesh in metres,
+    /// 0.01 for centimetres), finite and > 0. Other values are an error.
+    pub fn new(density_per_cm2: f32, metres_per_unit: f32) -> Result<Self, Error> {
+        if !(density_per_cm2.is_finite() && density_per_cm2 >= 0.0) {
+            return Err(invalid(
+                "hair density (hairs/cm²)",
+                density_per_cm2,
+                "a finite value ≥ 0",
+            ));
+        }
+        if !(metres_per_unit.is_finite() && metres_per_unit > 0.0) {
+            return Err(invalid(
+                "metres per mesh unit",
+                metres_per_unit,
+                "a finite value > 0",
+            ));
+        }
+        Ok(Self {
+            density_per_cm2,
+            metres_per_unit,
+            ..Self::default()
+        })
+    }
+
+    /// The seed of all random choices (positions, directions, onsets).
+    pub fn with_seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// Largest angle between direction and normal, radians, in [0, π/2].
+    pub fn with_max_deviation_rad(mut self, max_deviation_rad: f32) -> Result<Self, Error> {
+        if !(0.0..=std::f32::consts::FRAC_PI_2).contains(&max_deviation_rad) {
+            return Err(invalid(
+                "hair direction deviation (rad)",
+                max_deviation_rad,
+                "0 ≤ value ≤ π/2",
+            ));
+        }
+        self.max_deviation_rad = max_deviation_rad;
+        Ok(self)
+    }
+
+    /// Graying onset range as a fraction of a_k: 0 ≤ `min` ≤ `max` < 1 (so t_k < a_k).
+    pub fn with_graying_onset_range(mut self, min: f32, max: f32) -> Result<Self, Error> {
+        if !(0.0 <= min && min <= max && max < 1.0) {
+            return Err(Error::InvalidValue {
+                what: "graying onset range".into(),
+                value: format!("{min}..{max}"),
+                expected: "0 ≤ min ≤ max < 1".into(),
+            });
+        }
+        self.graying_onset_min = min;
+        self.graying_onset_max = max;
+        Ok(self)
+    }
+
+    pub fn density_per_cm2(&self) -> f32 {
+        self.density_per_cm2
+    }
+
+    pub fn metres_per_unit(&self) -> f32 {
+        self.metres_per_unit
+    }
+
+    pub fn max_deviation_rad(&self) -> f32 {
+        self.max_deviation_rad
+    }
+
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// Expected hairs per square mesh unit.
+    fn density_per_unit2(&self) -> f64 {
+        let cm_per_unit = self.metres_per_unit as f64 * 100.0;
+        self.density_per_cm2 as f64 * cm_per_unit * cm_per_unit
+    }
+}
+
+/// A triangle mesh as plain slices: what hair placement needs, whatever type holds it.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceRef<'a> {
+    positions: &'a [Vec3],
+    normals: &'a [Vec3],
+    uvs: &'a [Vec2],
+    indices: &'a [u32],
+}
+
+impl<'a> SurfaceRef<'a> {
+    /// Positions (mesh units), per-vertex normals (any length; re-normalised), UVs
+    /// (SPEC §0, v up) and a triangle list. `normals` and `uvs` must have one entry per
+    /// position; `indices.len()` must be a multiple of 3, every index < `positions.len()`.
+    pub fn new(
+        positions: &'a [Vec3],
+        normals: &'a [Vec3],
+        uvs: &'a [Vec2],
+        indices: &'a [u32],
+    ) -> Result<Self, Error> {
+        let n = positions.len();
+        for (what, len) in [("normals", normals.len()), ("UVs", uvs.len())] {
+            if len != n {
+                return Err(Error::InvalidValue {
+                    what: format!("number of {what}"),
+                    value: len.to_string(),
+                    expected: format!("one per vertex ({n})"),
+                });
+            }
+        }
+        if !indices.len().is_multiple_of(3) {
+            return Err(invalid(
+                "index count",
+                indices.len(),
+                "a multiple of 3 (a triangle list)",
+            ));
+        }
+        if let Some(i) = indices.iter().position(|&i| i as usize >= n) {
+            return Err(Error::InvalidValue {
+                what: format!("index {i} (triangle {})", i / 3),
+                value: indices[i].to_string(),
+                expected: format!("a vertex index < {n}"),
+            });
+        }
+        Ok(Self {
+            positions,
+            normals,
+            uvs,
+            indices,
+        })
+    }
+
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+}
+
+impl<'a> From<&'a crate::mesh::Mesh> for SurfaceRef<'a> {
+    /// A [`crate::mesh::Mesh`] is already validated (one normal and UV per vertex, indices
+    /// in range). Its units are whatever it was loaded in: the default head is in metres.
+    fn from(mesh: &'a crate::mesh::Mesh) -> Self {
+        Self {
+            positions: mesh.positions(),
+            normals: mesh.normals(),
+            uvs: mesh.uvs(),
+            indices: mesh.indices(),
+        }
+    }
+}
+
+/// One hair, ready for the GPU: 32 bytes, `#[repr(C)]`, no padding.
+///
+/// WGSL (as vertex attributes with `step_mode: Instance`, or as a storage-buffer struct):
+///
+/// ```wgsl
+/// struct HairInstance {
+///     position: vec3<f32>,      // offset  0, Float32x3, mesh units
+///     disappear_age: f32,       // offset 12, Float32,   a_k ∈ (0, 1]; drawn while a_k ≥ t
+///     direction_oct: u32,       // offset 16, Snorm16x2, octahedral unit vector
+///                               //            (storage buffer: unpack2x16snorm)
+///     graying_onset: f32,       // offset 20, Float32,   t_k ∈ [0, a_k)
+///     uv: u32,                  // offset 24, Unorm16x2, SPEC §0 UV (unpack2x16unorm)
+///     random: f32,              // offset 28, Float32,   the spare: uniform [0, 1) per hair
+/// }
+/// ```
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct HairInstance {
+    position: [f32; 3],
+    disappear_age: f32,
+    direction_oct: [i16; 2],
+    graying_onset: f32,
+    uv_unorm: [u16; 2],
+    random: f32,
+}
+
+impl HairInstance {
+    /// Root position in mesh units.
+    pub fn position(&self) -> Vec3 {
+        Vec3::from(self.position)
+    }
+
+    /// a_k: the hair is present while a_k ≥ t. 1 for inner hair (never disappears).
+    pub fn disappear_age(&self) -> f32 {
+        self.disappear_age
+    }
+
+    /// Unit growth direction, decoded from the octahedral encoding (error < 1e-4 rad·2π).
+    pub fn direction(&self) -> Vec3 {
+        oct_decode(self.direction_oct)
+    }
+
+    /// t_k: the age at which the hair starts graying, < a_k.
+    pub fn graying_onset(&self) -> f32 {
+        self.graying_onset
+    }
+
+    /// UV of the root (16-bit per axis, clamped to [0,1]).
+    pub fn uv(&self) -> Vec2 {
+        Vec2::new(self.uv_unorm[0] as f32, self.uv_unorm[1] as f32) / 65535.0
+    }
+
+    /// A uniform random number in [0, 1) for per-hair variation (length, shade).
+    pub fn random(&self) -> f32 {
+        self.random
+    }
+
+    /// y_k(t), the gray fraction of this hair at age `t` (see [`gray_fraction`]).
+    pub fn gray_fraction(&self, t: f32, ramp: GrayingRamp) -> f32 {
+        gray_fraction(t, self.graying_onset, ramp)
+    }
+}
+
+/// One step of the count table: `count` hairs have `disappear_age ≥ age`.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct AgeLevel {
+    pub age: f32,
+    pub count: u32,
+}
+
+/// The hairs of one head, sorted by a_k descending, with their cumulative count table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HairInstances {
+    instances: Vec<HairInstance>,
+    /// Distinct a_k values, descending, with the cumulative counts.
+    levels: Vec<AgeLevel>,
+    /// Candidates drawn before the t = 0 mask test.
+    candidates: u64,
+}
+
+impl HairInstances {
+    /// Scatters hairs over `surface` (SPEC §6 "Hair instances"): per triangle,
+    /// `density · area` hairs on average (area in cm² through `params.metres_per_unit`;
+    /// the fractional part is rounded up with that probability, so the total is unbiased),
+    /// at uniform random barycentric coordinates; a candidate is kept only where the
+    /// transition texture has hair at t = 0 (outer ∪ inner region). Position, normal and
+    /// UV are interpolated; a_k is the texture's age at the UV (nearest texel); t_k =
+    /// a_k · U[onset min, onset max); the direction is the normal turned by a uniform
+    /// random direction in a cone of half-angle `max_deviation_rad`. Degenerate triangles
+    /// get no hairs; a vertex normal sum of zero falls back to the face normal.
+    ///
+    /// Fails when the expected count exceeds [`MAX_INSTANCES`] or a triangle's area is not
+    /// finite.
+    pub fn generate(
+        surface: &SurfaceRef<'_>,
+        transition: &TransitionTexture,
+        params: &HairParams,
+    ) -> Result<Self, Error> {
+        let per_unit2 = params.density_per_unit2();
+        let areas: Vec<f64> = surface
+            .indices
+            .par_chunks_exact(3)
+            .map(|tri| {
+                let [a, b, c] = [0, 1, 2].map(|k| surface.positions[tri[k] as usize]);
+                0.5 * (b - a).cross(c - a).length() as f64
+            })
+            .collect();
+        if let Some(t) = areas.iter().position(|a| !a.is_finite()) {
+            return Err(invalid(
+                &format!("area of triangle {t}"),
+                areas[t],
+                "a finite area (finite positions)",
+            ));
+        }
+        let expected: f64 = areas.iter().sum::<f64>() * per_unit2;
+        if expected > MAX_INSTANCES as f64 {
+            return Err(Error::InvalidValue {
+                what: "expected number of hairs".into(),
+                value: format!("{expected:.0}"),
+                expected: format!("at most {MAX_INSTANCES}: lower the density"),
+            });
+        }
+        let cos_max = params.max_deviation_rad.cos();
+        let onset = (params.graying_onset_min, params.graying_onset_max);
+
+        // Chunks of consecutive triangles, concatenated in order: few allocations, and the
+        // same sequence whatever the thread count.
+        let per_chunk: Vec<(u64, Vec<HairInstance>)> = areas
+            .par_chunks(TRIANGLES_PER_TASK)
+            .enumerate()
+            .map(|(c, chunk)| {
+                let expected: f64 = chunk.iter().sum::<f64>() * per_unit2;
+                let mut out = Vec::with_capacity(expected.ceil() as usize + chunk.len());
+                let mut candidates = 0u64;
+                for (j, &area) in chunk.iter().enumerate() {
+                    let t = c * TRIANGLES_PER_TASK + j;
+                    let tri = &surface.indices[3 * t..3 * t + 3];
+                    candidates += triangle_hairs(
+                        &mut out,
+                        surface,
+                        tri,
+                        t,
+                        area * per_unit2,
+                        transition,
+                        params.seed,
+                        cos_max,
+                        onset,
+                    ) as u64;
+                }
+                (candidates, out)
+            })
+            .collect();
+        let candidates = per_chunk.iter().map(|(c, _)| c).sum();
+        let total: usize = per_chunk.iter().map(|(_, v)| v.len()).sum();
+        let mut unsorted: Vec<HairInstance> = Vec::new();
+        unsorted
+            .try_reserve_exact(total)
+            .map_err(|_| Error::OutOfMemory {
+                bytes: total as u64 * 32,
+                what: "hair instances",
+            })?;
+        for (_, v) in per_chunk {
+            unsorted.extend_from_slice(&v);
+        }
+        let instances = sort_by_age_descending(&unsorted);
+        let levels = count_levels(&instances);
+        Ok(Self {
+            instances,
+            levels,
+            candidates,
+        })
+    }
+
+    /// All hairs, a_k descending.
+    pub fn instances(&self) -> &[HairInstance] {
+        &self.instances
+    }
+
+    /// The instance buffer: `len() × 32` bytes, to upload once.
+    pub fn as_bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.instances)
+    }
+
+    pub fn len(&self) -> usize {
+        self.instances.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.instances.is_empty()
+    }
+
+    /// Candidates drawn before the mask test (≥ `len()`).
+    pub fn candidates(&self) -> u64 {
+        self.candidates
+    }
+
+    /// The count table: one entry per distinct a_k, descending; entry `count` is the
+    /// number of hairs with a_k ≥ `age`.
+    pub fn levels(&self) -> &[AgeLevel] {
+        &self.levels
+    }
+
+    /// count(t): the number of hairs present at age `t`, i.e. with a_k ≥ t (SPEC §6). The
+    /// first `count(t)` instances are exactly those. Non-increasing in t; `t` outside
+    /// [0,1] is clamped, NaN counts as 0. O(log levels).
+    pub fn count(&self, t: f32) -> usize {
+        let t = clamp_age(t);
+        let k = self.levels.partition_point(|l| l.age >= t);
+        if k == 0 {
+            0
+        } else {
+            self.levels[k - 1].count as usize
+        }
+    }
+}
+
+/// Triangles per parallel task of [`HairInstances::generate`].
+const TRIANGLES_PER_TASK: usize = 1024;
+
+/// Sorts by a_k descending, ties in generation order — the order a stable sort gives, so
+/// the result is unique. Sorting (key, index) pairs packed in a u64 and gathering once is
+/// several times faster than moving 32-byte instances through a merge sort.
+fn sort_by_age_descending(unsorted: &[HairInstance]) -> Vec<HairInstance> {
+    // Ages are ≥ 0, so their bit patterns order like the numbers; `!` makes it descending.
+    // Indices fit in 32 bits: the count is bounded by MAX_INSTANCES (about 2^26).
+    let mut keys: Vec<u64> = unsorted
+        .par_iter()
+        .enumerate()
+        .map(|(i, h)| (u64::from(!h.disappear_age.to_bits()) << 32) | i as u64)
+        .collect();
+    keys.par_sort_unstable();
+    keys.par_iter()
+        .map(|&k| unsorted[(k & 0xFFFF_FFFF) as usize])
+        .collect()
+}
+
+/// Appends the hairs of triangle `t` to `out`; returns the number of candidates drawn.
+#[allow(clippy::too_many_arguments)]
+fn triangle_hairs(
+    out: &mut Vec<HairInstance>,
+    surface: &SurfaceRef<'_>,
+    tri: &[u32],
+    t: usize,
+    expected: f64,
+    transition: &TransitionTexture,
+    seed: u64,
+    cos_max: f32,
+    (onset_min, onset_max): (f32, f32),
+) -> u32 {
+    if expected <= 0.0 {
+        return 0;
+    }
+    let mut rng = Rng::for_stream(seed, t as u64);
+    let whole = expected.floor();
+    let n = whole as u32 + u32::from(rng.next_f64() < expected - whole);
+    let [i0, i1, i2] = [0, 1, 2].map(|k| tri[k] as usize);
+    let p = [i0, i1, i2].map(|i| surface.positions[i]);
+    let nrm = [i0, i1, i2].map(|i| surface.normals[i]);
+    let uv = [i0, i1, i2].map(|i| surface.uvs[i]);
+    let face_normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+    for _ in 0..n {
+        // Every candidate draws the same numbers, kept or not, so a hair's values do not
+        // depend on which other hairs the masks reject.
+        let (mut r1, mut r2) = (rng.next_f32(), rng.next_f32());
+        if r1 + r2 > 1.0 {
+            (r1, r2) = (1.0 - r1, 1.0 - r2);
+        }
+        let cone_u = rng.next_f32();
+        let azimuth = rng.next_f32() * std::f32::consts::TAU;
+        let onset_u = rng.next_f32();
+        let random = rng.next_f32();
+
+        let b0 = 1.0 - r1 - r2;
+        let uv_k = uv[0] * b0 + uv[1] * r1 + uv[2] * r2;
+        let age = transition.age_at_uv(uv_k.x, uv_k.y);
+        if age <= 0.0 {
+            continue;
+        }
+        let position = p[0] * b0 + p[1] * r1 + p[2] * r2;
+        let mut normal = (nrm[0] * b0 + nrm[1] * r1 + nrm[2] * r2).normalize_or_zero();
+        if normal == Vec3::ZERO {
+            normal = face_normal;
+        }
+        // Uniform over the spherical cap around the normal.
+        let cos_theta = 1.0 - cone_u * (1.0 - cos_max);
+        let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+        let (tangent, bitangent) = normal.any_orthonormal_pair();
+        let direction = (normal * cos_theta
+            + (tangent * azimuth.cos() + bitangent * azimuth.sin()) * sin_theta)
+            .normalize_or_zero();
+        let onset = age * (onset_min + (onset_max - onset_min) * onset_u);
+        out.push(HairInstance {
+            position: position.to_array(),
+            disappear_age: age,
+            direction_oct: oct_encode(direction),
+            graying_onset: onset,
+            uv_unorm: [unorm16(uv_k.x), unorm16(uv_k.y)],
+            random,
+        });
+    }
+    n
+}
+
+fn count_levels(sorted: &[HairInstance]) -> Vec<AgeLevel> {
+    let mut levels: Vec<AgeLevel> = Vec::new();
+    for (i, h) in sorted.iter().enumerate() {
+        match levels.last_mut() {
+            Some(l) if l.age == h.disappear_age => l.count = i as u32 + 1,
+            _ => levels.push(AgeLevel {
+                age: h.disappear_age,
+                count: i as u32 + 1,
+            }),
+        }
+    }
+    levels
+}
+
+/// How the gray fraction rises after the onset (SPEC §6 "Graying").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum GrayingRamp {
+    /// y = (t − t_k)/(1 − t_k).
+    #[default]
+    Linear,
+    /// The linear y through the smoothstep 3y² − 2y³.
+    Smoothstep,
+}
+
+/// y_k(t) = max((t − t_k)/(1 − t_k), 0), clamped to 1, optionally smoothstepped
+/// (SPEC §6 "Graying", [T §6.2]). `t` is clamped to [0,1] (NaN → 0); an onset t_k ≥ 1
+/// never grays (y = 0), an onset ≤ 0 is used as is.
+pub fn gray_fraction(t: f32, onset: f32, ramp: GrayingRamp) -> f32 {
+    let t = clamp_age(t);
+    if onset.is_nan() || onset >= 1.0 {
+        return 0.0;
+    }
+    let y = ((t - onset) / (1.0 - onset)).clamp(0.0, 1.0);
+    match ramp {
+        GrayingRamp::Linear => y,
+        GrayingRamp::Smoothstep => y * y * (3.0 - 2.0 * y),
+    }
+}
+
+/// C_k(t) = (1 − y)·C_base + y·C_gray (SPEC §6), linear RGB; `y` is clamped to [0,1].
+pub fn hair_colour(base: Vec3, gray: Vec3, y: f32) -> Vec3 {
+    let y = y.clamp(0.0, 1.0);
+    base * (1.0 - y) + gray * y
+}
+
+/// Octahedral encoding of a unit vector into two snorm16 values.
+fn oct_encode(n: Vec3) -> [i16; 2] {
+    let l1 = n.x.abs() + n.y.abs() + n.z.abs();
+    if l1 == 0.0 {
+        return [0, 0]; // decodes to +z
+    }
+    let n = n / l1;
+    let (x, y) = if n.z >= 0.0 {
+        (n.x, n.y)
+    } else {
+        (
+            (1.0 - n.y.abs()) * n.x.signum(),
+            (1.0 - n.x.abs()) * n.y.signum(),
+        )
+    };
+    [snorm16(x), snorm16(y)]
+}
+
+fn oct_decode(e: [i16; 2]) -> Vec3 {
+    let (x, y) = (
+        (e[0] as f32 / 32767.0).max(-1.0),
+        (e[1] as f32 / 32767.0).max(-1.0),
+    );
+    let z = 1.0 - x.abs() - y.abs();
+    let (x, y) = if z < 0.0 {
+        ((1.0 - y.abs()) * x.signum(), (1.0 - x.abs()) * y.signum())
+    } else {
+        (x, y)
+    };
+    Vec3::new(x, y, z).normalize()
+}
+
+fn snorm16(v: f32) -> i16 {
+    (v.clamp(-1.0, 1.0) * 32767.0).round() as i16
+}
+
+fn unorm16(v: f32) -> u16 {
+    let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+    (v * 65535.0).round() as u16
+}
+
+fn invalid(what: &str, value: impl std::fmt::Display, expected: &str) -> Error {
+    Error::InvalidValue {
+        what: what.into(),
+        value: value.to_string(),
+        expected: expected.into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mask::Mask;
+    use crate::transition::{DistanceMetric, HairRegions, hair_present};
+
+    fn close(got: f32, want: f32, tol: f32) {
+        assert!(
+            (got - want).abs() <= tol,
+            "got {got}, want {want}, diff {}",
+            got - want
+        );
+    }
+
+    /// A flat grid of `n × n` quads over [0, side]² (mesh units) in the z = 0 plane, UV =
+    /// position / side, normals +z.
+    struct Grid {
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        uvs: Vec<Vec2>,
+        indices: Vec<u32>,
+    }
+
+    fn grid(n: u32, side: f32) -> Grid {
+        let mut g = Grid {
+            positions: vec![],
+            normals: vec![],
+            uvs: vec![],
+            indices: vec![],
+        };
+        for y in 0..=n {
+            for x in 0..=n {
+                let (u, v) = (x as f32 / n as f32, y as f32 / n as f32);
+                g.positions.push(Vec3::new(u * side, v * side, 0.0));
+                g.normals.push(Vec3::Z);
+                g.uvs.push(Vec2::new(u, v));
+            }
+        }
+        for y in 0..n {
+            for x in 0..n {
+                let i = y * (n + 1) + x;
+                g.indices
+                    .extend([i, i + 1, i + n + 2, i, i + n + 2, i + n + 1]);
+            }
+        }
+        g
+    }
+
+    impl Grid {
+        fn surface(&self) -> SurfaceRef<'_> {
+            SurfaceRef::new(&self.positions, &self.normals, &self.uvs, &self.indices).unwrap()
+        }
+    }
+
+    /// Outer: a disc of radius 0.4 around the centre; inner: a band at the bottom (v < 0.25)
+    /// that also extends outside the disc; 64² working size.
+    fn transition() -> TransitionTexture {
+        let n = 64u32;
+        let mut outer = vec![0.0; (n * n) as usize];
+        let mut inner = vec![0.0; (n * n) as usize];
+        for y in 0..n {
+            for x in 0..n {
+                let (u, v) = (
+                    crate::heightmap::pixel_to_u(x, n),
+                    crate::heightmap::pixel_to_v(y, n),
+                );
+                let i = (y * n + x) as usize;
+                if (u - 0.5).powi(2) + (v - 0.5).powi(2) < 0.16 {
+                    outer[i] = 1.0;
+                }
+                if v < 0.25 {
+                    inner[i] = 1.0;
+                }
+            }
+        }
+        TransitionTexture::from_masks(
+            &Mask::from_values(n, n, outer).unwrap(),
+            &Mask::from_values(n, n, inner).unwrap(),
+            n,
+            n,
+            DistanceMetric::Chebyshev,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn instance_is_32_bytes_with_the_documented_offsets() {
+        assert_eq!(std::mem::size_of::<HairInstance>(), 32);
+        assert_eq!(std::mem::align_of::<HairInstance>(), 4);
+        assert_eq!(std::mem::offset_of!(HairInstance, disappear_age), 12);
+        assert_eq!(std::mem::offset_of!(HairInstance, direction_oct), 16);
+        assert_eq!(std::mem::offset_of!(HairInstance, graying_onset), 20);
+        assert_eq!(std::mem::offset_of!(HairInstance, uv_unorm), 24);
+        assert_eq!(std::mem::offset_of!(HairInstance, random), 28);
+    }
+
+    #[test]
+    fn octahedral_directions_round_trip() {
+        let mut rng = Rng::new(3);
+        let mut worst = 0.0f32;
+        for _ in 0..20_000 {
+            let v = Vec3::new(
+                rng.range_f32(-1.0, 1.0),
+                rng.range_f32(-1.0, 1.0),
+                rng.range_f32(-1.0, 1.0),
+            )
+            .normalize();
+            // |a × b| = sin(angle): accurate for tiny angles, unlike acos.
+            worst = worst.max(oct_decode(oct_encode(v)).cross(v).length());
+        }
+        for v in [
+            Vec3::X,
+            Vec3::NEG_X,
+            Vec3::Y,
+            Vec3::NEG_Y,
+            Vec3::Z,
+            Vec3::NEG_Z,
+        ] {
+            worst = worst.max(oct_decode(oct_encode(v)).cross(v).length());
+        }
+        assert!(worst < 1e-4, "worst angle {worst} rad");
+    }
+
+    #[test]
+    fn density_follows_area_and_units() {
+        // A 10 cm × 10 cm square in metres, no masks limiting: 100 cm² × 50 /cm² = 5000.
+        let g = grid(8, 0.1);
+        let full = Mask::from_values(1, 1, vec![1.0]).unwrap();
+        let tex =
+            TransitionTexture::from_masks(&full, &full, 4, 4, DistanceMetric::Chebyshev).unwrap();
+        let params = HairParams::new(50.0, 1.0).unwrap();
+        let hairs = HairInstances::generate(&g.surface(), &tex, &params).unwrap();
+        let n = hairs.len() as f64;
+        // 128 triangles of 39.0625 hairs each: per triangle 39 or 40 → 4992..=5120 hairs.
+        assert!((4992.0..=5120.0).contains(&n), "{n}");
+        // The same square in centimetres (side 10, 0.01 m per unit) gives the same hairs.
+        let g_cm = grid(8, 10.0);
+        let params_cm = HairParams::new(50.0, 0.01).unwrap();
+        let hairs_cm = HairInstances::generate(&g_cm.surface(), &tex, &params_cm).unwrap();
+        assert_eq!(hairs_cm.len(), hairs.len());
+        for (a, b) in hairs.instances().iter().zip(hairs_cm.instances()) {
+            assert!((a.position() * 100.0 - b.position()).length() < 1e-3);
+        }
+    }
+
+    #[test]
+    fn hairs_are_only_where_there_is_hair_at_t0_with_the_textures_age() {
+        let g = grid(16, 0.3);
+        let tex = transition();
+        let params = HairParams::new(30.0, 1.0).unwrap().with_seed(9);
+        let hairs = HairInstances::generate(&g.surface(), &tex, &params).unwrap();
+        assert!(hairs.len() > 1000, "{}", hairs.len());
+        assert!(
+            (hairs.len() as u64) < hairs.candidates(),
+            "some candidates fall outside"
+        );
+        for h in hairs.instances() {
+            let uv = h.uv();
+            assert!(hair_present(h.disappear_age(), 0.0));
+            // UV is 16-bit: read the age back at the exact root UV from the position.
+            let p = h.position() / 0.3;
+            close(uv.x, p.x, 2e-5);
+            close(uv.y, p.y, 2e-5);
+            // Position and UV are interpolated separately: allow a rounding's worth of slack
+            // at texel borders.
+            let near: Vec<f32> = [-1e-4f32, 0.0, 1e-4]
+                .iter()
+                .flat_map(|&dx| [-1e-4f32, 0.0, 1e-4].map(|dy| tex.age_at_uv(p.x + dx, p.y + dy)))
+                .collect();
+            assert!(
+                near.contains(&h.disappear_age()),
+                "{} not in {near:?}",
+                h.disappear_age()
+            );
+            assert!(h.graying_onset() < h.disappear_age());
+            assert!(h.graying_onset() >= DEFAULT_GRAYING_ONSET_MIN * h.disappear_age());
+            assert!((0.0..1.0).contains(&h.random()));
+            let cos = h.direction().dot(Vec3::Z);
+            assert!(cos >= DEFAULT_MAX_DEVIATION_RAD.cos() - 1e-4, "{cos}");
+        }
+        // Directions are deviated, not all equal to the normal.
+        assert!(
+            hairs
+                .instances()
+                .iter()
+                .any(|h| h.direction().dot(Vec3::Z) < 0.995)
+        );
+    }
+
+    #[test]
+    fn drawn_prefix_is_exactly_the_hairs_present() {
+        let g = grid(16, 0.3);
+        let hairs = HairInstances::generate(
+            &g.surface(),
+            &transition(),
+            &HairParams::new(30.0, 1.0).unwrap(),
+        )
+        .unwrap();
+        let mut previous = usize::MAX;
+        for i in 0..=400 {
+            let t = i as f32 / 400.0;
+            let n = hairs.count(t);
+            assert!(n <= previous, "count increased at t = {t}");
+            previous = n;
+            let (drawn, rest) = hairs.instances().split_at(n);
+            assert!(drawn.iter().all(|h| h.disappear_age() >= t), "t = {t}");
+            assert!(rest.iter().all(|h| h.disappear_age() < t), "t = {t}");
+        }
+        // Also at every level exactly, where the ≥ matters.
+        for l in hairs.levels() {
+            assert_eq!(hairs.count(l.age), l.count as usize);
+            let want = hairs
+                .instances()
+                .iter()
+                .filter(|h| h.disappear_age() >= l.age)
+                .count();
+            assert_eq!(l.count as usize, want);
+        }
+        assert_eq!(hairs.count(0.0), hairs.len());
+        assert_eq!(hairs.count(-5.0), hairs.len());
+    }
+
+    #[test]
+    fn inner_hair_never_disappears() {
+        let g = grid(16, 0.3);
+        let tex = transition();
+        let hairs =
+            HairInstances::generate(&g.surface(), &tex, &HairParams::new(30.0, 1.0).unwrap())
+                .unwrap();
+        // The inner band is v ≤ 0.25 (texel rows 48..64 of 64), over the whole width, so
+        // also outside the outer disc.
+        let v = |h: &HairInstance| h.position().y / 0.3;
+        let remaining = &hairs.instances()[..hairs.count(1.0)];
+        assert!(remaining.len() > 300, "{}", remaining.len());
+        assert!(
+            remaining
+                .iter()
+                .all(|h| h.disappear_age() == 1.0 && v(h) < 0.2501)
+        );
+        let band = hairs.instances().iter().filter(|h| v(h) < 0.2499);
+        assert!(
+            band.clone().all(|h| h.disappear_age() == 1.0),
+            "the inner band remains at t = 1"
+        );
+        assert!(remaining.len() >= band.count());
+        assert!(
+            remaining.iter().any(|h| h.uv().x < 0.05),
+            "inner hair outside the outer disc"
+        );
+        assert!(hairs.count(0.5) > remaining.len());
+    }
+
+    #[test]
+    fn identical_bytes_on_one_and_many_threads() {
+        let g = grid(24, 0.3);
+        let tex = transition();
+        let params = HairParams::new(40.0, 1.0).unwrap().with_seed(77);
+        let run = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| HairInstances::generate(&g.surface(), &tex, &params).unwrap())
+        };
+        let one = run(1);
+        let many = run(4);
+        assert!(one.len() > 1000);
+        assert_eq!(one.as_bytes(), many.as_bytes());
+        assert_eq!(one.levels(), many.levels());
+        let other_seed =
+            HairInstances::generate(&g.surface(), &tex, &params.clone().with_seed(78)).unwrap();
+        assert_ne!(one.as_bytes(), other_seed.as_bytes());
+    }
+
+    #[test]
+    fn empty_masks_and_zero_density_give_no_hairs() {
+        let g = grid(4, 0.3);
+        let none = Mask::from_values(2, 2, vec![0.0; 4]).unwrap();
+        let tex =
+            TransitionTexture::from_masks(&none, &none, 16, 16, DistanceMetric::Euclidean).unwrap();
+        let hairs = HairInstances::generate(&g.surface(), &tex, &HairParams::default()).unwrap();
+        assert!(hairs.is_empty());
+        assert_eq!(hairs.count(0.0), 0);
+        assert!(hairs.candidates() > 0);
+        let tex = transition();
+        let hairs =
+            HairInstances::generate(&g.surface(), &tex, &HairParams::new(0.0, 1.0).unwrap())
+                .unwrap();
+        assert!(hairs.is_empty());
+    }
+
+    #[test]
+    fn bad_inputs_are_errors() {
+        let g = grid(2, 1.0);
+        assert!(SurfaceRef::new(&g.positions, &g.normals[1..], &g.uvs, &g.indices).is_err());
+        assert!(SurfaceRef::new(&g.positions, &g.normals, &g.uvs, &g.indices[1..]).is_err());
+        let bad = [0, 1, 99];
+        let err = SurfaceRef::new(&g.positions, &g.normals, &g.uvs, &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("99"), "{err}");
+        assert!(HairParams::new(-1.0, 1.0).is_err());
+        assert!(HairParams::new(f32::NAN, 1.0).is_err());
+        assert!(HairParams::new(1.0, 0.0).is_err());
+        assert!(
+            HairParams::default()
+                .with_graying_onset_range(0.5, 1.0)
+                .is_err()
+        );
+        assert!(HairParams::default().with_max_deviation_rad(2.0).is_err());
+        // A 1 m² grid at 10 000 hairs/cm² is 10⁸ hairs: refused before allocating.
+        let tex = transition();
+        let huge = HairParams::new(10_000.0, 1.0).unwrap();
+        assert!(HairInstances::generate(&g.surface(), &tex, &huge).is_err());
+        let mut nan = grid(1, 1.0);
+        nan.positions[0].x = f32::NAN;
+        assert!(HairInstances::generate(&nan.surface(), &tex, &HairParams::default()).is_err());
+    }
+
+    #[test]
+    fn key_sort_equals_a_stable_sort() {
+        let mut rng = Rng::new(5);
+        let unsorted: Vec<HairInstance> = (0..5000)
+            .map(|i| HairInstance {
+                position: [i as f32, 0.0, 0.0],
+                disappear_age: [0.0, 0.25, 0.5, 1.0, 1e-30][rng.below(5) as usize],
+                direction_oct: [0, 0],
+                graying_onset: 0.0,
+                uv_unorm: [0, 0],
+                random: 0.0,
+            })
+            .collect();
+        let mut want = unsorted.clone();
+        want.sort_by(|a, b| b.disappear_age.total_cmp(&a.disappear_age));
+        assert_eq!(sort_by_age_descending(&unsorted), want);
+    }
+
+    #[test]
+    fn graying_at_hand_computed_points() {
+        // t_k = 0.2: y(0.6) = 0.4/0.8 = 0.5; smoothstep(0.5) = 0.5; y(0.4) = 0.25,
+        // smoothstep(0.25) = 3/16 − 2/64 = 0.15625.
+        close(gray_fraction(0.6, 0.2, GrayingRamp::Linear), 0.5, 1e-6);
+        close(gray_fraction(0.6, 0.2, GrayingRamp::Smoothstep), 0.5, 1e-6);
+        close(gray_fraction(0.4, 0.2, GrayingRamp::Linear), 0.25, 1e-6);
+        close(
+            gray_fraction(0.4, 0.2, GrayingRamp::Smoothstep),
+            0.15625,
+            1e-6,
+        );
+        close(gray_fraction(0.1, 0.2, GrayingRamp::Linear), 0.0, 0.0);
+        close(gray_fraction(1.0, 0.2, GrayingRamp::Smoothstep), 1.0, 1e-6);
+        close(gray_fraction(3.0, 0.2, GrayingRamp::Linear), 1.0, 1e-6);
+        close(gray_fraction(1.0, 1.0, GrayingRamp::Linear), 0.0, 0.0);
+        // C = (1 − y)·base + y·gray: y = 0.25 between brown (0.4, 0.2, 0.1) and gray 0.8.
+        let c = hair_colour(Vec3::new(0.4, 0.2, 0.1), Vec3::splat(0.8), 0.25);
+        close(c.x, 0.5, 1e-6);
+        close(c.y, 0.35, 1e-6);
+        close(c.z, 0.275, 1e-6);
+    }
+
+    #[test]
+    fn the_default_head_in_metres_gets_a_plausible_scalp() {
+        let head = crate::head::default_head();
+        let surface = SurfaceRef::from(&head);
+        // The scalp of the default head lies above v ≈ 0.79 at the front and 0.45 at the
+        // nape (head module docs): an outer mask v > 0.6 and an inner band 0.6 < v < 0.7.
+        let n = 64u32;
+        let outer: Vec<f32> = (0..n * n)
+            .map(|i| f32::from(crate::heightmap::pixel_to_v(i / n, n) > 0.6))
+            .collect();
+        let inner: Vec<f32> = (0..n * n)
+            .map(|i| {
+                let v = crate::heightmap::pixel_to_v(i / n, n);
+                f32::from(v > 0.6 && v < 0.7)
+            })
+            .collect();
+        let tex = TransitionTexture::from_masks(
+            &Mask::from_values(n, n, outer).unwrap(),
+            &Mask::from_values(n, n, inner).unwrap(),
+            n,
+            n,
+            DistanceMetric::Chebyshev,
+        )
+        .unwrap();
+        let hairs =
+            HairInstances::generate(&surface, &tex, &HairParams::new(10.0, 1.0).unwrap()).unwrap();
+        // A head's crown above v = 0.6 is a few hundred cm²: thousands of hairs at 10 /cm².
+        assert!((1_000..20_000).contains(&hairs.len()), "{}", hairs.len());
+        // Hairs point away from the head: upward on the crown.
+        let top = hairs.instances().iter().filter(|h| h.uv().y > 0.97);
+        assert!(top.clone().count() > 10);
+        assert!(
+            top.clone().all(|h| h.direction().y > 0.8),
+            "crown hairs point up"
+        );
+    }
+
+    #[test]
+    fn regions_from_bools_feed_instances_too() {
+        // Keeps HairRegions usable as an input: a 2×1 texture, left half inner.
+        let r = HairRegions::from_bools(2, 1, &[true, false], &[true, false]).unwrap();
+        let tex = TransitionTexture::from_regions(&r, DistanceMetric::Chebyshev).unwrap();
+        let g = grid(4, 0.1);
+        let hairs =
+            HairInstances::generate(&g.surface(), &tex, &HairParams::new(20.0, 1.0).unwrap())
+                .unwrap();
+        assert!(!hairs.is_empty());
+        assert!(
+            hairs
+                .instances()
+                .iter()
+                .all(|h| h.uv().x <= 0.5 && h.disappear_age() == 1.0)
+        );
+    }
+}

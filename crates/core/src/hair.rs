@@ -613,15 +613,8 @@ fn invalid(what: &str, value: impl std::fmt::Display, expected: &str) -> Error {
 mod tests {
     use super::*;
     use crate::mask::Mask;
+    use crate::test_util::close;
     use crate::transition::{DistanceMetric, HairRegions, hair_present};
-
-    fn close(got: f32, want: f32, tol: f32) {
-        assert!(
-            (got - want).abs() <= tol,
-            "got {got}, want {want}, diff {}",
-            got - want
-        );
-    }
 
     /// A flat grid of `n × n` quads over [0, side]² (mesh units) in the z = 0 plane, UV =
     /// position / side, normals +z.

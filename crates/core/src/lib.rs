@@ -19,6 +19,8 @@ pub mod normal_map;
 pub mod preview;
 pub mod project;
 pub mod rng;
+#[cfg(test)]
+mod test_util;
 pub mod transition;
 pub mod wrinkle_file;
 

@@ -484,15 +484,7 @@ pub fn accumulate_brute_force(fibres: &[Fibre], map: &mut HeightMap) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[track_caller]
-    fn close(actual: f32, expected: f32, tol: f32) {
-        assert!(
-            (actual - expected).abs() <= tol,
-            "expected {expected}, got {actual} (difference {})",
-            actual - expected
-        );
-    }
+    use crate::test_util::close;
 
     /// A horizontal fibre from (0.25, 0.5) to (0.75, 0.5): L = 0.5.
     fn horizontal(n: u32) -> Fibre {

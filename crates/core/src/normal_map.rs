@@ -204,15 +204,7 @@ pub fn pack_rgba8(
 mod tests {
     use super::*;
     use crate::heightmap::{pixel_to_u, pixel_to_v};
-
-    #[track_caller]
-    fn close(actual: f32, expected: f32, tol: f32) {
-        assert!(
-            (actual - expected).abs() <= tol,
-            "expected {expected}, got {actual} (difference {})",
-            actual - expected
-        );
-    }
+    use crate::test_util::close;
 
     fn from_fn(w: u32, h: u32, f: impl Fn(f32, f32) -> f32) -> HeightMap {
         let mut data = Vec::new();

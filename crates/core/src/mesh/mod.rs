@@ -76,6 +76,9 @@ pub enum TangentSource {
     File,
     /// Generated with MikkTSpace (the `bevy_mikktspace` crate), SPEC §4.
     MikkTSpace,
+    /// Exact, from a generator whose UVs are an affine map of a flat surface (the skin
+    /// patch): the frame every tangent method, MikkTSpace included, gives there (tested).
+    Analytic,
 }
 
 /// Something [`Mesh::build`] repaired, with a count. Each is a warning, not an error: the
@@ -285,25 +288,28 @@ impl Mesh {
         let (mut positions, normals, uvs, tangents, indices) =
             compact_vertices(positions, normals, uvs, tangents, indices, &mut report);
 
-        // 3. Normals.
-        let computed = normals::smooth_normals(&positions, &indices);
+        // 3. Normals (computed only when some are missing: it is the costly part of
+        // loading a file that has them all).
+        let usable = |n: &Vec3| n.is_finite() && n.length_squared() >= 1e-20;
         let mut normals = match normals {
             None => {
                 report.normals_generated = true;
-                computed
+                normals::smooth_normals(&positions, &indices)
             }
             Some(mut given) => {
-                let mut bad = 0;
-                for (g, c) in given.iter_mut().zip(&computed) {
-                    if !g.is_finite() || g.length_squared() < 1e-20 {
-                        *g = *c;
-                        bad += 1;
-                    } else {
-                        *g = g.normalize();
-                    }
-                }
-                if bad > 0 {
+                let bad = given.iter().filter(|n| !usable(n)).count();
+                let computed = if bad > 0 {
                     report.warnings.push(MeshWarning::BadNormalsReplaced(bad));
+                    normals::smooth_normals(&positions, &indices)
+                } else {
+                    Vec::new()
+                };
+                for (k, g) in given.iter_mut().enumerate() {
+                    *g = if usable(g) {
+                        g.normalize()
+                    } else {
+                        computed[k]
+                    };
                 }
                 given
             }
@@ -440,6 +446,15 @@ impl Mesh {
             }],
             report: MeshReport::default(),
         }
+    }
+
+    /// Replaces the parts and report of a mesh read from a file we generated ourselves
+    /// (the shipped default head) by those of its generation, which the file stores the
+    /// result of (see `crate::head::default_head`).
+    pub(crate) fn with_provenance(mut self, parts: Vec<MeshPart>, report: MeshReport) -> Self {
+        self.parts = parts;
+        self.report = report;
+        self
     }
 
     /// Vertex positions, in the source's units (metres for glTF and the default head).

@@ -34,10 +34,18 @@
 //!     the white of `assets/masks/hair-outer.png`;
 //!   - neck: v < 0.24 in front (u ∈ [0.35, 0.65]), up to the hairline at the back.
 //!
-//! Generation is NOT within the 100 ms start-up budget yet: about 1 s in release on
-//! the 2-core dev machine (under load), of which MikkTSpace tangents take ~0.6 s and the
-//! profile tracing ~0.3–0.5 s (`benches/head.rs`, BENCHMARKS.md). Build it once, off the
-//! UI thread, and keep it; shipping it as a file or a faster tangent path is open work.
+//! # Start-up (issue 4: < 100 ms)
+//! Generating the head takes about 1 s in release on the 2-core dev machine (profile
+//! tracing ~0.15–0.3 s, MikkTSpace tangents ~0.35–0.45 s, the rest of `Mesh::build`), so
+//! [`default_head`] does not generate it: it reads `assets/meshes/default-head.glb`
+//! (4.6 MB, built into the binary with `include_bytes!`, ≈ 40 ms including `Mesh::build`
+//! under load; `benches/head.rs`, BENCHMARKS.md). The file is written by
+//! `agesim gen-assets` from [`generate_default_head`], so the tangents are MikkTSpace's,
+//! the ones normal maps are baked against. A test compares it with a fresh generation
+//! (positions bit-identical on the dev machine, checked to 1 µm; UVs, normals and
+//! tangents to a few ulps): change the generator, regenerate the assets. The skin patch
+//! is flat with affine UVs, so its exact tangent frame is cheap and equal to
+//! MikkTSpace's (tested): [`skin_patch`] is generated in ≈ 10 ms.
 
 use std::f32::consts::PI;
 

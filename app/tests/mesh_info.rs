@@ -111,6 +111,10 @@ fn fails_with_the_reason() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("missing.obj"), "{err}");
+    // The OS reason once: the core error carries it, the app's chain must not repeat it.
+    let os_message = std::fs::read(&missing).unwrap_err().to_string();
+    assert_eq!(err.matches(os_message.as_str()).count(), 1, "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
 
     let stl = dir.path().join("head.stl");
     std::fs::write(&stl, "solid x").unwrap();

@@ -1,5 +1,6 @@
 //! `agesim gen-assets --out assets` (hidden): regenerates the default head's generated
-//! assets — masks, the fine-wrinkle tile and the pictures of `assets/README.md` — from
+//! assets — the head itself (`meshes/default-head.glb`), masks, the fine-wrinkle tile and
+//! the pictures of `assets/README.md` — from
 //! the code in agesim-core, so they can be rebuilt and reviewed.
 
 use std::path::{Path, PathBuf};
@@ -36,10 +37,16 @@ pub const WRINKLE_FILES: &[(&str, [f32; 3])] = &[
 
 pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
     let out = &args.out;
-    for dir in ["masks", "tiles", "docs"] {
+    for dir in ["masks", "tiles", "docs", "meshes"] {
         std::fs::create_dir_all(out.join(dir))
             .with_context(|| format!("cannot create {}", out.join(dir).display()))?;
     }
+    // The default head, built into agesim-core (include_bytes!) for a fast start-up.
+    let mesh = head::generate_default_head();
+    let glb = out.join(head::DEFAULT_HEAD_ASSET);
+    std::fs::write(&glb, agesim_core::mesh::gltf::write_glb(&mesh))
+        .with_context(|| format!("cannot write {}", glb.display()))?;
+
     // Masks.
     let outer = head_assets::paint(MASK_PX, head_assets::hair_outer)?;
     let inner = head_assets::paint(MASK_PX, head_assets::hair_inner)?;
@@ -107,7 +114,6 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
     write_rgb(&out.join("docs/fine-wrinkles.png"), &pixels)?;
 
     // Renders of the head: plain, and with the hair masks and the wrinkle mask painted.
-    let mesh = head::default_head();
     let clay = |_: Vec2| Vec3::splat(0.8);
     let painted = |uv: Vec2| {
         let skin = Vec3::new(0.85, 0.7, 0.62);

@@ -71,6 +71,7 @@ pub fn describe(name: &str, mesh: &Mesh) -> String {
     let _ = writeln!(s, "uvs:       {uv}");
     let tangents = match r.tangent_source {
         Some(TangentSource::File) => "from the file".to_owned(),
+        Some(TangentSource::Analytic) => "generated (exact frame of a flat UV grid)".to_owned(),
         _ => format!(
             "generated (MikkTSpace; {} vertices split at UV seams/mirrors)",
             r.tangent_split_vertices

@@ -1,11 +1,16 @@
-//! Generation time of the default head (`head::default_head`), to decide whether it can
-//! be built at start-up (budget: 100 ms). Baseline: building the skin patch, a flat grid
-//! of a similar triangle count through the same `Mesh::build` (normals, MikkTSpace
-//! tangents), so the ratio shows what the shape itself (profile tracing, detail search)
-//! costs on top of the mesh pipeline.
+//! Start-up cost of the default head and the skin patch (issue 4 budget: 100 ms).
+//!
+//! Ours: `head::default_head()` (reads the shipped GLB built into the binary) and
+//! `head::skin_patch()` (exact analytic tangents). Baselines, measured in the same run:
+//! the old paths, `head::generate_default_head()` (profile tracing + `Mesh::build` with
+//! smooth normals and MikkTSpace) and the skin patch built through MikkTSpace. The
+//! breakdown of the generation (shape, normals, MikkTSpace) is printed too.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::time::{Duration, Instant};
+
+use agesim_core::Mesh;
+use agesim_core::head;
 
 fn median(mut runs: Vec<Duration>) -> Duration {
     runs.sort();
@@ -25,29 +30,38 @@ fn time(n: usize, mut f: impl FnMut()) -> Duration {
     )
 }
 
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
 fn main() {
     let threads = rayon::current_num_threads();
-    let head = time(9, || {
-        std::hint::black_box(agesim_core::head::default_head());
+    // Ours.
+    let head = time(21, || {
+        std::hint::black_box(head::default_head());
     });
-    let raw = time(9, || {
-        std::hint::black_box(agesim_core::head::head_raw(
-            agesim_core::head::HEAD_COLUMNS,
-            agesim_core::head::HEAD_ROWS,
-        ));
+    let patch = time(21, || {
+        std::hint::black_box(head::skin_patch());
     });
-    let patch = time(9, || {
-        std::hint::black_box(agesim_core::head::skin_patch());
+    // Baselines: the old generation paths.
+    let generated = time(7, || {
+        std::hint::black_box(head::generate_default_head());
     });
-    let m = agesim_core::head::default_head();
-    let p = agesim_core::head::skin_patch();
-    let normals = time(5, || {
+    let patch_mikk = time(7, || {
+        std::hint::black_box(Mesh::build(head::skin_patch_raw(), "skin patch").unwrap());
+    });
+    // Breakdown of the generation.
+    let raw = time(7, || {
+        std::hint::black_box(head::head_raw(head::HEAD_COLUMNS, head::HEAD_ROWS));
+    });
+    let m = head::default_head();
+    let normals = time(7, || {
         std::hint::black_box(agesim_core::mesh::normals::smooth_normals(
             m.positions(),
             m.indices(),
         ));
     });
-    let mikk = time(5, || {
+    let mikk = time(7, || {
         std::hint::black_box(agesim_core::mesh::tangents::mikktspace(
             m.positions(),
             m.normals(),
@@ -57,23 +71,29 @@ fn main() {
     });
     println!("threads: {threads}");
     println!(
-        "default head ({} triangles): median {:.1} ms (shape only, before Mesh::build: {:.1} ms)",
+        "default head ({} triangles, {} vertices) from the shipped GLB ({:.2} MB): median {:.1} ms",
         m.triangle_count(),
-        head.as_secs_f64() * 1e3,
-        raw.as_secs_f64() * 1e3
+        m.vertex_count(),
+        head::DEFAULT_HEAD_GLB.len() as f64 / 1e6,
+        ms(head)
     );
     println!(
-        "baseline skin patch ({} triangles, Mesh::build only): median {:.1} ms",
-        p.triangle_count(),
-        patch.as_secs_f64() * 1e3
+        "  baseline generate_default_head(): median {:.1} ms (shape {:.1} ms, smooth normals {:.1} ms, MikkTSpace {:.1} ms)",
+        ms(generated),
+        ms(raw),
+        ms(normals),
+        ms(mikk)
     );
     println!(
-        "  of which smooth normals {:.1} ms, MikkTSpace tangents {:.1} ms",
-        normals.as_secs_f64() * 1e3,
-        mikk.as_secs_f64() * 1e3
+        "  ratio shipped / generated: {:.4} ({:.0}× faster)",
+        ms(head) / ms(generated),
+        ms(generated) / ms(head)
     );
     println!(
-        "ratio head / baseline: {:.2}",
-        head.as_secs_f64() / patch.as_secs_f64()
+        "skin patch (analytic tangents): median {:.1} ms; baseline through MikkTSpace {:.1} ms; ratio {:.4} ({:.0}× faster)",
+        ms(patch),
+        ms(patch_mikk),
+        ms(patch) / ms(patch_mikk),
+        ms(patch_mikk) / ms(patch)
     );
 }

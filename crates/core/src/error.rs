@@ -6,12 +6,14 @@ use std::path::PathBuf;
 /// Everything that can go wrong in agesim-core.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// A file could not be read or written.
-    #[error("{}: {source}", path.display())]
+    /// A file could not be read or written. The OS reason is part of the message and is
+    /// deliberately not also exposed as [`std::error::Error::source`]: printers of error
+    /// chains (anyhow's `{:#}`) would otherwise show it twice. Match the variant to
+    /// inspect `cause` (e.g. its [`std::io::ErrorKind`]).
+    #[error("{}: {cause}", path.display())]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        cause: std::io::Error,
     },
 
     /// An image file could not be decoded or encoded.
@@ -67,10 +69,29 @@ pub enum Error {
 
 impl Error {
     /// Wraps an I/O error with the path it happened on.
-    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+    pub fn io(path: impl Into<PathBuf>, cause: std::io::Error) -> Self {
         Self::Io {
             path: path.into(),
-            source,
+            cause,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_io_error_names_the_path_and_the_reason_exactly_once_in_its_chain() {
+        let e = Error::io(
+            "/no/such.obj",
+            std::io::Error::new(std::io::ErrorKind::NotFound, "gone"),
+        );
+        assert_eq!(e.to_string(), "/no/such.obj: gone");
+        // A chain printer (anyhow's `{:#}`) walks `source()`: nothing to repeat.
+        assert!(std::error::Error::source(&e).is_none());
+        assert!(
+            matches!(e, Error::Io { ref cause, .. } if cause.kind() == std::io::ErrorKind::NotFound)
+        );
     }
 }

@@ -29,11 +29,17 @@ use crate::error::Error;
 /// Reads `path` into a [`RawMesh`] (see the module docs).
 pub fn load(path: &Path) -> Result<RawMesh, Error> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    load_bytes(&bytes, path)
+}
+
+/// Reads a glTF or GLB file already in memory; `path` names it in errors and locates
+/// external buffers (relative to its folder).
+pub fn load_bytes(bytes: &[u8], path: &Path) -> Result<RawMesh, Error> {
     let fail = |message: String| Error::MeshFile {
         path: path.to_owned(),
         message,
     };
-    let gltf = ::gltf::Gltf::from_slice(&bytes)
+    let gltf = ::gltf::Gltf::from_slice(bytes)
         .map_err(|e| fail(format!("not a valid glTF 2.0 file: {e}")))?;
     for ext in gltf.document.extensions_required() {
         if ext != "KHR_mesh_quantization" {
@@ -333,6 +339,143 @@ impl Loader<'_> {
     }
 }
 
+/// Writes `mesh` as a binary glTF 2.0 file (GLB): one node and mesh per part (named after
+/// it), each with one indexed triangle primitive carrying POSITION (with its bounds),
+/// NORMAL, TANGENT and TEXCOORD_0 as `f32` and `u32` indices. UV v is flipped to glTF's
+/// v-down. Each part gets the vertices it uses, in their order in `mesh`, so that a
+/// one-part mesh reads back with the same vertex order, and [`load_bytes`] gives back the
+/// same data up to the rounding of the v flip and of normalisation (a few ulps).
+/// Deterministic: the same mesh gives the same bytes.
+pub fn write_glb(mesh: &super::Mesh) -> Vec<u8> {
+    let mut bin: Vec<u8> = Vec::new();
+    let mut views = Vec::new();
+    let mut accessors = Vec::new();
+    let mut meshes = Vec::new();
+    // Appends `bytes` as a buffer view (4-byte aligned) and an accessor on it.
+    let mut push = |bytes: &[u8], target: u32, accessor: String| {
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        views.push(format!(
+            r#"{{"buffer":0,"byteOffset":{},"byteLength":{},"target":{target}}}"#,
+            bin.len(),
+            bytes.len()
+        ));
+        bin.extend_from_slice(bytes);
+        accessors.push(accessor.replace("VIEW", &(views.len() - 1).to_string()));
+        accessors.len() - 1
+    };
+    let f32s =
+        |v: &mut dyn Iterator<Item = f32>| -> Vec<u8> { v.flat_map(f32::to_le_bytes).collect() };
+    const ARRAY_BUFFER: u32 = 34962;
+    const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+    for part in mesh.parts() {
+        let first = part.first_triangle as usize * 3;
+        let tri = &mesh.indices()[first..first + part.triangle_count as usize * 3];
+        let mut used = vec![false; mesh.vertex_count()];
+        for &i in tri {
+            used[i as usize] = true;
+        }
+        let mut remap = vec![0u32; mesh.vertex_count()];
+        let mut verts = Vec::new();
+        for (i, &u) in used.iter().enumerate() {
+            if u {
+                remap[i] = verts.len() as u32;
+                verts.push(i);
+            }
+        }
+        let count = verts.len();
+        let positions: Vec<Vec3> = verts.iter().map(|&i| mesh.positions()[i]).collect();
+        let (lo, hi) = super::Aabb::from_points(&positions).map_or(([0.0; 3], [0.0; 3]), |b| {
+            (b.min.to_array(), b.max.to_array())
+        });
+        let vec = |ty: &str| {
+            format!(r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"{ty}"}}"#)
+        };
+        let pos = push(
+            &f32s(&mut positions.iter().flat_map(|p| p.to_array())),
+            ARRAY_BUFFER,
+            format!(
+                r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#
+            ),
+        );
+        let nor = push(
+            &f32s(&mut verts.iter().flat_map(|&i| mesh.normals()[i].to_array())),
+            ARRAY_BUFFER,
+            vec("VEC3"),
+        );
+        let tan = push(
+            &f32s(&mut verts.iter().flat_map(|&i| mesh.tangents()[i].to_array())),
+            ARRAY_BUFFER,
+            vec("VEC4"),
+        );
+        let uv = push(
+            &f32s(&mut verts.iter().flat_map(|&i| {
+                let uv = mesh.uvs()[i];
+                [uv.x, 1.0 - uv.y]
+            })),
+            ARRAY_BUFFER,
+            vec("VEC2"),
+        );
+        let ix: Vec<u8> = tri
+            .iter()
+            .flat_map(|&i| remap[i as usize].to_le_bytes())
+            .collect();
+        let ind = push(
+            &ix,
+            ELEMENT_ARRAY_BUFFER,
+            format!(
+                r#"{{"bufferView":VIEW,"componentType":5125,"count":{},"type":"SCALAR"}}"#,
+                tri.len()
+            ),
+        );
+        meshes.push(format!(
+            r#"{{"name":{},"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4}}]}}"#,
+            json_string(&part.name)
+        ));
+    }
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let nodes: Vec<String> = mesh
+        .parts()
+        .iter()
+        .enumerate()
+        .map(|(k, p)| format!(r#"{{"name":{},"mesh":{k}}}"#, json_string(&p.name)))
+        .collect();
+    let scene_nodes: Vec<String> = (0..nodes.len()).map(|k| k.to_string()).collect();
+    let mut json = format!(
+        r#"{{"asset":{{"version":"2.0","generator":"agesim"}},"scene":0,"scenes":[{{"nodes":[{}]}}],"nodes":[{}],"meshes":[{}],"accessors":[{}],"bufferViews":[{}],"buffers":[{{"byteLength":{}}}]}}"#,
+        scene_nodes.join(","),
+        nodes.join(","),
+        meshes.join(","),
+        accessors.join(","),
+        views.join(","),
+        bin.len()
+    )
+    .into_bytes();
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    out
+}
+
+/// `s` as a JSON string literal.
+fn json_string(s: &str) -> String {
+    serde_json::Value::String(s.to_owned()).to_string()
+}
+
 /// A triangle list from the indices of a triangle list, strip or fan (glTF §3.7.2.1).
 fn triangulate(mode: Mode, ix: &[u32]) -> Vec<u32> {
     match mode {
@@ -577,6 +720,77 @@ mod tests {
         assert_eq!(m.report().tangent_source, Some(TangentSource::MikkTSpace));
         for t in m.tangents() {
             assert_vec_close(t.truncate(), Vec3::X, 1e-5, "tangent");
+        }
+    }
+
+    #[test]
+    fn write_glb_reads_back_the_same_mesh_part_by_part() {
+        // Two parts sharing the middle edge (vertices 1 and 4); part 1 is the right quad.
+        let positions = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(2.0, 0.0, 0.5),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(2.0, 1.0, 0.5),
+        ];
+        let uvs = positions
+            .iter()
+            .map(|p| Vec2::new(0.3 * p.x, 0.7 * p.y + 0.1))
+            .collect();
+        let raw = RawMesh {
+            positions,
+            uvs: Some(uvs),
+            indices: vec![0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4],
+            parts: vec![
+                MeshPart {
+                    name: "left \"L\"".to_owned(),
+                    first_triangle: 0,
+                    triangle_count: 2,
+                },
+                MeshPart {
+                    name: "right".to_owned(),
+                    first_triangle: 2,
+                    triangle_count: 2,
+                },
+            ],
+            ..RawMesh::default()
+        };
+        let original = Mesh::build(raw, "two quads").unwrap();
+        let glb = super::write_glb(&original);
+        assert_eq!(&glb[..4], b"glTF");
+        assert_eq!(glb, super::write_glb(&original), "deterministic");
+        let back = Mesh::build(load_bytes(&glb, Path::new("x.glb")).unwrap(), "x.glb").unwrap();
+        assert!(
+            back.report().warnings.is_empty(),
+            "{:?}",
+            back.report().warnings
+        );
+        assert_eq!(back.report().tangent_source, Some(TangentSource::File));
+        assert_eq!(back.parts().len(), 2);
+        assert!(
+            back.parts()[0].name.contains(r#""left "L"""#),
+            "{:?}",
+            back.parts()
+        );
+        // Each part carries its own vertices: the shared edge is written twice.
+        assert_eq!(back.vertex_count(), 8);
+        assert_eq!(back.triangle_count(), original.triangle_count());
+        for (a, b) in original.indices().iter().zip(back.indices()) {
+            let (a, b) = (*a as usize, *b as usize);
+            assert_vec_close(
+                original.positions()[a],
+                back.positions()[b],
+                0.0,
+                "position",
+            );
+            assert_vec_close(original.normals()[a], back.normals()[b], 1e-6, "normal");
+            let (ta, tb) = (original.tangents()[a], back.tangents()[b]);
+            assert_vec_close(ta.truncate(), tb.truncate(), 1e-6, "tangent");
+            assert_close(ta.w, tb.w, 0.0, "handedness");
+            let (ua, ub) = (original.uvs()[a], back.uvs()[b]);
+            assert_close(ua.x, ub.x, 0.0, "u");
+            assert_close(ua.y, ub.y, 1e-6, "v (flipped twice)");
         }
     }
 

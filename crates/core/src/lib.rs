@@ -13,6 +13,7 @@ pub mod muscle;
 pub mod normal_map;
 pub mod project;
 pub mod rng;
+pub mod simd;
 pub mod wrinkle_file;
 
 pub use error::Error;

@@ -5,10 +5,16 @@
 //! a Delaunay-like mesh of polygonal cells, the micro-relief of real skin). A link's depth
 //! depends on its direction: links along the preferred direction θ are primary lines of
 //! full depth, links across it secondary, weighted by 1 − strength·sin²(angle − θ).
-//! Across a furrow, at distance x from its axis, eq. 16: s(x) = −A·(1 − x²/ω²) for |x| < ω;
-//! along it the depth tapers to 0 with a smoothstep over the first and last `taper` of its
-//! length, so furrows fade into the pores they join. Furrows are straight in the warped
-//! domain (see `micro::bake`), so on the map they bend with the domain warp.
+//! Across a furrow, at distance x from its axis, eq. 16: s(x) = −A·(1 − x²/ω²) for |x| < ω.
+//! Along it the depth tapers toward both ends (SPEC §3) with a smoothstep, but — unlike a
+//! taper over a fixed fraction of the length, which made every furrow an isolated dash
+//! between two pores (SPEC §3's "tubes") — the taper at each end is at most as long as the
+//! radius of the pore there: the furrow reaches full depth at the pore's rim and only fades
+//! inside the pore, where the pore's own depth takes over. So the furrows meeting at a pore
+//! join through it, and the network reads as connected polygonal cells, as in Weiss et al.
+//! 2023. `taper` (a fraction of the length) still shortens the taper of short links.
+//! Furrows are straight in the warped domain (see `micro::bake`), so on the map they bend
+//! with the domain warp.
 
 use crate::rng::Rng;
 
@@ -29,7 +35,8 @@ pub struct FurrowParams {
     pub direction_deg: f32,
     /// 0 = all links equal, 1 = links across θ vanish.
     pub direction_strength: f32,
-    /// Fraction of the length over which each end tapers, 0–0.5.
+    /// Longest taper at each end as a fraction of the length, 0–0.5 (the taper never
+    /// extends past the rim of the pore at that end).
     pub taper: f32,
 }
 
@@ -43,8 +50,9 @@ pub struct Furrow {
     pub depth: f32,
     /// ω in mm, > 0.
     pub width_mm: f32,
-    /// Fraction of the length tapered at each end.
-    pub taper: f32,
+    /// Length of the depth taper at the start and at the end, mm: min(taper × length,
+    /// radius of the pore at that end).
+    pub taper_mm: [f32; 2],
 }
 
 /// Eq. 16: the height −A·(1 − x²/ω²) at distance `x_mm` from the axis, 0 for |x| ≥ ω.
@@ -54,11 +62,14 @@ pub fn cross_section(x_mm: f32, depth: f32, width_mm: f32) -> f32 {
     if q < 1.0 { -depth * (1.0 - q) } else { 0.0 }
 }
 
-/// The depth factor along a furrow at s ∈ [0,1]: smoothstep up over [0, taper], 1 in the
-/// middle, down over [1 − taper, 1]; 0 outside [0,1].
+/// The depth factor at `along_mm` from the start of a furrow `len_mm` long: a smoothstep
+/// from 0 at the start up to 1 at `taper_mm[0]`, 1 in the middle, down to 0 over the last
+/// `taper_mm[1]`; 0 outside the furrow.
 #[inline(always)]
-pub fn taper(s: f32, taper: f32) -> f32 {
-    let e = (s.min(1.0 - s) / taper.max(1e-6)).clamp(0.0, 1.0);
+pub fn taper(along_mm: f32, len_mm: f32, taper_mm: [f32; 2]) -> f32 {
+    let e = (along_mm / taper_mm[0].max(1e-6))
+        .min((len_mm - along_mm) / taper_mm[1].max(1e-6))
+        .clamp(0.0, 1.0);
     e * e * (3.0 - 2.0 * e)
 }
 
@@ -112,12 +123,13 @@ pub fn build_network(
             let depth = (params.depth.0 + params.depth.1 * (2.0 * rng.next_f32() - 1.0)).max(0.0);
             let width =
                 (params.width_mm.0 + params.width_mm.1 * (2.0 * rng.next_f32() - 1.0)).max(1e-4);
+            let taper = |pore: u32| (params.taper * len).min(pores[pore as usize].radius_mm);
             Furrow {
                 start_mm: start,
                 end_mm: [start[0] + d[0], start[1] + d[1]],
                 depth: depth * weight,
                 width_mm: width,
-                taper: params.taper,
+                taper_mm: [taper(a), taper(b)],
             }
         })
         .collect()
@@ -243,13 +255,49 @@ mod tests {
     }
 
     #[test]
-    fn ends_taper_to_zero() {
-        assert_eq!(taper(0.0, 0.25), 0.0);
-        assert_eq!(taper(1.0, 0.25), 0.0);
-        assert_eq!(taper(0.5, 0.25), 1.0);
-        close(taper(0.125, 0.25), 0.5, 1e-6);
-        close(taper(0.875, 0.25), 0.5, 1e-6);
-        assert_eq!(taper(-0.1, 0.25), 0.0);
+    fn ends_taper_to_zero_within_their_own_lengths() {
+        // 2 mm long, tapering over 0.4 mm at the start and 0.2 mm at the end.
+        let t = [0.4, 0.2];
+        assert_eq!(taper(0.0, 2.0, t), 0.0);
+        assert_eq!(taper(2.0, 2.0, t), 0.0);
+        assert_eq!(taper(1.0, 2.0, t), 1.0);
+        // Full depth from the end of each taper on (the pore rims).
+        assert_eq!(taper(0.4, 2.0, t), 1.0);
+        assert_eq!(taper(1.8, 2.0, t), 1.0);
+        // Half way along each taper: smoothstep(0.5) = 0.5.
+        close(taper(0.2, 2.0, t), 0.5, 1e-6);
+        close(taper(1.9, 2.0, t), 0.5, 1e-6);
+        // e = 0.25: 0.0625·2.5 = 0.15625
+        close(taper(0.1, 2.0, t), 0.156_25, 1e-6);
+        assert_eq!(taper(-0.1, 2.0, t), 0.0);
+        assert_eq!(taper(2.1, 2.0, t), 0.0);
+    }
+
+    #[test]
+    fn tapers_end_at_the_pore_rims() {
+        let stats = PoreStats {
+            radius_mm: (0.3, 0.1),
+            depth: (1.0, 0.0),
+            falloff: (1.0, 0.0),
+        };
+        let pores = place_pores(200, &stats, Placement::BlueNoise, 50.0, false, 9).pores;
+        let net = build_network(&pores, &params(), 50.0, false, 9);
+        // The pore at an end (end_mm = start + delta may differ from the centre in the
+        // last bit).
+        let radius_at = |p: [f32; 2]| {
+            let d = |q: &Pore| super::super::pores::distance2(p, q.centre_mm, 50.0, false);
+            pores
+                .iter()
+                .min_by(|a, b| d(a).total_cmp(&d(b)))
+                .map(|q| q.radius_mm)
+                .unwrap()
+        };
+        for f in &net {
+            let len = super::super::pores::distance2(f.start_mm, f.end_mm, 50.0, false).sqrt();
+            for (t, end) in f.taper_mm.into_iter().zip([f.start_mm, f.end_mm]) {
+                close(t, (0.25 * len).min(radius_at(end)), 1e-6);
+            }
+        }
     }
 
     #[test]

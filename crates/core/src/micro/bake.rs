@@ -681,7 +681,6 @@ fn warp_row(ctx: &Context, warp: &Warp, y: usize, s: &mut Scratch) -> f32 {
         row.j = Some(cj);
     }
     let fy = (y % warp.step) as f32 / warp.step as f32;
-    let inv = 1.0 / warp.step as f32;
     let [c0, c1] = &s.coarse;
     for f in 0..2 {
         let (a, b) = (&c0.values[f], &c1.values[f]);
@@ -693,22 +692,49 @@ fn warp_row(ctx: &Context, warp: &Warp, y: usize, s: &mut Scratch) -> f32 {
     let px = &mut bytemuck::cast_slice_mut::<Chunk, f32>(&mut s.px)[..w];
     let wy = &mut bytemuck::cast_slice_mut::<Chunk, f32>(&mut s.wy)[..w];
     let x_mm = bytemuck::cast_slice::<Chunk, f32>(&ctx.x_mm);
-    for (dst, blend, add) in [(px, &s.blend[0], Some(x_mm)), (wy, &s.blend[1], None)] {
-        for (i, chunk) in dst.chunks_mut(warp.step).enumerate() {
-            let (l, r) = (blend[i], blend[i + 1]);
-            let x0 = i * warp.step;
-            for (k, d) in chunk.iter_mut().enumerate() {
-                let wv = l + (r - l) * (k as f32 * inv);
-                *d = match add {
-                    Some(x) => x[x0 + k] + wv,
-                    None => wv,
-                };
-            }
-        }
+    let x_mm = &x_mm[..w];
+    match warp.step {
+        1 => interpolate::<1>(&s.blend, x_mm, px, wy),
+        2 => interpolate::<2>(&s.blend, x_mm, px, wy),
+        4 => interpolate::<4>(&s.blend, x_mm, px, wy),
+        8 => interpolate::<8>(&s.blend, x_mm, px, wy),
+        _ => interpolate::<16>(&s.blend, x_mm, px, wy),
     }
     let mx = c0.max_abs[0].max(c1.max_abs[0]);
     let my = c0.max_abs[1].max(c1.max_abs[1]);
     (mx * mx + my * my).sqrt() * 1.0001
+}
+
+/// px = x_mm + the x warp and wy = the y warp, linear between the coarse columns `blend`
+/// every `S` pixels (`S` a constant so each segment is a whole vector operation).
+#[inline(always)]
+fn interpolate<const S: usize>(
+    blend: &[Vec<f32>; 2],
+    x_mm: &[f32],
+    px: &mut [f32],
+    wy: &mut [f32],
+) {
+    let frac: [f32; S] = std::array::from_fn(|k| k as f32 * (1.0 / S as f32));
+    let segment = |i: usize, f: usize, k: usize| {
+        let (l, r) = (blend[f][i], blend[f][i + 1]);
+        l + (r - l) * frac[k]
+    };
+    let full = px.len() / S;
+    for (i, ((p, x), y)) in px
+        .chunks_exact_mut(S)
+        .zip(x_mm.chunks_exact(S))
+        .zip(wy.chunks_exact_mut(S))
+        .enumerate()
+    {
+        for k in 0..S {
+            p[k] = x[k] + segment(i, 0, k);
+            y[k] = segment(i, 1, k);
+        }
+    }
+    for x in full * S..px.len() {
+        px[x] = x_mm[x] + segment(full, 0, x - full * S);
+        wy[x] = segment(full, 1, x - full * S);
+    }
 }
 
 /// Adds one stamp's exp(β·m) − 1 to the row accumulator over its x-interval.

@@ -254,8 +254,8 @@ enum Stamp {
         beta_depth: f32,
         width: f32,
         inv_w2: f32,
-        /// 1 / the taper length at the start and at the end, 1/mm.
-        inv_taper: [f32; 2],
+        /// 1 / the length over which each end narrows, 1/mm.
+        inv_taper: f32,
     },
 }
 
@@ -360,7 +360,7 @@ impl<'a> Context<'a> {
                     beta_depth: beta * f.depth,
                     width: f.width_mm,
                     inv_w2: 1.0 / (f.width_mm * f.width_mm),
-                    inv_taper: f.taper_mm.map(|t| 1.0 / t.max(1e-6)),
+                    inv_taper: 1.0 / (f.taper * len).max(1e-6),
                 });
             }
         }
@@ -791,7 +791,7 @@ fn stamp_row(ctx: &Context, st: &Stamp, y_mm: f32, reach: f32, s: &mut Scratch) 
             let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
             for (slope, offset, a, b) in [
                 (dir[1], -py * dir[0], -r, r),
-                (dir[0], py * dir[1], -reach, len + reach),
+                (dir[0], py * dir[1], -r, len + r),
             ] {
                 if slope.abs() < 1e-9 {
                     if offset < a || offset > b {
@@ -853,9 +853,9 @@ impl<'s> Span<'s> {
         }
     }
 
-    /// Furrow from (sx, row − py) along `dir`, `len` mm long: β·m = β·A·(1 − x²/ω²)·taper
-    /// (eq. 16), the taper a smoothstep over `1/inv_taper[0]` mm from the start and
-    /// `1/inv_taper[1]` mm from the end.
+    /// Furrow from (sx, row − py) along `dir`, `len` mm long: β·m = β·A·(1 − d²/(ω·f)²)
+    /// (eq. 16 around the segment, see `furrows::height`), d the distance to the segment
+    /// and f the width factor (1/2 at the ends, 1 from `1/inv_taper` mm inward).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn furrow(
@@ -866,38 +866,31 @@ impl<'s> Span<'s> {
         len: f32,
         beta_depth: f32,
         inv_w2: f32,
-        inv_taper: [f32; 2],
+        inv_taper: f32,
     ) {
         for ((a, x), wy) in self.acc.iter_mut().zip(self.px).zip(self.wy) {
             let mut q = [0.0; LANES];
-            let mut along = [0.0; LANES];
             for l in 0..LANES {
                 let px = x.0[l] - sx;
                 let py = py + wy.0[l];
-                along[l] = px * dir[0] + py * dir[1];
+                let along = px * dir[0] + py * dir[1];
                 let cross = px * dir[1] - py * dir[0];
-                q[l] = cross * cross * inv_w2;
+                let on = along.clamp(0.0, len);
+                let beyond = along - on;
+                let e = (on.min(len - on) * inv_taper).clamp(0.0, 1.0);
+                let f = 0.5 + 0.5 * (e * e * (3.0 - 2.0 * e));
+                q[l] = (cross * cross + beyond * beyond) * inv_w2 / (f * f);
             }
             if !any(q.map(|q| q < 1.0)) {
                 continue;
             }
-            let mut bm = [0.0; LANES];
             for l in 0..LANES {
-                let e = (along[l] * inv_taper[0])
-                    .min((len - along[l]) * inv_taper[1])
-                    .clamp(0.0, 1.0);
-                let taper = e * e * (3.0 - 2.0 * e);
-                bm[l] = if q[l] < 1.0 {
-                    beta_depth * (1.0 - q[l]) * taper
+                let bm = if q[l] < 1.0 {
+                    beta_depth * (1.0 - q[l])
                 } else {
                     0.0
                 };
-            }
-            if !any(bm.map(|m| m > 0.0)) {
-                continue;
-            }
-            for l in 0..LANES {
-                a.0[l] += super::fastmath::exp(bm[l]) - 1.0;
+                a.0[l] += super::fastmath::exp(bm) - 1.0;
             }
         }
     }

@@ -6,13 +6,14 @@
 //! depends on its direction: links along the preferred direction θ are primary lines of
 //! full depth, links across it secondary, weighted by 1 − strength·sin²(angle − θ).
 //! Across a furrow, at distance x from its axis, eq. 16: s(x) = −A·(1 − x²/ω²) for |x| < ω.
-//! Along it the depth tapers toward both ends (SPEC §3) with a smoothstep, but — unlike a
-//! taper over a fixed fraction of the length, which made every furrow an isolated dash
-//! between two pores (SPEC §3's "tubes") — the taper at each end is at most as long as the
-//! radius of the pore there: the furrow reaches full depth at the pore's rim and only fades
-//! inside the pore, where the pore's own depth takes over. So the furrows meeting at a pore
-//! join through it, and the network reads as connected polygonal cells, as in Weiss et al.
-//! 2023. `taper` (a fraction of the length) still shortens the taper of short links.
+//! **Choice** (SPEC §3 asks to taper toward the ends): tapering the *depth* to 0 at both ends
+//! made every furrow an isolated dash between two pores, with a light gap at each pore
+//! (SPEC §3's "tubes"), even when the taper stopped at the pore rim (tried: the pore is
+//! shallower than the furrows meeting in it, so the gap stays). So the depth stays full to
+//! the ends, x is the distance to the *segment* (round caps, so the furrows meeting at a pore
+//! join smoothly through it), and what tapers is the *width*: from ω in the middle down to
+//! ω/2 at the ends, over `taper` of the length at each end (a smoothstep). The network then
+//! reads as connected polygonal cells with pores at the junctions, as in Weiss et al. 2023.
 //! Furrows are straight in the warped domain (see `micro::bake`), so on the map they bend
 //! with the domain warp.
 
@@ -35,8 +36,7 @@ pub struct FurrowParams {
     pub direction_deg: f32,
     /// 0 = all links equal, 1 = links across θ vanish.
     pub direction_strength: f32,
-    /// Longest taper at each end as a fraction of the length, 0–0.5 (the taper never
-    /// extends past the rim of the pore at that end).
+    /// Fraction of the length over which the width narrows at each end, 0–0.5.
     pub taper: f32,
 }
 
@@ -50,9 +50,8 @@ pub struct Furrow {
     pub depth: f32,
     /// ω in mm, > 0.
     pub width_mm: f32,
-    /// Length of the depth taper at the start and at the end, mm: min(taper × length,
-    /// radius of the pore at that end).
-    pub taper_mm: [f32; 2],
+    /// Fraction of the length over which the width narrows at each end.
+    pub taper: f32,
 }
 
 /// Eq. 16: the height −A·(1 − x²/ω²) at distance `x_mm` from the axis, 0 for |x| ≥ ω.
@@ -62,15 +61,30 @@ pub fn cross_section(x_mm: f32, depth: f32, width_mm: f32) -> f32 {
     if q < 1.0 { -depth * (1.0 - q) } else { 0.0 }
 }
 
-/// The depth factor at `along_mm` from the start of a furrow `len_mm` long: a smoothstep
-/// from 0 at the start up to 1 at `taper_mm[0]`, 1 in the middle, down to 0 over the last
-/// `taper_mm[1]`; 0 outside the furrow.
+/// The width factor at `along_mm` from the start of a furrow `len_mm` long whose ends
+/// narrow over `taper_len_mm`: 1/2 at the ends (and beyond them, on the round caps), rising
+/// with a smoothstep to 1 at `taper_len_mm` from each end.
 #[inline(always)]
-pub fn taper(along_mm: f32, len_mm: f32, taper_mm: [f32; 2]) -> f32 {
-    let e = (along_mm / taper_mm[0].max(1e-6))
-        .min((len_mm - along_mm) / taper_mm[1].max(1e-6))
-        .clamp(0.0, 1.0);
-    e * e * (3.0 - 2.0 * e)
+pub fn width_factor(along_mm: f32, len_mm: f32, taper_len_mm: f32) -> f32 {
+    let a = along_mm.clamp(0.0, len_mm);
+    let e = (a.min(len_mm - a) / taper_len_mm.max(1e-6)).clamp(0.0, 1.0);
+    0.5 + 0.5 * (e * e * (3.0 - 2.0 * e))
+}
+
+/// The height of a furrow (eq. 16 around the segment) at `along_mm` along its axis and
+/// `cross_mm` across it: −A·(1 − d²/(ω·f)²) with d the distance to the segment and f the
+/// [`width_factor`]; 0 outside.
+#[inline(always)]
+pub fn height(f: &Furrow, along_mm: f32, cross_mm: f32) -> f32 {
+    let d = [f.end_mm[0] - f.start_mm[0], f.end_mm[1] - f.start_mm[1]];
+    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    let beyond = along_mm - along_mm.clamp(0.0, len);
+    let dist = (cross_mm * cross_mm + beyond * beyond).sqrt();
+    cross_section(
+        dist,
+        f.depth,
+        f.width_mm * width_factor(along_mm, len, f.taper * len),
+    )
 }
 
 /// Links the pores into a network (see the module docs). Deterministic in `seed`.
@@ -123,13 +137,12 @@ pub fn build_network(
             let depth = (params.depth.0 + params.depth.1 * (2.0 * rng.next_f32() - 1.0)).max(0.0);
             let width =
                 (params.width_mm.0 + params.width_mm.1 * (2.0 * rng.next_f32() - 1.0)).max(1e-4);
-            let taper = |pore: u32| (params.taper * len).min(pores[pore as usize].radius_mm);
             Furrow {
                 start_mm: start,
                 end_mm: [start[0] + d[0], start[1] + d[1]],
                 depth: depth * weight,
                 width_mm: width,
-                taper_mm: [taper(a), taper(b)],
+                taper: params.taper,
             }
         })
         .collect()
@@ -255,49 +268,37 @@ mod tests {
     }
 
     #[test]
-    fn ends_taper_to_zero_within_their_own_lengths() {
-        // 2 mm long, tapering over 0.4 mm at the start and 0.2 mm at the end.
-        let t = [0.4, 0.2];
-        assert_eq!(taper(0.0, 2.0, t), 0.0);
-        assert_eq!(taper(2.0, 2.0, t), 0.0);
-        assert_eq!(taper(1.0, 2.0, t), 1.0);
-        // Full depth from the end of each taper on (the pore rims).
-        assert_eq!(taper(0.4, 2.0, t), 1.0);
-        assert_eq!(taper(1.8, 2.0, t), 1.0);
-        // Half way along each taper: smoothstep(0.5) = 0.5.
-        close(taper(0.2, 2.0, t), 0.5, 1e-6);
-        close(taper(1.9, 2.0, t), 0.5, 1e-6);
-        // e = 0.25: 0.0625·2.5 = 0.15625
-        close(taper(0.1, 2.0, t), 0.156_25, 1e-6);
-        assert_eq!(taper(-0.1, 2.0, t), 0.0);
-        assert_eq!(taper(2.1, 2.0, t), 0.0);
-    }
-
-    #[test]
-    fn tapers_end_at_the_pore_rims() {
-        let stats = PoreStats {
-            radius_mm: (0.3, 0.1),
-            depth: (1.0, 0.0),
-            falloff: (1.0, 0.0),
+    fn width_narrows_to_half_at_the_ends_and_depth_stays_full() {
+        // 2 mm long, narrowing over 0.4 mm at each end.
+        assert_eq!(width_factor(0.0, 2.0, 0.4), 0.5);
+        assert_eq!(width_factor(2.0, 2.0, 0.4), 0.5);
+        assert_eq!(
+            width_factor(-0.3, 2.0, 0.4),
+            0.5,
+            "round cap beyond the start"
+        );
+        assert_eq!(width_factor(1.0, 2.0, 0.4), 1.0);
+        assert_eq!(width_factor(0.4, 2.0, 0.4), 1.0);
+        // Half way along the taper: smoothstep(0.5) = 0.5 → 0.75.
+        close(width_factor(0.2, 2.0, 0.4), 0.75, 1e-6);
+        close(width_factor(1.9, 2.0, 0.4), 0.5 + 0.5 * 0.156_25, 1e-6);
+        let f = Furrow {
+            start_mm: [0.0, 0.0],
+            end_mm: [2.0, 0.0],
+            depth: 1.0,
+            width_mm: 0.4,
+            taper: 0.2,
         };
-        let pores = place_pores(200, &stats, Placement::BlueNoise, 50.0, false, 9).pores;
-        let net = build_network(&pores, &params(), 50.0, false, 9);
-        // The pore at an end (end_mm = start + delta may differ from the centre in the
-        // last bit).
-        let radius_at = |p: [f32; 2]| {
-            let d = |q: &Pore| super::super::pores::distance2(p, q.centre_mm, 50.0, false);
-            pores
-                .iter()
-                .min_by(|a, b| d(a).total_cmp(&d(b)))
-                .map(|q| q.radius_mm)
-                .unwrap()
-        };
-        for f in &net {
-            let len = super::super::pores::distance2(f.start_mm, f.end_mm, 50.0, false).sqrt();
-            for (t, end) in f.taper_mm.into_iter().zip([f.start_mm, f.end_mm]) {
-                close(t, (0.25 * len).min(radius_at(end)), 1e-6);
-            }
-        }
+        // Full depth on the axis at the very ends: the furrows meeting at a pore join.
+        close(height(&f, 0.0, 0.0), -1.0, 1e-6);
+        close(height(&f, 2.0, 0.0), -1.0, 1e-6);
+        // Middle, x = 0.2 = ω/2: −(1 − 0.25) = −0.75; at the end the half width is 0.2.
+        close(height(&f, 1.0, 0.2), -0.75, 1e-6);
+        close(height(&f, 0.0, 0.1), -0.75, 1e-6);
+        assert_eq!(height(&f, 0.0, 0.2), 0.0);
+        // Round cap: 0.1 mm beyond the end on the axis, like 0.1 mm across.
+        close(height(&f, 2.1, 0.0), -0.75, 1e-6);
+        assert_eq!(height(&f, 2.25, 0.0), 0.0);
     }
 
     #[test]

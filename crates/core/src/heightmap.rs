@@ -24,13 +24,7 @@ impl HeightMap {
     pub fn zeros(width_px: u32, height_px: u32) -> Result<Self, Error> {
         check_size(width_px, height_px)?;
         let len = width_px as usize * height_px as usize;
-        let mut data = Vec::new();
-        data.try_reserve_exact(len)
-            .map_err(|_| Error::OutOfMemory {
-                bytes: len as u64 * 4,
-                what: "height map",
-            })?;
-        data.resize(len, 0.0);
+        let data = zeroed_vec(len, "height map")?;
         Ok(Self {
             width_px,
             height_px,
@@ -126,6 +120,34 @@ impl HeightMap {
             }
         }
         Ok(out)
+    }
+}
+
+/// A vector of `len` zeros, allocated already zeroed (`alloc_zeroed`: for large sizes the
+/// system hands out fresh zero pages, so nothing is written here and the pages are first
+/// touched by whichever thread fills them, instead of one thread clearing them all).
+/// `what` names the buffer in the error when the allocation fails.
+pub(crate) fn zeroed_vec<T: bytemuck::Zeroable>(
+    len: usize,
+    what: &'static str,
+) -> Result<Vec<T>, Error> {
+    let oom = || Error::OutOfMemory {
+        bytes: (len as u64).saturating_mul(std::mem::size_of::<T>() as u64),
+        what,
+    };
+    let layout = std::alloc::Layout::array::<T>(len).map_err(|_| oom())?;
+    if layout.size() == 0 {
+        return Ok(Vec::new());
+    }
+    // SAFETY: the layout has a non-zero size; the pointer, when not null, is a fresh
+    // allocation of exactly `len` `T`s made by the global allocator with `T`'s alignment,
+    // whose bytes are all zero, a valid `T` (`Zeroable`); the Vec takes ownership of it.
+    unsafe {
+        let ptr = std::alloc::alloc_zeroed(layout).cast::<T>();
+        if ptr.is_null() {
+            return Err(oom());
+        }
+        Ok(Vec::from_raw_parts(ptr, len, len))
     }
 }
 

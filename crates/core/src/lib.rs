@@ -19,6 +19,7 @@ pub mod normal_map;
 pub mod preview;
 pub mod project;
 pub mod rng;
+pub mod simd;
 #[cfg(test)]
 mod test_util;
 pub mod transition;

@@ -54,7 +54,7 @@ impl Default for NormalSettings {
 }
 
 impl NormalSettings {
-    fn validate(&self) -> Result<(), Error> {
+    pub(crate) fn validate(&self) -> Result<(), Error> {
         let s = self.strength;
         if s.is_finite() && (STRENGTH_RANGE.0..=STRENGTH_RANGE.1).contains(&s) {
             Ok(())
@@ -142,35 +142,178 @@ pub fn normals(map: &HeightMap, settings: &NormalSettings) -> Result<Vec<[f32; 3
 }
 
 /// 8-bit encoding of a component in [−1, 1]: round((c·0.5 + 0.5)·255).
-#[inline]
+#[inline(always)]
 pub fn encode_unorm8(c: f32) -> u8 {
-    ((c * 0.5 + 0.5) * 255.0 + 0.5).clamp(0.0, 255.0) as u8
+    unorm8_i32(c) as u8
+}
+
+/// [`encode_unorm8`] as an i32 in 0..=255 (0 for NaN): the same truncation as
+/// `clamp(0, 255) as u8`, in the form the vectoriser turns into `cvttps2dq` (a saturating
+/// `as` cast does not vectorise).
+#[inline(always)]
+fn unorm8_i32(c: f32) -> i32 {
+    // `max` returns 0 for NaN (`clamp` would keep the NaN), so v is a number in [0, 255].
+    #[allow(clippy::manual_clamp)]
+    let v = ((c * 0.5 + 0.5) * 255.0 + 0.5).max(0.0).min(255.0);
+    // SAFETY: v is finite and in [0, 255], so it truncates to an i32 without overflow.
+    unsafe { v.to_int_unchecked::<i32>() }
+}
+
+/// The per-row constants of [`encode_row_rgb8`] for row `y` of a `w` × `h` map, and the
+/// indices of its (above, below) neighbour rows.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RowRule {
+    pub above: usize,
+    pub below: usize,
+    su: f32,
+    sv: f32,
+    tiling: bool,
+    flip: bool,
+}
+
+impl RowRule {
+    pub(crate) fn new(y: usize, w: usize, h: usize, settings: &NormalSettings) -> Self {
+        // Row y − 1 is toward +v (the row above), y + 1 toward −v.
+        let (lo, hi, fy) = neighbours(y, h, settings.tiling);
+        Self {
+            above: lo,
+            below: hi,
+            su: settings.strength * w as f32,
+            sv: settings.strength * h as f32 * fy,
+            tiling: settings.tiling,
+            flip: settings.convention == Convention::DirectX,
+        }
+    }
+}
+
+/// Encodes one row of the 8-bit normal map (SPEC §4) from the height rows `row`, `above`
+/// (toward +v) and `below`: the same IEEE operations as [`normals`] + [`encode_unorm8`], the
+/// interior in chunks of 16 pixels that the compiler vectorises. `dst` holds 3·w bytes.
+#[inline(always)]
+pub(crate) fn encode_row_rgb8(
+    above: &[f32],
+    row: &[f32],
+    below: &[f32],
+    rule: &RowRule,
+    dst: &mut [u8],
+) {
+    const L: usize = 16;
+    let w = row.len();
+    let (above, below, dst) = (&above[..w], &below[..w], &mut dst[..3 * w]);
+    let half_su = 0.5 * rule.su;
+    let sv = rule.sv;
+    let flip = rule.flip;
+    #[inline(always)]
+    fn normal(dhu: f32, dhv: f32, flip: bool) -> [f32; 3] {
+        let inv = 1.0 / (dhu * dhu + dhv * dhv + 1.0).sqrt();
+        let ny = -dhv * inv;
+        [-dhu * inv, if flip { -ny } else { ny }, inv]
+    }
+    #[inline(always)]
+    fn pixel(dhu: f32, dhv: f32, flip: bool) -> [u8; 3] {
+        normal(dhu, dhv, flip).map(encode_unorm8)
+    }
+    // Interior columns 1..w−1 in chunks, then the interior leftovers, then the borders.
+    // Each chunk goes component by component through arrays (structure of arrays), which
+    // vectorises; only the final interleave to RGB is per pixel.
+    let interior = w.saturating_sub(2);
+    let chunks = interior / L;
+    if chunks > 0 {
+        let cols = row[..].chunks_exact(L).zip(row[2..].chunks_exact(L));
+        let rows = above[1..].chunks_exact(L).zip(below[1..].chunks_exact(L));
+        for (((l, r), (a, b)), out) in cols
+            .zip(rows)
+            .zip(dst[3..].chunks_exact_mut(3 * L))
+            .take(chunks)
+        {
+            let (mut dhu, mut dhv) = ([0.0f32; L], [0.0f32; L]);
+            for (((d, &r), &l), (e, (&a, &b))) in dhu
+                .iter_mut()
+                .zip(r)
+                .zip(l)
+                .zip(dhv.iter_mut().zip(a.iter().zip(b)))
+            {
+                *d = (r - l) * half_su;
+                *e = (a - b) * sv;
+            }
+            // The three bytes of a pixel packed in an i32 lane (no narrowing conversions,
+            // which the vectoriser handles badly), written out 3 bytes at a time.
+            let mut packed = [0i32; L];
+            for ((p, &dhu), &dhv) in packed.iter_mut().zip(&dhu).zip(&dhv) {
+                let n = normal(dhu, dhv, flip);
+                *p = unorm8_i32(n[0]) | unorm8_i32(n[1]) << 8 | unorm8_i32(n[2]) << 16;
+            }
+            for (px, p) in out.chunks_exact_mut(3).zip(packed) {
+                px.copy_from_slice(&p.to_le_bytes()[..3]);
+            }
+        }
+    }
+    for x in 1 + chunks * L..1 + interior {
+        let p = pixel(
+            (row[x + 1] - row[x - 1]) * half_su,
+            (above[x] - below[x]) * sv,
+            flip,
+        );
+        dst[3 * x..3 * x + 3].copy_from_slice(&p);
+    }
+    for x in [0, w - 1].into_iter().take(w.min(2)) {
+        let (xl, xr, fx) = neighbours(x, w, rule.tiling);
+        let p = pixel(
+            (row[xr] - row[xl]) * fx * rule.su,
+            (above[x] - below[x]) * sv,
+            flip,
+        );
+        dst[3 * x..3 * x + 3].copy_from_slice(&p);
+    }
 }
 
 /// The exported normal map: 8-bit RGB, RGB = n·0.5 + 0.5 in the chosen convention.
 pub fn encode_rgb8(map: &HeightMap, settings: &NormalSettings) -> Result<Vec<u8>, Error> {
     settings.validate()?;
-    let w = map.width_px() as usize;
-    let flip = settings.convention == Convention::DirectX;
-    let mut out = Vec::new();
-    out.try_reserve_exact(map.data().len() * 3)
-        .map_err(|_| Error::OutOfMemory {
-            bytes: map.data().len() as u64 * 3,
-            what: "normal map",
-        })?;
-    out.resize(map.data().len() * 3, 0);
-    out.par_chunks_mut(w * 3).enumerate().for_each(|(y, dst)| {
-        row_normals(map, y, settings, |x, n| {
-            let ny = if flip { -n[1] } else { n[1] };
-            dst[x * 3..x * 3 + 3].copy_from_slice(&[
-                encode_unorm8(n[0]),
-                encode_unorm8(ny),
-                encode_unorm8(n[2]),
-            ]);
+    let (w, h) = (map.width_px() as usize, map.height_px() as usize);
+    let mut out = crate::heightmap::zeroed_vec::<u8>(map.data().len() * 3, "normal map")?;
+    let data = map.data();
+    out.par_chunks_mut(w * 3 * ROWS_PER_TASK)
+        .enumerate()
+        .for_each(|(t, dst)| {
+            crate::simd::dispatch(EncodeRows {
+                data,
+                w,
+                h,
+                first_row: t * ROWS_PER_TASK,
+                settings,
+                dst,
+            })
         });
-    });
     Ok(out)
 }
+
+/// Encodes the rows `dst` holds, from `first_row` on (a [`crate::simd::Kernel`]).
+struct EncodeRows<'a> {
+    data: &'a [f32],
+    w: usize,
+    h: usize,
+    first_row: usize,
+    settings: &'a NormalSettings,
+    dst: &'a mut [u8],
+}
+
+impl crate::simd::Kernel for EncodeRows<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        let w = self.w;
+        let row = |y: usize| &self.data[y * w..(y + 1) * w];
+        for (k, dst) in self.dst.chunks_mut(3 * w).enumerate() {
+            let y = self.first_row + k;
+            let rule = RowRule::new(y, w, self.h, self.settings);
+            encode_row_rgb8(row(rule.above), row(y), row(rule.below), &rule, dst);
+        }
+    }
+}
+
+/// Rows per parallel task of [`encode_rgb8`].
+const ROWS_PER_TASK: usize = 16;
 
 /// [T]'s renderer packing (SPEC §4): RGBA8 = (n.x·0.5 + 0.5, n.y·0.5 + 0.5, n.z, h01), with
 /// n in the OpenGL frame (the renderer's convention, whatever the export setting) and h01

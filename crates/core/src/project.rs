@@ -121,7 +121,8 @@ pub struct FurrowSection {
     pub direction_deg: f32,
     /// 0–1: how much shallower links across θ are than links along it.
     pub direction_strength: f32,
-    /// Fraction of the length over which each end tapers, 0.01–0.5.
+    /// Fraction of the length over which each end narrows to half width (the depth stays
+    /// full, so furrows join at pores), 0.01–0.5.
     pub taper: f32,
 }
 

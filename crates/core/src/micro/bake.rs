@@ -1,5 +1,6 @@
 //! The micro-relief baker (SPEC §3): pores + furrows, log-smoothed (eq. 18), plus fBm
-//! (eq. 17), with pores and furrows evaluated in a domain-warped frame.
+//! (eq. 17), with pores and furrows evaluated in a domain-warped frame; optionally fused
+//! with the 8-bit normal map (SPEC §4).
 //!
 //! Design, for speed with exact determinism:
 //! - features are generated once, in millimetres ([`MicroRelief::new`]), independent of the
@@ -9,37 +10,50 @@
 //!   everything wraps;
 //! - the map is cut into bands of [`BAND_ROWS`] rows, each with the list of stamps that
 //!   touch it (in global feature order), and bands are baked in parallel with rayon. A
-//!   pixel's value depends only on its own row, so any thread count gives the same bytes;
-//! - per row, every stamp adds exp(β·m) − 1 over its exact x-interval (a circle or an
-//!   oriented rectangle cut by the row), then the row is resolved with one `ln` per pixel
-//!   and the fBm row is added;
+//!   pixel's value depends only on its own row (a row always uses the stamp list of the
+//!   band that owns it), so any thread count gives the same bytes;
+//! - per row, every stamp adds exp(β·m) − 1 over its x-interval in chunks of [`LANES`]
+//!   pixels (a circle or an oriented rectangle cut by the row; chunks the feature does not
+//!   reach skip the `exp`), then the row is resolved with one `ln` per pixel of the chunks
+//!   some feature covers, and the fBm row is added;
 //! - the warp (two fBm fields) is smooth, so it is evaluated on a coarse grid (≤ 16 px,
-//!   at most a quarter of its finest lattice cell) and interpolated bilinearly;
-//! - the hot loops are plain `f32` code over slices; the band function is compiled twice,
-//!   for the SSE2 baseline and with AVX2 enabled, and chosen at run time. Both do the same
-//!   IEEE operations (no fused multiply-add), so their output is byte-identical.
+//!   at most a quarter of its finest lattice cell), cached per coarse row, and interpolated;
+//! - with normals ([`MicroRelief::bake_with_normals`]) each band also bakes the row above
+//!   and below it (a one-row halo, recomputed: same bytes as its owner band's) and encodes
+//!   its normal rows while its heights are still in cache, with the same row kernel as
+//!   [`normal_map::encode_rgb8`], so the bytes equal `encode_rgb8(bake())`;
+//! - the hot loops are plain `f32` code over fixed-size chunks; the band function runs
+//!   under [`crate::simd::dispatch`] (AVX-512, AVX2 or the SSE2 baseline, chosen at run
+//!   time). All paths do the same IEEE operations (no fused multiply-add), so their output
+//!   is byte-identical.
+
+// Lane loops (`for l in 0..LANES`) over several fixed-size arrays at once are the shape the
+// vectoriser turns into whole-register operations; iterator chains would hide that.
+#![allow(clippy::needless_range_loop)]
 
 use rayon::prelude::*;
 
 use super::furrows::{Furrow, build_network};
 use super::noise::{FbmField, LANES, RowSampler, RowScratch};
-use super::overlap::{resolve, term};
+use super::overlap::resolve;
 use super::pores::{Pore, PoreProfile, Rim, place_pores, rim_window};
 use crate::error::Error;
 use crate::heightmap::HeightMap;
+use crate::normal_map::{self, NormalSettings, RowRule};
 use crate::project::Project;
+use crate::simd::Level;
 
 /// Rows per parallel band.
-pub const BAND_ROWS: usize = 16;
+pub const BAND_ROWS: usize = 32;
 
 /// Wall-clock time of the stages of a bake, milliseconds.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BakeTimings {
     /// Pore placement and the furrow network (size independent, done in `new`).
     pub features_ms: f64,
-    /// Stamps, band lists, column tables.
+    /// Stamps, band lists, column tables, output allocation.
     pub setup_ms: f64,
-    /// The band pass: stamping, overlap resolve, noise.
+    /// The band pass: stamping, overlap resolve, noise, and the normal map when fused.
     pub relief_ms: f64,
 }
 
@@ -124,6 +138,16 @@ impl MicroRelief {
         &self.furrows
     }
 
+    /// The project's normal-map settings (strength, convention, tiling) for
+    /// [`MicroRelief::bake_with_normals`].
+    pub fn normal_settings(&self) -> NormalSettings {
+        NormalSettings {
+            strength: self.project.normal.strength,
+            convention: self.project.normal.convention,
+            tiling: self.project.tile,
+        }
+    }
+
     /// Bakes a `size_px`² height map of everything.
     pub fn bake(&self, size_px: u32) -> Result<(HeightMap, BakeTimings), Error> {
         self.bake_parts(size_px, Parts::default())
@@ -135,21 +159,73 @@ impl MicroRelief {
         size_px: u32,
         parts: Parts,
     ) -> Result<(HeightMap, BakeTimings), Error> {
-        let mut map = HeightMap::zeros(size_px, size_px)?;
+        let (map, _, timings) = self.bake_at(size_px, parts, None, Level::detect())?;
+        Ok((map, timings))
+    }
+
+    /// Bakes the `size_px`² height map and its 8-bit RGB normal map (row-major, 3 bytes per
+    /// pixel, RGB = n·0.5 + 0.5, SPEC §4) in one pass. The normal bytes equal
+    /// `normal_map::encode_rgb8(&height, normals)`; fusing saves reading the height map
+    /// back from memory. `normals` is usually [`MicroRelief::normal_settings`].
+    pub fn bake_with_normals(
+        &self,
+        size_px: u32,
+        normals: &NormalSettings,
+    ) -> Result<(HeightMap, Vec<u8>, BakeTimings), Error> {
+        normals.validate()?;
+        let (map, rgb, timings) =
+            self.bake_at(size_px, Parts::default(), Some(normals), Level::detect())?;
+        Ok((map, rgb, timings))
+    }
+
+    /// The bake, with the normal map when `normals` is given, for instruction-set `level`.
+    fn bake_at(
+        &self,
+        size_px: u32,
+        parts: Parts,
+        normals: Option<&NormalSettings>,
+        level: Level,
+    ) -> Result<(HeightMap, Vec<u8>, BakeTimings), Error> {
         let t0 = std::time::Instant::now();
-        let ctx = Context::new(self, size_px as usize, parts);
-        let t1 = std::time::Instant::now();
+        let mut map = HeightMap::zeros(size_px, size_px)?;
         let w = size_px as usize;
-        map.data_mut()
-            .par_chunks_mut(BAND_ROWS * w)
-            .enumerate()
-            .for_each_init(
-                || Scratch::new(&ctx),
-                |scratch, (band, out)| bake_band_dispatch(&ctx, band, out, scratch),
+        let mut rgb = match normals {
+            Some(_) => crate::heightmap::zeroed_vec::<u8>(w * w * 3, "normal map")?,
+            None => Vec::new(),
+        };
+        let ctx = Context::new(self, w, parts, normals.copied());
+        let t1 = std::time::Instant::now();
+        let bake = |band: usize, out: &mut [f32], rgb: Option<&mut [u8]>, s: &mut Scratch| {
+            crate::simd::dispatch_at(
+                level,
+                Band {
+                    ctx: &ctx,
+                    band,
+                    out,
+                    rgb,
+                    scratch: s,
+                },
             );
+        };
+        let heights = map.data_mut().par_chunks_mut(BAND_ROWS * w);
+        if normals.is_some() {
+            heights
+                .zip(rgb.par_chunks_mut(BAND_ROWS * w * 3))
+                .enumerate()
+                .for_each_init(
+                    || Scratch::new(&ctx),
+                    |s, (band, (out, rgb))| bake(band, out, Some(rgb), s),
+                );
+        } else {
+            heights.enumerate().for_each_init(
+                || Scratch::new(&ctx),
+                |s, (band, out)| bake(band, out, None, s),
+            );
+        }
         let t2 = std::time::Instant::now();
         Ok((
             map,
+            rgb,
             BakeTimings {
                 features_ms: self.features_ms,
                 setup_ms: (t1 - t0).as_secs_f64() * 1e3,
@@ -165,21 +241,21 @@ enum Stamp {
     Pore {
         centre: [f32; 2],
         inv_r2: f32,
-        depth: f32,
+        /// β·dmax: the profile times this is β·m.
+        beta_depth: f32,
         falloff: f32,
         radius: f32,
-        reach: f32,
     },
     Furrow {
         start: [f32; 2],
         dir: [f32; 2],
-        inv_len: f32,
         len: f32,
-        depth: f32,
+        /// β·A.
+        beta_depth: f32,
         width: f32,
         inv_w2: f32,
+        /// 1 / the length over which each end narrows, 1/mm.
         inv_taper: f32,
-        reach: f32,
     },
 }
 
@@ -187,6 +263,8 @@ enum Stamp {
 struct Context<'a> {
     w: usize,
     h: usize,
+    /// Chunks of [`LANES`] covering a row.
+    chunks: usize,
     size_mm: f32,
     beta: f32,
     inv_n: f32,
@@ -195,10 +273,11 @@ struct Context<'a> {
     stamps: Vec<Stamp>,
     /// Stamp indices touching each band, in stamp order.
     bands: Vec<Vec<u32>>,
-    /// Pixel-centre x in mm.
-    x_mm: Vec<f32>,
+    /// Pixel-centre x in mm, padded to whole chunks.
+    x_mm: Vec<Chunk>,
     noise: Option<RowSampler<'a>>,
     warp: Option<Warp<'a>>,
+    normals: Option<NormalSettings>,
 }
 
 struct Warp<'a> {
@@ -208,18 +287,32 @@ struct Warp<'a> {
     fields: [RowSampler<'a>; 2],
 }
 
+/// [`LANES`] floats, aligned for whole-vector loads.
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C, align(64))]
+struct Chunk([f32; LANES]);
+
 impl<'a> Context<'a> {
-    fn new(relief: &'a MicroRelief, size_px: usize, parts: Parts) -> Self {
+    fn new(
+        relief: &'a MicroRelief,
+        size_px: usize,
+        parts: Parts,
+        normals: Option<NormalSettings>,
+    ) -> Self {
         let p = &relief.project;
         let (w, h) = (size_px, size_px);
         let size_mm = p.map_size_mm;
+        let chunks = w.div_ceil(LANES);
         let us: Vec<f32> = (0..w)
             .map(|x| crate::heightmap::pixel_to_u(x as u32, w as u32))
             .collect();
-        // Pixel-centre x in mm, padded by LANES columns so stamps can work in whole chunks.
-        let x_mm: Vec<f32> = (0..w + LANES)
-            .map(|x| (x as f32 + 0.5) / w as f32 * size_mm)
-            .collect();
+        let mut x_mm = vec![Chunk([0.0; LANES]); chunks];
+        for (x, v) in bytemuck::cast_slice_mut::<Chunk, f32>(&mut x_mm)
+            .iter_mut()
+            .enumerate()
+        {
+            *v = (x as f32 + 0.5) / w as f32 * size_mm;
+        }
         let warp_on =
             parts.features && p.warp.strength_mm > 0.0 && relief.warp[0].octave_count() > 0;
         let warp = warp_on.then(|| {
@@ -245,16 +338,16 @@ impl<'a> Context<'a> {
         } else {
             0.0
         };
+        let beta = p.overlap.beta;
         let mut stamps = Vec::new();
         if parts.features {
             for pore in &relief.pores {
                 stamps.push(Stamp::Pore {
                     centre: pore.centre_mm,
                     inv_r2: 1.0 / (pore.radius_mm * pore.radius_mm),
-                    depth: pore.depth,
+                    beta_depth: beta * pore.depth,
                     falloff: pore.falloff,
                     radius: pore.radius_mm,
-                    reach: pore.radius_mm + reach,
                 });
             }
             for f in &relief.furrows {
@@ -263,23 +356,21 @@ impl<'a> Context<'a> {
                 stamps.push(Stamp::Furrow {
                     start: f.start_mm,
                     dir: [d[0] / len, d[1] / len],
-                    inv_len: 1.0 / len,
                     len,
-                    depth: f.depth,
+                    beta_depth: beta * f.depth,
                     width: f.width_mm,
                     inv_w2: 1.0 / (f.width_mm * f.width_mm),
-                    inv_taper: 1.0 / f.taper,
-                    reach,
+                    inv_taper: 1.0 / (f.taper * len).max(1e-6),
                 });
             }
         }
         if p.tile {
-            stamps = tile_copies(&stamps, size_mm);
+            stamps = tile_copies(&stamps, size_mm, reach);
         }
         let n_bands = h.div_ceil(BAND_ROWS);
         let mut bands = vec![Vec::new(); n_bands];
         for (k, s) in stamps.iter().enumerate() {
-            if let Some((y0, y1)) = row_range(s, size_mm, h) {
+            if let Some((y0, y1)) = row_range(s, size_mm, h, reach) {
                 for band in bands
                     .iter_mut()
                     .take((y1 - 1) / BAND_ROWS + 1)
@@ -294,8 +385,9 @@ impl<'a> Context<'a> {
         Self {
             w,
             h,
+            chunks,
             size_mm,
-            beta: p.overlap.beta,
+            beta,
             inv_n: 1.0 / p.overlap.n,
             profile: p.pores.profile,
             rim: p.pores.rim,
@@ -304,36 +396,41 @@ impl<'a> Context<'a> {
             x_mm,
             noise,
             warp,
+            normals,
         }
     }
 
-    /// Pixel column range [x0, x1) covering x_mm in [lo, hi].
-    fn cols(&self, lo: f32, hi: f32) -> (usize, usize) {
+    /// Chunk range [c0, c1) covering x_mm in [lo, hi].
+    fn chunk_range(&self, lo: f32, hi: f32) -> (usize, usize) {
         let f = self.w as f32 / self.size_mm;
         let x0 = (lo * f - 0.5).floor().max(0.0) as usize;
         let x1 = ((hi * f - 0.5).ceil() + 1.0).clamp(0.0, self.w as f32) as usize;
-        (x0.min(x1), x1)
+        if x0 >= x1 {
+            return (0, 0);
+        }
+        (x0 / LANES, x1.div_ceil(LANES))
     }
 }
 
-/// Bounding rows [y0, y1) of a stamp, `None` when it misses the map.
-fn row_range(s: &Stamp, size_mm: f32, h: usize) -> Option<(usize, usize)> {
-    let (lo, hi) = y_extent(s);
+/// Bounding rows [y0, y1) of a stamp (with the warp reach), `None` when it misses the map.
+fn row_range(s: &Stamp, size_mm: f32, h: usize, reach: f32) -> Option<(usize, usize)> {
+    let (lo, hi) = y_extent(s, reach);
     let row = |y_mm: f32| (1.0 - y_mm / size_mm) * h as f32 - 0.5;
     let y0 = row(hi).floor().max(0.0);
     let y1 = (row(lo).ceil() + 1.0).min(h as f32);
     (y1 > y0).then_some((y0 as usize, y1 as usize))
 }
 
-fn y_extent(s: &Stamp) -> (f32, f32) {
+fn y_extent(s: &Stamp, reach: f32) -> (f32, f32) {
     match *s {
-        Stamp::Pore { centre, reach, .. } => (centre[1] - reach, centre[1] + reach),
+        Stamp::Pore { centre, radius, .. } => {
+            (centre[1] - radius - reach, centre[1] + radius + reach)
+        }
         Stamp::Furrow {
             start,
             dir,
             len,
             width,
-            reach,
             ..
         } => {
             let end = start[1] + dir[1] * len;
@@ -343,15 +440,16 @@ fn y_extent(s: &Stamp) -> (f32, f32) {
     }
 }
 
-fn x_extent(s: &Stamp) -> (f32, f32) {
+fn x_extent(s: &Stamp, reach: f32) -> (f32, f32) {
     match *s {
-        Stamp::Pore { centre, reach, .. } => (centre[0] - reach, centre[0] + reach),
+        Stamp::Pore { centre, radius, .. } => {
+            (centre[0] - radius - reach, centre[0] + radius + reach)
+        }
         Stamp::Furrow {
             start,
             dir,
             len,
             width,
-            reach,
             ..
         } => {
             let end = start[0] + dir[0] * len;
@@ -362,11 +460,11 @@ fn x_extent(s: &Stamp) -> (f32, f32) {
 }
 
 /// On tiled maps: every stamp plus its copies shifted by ±size that reach into the map.
-fn tile_copies(stamps: &[Stamp], size_mm: f32) -> Vec<Stamp> {
+fn tile_copies(stamps: &[Stamp], size_mm: f32, reach: f32) -> Vec<Stamp> {
     let mut out = Vec::with_capacity(stamps.len() * 5 / 4);
     for s in stamps {
-        let (x0, x1) = x_extent(s);
-        let (y0, y1) = y_extent(s);
+        let (x0, x1) = x_extent(s, reach);
+        let (y0, y1) = y_extent(s, reach);
         for oy in [0.0, -size_mm, size_mm] {
             for ox in [0.0, -size_mm, size_mm] {
                 if x1 + ox < 0.0 || x0 + ox > size_mm || y1 + oy < 0.0 || y0 + oy > size_mm {
@@ -384,210 +482,316 @@ fn tile_copies(stamps: &[Stamp], size_mm: f32) -> Vec<Stamp> {
     out
 }
 
+/// One coarse warp row: both fields at the coarse columns, and their largest magnitudes.
+#[derive(Clone, Debug, Default)]
+struct CoarseRow {
+    j: Option<usize>,
+    values: [Vec<f32>; 2],
+    max_abs: [f32; 2],
+}
+
 /// Per-task buffers.
 struct Scratch {
-    acc: Vec<f32>,
-    wx: Vec<f32>,
-    wy: Vec<f32>,
-    coarse: [Vec<f32>; 2],
+    /// Σ (exp(β·m) − 1) of the current row.
+    acc: Vec<Chunk>,
+    /// Warped pixel-centre x (x_mm + warp x), mm.
+    px: Vec<Chunk>,
+    /// Warp y, mm.
+    wy: Vec<Chunk>,
+    /// Coarse warp rows j and j + 1 of the current row.
+    coarse: [CoarseRow; 2],
+    /// The coarse warp row blended to the current row, per field.
+    blend: [Vec<f32>; 2],
     noise: RowScratch,
+    /// The warp fields' own caches (each keeps its lattice rows between pixel rows).
+    warp_noise: [RowScratch; 2],
+    /// Height rows just outside the band (the normal map's neighbours).
+    halo: [Vec<f32>; 2],
 }
 
 impl Scratch {
     fn new(ctx: &Context) -> Self {
         let cols = ctx.warp.as_ref().map_or(0, |w| w.cols);
-        let coarse_rows = BAND_ROWS / ctx.warp.as_ref().map_or(BAND_ROWS, |w| w.step) + 2;
         Self {
-            acc: vec![0.0; ctx.w + LANES],
-            wx: vec![0.0; ctx.w + LANES],
-            wy: vec![0.0; ctx.w + LANES],
-            coarse: [vec![0.0; cols * coarse_rows], vec![0.0; cols * coarse_rows]],
+            acc: vec![Chunk([0.0; LANES]); ctx.chunks],
+            // Without a warp, px stays x_mm and wy stays 0.
+            px: ctx.x_mm.clone(),
+            wy: vec![Chunk([0.0; LANES]); ctx.chunks],
+            coarse: Default::default(),
+            blend: [vec![0.0; cols], vec![0.0; cols]],
             noise: RowScratch::default(),
+            warp_noise: Default::default(),
+            halo: [vec![0.0; ctx.w], vec![0.0; ctx.w]],
         }
     }
 }
 
-fn bake_band_dispatch(ctx: &Context, band: usize, out: &mut [f32], scratch: &mut Scratch) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2 (checked just above), the only requirement of
-            // calling a `#[target_feature(enable = "avx2")]` function.
-            unsafe { bake_band_avx2(ctx, band, out, scratch) };
-            return;
-        }
+/// One band's work, a [`crate::simd::Kernel`].
+struct Band<'a, 'c> {
+    ctx: &'a Context<'c>,
+    band: usize,
+    out: &'a mut [f32],
+    rgb: Option<&'a mut [u8]>,
+    scratch: &'a mut Scratch,
+}
+
+impl crate::simd::Kernel for Band<'_, '_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        bake_band(self.ctx, self.band, self.out, self.rgb, self.scratch);
     }
-    bake_band(ctx, band, out, scratch);
 }
 
-/// [`bake_band`] compiled with AVX2 (same operations, wider vectors; no FMA).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn bake_band_avx2(ctx: &Context, band: usize, out: &mut [f32], scratch: &mut Scratch) {
-    bake_band(ctx, band, out, scratch);
-}
-
+/// Bakes the rows of `band` into `out` (and their normals into `rgb`).
 #[inline(always)]
-fn bake_band(ctx: &Context, band: usize, out: &mut [f32], scratch: &mut Scratch) {
+fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>, s: &mut Scratch) {
     let w = ctx.w;
-    let y_first = band * BAND_ROWS;
-    let rows = out.len() / w;
-    let Scratch {
-        acc,
-        wx,
-        wy,
-        coarse,
-        noise,
-    } = scratch;
-    // Coarse warp rows covering this band (one past its last row, for interpolation).
-    let warp_first = ctx.warp.as_ref().map(|warp| {
-        let (j0, j1) = (y_first / warp.step, (y_first + rows - 1) / warp.step + 1);
-        for (field, grid) in warp.fields.iter().zip(coarse.iter_mut()) {
-            for j in j0..=j1 {
-                let v = 1.0 - ((j * warp.step) as f32 + 0.5) / ctx.h as f32;
-                let row = &mut grid[(j - j0) * warp.cols..(j - j0 + 1) * warp.cols];
-                row.fill(0.0);
-                field.add_row(v, row, noise);
-            }
-        }
-        j0
+    let y0 = band * BAND_ROWS;
+    let y1 = y0 + out.len() / w;
+    // With normals, the neighbour rows outside the band are baked again into the halo
+    // buffers; rows go strictly downward (halo above, band, halo below) so the noise and
+    // warp caches move forward only.
+    let settings = ctx.normals.filter(|_| rgb.is_some());
+    let outside = |y: usize| !(y0..y1).contains(&y);
+    let halo_rows = settings.map_or([None, None], |settings| {
+        let first = RowRule::new(y0, w, ctx.h, &settings).above;
+        let last = RowRule::new(y1 - 1, w, ctx.h, &settings).below;
+        [
+            outside(first).then_some(first),
+            outside(last).then_some(last),
+        ]
     });
-    // The warp of this band is a convex blend of its coarse values, so their largest
-    // magnitude bounds it: stamps only visit pixels within that reach (pixels outside a
-    // stamp's support add exactly 0, so the bound changes speed, never the bytes).
-    let band_reach = match (ctx.warp.as_ref(), warp_first) {
-        (Some(warp), Some(j0)) => {
-            let rows_used = (y_first + rows - 1) / warp.step + 2 - j0;
-            let max_abs = |g: &[f32]| {
-                g[..rows_used * warp.cols]
-                    .iter()
-                    .fold(0.0f32, |m, v| m.max(v.abs()))
-            };
-            let (mx, my) = (max_abs(&coarse[0]), max_abs(&coarse[1]));
-            (mx * mx + my * my).sqrt() * 1.0001
-        }
-        _ => 0.0,
+    let mut halo = std::mem::take(&mut s.halo);
+    if let Some(y) = halo_rows[0] {
+        height_row(ctx, y, &mut halo[0], s);
+    }
+    for (r, dst) in out.chunks_exact_mut(w).enumerate() {
+        height_row(ctx, y0 + r, dst, s);
+    }
+    if let Some(y) = halo_rows[1] {
+        height_row(ctx, y, &mut halo[1], s);
+    }
+    let (Some(rgb), Some(settings)) = (rgb, settings) else {
+        s.halo = halo;
+        return;
     };
-    let stamps = &ctx.bands[band];
-    for r in 0..rows {
-        let y = y_first + r;
-        let out_row = &mut out[r * w..(r + 1) * w];
-        let v = crate::heightmap::pixel_to_v(y as u32, ctx.h as u32);
-        let y_mm = v * ctx.size_mm;
-        if let (Some(warp), Some(j0)) = (ctx.warp.as_ref(), warp_first) {
-            let j = y / warp.step - j0;
-            let fy = (y % warp.step) as f32 / warp.step as f32;
-            for (grid, dst) in coarse.iter().zip([&mut *wx, &mut *wy]) {
-                let (a, b) = (
-                    &grid[j * warp.cols..(j + 1) * warp.cols],
-                    &grid[(j + 1) * warp.cols..(j + 2) * warp.cols],
-                );
-                interpolate_row(a, b, fy, warp.step, &mut dst[..w]);
+    let row_of = |y: usize| -> &[f32] {
+        if !outside(y) {
+            &out[(y - y0) * w..(y - y0 + 1) * w]
+        } else if halo_rows[0] == Some(y) {
+            &halo[0]
+        } else {
+            &halo[1]
+        }
+    };
+    for (r, dst) in rgb.chunks_exact_mut(3 * w).enumerate() {
+        let y = y0 + r;
+        let rule = RowRule::new(y, w, ctx.h, &settings);
+        normal_map::encode_row_rgb8(
+            row_of(rule.above),
+            row_of(y),
+            row_of(rule.below),
+            &rule,
+            dst,
+        );
+    }
+    s.halo = halo;
+}
+
+/// Bakes height row `y` into `dst` (w values).
+#[inline(always)]
+fn height_row(ctx: &Context, y: usize, dst: &mut [f32], s: &mut Scratch) {
+    let v = crate::heightmap::pixel_to_v(y as u32, ctx.h as u32);
+    let y_mm = v * ctx.size_mm;
+    let stamps = &ctx.bands[y / BAND_ROWS];
+    let features = !stamps.is_empty();
+    if features {
+        let reach = match &ctx.warp {
+            Some(warp) => warp_row(ctx, warp, y, s),
+            None => 0.0,
+        };
+        for a in s.acc.iter_mut() {
+            *a = Chunk([0.0; LANES]);
+        }
+        for &k in stamps {
+            stamp_row(ctx, &ctx.stamps[k as usize], y_mm, reach, s);
+        }
+    }
+    // Feature depth (0 where no feature reaches a chunk: skips the `ln`) plus noise.
+    let (beta, inv_n) = (ctx.beta, ctx.inv_n);
+    let full = dst.len() / LANES;
+    let (head, tail) = dst.split_at_mut(full * LANES);
+    for (d, a) in head.chunks_exact_mut(LANES).zip(&s.acc) {
+        let mut out = [0.0; LANES];
+        if features && any(a.0.map(|v| v != 0.0)) {
+            for l in 0..LANES {
+                out[l] = -resolve(a.0[l], beta, inv_n);
             }
         }
-        if !stamps.is_empty() {
-            acc.fill(0.0);
-            for &k in stamps {
-                stamp_row(ctx, &ctx.stamps[k as usize], y_mm, band_reach, acc, wx, wy);
-            }
-            let (beta, inv_n) = (ctx.beta, ctx.inv_n);
-            for (o, &a) in out_row.iter_mut().zip(acc.iter()) {
-                *o = -resolve(a, beta, inv_n);
+        d.copy_from_slice(&out);
+    }
+    if !tail.is_empty() {
+        let mut out = [0.0; LANES];
+        if features {
+            for l in 0..LANES {
+                out[l] = -resolve(s.acc[full].0[l], beta, inv_n);
             }
         }
-        if let Some(n) = &ctx.noise {
-            n.add_row(v, out_row, noise);
+        tail.copy_from_slice(&out[..tail.len()]);
+    }
+    if let Some(n) = &ctx.noise {
+        let noise = n.sum_row(v, &mut s.noise);
+        for (d, &n) in dst.iter_mut().zip(noise) {
+            *d += n;
         }
     }
 }
 
-/// dst[x] = bilinear warp at pixel x of a row between coarse rows `a` and `b`.
+/// True when any lane is set (compiles to one vector test).
 #[inline(always)]
-fn interpolate_row(a: &[f32], b: &[f32], fy: f32, step: usize, dst: &mut [f32]) {
-    let inv = 1.0 / step as f32;
-    for (i, chunk) in dst.chunks_mut(step).enumerate() {
-        let l = a[i] + (b[i] - a[i]) * fy;
-        let r = a[i + 1] + (b[i + 1] - a[i + 1]) * fy;
-        for (k, d) in chunk.iter_mut().enumerate() {
-            *d = l + (r - l) * (k as f32 * inv);
+fn any(mask: [bool; LANES]) -> bool {
+    mask.iter().fold(false, |a, &b| a | b)
+}
+
+/// Fills `s.px` (x_mm + warp x) and `s.wy` for row `y`; returns a bound on the warp
+/// displacement in this row (the row's warp is a convex blend of the two coarse rows
+/// around it, so their largest magnitudes bound it). Stamps only visit pixels within that
+/// reach; pixels outside a stamp's support add exactly 0, so the bound changes speed,
+/// never the bytes.
+#[inline(always)]
+fn warp_row(ctx: &Context, warp: &Warp, y: usize, s: &mut Scratch) -> f32 {
+    let j = y / warp.step;
+    for (k, cj) in [j, j + 1].into_iter().enumerate() {
+        if s.coarse[k].j == Some(cj) {
+            continue;
         }
+        if s.coarse[1 - k].j == Some(cj) {
+            s.coarse.swap(0, 1);
+            continue;
+        }
+        let row = &mut s.coarse[k];
+        let v = 1.0 - ((cj * warp.step) as f32 + 0.5) / ctx.h as f32;
+        for f in 0..2 {
+            row.values[f].clear();
+            row.values[f].resize(warp.cols, 0.0);
+            warp.fields[f].add_row(v, &mut row.values[f], &mut s.warp_noise[f]);
+            row.max_abs[f] = row.values[f].iter().fold(0.0f32, |m, v| m.max(v.abs()));
+        }
+        row.j = Some(cj);
+    }
+    let fy = (y % warp.step) as f32 / warp.step as f32;
+    let [c0, c1] = &s.coarse;
+    for f in 0..2 {
+        let (a, b) = (&c0.values[f], &c1.values[f]);
+        for ((d, &a), &b) in s.blend[f].iter_mut().zip(a).zip(b) {
+            *d = a + (b - a) * fy;
+        }
+    }
+    let w = ctx.w;
+    let px = &mut bytemuck::cast_slice_mut::<Chunk, f32>(&mut s.px)[..w];
+    let wy = &mut bytemuck::cast_slice_mut::<Chunk, f32>(&mut s.wy)[..w];
+    let x_mm = bytemuck::cast_slice::<Chunk, f32>(&ctx.x_mm);
+    let x_mm = &x_mm[..w];
+    match warp.step {
+        1 => interpolate::<1>(&s.blend, x_mm, px, wy),
+        2 => interpolate::<2>(&s.blend, x_mm, px, wy),
+        4 => interpolate::<4>(&s.blend, x_mm, px, wy),
+        8 => interpolate::<8>(&s.blend, x_mm, px, wy),
+        _ => interpolate::<16>(&s.blend, x_mm, px, wy),
+    }
+    let mx = c0.max_abs[0].max(c1.max_abs[0]);
+    let my = c0.max_abs[1].max(c1.max_abs[1]);
+    (mx * mx + my * my).sqrt() * 1.0001
+}
+
+/// px = x_mm + the x warp and wy = the y warp, linear between the coarse columns `blend`
+/// every `S` pixels (`S` a constant so each segment is a whole vector operation).
+#[inline(always)]
+fn interpolate<const S: usize>(
+    blend: &[Vec<f32>; 2],
+    x_mm: &[f32],
+    px: &mut [f32],
+    wy: &mut [f32],
+) {
+    let frac: [f32; S] = std::array::from_fn(|k| k as f32 * (1.0 / S as f32));
+    let segment = |i: usize, f: usize, k: usize| {
+        let (l, r) = (blend[f][i], blend[f][i + 1]);
+        l + (r - l) * frac[k]
+    };
+    let full = px.len() / S;
+    for (i, ((p, x), y)) in px
+        .chunks_exact_mut(S)
+        .zip(x_mm.chunks_exact(S))
+        .zip(wy.chunks_exact_mut(S))
+        .enumerate()
+    {
+        for k in 0..S {
+            p[k] = x[k] + segment(i, 0, k);
+            y[k] = segment(i, 1, k);
+        }
+    }
+    for x in full * S..px.len() {
+        px[x] = x_mm[x] + segment(full, 0, x - full * S);
+        wy[x] = segment(full, 1, x - full * S);
     }
 }
 
 /// Adds one stamp's exp(β·m) − 1 to the row accumulator over its x-interval.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn stamp_row(
-    ctx: &Context,
-    s: &Stamp,
-    y_mm: f32,
-    band_reach: f32,
-    acc: &mut [f32],
-    wx: &[f32],
-    wy: &[f32],
-) {
-    let beta = ctx.beta;
-    match *s {
+fn stamp_row(ctx: &Context, st: &Stamp, y_mm: f32, reach: f32, s: &mut Scratch) {
+    match *st {
         Stamp::Pore {
             centre,
             inv_r2,
-            depth,
+            beta_depth,
             falloff,
             radius,
-            ..
         } => {
-            let reach = radius + band_reach;
+            let r = radius + reach;
             let dy = y_mm - centre[1];
-            let hw2 = reach * reach - dy * dy;
+            let hw2 = r * r - dy * dy;
             if hw2 <= 0.0 {
                 return;
             }
             let hw = hw2.sqrt();
-            let (x0, x1) = ctx.cols(centre[0] - hw, centre[0] + hw);
-            if x0 >= x1 {
-                return;
-            }
-            let span = Span::new(acc, &ctx.x_mm, wx, wy, x0, x1);
+            let (c0, c1) = ctx.chunk_range(centre[0] - hw, centre[0] + hw);
             let (cx, cy) = (centre[0], centre[1] - y_mm);
+            let span = Span::new(s, c0, c1);
             match (ctx.profile, ctx.rim) {
                 (PoreProfile::Gaussian, Rim::Smooth) => {
-                    span.pore(cx, cy, inv_r2, depth, beta, |t| {
+                    span.pore(cx, cy, inv_r2, beta_depth, |t| {
                         super::fastmath::exp(-falloff * t) * rim_window(t)
                     })
                 }
-                (PoreProfile::Gaussian, Rim::Exact) => {
-                    span.pore(cx, cy, inv_r2, depth, beta, |t| {
-                        super::fastmath::exp(-falloff * t)
-                    })
-                }
-                (PoreProfile::Quadratic, _) => span.pore(cx, cy, inv_r2, depth, beta, |t| {
-                    let s = 1.0 - t.sqrt();
-                    s * s
+                (PoreProfile::Gaussian, Rim::Exact) => span.pore(cx, cy, inv_r2, beta_depth, |t| {
+                    super::fastmath::exp(-falloff * t)
+                }),
+                (PoreProfile::Quadratic, _) => span.pore(cx, cy, inv_r2, beta_depth, |t| {
+                    let q = 1.0 - t.sqrt();
+                    q * q
                 }),
                 (PoreProfile::Quartic, _) => {
-                    span.pore(cx, cy, inv_r2, depth, beta, |t| (1.0 - t) * (1.0 - t))
+                    span.pore(cx, cy, inv_r2, beta_depth, |t| (1.0 - t) * (1.0 - t))
                 }
             }
         }
         Stamp::Furrow {
             start,
             dir,
-            inv_len,
             len,
-            depth,
+            beta_depth,
             width,
             inv_w2,
             inv_taper,
-            ..
         } => {
-            let reach = band_reach;
             // Along a row, cross(x) and along(x) are linear in x: intersect their bands.
             let py = y_mm - start[1];
             let r = width + reach;
             let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
             for (slope, offset, a, b) in [
                 (dir[1], -py * dir[0], -r, r),
-                (dir[0], py * dir[1], -reach, len + reach),
+                (dir[0], py * dir[1], -r, len + r),
             ] {
                 if slope.abs() < 1e-9 {
                     if offset < a || offset > b {
@@ -602,67 +806,56 @@ fn stamp_row(
             if lo > hi {
                 return;
             }
-            let (x0, x1) = ctx.cols(start[0] + lo, start[0] + hi);
-            if x0 >= x1 {
-                return;
-            }
-            let span = Span::new(acc, &ctx.x_mm, wx, wy, x0, x1);
-            span.furrow(start[0], py, dir, inv_len, depth, inv_w2, inv_taper, beta);
+            let (c0, c1) = ctx.chunk_range(start[0] + lo, start[0] + hi);
+            Span::new(s, c0, c1).furrow(start[0], py, dir, len, beta_depth, inv_w2, inv_taper);
         }
     }
 }
 
-/// The pixels of one row a stamp covers.
+/// The chunks of one row a stamp covers.
 struct Span<'s> {
-    acc: &'s mut [f32],
-    x_mm: &'s [f32],
-    wx: &'s [f32],
-    wy: &'s [f32],
+    acc: &'s mut [Chunk],
+    px: &'s [Chunk],
+    wy: &'s [Chunk],
 }
 
 impl<'s> Span<'s> {
-    /// Columns [x0, x1) rounded up to whole LANES chunks (the buffers are padded).
     #[inline(always)]
-    fn new(
-        acc: &'s mut [f32],
-        x_mm: &'s [f32],
-        wx: &'s [f32],
-        wy: &'s [f32],
-        x0: usize,
-        x1: usize,
-    ) -> Self {
-        let x1 = x0 + (x1 - x0).div_ceil(LANES) * LANES;
+    fn new(s: &'s mut Scratch, c0: usize, c1: usize) -> Self {
         Self {
-            acc: &mut acc[x0..x1],
-            x_mm: &x_mm[x0..x1],
-            wx: &wx[x0..x1],
-            wy: &wy[x0..x1],
+            acc: &mut s.acc[c0..c1],
+            px: &s.px[c0..c1],
+            wy: &s.wy[c0..c1],
         }
     }
 
-    /// Pore centred `cy` mm above this row at x = `cx`: m = depth·shape(r²/R²).
+    /// Pore centred `cy` mm above this row at x = `cx`: β·m = β·dmax·shape(r²/R²).
     #[inline(always)]
-    fn pore(
-        self,
-        cx: f32,
-        cy: f32,
-        inv_r2: f32,
-        depth: f32,
-        beta: f32,
-        shape: impl Fn(f32) -> f32,
-    ) {
-        for (((a, &x), &wx), &wy) in self.acc.iter_mut().zip(self.x_mm).zip(self.wx).zip(self.wy) {
-            {
-                let dx = x + wx - cx;
-                let dy = wy - cy;
-                let t = (dx * dx + dy * dy) * inv_r2;
-                let m = if t < 1.0 { depth * shape(t) } else { 0.0 };
-                *a += term(m, beta);
+    fn pore(self, cx: f32, cy: f32, inv_r2: f32, beta_depth: f32, shape: impl Fn(f32) -> f32) {
+        for ((a, x), wy) in self.acc.iter_mut().zip(self.px).zip(self.wy) {
+            let mut t = [0.0; LANES];
+            for l in 0..LANES {
+                let dx = x.0[l] - cx;
+                let dy = wy.0[l] - cy;
+                t[l] = (dx * dx + dy * dy) * inv_r2;
+            }
+            if !any(t.map(|t| t < 1.0)) {
+                continue;
+            }
+            for l in 0..LANES {
+                let bm = if t[l] < 1.0 {
+                    beta_depth * shape(t[l])
+                } else {
+                    0.0
+                };
+                a.0[l] += super::fastmath::exp(bm) - 1.0;
             }
         }
     }
 
-    /// Furrow from (sx, row − py) along `dir`: m = A·(1 − x²/ω²)·taper(s) (eq. 16).
+    /// Furrow from (sx, row − py) along `dir`, `len` mm long: β·m = β·A·(1 − d²/(ω·f)²)
+    /// (eq. 16 around the segment, see `furrows::height`), d the distance to the segment
+    /// and f the width factor (1/2 at the ends, 1 from `1/inv_taper` mm inward).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn furrow(
@@ -670,27 +863,34 @@ impl<'s> Span<'s> {
         sx: f32,
         py: f32,
         dir: [f32; 2],
-        inv_len: f32,
-        depth: f32,
+        len: f32,
+        beta_depth: f32,
         inv_w2: f32,
         inv_taper: f32,
-        beta: f32,
     ) {
-        for (((a, &x), &wx), &wy) in self.acc.iter_mut().zip(self.x_mm).zip(self.wx).zip(self.wy) {
-            {
-                let px = x + wx - sx;
-                let py = py + wy;
-                let along = (px * dir[0] + py * dir[1]) * inv_len;
+        for ((a, x), wy) in self.acc.iter_mut().zip(self.px).zip(self.wy) {
+            let mut q = [0.0; LANES];
+            for l in 0..LANES {
+                let px = x.0[l] - sx;
+                let py = py + wy.0[l];
+                let along = px * dir[0] + py * dir[1];
                 let cross = px * dir[1] - py * dir[0];
-                let q = cross * cross * inv_w2;
-                let e = (along.min(1.0 - along) * inv_taper).clamp(0.0, 1.0);
-                let taper = e * e * (3.0 - 2.0 * e);
-                let m = if q < 1.0 {
-                    depth * (1.0 - q) * taper
+                let on = along.clamp(0.0, len);
+                let beyond = along - on;
+                let e = (on.min(len - on) * inv_taper).clamp(0.0, 1.0);
+                let f = 0.5 + 0.5 * (e * e * (3.0 - 2.0 * e));
+                q[l] = (cross * cross + beyond * beyond) * inv_w2 / (f * f);
+            }
+            if !any(q.map(|q| q < 1.0)) {
+                continue;
+            }
+            for l in 0..LANES {
+                let bm = if q[l] < 1.0 {
+                    beta_depth * (1.0 - q[l])
                 } else {
                     0.0
                 };
-                *a += term(m, beta);
+                a.0[l] += super::fastmath::exp(bm) - 1.0;
             }
         }
     }
@@ -736,17 +936,50 @@ mod tests {
 
     #[test]
     fn simd_and_scalar_paths_give_the_same_bytes() {
-        let relief = MicroRelief::new(&project(false)).unwrap();
-        let ctx = Context::new(&relief, 128, Parts::default());
-        let mut scratch = Scratch::new(&ctx);
-        let mut a = vec![0.0; 128 * BAND_ROWS];
-        let mut b = vec![0.0; 128 * BAND_ROWS];
-        for band in 0..128 / BAND_ROWS {
-            bake_band(&ctx, band, &mut a, &mut scratch);
-            bake_band_dispatch(&ctx, band, &mut b, &mut scratch);
+        // Every level this CPU has (AVX-512, AVX2) against the baseline, height and normals,
+        // tiled and not, at a width that is not a whole number of chunks.
+        for tile in [false, true] {
+            let relief = MicroRelief::new(&project(tile)).unwrap();
+            let settings = relief.normal_settings();
+            let bake = |level| {
+                relief
+                    .bake_at(200, Parts::default(), Some(&settings), level)
+                    .unwrap()
+            };
+            let (base_h, base_n, _) = bake(Level::Baseline);
+            let bits = |m: &HeightMap| m.data().iter().map(|h| h.to_bits()).collect::<Vec<_>>();
+            for level in [Level::Avx2, Level::Avx512] {
+                let (h, n, _) = bake(level);
+                assert_eq!(bits(&h), bits(&base_h), "heights, {level:?}, tile {tile}");
+                assert_eq!(n, base_n, "normals, {level:?}, tile {tile}");
+            }
+        }
+    }
+
+    #[test]
+    fn fused_normals_equal_encoding_the_baked_heights() {
+        for (tile, convention) in [
+            (false, crate::normal_map::Convention::OpenGl),
+            (true, crate::normal_map::Convention::DirectX),
+        ] {
+            let relief = MicroRelief::new(&project(tile)).unwrap();
+            let settings = NormalSettings {
+                strength: 0.01,
+                convention,
+                tiling: tile,
+            };
+            // 2 full bands and a short one, so halos cross band and map edges.
+            let size = 2 * BAND_ROWS as u32 + 7;
+            let (h, rgb, _) = relief.bake_with_normals(size, &settings).unwrap();
+            let (plain, _) = relief.bake(size).unwrap();
+            assert_eq!(h.data(), plain.data());
+            let want = crate::normal_map::encode_rgb8(&h, &settings).unwrap();
+            assert_eq!(rgb.len(), want.len());
+            let first_diff = rgb.iter().zip(&want).position(|(a, b)| a != b);
+            assert_eq!(first_diff, None, "first differing byte");
+            // Not flat: the relief shows in the normals.
             assert!(
-                a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()),
-                "band {band}"
+                rgb.iter().step_by(3).any(|&r| r < 100) && rgb.iter().step_by(3).any(|&r| r > 156)
             );
         }
     }

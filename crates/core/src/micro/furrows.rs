@@ -5,10 +5,17 @@
 //! a Delaunay-like mesh of polygonal cells, the micro-relief of real skin). A link's depth
 //! depends on its direction: links along the preferred direction θ are primary lines of
 //! full depth, links across it secondary, weighted by 1 − strength·sin²(angle − θ).
-//! Across a furrow, at distance x from its axis, eq. 16: s(x) = −A·(1 − x²/ω²) for |x| < ω;
-//! along it the depth tapers to 0 with a smoothstep over the first and last `taper` of its
-//! length, so furrows fade into the pores they join. Furrows are straight in the warped
-//! domain (see `micro::bake`), so on the map they bend with the domain warp.
+//! Across a furrow, at distance x from its axis, eq. 16: s(x) = −A·(1 − x²/ω²) for |x| < ω.
+//! **Choice** (SPEC §3 asks to taper toward the ends): tapering the *depth* to 0 at both ends
+//! made every furrow an isolated dash between two pores, with a light gap at each pore
+//! (SPEC §3's "tubes"), even when the taper stopped at the pore rim (tried: the pore is
+//! shallower than the furrows meeting in it, so the gap stays). So the depth stays full to
+//! the ends, x is the distance to the *segment* (round caps, so the furrows meeting at a pore
+//! join smoothly through it), and what tapers is the *width*: from ω in the middle down to
+//! ω/2 at the ends, over `taper` of the length at each end (a smoothstep). The network then
+//! reads as connected polygonal cells with pores at the junctions, as in Weiss et al. 2023.
+//! Furrows are straight in the warped domain (see `micro::bake`), so on the map they bend
+//! with the domain warp.
 
 use crate::rng::Rng;
 
@@ -29,7 +36,7 @@ pub struct FurrowParams {
     pub direction_deg: f32,
     /// 0 = all links equal, 1 = links across θ vanish.
     pub direction_strength: f32,
-    /// Fraction of the length over which each end tapers, 0–0.5.
+    /// Fraction of the length over which the width narrows at each end, 0–0.5.
     pub taper: f32,
 }
 
@@ -43,7 +50,7 @@ pub struct Furrow {
     pub depth: f32,
     /// ω in mm, > 0.
     pub width_mm: f32,
-    /// Fraction of the length tapered at each end.
+    /// Fraction of the length over which the width narrows at each end.
     pub taper: f32,
 }
 
@@ -54,12 +61,30 @@ pub fn cross_section(x_mm: f32, depth: f32, width_mm: f32) -> f32 {
     if q < 1.0 { -depth * (1.0 - q) } else { 0.0 }
 }
 
-/// The depth factor along a furrow at s ∈ [0,1]: smoothstep up over [0, taper], 1 in the
-/// middle, down over [1 − taper, 1]; 0 outside [0,1].
+/// The width factor at `along_mm` from the start of a furrow `len_mm` long whose ends
+/// narrow over `taper_len_mm`: 1/2 at the ends (and beyond them, on the round caps), rising
+/// with a smoothstep to 1 at `taper_len_mm` from each end.
 #[inline(always)]
-pub fn taper(s: f32, taper: f32) -> f32 {
-    let e = (s.min(1.0 - s) / taper.max(1e-6)).clamp(0.0, 1.0);
-    e * e * (3.0 - 2.0 * e)
+pub fn width_factor(along_mm: f32, len_mm: f32, taper_len_mm: f32) -> f32 {
+    let a = along_mm.clamp(0.0, len_mm);
+    let e = (a.min(len_mm - a) / taper_len_mm.max(1e-6)).clamp(0.0, 1.0);
+    0.5 + 0.5 * (e * e * (3.0 - 2.0 * e))
+}
+
+/// The height of a furrow (eq. 16 around the segment) at `along_mm` along its axis and
+/// `cross_mm` across it: −A·(1 − d²/(ω·f)²) with d the distance to the segment and f the
+/// [`width_factor`]; 0 outside.
+#[inline(always)]
+pub fn height(f: &Furrow, along_mm: f32, cross_mm: f32) -> f32 {
+    let d = [f.end_mm[0] - f.start_mm[0], f.end_mm[1] - f.start_mm[1]];
+    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    let beyond = along_mm - along_mm.clamp(0.0, len);
+    let dist = (cross_mm * cross_mm + beyond * beyond).sqrt();
+    cross_section(
+        dist,
+        f.depth,
+        f.width_mm * width_factor(along_mm, len, f.taper * len),
+    )
 }
 
 /// Links the pores into a network (see the module docs). Deterministic in `seed`.
@@ -243,13 +268,37 @@ mod tests {
     }
 
     #[test]
-    fn ends_taper_to_zero() {
-        assert_eq!(taper(0.0, 0.25), 0.0);
-        assert_eq!(taper(1.0, 0.25), 0.0);
-        assert_eq!(taper(0.5, 0.25), 1.0);
-        close(taper(0.125, 0.25), 0.5, 1e-6);
-        close(taper(0.875, 0.25), 0.5, 1e-6);
-        assert_eq!(taper(-0.1, 0.25), 0.0);
+    fn width_narrows_to_half_at_the_ends_and_depth_stays_full() {
+        // 2 mm long, narrowing over 0.4 mm at each end.
+        assert_eq!(width_factor(0.0, 2.0, 0.4), 0.5);
+        assert_eq!(width_factor(2.0, 2.0, 0.4), 0.5);
+        assert_eq!(
+            width_factor(-0.3, 2.0, 0.4),
+            0.5,
+            "round cap beyond the start"
+        );
+        assert_eq!(width_factor(1.0, 2.0, 0.4), 1.0);
+        assert_eq!(width_factor(0.4, 2.0, 0.4), 1.0);
+        // Half way along the taper: smoothstep(0.5) = 0.5 → 0.75.
+        close(width_factor(0.2, 2.0, 0.4), 0.75, 1e-6);
+        close(width_factor(1.9, 2.0, 0.4), 0.5 + 0.5 * 0.156_25, 1e-6);
+        let f = Furrow {
+            start_mm: [0.0, 0.0],
+            end_mm: [2.0, 0.0],
+            depth: 1.0,
+            width_mm: 0.4,
+            taper: 0.2,
+        };
+        // Full depth on the axis at the very ends: the furrows meeting at a pore join.
+        close(height(&f, 0.0, 0.0), -1.0, 1e-6);
+        close(height(&f, 2.0, 0.0), -1.0, 1e-6);
+        // Middle, x = 0.2 = ω/2: −(1 − 0.25) = −0.75; at the end the half width is 0.2.
+        close(height(&f, 1.0, 0.2), -0.75, 1e-6);
+        close(height(&f, 0.0, 0.1), -0.75, 1e-6);
+        assert_eq!(height(&f, 0.0, 0.2), 0.0);
+        // Round cap: 0.1 mm beyond the end on the axis, like 0.1 mm across.
+        close(height(&f, 2.1, 0.0), -0.75, 1e-6);
+        assert_eq!(height(&f, 2.25, 0.0), 0.0);
     }
 
     #[test]

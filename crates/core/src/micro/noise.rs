@@ -11,12 +11,15 @@
 //! **Tiling.** When the map tiles, c_k is rounded to a whole number of cells and lattice
 //! indices wrap modulo c_k, so every octave is periodic over the map (u → u + 1).
 //!
-//! **Speed.** [`RowSampler`] evaluates whole rows: along a row the lattice row j and the
-//! fade in v are fixed, and the fade in u depends on the column only, so per octave it keeps
-//! four per-column basis functions and, per row, hashes each lattice point once. A pixel
-//! octave then costs four multiply-adds over contiguous arrays, which the compiler
-//! vectorises (see `micro::bake` for the AVX2 dispatch). The result is bit-identical to the
-//! scalar [`FbmField::sample`].
+//! **Speed.** [`RowSampler`] evaluates whole rows. Gradient noise in a cell regroups as
+//! W0·Q_y(j) + W1·Q_y(j+1) + W2·Q_x(j) + W3·Q_x(j+1), where the weights W depend on the
+//! pixel row only and Q(j) on the column and the gradients of lattice row j only
+//! ([`Octave::row_weights`]). Per octave it keeps Q of the two lattice rows around the
+//! current pixel row, recomputed only when the row enters a new lattice row (each lattice
+//! point hashed once per lattice row, not per pixel). A pixel octave then costs four loads,
+//! four products and four sums over contiguous arrays, whole rows in chunks of [`LANES`]
+//! with no per-cell runs, which the compiler vectorises (see `micro::bake` for the AVX2 /
+//! AVX-512 dispatch). The result is bit-identical to the scalar [`FbmField::sample`].
 
 /// Parameters of one fBm (SPEC §3 "Noise"); validated by `project::NoiseSection`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -138,28 +141,59 @@ impl FbmField {
     pub fn sample(&self, u: f32, v: f32) -> f32 {
         let mut acc = 0.0f32;
         for o in &self.octaves {
-            let y = v * o.cells_v + o.offset[1];
-            let j = y.floor();
-            let fy = y - j;
-            let sy = fade(fy);
+            let (j, w) = o.row_weights(v);
             let x = u * o.cells_u + o.offset[0];
             let i = x.floor();
-            let fx = x - i;
-            let t = fade(fx);
-            let (i, j) = (i as i32, j as i32);
-            let g00 = o.gradient(i, j);
-            let g10 = o.gradient(i + 1, j);
-            let g01 = o.gradient(i, j + 1);
-            let g11 = o.gradient(i + 1, j + 1);
-            let [c0, d0, c1, d1] = cell_coefficients(g00, g10, g01, g11, fy, sy, o.amplitude);
-            let b = basis(fx, t);
-            acc += c0 * b[0] + c1 * b[1] + d0 * b[2] + d1 * b[3];
+            let b = basis_of(x - i);
+            let i = i as i32;
+            let q = |j: i32| lattice_row_terms(o.gradient(i, j), o.gradient(i + 1, j), b);
+            let ([qy0, qx0], [qy1, qx1]) = (q(j), q(j + 1));
+            acc += combine(w, qy0, qy1, qx0, qx1);
         }
         acc
     }
 }
 
+/// One octave's value from the row weights and the four lattice-row terms (the exact
+/// operation order shared by [`FbmField::sample`] and [`RowSampler::add_row`]).
+#[inline(always)]
+fn combine(w: [f32; 4], qy0: f32, qy1: f32, qx0: f32, qx1: f32) -> f32 {
+    w[0] * qy0 + w[1] * qy1 + w[2] * qx0 + w[3] * qx1
+}
+
+/// For the lattice row j and a column in cell i: (Q_y, Q_x) = (g_y(i,j)·b0 + g_y(i+1,j)·b1,
+/// g_x(i,j)·b2 + g_x(i+1,j)·b3), the parts of the noise that depend on j only through
+/// the gradients (see [`Octave::row_weights`]).
+#[inline(always)]
+fn lattice_row_terms(ga: [f32; 2], gb: [f32; 2], b: [f32; 4]) -> [f32; 2] {
+    [ga[1] * b[0] + gb[1] * b[1], ga[0] * b[2] + gb[0] * b[3]]
+}
+
 impl Octave {
+    /// The lattice row j below v and the row weights of the decomposition
+    /// noise = W0·Q_y(j) + W1·Q_y(j+1) + W2·Q_x(j) + W3·Q_x(j+1) with (fy, sy) the offset in
+    /// the cell and its fade: W = amp·(fy(1 − sy), (fy − 1)·sy, 1 − sy, sy). This is the
+    /// gradient-noise sum g00·(fx, fy)·(1−t)(1−sy) + … regrouped so that, along a row, the
+    /// per-column factors Q depend on the lattice row only and are reused by every pixel row
+    /// in the same lattice row.
+    #[inline(always)]
+    fn row_weights(&self, v: f32) -> (i32, [f32; 4]) {
+        let y = v * self.cells_v + self.offset[1];
+        let j = y.floor();
+        let fy = y - j;
+        let sy = fade(fy);
+        let a = self.amplitude;
+        (
+            j as i32,
+            [
+                fy * (1.0 - sy) * a,
+                (fy - 1.0) * sy * a,
+                (1.0 - sy) * a,
+                sy * a,
+            ],
+        )
+    }
+
     #[inline]
     fn gradient(&self, i: i32, j: i32) -> [f32; 2] {
         let (i, j) = match self.period {
@@ -194,32 +228,13 @@ fn basis(fx: f32, t: f32) -> [f32; 4] {
     [1.0 - t, t, fx * (1.0 - t), (fx - 1.0) * t]
 }
 
-/// Per lattice cell and row: the two edge functions e0(fx) = c0 + d0·fx (left corners
-/// blended in v) and e1(fx) = c1 + d1·(fx − 1) (right corners), times the amplitude.
-#[inline(always)]
-fn cell_coefficients(
-    g00: [f32; 2],
-    g10: [f32; 2],
-    g01: [f32; 2],
-    g11: [f32; 2],
-    fy: f32,
-    sy: f32,
-    amp: f32,
-) -> [f32; 4] {
-    let fy1 = fy - 1.0;
-    let c0 = g00[1] * fy + sy * (g01[1] * fy1 - g00[1] * fy);
-    let d0 = g00[0] + sy * (g01[0] - g00[0]);
-    let c1 = g10[1] * fy + sy * (g11[1] * fy1 - g10[1] * fy);
-    let d1 = g10[0] + sy * (g11[0] - g10[0]);
-    [c0 * amp, d0 * amp, c1 * amp, d1 * amp]
-}
-
 /// Per-octave column tables of a [`RowSampler`].
 #[derive(Clone, Debug)]
 struct OctaveColumns {
     /// Runs of columns in the same lattice cell: (cell index i, first column, end column).
     runs: Vec<(i32, u32, u32)>,
-    /// The four basis functions, one array each, one value per column.
+    /// The four per-column basis functions (1 − t, t, fx(1 − t), (fx − 1)·t), one array
+    /// each.
     basis: [Vec<f32>; 4],
 }
 
@@ -231,14 +246,36 @@ pub struct RowSampler<'a> {
     len: usize,
 }
 
-/// Per-thread scratch space of [`RowSampler::add_row`].
+/// The Q_y and Q_x rows of one lattice row of one octave (see [`Octave::row_weights`]).
 #[derive(Clone, Debug, Default)]
-pub struct RowScratch {
-    grads: Vec<[f32; 2]>,
+struct LatticeRow {
+    j: Option<i32>,
+    qy: Vec<f32>,
+    qx: Vec<f32>,
 }
 
-/// Padding (in columns) kept after every per-column table and row buffer.
-pub(crate) const LANES: usize = 8;
+/// A few recently used lattice rows of one octave (4: the two of the current pixel row and
+/// the two of a row a little above, which is where a bake's next band starts).
+#[derive(Clone, Debug, Default)]
+struct Slots {
+    rows: [LatticeRow; 4],
+    used: [u64; 4],
+    clock: u64,
+}
+
+/// Per-thread scratch space of [`RowSampler::add_row`]: per octave, the lattice rows of the
+/// last rows evaluated (consecutive pixel rows mostly share them).
+#[derive(Clone, Debug, Default)]
+pub struct RowScratch {
+    rows: Vec<Slots>,
+    pair: Vec<[usize; 2]>,
+    weights: Vec<[f32; 4]>,
+    sum: Vec<f32>,
+}
+
+/// Padding (in columns) kept after every per-column table and row buffer, and the width of
+/// the chunks the row loops work in.
+pub(crate) const LANES: usize = 16;
 
 impl<'a> RowSampler<'a> {
     /// Precomputes the column tables for the positions `us` (must be non-decreasing).
@@ -253,8 +290,7 @@ impl<'a> RowSampler<'a> {
                 for (c, &u) in us.iter().enumerate() {
                     let x = u * o.cells_u + o.offset[0];
                     let i = x.floor();
-                    let fx = x - i;
-                    let b = basis_of(fx);
+                    let b = basis_of(x - i);
                     for (dst, val) in basis.iter_mut().zip(b) {
                         dst.push(val);
                     }
@@ -263,9 +299,6 @@ impl<'a> RowSampler<'a> {
                         Some(last) if last.0 == i => last.2 = c as u32 + 1,
                         _ => runs.push((i, c as u32, c as u32 + 1)),
                     }
-                }
-                for b in &mut basis {
-                    b.resize(us.len() + LANES, 0.0);
                 }
                 OctaveColumns { runs, basis }
             })
@@ -277,46 +310,106 @@ impl<'a> RowSampler<'a> {
         }
     }
 
+    /// Fills `row` with Q_y, Q_x of lattice row `j` of octave `k`.
+    fn lattice_row(&self, k: usize, j: i32, row: &mut LatticeRow) {
+        let (o, cols) = (&self.field.octaves[k], &self.columns[k]);
+        let padded = self.len.next_multiple_of(LANES);
+        row.qy.resize(padded, 0.0);
+        row.qx.resize(padded, 0.0);
+        let [b0, b1, b2, b3] = &cols.basis;
+        let mut ga = match cols.runs.first() {
+            Some(&(i, _, _)) => o.gradient(i, j),
+            None => return,
+        };
+        for &(i, x0, x1) in &cols.runs {
+            let gb = o.gradient(i + 1, j);
+            let r = x0 as usize..x1 as usize;
+            let basis = b0[r.clone()]
+                .iter()
+                .zip(&b1[r.clone()])
+                .zip(b2[r.clone()].iter().zip(&b3[r.clone()]));
+            for ((qy, qx), ((&p, &q), (&r, &s))) in
+                row.qy[r.clone()].iter_mut().zip(&mut row.qx[r]).zip(basis)
+            {
+                [*qy, *qx] = lattice_row_terms(ga, gb, [p, q, r, s]);
+            }
+            ga = gb;
+        }
+        row.j = Some(j);
+    }
+
+    /// Makes two of the `slots` hold lattice rows j and j + 1 of octave `k` (computing
+    /// what is missing into the slots unused the longest) and returns their indices.
+    fn ensure_rows(&self, k: usize, j: i32, slots: &mut Slots) -> [usize; 2] {
+        slots.clock += 1;
+        let mut found = [None, None];
+        for (n, want) in [j, j + 1].into_iter().enumerate() {
+            if let Some(i) = slots.rows.iter().position(|r| r.j == Some(want)) {
+                slots.used[i] = slots.clock;
+                found[n] = Some(i);
+            }
+        }
+        let mut out = [0; 2];
+        for (n, want) in [j, j + 1].into_iter().enumerate() {
+            out[n] = match found[n] {
+                Some(i) => i,
+                None => {
+                    let i = (0..slots.rows.len())
+                        .min_by_key(|&i| slots.used[i])
+                        .unwrap_or(0);
+                    self.lattice_row(k, want, &mut slots.rows[i]);
+                    slots.used[i] = slots.clock;
+                    i
+                }
+            };
+        }
+        out
+    }
+
     /// Adds gain · fBm(u_c, v) to `out[c]` for every column c. `out.len()` must equal the
     /// number of positions given to [`RowSampler::new`] (longer outputs are only partly
     /// written, shorter ones are filled as far as they go).
     #[inline(always)]
     pub fn add_row(&self, v: f32, out: &mut [f32], scratch: &mut RowScratch) {
         let n = self.len.min(out.len());
-        let out = &mut out[..n];
-        for (o, cols) in self.field.octaves.iter().zip(&self.columns) {
-            let (Some(first), Some(last)) = (cols.runs.first(), cols.runs.last()) else {
-                continue;
-            };
-            let y = v * o.cells_v + o.offset[1];
-            let j = y.floor();
-            let fy = y - j;
-            let sy = fade(fy);
-            let j = j as i32;
-            // Hash each lattice point of the two lattice rows once.
-            let (i0, i1) = (first.0, last.0 + 1);
-            scratch.grads.clear();
-            for i in i0..=i1 {
-                scratch.grads.push(o.gradient(i, j));
-                scratch.grads.push(o.gradient(i, j + 1));
-            }
-            for &(i, x0, x1) in &cols.runs {
-                let k = 2 * (i - i0) as usize;
-                let g = &scratch.grads[k..k + 4];
-                let [c0, d0, c1, d1] =
-                    cell_coefficients(g[0], g[2], g[1], g[3], fy, sy, o.amplitude);
-                let (x0, x1) = (x0 as usize, (x1 as usize).min(out.len()));
-                if x0 >= x1 {
-                    break;
-                }
-                let dst = &mut out[x0..x1];
-                let (b0, b1) = (&cols.basis[0][x0..x1], &cols.basis[1][x0..x1]);
-                let (b2, b3) = (&cols.basis[2][x0..x1], &cols.basis[3][x0..x1]);
-                for ((((d, &p), &q), &r), &s) in dst.iter_mut().zip(b0).zip(b1).zip(b2).zip(b3) {
-                    *d += c0 * p + c1 * q + d0 * r + d1 * s;
-                }
+        self.sum_row(v, scratch);
+        for (o, &s) in out[..n].iter_mut().zip(&scratch.sum) {
+            *o += s;
+        }
+    }
+
+    /// Computes gain · fBm along row `v` into `scratch.sum` (padded to whole chunks of
+    /// [`LANES`]; the padding holds unspecified values) and returns it.
+    #[inline(always)]
+    pub(crate) fn sum_row<'s>(&self, v: f32, scratch: &'s mut RowScratch) -> &'s [f32] {
+        let octaves = &self.field.octaves;
+        scratch.rows.resize_with(octaves.len(), Default::default);
+        let padded = self.len.next_multiple_of(LANES);
+        scratch.sum.clear();
+        scratch.sum.resize(padded, 0.0);
+        scratch.weights.clear();
+        scratch.pair.clear();
+        for (k, o) in octaves.iter().enumerate() {
+            let (j, w) = o.row_weights(v);
+            let pair = self.ensure_rows(k, j, &mut scratch.rows[k]);
+            scratch.weights.push(w);
+            scratch.pair.push(pair);
+        }
+        // Octave by octave along the whole row: four loads, four products and four sums per
+        // pixel and octave, in the same order as `FbmField::sample`. (A plain zip over
+        // equal-length slices is what the loop vectoriser handles most reliably.)
+        for ((slots, &w), &[i0, i1]) in scratch.rows.iter().zip(&scratch.weights).zip(&scratch.pair)
+        {
+            let (r0, r1) = (&slots.rows[i0], &slots.rows[i1]);
+            let (qy0, qy1) = (&r0.qy[..padded], &r1.qy[..padded]);
+            let (qx0, qx1) = (&r0.qx[..padded], &r1.qx[..padded]);
+            for ((((s, &a), &b), &c), &d) in
+                scratch.sum.iter_mut().zip(qy0).zip(qy1).zip(qx0).zip(qx1)
+            {
+                *s += combine(w, a, b, c, d);
             }
         }
+        &scratch.sum
     }
 }
 

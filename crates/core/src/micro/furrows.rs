@@ -236,14 +236,7 @@ impl NeighbourGrid {
 mod tests {
     use super::*;
     use crate::micro::pores::{Placement, PoreStats, place_pores};
-
-    fn close(got: f32, want: f32, tol: f32) {
-        assert!(
-            (got - want).abs() <= tol,
-            "got {got}, want {want}, difference {}",
-            got - want
-        );
-    }
+    use crate::test_util::close;
 
     fn params() -> FurrowParams {
         FurrowParams {

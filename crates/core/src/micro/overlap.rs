@@ -42,14 +42,7 @@ pub fn combine(heights: &[f32], beta: f32, n: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn close(got: f32, want: f32, tol: f32) {
-        assert!(
-            (got - want).abs() <= tol,
-            "got {got}, want {want}, difference {}",
-            got - want
-        );
-    }
+    use crate::test_util::close;
 
     #[test]
     fn nothing_covering_gives_zero() {

@@ -294,14 +294,7 @@ pub fn delta(a: [f32; 2], b: [f32; 2], size_mm: f32, tile: bool) -> [f32; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn close(got: f32, want: f32, tol: f32) {
-        assert!(
-            (got - want).abs() <= tol,
-            "got {got}, want {want}, difference {}",
-            got - want
-        );
-    }
+    use crate::test_util::close;
 
     fn pore(falloff: f32) -> Pore {
         Pore {

@@ -15,10 +15,11 @@ use serde::{Deserialize, Serialize};
 use crate::error::Error;
 use crate::heightmap::HeightMap;
 
-/// Default strength s: the height, in UV units, of one height unit. 0.01 makes a [0,1]
-/// large-wrinkle layer stand 1 % of the UV range tall, about [T]'s dispScale (0.005) at
-/// full intensity ×2.
-pub const DEFAULT_STRENGTH: f32 = 0.01;
+/// Default strength s: the height, in UV units, of one height unit. 0.002 gives moderate
+/// relief both for the large-wrinkle layer of a head map (a [0,1] wrinkle stands 0.2 % of
+/// the UV range, about 1 mm on an adult head's layout) and for micro-relief on the 50 mm
+/// skin patch (one height unit = 0.1 mm). [T]'s dispScale 0.005 is the same idea for POM.
+pub const DEFAULT_STRENGTH: f32 = 0.002;
 /// Valid strength range (0 gives a flat normal map).
 pub const STRENGTH_RANGE: (f32, f32) = (0.0, 1000.0);
 

@@ -271,7 +271,7 @@ impl Default for OverlapSection {
 impl Default for NormalSection {
     fn default() -> Self {
         Self {
-            strength: 0.002,
+            strength: crate::normal_map::DEFAULT_STRENGTH,
             convention: Convention::OpenGl,
         }
     }

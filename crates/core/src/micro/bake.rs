@@ -414,17 +414,18 @@ impl<'a> Context<'a> {
 
 /// Bounding rows [y0, y1) of a stamp (with the warp reach), `None` when it misses the map.
 fn row_range(s: &Stamp, size_mm: f32, h: usize, reach: f32) -> Option<(usize, usize)> {
-    let (lo, hi) = y_extent(s, reach);
+    let (lo, hi) = extent(s, reach, 1);
     let row = |y_mm: f32| (1.0 - y_mm / size_mm) * h as f32 - 0.5;
     let y0 = row(hi).floor().max(0.0);
     let y1 = (row(lo).ceil() + 1.0).min(h as f32);
     (y1 > y0).then_some((y0 as usize, y1 as usize))
 }
 
-fn y_extent(s: &Stamp, reach: f32) -> (f32, f32) {
+/// The stamp's extent along `axis` (0 = x, 1 = y), grown by `reach` (the warp).
+fn extent(s: &Stamp, reach: f32, axis: usize) -> (f32, f32) {
     match *s {
         Stamp::Pore { centre, radius, .. } => {
-            (centre[1] - radius - reach, centre[1] + radius + reach)
+            (centre[axis] - radius - reach, centre[axis] + radius + reach)
         }
         Stamp::Furrow {
             start,
@@ -433,28 +434,9 @@ fn y_extent(s: &Stamp, reach: f32) -> (f32, f32) {
             width,
             ..
         } => {
-            let end = start[1] + dir[1] * len;
+            let end = start[axis] + dir[axis] * len;
             let r = width + reach;
-            (start[1].min(end) - r, start[1].max(end) + r)
-        }
-    }
-}
-
-fn x_extent(s: &Stamp, reach: f32) -> (f32, f32) {
-    match *s {
-        Stamp::Pore { centre, radius, .. } => {
-            (centre[0] - radius - reach, centre[0] + radius + reach)
-        }
-        Stamp::Furrow {
-            start,
-            dir,
-            len,
-            width,
-            ..
-        } => {
-            let end = start[0] + dir[0] * len;
-            let r = width + reach;
-            (start[0].min(end) - r, start[0].max(end) + r)
+            (start[axis].min(end) - r, start[axis].max(end) + r)
         }
     }
 }
@@ -463,8 +445,8 @@ fn x_extent(s: &Stamp, reach: f32) -> (f32, f32) {
 fn tile_copies(stamps: &[Stamp], size_mm: f32, reach: f32) -> Vec<Stamp> {
     let mut out = Vec::with_capacity(stamps.len() * 5 / 4);
     for s in stamps {
-        let (x0, x1) = x_extent(s, reach);
-        let (y0, y1) = y_extent(s, reach);
+        let (x0, x1) = extent(s, reach, 0);
+        let (y0, y1) = extent(s, reach, 1);
         for oy in [0.0, -size_mm, size_mm] {
             for ox in [0.0, -size_mm, size_mm] {
                 if x1 + ox < 0.0 || x0 + ox > size_mm || y1 + oy < 0.0 || y0 + oy > size_mm {

@@ -18,7 +18,7 @@ use agesim_core::{HeightMap, Mask, export, heightmap};
 use anyhow::{Context as _, bail};
 use serde_json::json;
 
-/// Bake height and normal maps from a project, a preset or wrinkle files.
+/// Bake height and normal maps: large wrinkles and skin micro-relief, from a project.
 #[derive(Debug, clap::Args)]
 pub struct BakeArgs {
     /// Project file (`*.agesim.json`) with every setting; see docs/project-file.md.

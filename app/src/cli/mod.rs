@@ -17,7 +17,7 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Bake height and normal maps from wrinkle description files.
+    /// Bake height and normal maps: large wrinkles and skin micro-relief, from a project.
     Bake(bake::BakeArgs),
     /// Hair aging (SPEC §6): transition texture, hair instances and their counts per age.
     Hair(hair::HairArgs),

@@ -178,7 +178,38 @@ impl MicroRelief {
         Ok((map, rgb, timings))
     }
 
-    /// The bake, with the normal map when `normals` is given, for instruction-set `level`.
+    /// [`MicroRelief::bake_with_normals`] into buffers the caller keeps between bakes (the
+    /// editor's live preview): `map` becomes the `size_px`² height map and `rgb` its normal
+    /// map, reusing their allocations, so a bake at an unchanged size allocates nothing and
+    /// touches no fresh pages. Every value is overwritten; the bytes equal those of
+    /// `bake_with_normals(size_px, normals)`. On error `map` and `rgb` keep their content.
+    pub fn bake_into(
+        &self,
+        size_px: u32,
+        map: &mut HeightMap,
+        rgb: &mut Vec<u8>,
+        normals: &NormalSettings,
+    ) -> Result<BakeTimings, Error> {
+        normals.validate()?;
+        crate::heightmap::check_size(size_px, size_px)?;
+        let t0 = std::time::Instant::now();
+        let w = size_px as usize;
+        if map.width_px() != size_px || map.height_px() != size_px {
+            // Keep the allocation: only its length changes (the bake overwrites it all).
+            let placeholder = HeightMap::zeros(1, 1)?;
+            let mut data = std::mem::replace(map, placeholder).into_vec();
+            data.resize(w * w, 0.0);
+            *map = HeightMap::from_vec(size_px, size_px, data)?;
+        }
+        rgb.resize(w * w * 3, 0);
+        let mut timings =
+            self.bake_band_pass(map, rgb, Parts::default(), Some(normals), Level::detect());
+        timings.setup_ms += (std::time::Instant::now() - t0).as_secs_f64() * 1e3;
+        Ok(timings)
+    }
+
+    /// The bake, with the normal map when `normals` is given, for instruction-set `level`,
+    /// into freshly allocated buffers.
     fn bake_at(
         &self,
         size_px: u32,
@@ -193,6 +224,24 @@ impl MicroRelief {
             Some(_) => crate::heightmap::zeroed_vec::<u8>(w * w * 3, "normal map")?,
             None => Vec::new(),
         };
+        let alloc_ms = t0.elapsed().as_secs_f64() * 1e3;
+        let mut timings = self.bake_band_pass(&mut map, &mut rgb, parts, normals, level);
+        timings.setup_ms += alloc_ms;
+        Ok((map, rgb, timings))
+    }
+
+    /// The band pass over `map` (any size; square) and, when `normals` is given, `rgb`
+    /// (3 bytes per pixel of `map`), overwriting every value.
+    fn bake_band_pass(
+        &self,
+        map: &mut HeightMap,
+        rgb: &mut [u8],
+        parts: Parts,
+        normals: Option<&NormalSettings>,
+        level: Level,
+    ) -> BakeTimings {
+        let t0 = std::time::Instant::now();
+        let w = map.width_px() as usize;
         let ctx = Context::new(self, w, parts, normals.copied());
         let t1 = std::time::Instant::now();
         let bake = |band: usize, out: &mut [f32], rgb: Option<&mut [u8]>, s: &mut Scratch| {
@@ -223,15 +272,11 @@ impl MicroRelief {
             );
         }
         let t2 = std::time::Instant::now();
-        Ok((
-            map,
-            rgb,
-            BakeTimings {
-                features_ms: self.features_ms,
-                setup_ms: (t1 - t0).as_secs_f64() * 1e3,
-                relief_ms: (t2 - t1).as_secs_f64() * 1e3,
-            },
-        ))
+        BakeTimings {
+            features_ms: self.features_ms,
+            setup_ms: (t1 - t0).as_secs_f64() * 1e3,
+            relief_ms: (t2 - t1).as_secs_f64() * 1e3,
+        }
     }
 }
 
@@ -964,6 +1009,32 @@ mod tests {
                 rgb.iter().step_by(3).any(|&r| r < 100) && rgb.iter().step_by(3).any(|&r| r > 156)
             );
         }
+    }
+
+    #[test]
+    fn bake_into_reuses_buffers_and_equals_a_fresh_bake() {
+        let relief = MicroRelief::new(&project(true)).unwrap();
+        let settings = relief.normal_settings();
+        // Stale buffers of another size, full of values a bake never writes (NaN, 0xAB):
+        // growing, shrinking and an unchanged size must all overwrite every value.
+        let mut map = HeightMap::from_vec(3, 3, vec![f32::NAN; 9]).unwrap();
+        let mut rgb = vec![0xAB; 5];
+        let bits = |m: &HeightMap| m.data().iter().map(|h| h.to_bits()).collect::<Vec<_>>();
+        for size in [2 * BAND_ROWS as u32 + 7, 40, 40] {
+            let (want_h, want_rgb, _) = relief.bake_with_normals(size, &settings).unwrap();
+            map.data_mut().fill(f32::NAN);
+            rgb.fill(0xAB);
+            relief
+                .bake_into(size, &mut map, &mut rgb, &settings)
+                .unwrap();
+            assert_eq!((map.width_px(), map.height_px()), (size, size));
+            assert_eq!(bits(&map), bits(&want_h), "heights at {size}²");
+            assert_eq!(rgb, want_rgb, "normals at {size}²");
+        }
+        // Bad sizes are errors and leave the buffers as they were.
+        let before = (bits(&map), rgb.clone());
+        assert!(relief.bake_into(0, &mut map, &mut rgb, &settings).is_err());
+        assert_eq!((bits(&map), rgb.clone()), before);
     }
 
     #[test]

@@ -742,22 +742,32 @@ fn interpolate<const S: usize>(
     wy: &mut [f32],
 ) {
     let frac: [f32; S] = std::array::from_fn(|k| k as f32 * (1.0 / S as f32));
+    let (bx, by) = (blend[0].as_slice(), blend[1].as_slice());
+    let full = px.len() / S;
+    // The segment ends are loaded once per segment (indexing `blend` per pixel kept the
+    // loop scalar); per pixel it is l + (r − l)·frac, as before.
+    for ((((p, x), y), ex), ey) in px
+        .chunks_exact_mut(S)
+        .zip(x_mm.chunks_exact(S))
+        .zip(wy.chunks_exact_mut(S))
+        .zip(bx.windows(2))
+        .zip(by.windows(2))
+    {
+        let (lx, rx, ly, ry) = (ex[0], ex[1], ey[0], ey[1]);
+        let (p, x, y): (&mut [f32; S], &[f32; S], &mut [f32; S]) =
+            match (p.try_into(), x.try_into(), y.try_into()) {
+                (Ok(p), Ok(x), Ok(y)) => (p, x, y),
+                _ => continue,
+            };
+        for k in 0..S {
+            p[k] = x[k] + (lx + (rx - lx) * frac[k]);
+            y[k] = ly + (ry - ly) * frac[k];
+        }
+    }
     let segment = |i: usize, f: usize, k: usize| {
         let (l, r) = (blend[f][i], blend[f][i + 1]);
         l + (r - l) * frac[k]
     };
-    let full = px.len() / S;
-    for (i, ((p, x), y)) in px
-        .chunks_exact_mut(S)
-        .zip(x_mm.chunks_exact(S))
-        .zip(wy.chunks_exact_mut(S))
-        .enumerate()
-    {
-        for k in 0..S {
-            p[k] = x[k] + segment(i, 0, k);
-            y[k] = segment(i, 1, k);
-        }
-    }
     for x in full * S..px.len() {
         px[x] = x_mm[x] + segment(full, 0, x - full * S);
         wy[x] = segment(full, 1, x - full * S);

@@ -490,16 +490,21 @@ mod tests {
 
     #[test]
     fn rows_are_bit_identical_to_the_scalar_reference() {
-        let f = FbmField::new(&params(4.5), 50.0, true, 0.8, 3, 1);
-        let us = grid(301);
-        let s = RowSampler::new(&f, &us);
-        let mut scratch = RowScratch::default();
-        for y in 0..40 {
-            let v = 1.0 - (y as f32 + 0.5) / 40.0;
-            let mut row = vec![0.0; us.len()];
-            s.add_row(v, &mut row, &mut scratch);
-            for (x, &u) in us.iter().enumerate() {
-                assert_eq!(row[x].to_bits(), f.sample(u, v).to_bits(), "x={x} y={y}");
+        // 1, 5, 6 and 7 octaves: a partial sweep, and a full one plus 1, 2 or 3 octaves.
+        for details in [1.0, 4.5, 6.0, 7.0] {
+            let f = FbmField::new(&params(details), 50.0, true, 0.8, 3, 1);
+            // (More columns than the finest octave has cells.)
+            let us = grid(1201);
+            let s = RowSampler::new(&f, &us);
+            let mut scratch = RowScratch::default();
+            for y in 0..40 {
+                let v = 1.0 - (y as f32 + 0.5) / 40.0;
+                let mut row = vec![0.0; us.len()];
+                s.add_row(v, &mut row, &mut scratch);
+                for (x, &u) in us.iter().enumerate() {
+                    let want = f.sample(u, v).to_bits();
+                    assert_eq!(row[x].to_bits(), want, "x={x} y={y} details {details}");
+                }
             }
         }
     }

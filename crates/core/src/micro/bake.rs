@@ -256,10 +256,19 @@ impl MicroRelief {
                 },
             );
         };
-        let heights = map.data_mut().par_chunks_mut(BAND_ROWS * w);
+        // Runs of neighbouring bands per task (about four per thread, for balance), so one
+        // scratch, with its cached noise and warp lattice rows, serves many bands in a row
+        // instead of starting cold at each band. Bytes do not depend on the grouping.
+        let n_bands = map.height_px().div_ceil(BAND_ROWS as u32) as usize;
+        let per_task = (n_bands / (4 * rayon::current_num_threads()).max(1)).max(1);
+        let heights = map
+            .data_mut()
+            .par_chunks_mut(BAND_ROWS * w)
+            .with_min_len(per_task);
         if normals.is_some() {
             heights
                 .zip(rgb.par_chunks_mut(BAND_ROWS * w * 3))
+                .with_min_len(per_task)
                 .enumerate()
                 .for_each_init(
                     || Scratch::new(&ctx),

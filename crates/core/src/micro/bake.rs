@@ -19,7 +19,8 @@
 //! - the warp (two fBm fields) is smooth, so it is evaluated on a coarse grid (≤ 16 px,
 //!   at most a quarter of its finest lattice cell), cached per coarse row, and interpolated;
 //! - with normals ([`MicroRelief::bake_with_normals`]) each band also bakes the row above
-//!   and below it (a one-row halo, recomputed: same bytes as its owner band's) and encodes
+//!   and below it (a one-row halo, recomputed unless the task's previous band just baked
+//!   it: same bytes as its owner band's) and encodes
 //!   its normal rows while its heights are still in cache, with the same row kernel as
 //!   [`normal_map::encode_rgb8`], so the bytes equal `encode_rgb8(bake())`;
 //! - the hot loops are plain `f32` code over fixed-size chunks; the band function runs
@@ -543,6 +544,10 @@ struct Scratch {
     warp_noise: [RowScratch; 2],
     /// Height rows just outside the band (the normal map's neighbours).
     halo: [Vec<f32>; 2],
+    /// Rows kept from the previous band of this task for its successor (with normals):
+    /// that band's last row (the next band's halo above) and its halo below (the next
+    /// band's first row), by row index.
+    kept: [(Option<usize>, Vec<f32>); 2],
 }
 
 impl Scratch {
@@ -558,6 +563,7 @@ impl Scratch {
             noise: RowScratch::default(),
             warp_noise: Default::default(),
             halo: [vec![0.0; ctx.w], vec![0.0; ctx.w]],
+            kept: [(None, vec![0.0; ctx.w]), (None, vec![0.0; ctx.w])],
         }
     }
 }
@@ -599,11 +605,22 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
         ]
     });
     let mut halo = std::mem::take(&mut s.halo);
+    // A row the previous band of this task already baked is copied (a row's bytes depend
+    // only on its index), otherwise baked.
+    let row =
+        |y: usize, dst: &mut [f32], s: &mut Scratch| match s.kept.iter().find(|k| k.0 == Some(y)) {
+            Some((_, kept)) => dst.copy_from_slice(kept),
+            None => height_row(ctx, y, dst, s),
+        };
     if let Some(y) = halo_rows[0] {
-        height_row(ctx, y, &mut halo[0], s);
+        row(y, &mut halo[0], s);
     }
     for (r, dst) in out.chunks_exact_mut(w).enumerate() {
-        height_row(ctx, y0 + r, dst, s);
+        if r == 0 && settings.is_some() {
+            row(y0, dst, s);
+        } else {
+            height_row(ctx, y0 + r, dst, s);
+        }
     }
     if let Some(y) = halo_rows[1] {
         height_row(ctx, y, &mut halo[1], s);
@@ -612,6 +629,13 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
         s.halo = halo;
         return;
     };
+    // Keep the last row and the halo below for the next band (see `row` above).
+    s.kept[0].0 = Some(y1 - 1);
+    s.kept[0].1.copy_from_slice(&out[(y1 - 1 - y0) * w..]);
+    s.kept[1].0 = halo_rows[1];
+    if halo_rows[1].is_some() {
+        s.kept[1].1.copy_from_slice(&halo[1]);
+    }
     let row_of = |y: usize| -> &[f32] {
         if !outside(y) {
             &out[(y - y0) * w..(y - y0 + 1) * w]
@@ -1054,6 +1078,26 @@ mod tests {
         let before = (bits(&map), rgb.clone());
         assert!(relief.bake_into(0, &mut map, &mut rgb, &settings).is_err());
         assert_eq!((bits(&map), rgb.clone()), before);
+    }
+
+    #[test]
+    fn fused_bands_reusing_their_neighbours_rows_equal_two_passes() {
+        // One thread: runs of bands per task, each band taking its first row and halo above
+        // from the previous band; the bytes must not change.
+        let relief = MicroRelief::new(&project(true)).unwrap();
+        let settings = relief.normal_settings();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let size = 9 * BAND_ROWS as u32 + 5;
+        let (h, rgb, _) = pool.install(|| relief.bake_with_normals(size, &settings).unwrap());
+        let (plain, _) = relief.bake(size).unwrap();
+        let bits = |m: &HeightMap| m.data().iter().map(|h| h.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&h), bits(&plain));
+        let want = crate::normal_map::encode_rgb8(&plain, &settings).unwrap();
+        let first_diff = rgb.iter().zip(&want).position(|(a, b)| a != b);
+        assert_eq!(first_diff, None, "first differing byte");
     }
 
     #[test]

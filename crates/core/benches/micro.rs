@@ -1,8 +1,9 @@
 //! Issue 3's benchmark: [P]'s workload (4096², 1000 pores, 500 furrows, 5 octaves of noise,
 //! plus the normal map) and a 1024² preview, against the `noise` crate's fBm as baseline.
 //!
-//! `cargo bench -p agesim-core --bench micro` prints our medians (the fused
-//! `bake_with_normals`, and bake + `encode_rgb8` separately), the baseline's median, their
+//! `cargo bench -p agesim-core --bench micro` prints our medians (steady state: `bake_into`
+//! re-baking into kept buffers; cold: the fused `bake_with_normals`, and bake +
+//! `encode_rgb8` separately, each allocating fresh buffers), the baseline's median, their
 //! ratio, the stage split and the peak memory of an 8192² bake.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
@@ -102,6 +103,15 @@ fn main() {
         let fused_ms = time_ms(RUNS, || {
             fused(&relief, size, &normals);
         });
+        // Steady state: the editor's live preview re-bakes into the buffers it keeps.
+        let mut map = agesim_core::HeightMap::zeros(1, 1).unwrap();
+        let mut rgb = Vec::new();
+        let steady_ms = time_ms(RUNS, || {
+            relief
+                .bake_into(size, &mut map, &mut rgb, &normals)
+                .unwrap();
+            std::hint::black_box((&map, &rgb));
+        });
         let mut totals = Vec::new();
         let mut heights = Vec::new();
         let mut normal_ms = Vec::new();
@@ -126,7 +136,11 @@ fn main() {
             noise: false,
         });
         println!(
-            "{size}²: fused height + normal map {fused_ms:.1} ms median; two passes {:.1} ms \
+            "{size}²: steady state (buffers reused, `bake_into`) height + normal map \
+             {steady_ms:.1} ms median"
+        );
+        println!(
+            "{size}²: cold (fresh buffers) fused height + normal map {fused_ms:.1} ms median; two passes {:.1} ms \
              (height {:.1} + normal map {:.1}); height alone split: pores+furrows {:.1}, \
              noise {:.1}, empty pass (alloc + page faults) {:.1}",
             median(totals),

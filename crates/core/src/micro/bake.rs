@@ -19,7 +19,8 @@
 //! - the warp (two fBm fields) is smooth, so it is evaluated on a coarse grid (≤ 16 px,
 //!   at most a quarter of its finest lattice cell), cached per coarse row, and interpolated;
 //! - with normals ([`MicroRelief::bake_with_normals`]) each band also bakes the row above
-//!   and below it (a one-row halo, recomputed: same bytes as its owner band's) and encodes
+//!   and below it (a one-row halo, recomputed unless the task's previous band just baked
+//!   it: same bytes as its owner band's) and encodes
 //!   its normal rows while its heights are still in cache, with the same row kernel as
 //!   [`normal_map::encode_rgb8`], so the bytes equal `encode_rgb8(bake())`;
 //! - the hot loops are plain `f32` code over fixed-size chunks; the band function runs
@@ -178,7 +179,39 @@ impl MicroRelief {
         Ok((map, rgb, timings))
     }
 
-    /// The bake, with the normal map when `normals` is given, for instruction-set `level`.
+    /// [`MicroRelief::bake_with_normals`] into buffers the caller keeps between bakes (the
+    /// editor's live preview): `map` becomes the `size_px`² height map and `rgb` its normal
+    /// map, reusing their allocations, so a bake at an unchanged size allocates nothing and
+    /// touches no fresh pages. Every value is overwritten; the bytes equal those of
+    /// `bake_with_normals(size_px, normals)`. On error `map` and `rgb` keep their content.
+    pub fn bake_into(
+        &self,
+        size_px: u32,
+        map: &mut HeightMap,
+        rgb: &mut Vec<u8>,
+        normals: &NormalSettings,
+    ) -> Result<BakeTimings, Error> {
+        normals.validate()?;
+        crate::heightmap::check_size(size_px, size_px)?;
+        let t0 = std::time::Instant::now();
+        let w = size_px as usize;
+        if map.width_px() != size_px || map.height_px() != size_px {
+            // Keep the allocation: only its length changes (the bake overwrites it all).
+            let placeholder = HeightMap::zeros(1, 1)?;
+            let mut data = std::mem::replace(map, placeholder).into_vec();
+            data.resize(w * w, 0.0);
+            *map = HeightMap::from_vec(size_px, size_px, data)?;
+        }
+        rgb.resize(w * w * 3, 0);
+        let resize_ms = t0.elapsed().as_secs_f64() * 1e3;
+        let mut timings =
+            self.bake_band_pass(map, rgb, Parts::default(), Some(normals), Level::detect());
+        timings.setup_ms += resize_ms;
+        Ok(timings)
+    }
+
+    /// The bake, with the normal map when `normals` is given, for instruction-set `level`,
+    /// into freshly allocated buffers.
     fn bake_at(
         &self,
         size_px: u32,
@@ -193,6 +226,24 @@ impl MicroRelief {
             Some(_) => crate::heightmap::zeroed_vec::<u8>(w * w * 3, "normal map")?,
             None => Vec::new(),
         };
+        let alloc_ms = t0.elapsed().as_secs_f64() * 1e3;
+        let mut timings = self.bake_band_pass(&mut map, &mut rgb, parts, normals, level);
+        timings.setup_ms += alloc_ms;
+        Ok((map, rgb, timings))
+    }
+
+    /// The band pass over `map` (any size; square) and, when `normals` is given, `rgb`
+    /// (3 bytes per pixel of `map`), overwriting every value.
+    fn bake_band_pass(
+        &self,
+        map: &mut HeightMap,
+        rgb: &mut [u8],
+        parts: Parts,
+        normals: Option<&NormalSettings>,
+        level: Level,
+    ) -> BakeTimings {
+        let t0 = std::time::Instant::now();
+        let w = map.width_px() as usize;
         let ctx = Context::new(self, w, parts, normals.copied());
         let t1 = std::time::Instant::now();
         let bake = |band: usize, out: &mut [f32], rgb: Option<&mut [u8]>, s: &mut Scratch| {
@@ -207,10 +258,19 @@ impl MicroRelief {
                 },
             );
         };
-        let heights = map.data_mut().par_chunks_mut(BAND_ROWS * w);
+        // Runs of neighbouring bands per task (about four per thread, for balance), so one
+        // scratch, with its cached noise and warp lattice rows, serves many bands in a row
+        // instead of starting cold at each band. Bytes do not depend on the grouping.
+        let n_bands = map.height_px().div_ceil(BAND_ROWS as u32) as usize;
+        let per_task = (n_bands / (4 * rayon::current_num_threads()).max(1)).max(1);
+        let heights = map
+            .data_mut()
+            .par_chunks_mut(BAND_ROWS * w)
+            .with_min_len(per_task);
         if normals.is_some() {
             heights
                 .zip(rgb.par_chunks_mut(BAND_ROWS * w * 3))
+                .with_min_len(per_task)
                 .enumerate()
                 .for_each_init(
                     || Scratch::new(&ctx),
@@ -223,15 +283,11 @@ impl MicroRelief {
             );
         }
         let t2 = std::time::Instant::now();
-        Ok((
-            map,
-            rgb,
-            BakeTimings {
-                features_ms: self.features_ms,
-                setup_ms: (t1 - t0).as_secs_f64() * 1e3,
-                relief_ms: (t2 - t1).as_secs_f64() * 1e3,
-            },
-        ))
+        BakeTimings {
+            features_ms: self.features_ms,
+            setup_ms: (t1 - t0).as_secs_f64() * 1e3,
+            relief_ms: (t2 - t1).as_secs_f64() * 1e3,
+        }
     }
 }
 
@@ -489,6 +545,10 @@ struct Scratch {
     warp_noise: [RowScratch; 2],
     /// Height rows just outside the band (the normal map's neighbours).
     halo: [Vec<f32>; 2],
+    /// Rows kept from the previous band of this task for its successor (with normals):
+    /// that band's last row (the next band's halo above) and its halo below (the next
+    /// band's first row), by row index.
+    kept: [(Option<usize>, Vec<f32>); 2],
 }
 
 impl Scratch {
@@ -504,6 +564,7 @@ impl Scratch {
             noise: RowScratch::default(),
             warp_noise: Default::default(),
             halo: [vec![0.0; ctx.w], vec![0.0; ctx.w]],
+            kept: [(None, vec![0.0; ctx.w]), (None, vec![0.0; ctx.w])],
         }
     }
 }
@@ -545,11 +606,22 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
         ]
     });
     let mut halo = std::mem::take(&mut s.halo);
+    // A row the previous band of this task already baked is copied (a row's bytes depend
+    // only on its index), otherwise baked.
+    let row =
+        |y: usize, dst: &mut [f32], s: &mut Scratch| match s.kept.iter().find(|k| k.0 == Some(y)) {
+            Some((_, kept)) => dst.copy_from_slice(kept),
+            None => height_row(ctx, y, dst, s),
+        };
     if let Some(y) = halo_rows[0] {
-        height_row(ctx, y, &mut halo[0], s);
+        row(y, &mut halo[0], s);
     }
     for (r, dst) in out.chunks_exact_mut(w).enumerate() {
-        height_row(ctx, y0 + r, dst, s);
+        if r == 0 && settings.is_some() {
+            row(y0, dst, s);
+        } else {
+            height_row(ctx, y0 + r, dst, s);
+        }
     }
     if let Some(y) = halo_rows[1] {
         height_row(ctx, y, &mut halo[1], s);
@@ -558,6 +630,13 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
         s.halo = halo;
         return;
     };
+    // Keep the last row and the halo below for the next band (see `row` above).
+    s.kept[0].0 = Some(y1 - 1);
+    s.kept[0].1.copy_from_slice(&out[(y1 - 1 - y0) * w..]);
+    s.kept[1].0 = halo_rows[1];
+    if halo_rows[1].is_some() {
+        s.kept[1].1.copy_from_slice(&halo[1]);
+    }
     let row_of = |y: usize| -> &[f32] {
         if !outside(y) {
             &out[(y - y0) * w..(y - y0 + 1) * w]
@@ -697,22 +776,32 @@ fn interpolate<const S: usize>(
     wy: &mut [f32],
 ) {
     let frac: [f32; S] = std::array::from_fn(|k| k as f32 * (1.0 / S as f32));
+    let (bx, by) = (blend[0].as_slice(), blend[1].as_slice());
+    let full = px.len() / S;
+    // The segment ends are loaded once per segment (indexing `blend` per pixel kept the
+    // loop scalar); per pixel it is l + (r − l)·frac, as before.
+    for ((((p, x), y), ex), ey) in px
+        .chunks_exact_mut(S)
+        .zip(x_mm.chunks_exact(S))
+        .zip(wy.chunks_exact_mut(S))
+        .zip(bx.windows(2))
+        .zip(by.windows(2))
+    {
+        let (lx, rx, ly, ry) = (ex[0], ex[1], ey[0], ey[1]);
+        let (p, x, y): (&mut [f32; S], &[f32; S], &mut [f32; S]) =
+            match (p.try_into(), x.try_into(), y.try_into()) {
+                (Ok(p), Ok(x), Ok(y)) => (p, x, y),
+                _ => continue,
+            };
+        for k in 0..S {
+            p[k] = x[k] + (lx + (rx - lx) * frac[k]);
+            y[k] = ly + (ry - ly) * frac[k];
+        }
+    }
     let segment = |i: usize, f: usize, k: usize| {
         let (l, r) = (blend[f][i], blend[f][i + 1]);
         l + (r - l) * frac[k]
     };
-    let full = px.len() / S;
-    for (i, ((p, x), y)) in px
-        .chunks_exact_mut(S)
-        .zip(x_mm.chunks_exact(S))
-        .zip(wy.chunks_exact_mut(S))
-        .enumerate()
-    {
-        for k in 0..S {
-            p[k] = x[k] + segment(i, 0, k);
-            y[k] = segment(i, 1, k);
-        }
-    }
     for x in full * S..px.len() {
         px[x] = x_mm[x] + segment(full, 0, x - full * S);
         wy[x] = segment(full, 1, x - full * S);
@@ -964,6 +1053,52 @@ mod tests {
                 rgb.iter().step_by(3).any(|&r| r < 100) && rgb.iter().step_by(3).any(|&r| r > 156)
             );
         }
+    }
+
+    #[test]
+    fn bake_into_reuses_buffers_and_equals_a_fresh_bake() {
+        let relief = MicroRelief::new(&project(true)).unwrap();
+        let settings = relief.normal_settings();
+        // Stale buffers of another size, full of values a bake never writes (NaN, 0xAB):
+        // growing, shrinking and an unchanged size must all overwrite every value.
+        let mut map = HeightMap::from_vec(3, 3, vec![f32::NAN; 9]).unwrap();
+        let mut rgb = vec![0xAB; 5];
+        let bits = |m: &HeightMap| m.data().iter().map(|h| h.to_bits()).collect::<Vec<_>>();
+        for size in [2 * BAND_ROWS as u32 + 7, 40, 40] {
+            let (want_h, want_rgb, _) = relief.bake_with_normals(size, &settings).unwrap();
+            map.data_mut().fill(f32::NAN);
+            rgb.fill(0xAB);
+            relief
+                .bake_into(size, &mut map, &mut rgb, &settings)
+                .unwrap();
+            assert_eq!((map.width_px(), map.height_px()), (size, size));
+            assert_eq!(bits(&map), bits(&want_h), "heights at {size}²");
+            assert_eq!(rgb, want_rgb, "normals at {size}²");
+        }
+        // Bad sizes are errors and leave the buffers as they were.
+        let before = (bits(&map), rgb.clone());
+        assert!(relief.bake_into(0, &mut map, &mut rgb, &settings).is_err());
+        assert_eq!((bits(&map), rgb.clone()), before);
+    }
+
+    #[test]
+    fn fused_bands_reusing_their_neighbours_rows_equal_two_passes() {
+        // One thread: runs of bands per task, each band taking its first row and halo above
+        // from the previous band; the bytes must not change.
+        let relief = MicroRelief::new(&project(true)).unwrap();
+        let settings = relief.normal_settings();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let size = 9 * BAND_ROWS as u32 + 5;
+        let (h, rgb, _) = pool.install(|| relief.bake_with_normals(size, &settings).unwrap());
+        let (plain, _) = relief.bake(size).unwrap();
+        let bits = |m: &HeightMap| m.data().iter().map(|h| h.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&h), bits(&plain));
+        let want = crate::normal_map::encode_rgb8(&plain, &settings).unwrap();
+        let first_diff = rgb.iter().zip(&want).position(|(a, b)| a != b);
+        assert_eq!(first_diff, None, "first differing byte");
     }
 
     #[test]

@@ -395,21 +395,62 @@ impl<'a> RowSampler<'a> {
             scratch.weights.push(w);
             scratch.pair.push(pair);
         }
-        // Octave by octave along the whole row: four loads, four products and four sums per
-        // pixel and octave, in the same order as `FbmField::sample`. (A plain zip over
-        // equal-length slices is what the loop vectoriser handles most reliably.)
-        for ((slots, &w), &[i0, i1]) in scratch.rows.iter().zip(&scratch.weights).zip(&scratch.pair)
-        {
-            let (r0, r1) = (&slots.rows[i0], &slots.rows[i1]);
-            let (qy0, qy1) = (&r0.qy[..padded], &r1.qy[..padded]);
-            let (qx0, qx1) = (&r0.qx[..padded], &r1.qx[..padded]);
-            for ((((s, &a), &b), &c), &d) in
-                scratch.sum.iter_mut().zip(qy0).zip(qy1).zip(qx0).zip(qx1)
-            {
-                *s += combine(w, a, b, c, d);
+        // Up to four octaves per sweep along the row, chunk by chunk in registers: four loads,
+        // four products and four sums per pixel and octave, in the same order as
+        // `FbmField::sample` (so the same bytes as one sweep per octave, with a fifth of the
+        // loads and stores of the running sum).
+        let mut k = 0;
+        while k < octaves.len() {
+            let group = (octaves.len() - k).min(4);
+            let sum = &mut scratch.sum[..padded];
+            let (rows, weights, pair) = (
+                &scratch.rows[k..],
+                &scratch.weights[k..],
+                &scratch.pair[k..],
+            );
+            match group {
+                4 => add_octaves::<4>(sum, rows, weights, pair),
+                3 => add_octaves::<3>(sum, rows, weights, pair),
+                2 => add_octaves::<2>(sum, rows, weights, pair),
+                _ => add_octaves::<1>(sum, rows, weights, pair),
             }
+            k += group;
         }
         &scratch.sum
+    }
+}
+
+/// Adds the first `G` octaves of `rows` (lattice row pair `pair`, row weights `weights`) to
+/// `sum` (a whole number of [`LANES`] chunks), octave after octave per pixel.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn add_octaves<const G: usize>(
+    sum: &mut [f32],
+    rows: &[Slots],
+    weights: &[[f32; 4]],
+    pair: &[[usize; 2]],
+) {
+    let n = sum.len();
+    let terms: [([f32; 4], [&[f32]; 4]); G] = std::array::from_fn(|g| {
+        let [i0, i1] = pair[g];
+        let (r0, r1) = (&rows[g].rows[i0], &rows[g].rows[i1]);
+        (
+            weights[g],
+            [&r0.qy[..n], &r1.qy[..n], &r0.qx[..n], &r1.qx[..n]],
+        )
+    });
+    for (c, s) in sum.chunks_exact_mut(LANES).enumerate() {
+        let r = c * LANES..(c + 1) * LANES;
+        let mut acc = [0.0f32; LANES];
+        acc.copy_from_slice(s);
+        for (w, [qy0, qy1, qx0, qx1]) in &terms {
+            let (a, b) = (&qy0[r.clone()], &qy1[r.clone()]);
+            let (cc, d) = (&qx0[r.clone()], &qx1[r.clone()]);
+            for l in 0..LANES {
+                acc[l] += combine(*w, a[l], b[l], cc[l], d[l]);
+            }
+        }
+        s.copy_from_slice(&acc);
     }
 }
 
@@ -449,16 +490,21 @@ mod tests {
 
     #[test]
     fn rows_are_bit_identical_to_the_scalar_reference() {
-        let f = FbmField::new(&params(4.5), 50.0, true, 0.8, 3, 1);
-        let us = grid(301);
-        let s = RowSampler::new(&f, &us);
-        let mut scratch = RowScratch::default();
-        for y in 0..40 {
-            let v = 1.0 - (y as f32 + 0.5) / 40.0;
-            let mut row = vec![0.0; us.len()];
-            s.add_row(v, &mut row, &mut scratch);
-            for (x, &u) in us.iter().enumerate() {
-                assert_eq!(row[x].to_bits(), f.sample(u, v).to_bits(), "x={x} y={y}");
+        // 1, 5, 6 and 7 octaves: a partial sweep, and a full one plus 1, 2 or 3 octaves.
+        for details in [1.0, 4.5, 6.0, 7.0] {
+            let f = FbmField::new(&params(details), 50.0, true, 0.8, 3, 1);
+            // (More columns than the finest octave has cells.)
+            let us = grid(1201);
+            let s = RowSampler::new(&f, &us);
+            let mut scratch = RowScratch::default();
+            for y in 0..40 {
+                let v = 1.0 - (y as f32 + 0.5) / 40.0;
+                let mut row = vec![0.0; us.len()];
+                s.add_row(v, &mut row, &mut scratch);
+                for (x, &u) in us.iter().enumerate() {
+                    let want = f.sample(u, v).to_bits();
+                    assert_eq!(row[x].to_bits(), want, "x={x} y={y} details {details}");
+                }
             }
         }
     }

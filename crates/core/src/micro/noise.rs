@@ -317,11 +317,18 @@ impl<'a> RowSampler<'a> {
         row.qy.resize(padded, 0.0);
         row.qx.resize(padded, 0.0);
         let [b0, b1, b2, b3] = &cols.basis;
-        let mut ga = match cols.runs.first() {
-            Some(&(i, _, _)) => o.gradient(i, j),
-            None => return,
-        };
+        if cols.runs.is_empty() {
+            return;
+        }
+        // The right gradient of one run is the left gradient of the next only when the runs
+        // are in neighbouring cells; a row with fewer pixels than the octave has cells skips
+        // cells, and then the left gradient must be hashed again.
+        let mut previous: Option<(i32, [f32; 2])> = None;
         for &(i, x0, x1) in &cols.runs {
+            let ga = match previous {
+                Some((next_i, g)) if next_i == i => g,
+                _ => o.gradient(i, j),
+            };
             let gb = o.gradient(i + 1, j);
             let r = x0 as usize..x1 as usize;
             let basis = b0[r.clone()]
@@ -333,7 +340,7 @@ impl<'a> RowSampler<'a> {
             {
                 [*qy, *qx] = lattice_row_terms(ga, gb, [p, q, r, s]);
             }
-            ga = gb;
+            previous = Some((i + 1, gb));
         }
         row.j = Some(j);
     }
@@ -493,17 +500,24 @@ mod tests {
         // 1, 5, 6 and 7 octaves: a partial sweep, and a full one plus 1, 2 or 3 octaves.
         for details in [1.0, 4.5, 6.0, 7.0] {
             let f = FbmField::new(&params(details), 50.0, true, 0.8, 3, 1);
-            // (More columns than the finest octave has cells.)
-            let us = grid(1201);
-            let s = RowSampler::new(&f, &us);
-            let mut scratch = RowScratch::default();
-            for y in 0..40 {
-                let v = 1.0 - (y as f32 + 0.5) / 40.0;
-                let mut row = vec![0.0; us.len()];
-                s.add_row(v, &mut row, &mut scratch);
-                for (x, &u) in us.iter().enumerate() {
-                    let want = f.sample(u, v).to_bits();
-                    assert_eq!(row[x].to_bits(), want, "x={x} y={y} details {details}");
+            // Both cases: more columns than the finest octave has cells (1201), and fewer,
+            // where a row skips lattice cells (61 and 301).
+            for us in [grid(1201), grid(301), grid(61)] {
+                let s = RowSampler::new(&f, &us);
+                let mut scratch = RowScratch::default();
+                for y in 0..40 {
+                    let v = 1.0 - (y as f32 + 0.5) / 40.0;
+                    let mut row = vec![0.0; us.len()];
+                    s.add_row(v, &mut row, &mut scratch);
+                    for (x, &u) in us.iter().enumerate() {
+                        let want = f.sample(u, v).to_bits();
+                        assert_eq!(
+                            row[x].to_bits(),
+                            want,
+                            "x={x} y={y} details {details} width {}",
+                            us.len()
+                        );
+                    }
                 }
             }
         }

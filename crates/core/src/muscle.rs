@@ -677,17 +677,21 @@ mod tests {
         assert!(nonzero > 3000, "the fibre covers only {nonzero} pixels");
     }
 
+    /// The two forehead fibres of [T]'s example file (SPEC §2).
+    fn thesis_forehead() -> [Fibre; 2] {
+        [
+            ([0.423, 0.727], [0.439, 0.640]),
+            ([0.556, 0.727], [0.537, 0.638]),
+        ]
+        .map(|(a, b)| Fibre::new(a, b, 3).unwrap().with_rel_width(1.0).unwrap())
+    }
+
     #[test]
     fn bounded_rasterising_equals_brute_force_bytes() {
+        let [left, right] = thesis_forehead();
         let fibres = vec![
-            Fibre::new([0.423, 0.727], [0.439, 0.640], 3)
-                .unwrap()
-                .with_rel_width(1.0)
-                .unwrap(),
-            Fibre::new([0.556, 0.727], [0.537, 0.638], 3)
-                .unwrap()
-                .with_rel_width(1.0)
-                .unwrap(),
+            left,
+            right,
             Fibre::new([0.05, 0.05], [0.2, 0.1], 4)
                 .unwrap()
                 .with_max_angle(2.0)
@@ -764,17 +768,8 @@ mod tests {
         // SPEC §0: the same fibres at 1024² and at 4096² box-downsampled to 1024² agree.
         // Stated tolerance: RMS difference < 0.005 of the [0,1] range (measured 0.0023; the
         // rest is the γ = 0.4 curve's steep foot, which box filtering averages differently).
-        let fibres = vec![
-            Fibre::new([0.423, 0.727], [0.439, 0.640], 3)
-                .unwrap()
-                .with_rel_width(1.0)
-                .unwrap(),
-            Fibre::new([0.556, 0.727], [0.537, 0.638], 3)
-                .unwrap()
-                .with_rel_width(1.0)
-                .unwrap(),
-            Fibre::new([0.2, 0.3], [0.8, 0.35], 8).unwrap(),
-        ];
+        let [left, right] = thesis_forehead();
+        let fibres = vec![left, right, Fibre::new([0.2, 0.3], [0.8, 0.35], 8).unwrap()];
         let s = LargeWrinkleSettings::default();
         let small = rasterize(&fibres, 1024, 1024, &s).unwrap();
         let large = rasterize(&fibres, 4096, 4096, &s)

@@ -543,6 +543,10 @@ struct Scratch {
     noise: RowScratch,
     /// The warp fields' own caches (each keeps its lattice rows between pixel rows).
     warp_noise: [RowScratch; 2],
+    /// The band's height rows, baked here and streamed to the output at the end.
+    rows: Vec<f32>,
+    /// One row of the normal map, encoded here and streamed to the output.
+    rgb_row: Vec<u8>,
     /// Height rows just outside the band (the normal map's neighbours).
     halo: [Vec<f32>; 2],
     /// Rows kept from the previous band of this task for its successor (with normals):
@@ -563,6 +567,8 @@ impl Scratch {
             blend: [vec![0.0; cols], vec![0.0; cols]],
             noise: RowScratch::default(),
             warp_noise: Default::default(),
+            rows: vec![0.0; BAND_ROWS * ctx.w],
+            rgb_row: vec![0; 3 * ctx.w],
             halo: [vec![0.0; ctx.w], vec![0.0; ctx.w]],
             kept: [(None, vec![0.0; ctx.w]), (None, vec![0.0; ctx.w])],
         }
@@ -587,11 +593,17 @@ impl crate::simd::Kernel for Band<'_, '_> {
 }
 
 /// Bakes the rows of `band` into `out` (and their normals into `rgb`).
+///
+/// The rows are baked into the task's scratch band (which stays in cache for the normal
+/// map) and streamed to `out` and `rgb` at the end ([`crate::simd::stream_copy`]): the
+/// output is written once, without reading it in first.
 #[inline(always)]
 fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>, s: &mut Scratch) {
     let w = ctx.w;
     let y0 = band * BAND_ROWS;
     let y1 = y0 + out.len() / w;
+    let mut rows = std::mem::take(&mut s.rows);
+    let heights = &mut rows[..out.len()];
     // With normals, the neighbour rows outside the band are baked again into the halo
     // buffers; rows go strictly downward (halo above, band, halo below) so the noise and
     // warp caches move forward only.
@@ -616,7 +628,7 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
     if let Some(y) = halo_rows[0] {
         row(y, &mut halo[0], s);
     }
-    for (r, dst) in out.chunks_exact_mut(w).enumerate() {
+    for (r, dst) in heights.chunks_exact_mut(w).enumerate() {
         if r == 0 && settings.is_some() {
             row(y0, dst, s);
         } else {
@@ -626,38 +638,40 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
     if let Some(y) = halo_rows[1] {
         height_row(ctx, y, &mut halo[1], s);
     }
-    let (Some(rgb), Some(settings)) = (rgb, settings) else {
-        s.halo = halo;
-        return;
-    };
-    // Keep the last row and the halo below for the next band (see `row` above).
-    s.kept[0].0 = Some(y1 - 1);
-    s.kept[0].1.copy_from_slice(&out[(y1 - 1 - y0) * w..]);
-    s.kept[1].0 = halo_rows[1];
-    if halo_rows[1].is_some() {
-        s.kept[1].1.copy_from_slice(&halo[1]);
-    }
-    let row_of = |y: usize| -> &[f32] {
-        if !outside(y) {
-            &out[(y - y0) * w..(y - y0 + 1) * w]
-        } else if halo_rows[0] == Some(y) {
-            &halo[0]
-        } else {
-            &halo[1]
+    if let (Some(rgb), Some(settings)) = (rgb, settings) {
+        // Keep the last row and the halo below for the next band (see `row` above).
+        s.kept[0].0 = Some(y1 - 1);
+        s.kept[0].1.copy_from_slice(&heights[(y1 - 1 - y0) * w..]);
+        s.kept[1].0 = halo_rows[1];
+        if halo_rows[1].is_some() {
+            s.kept[1].1.copy_from_slice(&halo[1]);
         }
-    };
-    for (r, dst) in rgb.chunks_exact_mut(3 * w).enumerate() {
-        let y = y0 + r;
-        let rule = RowRule::new(y, w, ctx.h, &settings);
-        normal_map::encode_row_rgb8(
-            row_of(rule.above),
-            row_of(y),
-            row_of(rule.below),
-            &rule,
-            dst,
-        );
+        let row_of = |y: usize| -> &[f32] {
+            if !outside(y) {
+                &heights[(y - y0) * w..(y - y0 + 1) * w]
+            } else if halo_rows[0] == Some(y) {
+                &halo[0]
+            } else {
+                &halo[1]
+            }
+        };
+        for (r, dst) in rgb.chunks_exact_mut(3 * w).enumerate() {
+            let y = y0 + r;
+            let rule = RowRule::new(y, w, ctx.h, &settings);
+            normal_map::encode_row_rgb8(
+                row_of(rule.above),
+                row_of(y),
+                row_of(rule.below),
+                &rule,
+                &mut s.rgb_row,
+            );
+            crate::simd::stream_copy(dst, &s.rgb_row);
+        }
     }
+    crate::simd::stream_copy(out, heights);
+    crate::simd::stream_fence();
     s.halo = halo;
+    s.rows = rows;
 }
 
 /// Bakes height row `y` into `dst` (w values).
@@ -787,16 +801,22 @@ fn interpolate<const S: usize>(
         .zip(bx.windows(2))
         .zip(by.windows(2))
     {
+        crate::simd::keep_chunk_loop();
         let (lx, rx, ly, ry) = (ex[0], ex[1], ey[0], ey[1]);
         let (p, x, y): (&mut [f32; S], &[f32; S], &mut [f32; S]) =
             match (p.try_into(), x.try_into(), y.try_into()) {
                 (Ok(p), Ok(x), Ok(y)) => (p, x, y),
                 _ => continue,
             };
+        // Built in locals, then stored whole: stored in place, LLVM cannot tell that
+        // `p`, `y` and `x` do not overlap and keeps the loop scalar.
+        let (mut pk, mut yk) = ([0.0f32; S], [0.0f32; S]);
         for k in 0..S {
-            p[k] = x[k] + (lx + (rx - lx) * frac[k]);
-            y[k] = ly + (ry - ly) * frac[k];
+            pk[k] = x[k] + (lx + (rx - lx) * frac[k]);
+            yk[k] = ly + (ry - ly) * frac[k];
         }
+        *p = pk;
+        *y = yk;
     }
     let segment = |i: usize, f: usize, k: usize| {
         let (l, r) = (blend[f][i], blend[f][i + 1]);

@@ -1,0 +1,42 @@
+//! Profiling loop (not a benchmark): re-bakes [P]'s workload into kept buffers.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+use agesim_core::micro::MicroRelief;
+use agesim_core::normal_map::NormalSettings;
+use agesim_core::project::Project;
+
+fn main() {
+    let size: u32 = std::env::args().nth(1).map_or(4096, |s| s.parse().unwrap());
+    let iters: usize = std::env::args().nth(2).map_or(30, |s| s.parse().unwrap());
+    let mut p = Project::default();
+    for (k, v) in [
+        ("pores.count", "1000"),
+        ("pores.radius_mm.mean", "0.35"),
+        ("furrows.max_count", "500"),
+        ("noise.details", "5"),
+        ("noise.roughness", "0.667"),
+    ] {
+        p = p.set(k, v).unwrap();
+    }
+    let relief = MicroRelief::new(&p).unwrap();
+    let normals = NormalSettings {
+        strength: p.normal.strength,
+        tiling: p.tile,
+        ..Default::default()
+    };
+    let mut map = agesim_core::HeightMap::zeros(1, 1).unwrap();
+    let mut rgb = Vec::new();
+    let mut times = Vec::new();
+    for _ in 0..iters {
+        let t = std::time::Instant::now();
+        relief
+            .bake_into(size, &mut map, &mut rgb, &normals)
+            .unwrap();
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    times.sort_by(f64::total_cmp);
+    println!(
+        "{size}²: median {:.2} ms, min {:.2} ms",
+        times[times.len() / 2],
+        times[0]
+    );
+}

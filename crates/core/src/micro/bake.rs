@@ -628,13 +628,20 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
     if let Some(y) = halo_rows[0] {
         row(y, &mut halo[0], s);
     }
-    for (r, dst) in heights.chunks_exact_mut(w).enumerate() {
-        if r == 0 && settings.is_some() {
-            row(y0, dst, s);
-        } else {
-            height_row(ctx, y0 + r, dst, s);
+    // The band's features row by row, then its noise in one pass over the block (which
+    // keeps the noise's lattice rows in cache); a first row kept from the previous band
+    // is whole already.
+    let mut first = 0;
+    if settings.is_some() {
+        if let Some((_, kept)) = s.kept.iter().find(|k| k.0 == Some(y0)) {
+            heights[..w].copy_from_slice(kept);
+            first = 1;
         }
     }
+    for (r, dst) in heights.chunks_exact_mut(w).enumerate().skip(first) {
+        feature_row(ctx, y0 + r, dst, s);
+    }
+    add_noise(ctx, y0 + first, &mut heights[first * w..], s);
     if let Some(y) = halo_rows[1] {
         height_row(ctx, y, &mut halo[1], s);
     }
@@ -674,9 +681,9 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
     s.rows = rows;
 }
 
-/// Bakes height row `y` into `dst` (w values).
+/// Bakes the features (pores and furrows, log-smoothed) of row `y` into `dst` (w values).
 #[inline(always)]
-fn height_row(ctx: &Context, y: usize, dst: &mut [f32], s: &mut Scratch) {
+fn feature_row(ctx: &Context, y: usize, dst: &mut [f32], s: &mut Scratch) {
     let v = crate::heightmap::pixel_to_v(y as u32, ctx.h as u32);
     let y_mm = v * ctx.size_mm;
     let stamps = &ctx.bands[y / BAND_ROWS];
@@ -715,12 +722,24 @@ fn height_row(ctx: &Context, y: usize, dst: &mut [f32], s: &mut Scratch) {
         }
         tail.copy_from_slice(&out[..tail.len()]);
     }
+}
+
+/// Adds the noise to `rows` (consecutive rows from `y`, `w` values each).
+#[inline(always)]
+fn add_noise(ctx: &Context, y: usize, rows: &mut [f32], s: &mut Scratch) {
     if let Some(n) = &ctx.noise {
-        let noise = n.sum_row(v, &mut s.noise);
-        for (d, &n) in dst.iter_mut().zip(noise) {
-            *d += n;
-        }
+        let vs: Vec<f32> = (y..y + rows.len() / ctx.w)
+            .map(|y| crate::heightmap::pixel_to_v(y as u32, ctx.h as u32))
+            .collect();
+        n.add_rows(&vs, rows, ctx.w, &mut s.noise);
     }
+}
+
+/// Bakes row `y` whole (features, then noise) into `dst`.
+#[inline(always)]
+fn height_row(ctx: &Context, y: usize, dst: &mut [f32], s: &mut Scratch) {
+    feature_row(ctx, y, dst, s);
+    add_noise(ctx, y, dst, s);
 }
 
 /// True when any lane is set (compiles to one vector test).

@@ -632,11 +632,9 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
     // keeps the noise's lattice rows in cache); a first row kept from the previous band
     // is whole already.
     let mut first = 0;
-    if settings.is_some() {
-        if let Some((_, kept)) = s.kept.iter().find(|k| k.0 == Some(y0)) {
-            heights[..w].copy_from_slice(kept);
-            first = 1;
-        }
+    if let (Some(_), Some((_, kept))) = (settings, s.kept.iter().find(|k| k.0 == Some(y0))) {
+        heights[..w].copy_from_slice(kept);
+        first = 1;
     }
     for (r, dst) in heights.chunks_exact_mut(w).enumerate().skip(first) {
         feature_row(ctx, y0 + r, dst, s);

@@ -35,7 +35,7 @@
 use rayon::prelude::*;
 
 use super::furrows::{Furrow, build_network};
-use super::noise::{FbmField, LANES, RowSampler, RowScratch};
+use super::noise::{Chunk, FbmField, LANES, RowSampler, RowScratch};
 use super::overlap::resolve;
 use super::pores::{Pore, PoreProfile, Rim, place_pores, rim_window};
 use crate::error::Error;
@@ -343,11 +343,6 @@ struct Warp<'a> {
     fields: [RowSampler<'a>; 2],
 }
 
-/// [`LANES`] floats, aligned for whole-vector loads.
-#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-#[repr(C, align(64))]
-struct Chunk([f32; LANES]);
-
 impl<'a> Context<'a> {
     fn new(
         relief: &'a MicroRelief,
@@ -543,8 +538,9 @@ struct Scratch {
     noise: RowScratch,
     /// The warp fields' own caches (each keeps its lattice rows between pixel rows).
     warp_noise: [RowScratch; 2],
-    /// The band's height rows, baked here and streamed to the output at the end.
-    rows: Vec<f32>,
+    /// The band's height rows, baked here and streamed to the output at the end (rows
+    /// are 64-byte aligned when the width is a whole number of chunks).
+    rows: Vec<Chunk>,
     /// One row of the normal map, encoded here and streamed to the output.
     rgb_row: Vec<u8>,
     /// Height rows just outside the band (the normal map's neighbours).
@@ -567,7 +563,7 @@ impl Scratch {
             blend: [vec![0.0; cols], vec![0.0; cols]],
             noise: RowScratch::default(),
             warp_noise: Default::default(),
-            rows: vec![0.0; BAND_ROWS * ctx.w],
+            rows: vec![Chunk::ZERO; (BAND_ROWS * ctx.w).div_ceil(LANES)],
             rgb_row: vec![0; 3 * ctx.w],
             halo: [vec![0.0; ctx.w], vec![0.0; ctx.w]],
             kept: [(None, vec![0.0; ctx.w]), (None, vec![0.0; ctx.w])],
@@ -603,7 +599,7 @@ fn bake_band(ctx: &Context, band: usize, out: &mut [f32], rgb: Option<&mut [u8]>
     let y0 = band * BAND_ROWS;
     let y1 = y0 + out.len() / w;
     let mut rows = std::mem::take(&mut s.rows);
-    let heights = &mut rows[..out.len()];
+    let heights = &mut bytemuck::cast_slice_mut::<Chunk, f32>(&mut rows)[..out.len()];
     // With normals, the neighbour rows outside the band are baked again into the halo
     // buffers; rows go strictly downward (halo above, band, halo below) so the noise and
     // warp caches move forward only.

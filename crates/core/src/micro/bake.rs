@@ -973,7 +973,11 @@ impl<'s> Span<'s> {
         inv_taper: f32,
     ) {
         for ((a, x), wy) in self.acc.iter_mut().zip(self.px).zip(self.wy) {
-            let mut q = [0.0; LANES];
+            // q = d²/f² (d² the squared distance over ω²): the divide only where the chunk
+            // is reached. d² < f² exactly when the rounded quotient could be below 1, and a
+            // lane whose quotient rounds to 1 adds exp(0) − 1 = 0 either way, so skipping
+            // on d² ≥ f² skips the same chunks as skipping on q ≥ 1.
+            let (mut d2, mut f2) = ([0.0; LANES], [0.0; LANES]);
             for l in 0..LANES {
                 let px = x.0[l] - sx;
                 let py = py + wy.0[l];
@@ -983,10 +987,15 @@ impl<'s> Span<'s> {
                 let beyond = along - on;
                 let e = (on.min(len - on) * inv_taper).clamp(0.0, 1.0);
                 let f = 0.5 + 0.5 * (e * e * (3.0 - 2.0 * e));
-                q[l] = (cross * cross + beyond * beyond) * inv_w2 / (f * f);
+                d2[l] = (cross * cross + beyond * beyond) * inv_w2;
+                f2[l] = f * f;
             }
-            if !any(q.map(|q| q < 1.0)) {
+            if !any(std::array::from_fn(|l| d2[l] < f2[l])) {
                 continue;
+            }
+            let mut q = [0.0; LANES];
+            for l in 0..LANES {
+                q[l] = d2[l] / f2[l];
             }
             for l in 0..LANES {
                 let bm = if q[l] < 1.0 {

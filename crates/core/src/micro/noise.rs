@@ -333,7 +333,9 @@ impl<'a> RowSampler<'a> {
         }
     }
 
-    /// Fills `row` with Q_y, Q_x of lattice row `j` of octave `k`.
+    /// Fills `row` with Q_y, Q_x of lattice row `j` of octave `k`. Inlined into the
+    /// dispatched kernels (see `crate::simd`), so its column loop is vectorised for them.
+    #[inline(always)]
     fn lattice_row(&self, k: usize, j: i32, row: &mut LatticeRow) {
         let (o, cols) = (&self.field.octaves[k], &self.columns[k]);
         let padded = self.len.next_multiple_of(LANES);
@@ -373,6 +375,7 @@ impl<'a> RowSampler<'a> {
     /// Makes the `slots` hold lattice rows `j0..=j1` of octave `k`, computing what is
     /// missing into slots not used by this call (the ones unused the longest), growing the
     /// slot list when all are taken; returns the slot index of each row, in order.
+    #[inline(always)]
     fn ensure_rows(&self, k: usize, j0: i32, j1: i32, slots: &mut Slots) -> Vec<usize> {
         slots.clock += 1;
         let now = slots.clock;

@@ -1,4 +1,7 @@
-//! Profiling loop (not a benchmark): re-bakes [P]'s workload into kept buffers.
+//! Profiling loop (not a benchmark; that is `benches/micro.rs`): re-bakes [P]'s workload,
+//! for `perf record` or A/B timing of two builds.
+//!
+//! `cargo run --release -p agesim-core --example micro_profile -- [SIZE] [ITERS] [cold]`
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 use agesim_core::micro::MicroRelief;
 use agesim_core::normal_map::NormalSettings;
@@ -7,6 +10,8 @@ use agesim_core::project::Project;
 fn main() {
     let size: u32 = std::env::args().nth(1).map_or(4096, |s| s.parse().unwrap());
     let iters: usize = std::env::args().nth(2).map_or(30, |s| s.parse().unwrap());
+    // "cold": fresh buffers every bake (`bake_with_normals`); otherwise `bake_into`.
+    let cold = std::env::args().nth(3).is_some_and(|m| m == "cold");
     let mut p = Project::default();
     for (k, v) in [
         ("pores.count", "1000"),
@@ -28,9 +33,13 @@ fn main() {
     let mut times = Vec::new();
     for _ in 0..iters {
         let t = std::time::Instant::now();
-        relief
-            .bake_into(size, &mut map, &mut rgb, &normals)
-            .unwrap();
+        if cold {
+            std::hint::black_box(relief.bake_with_normals(size, &normals).unwrap());
+        } else {
+            relief
+                .bake_into(size, &mut map, &mut rgb, &normals)
+                .unwrap();
+        }
         times.push(t.elapsed().as_secs_f64() * 1e3);
     }
     times.sort_by(f64::total_cmp);

@@ -554,13 +554,18 @@ struct Scratch {
 impl Scratch {
     fn new(ctx: &Context) -> Self {
         let cols = ctx.warp.as_ref().map_or(0, |w| w.cols);
+        let blend_len = ctx
+            .warp
+            .as_ref()
+            .map_or(0, |w| cols.max(ctx.chunks * LANES / w.step + 1));
         Self {
             acc: vec![Chunk([0.0; LANES]); ctx.chunks],
             // Without a warp, px stays x_mm and wy stays 0.
             px: ctx.x_mm.clone(),
             wy: vec![Chunk([0.0; LANES]); ctx.chunks],
             coarse: Default::default(),
-            blend: [vec![0.0; cols], vec![0.0; cols]],
+            // Padded to whole chunks of pixels (see `interpolate`).
+            blend: [vec![0.0; blend_len], vec![0.0; blend_len]],
             noise: RowScratch::default(),
             warp_noise: Default::default(),
             rows: vec![Chunk::ZERO; (BAND_ROWS * ctx.w).div_ceil(LANES)],
@@ -776,11 +781,7 @@ fn warp_row(ctx: &Context, warp: &Warp, y: usize, s: &mut Scratch) -> f32 {
             *d = a + (b - a) * fy;
         }
     }
-    let w = ctx.w;
-    let px = &mut bytemuck::cast_slice_mut::<Chunk, f32>(&mut s.px)[..w];
-    let wy = &mut bytemuck::cast_slice_mut::<Chunk, f32>(&mut s.wy)[..w];
-    let x_mm = bytemuck::cast_slice::<Chunk, f32>(&ctx.x_mm);
-    let x_mm = &x_mm[..w];
+    let (px, wy, x_mm) = (&mut s.px, &mut s.wy, &ctx.x_mm);
     match warp.step {
         1 => interpolate::<1>(&s.blend, x_mm, px, wy),
         2 => interpolate::<2>(&s.blend, x_mm, px, wy),
@@ -794,50 +795,35 @@ fn warp_row(ctx: &Context, warp: &Warp, y: usize, s: &mut Scratch) -> f32 {
 }
 
 /// px = x_mm + the x warp and wy = the y warp, linear between the coarse columns `blend`
-/// every `S` pixels (`S` a constant so each segment is a whole vector operation).
+/// every `S` pixels (`S` a power of two up to [`LANES`]), one whole chunk at a time: lane k
+/// of chunk c lies in segment c·LANES/S + k/S at fraction (k mod S)/S. Padding lanes past
+/// the row get finite values no output reads (`blend` is padded to whole chunks).
 #[inline(always)]
 fn interpolate<const S: usize>(
     blend: &[Vec<f32>; 2],
-    x_mm: &[f32],
-    px: &mut [f32],
-    wy: &mut [f32],
+    x_mm: &[Chunk],
+    px: &mut [Chunk],
+    wy: &mut [Chunk],
 ) {
-    let frac: [f32; S] = std::array::from_fn(|k| k as f32 * (1.0 / S as f32));
+    let per = LANES / S;
+    let frac: [f32; LANES] = std::array::from_fn(|k| (k % S) as f32 * (1.0 / S as f32));
     let (bx, by) = (blend[0].as_slice(), blend[1].as_slice());
-    let full = px.len() / S;
-    // The segment ends are loaded once per segment (indexing `blend` per pixel kept the
-    // loop scalar); per pixel it is l + (r − l)·frac, as before.
-    for ((((p, x), y), ex), ey) in px
-        .chunks_exact_mut(S)
-        .zip(x_mm.chunks_exact(S))
-        .zip(wy.chunks_exact_mut(S))
-        .zip(bx.windows(2))
-        .zip(by.windows(2))
-    {
+    for (c, ((p, x), y)) in px.iter_mut().zip(x_mm).zip(wy.iter_mut()).enumerate() {
         crate::simd::keep_chunk_loop();
-        let (lx, rx, ly, ry) = (ex[0], ex[1], ey[0], ey[1]);
-        let (p, x, y): (&mut [f32; S], &[f32; S], &mut [f32; S]) =
-            match (p.try_into(), x.try_into(), y.try_into()) {
-                (Ok(p), Ok(x), Ok(y)) => (p, x, y),
-                _ => continue,
-            };
+        let b = c * per;
+        let (Some(ex), Some(ey)) = (bx.get(b..b + per + 1), by.get(b..b + per + 1)) else {
+            break;
+        };
         // Built in locals, then stored whole: stored in place, LLVM cannot tell that
         // `p`, `y` and `x` do not overlap and keeps the loop scalar.
-        let (mut pk, mut yk) = ([0.0f32; S], [0.0f32; S]);
-        for k in 0..S {
-            pk[k] = x[k] + (lx + (rx - lx) * frac[k]);
+        let (mut pk, mut yk) = ([0.0f32; LANES], [0.0f32; LANES]);
+        for k in 0..LANES {
+            let (lx, rx, ly, ry) = (ex[k / S], ex[k / S + 1], ey[k / S], ey[k / S + 1]);
+            pk[k] = x.0[k] + (lx + (rx - lx) * frac[k]);
             yk[k] = ly + (ry - ly) * frac[k];
         }
-        *p = pk;
-        *y = yk;
-    }
-    let segment = |i: usize, f: usize, k: usize| {
-        let (l, r) = (blend[f][i], blend[f][i + 1]);
-        l + (r - l) * frac[k]
-    };
-    for x in full * S..px.len() {
-        px[x] = x_mm[x] + segment(full, 0, x - full * S);
-        wy[x] = segment(full, 1, x - full * S);
+        p.0 = pk;
+        y.0 = yk;
     }
 }
 

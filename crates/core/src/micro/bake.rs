@@ -1129,6 +1129,39 @@ mod tests {
         assert_eq!(first_diff, None, "first differing byte");
     }
 
+    /// FNV-1a over the height bits and the normal bytes.
+    fn fingerprint(map: &HeightMap, rgb: &[u8]) -> u64 {
+        let bytes = map.data().iter().flat_map(|h| h.to_le_bytes());
+        bytes
+            .chain(rgb.iter().copied())
+            .fold(0xcbf2_9ce4_8422_2325, |h, b| {
+                (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+            })
+    }
+
+    #[test]
+    fn output_bytes_are_pinned() {
+        // Speed work must not move a single bit: the rough preset (warp, 6 octaves of
+        // noise, dense furrows) at widths that are and are not whole chunks, tiled and not.
+        // A deliberate change of the model updates these numbers, and says so.
+        let mut seen = Vec::new();
+        for (size, tile) in [(200, false), (333, true), (512, false)] {
+            let text = include_str!("../../../../assets/presets/rough.agesim.json");
+            let mut p = Project::from_json_str(text, "rough").unwrap();
+            p.tile = tile;
+            let relief = MicroRelief::new(&p).unwrap();
+            let (map, rgb, _) = relief
+                .bake_with_normals(size, &relief.normal_settings())
+                .unwrap();
+            seen.push(fingerprint(&map, &rgb));
+        }
+        assert_eq!(
+            seen,
+            [915776542343579408, 456448684703738143, 9722876278322697966],
+            "fingerprints changed"
+        );
+    }
+
     #[test]
     fn a_lone_pore_bakes_to_its_profile() {
         // One pore in the middle, no furrows, noise or warp: the map is eq. 15 (smooth rim).

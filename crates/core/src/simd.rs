@@ -54,17 +54,25 @@ pub fn dispatch<K: Kernel>(k: K) -> K::Output {
     dispatch_at(Level::detect(), k)
 }
 
-/// Runs `k` compiled for `level`, or for the best level below it this CPU has.
+impl Level {
+    /// The level [`dispatch_at`] really runs at when asked for `self`: `self`, or the best
+    /// level below it this CPU has.
+    pub fn effective(self) -> Self {
+        match (self, Self::detect()) {
+            (Self::Avx512, Self::Avx512) => Self::Avx512,
+            (Self::Avx512 | Self::Avx2, Self::Avx512 | Self::Avx2) => Self::Avx2,
+            _ => Self::Baseline,
+        }
+    }
+}
+
+/// Runs `k` compiled for `level`, or for the best level below it this CPU has
+/// ([`Level::effective`]).
 #[inline(always)]
 pub fn dispatch_at<K: Kernel>(level: Level, k: K) -> K::Output {
     #[cfg(target_arch = "x86_64")]
     {
-        let level = match (level, Level::detect()) {
-            (Level::Avx512, Level::Avx512) => Level::Avx512,
-            (Level::Avx512 | Level::Avx2, Level::Avx512 | Level::Avx2) => Level::Avx2,
-            _ => Level::Baseline,
-        };
-        match level {
+        match level.effective() {
             // SAFETY: `Level::detect` found these features on this CPU, the only
             // requirement of calling a `#[target_feature]` function.
             Level::Avx512 => return unsafe { with_avx512(k) },

@@ -963,17 +963,25 @@ impl<'s> Span<'s> {
             // is reached. d² < f² exactly when the rounded quotient could be below 1, and a
             // lane whose quotient rounds to 1 adds exp(0) − 1 = 0 either way, so skipping
             // on d² ≥ f² skips the same chunks as skipping on q ≥ 1.
-            let (mut d2, mut f2) = ([0.0; LANES], [0.0; LANES]);
+            // The taper factor f is at most 1, so d² ≥ 1 already rules a lane out: most
+            // chunks a furrow visits are dismissed before f is computed.
+            let (mut d2, mut on) = ([0.0; LANES], [0.0; LANES]);
             for l in 0..LANES {
                 let px = x.0[l] - sx;
                 let py = py + wy.0[l];
                 let along = px * dir[0] + py * dir[1];
                 let cross = px * dir[1] - py * dir[0];
-                let on = along.clamp(0.0, len);
-                let beyond = along - on;
-                let e = (on.min(len - on) * inv_taper).clamp(0.0, 1.0);
-                let f = 0.5 + 0.5 * (e * e * (3.0 - 2.0 * e));
+                on[l] = along.clamp(0.0, len);
+                let beyond = along - on[l];
                 d2[l] = (cross * cross + beyond * beyond) * inv_w2;
+            }
+            if !any(d2.map(|d2| d2 < 1.0)) {
+                continue;
+            }
+            let mut f2 = [0.0; LANES];
+            for l in 0..LANES {
+                let e = (on[l].min(len - on[l]) * inv_taper).clamp(0.0, 1.0);
+                let f = 0.5 + 0.5 * (e * e * (3.0 - 2.0 * e));
                 f2[l] = f * f;
             }
             if !any(std::array::from_fn(|l| d2[l] < f2[l])) {

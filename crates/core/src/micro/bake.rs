@@ -15,14 +15,18 @@
 //! - per row, every stamp adds exp(β·m) − 1 over its x-interval in chunks of [`LANES`]
 //!   pixels (a circle or an oriented rectangle cut by the row; chunks the feature does not
 //!   reach skip the `exp`), then the row is resolved with one `ln` per pixel of the chunks
-//!   some feature covers, and the fBm row is added;
+//!   some feature covers; the band's fBm is then added in one pass over its rows, in
+//!   column tiles ([`RowSampler::add_rows`]);
 //! - the warp (two fBm fields) is smooth, so it is evaluated on a coarse grid (≤ 16 px,
 //!   at most a quarter of its finest lattice cell), cached per coarse row, and interpolated;
 //! - with normals ([`MicroRelief::bake_with_normals`]) each band also bakes the row above
 //!   and below it (a one-row halo, recomputed unless the task's previous band just baked
-//!   it: same bytes as its owner band's) and encodes
-//!   its normal rows while its heights are still in cache, with the same row kernel as
-//!   [`normal_map::encode_rgb8`], so the bytes equal `encode_rgb8(bake())`;
+//!   it: same bytes as its owner band's) and encodes its normal rows while its heights
+//!   are still in cache, with the same row kernel as [`normal_map::encode_rgb8`], so the
+//!   bytes equal `encode_rgb8(bake())`;
+//! - a band is baked into the task's scratch and streamed to the output with
+//!   non-temporal stores ([`crate::simd::stream_copy`]): the output is written once and
+//!   never read in first;
 //! - the hot loops are plain `f32` code over fixed-size chunks; the band function runs
 //!   under [`crate::simd::dispatch`] (AVX-512, AVX2 or the SSE2 baseline, chosen at run
 //!   time). All paths do the same IEEE operations (no fused multiply-add), so their output
@@ -727,10 +731,13 @@ fn feature_row(ctx: &Context, y: usize, dst: &mut [f32], s: &mut Scratch) {
 #[inline(always)]
 fn add_noise(ctx: &Context, y: usize, rows: &mut [f32], s: &mut Scratch) {
     if let Some(n) = &ctx.noise {
-        let vs: Vec<f32> = (y..y + rows.len() / ctx.w)
-            .map(|y| crate::heightmap::pixel_to_v(y as u32, ctx.h as u32))
-            .collect();
-        n.add_rows(&vs, rows, ctx.w, &mut s.noise);
+        // At most a band's rows.
+        let mut vs = [0.0f32; BAND_ROWS];
+        let vs = &mut vs[..rows.len() / ctx.w];
+        for (k, v) in vs.iter_mut().enumerate() {
+            *v = crate::heightmap::pixel_to_v((y + k) as u32, ctx.h as u32);
+        }
+        n.add_rows(vs, rows, ctx.w, &mut s.noise);
     }
 }
 

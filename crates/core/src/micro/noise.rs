@@ -264,6 +264,7 @@ struct Slots {
     used: Vec<u64>,
     clock: u64,
 }
+
 /// Per-thread scratch space of [`RowSampler::add_rows`]: per octave, the lattice rows of the
 /// last rows evaluated (neighbouring pixel rows mostly share them).
 #[derive(Clone, Debug, Default)]

@@ -13,9 +13,12 @@ use std::time::Instant;
 use agesim_core::micro::MicroRelief;
 use agesim_core::micro::bake::Parts;
 use agesim_core::normal_map::{self, NormalSettings};
-use agesim_core::project::Project;
 use noise::MultiFractal as _;
 use rayon::prelude::*;
+
+#[path = "common/workload.rs"]
+mod common;
+use common::workload;
 
 const RUNS: usize = 9;
 
@@ -42,21 +45,6 @@ fn time_ms_min(runs: usize, mut f: impl FnMut()) -> (f64, f64) {
         .collect();
     let fastest = times.iter().copied().fold(f64::INFINITY, f64::min);
     (median(times), fastest)
-}
-
-/// [P]'s workload as a project: 1000 pores, 500 furrows, 5 octaves, domain warp on.
-fn workload() -> Project {
-    let mut p = Project::default();
-    for (k, v) in [
-        ("pores.count", "1000"),
-        ("pores.radius_mm.mean", "0.35"),
-        ("furrows.max_count", "500"),
-        ("noise.details", "5"),
-        ("noise.roughness", "0.667"),
-    ] {
-        p = p.set(k, v).unwrap();
-    }
-    p
 }
 
 /// Full bake in one fused pass: height map + 8-bit normal map.

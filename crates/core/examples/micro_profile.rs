@@ -5,23 +5,16 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 use agesim_core::micro::MicroRelief;
 use agesim_core::normal_map::NormalSettings;
-use agesim_core::project::Project;
+
+#[path = "../benches/common/workload.rs"]
+mod common;
 
 fn main() {
     let size: u32 = std::env::args().nth(1).map_or(4096, |s| s.parse().unwrap());
     let iters: usize = std::env::args().nth(2).map_or(30, |s| s.parse().unwrap());
     // "cold": fresh buffers every bake (`bake_with_normals`); otherwise `bake_into`.
     let cold = std::env::args().nth(3).is_some_and(|m| m == "cold");
-    let mut p = Project::default();
-    for (k, v) in [
-        ("pores.count", "1000"),
-        ("pores.radius_mm.mean", "0.35"),
-        ("furrows.max_count", "500"),
-        ("noise.details", "5"),
-        ("noise.roughness", "0.667"),
-    ] {
-        p = p.set(k, v).unwrap();
-    }
+    let p = common::workload();
     let relief = MicroRelief::new(&p).unwrap();
     let normals = NormalSettings {
         strength: p.normal.strength,

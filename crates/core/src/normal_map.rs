@@ -484,24 +484,12 @@ mod tests {
 
     #[test]
     fn inv_sqrt_is_within_4e7_of_f64() {
-        let mut worst = (0.0f64, 0.0f32);
         // 1 + |∇h|² from flat to vertical-ish slopes, and a sweep across binades.
         let xs = (0..200_000)
             .map(|i| 1.0 + i as f32 * 0.013)
             .chain((0..120).map(|e| 2.0f32.powf(e as f32 * 0.5)));
-        for x in xs {
-            let want = 1.0 / (x as f64).sqrt();
-            let e = ((inv_sqrt(x) as f64 - want) / want).abs();
-            if e > worst.0 {
-                worst = (e, x);
-            }
-        }
-        assert!(
-            worst.0 < 4e-7,
-            "worst relative error {} at {}",
-            worst.0,
-            worst.1
-        );
+        let (e, x) = crate::test_util::worst_relative_error(xs, inv_sqrt, |x| 1.0 / x.sqrt());
+        assert!(e < 4e-7, "worst relative error {e} at {x}");
     }
 
     #[test]

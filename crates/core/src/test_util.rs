@@ -9,3 +9,21 @@ pub fn close(actual: f32, expected: f32, tol: f32) {
         actual - expected
     );
 }
+
+/// The largest relative error of `got` against the f64 `want` over `xs`, and where it is
+/// (an absolute error where `want` is 0).
+pub fn worst_relative_error(
+    xs: impl IntoIterator<Item = f32>,
+    got: impl Fn(f32) -> f32,
+    want: impl Fn(f64) -> f64,
+) -> (f64, f32) {
+    xs.into_iter().fold((0.0, 0.0), |worst, x| {
+        let (g, w) = (got(x) as f64, want(x as f64));
+        let e = if w == 0.0 {
+            g.abs()
+        } else {
+            ((g - w) / w).abs()
+        };
+        if e > worst.0 { (e, x) } else { worst }
+    })
+}

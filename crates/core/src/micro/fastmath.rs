@@ -49,51 +49,21 @@ pub fn ln(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn rel_err(got: f32, want: f64) -> f64 {
-        ((got as f64 - want) / want).abs()
-    }
+    use crate::test_util::worst_relative_error;
 
     #[test]
     fn exp_matches_f64_to_3e7() {
-        let mut worst = (0.0, 0.0);
-        for i in -8000..=8000 {
-            let x = i as f32 * 0.01;
-            let e = rel_err(exp(x), (x as f64).exp());
-            if e > worst.0 {
-                worst = (e, x);
-            }
-        }
-        assert!(
-            worst.0 < 3e-7,
-            "worst relative error {} at x = {}",
-            worst.0,
-            worst.1
-        );
+        let xs = (-8000..=8000).map(|i| i as f32 * 0.01);
+        let (e, x) = worst_relative_error(xs, exp, f64::exp);
+        assert!(e < 3e-7, "worst relative error {e} at x = {x}");
         assert_eq!(exp(0.0), 1.0);
     }
 
     #[test]
     fn ln_matches_f64_to_2e7() {
-        let mut worst = (0.0, 0.0);
-        for i in 0..20000 {
-            let x = 1.0 + i as f32 * 0.37;
-            let want = (x as f64).ln();
-            let e = if want == 0.0 {
-                ln(x).abs() as f64
-            } else {
-                rel_err(ln(x), want)
-            };
-            if e > worst.0 {
-                worst = (e, x);
-            }
-        }
-        assert!(
-            worst.0 < 2e-7,
-            "worst relative error {} at x = {}",
-            worst.0,
-            worst.1
-        );
+        let xs = (0..20000).map(|i| 1.0 + i as f32 * 0.37);
+        let (e, x) = worst_relative_error(xs, ln, f64::ln);
+        assert!(e < 2e-7, "worst relative error {e} at x = {x}");
         assert_eq!(ln(1.0), 0.0);
         assert!((ln(0.5) as f64 - 0.5f64.ln()).abs() < 1e-7);
     }

@@ -272,6 +272,10 @@ pub struct RowScratch {
     rows: Vec<Slots>,
     /// Per octave and block row: the slots of lattice rows j and j + 1, and the row weights.
     plan: Vec<Vec<([usize; 2], [f32; 4])>>,
+    /// Reused per octave: each block row's lattice row j and weights, and the slots of
+    /// the block's lattice rows (kept here so a call allocates nothing once warm).
+    weights: Vec<(i32, [f32; 4])>,
+    found: Vec<usize>,
 }
 
 /// Columns per tile of [`RowSampler::add_rows`]: the lattice-row slices of a tile (four
@@ -375,21 +379,24 @@ impl<'a> RowSampler<'a> {
 
     /// Makes the `slots` hold lattice rows `j0..=j1` of octave `k`, computing what is
     /// missing into slots not used by this call (the ones unused the longest), growing the
-    /// slot list when all are taken; returns the slot index of each row, in order.
+    /// slot list when all are taken; `found` becomes the slot index of each row, in order.
     #[inline(always)]
-    fn ensure_rows(&self, k: usize, j0: i32, j1: i32, slots: &mut Slots) -> Vec<usize> {
+    fn ensure_rows(&self, k: usize, j0: i32, j1: i32, slots: &mut Slots, found: &mut Vec<usize>) {
         slots.clock += 1;
         let now = slots.clock;
-        // Mark what is already there, so the misses below do not evict it.
-        let mut found: Vec<Option<usize>> = (j0..=j1)
-            .map(|j| {
-                let i = slots.rows.iter().position(|r| r.j == Some(j))?;
-                slots.used[i] = now;
-                Some(i)
-            })
-            .collect();
+        // Mark what is already there first, so the misses below do not evict it.
+        found.clear();
+        found.extend(
+            (j0..=j1).map(|j| match slots.rows.iter().position(|r| r.j == Some(j)) {
+                Some(i) => {
+                    slots.used[i] = now;
+                    i
+                }
+                None => usize::MAX,
+            }),
+        );
         for (n, j) in (j0..=j1).enumerate() {
-            if found[n].is_some() {
+            if found[n] != usize::MAX {
                 continue;
             }
             let free = (0..slots.rows.len())
@@ -406,9 +413,8 @@ impl<'a> RowSampler<'a> {
             };
             self.lattice_row(k, j, &mut slots.rows[i]);
             slots.used[i] = now;
-            found[n] = Some(i);
+            found[n] = i;
         }
-        found.into_iter().flatten().collect()
     }
 
     /// Adds gain · fBm(u_c, v) to `out[c]` for every column c. `out.len()` must equal the
@@ -442,13 +448,16 @@ impl<'a> RowSampler<'a> {
         scratch.rows.resize_with(octaves.len(), Default::default);
         scratch.plan.resize_with(octaves.len(), Vec::new);
         for (k, o) in octaves.iter().enumerate() {
-            let rows: Vec<(i32, [f32; 4])> = vs.iter().map(|&v| o.row_weights(v)).collect();
-            let j0 = rows.iter().map(|r| r.0).min().unwrap_or(0);
-            let j1 = rows.iter().map(|r| r.0).max().unwrap_or(0) + 1;
-            let slots = self.ensure_rows(k, j0, j1, &mut scratch.rows[k]);
+            let weights = &mut scratch.weights;
+            weights.clear();
+            weights.extend(vs.iter().map(|&v| o.row_weights(v)));
+            let j0 = weights.iter().map(|r| r.0).min().unwrap_or(0);
+            let j1 = weights.iter().map(|r| r.0).max().unwrap_or(0) + 1;
+            let slots = &mut scratch.found;
+            self.ensure_rows(k, j0, j1, &mut scratch.rows[k], slots);
             let plan = &mut scratch.plan[k];
             plan.clear();
-            plan.extend(rows.iter().map(|&(j, w)| {
+            plan.extend(weights.iter().map(|&(j, w)| {
                 let at = (j - j0) as usize;
                 ([slots[at], slots[at + 1]], w)
             }));

@@ -1,7 +1,6 @@
 //! The `agesim` binary: the editor (later) and the command line.
 
 mod cli;
-mod defaults;
 
 use clap::Parser as _;
 

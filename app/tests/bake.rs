@@ -19,7 +19,15 @@ fn stderr(o: &Output) -> String {
 fn default_bake_writes_the_four_files() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("maps");
-    let o = agesim(&["bake", "--size", "256", "--out", out.to_str().unwrap()]);
+    let o = agesim(&[
+        "bake",
+        "--size",
+        "256",
+        "--age",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     for f in ["height.png", "height.exr", "normal.png", "bake.json"] {
         assert!(out.join(f).is_file(), "{f} missing");
@@ -31,11 +39,12 @@ fn default_bake_writes_the_four_files() {
     assert_eq!(
         (lo, hi),
         (0.0, 1.0),
-        "large wrinkles are normalised to [0,1]"
+        "large wrinkles at full age are normalised to [0,1]"
     );
+    assert_eq!(report["inputs"]["age_t"], 1.0);
     assert_eq!(report["inputs"]["size"], 256);
     assert_eq!(report["inputs"]["gamma"], 0.4);
-    assert!(report["timings_ms"]["large_wrinkles"].as_f64().unwrap() >= 0.0);
+    assert!(report["timings_ms"]["bake"].as_f64().unwrap() >= 0.0);
     assert_eq!(report["inputs"]["layers"], serde_json::json!(["large"]));
     assert!(
         report["inputs"]["wrinkles"][0]["file"]

@@ -6,15 +6,13 @@
 //! `--set path=value` in order; then `--layers`. The resolved project is recorded in
 //! `bake.json`, so a bake can be reproduced from that file alone.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
-use agesim_core::micro::MicroRelief;
-use agesim_core::muscle::{self, Fibre, LargeWrinkleSettings};
-use agesim_core::normal_map::{self, NormalSettings};
+use agesim_core::cancel::CancelToken;
 use agesim_core::project::Project;
-use agesim_core::wrinkle_file::{self, ParseErrors};
-use agesim_core::{HeightMap, Mask, export, heightmap};
+use agesim_core::scene::{BakeRequest, Scene};
+use agesim_core::{defaults, export, heightmap};
 use anyhow::{Context as _, bail};
 use serde_json::json;
 
@@ -71,6 +69,15 @@ pub struct BakeArgs {
     #[arg(long, value_name = "S")]
     pub seed: Option<u64>,
 
+    /// Bake at age t ∈ [0, 1] (0 = `age.young_years`, 1 = `age.old_years`); default: the
+    /// project's `age.t` (0.5 for a new project, 1 for a version-1 file).
+    #[arg(long, value_name = "T", conflicts_with = "age_years")]
+    pub age: Option<f32>,
+
+    /// Bake at this age in years (mapped through the project's `age` section).
+    #[arg(long, value_name = "Y")]
+    pub age_years: Option<f32>,
+
     /// Output directory (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
@@ -106,15 +113,10 @@ fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
     let mut project = match (&args.project, &args.preset) {
         (Some(path), _) => Project::load(path)?,
         (None, Some(name)) => {
-            let Some((_, file, text)) = crate::defaults::PRESETS.iter().find(|(n, _, _)| n == name)
-            else {
-                let names: Vec<&str> = crate::defaults::PRESETS
-                    .iter()
-                    .map(|(n, _, _)| *n)
-                    .collect();
+            let Some((file, text)) = defaults::preset(name) else {
                 bail!(
                     "unknown preset `{name}`: expected one of {}",
-                    names.join(", ")
+                    defaults::preset_names().join(", ")
                 );
             };
             Project::from_json_str(text, file)?
@@ -199,12 +201,6 @@ fn layer_names(project: &Project) -> Vec<&'static str> {
     names
 }
 
-/// A wrinkle file as loaded: where it came from and its fibres.
-struct LoadedWrinkles {
-    source: String,
-    fibres: Vec<Fibre>,
-}
-
 /// Bytes a bake of `size_px`² needs at its peak: the f32 large and total heights, the u16
 /// copy and its PNG byte buffer, and the RGB normals.
 fn peak_bytes(size_px: u32) -> u64 {
@@ -217,44 +213,6 @@ fn available_memory_bytes() -> Option<u64> {
     let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
-}
-
-/// Reads every wrinkle file of the project (the shipped defaults when it names none) and
-/// reports all their errors together.
-fn load_wrinkles(project: &Project) -> anyhow::Result<Vec<LoadedWrinkles>> {
-    let mut loaded = Vec::new();
-    let mut diagnostics = Vec::new();
-    let mut push =
-        |source: String, result: Result<wrinkle_file::WrinkleFile, ParseErrors>| match result {
-            Ok(file) => loaded.push(LoadedWrinkles {
-                source,
-                fibres: file.fibres().cloned().collect(),
-            }),
-            Err(errors) => diagnostics.extend(errors.0),
-        };
-    if project.large.wrinkles.is_empty() {
-        for (name, text) in crate::defaults::WRINKLE_FILES {
-            push(name.to_string(), wrinkle_file::parse(text, Path::new(name)));
-        }
-    } else {
-        for path in &project.large.wrinkles {
-            let bytes = std::fs::read(path)
-                .with_context(|| format!("cannot read wrinkle file {}", path.display()))?;
-            push(
-                path.display().to_string(),
-                wrinkle_file::parse_bytes(&bytes, path),
-            );
-        }
-    }
-    if !diagnostics.is_empty() {
-        let n = diagnostics.len();
-        bail!(
-            "{n} error{} in the wrinkle files, nothing was written:\n{}",
-            if n == 1 { "" } else { "s" },
-            ParseErrors(diagnostics)
-        );
-    }
-    Ok(loaded)
 }
 
 pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
@@ -274,55 +232,28 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     }
     let t = Instant::now();
     let project = resolve_project(args)?;
-    let (wrinkles, mask) = if project.large.enabled {
-        let mask = match &project.large.mask {
-            Some(path) => Some(Mask::load(path)?),
-            // The default wrinkle files come with the default head's mask.
-            None if project.large.wrinkles.is_empty() => {
-                let (name, bytes) = crate::defaults::WRINKLE_MASK;
-                Some(Mask::decode(bytes, Path::new(name))?)
-            }
-            None => None,
-        };
-        (load_wrinkles(&project)?, mask)
-    } else {
-        (Vec::new(), None)
+    let age_t = match (args.age, args.age_years) {
+        (Some(t), _) if (0.0..=1.0).contains(&t) => t,
+        (Some(t), _) => bail!("--age {t}: expected an age t in 0..=1 (or use --age-years)"),
+        (None, Some(y)) if (0.0..=150.0).contains(&y) => project.age.mapping().t(y),
+        (None, Some(y)) => bail!("--age-years {y}: expected years in 0..=150"),
+        (None, None) => project.age.t,
     };
-    // Generates pores and furrows (size independent) and validates the micro settings.
-    let micro = MicroRelief::new(&project)?;
+    // Loads the mesh, wrinkle files and masks, and checks every setting.
+    let mut scene = Scene::new(project)?;
     let parse_ms = ms(t);
-    let fibres: Vec<Fibre> = wrinkles
-        .iter()
-        .flat_map(|w| w.fibres.iter().cloned())
-        .collect();
-    let settings = LargeWrinkleSettings {
-        gamma: project.large.gamma,
-        mask: mask.as_ref(),
-    };
-    let normal_settings = NormalSettings {
-        strength: project.normal.strength,
-        convention: project.normal.convention,
-        tiling: project.tile,
-    };
-    // Validate the numeric settings on a 1×1 bake before creating any file.
-    muscle::rasterize(&[], 1, 1, &settings)?;
-    normal_map::normals(&HeightMap::zeros(1, 1)?, &normal_settings)?;
-
     let t = Instant::now();
-    let (mut height, micro_timings) = micro.bake(args.size)?;
-    let micro_ms = ms(t);
+    scene.bake(&BakeRequest::maps(args.size, age_t), &CancelToken::never())?;
+    let bake_ms = ms(t);
     let t = Instant::now();
-    if project.large.enabled {
-        let large = muscle::rasterize(&fibres, args.size, args.size, &settings)?;
-        let depth = project.large.depth;
-        for (h, l) in height.data_mut().iter_mut().zip(large.data()) {
-            *h += depth * l;
-        }
-    }
-    let large_ms = ms(t);
-    let t = Instant::now();
-    let normal_rgb = normal_map::encode_rgb8(&height, &normal_settings)?;
+    let (height, normal_rgb) = scene.export_maps()?;
     let normal_ms = ms(t);
+    let project = scene.project();
+    let (fibres, _) = scene.fibres();
+    let (pores, furrows) = scene
+        .relief()
+        .map_or((0, 0), |r| (r.pores().len(), r.furrows().len()));
+    let normal_settings = scene.normal_settings();
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
@@ -345,31 +276,37 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         "agesim_version": env!("CARGO_PKG_VERSION"),
         "inputs": {
             "project_source": project_source(args),
-            "wrinkles": wrinkles.iter().map(|w| json!({"file": w.source, "fibres": w.fibres.len()})).collect::<Vec<_>>(),
+            "wrinkles": if project.large.enabled {
+                scene.wrinkles().iter().map(|w| json!({"file": w.name, "fibres": w.file.groups.len()})).collect::<Vec<_>>()
+            } else {
+                Vec::new()
+            },
             "mask": match (&project.large.mask, project.large.enabled && project.large.wrinkles.is_empty()) {
                 (Some(p), _) => Some(p.display().to_string()),
-                (None, true) => Some(crate::defaults::WRINKLE_MASK.0.to_string()),
+                (None, true) => Some(defaults::WRINKLE_MASK.0.to_string()),
                 (None, false) => None,
             },
             "size": args.size,
             "gamma": f32_json(project.large.gamma),
             "normal_strength": f32_json(project.normal.strength),
             "normal_convention": normal_settings.convention,
-            "layers": layer_names(&project),
-            "pores": micro.pores().len(),
-            "furrows": micro.furrows().len(),
+            "layers": layer_names(project),
+            "pores": pores,
+            "furrows": furrows,
+            "age_t": age_t,
+            "age_years": project.age.mapping().years(age_t),
         },
         "seed": project.seed,
-        "project": project.to_value(),
+        // Paths relative to the output folder: save it as a project there (or anywhere
+        // with the inputs beside it) and bake it again.
+        "project": project.to_value_relative_to(&args.out),
         "height_range": [lo, hi],
         "height_range_meaning": "height = lo + (hi - lo) * p / 65535 for a height.png value p",
         "outputs": ["height.png", "height.exr", "normal.png", "bake.json"],
         "timings_ms": {
             "parse_and_features": parse_ms,
-            "micro_relief": micro_ms,
-            "micro_relief_band_pass": micro_timings.relief_ms,
-            "large_wrinkles": large_ms,
-            "normal_map": normal_ms,
+            "bake": bake_ms,
+            "export_sum_and_normal_map": normal_ms,
             "write_height_png": png_ms,
             "write_height_exr": exr_ms,
             "write_normal_png": normal_png_ms,
@@ -383,10 +320,12 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     })?;
     println!(
         "baked {layers} ({fibres} fibres, {pores} pores, {furrows} furrows) at {size}×{size} in {total_ms:.0} ms → {out}",
-        layers = layer_names(&project).join("+"),
-        fibres = fibres.len(),
-        pores = micro.pores().len(),
-        furrows = micro.furrows().len(),
+        layers = layer_names(project).join("+"),
+        fibres = if project.large.enabled {
+            fibres.len()
+        } else {
+            0
+        },
         size = args.size,
         total_ms = ms(total),
         out = args.out.display()

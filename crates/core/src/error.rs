@@ -62,6 +62,19 @@ pub enum Error {
     #[error("{source_name}: the mesh is empty: {reason}")]
     EmptyMesh { source_name: String, reason: String },
 
+    /// An input file is larger than agesim reads (see [`crate::limits`]).
+    #[error("{}: the file is larger than {} bytes, the limit for this kind of input", path.display(), limit_bytes)]
+    TooLarge { path: PathBuf, limit_bytes: u64 },
+
+    /// Several inputs of a project failed to load; each message names its file.
+    #[error("{} inputs could not be loaded:\n{}", .0.len(), .0.join("\n"))]
+    Inputs(Vec<String>),
+
+    /// The caller cancelled the operation (a newer request replaced it); whatever the
+    /// operation keeps (a [`crate::scene::Scene`]'s maps) is as it was before.
+    #[error("cancelled")]
+    Cancelled,
+
     /// A wrinkle description file has errors (all of them are listed).
     #[error("{0}")]
     WrinkleFile(#[from] crate::wrinkle_file::ParseErrors),

@@ -4,6 +4,9 @@
 //! the section it implements. Conventions (SPEC §0): UV with v up, pixel centres at
 //! ((x + 0.5)/W, 1 − (y + 0.5)/H), heights in signed height units, age t ∈ [0,1].
 
+pub mod age;
+pub mod cancel;
+pub mod defaults;
 pub mod error;
 pub mod export;
 pub mod fine_wrinkles;
@@ -11,6 +14,8 @@ pub mod hair;
 pub mod head;
 pub mod head_assets;
 pub mod heightmap;
+pub mod large_layer;
+pub mod limits;
 pub mod mask;
 pub mod mesh;
 pub mod micro;
@@ -19,6 +24,7 @@ pub mod normal_map;
 pub mod preview;
 pub mod project;
 pub mod rng;
+pub mod scene;
 pub mod simd;
 #[cfg(test)]
 mod test_util;

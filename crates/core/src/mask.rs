@@ -40,7 +40,7 @@ impl Mask {
     /// Reads any image `image` can decode (PNG, JPEG, TIFF, BMP, TGA; 8 or 16 bit) as
     /// luminance. Colour images are converted with Rec. 709 weights; alpha is ignored.
     pub fn load(path: &Path) -> Result<Self, Error> {
-        let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+        let bytes = crate::limits::read_file(path, crate::limits::MAX_IMAGE_FILE_BYTES)?;
         Self::decode(&bytes, path)
     }
 

@@ -370,7 +370,7 @@ impl Default for LargeWrinkleSettings<'_> {
 }
 
 /// Pixel rectangle `[x0, y0, x1, y1)` of the map that can hold non-zero values of `fibre`.
-fn pixel_bounds(fibre: &Fibre, width_px: u32, height_px: u32) -> Option<[u32; 4]> {
+pub(crate) fn pixel_bounds(fibre: &Fibre, width_px: u32, height_px: u32) -> Option<[u32; 4]> {
     let [u0, v0, u1, v1] = fibre.bounds_uv();
     let (w, h) = (width_px as f32, height_px as f32);
     // Pixel x has its centre at (x + 0.5)/W, so it is inside [u0, u1] when
@@ -413,9 +413,21 @@ pub fn accumulate(fibres: &[Fibre], map: &mut HeightMap) {
         });
 }
 
-/// Applies H := (H/h_max)^γ and the optional mask in place (SPEC §1 "Blending", "Mask").
-/// A map whose maximum is ≤ 0 (no fibre covers it) stays all zeros.
+/// Applies H := (H/h_max)^γ and the optional mask in place (SPEC §1 "Blending", "Mask"),
+/// with h_max the map's own maximum. A map whose maximum is ≤ 0 (no fibre covers it) stays
+/// all zeros.
 pub fn finish(map: &mut HeightMap, settings: &LargeWrinkleSettings<'_>) -> Result<(), Error> {
+    let (_, h_max) = map.min_max();
+    finish_with_max(map, settings, h_max)
+}
+
+/// [`finish`] normalising by a given `h_max` (the layer's maximum at full age, so that a
+/// younger map is shallower instead of re-inflated). Values are clamped to [0, 1].
+pub fn finish_with_max(
+    map: &mut HeightMap,
+    settings: &LargeWrinkleSettings<'_>,
+    h_max: f32,
+) -> Result<(), Error> {
     let gamma = check_range(
         settings.gamma,
         GAMMA_RANGE.0,
@@ -424,8 +436,7 @@ pub fn finish(map: &mut HeightMap, settings: &LargeWrinkleSettings<'_>) -> Resul
     )
     .map_err(|e| range_err("gamma", settings.gamma, e))?;
     let (w, h) = (map.width_px(), map.height_px());
-    let (_, h_max) = map.min_max();
-    if h_max <= 0.0 {
+    if h_max.is_nan() || h_max <= 0.0 {
         map.data_mut().fill(0.0);
         return Ok(());
     }

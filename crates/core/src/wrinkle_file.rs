@@ -12,7 +12,11 @@
 //! accepted. `ma`, `mb` and `n` are required, the others take SPEC §1's defaults.
 //! agesim extensions (optional, so [T]'s files load unchanged):
 //! - `profile` — `abs_sin` (default), `sin`, `gauss` or `parabola` (SPEC §1 profiles);
-//! - `depth` — the fibre's relative amplitude A in [0, 100], default 1.
+//! - `depth` — the fibre's relative amplitude A in [0, 100], default 1;
+//! - `ageOnset`, `ageFull` — the fibre's age curve (`docs/models.md` "Age"): the age in
+//!   years at which its wrinkles start to show and at which they reach full depth, both in
+//!   [0, 150], given together, `ageFull ≥ ageOnset`; `ageShape` — `smoothstep` (default)
+//!   or `linear`. A group without them follows the project's `age.large` curve.
 //!
 //! Every error is collected (not only the first), each with file, line, column, what was
 //! expected and what was found; a file with any error loads nothing.
@@ -20,6 +24,7 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use crate::age::{AgeCurve, CurveShape};
 use crate::error::Error;
 use crate::muscle::{
     self, DEFAULT_DEPTH, DEFAULT_MAX_ANGLE, DEFAULT_OMEGA_LOW, DEFAULT_REL_WIDTH, Fibre, Profile,
@@ -29,6 +34,9 @@ use crate::muscle::{
 #[derive(Clone, Debug, PartialEq)]
 pub struct WrinkleGroup {
     pub fibre: Fibre,
+    /// The group's own age curve (`ageOnset`/`ageFull`/`ageShape`), or `None` for the
+    /// layer's default.
+    pub age: Option<AgeCurve>,
     /// Comment lines (without the leading `#`) that preceded the group's `!` line.
     pub comments: Vec<String>,
 }
@@ -144,10 +152,13 @@ enum Key {
     OmegaLow,
     Profile,
     Depth,
+    AgeOnset,
+    AgeFull,
+    AgeShape,
 }
 
 impl Key {
-    const ALL: [Key; 8] = [
+    const ALL: [Key; 11] = [
         Key::Ma,
         Key::Mb,
         Key::N,
@@ -156,6 +167,9 @@ impl Key {
         Key::OmegaLow,
         Key::Profile,
         Key::Depth,
+        Key::AgeOnset,
+        Key::AgeFull,
+        Key::AgeShape,
     ];
 
     fn name(self) -> &'static str {
@@ -168,6 +182,9 @@ impl Key {
             Key::OmegaLow => "omegaLow",
             Key::Profile => "profile",
             Key::Depth => "depth",
+            Key::AgeOnset => "ageOnset",
+            Key::AgeFull => "ageFull",
+            Key::AgeShape => "ageShape",
         }
     }
 
@@ -196,6 +213,9 @@ struct PendingGroup {
     omega_low: Option<f32>,
     profile: Option<Profile>,
     depth: Option<f32>,
+    age_onset: Option<f32>,
+    age_full: Option<f32>,
+    age_shape: Option<CurveShape>,
     /// Keys seen, to report repeats even when the first value was malformed.
     seen: Vec<Key>,
     /// Any error inside this group (then it is not built).
@@ -204,7 +224,7 @@ struct PendingGroup {
 
 /// Reads and parses a wrinkle file from disk.
 pub fn load(path: &Path) -> Result<WrinkleFile, Error> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = crate::limits::read_file(path, crate::limits::MAX_TEXT_FILE_BYTES)?;
     Ok(parse_bytes(&bytes, path)?)
 }
 
@@ -385,11 +405,31 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
                     false
                 }
             },
-            Key::RelWidth | Key::MaxAngle | Key::OmegaLow | Key::Depth => {
+            Key::AgeShape => match CurveShape::ALL
+                .into_iter()
+                .find(|c| c.name().eq_ignore_ascii_case(value_text))
+            {
+                Some(c) => {
+                    group.age_shape = Some(c);
+                    true
+                }
+                None => {
+                    bad(DiagnosticKind::MalformedValue, "one of smoothstep, linear");
+                    false
+                }
+            },
+            Key::RelWidth
+            | Key::MaxAngle
+            | Key::OmegaLow
+            | Key::Depth
+            | Key::AgeOnset
+            | Key::AgeFull => {
                 let (check, slot): (RangeCheck, &mut Option<f32>) = match key {
                     Key::RelWidth => (muscle::check_rel_width, &mut group.rel_width),
                     Key::MaxAngle => (muscle::check_max_angle, &mut group.max_angle),
                     Key::OmegaLow => (muscle::check_omega_low, &mut group.omega_low),
+                    Key::AgeOnset => (check_years, &mut group.age_onset),
+                    Key::AgeFull => (check_years, &mut group.age_full),
                     _ => (muscle::check_depth, &mut group.depth),
                 };
                 match parse_number(value_text) {
@@ -425,6 +465,18 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
     } else {
         errors.sort_by_key(|d| (d.line, d.column));
         Err(ParseErrors(errors))
+    }
+}
+
+/// An age in years, [0, 150].
+fn check_years(y: f32) -> Result<f32, muscle::RangeError> {
+    let (lo, hi) = crate::age::YEARS_RANGE;
+    if (lo..=hi).contains(&y) {
+        Ok(y)
+    } else {
+        Err(muscle::RangeError {
+            expected: format!("an age in years in [{lo}, {hi}]"),
+        })
     }
 }
 
@@ -479,6 +531,38 @@ fn finish_group(
         });
         return None;
     }
+    let age = match (g.age_onset, g.age_full) {
+        (None, None) if g.age_shape.is_none() => None,
+        (Some(onset), Some(full)) if full >= onset => {
+            Some(AgeCurve::new(onset, full, g.age_shape.unwrap_or_default()))
+        }
+        (Some(onset), Some(full)) => {
+            errors.push(Diagnostic {
+                file: file.to_owned(),
+                line: g.line,
+                column: g.column,
+                kind: DiagnosticKind::OutOfRange,
+                expected: "ageFull ≥ ageOnset".into(),
+                found: format!("ageOnset={onset}, ageFull={full}"),
+            });
+            return None;
+        }
+        _ => {
+            if !g.broken {
+                errors.push(Diagnostic {
+                    file: file.to_owned(),
+                    line: g.line,
+                    column: g.column,
+                    kind: DiagnosticKind::MissingKey,
+                    expected:
+                        "the group started here to have both `ageOnset` and `ageFull` (or neither)"
+                            .into(),
+                    found: String::new(),
+                });
+            }
+            return None;
+        }
+    };
     if g.broken {
         return None;
     }
@@ -494,6 +578,7 @@ fn finish_group(
     match built {
         Ok(fibre) => Some(WrinkleGroup {
             fibre,
+            age,
             comments: g.comments,
         }),
         Err(e) => {
@@ -512,7 +597,7 @@ fn finish_group(
 
 /// Writes a wrinkle file: each group's comments, `!`, then its keys in a fixed order
 /// (`ma`, `mb`, `n`, `relWidth`, `maxAngle`, `omegaLow`, and the extension keys `profile`
-/// and `depth` only when they differ from their defaults, so [T]'s reader can still load
+/// `depth` only when they differ from their defaults and `ageOnset`/`ageFull`/`ageShape` when the group has its own curve, so [T]'s reader can still load
 /// files without extensions). Numbers use the shortest text that reads back exactly.
 pub fn write(file: &WrinkleFile) -> String {
     use std::fmt::Write as _;
@@ -537,6 +622,13 @@ pub fn write(file: &WrinkleFile) -> String {
         }
         if f.depth() != DEFAULT_DEPTH {
             let _ = writeln!(out, "depth={}", f.depth());
+        }
+        if let Some(age) = &g.age {
+            let _ = writeln!(out, "ageOnset={}", age.onset_years);
+            let _ = writeln!(out, "ageFull={}", age.full_years);
+            if age.shape != CurveShape::default() {
+                let _ = writeln!(out, "ageShape={}", age.shape.name());
+            }
         }
     }
     if !file.trailing_comments.is_empty() {
@@ -780,7 +872,11 @@ mod tests {
                         .with_depth(depth)
                         .ok()?
                         .with_profile(prof);
-                    Some(WrinkleGroup { fibre, comments })
+                    Some(WrinkleGroup {
+                        fibre,
+                        age: None,
+                        comments,
+                    })
                 },
             )
     }

@@ -42,6 +42,7 @@ use super::furrows::{Furrow, build_network};
 use super::noise::{Chunk, FbmField, LANES, RowSampler, RowScratch};
 use super::overlap::resolve;
 use super::pores::{Pore, PoreProfile, Rim, place_pores, rim_window};
+use crate::cancel::CancelToken;
 use crate::error::Error;
 use crate::heightmap::HeightMap;
 use crate::normal_map::{self, NormalSettings, RowRule};
@@ -88,6 +89,9 @@ pub struct MicroRelief {
     noise: FbmField,
     warp: [FbmField; 2],
     features_ms: f64,
+    /// Age scales (`docs/models.md` "Age"): R and A multipliers, 1 = the project's values.
+    pore_radius_scale: f32,
+    furrow_depth_scale: f32,
 }
 
 impl MicroRelief {
@@ -127,7 +131,71 @@ impl MicroRelief {
             noise,
             warp,
             features_ms: t0.elapsed().as_secs_f64() * 1e3,
+            pore_radius_scale: 1.0,
+            furrow_depth_scale: 1.0,
         })
+    }
+
+    /// The relief of `project`, reusing this one's pores and furrows when the fields they
+    /// depend on (seed, map size, tiling, the `pores` and `furrows` sections) are unchanged:
+    /// a noise, warp, overlap or normal change never re-places a feature. Returns whether
+    /// the features were regenerated.
+    pub fn with_project(&self, project: &Project) -> Result<(Self, bool), Error> {
+        let (a, b) = (&self.project, project);
+        let same_features = a.seed == b.seed
+            && a.map_size_mm == b.map_size_mm
+            && a.tile == b.tile
+            && a.pores == b.pores
+            && a.furrows == b.furrows;
+        if !same_features {
+            let mut fresh = Self::new(project)?;
+            fresh.set_age_scales(self.pore_radius_scale, self.furrow_depth_scale);
+            return Ok((fresh, true));
+        }
+        project.validate().map_err(|message| Error::Project {
+            source_name: "project".into(),
+            message,
+        })?;
+        let p = project;
+        let size = p.map_size_mm;
+        let warp_gain = p.warp.strength_mm;
+        Ok((
+            Self {
+                project: p.clone(),
+                pores: self.pores.clone(),
+                pore_spacing_mm: self.pore_spacing_mm,
+                furrows: self.furrows.clone(),
+                noise: FbmField::new(&p.noise_params(), size, p.tile, p.noise.strength, p.seed, 0),
+                warp: [
+                    FbmField::new(&p.warp_params(), size, p.tile, warp_gain, p.seed, 1),
+                    FbmField::new(&p.warp_params(), size, p.tile, warp_gain, p.seed, 2),
+                ],
+                features_ms: 0.0,
+                pore_radius_scale: self.pore_radius_scale,
+                furrow_depth_scale: self.furrow_depth_scale,
+            },
+            false,
+        ))
+    }
+
+    /// Sets the age scales of the pore radius R and the furrow depth A (`docs/models.md`
+    /// "Age"): the features stay where they are, only their size changes. Scales are
+    /// clamped to [0.01, 4]; 1 (the default) bakes the project's values bit for bit.
+    pub fn set_age_scales(&mut self, pore_radius: f32, furrow_depth: f32) {
+        let clamp = |x: f32| {
+            if x.is_finite() {
+                x.clamp(0.01, 4.0)
+            } else {
+                1.0
+            }
+        };
+        self.pore_radius_scale = clamp(pore_radius);
+        self.furrow_depth_scale = clamp(furrow_depth);
+    }
+
+    /// The current (pore radius, furrow depth) age scales.
+    pub fn age_scales(&self) -> (f32, f32) {
+        (self.pore_radius_scale, self.furrow_depth_scale)
     }
 
     pub fn pores(&self) -> &[Pore] {
@@ -195,6 +263,19 @@ impl MicroRelief {
         rgb: &mut Vec<u8>,
         normals: &NormalSettings,
     ) -> Result<BakeTimings, Error> {
+        self.bake_into_cancellable(size_px, map, rgb, normals, &CancelToken::never())
+    }
+
+    /// [`MicroRelief::bake_into`] that stops within one band per thread once `cancel` is
+    /// set, returning [`Error::Cancelled`]; `map` and `rgb` then hold a partial bake.
+    pub fn bake_into_cancellable(
+        &self,
+        size_px: u32,
+        map: &mut HeightMap,
+        rgb: &mut Vec<u8>,
+        normals: &NormalSettings,
+        cancel: &CancelToken,
+    ) -> Result<BakeTimings, Error> {
         normals.validate()?;
         crate::heightmap::check_size(size_px, size_px)?;
         let t0 = std::time::Instant::now();
@@ -208,8 +289,15 @@ impl MicroRelief {
         }
         rgb.resize(w * w * 3, 0);
         let resize_ms = t0.elapsed().as_secs_f64() * 1e3;
-        let mut timings =
-            self.bake_band_pass(map, rgb, Parts::default(), Some(normals), Level::detect());
+        let mut timings = self.bake_band_pass(
+            map,
+            rgb,
+            Parts::default(),
+            Some(normals),
+            Level::detect(),
+            cancel,
+        );
+        cancel.check()?;
         timings.setup_ms += resize_ms;
         Ok(timings)
     }
@@ -231,7 +319,14 @@ impl MicroRelief {
             None => Vec::new(),
         };
         let alloc_ms = t0.elapsed().as_secs_f64() * 1e3;
-        let mut timings = self.bake_band_pass(&mut map, &mut rgb, parts, normals, level);
+        let mut timings = self.bake_band_pass(
+            &mut map,
+            &mut rgb,
+            parts,
+            normals,
+            level,
+            &CancelToken::never(),
+        );
         timings.setup_ms += alloc_ms;
         Ok((map, rgb, timings))
     }
@@ -245,12 +340,16 @@ impl MicroRelief {
         parts: Parts,
         normals: Option<&NormalSettings>,
         level: Level,
+        cancel: &CancelToken,
     ) -> BakeTimings {
         let t0 = std::time::Instant::now();
         let w = map.width_px() as usize;
         let ctx = Context::new(self, w, parts, normals.copied());
         let t1 = std::time::Instant::now();
         let bake = |band: usize, out: &mut [f32], rgb: Option<&mut [u8]>, s: &mut Scratch| {
+            if cancel.is_cancelled() {
+                return;
+            }
             crate::simd::dispatch_at(
                 level,
                 Band {
@@ -397,12 +496,14 @@ impl<'a> Context<'a> {
         let mut stamps = Vec::new();
         if parts.features {
             for pore in &relief.pores {
+                // Exact for the default scale 1 (x·1 = x): the project's own bytes.
+                let radius = pore.radius_mm * relief.pore_radius_scale;
                 stamps.push(Stamp::Pore {
                     centre: pore.centre_mm,
-                    inv_r2: 1.0 / (pore.radius_mm * pore.radius_mm),
+                    inv_r2: 1.0 / (radius * radius),
                     beta_depth: beta * pore.depth,
                     falloff: pore.falloff,
-                    radius: pore.radius_mm,
+                    radius,
                 });
             }
             for f in &relief.furrows {
@@ -412,7 +513,7 @@ impl<'a> Context<'a> {
                     start: f.start_mm,
                     dir: [d[0] / len, d[1] / len],
                     len,
-                    beta_depth: beta * f.depth,
+                    beta_depth: beta * (f.depth * relief.furrow_depth_scale),
                     width: f.width_mm,
                     inv_w2: 1.0 / (f.width_mm * f.width_mm),
                     inv_taper: 1.0 / (f.taper * len).max(1e-6),

@@ -1,0 +1,249 @@
+//! The age model (`docs/models.md` "Age"; SPEC §0 "Age", §1, §5, §6): one age value
+//! drives every layer.
+//!
+//! The models see t ∈ [0, 1] (0 = the young state, 1 = the old state, [T]); people see
+//! years, `years = young + t·(old − young)` ([`AgeMapping`], default 20 and 80). An
+//! [`AgeCurve`] turns an age into a factor in [0, 1]: 0 before its onset, 1 from its full
+//! age on, a smoothstep (default) or linear ramp between. Onsets are in years, so a
+//! curve keeps meaning "crow's feet from 35" when the mapping changes.
+//!
+//! [`AgeFactors`] is everything the layers need at one age, computed by
+//! [`crate::project::AgeSection::factors`]: the per-group large-wrinkle factors come from
+//! each fibre's own curve (wrinkle-file keys `ageOnset`/`ageFull`) or the layer default.
+
+use serde::{Deserialize, Serialize};
+
+/// Youngest and oldest ages a curve or mapping may name, years.
+pub const YEARS_RANGE: (f32, f32) = (0.0, 150.0);
+/// Default age that t = 0 stands for, years.
+pub const DEFAULT_YOUNG_YEARS: f32 = 20.0;
+/// Default age that t = 1 stands for, years.
+pub const DEFAULT_OLD_YEARS: f32 = 80.0;
+
+/// How a curve ramps from its onset to its full age.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CurveShape {
+    /// 3x² − 2x³ (SPEC §1 S(x)): starts and ends gently, as visible wrinkles do.
+    #[default]
+    Smoothstep,
+    /// x: [T] §5.2's blend of the fine wrinkles is linear in t.
+    Linear,
+}
+
+impl CurveShape {
+    pub const ALL: [CurveShape; 2] = [CurveShape::Smoothstep, CurveShape::Linear];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            CurveShape::Smoothstep => "smoothstep",
+            CurveShape::Linear => "linear",
+        }
+    }
+
+    /// The ramp at x ∈ [0, 1] (clamped).
+    pub fn eval(self, x: f32) -> f32 {
+        let x = x.clamp(0.0, 1.0);
+        match self {
+            CurveShape::Smoothstep => x * x * (3.0 - 2.0 * x),
+            CurveShape::Linear => x,
+        }
+    }
+}
+
+/// A factor in [0, 1] as a function of age: 0 up to `onset_years`, 1 from `full_years`
+/// on, `shape` between. `onset_years ≤ full_years`; when they are equal the curve is a
+/// step at that age.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AgeCurve {
+    /// Age at which the effect starts, years, 0–150.
+    pub onset_years: f32,
+    /// Age at which it is complete, years, 0–150, ≥ onset.
+    pub full_years: f32,
+    pub shape: CurveShape,
+}
+
+impl Default for AgeCurve {
+    fn default() -> Self {
+        Self::new(
+            DEFAULT_YOUNG_YEARS,
+            DEFAULT_OLD_YEARS,
+            CurveShape::Smoothstep,
+        )
+    }
+}
+
+impl AgeCurve {
+    pub const fn new(onset_years: f32, full_years: f32, shape: CurveShape) -> Self {
+        Self {
+            onset_years,
+            full_years,
+            shape,
+        }
+    }
+
+    /// The factor at `years`. Exactly 0 at or before the onset and exactly 1 at or after
+    /// the full age, so a layer at full age keeps its bytes (multiplying by 1 is exact).
+    pub fn factor(&self, years: f32) -> f32 {
+        if years >= self.full_years {
+            return 1.0;
+        }
+        if years <= self.onset_years {
+            return 0.0;
+        }
+        self.shape
+            .eval((years - self.onset_years) / (self.full_years - self.onset_years))
+    }
+
+    /// Every problem with the curve, each as (field suffix, message).
+    pub fn problems(&self) -> Vec<(&'static str, String)> {
+        let mut out = Vec::new();
+        for (name, v) in [
+            ("onset_years", self.onset_years),
+            ("full_years", self.full_years),
+        ] {
+            if !(YEARS_RANGE.0..=YEARS_RANGE.1).contains(&v) {
+                out.push((
+                    name,
+                    format!(
+                        "{v} is out of range: expected {}..={}",
+                        YEARS_RANGE.0, YEARS_RANGE.1
+                    ),
+                ));
+            }
+        }
+        if self.full_years < self.onset_years {
+            out.push((
+                "full_years",
+                format!(
+                    "{} is before the onset ({}): expected full_years ≥ onset_years",
+                    self.full_years, self.onset_years
+                ),
+            ));
+        }
+        out
+    }
+}
+
+/// The years that t = 0 and t = 1 stand for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AgeMapping {
+    pub young_years: f32,
+    pub old_years: f32,
+}
+
+impl Default for AgeMapping {
+    fn default() -> Self {
+        Self {
+            young_years: DEFAULT_YOUNG_YEARS,
+            old_years: DEFAULT_OLD_YEARS,
+        }
+    }
+}
+
+impl AgeMapping {
+    /// years = young + t·(old − young), t clamped to [0, 1].
+    pub fn years(&self, t: f32) -> f32 {
+        let t = t.clamp(0.0, 1.0);
+        self.young_years + t * (self.old_years - self.young_years)
+    }
+
+    /// The t of `years`, clamped to [0, 1].
+    pub fn t(&self, years: f32) -> f32 {
+        let span = self.old_years - self.young_years;
+        if span <= 0.0 {
+            return 0.0;
+        }
+        ((years - self.young_years) / span).clamp(0.0, 1.0)
+    }
+}
+
+/// A scale that grows with age: `young_scale` before the curve's onset, 1 at its full age
+/// (the project's nominal value is the old value), `young + (1 − young)·curve` between.
+pub fn scale(young_scale: f32, curve_factor: f32) -> f32 {
+    if curve_factor >= 1.0 {
+        1.0
+    } else {
+        young_scale + (1.0 - young_scale) * curve_factor
+    }
+}
+
+/// Everything the layers need at one age. See [`crate::project::AgeSection::factors`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct AgeFactors {
+    /// t ∈ [0, 1].
+    pub t: f32,
+    /// The age in years.
+    pub years: f32,
+    /// Depth factor of each large-wrinkle fibre, in the scene's fibre order.
+    pub large: Vec<f32>,
+    /// Blend of the fine-wrinkle normal, 0 = surface normal, 1 = fine tile ([T] §5.2).
+    pub fine_blend: f32,
+    /// Multiplier of every pore's radius R (1 = the project's value).
+    pub pore_radius_scale: f32,
+    /// Multiplier of every furrow's depth A (1 = the project's value).
+    pub furrow_depth_scale: f32,
+    /// How far the albedo has moved toward the pale tone, [0, 1] ([T] §3.1.1).
+    pub paleness: f32,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_util::close;
+
+    #[test]
+    fn curve_is_zero_before_onset_one_after_full_and_smooth_between() {
+        let c = AgeCurve::new(30.0, 60.0, CurveShape::Smoothstep);
+        assert_eq!(c.factor(20.0), 0.0);
+        assert_eq!(c.factor(30.0), 0.0);
+        assert_eq!(c.factor(60.0), 1.0);
+        assert_eq!(c.factor(80.0), 1.0);
+        close(c.factor(45.0), 0.5, 1e-6);
+        // smoothstep(0.25) = 3/16 − 2/64 = 0.15625
+        close(c.factor(37.5), 0.15625, 1e-6);
+        let l = AgeCurve::new(30.0, 60.0, CurveShape::Linear);
+        close(l.factor(37.5), 0.25, 1e-6);
+        let step = AgeCurve::new(40.0, 40.0, CurveShape::Smoothstep);
+        assert_eq!((step.factor(39.9), step.factor(40.0)), (0.0, 1.0));
+    }
+
+    #[test]
+    fn curve_is_monotone() {
+        let c = AgeCurve::new(25.0, 65.0, CurveShape::Smoothstep);
+        let mut last = 0.0;
+        for i in 0..=200 {
+            let f = c.factor(20.0 + i as f32 * 0.3);
+            assert!(f >= last, "{f} < {last} at step {i}");
+            last = f;
+        }
+    }
+
+    #[test]
+    fn mapping_round_trips_years_and_t() {
+        let m = AgeMapping::default();
+        assert_eq!(m.years(0.0), 20.0);
+        assert_eq!(m.years(1.0), 80.0);
+        close(m.years(0.5), 50.0, 1e-6);
+        close(m.t(65.0), 0.75, 1e-6);
+        assert_eq!(m.t(10.0), 0.0);
+        assert_eq!(m.t(99.0), 1.0);
+    }
+
+    #[test]
+    fn bad_curves_name_their_field() {
+        let p = AgeCurve::new(60.0, 30.0, CurveShape::Linear).problems();
+        assert_eq!(p.len(), 1);
+        assert_eq!(p[0].0, "full_years");
+        let p = AgeCurve::new(-1.0, 200.0, CurveShape::Linear).problems();
+        assert_eq!(p.len(), 2, "{p:?}");
+    }
+
+    #[test]
+    fn scale_reaches_one_exactly_at_full_age() {
+        assert_eq!(scale(0.6, 1.0), 1.0);
+        assert_eq!(scale(0.6, 0.0), 0.6);
+        close(scale(0.6, 0.5), 0.8, 1e-6);
+    }
+}

@@ -1,0 +1,839 @@
+//! One pipeline from a project to everything the editor, the renderer and the command line
+//! show or write (issue 9): a [`Scene`] loads a project's inputs once and bakes, at a size
+//! and an age, into buffers it keeps.
+//!
+//! **Incremental.** Every stage remembers the inputs it was made from and is redone only
+//! when they change; [`Scene::bake`] returns which outputs changed ([`Changed`]):
+//!
+//! | stage | redone when |
+//! |---|---|
+//! | inputs (mesh, wrinkle files, masks, tile image) | their path changes ([`Scene::set_project`]) |
+//! | large-wrinkle fibre stamps ([`LargeLayer`]) | a fibre changes: only that fibre is rasterised |
+//! | large-wrinkle map at age t | the stamps, an age factor, γ, depth, mask, normal strength |
+//! | micro-relief features (pores, furrows) | seed, map size, tiling, `pores`, `furrows` |
+//! | micro-relief tile at age t | the features, noise, warp, overlap, normal, its age scales |
+//! | fine-wrinkle tile | the `fine` section |
+//! | transition texture | the hair masks, metric, size |
+//! | hair instances | the mesh, the transition texture, density, seed, graying range |
+//!
+//! An age change only re-weights the large-wrinkle stamps and re-scales the micro-relief
+//! features (their positions stay): no feature is regenerated.
+//!
+//! **Cancellable.** Every stage checks a [`CancelToken`] often (per row band); a cancelled
+//! bake returns [`Error::Cancelled`] and the kept outputs are those of the last complete
+//! bake of each stage (stages bake into scratch buffers and swap on success).
+//!
+//! **Deterministic.** Each stage is deterministic on any thread count, so the incremental
+//! result equals a fresh scene's bake byte for byte (tested).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use crate::age::{AgeCurve, AgeFactors};
+use crate::cancel::CancelToken;
+use crate::error::Error;
+use crate::fine_wrinkles::{self, FineWrinkleSettings};
+use crate::hair::{HairInstances, HairParams, SurfaceRef};
+use crate::heightmap::HeightMap;
+use crate::large_layer::LargeLayer;
+use crate::mask::Mask;
+use crate::mesh::Mesh;
+use crate::micro::MicroRelief;
+use crate::muscle::{Fibre, LargeWrinkleSettings};
+use crate::normal_map::{self, NormalSettings};
+use crate::project::{BuiltinMesh, Project};
+use crate::transition::TransitionTexture;
+use crate::wrinkle_file::{self, ParseErrors, WrinkleFile};
+
+/// A wrinkle description file as the scene holds it: where it came from and its groups.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WrinkleSource {
+    /// The path, or the repository path of a built-in default file.
+    pub name: String,
+    /// `None` for the built-in default files.
+    pub path: Option<PathBuf>,
+    pub file: WrinkleFile,
+}
+
+/// What to bake. Sizes are square map sides in pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BakeRequest {
+    /// Side of the large-wrinkle map (head UV).
+    pub large_size_px: u32,
+    /// Side of the micro-relief tile (the skin patch of `map_size_mm`).
+    pub micro_size_px: u32,
+    /// The age t ∈ [0, 1].
+    pub t: f32,
+    /// Also make the fine-wrinkle tile.
+    pub fine: bool,
+    /// Also make the transition texture and the hair instances.
+    pub hair: bool,
+    /// Also make the SPEC §4 RGBA8 packing of the large-wrinkle map (for the renderer).
+    pub packed: bool,
+}
+
+impl BakeRequest {
+    /// Everything the renderer shows, at preview sizes.
+    pub fn preview(t: f32) -> Self {
+        Self {
+            large_size_px: 1024,
+            micro_size_px: 1024,
+            t,
+            fine: true,
+            hair: true,
+            packed: true,
+        }
+    }
+
+    /// The maps of `agesim bake`: one size, no hair, no packing.
+    pub fn maps(size_px: u32, t: f32) -> Self {
+        Self {
+            large_size_px: size_px,
+            micro_size_px: size_px,
+            t,
+            fine: false,
+            hair: false,
+            packed: false,
+        }
+    }
+}
+
+/// Which outputs a [`Scene::bake`] (or a setter) changed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Changed {
+    pub mesh: bool,
+    /// Large-wrinkle stamps (fibres rasterised).
+    pub large_stamps: bool,
+    /// The large-wrinkle map (and its packing).
+    pub large: bool,
+    /// Micro-relief features regenerated (pores placed, furrows linked).
+    pub micro_features: bool,
+    /// The micro-relief tile.
+    pub micro: bool,
+    pub fine: bool,
+    pub transition: bool,
+    pub hair: bool,
+}
+
+impl Changed {
+    /// Whether anything changed.
+    pub fn any(&self) -> bool {
+        *self != Self::default()
+    }
+
+    fn merge(&mut self, o: Changed) {
+        self.mesh |= o.mesh;
+        self.large_stamps |= o.large_stamps;
+        self.large |= o.large;
+        self.micro_features |= o.micro_features;
+        self.micro |= o.micro;
+        self.fine |= o.fine;
+        self.transition |= o.transition;
+        self.hair |= o.hair;
+    }
+}
+
+/// The large-wrinkle map at an age: heights in height units (depth × the normalised
+/// layer) and, when asked for, the SPEC §4 RGBA8 packing with heights mapped from
+/// [0, depth] to [0, 1].
+#[derive(Clone, Debug)]
+pub struct LargeMap {
+    pub height: HeightMap,
+    pub packed_rgba: Vec<u8>,
+    /// The height range `packed_rgba`'s alpha spans.
+    pub packed_range: (f32, f32),
+}
+
+/// The micro-relief tile at an age: heights and their RGB8 normal map (SPEC §4).
+#[derive(Clone, Debug)]
+pub struct MicroTile {
+    pub height: HeightMap,
+    pub normal_rgb: Vec<u8>,
+}
+
+/// Everything loaded from files (or the built-in defaults), kept until a path changes.
+#[derive(Clone, Debug)]
+struct Inputs {
+    mesh_key: (Option<PathBuf>, BuiltinMesh),
+    mesh: Arc<Mesh>,
+    wrinkles_key: Vec<PathBuf>,
+    wrinkles: Vec<WrinkleSource>,
+    large_mask_key: (Option<PathBuf>, bool),
+    large_mask: Option<Arc<Mask>>,
+    hair_masks_key: (Option<PathBuf>, Option<PathBuf>),
+    hair_masks: Option<Arc<(Mask, Mask)>>,
+    fine_tile_key: Option<PathBuf>,
+    fine_tile: Option<Arc<HeightMap>>,
+    /// Bumped whenever any input above changes (fibre edits included).
+    generation: u64,
+}
+
+/// The keys each kept output was made from (see the module table).
+#[derive(Clone, Debug, Default, PartialEq)]
+struct LargeKey {
+    layer_fibres: Vec<Fibre>,
+    size: u32,
+    factors: Vec<f32>,
+    gamma: f32,
+    depth: f32,
+    mask_generation: u64,
+    normal: Option<NormalSettings>,
+    packed: bool,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct MicroKey {
+    project: Project,
+    scales: (f32, f32),
+    size: u32,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct HairKey {
+    mesh_generation: u64,
+    transition_generation: u64,
+    density: f32,
+    metres_per_unit: f32,
+    seed: u64,
+    deviation_deg: f32,
+    onset_t: (f32, f32),
+}
+
+/// A project, its loaded inputs and everything baked from them. See the module docs.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    project: Project,
+    inputs: Inputs,
+    mesh_generation: u64,
+    mask_generation: u64,
+    factors: AgeFactors,
+    large_layer: LargeLayer,
+    large_key: Option<LargeKey>,
+    large: Option<LargeMap>,
+    relief: Option<MicroRelief>,
+    micro_key: Option<MicroKey>,
+    micro: Option<MicroTile>,
+    fine_key: Option<(FineWrinkleSettingsKey, u64)>,
+    fine: Option<Arc<HeightMap>>,
+    transition_key: Option<(u64, String, Option<u32>)>,
+    transition_generation: u64,
+    transition: Option<Arc<TransitionTexture>>,
+    hair_key: Option<HairKey>,
+    hair: Option<Arc<HairInstances>>,
+}
+
+type FineWrinkleSettingsKey = (Option<PathBuf>, u32, u32, f32, f32, f32, f32, u64);
+
+impl Scene {
+    /// Loads every input of `project` (files it names, or the built-in defaults). Nothing
+    /// is baked yet; call [`Scene::bake`].
+    pub fn new(project: Project) -> Result<Self, Error> {
+        project.validate().map_err(|message| Error::Project {
+            source_name: "project".into(),
+            message,
+        })?;
+        let inputs = Inputs::load(&project, None)?;
+        let factors = project.age.factors(project.age.t, &[]);
+        Ok(Self {
+            project,
+            inputs,
+            mesh_generation: 1,
+            mask_generation: 1,
+            factors,
+            large_layer: LargeLayer::default(),
+            large_key: None,
+            large: None,
+            relief: None,
+            micro_key: None,
+            micro: None,
+            fine_key: None,
+            fine: None,
+            transition_key: None,
+            transition_generation: 0,
+            transition: None,
+            hair_key: None,
+            hair: None,
+        })
+    }
+
+    pub fn project(&self) -> &Project {
+        &self.project
+    }
+
+    /// Replaces the project. Inputs whose paths changed are loaded again (all errors of
+    /// all inputs are reported together); on error the scene is unchanged.
+    pub fn set_project(&mut self, project: Project) -> Result<Changed, Error> {
+        project.validate().map_err(|message| Error::Project {
+            source_name: "project".into(),
+            message,
+        })?;
+        let inputs = Inputs::load(&project, Some(&self.inputs))?;
+        let mut changed = Changed::default();
+        if !Arc::ptr_eq(&inputs.mesh, &self.inputs.mesh) {
+            self.mesh_generation += 1;
+            changed.mesh = true;
+        }
+        let same_mask = match (&inputs.large_mask, &self.inputs.large_mask) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (None, None) => true,
+            _ => false,
+        };
+        if !same_mask {
+            self.mask_generation += 1;
+        }
+        self.inputs = inputs;
+        self.project = project;
+        Ok(changed)
+    }
+
+    /// The wrinkle files the large-wrinkle layer is made of.
+    pub fn wrinkles(&self) -> &[WrinkleSource] {
+        &self.inputs.wrinkles
+    }
+
+    /// Replaces the wrinkle files' contents (the editor's fibre edits); the next bake
+    /// re-rasterises only the fibres that differ.
+    pub fn set_wrinkles(&mut self, wrinkles: Vec<WrinkleSource>) {
+        if wrinkles != self.inputs.wrinkles {
+            self.inputs.wrinkles = wrinkles;
+            self.inputs.generation += 1;
+        }
+    }
+
+    /// Every fibre with its own age curve (`None` = the layer default), in order.
+    pub fn fibres(&self) -> (Vec<Fibre>, Vec<Option<AgeCurve>>) {
+        self.inputs
+            .wrinkles
+            .iter()
+            .flat_map(|w| w.file.groups.iter())
+            .map(|g| (g.fibre.clone(), g.age))
+            .unzip()
+    }
+
+    pub fn mesh(&self) -> &Arc<Mesh> {
+        &self.inputs.mesh
+    }
+
+    /// The age factors of the last bake.
+    pub fn factors(&self) -> &AgeFactors {
+        &self.factors
+    }
+
+    /// The large-wrinkle map of the last bake (`None` before the first, or when the layer
+    /// is disabled).
+    pub fn large(&self) -> Option<&LargeMap> {
+        self.large.as_ref()
+    }
+
+    /// The micro-relief tile of the last bake.
+    pub fn micro(&self) -> Option<&MicroTile> {
+        self.micro.as_ref()
+    }
+
+    /// The micro-relief features (pores, furrows) of the last bake.
+    pub fn relief(&self) -> Option<&MicroRelief> {
+        self.relief.as_ref()
+    }
+
+    /// The fine-wrinkle tile of the last bake that asked for it.
+    pub fn fine(&self) -> Option<&Arc<HeightMap>> {
+        self.fine.as_ref()
+    }
+
+    pub fn transition(&self) -> Option<&Arc<TransitionTexture>> {
+        self.transition.as_ref()
+    }
+
+    /// The hair instances, sorted by disappearance age; draw the first `count(t)`.
+    pub fn hair(&self) -> Option<&Arc<HairInstances>> {
+        self.hair.as_ref()
+    }
+
+    /// Whether the project bakes any micro-relief at all.
+    pub fn micro_enabled(&self) -> bool {
+        let p = &self.project;
+        p.pores.enabled || p.furrows.enabled || (p.noise.details > 0.0 && p.noise.strength > 0.0)
+    }
+
+    /// The project's normal-map settings.
+    pub fn normal_settings(&self) -> NormalSettings {
+        NormalSettings {
+            strength: self.project.normal.strength,
+            convention: self.project.normal.convention,
+            tiling: self.project.tile,
+        }
+    }
+
+    /// Bakes what `request` asks for at its age, redoing only what changed since the last
+    /// bake. On error (or cancellation) every kept output stays as it was.
+    pub fn bake(&mut self, request: &BakeRequest, cancel: &CancelToken) -> Result<Changed, Error> {
+        crate::heightmap::check_size(request.large_size_px, request.micro_size_px)?;
+        let (fibres, curves) = self.fibres();
+        self.factors = self.project.age.factors(request.t, &curves);
+        let mut changed = Changed::default();
+        if self.project.large.enabled {
+            changed.merge(self.bake_large(&fibres, request, cancel)?);
+        } else if self.large.take().is_some() {
+            self.large_key = None;
+            changed.large = true;
+        }
+        if self.micro_enabled() {
+            changed.merge(self.bake_micro(request, cancel)?);
+        } else if self.micro.take().is_some() {
+            self.micro_key = None;
+            changed.micro = true;
+        }
+        if request.fine && self.project.fine.enabled {
+            changed.merge(self.bake_fine(cancel)?);
+        }
+        if request.hair && self.project.hair.enabled {
+            changed.merge(self.bake_hair(cancel)?);
+        }
+        Ok(changed)
+    }
+
+    fn bake_large(
+        &mut self,
+        fibres: &[Fibre],
+        request: &BakeRequest,
+        cancel: &CancelToken,
+    ) -> Result<Changed, Error> {
+        let mut changed = Changed::default();
+        let size = request.large_size_px;
+        let mut layer = std::mem::take(&mut self.large_layer);
+        let rasterised = layer.update(fibres, size, size, cancel);
+        let rasterised = match rasterised {
+            Ok(n) => n,
+            Err(e) => {
+                self.large_layer = layer;
+                return Err(e);
+            }
+        };
+        self.large_layer = layer;
+        changed.large_stamps = rasterised > 0;
+        let p = &self.project;
+        let key = LargeKey {
+            layer_fibres: fibres.to_vec(),
+            size,
+            factors: self.factors.large.clone(),
+            gamma: p.large.gamma,
+            depth: p.large.depth,
+            mask_generation: self.mask_generation,
+            normal: request.packed.then(|| self.normal_settings()),
+            packed: request.packed,
+        };
+        if self.large_key.as_ref() == Some(&key) && self.large.is_some() {
+            return Ok(changed);
+        }
+        let settings = LargeWrinkleSettings {
+            gamma: p.large.gamma,
+            mask: self.inputs.large_mask.as_deref(),
+        };
+        // A fresh buffer: the kept map stays whole if this bake is cancelled.
+        let mut height = HeightMap::zeros(size, size)?;
+        self.large_layer
+            .combine(&self.factors.large, &settings, &mut height, cancel)?;
+        let depth = p.large.depth;
+        if depth != 1.0 {
+            for h in height.data_mut() {
+                *h *= depth;
+            }
+        }
+        cancel.check()?;
+        let packed_range = (0.0, depth.max(f32::MIN_POSITIVE));
+        let packed_rgba = if request.packed {
+            normal_map::pack_rgba8(&height, &self.normal_settings(), packed_range)?
+        } else {
+            Vec::new()
+        };
+        cancel.check()?;
+        self.large = Some(LargeMap {
+            height,
+            packed_rgba,
+            packed_range,
+        });
+        self.large_key = Some(key);
+        changed.large = true;
+        Ok(changed)
+    }
+
+    fn bake_micro(
+        &mut self,
+        request: &BakeRequest,
+        cancel: &CancelToken,
+    ) -> Result<Changed, Error> {
+        let mut changed = Changed::default();
+        let mut relief = match &self.relief {
+            Some(r) => {
+                let (r, regenerated) = r.with_project(&self.project)?;
+                changed.micro_features = regenerated;
+                r
+            }
+            None => {
+                changed.micro_features = true;
+                MicroRelief::new(&self.project)?
+            }
+        };
+        let scales = (
+            self.factors.pore_radius_scale,
+            self.factors.furrow_depth_scale,
+        );
+        relief.set_age_scales(scales.0, scales.1);
+        let key = MicroKey {
+            project: micro_relevant(&self.project),
+            scales,
+            size: request.micro_size_px,
+        };
+        if self.micro_key.as_ref() == Some(&key) && self.micro.is_some() {
+            self.relief = Some(relief);
+            return Ok(changed);
+        }
+        cancel.check()?;
+        let mut height = HeightMap::zeros(1, 1)?;
+        let mut rgb = Vec::new();
+        relief.bake_into_cancellable(
+            request.micro_size_px,
+            &mut height,
+            &mut rgb,
+            &self.normal_settings(),
+            cancel,
+        )?;
+        self.relief = Some(relief);
+        self.micro = Some(MicroTile {
+            height,
+            normal_rgb: rgb,
+        });
+        self.micro_key = Some(key);
+        changed.micro = true;
+        Ok(changed)
+    }
+
+    fn bake_fine(&mut self, cancel: &CancelToken) -> Result<Changed, Error> {
+        let f = &self.project.fine;
+        let key: FineWrinkleSettingsKey = (
+            f.tile.clone(),
+            f.size_px,
+            f.creases,
+            f.length,
+            f.width,
+            f.crossing_deg,
+            f.spread_deg,
+            f.seed,
+        );
+        let key = (key, self.inputs.generation_of_fine());
+        if self.fine_key.as_ref() == Some(&key) && self.fine.is_some() {
+            return Ok(Changed::default());
+        }
+        cancel.check()?;
+        let tile = match &self.inputs.fine_tile {
+            Some(image) => image.clone(),
+            None => Arc::new(fine_wrinkles::generate(
+                f.size_px,
+                &FineWrinkleSettings {
+                    crease_count: f.creases,
+                    length_tile: f.length,
+                    width_tile: f.width,
+                    crossing_deg: f.crossing_deg,
+                    spread_deg: f.spread_deg,
+                    seed: f.seed,
+                },
+            )?),
+        };
+        self.fine = Some(tile);
+        self.fine_key = Some(key);
+        Ok(Changed {
+            fine: true,
+            ..Changed::default()
+        })
+    }
+
+    fn bake_hair(&mut self, cancel: &CancelToken) -> Result<Changed, Error> {
+        let mut changed = Changed::default();
+        let h = &self.project.hair;
+        let Some(masks) = self.inputs.hair_masks.clone() else {
+            return Ok(changed);
+        };
+        let masks_id = Arc::as_ptr(&masks) as u64;
+        let tkey = (masks_id, format!("{:?}", h.metric), h.transition_size_px);
+        if self.transition_key.as_ref() != Some(&tkey) || self.transition.is_none() {
+            cancel.check()?;
+            let (outer, inner) = &*masks;
+            let size = h.transition_size_px.unwrap_or_else(|| {
+                outer
+                    .width_px()
+                    .max(outer.height_px())
+                    .max(inner.width_px())
+                    .max(inner.height_px())
+            });
+            let t = TransitionTexture::from_masks(outer, inner, size, size, h.metric)?;
+            self.transition = Some(Arc::new(t));
+            self.transition_key = Some(tkey);
+            self.transition_generation += 1;
+            changed.transition = true;
+        }
+        let key = HairKey {
+            mesh_generation: self.mesh_generation,
+            transition_generation: self.transition_generation,
+            density: h.density_per_cm2,
+            metres_per_unit: self.project.mesh.metres_per_unit,
+            seed: h.seed,
+            deviation_deg: h.max_deviation_deg,
+            onset_t: self.project.graying_onset_t(),
+        };
+        if self.hair_key.as_ref() == Some(&key) && self.hair.is_some() {
+            return Ok(changed);
+        }
+        cancel.check()?;
+        let Some(transition) = &self.transition else {
+            return Ok(changed);
+        };
+        let params = HairParams::new(h.density_per_cm2, self.project.mesh.metres_per_unit)?
+            .with_seed(h.seed)
+            .with_max_deviation_rad(h.max_deviation_deg.to_radians())?
+            .with_graying_onset_range(key.onset_t.0, key.onset_t.1)?;
+        let mesh = &self.inputs.mesh;
+        let surface =
+            SurfaceRef::new(mesh.positions(), mesh.normals(), mesh.uvs(), mesh.indices())?;
+        let hair = HairInstances::generate(&surface, transition, &params)?;
+        self.hair = Some(Arc::new(hair));
+        self.hair_key = Some(key);
+        changed.hair = true;
+        Ok(changed)
+    }
+
+    /// The height and normal maps `agesim bake` writes: the micro-relief and the
+    /// large-wrinkle map added pixel by pixel (both baked at the same size; a layer that is
+    /// off adds nothing), and the RGB8 normal map of the sum.
+    pub fn export_maps(&self) -> Result<(HeightMap, Vec<u8>), Error> {
+        let size = match (&self.micro, &self.large) {
+            (Some(m), _) => m.height.width_px(),
+            (None, Some(l)) => l.height.width_px(),
+            (None, None) => {
+                return Err(Error::InvalidValue {
+                    what: "bake".into(),
+                    value: "no layer".into(),
+                    expected:
+                        "at least one enabled layer (large wrinkles, pores, furrows or noise)"
+                            .into(),
+                });
+            }
+        };
+        let mut height = match &self.micro {
+            Some(m) => m.height.clone(),
+            None => HeightMap::zeros(size, size)?,
+        };
+        if let Some(large) = &self.large {
+            if large.height.width_px() != size {
+                return Err(Error::InvalidValue {
+                    what: "export size".into(),
+                    value: format!("{} and {size}", large.height.width_px()),
+                    expected: "the large-wrinkle and micro-relief maps baked at one size".into(),
+                });
+            }
+            for (h, l) in height.data_mut().iter_mut().zip(large.height.data()) {
+                *h += l;
+            }
+        }
+        let rgb = normal_map::encode_rgb8(&height, &self.normal_settings())?;
+        Ok((height, rgb))
+    }
+}
+
+/// The project with only the fields the micro-relief tile depends on (for its key).
+fn micro_relevant(p: &Project) -> Project {
+    Project {
+        seed: p.seed,
+        map_size_mm: p.map_size_mm,
+        tile: p.tile,
+        pores: p.pores.clone(),
+        furrows: p.furrows.clone(),
+        noise: p.noise.clone(),
+        warp: p.warp.clone(),
+        overlap: p.overlap.clone(),
+        normal: p.normal.clone(),
+        ..Project::default()
+    }
+}
+
+impl Inputs {
+    fn generation_of_fine(&self) -> u64 {
+        self.fine_tile.as_ref().map_or(0, |t| Arc::as_ptr(t) as u64)
+    }
+
+    /// Loads what `project` names, reusing `previous`'s inputs whose key is unchanged.
+    /// Every failing input is reported (wrinkle files with all their diagnostics).
+    fn load(project: &Project, previous: Option<&Inputs>) -> Result<Self, Error> {
+        let mut errors: Vec<Error> = Vec::new();
+        let mesh_key = (project.mesh.path.clone(), project.mesh.builtin);
+        let mesh = match previous.filter(|p| p.mesh_key == mesh_key) {
+            Some(p) => Some(p.mesh.clone()),
+            None => match load_mesh(project) {
+                Ok(m) => Some(Arc::new(m)),
+                Err(e) => {
+                    errors.push(e);
+                    None
+                }
+            },
+        };
+        let wrinkles_key = project.large.wrinkles.clone();
+        let wrinkles = match previous.filter(|p| p.wrinkles_key == wrinkles_key) {
+            Some(p) => Some(p.wrinkles.clone()),
+            None => match load_wrinkles(&wrinkles_key) {
+                Ok(w) => Some(w),
+                Err(e) => {
+                    errors.push(e);
+                    None
+                }
+            },
+        };
+        let large_mask_key = (
+            project.large.mask.clone(),
+            project.large.wrinkles.is_empty(),
+        );
+        let large_mask = match previous.filter(|p| p.large_mask_key == large_mask_key) {
+            Some(p) => Some(p.large_mask.clone()),
+            None => match load_large_mask(&large_mask_key) {
+                Ok(m) => Some(m.map(Arc::new)),
+                Err(e) => {
+                    errors.push(e);
+                    None
+                }
+            },
+        };
+        let hair_masks_key = (
+            project.hair.outer_mask.clone(),
+            project.hair.inner_mask.clone(),
+        );
+        let hair_masks = match previous.filter(|p| p.hair_masks_key == hair_masks_key) {
+            Some(p) => Some(p.hair_masks.clone()),
+            None => {
+                let outer = load_mask_or(
+                    hair_masks_key.0.as_deref(),
+                    crate::defaults::HAIR_OUTER_MASK,
+                );
+                let inner = load_mask_or(
+                    hair_masks_key.1.as_deref(),
+                    crate::defaults::HAIR_INNER_MASK,
+                );
+                match (outer, inner) {
+                    (Ok(o), Ok(i)) => Some(Some(Arc::new((o, i)))),
+                    (o, i) => {
+                        errors.extend(o.err());
+                        errors.extend(i.err());
+                        None
+                    }
+                }
+            }
+        };
+        let fine_tile_key = project.fine.tile.clone();
+        let fine_tile = match previous.filter(|p| p.fine_tile_key == fine_tile_key) {
+            Some(p) => Some(p.fine_tile.clone()),
+            None => match &fine_tile_key {
+                None => Some(None),
+                Some(path) => match Mask::load(path).and_then(|m| {
+                    HeightMap::from_vec(m.width_px(), m.height_px(), m.values().to_vec())
+                }) {
+                    Ok(h) => Some(Some(Arc::new(h))),
+                    Err(e) => {
+                        errors.push(e);
+                        None
+                    }
+                },
+            },
+        };
+        match (mesh, wrinkles, large_mask, hair_masks, fine_tile) {
+            (Some(mesh), Some(wrinkles), Some(large_mask), Some(hair_masks), Some(fine_tile))
+                if errors.is_empty() =>
+            {
+                let generation = previous.map_or(0, |p| p.generation)
+                    + u64::from(previous.is_none_or(|p| p.wrinkles != wrinkles));
+                Ok(Self {
+                    mesh_key,
+                    mesh,
+                    wrinkles_key,
+                    wrinkles,
+                    large_mask_key,
+                    large_mask,
+                    hair_masks_key,
+                    hair_masks,
+                    fine_tile_key,
+                    fine_tile,
+                    generation,
+                })
+            }
+            _ if errors.len() == 1 => Err(errors.remove(0)),
+            _ => Err(Error::Inputs(
+                errors.iter().map(ToString::to_string).collect(),
+            )),
+        }
+    }
+}
+
+fn load_mesh(project: &Project) -> Result<Mesh, Error> {
+    match (&project.mesh.path, project.mesh.builtin) {
+        (Some(path), _) => Mesh::load(path),
+        (None, BuiltinMesh::Head) => Ok(crate::head::default_head()),
+        (None, BuiltinMesh::SkinPatch) => Ok(crate::head::skin_patch()),
+    }
+}
+
+/// The wrinkle files at `paths` (the built-in defaults when empty), every diagnostic of
+/// every file reported together.
+pub fn load_wrinkles(paths: &[PathBuf]) -> Result<Vec<WrinkleSource>, Error> {
+    let mut loaded = Vec::new();
+    let mut diagnostics = Vec::new();
+    let mut push = |name: String,
+                    path: Option<PathBuf>,
+                    result: Result<WrinkleFile, ParseErrors>| {
+        match result {
+            Ok(file) => loaded.push(WrinkleSource { name, path, file }),
+            Err(errors) => diagnostics.extend(errors.0),
+        }
+    };
+    if paths.is_empty() {
+        for (name, text) in crate::defaults::WRINKLE_FILES {
+            push(
+                name.to_string(),
+                None,
+                wrinkle_file::parse(text, Path::new(name)),
+            );
+        }
+    } else {
+        for path in paths {
+            let bytes = crate::limits::read_file(path, crate::limits::MAX_TEXT_FILE_BYTES)?;
+            push(
+                path.display().to_string(),
+                Some(path.clone()),
+                wrinkle_file::parse_bytes(&bytes, path),
+            );
+        }
+    }
+    if diagnostics.is_empty() {
+        Ok(loaded)
+    } else {
+        Err(Error::WrinkleFile(ParseErrors(diagnostics)))
+    }
+}
+
+/// The large-wrinkle mask: the named one, or the default head's when the default wrinkle
+/// files are used, or none.
+fn load_large_mask(key: &(Option<PathBuf>, bool)) -> Result<Option<Mask>, Error> {
+    match key {
+        (Some(path), _) => Mask::load(path).map(Some),
+        (None, true) => {
+            let (name, bytes) = crate::defaults::WRINKLE_MASK;
+            Mask::decode(bytes, Path::new(name)).map(Some)
+        }
+        (None, false) => Ok(None),
+    }
+}
+
+fn load_mask_or(path: Option<&Path>, default: (&str, &[u8])) -> Result<Mask, Error> {
+    match path {
+        Some(p) => Mask::load(p),
+        None => Mask::decode(default.1, Path::new(default.0)),
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,204 @@
+use super::*;
+
+fn small(t: f32) -> BakeRequest {
+    BakeRequest {
+        large_size_px: 96,
+        micro_size_px: 64,
+        t,
+        fine: false,
+        hair: false,
+        packed: true,
+    }
+}
+
+fn project() -> Project {
+    let mut p = Project::default();
+    p.pores.count = 200;
+    p
+}
+
+fn bytes(scene: &Scene) -> (Vec<f32>, Vec<u8>, Vec<f32>, Vec<u8>) {
+    let l = scene.large().unwrap();
+    let m = scene.micro().unwrap();
+    (
+        l.height.data().to_vec(),
+        l.packed_rgba.clone(),
+        m.height.data().to_vec(),
+        m.normal_rgb.clone(),
+    )
+}
+
+fn fresh(project: &Project, request: &BakeRequest) -> Scene {
+    let mut s = Scene::new(project.clone()).unwrap();
+    s.bake(request, &CancelToken::never()).unwrap();
+    s
+}
+
+#[test]
+fn an_unchanged_bake_changes_nothing() {
+    let mut s = fresh(&project(), &small(0.5));
+    let c = s.bake(&small(0.5), &CancelToken::never()).unwrap();
+    assert!(!c.any(), "{c:?}");
+}
+
+#[test]
+fn incremental_equals_a_full_rebake_for_each_kind_of_change() {
+    let never = CancelToken::never();
+    let base = project();
+    let mut s = fresh(&base, &small(0.5));
+
+    // A noise change: the tile is re-baked, no pore moves, the large map is untouched.
+    let mut p = base.clone();
+    p.noise.strength = 0.6;
+    s.set_project(p.clone()).unwrap();
+    let c = s.bake(&small(0.5), &never).unwrap();
+    assert!(
+        c.micro && !c.micro_features && !c.large && !c.large_stamps,
+        "{c:?}"
+    );
+    assert_eq!(bytes(&s), bytes(&fresh(&p, &small(0.5))));
+
+    // An age change: both re-scaled, nothing regenerated or rasterised.
+    let c = s.bake(&small(0.9), &never).unwrap();
+    assert!(
+        c.micro && c.large && !c.micro_features && !c.large_stamps,
+        "{c:?}"
+    );
+    assert_eq!(bytes(&s), bytes(&fresh(&p, &small(0.9))));
+
+    // One fibre moved: the large layer only, one fibre rasterised.
+    let mut w = s.wrinkles().to_vec();
+    let g = &mut w[0].file.groups[0];
+    g.fibre = Fibre::new([0.40, 0.74], g.fibre.mb(), g.fibre.n()).unwrap();
+    s.set_wrinkles(w.clone());
+    let c = s.bake(&small(0.9), &never).unwrap();
+    assert!(c.large && c.large_stamps && !c.micro, "{c:?}");
+    let mut f = Scene::new(p.clone()).unwrap();
+    f.set_wrinkles(w);
+    f.bake(&small(0.9), &never).unwrap();
+    assert_eq!(bytes(&s), bytes(&f));
+
+    // A pore change regenerates the features.
+    let mut q = p.clone();
+    q.pores.count = 250;
+    s.set_project(q.clone()).unwrap();
+    let c = s.bake(&small(0.9), &never).unwrap();
+    assert!(c.micro_features && c.micro && !c.large, "{c:?}");
+}
+
+#[test]
+fn a_cancelled_bake_keeps_the_previous_maps_and_a_later_bake_equals_an_uncancelled_one() {
+    let mut s = fresh(&project(), &small(0.2));
+    let before = bytes(&s);
+    let cancel = CancelToken::new();
+    cancel.cancel();
+    let e = s.bake(&small(0.8), &cancel).unwrap_err();
+    assert!(matches!(e, Error::Cancelled), "{e}");
+    assert_eq!(bytes(&s), before);
+    s.bake(&small(0.8), &CancelToken::never()).unwrap();
+    assert_eq!(bytes(&s), bytes(&fresh(&project(), &small(0.8))));
+}
+
+#[test]
+fn old_is_deeper_with_wider_pores_than_young() {
+    let young = fresh(&project(), &small(0.0));
+    let old = fresh(&project(), &small(1.0));
+    let sum = |m: &HeightMap| m.data().iter().map(|h| h.abs() as f64).sum::<f64>();
+    let (ly, lo) = (
+        sum(&young.large().unwrap().height),
+        sum(&old.large().unwrap().height),
+    );
+    assert!(lo > 2.0 * ly, "large wrinkles: young {ly}, old {lo}");
+    let f0 = young.factors();
+    let f1 = old.factors();
+    assert!(f0.pore_radius_scale < 1.0 && f1.pore_radius_scale == 1.0);
+    assert!(f0.furrow_depth_scale < f1.furrow_depth_scale);
+    assert!(f0.paleness < f1.paleness && f0.fine_blend < f1.fine_blend);
+    let (my, mo) = (
+        sum(&young.micro().unwrap().height),
+        sum(&old.micro().unwrap().height),
+    );
+    assert!(mo > my, "micro-relief: young {my}, old {mo}");
+    // The same pores at both ages.
+    let pores = |s: &Scene| {
+        s.relief()
+            .unwrap()
+            .pores()
+            .iter()
+            .map(|p| p.centre_mm)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(pores(&young), pores(&old));
+}
+
+#[test]
+fn onsets_follow_the_curves() {
+    // The default marionette lines start in the mid-40s: nothing of them at 40 years.
+    let mut p = project();
+    p.age.t = 0.0;
+    let s = Scene::new(p).unwrap();
+    let (_, curves) = s.fibres();
+    let f = s
+        .project()
+        .age
+        .factors(s.project().age.mapping().t(40.0), &curves);
+    let names: Vec<&str> = s
+        .wrinkles()
+        .iter()
+        .flat_map(|w| std::iter::repeat_n(w.name.as_str(), w.file.groups.len()))
+        .collect();
+    for (name, factor) in names.iter().zip(&f.large) {
+        if name.contains("marionette") {
+            assert_eq!(*factor, 0.0, "{name} at 40");
+        }
+        if name.contains("forehead") {
+            assert!(*factor > 0.0, "{name} at 40");
+        }
+    }
+}
+
+#[test]
+fn hair_thins_and_grays_with_age() {
+    let mut s = Scene::new(project()).unwrap();
+    let mut r = small(0.5);
+    r.hair = true;
+    s.hair_key = None;
+    let mut p = s.project().clone();
+    p.hair.density_per_cm2 = 20.0;
+    p.hair.transition_size_px = Some(256);
+    s.set_project(p).unwrap();
+    let c = s.bake(&r, &CancelToken::never()).unwrap();
+    assert!(c.hair && c.transition);
+    let hair = s.hair().unwrap();
+    assert!(
+        hair.count(0.0) > hair.count(1.0),
+        "{} vs {}",
+        hair.count(0.0),
+        hair.count(1.0)
+    );
+    let gray = |t: f32| {
+        hair.instances()[..hair.count(t)]
+            .iter()
+            .map(|h| h.gray_fraction(t, s.project().hair.graying_ramp))
+            .sum::<f32>()
+            / hair.count(t).max(1) as f32
+    };
+    assert!(gray(0.9) > gray(0.3), "{} vs {}", gray(0.9), gray(0.3));
+    // An age change does not regenerate hair.
+    let c = s.bake(&small(0.9), &CancelToken::never()).unwrap();
+    assert!(!c.hair && !c.transition);
+}
+
+#[test]
+fn a_missing_input_names_it_and_leaves_the_scene_unchanged() {
+    let mut s = fresh(&project(), &small(0.5));
+    let mut p = s.project().clone();
+    p.large.wrinkles = vec!["/no/such.wrk".into()];
+    p.hair.outer_mask = Some("/no/such.png".into());
+    let e = s.set_project(p).unwrap_err().to_string();
+    assert!(
+        e.contains("/no/such.wrk") && e.contains("/no/such.png"),
+        "{e}"
+    );
+    assert!(s.project().large.wrinkles.is_empty());
+}

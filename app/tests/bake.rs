@@ -416,3 +416,96 @@ fn bad_project_input_names_the_field_and_writes_nothing() {
         assert!(!out.exists(), "{args:?} wrote output");
     }
 }
+
+#[test]
+fn bake_json_reproduces_the_bake_from_any_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("w")).unwrap();
+    std::fs::copy(
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../assets/wrinkles/forehead.wrk"
+        ),
+        dir.path().join("w/forehead.wrk"),
+    )
+    .unwrap();
+    // A relative --wrinkles, resolved against the working directory.
+    let o = Command::new(env!("CARGO_BIN_EXE_agesim"))
+        .current_dir(dir.path())
+        .args([
+            "bake",
+            "--wrinkles",
+            "w/forehead.wrk",
+            "--size",
+            "64",
+            "--age-years",
+            "60",
+        ])
+        .args(["--out", "first"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("first/bake.json")).unwrap())
+            .unwrap();
+    let project = dir.path().join("first/again.agesim.json");
+    std::fs::write(&project, report["project"].to_string()).unwrap();
+    // Baked again from elsewhere, from the saved project alone.
+    let o = Command::new(env!("CARGO_BIN_EXE_agesim"))
+        .current_dir("/")
+        .args([
+            "bake",
+            "--project",
+            project.to_str().unwrap(),
+            "--size",
+            "64",
+        ])
+        .args(["--age", &report["inputs"]["age_t"].to_string()])
+        .args(["--out", dir.path().join("second").to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    for f in ["height.exr", "height.png", "normal.png"] {
+        assert_eq!(
+            std::fs::read(dir.path().join("first").join(f)).unwrap(),
+            std::fs::read(dir.path().join("second").join(f)).unwrap(),
+            "{f} differs"
+        );
+    }
+}
+
+#[test]
+fn older_bakes_are_deeper() {
+    let dir = tempfile::tempdir().unwrap();
+    let range = |years: &str| {
+        let out = dir.path().join(years);
+        let o = agesim(&[
+            "bake",
+            "--size",
+            "128",
+            "--age-years",
+            years,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let r: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+        r["height_range"][1].as_f64().unwrap()
+    };
+    let (a, b, c) = (range("30"), range("50"), range("80"));
+    assert!(a < b && b < c, "{a} {b} {c}");
+    assert_eq!(c, 1.0);
+    let o = agesim(&[
+        "bake",
+        "--age",
+        "1.5",
+        "--out",
+        dir.path().join("x").to_str().unwrap(),
+    ]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("--age 1.5"),
+        "{}",
+        stderr(&o)
+    );
+}

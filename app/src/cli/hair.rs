@@ -7,9 +7,12 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use agesim_core::hair::{DEFAULT_DENSITY_PER_CM2, HairInstances, HairParams, SurfaceRef};
+use agesim_core::cancel::CancelToken;
+use agesim_core::defaults;
+use agesim_core::hair::{DEFAULT_DENSITY_PER_CM2, HairInstances};
+use agesim_core::project::Project;
+use agesim_core::scene::{BakeRequest, Scene};
 use agesim_core::transition::{DistanceMetric, TransitionTexture};
-use agesim_core::{Mask, Mesh, head};
 use anyhow::Context as _;
 
 /// The ages at which `hair.json` reports the number of hairs present.
@@ -52,35 +55,54 @@ pub struct HairArgs {
     pub out: PathBuf,
 }
 
+/// The project of `args`: the hair settings from the flags, every other layer off.
+fn project(args: &HairArgs) -> anyhow::Result<Project> {
+    let mut p = Project::default();
+    p.mesh.path = args.mesh.clone();
+    p.mesh.metres_per_unit = args.metres_per_unit;
+    p.hair.outer_mask = args.outer.clone();
+    p.hair.inner_mask = args.inner.clone();
+    p.hair.density_per_cm2 = args.density;
+    p.hair.metric = args.metric;
+    p.hair.transition_size_px = args.size;
+    p.hair.seed = args.seed;
+    p.large.enabled = false;
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
+    p.noise.details = 0.0;
+    // The same checks as a project file, naming the flag's field.
+    p.validate()
+        .map_err(|e| anyhow::anyhow!("invalid hair settings: {e}"))?;
+    Ok(p)
+}
+
 pub fn run(args: &HairArgs) -> anyhow::Result<()> {
-    let params = HairParams::new(args.density, args.metres_per_unit)?.with_seed(args.seed);
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-
     let start = Instant::now();
-    let (mesh, mesh_name) = match &args.mesh {
-        Some(path) => (Mesh::load(path)?, path.display().to_string()),
-        None => (head::default_head(), "default head".to_owned()),
+    let mut scene = Scene::new(project(args)?)?;
+    let mesh_name = match &args.mesh {
+        Some(path) => path.display().to_string(),
+        None => "default head".to_owned(),
     };
-    let outer = load_mask(args.outer.as_deref(), DEFAULT_OUTER)?;
-    let inner = load_mask(args.inner.as_deref(), DEFAULT_INNER)?;
     let load_ms = ms(start);
-
-    let size = args.size.unwrap_or_else(|| {
-        outer
-            .width_px()
-            .max(outer.height_px())
-            .max(inner.width_px())
-            .max(inner.height_px())
-    });
     let start = Instant::now();
-    let transition = TransitionTexture::from_masks(&outer, &inner, size, size, args.metric)?;
-    let transition_ms = ms(start);
-
-    let start = Instant::now();
-    let surface = SurfaceRef::new(mesh.positions(), mesh.normals(), mesh.uvs(), mesh.indices())?;
-    let hairs = HairInstances::generate(&surface, &transition, &params)?;
-    let instances_ms = ms(start);
+    let request = BakeRequest {
+        large_size_px: 1,
+        micro_size_px: 1,
+        t: 0.0,
+        fine: false,
+        hair: true,
+        packed: false,
+    };
+    scene.bake(&request, &CancelToken::never())?;
+    let bake_ms = ms(start);
+    let (Some(transition), Some(hairs)) = (scene.transition(), scene.hair()) else {
+        anyhow::bail!("no hair was generated (hair is disabled)");
+    };
+    let size = transition.width_px();
+    let transition_ms = bake_ms;
+    let surface_triangles = scene.mesh().triangle_count();
 
     let start = Instant::now();
     transition.write_png16(&args.out.join("transition.png"))?;
@@ -90,10 +112,10 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
         .collect();
     let mut report = serde_json::json!({
         "mesh": mesh_name,
-        "triangles": surface.triangle_count(),
+        "triangles": surface_triangles,
         "metres_per_unit": args.metres_per_unit,
-        "outer": mask_name(args.outer.as_deref(), DEFAULT_OUTER),
-        "inner": mask_name(args.inner.as_deref(), DEFAULT_INNER),
+        "outer": mask_name(args.outer.as_deref(), defaults::HAIR_OUTER_MASK),
+        "inner": mask_name(args.inner.as_deref(), defaults::HAIR_INNER_MASK),
         "size_px": size,
         "metric": args.metric,
         "density_per_cm2": args.density,
@@ -109,19 +131,18 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
     let write_ms = ms(start);
     report["timings_ms"] = serde_json::json!({
         "load": load_ms,
-        "transition": transition_ms,
-        "instances": instances_ms,
+        "transition_and_instances": transition_ms,
         "write_png": write_ms,
     });
     if args.preview {
-        write_uv_preview(&args.out.join("hair-uv.png"), &transition, &hairs)?;
+        write_uv_preview(&args.out.join("hair-uv.png"), transition, hairs)?;
     }
     let json = serde_json::to_vec_pretty(&report)?;
     agesim_core::export::write_atomically(&args.out.join("hair.json"), |w| {
         std::io::Write::write_all(w, &json)
     })?;
     println!(
-        "{} hairs ({} at t = 1), transition {size}² in {transition_ms:.0} ms, instances in {instances_ms:.0} ms → {}",
+        "{} hairs ({} at t = 1), transition {size}² and instances in {transition_ms:.0} ms → {}",
         hairs.len(),
         hairs.count(1.0),
         args.out.display()
@@ -131,27 +152,10 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
 
 /// A default mask of the default head: its file name in `assets/masks/` and its bytes,
 /// built into the binary so that `agesim hair` works from any folder.
-type DefaultMask = (&'static str, &'static [u8]);
-const DEFAULT_OUTER: DefaultMask = (
-    "hair-outer.png",
-    include_bytes!("../../../assets/masks/hair-outer.png"),
-);
-const DEFAULT_INNER: DefaultMask = (
-    "hair-inner.png",
-    include_bytes!("../../../assets/masks/hair-inner.png"),
-);
-
-fn load_mask(path: Option<&Path>, default: DefaultMask) -> anyhow::Result<Mask> {
-    Ok(match path {
-        Some(path) => Mask::load(path)?,
-        None => Mask::decode(default.1, Path::new(default.0))?,
-    })
-}
-
-fn mask_name(path: Option<&Path>, default: DefaultMask) -> String {
+fn mask_name(path: Option<&Path>, default: (&str, &[u8])) -> String {
     match path {
         Some(p) => p.display().to_string(),
-        None => format!("default (assets/masks/{})", default.0),
+        None => format!("default ({})", default.0),
     }
 }
 

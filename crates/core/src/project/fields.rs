@@ -851,12 +851,14 @@ fn quote(v: &Value) -> String {
     crate::limits::shorten(&v.to_string(), 60)
 }
 
-/// Type errors of every field present in `doc` (a parsed, shape-checked document).
+/// Type errors of every field present in `doc` (a parsed, shape-checked document), and
+/// bad names and colours (which the typed parse would report without their path).
 pub(crate) fn check_types(doc: &Value, out: &mut Vec<String>) {
     for field in FIELDS.iter() {
-        if let Some(v) = get_path(doc, field.path)
-            && !field.type_ok(v)
-        {
+        let Some(v) = get_path(doc, field.path) else {
+            continue;
+        };
+        if !field.type_ok(v) {
             out.push(format!(
                 "{}: expected {}, found {} {}",
                 field.path,
@@ -864,6 +866,10 @@ pub(crate) fn check_types(doc: &Value, out: &mut Vec<String>) {
                 type_name(v),
                 quote(v)
             ));
+        } else if matches!(field.kind, Kind::Choice(_) | Kind::Colour)
+            && let Some(p) = field.range_problem(v)
+        {
+            out.push(p);
         }
     }
 }

@@ -18,6 +18,8 @@
 
 pub mod fields;
 mod json;
+#[cfg(test)]
+mod tests;
 
 use std::path::{Path, PathBuf};
 

@@ -64,7 +64,12 @@ fn default_head_writes_a_16_bit_transition_and_decreasing_counts() {
         c[4].1 > 0 && c[4].1 < c[0].1,
         "inner hair stays, outer goes: {c:?}"
     );
-    assert!(report["timings_ms"]["transition_and_instances"].as_f64().unwrap() >= 0.0);
+    assert!(
+        report["timings_ms"]["transition_and_instances"]
+            .as_f64()
+            .unwrap()
+            >= 0.0
+    );
     assert_eq!(report["mesh"], "default head");
 }
 

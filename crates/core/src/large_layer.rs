@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use crate::cancel::CancelToken;
 use crate::error::Error;
 use crate::heightmap::{HeightMap, pixel_to_u, pixel_to_v};
-use crate::muscle::{self, Fibre, LargeWrinkleSettings};
+use crate::muscle::{self, Fibre, LargeWrinkleSettings, MaskValues};
 
 /// Largest total area of all fibres' rectangles, pixels (4 bytes each: 1 GiB). A project
 /// beyond it (hundreds of thousands of fibres, or huge ones at 16384²) is refused with a
@@ -126,6 +126,21 @@ impl LargeLayer {
                 }
             }
         }
+        let refs: Vec<&Stamp> = plan
+            .iter()
+            .filter_map(|p| match p {
+                Ok(j) => old[*j].as_ref(),
+                Err(stamp) => stamp.as_ref(),
+            })
+            .collect();
+        let full_max = max_of_sum(&refs, width_px, height_px, cancel);
+        drop(refs);
+        if let Err(e) = cancel.check() {
+            if same_size {
+                self.stamps = old;
+            }
+            return Err(e);
+        }
         let stamps: Vec<Option<Stamp>> = plan
             .into_iter()
             .map(|p| match p {
@@ -133,7 +148,6 @@ impl LargeLayer {
                 Err(stamp) => stamp,
             })
             .collect();
-        let full_max = max_of_sum(&stamps, width_px, height_px);
         *self = Self {
             width_px,
             height_px,
@@ -151,6 +165,20 @@ impl LargeLayer {
         &self,
         factors: &[f32],
         settings: &LargeWrinkleSettings<'_>,
+        out: &mut HeightMap,
+        cancel: &CancelToken,
+    ) -> Result<(), Error> {
+        let mask = settings.mask.map_or(MaskValues::None, MaskValues::Sample);
+        self.combine_with(factors, settings.gamma, mask, out, cancel)
+    }
+
+    /// [`LargeLayer::combine`] with the mask already sampled at this size
+    /// ([`muscle::sample_mask`]): the same bytes without a bilinear sample per pixel.
+    pub(crate) fn combine_with(
+        &self,
+        factors: &[f32],
+        gamma: f32,
+        mask: MaskValues<'_>,
         out: &mut HeightMap,
         cancel: &CancelToken,
     ) -> Result<(), Error> {
@@ -178,7 +206,7 @@ impl LargeLayer {
                 add_row(&stamps, y as u32, row);
             });
         cancel.check()?;
-        muscle::finish_with_max(out, settings, self.full_max)
+        muscle::finish_impl(out, gamma, self.full_max, mask, cancel)
     }
 }
 
@@ -198,13 +226,16 @@ fn add_row(stamps: &[(&Stamp, f32)], y: u32, row: &mut [f32]) {
 }
 
 /// The maximum over the map of Σ_i h_i (full age).
-fn max_of_sum(stamps: &[Option<Stamp>], w: u32, h: u32) -> f32 {
-    let all: Vec<(&Stamp, f32)> = stamps.iter().flatten().map(|s| (s, 1.0)).collect();
+fn max_of_sum(stamps: &[&Stamp], w: u32, h: u32, cancel: &CancelToken) -> f32 {
+    let all: Vec<(&Stamp, f32)> = stamps.iter().map(|s| (*s, 1.0)).collect();
     (0..h)
         .into_par_iter()
         .map_init(
             || vec![0.0f32; w as usize],
             |row, y| {
+                if cancel.is_cancelled() {
+                    return 0.0;
+                }
                 row.fill(0.0);
                 add_row(&all, y, row);
                 row.iter().copied().fold(0.0f32, f32::max)

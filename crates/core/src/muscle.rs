@@ -428,13 +428,55 @@ pub fn finish_with_max(
     settings: &LargeWrinkleSettings<'_>,
     h_max: f32,
 ) -> Result<(), Error> {
-    let gamma = check_range(
+    let mask = settings.mask.map_or(MaskValues::None, MaskValues::Sample);
+    finish_impl(
+        map,
         settings.gamma,
+        h_max,
+        mask,
+        &crate::cancel::CancelToken::never(),
+    )
+}
+
+/// Where [`finish_impl`] gets the mask from.
+#[derive(Clone, Copy)]
+pub(crate) enum MaskValues<'a> {
+    None,
+    /// Sampled bilinearly at each pixel centre.
+    Sample(&'a Mask),
+    /// Already sampled at this map's pixel centres (by [`sample_mask`]: the same values).
+    Values(&'a [f32]),
+}
+
+/// `mask` sampled at every pixel centre of a `width_px × height_px` map, in parallel; the
+/// values [`finish`] would sample one by one.
+pub(crate) fn sample_mask(mask: &Mask, width_px: u32, height_px: u32) -> Vec<f32> {
+    let mut out = vec![0.0; width_px as usize * height_px as usize];
+    out.par_chunks_mut(width_px as usize)
+        .enumerate()
+        .for_each(|(y, row)| {
+            let v = pixel_to_v(y as u32, height_px);
+            for (x, m) in row.iter_mut().enumerate() {
+                *m = mask.sample(pixel_to_u(x as u32, width_px), v);
+            }
+        });
+    out
+}
+
+pub(crate) fn finish_impl(
+    map: &mut HeightMap,
+    gamma: f32,
+    h_max: f32,
+    mask: MaskValues<'_>,
+    cancel: &crate::cancel::CancelToken,
+) -> Result<(), Error> {
+    let gamma = check_range(
+        gamma,
         GAMMA_RANGE.0,
         GAMMA_RANGE.1,
         "a number in [0.01, 10]",
     )
-    .map_err(|e| range_err("gamma", settings.gamma, e))?;
+    .map_err(|e| range_err("gamma", gamma, e))?;
     let (w, h) = (map.width_px(), map.height_px());
     if h_max.is_nan() || h_max <= 0.0 {
         map.data_mut().fill(0.0);
@@ -445,6 +487,9 @@ pub fn finish_with_max(
         .par_chunks_mut(w as usize)
         .enumerate()
         .for_each(|(y, row)| {
+            if cancel.is_cancelled() {
+                return;
+            }
             let v = pixel_to_v(y as u32, h);
             for (x, p) in row.iter_mut().enumerate() {
                 // Most of a face map is untouched skin: 0^γ = 0, skip the powf.
@@ -453,13 +498,15 @@ pub fn finish_with_max(
                     continue;
                 }
                 let mut value = (*p * inv).clamp(0.0, 1.0).powf(gamma);
-                if let Some(mask) = settings.mask {
-                    value *= mask.sample(pixel_to_u(x as u32, w), v);
+                match mask {
+                    MaskValues::None => {}
+                    MaskValues::Sample(m) => value *= m.sample(pixel_to_u(x as u32, w), v),
+                    MaskValues::Values(m) => value *= m[y * w as usize + x],
                 }
                 *p = value;
             }
         });
-    Ok(())
+    cancel.check()
 }
 
 /// The whole large-wrinkle layer: a `width_px × height_px` map in [0,1].

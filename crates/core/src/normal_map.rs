@@ -359,32 +359,70 @@ impl crate::simd::Kernel for EncodeRows<'_> {
 /// Rows per parallel task of [`encode_rgb8`].
 const ROWS_PER_TASK: usize = 16;
 
-/// [T]'s renderer packing (SPEC §4): RGBA8 = (n.x·0.5 + 0.5, n.y·0.5 + 0.5, n.z, h01), with
-/// n in the OpenGL frame (the renderer's convention, whatever the export setting) and h01
-/// the height mapped from `height_range` = (lo, hi) to [0, 1] so POM can read it from alpha.
+/// The renderer's packing of a height map (after [T] §7.1.1, `docs/models.md` "Normal
+/// maps"): RGBA8 = (the OpenGL-convention normal-map bytes n·0.5 + 0.5 exactly as
+/// [`encode_rgb8`] writes them, whatever the export setting, and h01), h01 being the height
+/// mapped from `height_range` = (lo, hi) to [0, 1], so POM reads the height from alpha.
+/// **Choice**: [T] stores n.z itself in blue; agesim stores n.z·0.5 + 0.5 like the exported
+/// map, so one vectorised kernel serves both (a shader decodes all three channels alike).
 pub fn pack_rgba8(
     map: &HeightMap,
     settings: &NormalSettings,
     height_range: (f32, f32),
 ) -> Result<Vec<u8>, Error> {
-    settings.validate()?;
+    let gl = NormalSettings {
+        convention: Convention::OpenGl,
+        ..*settings
+    };
+    let rgb = encode_rgb8(map, &gl)?;
     let w = map.width_px() as usize;
     let (lo, hi) = height_range;
     let inv = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
-    let mut out = vec![0u8; map.data().len() * 4];
-    out.par_chunks_mut(w * 4).enumerate().for_each(|(y, dst)| {
-        let row = map.row(y as u32);
-        row_normals(map, y, settings, |x, n| {
-            let h01 = ((row[x] - lo) * inv).clamp(0.0, 1.0);
-            dst[x * 4..x * 4 + 4].copy_from_slice(&[
-                encode_unorm8(n[0]),
-                encode_unorm8(n[1]),
-                (n[2] * 255.0 + 0.5).clamp(0.0, 255.0) as u8,
-                (h01 * 255.0 + 0.5) as u8,
-            ]);
+    let mut out = crate::heightmap::zeroed_vec::<u8>(map.data().len() * 4, "packed normal map")?;
+    out.par_chunks_mut(w * 4)
+        .zip(rgb.par_chunks(w * 3))
+        .zip(map.data().par_chunks(w))
+        .for_each(|((dst, src), heights)| {
+            for ((d, s), h) in dst
+                .chunks_exact_mut(4)
+                .zip(src.chunks_exact(3))
+                .zip(heights)
+            {
+                let h01 = ((h - lo) * inv).clamp(0.0, 1.0);
+                d.copy_from_slice(&[s[0], s[1], s[2], (h01 * 255.0 + 0.5) as u8]);
+            }
         });
-    });
     Ok(out)
+}
+
+#[cfg(test)]
+mod pack_tests {
+    use super::*;
+
+    #[test]
+    fn packing_is_the_opengl_normal_bytes_plus_the_height_in_alpha() {
+        let data: Vec<f32> = (0..48).map(|i| ((i * 7) % 11) as f32 * 0.1).collect();
+        let map = HeightMap::from_vec(8, 6, data).unwrap();
+        let dx = NormalSettings {
+            strength: 0.05,
+            convention: Convention::DirectX,
+            tiling: false,
+        };
+        let packed = pack_rgba8(&map, &dx, (0.0, 1.0)).unwrap();
+        let gl = encode_rgb8(
+            &map,
+            &NormalSettings {
+                convention: Convention::OpenGl,
+                ..dx
+            },
+        )
+        .unwrap();
+        for (i, (p, n)) in packed.chunks_exact(4).zip(gl.chunks_exact(3)).enumerate() {
+            assert_eq!(&p[..3], n, "pixel {i}");
+            let h = map.data()[i].clamp(0.0, 1.0);
+            assert_eq!(p[3], (h * 255.0 + 0.5) as u8, "pixel {i}");
+        }
+    }
 }
 
 #[cfg(test)]

@@ -39,7 +39,7 @@ use crate::large_layer::LargeLayer;
 use crate::mask::Mask;
 use crate::mesh::Mesh;
 use crate::micro::MicroRelief;
-use crate::muscle::{Fibre, LargeWrinkleSettings};
+use crate::muscle::{Fibre, MaskValues};
 use crate::normal_map::{self, NormalSettings};
 use crate::project::{BuiltinMesh, Project};
 use crate::transition::TransitionTexture;
@@ -207,12 +207,8 @@ pub struct Scene {
     mesh_generation: u64,
     mask_generation: u64,
     factors: AgeFactors,
-    large_layer: LargeLayer,
-    large_key: Option<LargeKey>,
-    large: Option<LargeMap>,
-    relief: Option<MicroRelief>,
-    micro_key: Option<MicroKey>,
-    micro: Option<MicroTile>,
+    large: LargeStage,
+    micro: MicroStage,
     fine_key: Option<(FineWrinkleSettingsKey, u64)>,
     fine: Option<Arc<HeightMap>>,
     transition_key: Option<(u64, String, Option<u32>)>,
@@ -240,12 +236,8 @@ impl Scene {
             mesh_generation: 1,
             mask_generation: 1,
             factors,
-            large_layer: LargeLayer::default(),
-            large_key: None,
-            large: None,
-            relief: None,
-            micro_key: None,
-            micro: None,
+            large: LargeStage::default(),
+            micro: MicroStage::default(),
             fine_key: None,
             fine: None,
             transition_key: None,
@@ -322,17 +314,17 @@ impl Scene {
     /// The large-wrinkle map of the last bake (`None` before the first, or when the layer
     /// is disabled).
     pub fn large(&self) -> Option<&LargeMap> {
-        self.large.as_ref()
+        self.large.map.as_ref()
     }
 
     /// The micro-relief tile of the last bake.
     pub fn micro(&self) -> Option<&MicroTile> {
-        self.micro.as_ref()
+        self.micro.tile.as_ref()
     }
 
     /// The micro-relief features (pores, furrows) of the last bake.
     pub fn relief(&self) -> Option<&MicroRelief> {
-        self.relief.as_ref()
+        self.micro.relief.as_ref()
     }
 
     /// The fine-wrinkle tile of the last bake that asked for it.
@@ -371,140 +363,41 @@ impl Scene {
         let (fibres, curves) = self.fibres();
         self.factors = self.project.age.factors(request.t, &curves);
         let mut changed = Changed::default();
-        if self.project.large.enabled {
-            changed.merge(self.bake_large(&fibres, request, cancel)?);
-        } else if self.large.take().is_some() {
-            self.large_key = None;
-            changed.large = true;
-        }
-        if self.micro_enabled() {
-            changed.merge(self.bake_micro(request, cancel)?);
-        } else if self.micro.take().is_some() {
-            self.micro_key = None;
-            changed.micro = true;
-        }
+        let normal = self.normal_settings();
+        let micro_enabled = self.micro_enabled();
+        let (large, micro) = (&mut self.large, &mut self.micro);
+        let (project, inputs, factors) = (&self.project, &self.inputs, &self.factors);
+        let mask_generation = self.mask_generation;
+        // The two layers are independent: bake them side by side (each is itself
+        // parallel; together they keep both cores busy through each one's serial parts).
+        let (large_result, micro_result) = rayon::join(
+            || {
+                if project.large.enabled {
+                    let mask = LargeMask {
+                        mask: inputs.large_mask.as_deref(),
+                        generation: mask_generation,
+                    };
+                    large.bake(project, &fibres, factors, mask, request, &normal, cancel)
+                } else {
+                    Ok(large.clear())
+                }
+            },
+            || {
+                if micro_enabled {
+                    micro.bake(project, factors, request, &normal, cancel)
+                } else {
+                    Ok(micro.clear())
+                }
+            },
+        );
+        changed.merge(large_result?);
+        changed.merge(micro_result?);
         if request.fine && self.project.fine.enabled {
             changed.merge(self.bake_fine(cancel)?);
         }
         if request.hair && self.project.hair.enabled {
             changed.merge(self.bake_hair(cancel)?);
         }
-        Ok(changed)
-    }
-
-    fn bake_large(
-        &mut self,
-        fibres: &[Fibre],
-        request: &BakeRequest,
-        cancel: &CancelToken,
-    ) -> Result<Changed, Error> {
-        let mut changed = Changed::default();
-        let size = request.large_size_px;
-        let mut layer = std::mem::take(&mut self.large_layer);
-        let rasterised = layer.update(fibres, size, size, cancel);
-        let rasterised = match rasterised {
-            Ok(n) => n,
-            Err(e) => {
-                self.large_layer = layer;
-                return Err(e);
-            }
-        };
-        self.large_layer = layer;
-        changed.large_stamps = rasterised > 0;
-        let p = &self.project;
-        let key = LargeKey {
-            layer_fibres: fibres.to_vec(),
-            size,
-            factors: self.factors.large.clone(),
-            gamma: p.large.gamma,
-            depth: p.large.depth,
-            mask_generation: self.mask_generation,
-            normal: request.packed.then(|| self.normal_settings()),
-            packed: request.packed,
-        };
-        if self.large_key.as_ref() == Some(&key) && self.large.is_some() {
-            return Ok(changed);
-        }
-        let settings = LargeWrinkleSettings {
-            gamma: p.large.gamma,
-            mask: self.inputs.large_mask.as_deref(),
-        };
-        // A fresh buffer: the kept map stays whole if this bake is cancelled.
-        let mut height = HeightMap::zeros(size, size)?;
-        self.large_layer
-            .combine(&self.factors.large, &settings, &mut height, cancel)?;
-        let depth = p.large.depth;
-        if depth != 1.0 {
-            for h in height.data_mut() {
-                *h *= depth;
-            }
-        }
-        cancel.check()?;
-        let packed_range = (0.0, depth.max(f32::MIN_POSITIVE));
-        let packed_rgba = if request.packed {
-            normal_map::pack_rgba8(&height, &self.normal_settings(), packed_range)?
-        } else {
-            Vec::new()
-        };
-        cancel.check()?;
-        self.large = Some(LargeMap {
-            height,
-            packed_rgba,
-            packed_range,
-        });
-        self.large_key = Some(key);
-        changed.large = true;
-        Ok(changed)
-    }
-
-    fn bake_micro(
-        &mut self,
-        request: &BakeRequest,
-        cancel: &CancelToken,
-    ) -> Result<Changed, Error> {
-        let mut changed = Changed::default();
-        let mut relief = match &self.relief {
-            Some(r) => {
-                let (r, regenerated) = r.with_project(&self.project)?;
-                changed.micro_features = regenerated;
-                r
-            }
-            None => {
-                changed.micro_features = true;
-                MicroRelief::new(&self.project)?
-            }
-        };
-        let scales = (
-            self.factors.pore_radius_scale,
-            self.factors.furrow_depth_scale,
-        );
-        relief.set_age_scales(scales.0, scales.1);
-        let key = MicroKey {
-            project: micro_relevant(&self.project),
-            scales,
-            size: request.micro_size_px,
-        };
-        if self.micro_key.as_ref() == Some(&key) && self.micro.is_some() {
-            self.relief = Some(relief);
-            return Ok(changed);
-        }
-        cancel.check()?;
-        let mut height = HeightMap::zeros(1, 1)?;
-        let mut rgb = Vec::new();
-        relief.bake_into_cancellable(
-            request.micro_size_px,
-            &mut height,
-            &mut rgb,
-            &self.normal_settings(),
-            cancel,
-        )?;
-        self.relief = Some(relief);
-        self.micro = Some(MicroTile {
-            height,
-            normal_rgb: rgb,
-        });
-        self.micro_key = Some(key);
-        changed.micro = true;
         Ok(changed)
     }
 
@@ -605,7 +498,7 @@ impl Scene {
     /// large-wrinkle map added pixel by pixel (both baked at the same size; a layer that is
     /// off adds nothing), and the RGB8 normal map of the sum.
     pub fn export_maps(&self) -> Result<(HeightMap, Vec<u8>), Error> {
-        let size = match (&self.micro, &self.large) {
+        let size = match (&self.micro.tile, &self.large.map) {
             (Some(m), _) => m.height.width_px(),
             (None, Some(l)) => l.height.width_px(),
             (None, None) => {
@@ -618,11 +511,11 @@ impl Scene {
                 });
             }
         };
-        let mut height = match &self.micro {
+        let mut height = match &self.micro.tile {
             Some(m) => m.height.clone(),
             None => HeightMap::zeros(size, size)?,
         };
-        if let Some(large) = &self.large {
+        if let Some(large) = &self.large.map {
             if large.height.width_px() != size {
                 return Err(Error::InvalidValue {
                     what: "export size".into(),
@@ -636,6 +529,197 @@ impl Scene {
         }
         let rgb = normal_map::encode_rgb8(&height, &self.normal_settings())?;
         Ok((height, rgb))
+    }
+}
+
+/// The large-wrinkle stage: fibre stamps, the map at an age, its packing.
+#[derive(Clone, Debug, Default)]
+struct LargeStage {
+    layer: LargeLayer,
+    key: Option<LargeKey>,
+    map: Option<LargeMap>,
+    /// The previous map's buffer, baked into next (no allocation, no page faults).
+    spare: Option<HeightMap>,
+    /// The mask sampled at the map's pixel centres: (mask generation, size, values).
+    mask_samples: Option<(u64, u32, Arc<Vec<f32>>)>,
+}
+
+/// The large-wrinkle mask and the generation that identifies it.
+#[derive(Clone, Copy)]
+struct LargeMask<'a> {
+    mask: Option<&'a Mask>,
+    generation: u64,
+}
+
+impl LargeStage {
+    /// Drops the map (the layer is off).
+    fn clear(&mut self) -> Changed {
+        self.key = None;
+        Changed {
+            large: self.map.take().is_some(),
+            ..Changed::default()
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn bake(
+        &mut self,
+        p: &Project,
+        fibres: &[Fibre],
+        factors: &AgeFactors,
+        large_mask: LargeMask<'_>,
+        request: &BakeRequest,
+        normal: &NormalSettings,
+        cancel: &CancelToken,
+    ) -> Result<Changed, Error> {
+        let mut changed = Changed::default();
+        let size = request.large_size_px;
+        changed.large_stamps = self.layer.update(fibres, size, size, cancel)? > 0;
+        let key = LargeKey {
+            layer_fibres: fibres.to_vec(),
+            size,
+            factors: factors.large.clone(),
+            gamma: p.large.gamma,
+            depth: p.large.depth,
+            mask_generation: large_mask.generation,
+            normal: request.packed.then_some(*normal),
+            packed: request.packed,
+        };
+        if self.key.as_ref() == Some(&key) && self.map.is_some() {
+            return Ok(changed);
+        }
+        let mask_samples = match (large_mask.mask, &self.mask_samples) {
+            (None, _) => None,
+            (Some(_), Some((g, s, v))) if *g == large_mask.generation && *s == size => {
+                Some(v.clone())
+            }
+            (Some(mask), _) => {
+                let v = Arc::new(crate::muscle::sample_mask(mask, size, size));
+                self.mask_samples = Some((large_mask.generation, size, v.clone()));
+                Some(v)
+            }
+        };
+        let mask = match &mask_samples {
+            Some(v) => MaskValues::Values(v),
+            None => MaskValues::None,
+        };
+        // The spare buffer, not the kept map: that stays whole if this bake is cancelled.
+        let mut height = match self.spare.take() {
+            Some(h) if h.width_px() == size && h.height_px() == size => h,
+            _ => HeightMap::zeros(size, size)?,
+        };
+        if let Err(e) =
+            self.layer
+                .combine_with(&factors.large, p.large.gamma, mask, &mut height, cancel)
+        {
+            self.spare = Some(height);
+            return Err(e);
+        }
+        let depth = p.large.depth;
+        if depth != 1.0 {
+            for h in height.data_mut() {
+                *h *= depth;
+            }
+        }
+        cancel.check()?;
+        let packed_range = (0.0, depth.max(f32::MIN_POSITIVE));
+        let packed_rgba = if request.packed {
+            normal_map::pack_rgba8(&height, normal, packed_range)?
+        } else {
+            Vec::new()
+        };
+        cancel.check()?;
+        let previous = self.map.replace(LargeMap {
+            height,
+            packed_rgba,
+            packed_range,
+        });
+        self.spare = previous.map(|l| l.height);
+        self.key = Some(key);
+        changed.large = true;
+        Ok(changed)
+    }
+}
+
+/// The micro-relief stage: features and the tile at an age.
+#[derive(Clone, Debug, Default)]
+struct MicroStage {
+    relief: Option<MicroRelief>,
+    key: Option<MicroKey>,
+    tile: Option<MicroTile>,
+    /// The previous tile's buffers, baked into next.
+    spare: Option<MicroTile>,
+}
+
+impl MicroStage {
+    /// Drops the tile (no micro-relief layer is on).
+    fn clear(&mut self) -> Changed {
+        self.key = None;
+        Changed {
+            micro: self.tile.take().is_some(),
+            ..Changed::default()
+        }
+    }
+
+    fn bake(
+        &mut self,
+        project: &Project,
+        factors: &AgeFactors,
+        request: &BakeRequest,
+        normal: &NormalSettings,
+        cancel: &CancelToken,
+    ) -> Result<Changed, Error> {
+        let mut changed = Changed::default();
+        let mut relief = match &self.relief {
+            Some(r) => {
+                let (r, regenerated) = r.with_project(project)?;
+                changed.micro_features = regenerated;
+                r
+            }
+            None => {
+                changed.micro_features = true;
+                MicroRelief::new(project)?
+            }
+        };
+        let scales = (factors.pore_radius_scale, factors.furrow_depth_scale);
+        relief.set_age_scales(scales.0, scales.1);
+        let key = MicroKey {
+            project: micro_relevant(project),
+            scales,
+            size: request.micro_size_px,
+        };
+        if self.key.as_ref() == Some(&key) && self.tile.is_some() {
+            self.relief = Some(relief);
+            return Ok(changed);
+        }
+        cancel.check()?;
+        let size = request.micro_size_px;
+        // Into the spare buffers (the previous tile's, or fresh zeroed pages).
+        let mut spare = match self.spare.take() {
+            Some(t) if t.height.width_px() == size => t,
+            _ => MicroTile {
+                height: HeightMap::zeros(size, size)?,
+                normal_rgb: crate::heightmap::zeroed_vec(
+                    size as usize * size as usize * 3,
+                    "normal map",
+                )?,
+            },
+        };
+        if let Err(e) = relief.bake_into_cancellable(
+            size,
+            &mut spare.height,
+            &mut spare.normal_rgb,
+            normal,
+            cancel,
+        ) {
+            self.spare = Some(spare);
+            return Err(e);
+        }
+        self.relief = Some(relief);
+        self.spare = self.tile.replace(spare);
+        self.key = Some(key);
+        changed.micro = true;
+        Ok(changed)
     }
 }
 

@@ -1,12 +1,10 @@
-//! The `agesim` binary: the editor (later) and the command line.
-
-mod cli;
+//! The `agesim` binary: the editor (no subcommand) and the command line.
 
 use clap::Parser as _;
 
 fn main() -> std::process::ExitCode {
-    let args = cli::Cli::parse();
-    match cli::run(args) {
+    let args = agesim::cli::Cli::parse();
+    match agesim::cli::run(args) {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(err) => {
             eprintln!("error: {err:#}");

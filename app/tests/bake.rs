@@ -218,8 +218,8 @@ fn mask_limits_the_wrinkles() {
 }
 
 #[test]
-fn no_subcommand_prints_help() {
-    let o = agesim(&[]);
+fn help_lists_the_subcommands() {
+    let o = agesim(&["--help"]);
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stdout).contains("bake"));
 }

@@ -1,11 +1,11 @@
 //! The command line: one binary, one subcommand per task.
 
-mod bake;
-mod gen_assets;
-mod hair;
-mod mesh_info;
+pub mod bake;
+pub mod gen_assets;
+pub mod hair;
+pub mod mesh_info;
 
-use clap::{CommandFactory as _, Parser, Subcommand};
+use clap::{Parser, Subcommand};
 
 /// agesim: age a human head — wrinkles, skin micro-relief, hair recession and graying.
 #[derive(Debug, Parser)]
@@ -13,6 +13,18 @@ use clap::{CommandFactory as _, Parser, Subcommand};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+
+    /// Open this project (`*.agesim.json`) in the editor.
+    #[arg(long, value_name = "FILE")]
+    pub project: Option<std::path::PathBuf>,
+
+    /// Editor: write a screenshot of the window (PNG) once maps are shown, then quit.
+    #[arg(long, value_name = "FILE.png")]
+    pub screenshot: Option<std::path::PathBuf>,
+
+    /// Editor: frames to draw (after the first bake) before the screenshot.
+    #[arg(long, default_value_t = 5, value_name = "N")]
+    pub frames: u32,
 }
 
 #[derive(Debug, Subcommand)]
@@ -33,11 +45,12 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::MeshInfo(args)) => mesh_info::run(&args),
         Some(Command::GenAssets(args)) => gen_assets::run(&args),
         Some(Command::Hair(args)) => hair::run(&args),
-        // Until the editor exists, no subcommand prints the help.
-        None => {
-            Cli::command().print_help()?;
-            Ok(())
-        }
+        // No subcommand: the editor.
+        None => crate::editor::run(crate::editor::EditorOptions {
+            project: cli.project,
+            screenshot: cli.screenshot,
+            frames: cli.frames,
+        }),
         Some(Command::Bake(args)) => bake::run(&args),
     }
 }

@@ -262,6 +262,24 @@ impl Fibre {
         self
     }
 
+    /// The same fibre with new end points (every other parameter kept), e.g. dragged in
+    /// the editor. Fails like [`Fibre::new`] (equal or non-finite points).
+    pub fn with_ends(&self, ma: [f32; 2], mb: [f32; 2]) -> Result<Self, Error> {
+        Fibre::new(ma, mb, self.n).map(|f| Self {
+            ma: f.ma,
+            mb: f.mb,
+            ..self.clone()
+        })
+    }
+
+    /// The same fibre with a new wrinkle count n (2..=1000).
+    pub fn with_n(&self, n: u32) -> Result<Self, Error> {
+        Fibre::new(self.ma, self.mb, n).map(|f| Self {
+            n: f.n,
+            ..self.clone()
+        })
+    }
+
     pub fn ma(&self) -> [f32; 2] {
         self.ma
     }

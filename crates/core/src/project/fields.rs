@@ -151,7 +151,7 @@ pub const SECTIONS: &[(&str, &str)] = &[
         "Domain warp of pores and furrows: the same fBm, its own settings.",
     ),
     ("overlap", "Log-smoothed overlaps of features ([P] eq. 18)."),
-    ("normal", "Height → normal map."),
+    ("normal", "Height map to normal map."),
     (
         "fine",
         "The tileable fine-wrinkle map, blended in with age ([T] §5.2).",

@@ -1,0 +1,497 @@
+//! The editor's app: the document (a [`Project`] and its edited wrinkle files), the panels,
+//! and the bake worker that turns every edit into maps off the UI thread.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use agesim_core::project::Project;
+use agesim_core::scene::{BakeRequest, WrinkleSource};
+use serde_json::Value;
+
+use super::fields_ui;
+use super::map_view::{self, MapKind, MapViewState};
+use super::timeline::{self, Playback};
+use super::worker::{Job, Outcome, Snapshot, Worker};
+
+/// Map sides while a slider or fibre is being dragged (and while the age plays).
+pub const PREVIEW_PX: u32 = 512;
+/// Map sides once the drag ends: the large-wrinkle map and the micro-relief tile.
+pub const FULL_LARGE_PX: u32 = 2048;
+pub const FULL_MICRO_PX: u32 = 1024;
+
+/// Settings kept between runs (eframe storage).
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct Persisted {
+    pub map_view: MapViewState,
+    pub playback: Playback,
+}
+
+/// Options of the run (command line).
+#[derive(Clone, Debug, Default)]
+pub struct EditorOptions {
+    /// Open this project instead of the default one.
+    pub project: Option<PathBuf>,
+    /// Write a screenshot of the window here after `frames` frames with maps, then quit.
+    pub screenshot: Option<PathBuf>,
+    pub frames: u32,
+}
+
+pub struct EditorApp {
+    project: Project,
+    /// The last project the worker accepted: restored when an edit is refused.
+    last_good: Project,
+    defaults: Value,
+    /// The wrinkle files as edited here (`None` until the first fibre edit).
+    wrinkles: Option<Vec<WrinkleSource>>,
+    worker: Worker,
+    snapshot: Snapshot,
+    reported: u64,
+    last_bake_ms: f64,
+    last_what: String,
+    error: Option<String>,
+    textures: Vec<(MapKind, egui::TextureHandle, usize)>,
+    persisted: Persisted,
+    adapter: String,
+    options: EditorOptions,
+    frames_with_maps: u32,
+    screenshot_requested: bool,
+}
+
+impl EditorApp {
+    pub fn new(cc: &eframe::CreationContext<'_>, options: EditorOptions) -> Self {
+        let persisted: Persisted = cc
+            .storage
+            .and_then(|s| eframe::get_value(s, eframe::APP_KEY))
+            .unwrap_or_default();
+        let adapter = cc.wgpu_render_state.as_ref().map_or_else(
+            || "no GPU adapter".to_owned(),
+            |rs| {
+                let info = rs.adapter.get_info();
+                format!("{} ({:?})", info.name, info.backend)
+            },
+        );
+        let (project, error) = match &options.project {
+            Some(path) => match Project::load(path) {
+                Ok(p) => (p, None),
+                Err(e) => (Project::default(), Some(e.to_string())),
+            },
+            None => (Project::default(), None),
+        };
+        let ctx = cc.egui_ctx.clone();
+        let worker = Worker::spawn(move || ctx.request_repaint());
+        let mut app = Self {
+            last_good: project.clone(),
+            defaults: Project::default().to_value(),
+            project,
+            wrinkles: None,
+            worker,
+            snapshot: Snapshot::default(),
+            reported: 0,
+            last_bake_ms: 0.0,
+            last_what: String::new(),
+            error,
+            textures: Vec::new(),
+            persisted,
+            adapter,
+            options,
+            frames_with_maps: 0,
+            screenshot_requested: false,
+        };
+        app.submit(false, "open");
+        app
+    }
+
+    /// The current document, for tests.
+    pub fn project(&self) -> &Project {
+        &self.project
+    }
+
+    /// The last finished bake, for tests.
+    pub fn snapshot(&self) -> &Snapshot {
+        &self.snapshot
+    }
+
+    /// Whether the newest request has been baked.
+    pub fn idle(&self) -> bool {
+        !self.worker.busy(self.reported)
+    }
+
+    /// The fibres as currently edited.
+    pub fn wrinkles(&self) -> &[WrinkleSource] {
+        self.wrinkles.as_deref().unwrap_or(&self.snapshot.wrinkles)
+    }
+
+    pub fn map_view_mut(&mut self) -> &mut MapViewState {
+        &mut self.persisted.map_view
+    }
+
+    fn submit(&mut self, preview: bool, what: &str) {
+        let (large, micro) = if preview {
+            (PREVIEW_PX, PREVIEW_PX)
+        } else {
+            (FULL_LARGE_PX, FULL_MICRO_PX)
+        };
+        let request = BakeRequest {
+            large_size_px: large,
+            micro_size_px: micro,
+            t: self.project.age.t,
+            fine: true,
+            hair: true,
+            packed: true,
+        };
+        self.worker.submit(Job {
+            id: 0,
+            project: self.project.clone(),
+            wrinkles: self.wrinkles.clone(),
+            request,
+            what: what.to_owned(),
+        });
+    }
+
+    /// Applies one field edit to the document (validated like a project file).
+    fn apply(&mut self, path: &str, value: Value, dragging: bool) {
+        let mut doc = self.project.to_value();
+        let mut node = &mut doc;
+        for key in path.split('.') {
+            match node.get_mut(key) {
+                Some(n) => node = n,
+                None => return,
+            }
+        }
+        *node = value;
+        match Project::from_value(doc, path) {
+            Ok(p) => {
+                self.project = p;
+                self.error = None;
+                let what = path.to_owned();
+                self.submit(dragging, &what);
+            }
+            Err(e) => self.error = Some(e.to_string()),
+        }
+    }
+
+    /// Sets the age t and bakes (a preview while it is still moving).
+    pub fn set_age(&mut self, t: f32, moving: bool) {
+        self.project.age.t = t.clamp(0.0, 1.0);
+        let years = self.project.age.mapping().years(self.project.age.t);
+        self.submit(moving, &format!("age {years:.0} years"));
+    }
+
+    fn poll_worker(&mut self) {
+        for report in self.worker.poll() {
+            self.reported = self.reported.max(report.id);
+            self.last_bake_ms = report.ms;
+            self.last_what = report.what;
+            match report.outcome {
+                Outcome::Done { snapshot, .. } => {
+                    if let Some(p) = &snapshot.project {
+                        self.last_good = p.clone();
+                    }
+                    self.snapshot = *snapshot;
+                }
+                Outcome::Failed(message) => {
+                    // Keep the previous state whole: the document goes back to what baked.
+                    self.error = Some(message);
+                    self.project = self.last_good.clone();
+                }
+            }
+        }
+    }
+
+    /// The texture of `kind`, remade when the snapshot's picture changed.
+    fn texture(&mut self, ctx: &egui::Context, kind: MapKind) -> Option<egui::TextureHandle> {
+        let images = &self.snapshot.images;
+        let image = match kind {
+            MapKind::LargeHeight => images.large_height.clone(),
+            MapKind::LargeNormal => images.large_normal.clone(),
+            MapKind::MicroHeight => images.micro_height.clone(),
+            MapKind::MicroNormal => images.micro_normal.clone(),
+            MapKind::Transition => images.transition.clone(),
+            MapKind::Fine => images.fine.clone(),
+        }?;
+        let stamp = Arc::as_ptr(&image) as usize;
+        if let Some((_, t, s)) = self.textures.iter_mut().find(|(k, _, _)| *k == kind) {
+            if *s != stamp {
+                t.set(image.as_ref().clone(), egui::TextureOptions::LINEAR);
+                *s = stamp;
+            }
+            return Some(t.clone());
+        }
+        let t = ctx.load_texture(
+            format!("map {kind:?}"),
+            image.as_ref().clone(),
+            egui::TextureOptions::LINEAR,
+        );
+        self.textures.push((kind, t.clone(), stamp));
+        Some(t)
+    }
+
+    fn menu_ui(&mut self, ui: &mut egui::Ui) {
+        egui::MenuBar::new().ui(ui, |ui| {
+            ui.menu_button("File", |ui| {
+                if ui.button("New (default head)").clicked() {
+                    self.project = Project::default();
+                    self.wrinkles = None;
+                    self.submit(false, "new project");
+                }
+                if ui.button("Quit").clicked() {
+                    ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+                }
+            });
+            ui.menu_button("View", |ui| {
+                for kind in MapKind::ALL {
+                    ui.radio_value(&mut self.persisted.map_view.kind, kind, kind.name());
+                }
+                ui.separator();
+                ui.checkbox(&mut self.persisted.map_view.show_fibres, "show fibres");
+                if ui.button("Reset map view").clicked() {
+                    self.persisted.map_view.zoom = 1.0;
+                    self.persisted.map_view.offset = [0.0, 0.0];
+                }
+            });
+        });
+    }
+
+    fn status_ui(&mut self, ui: &mut egui::Ui, frame_ms: f32) {
+        ui.horizontal(|ui| {
+            ui.label(format!("adapter: {}", self.adapter));
+            ui.separator();
+            ui.label(format!("frame {frame_ms:.1} ms"));
+            ui.separator();
+            if self.worker.busy(self.reported) {
+                ui.spinner();
+                ui.label("baking…");
+            } else {
+                ui.label(format!(
+                    "last bake: {} in {:.0} ms",
+                    self.last_what, self.last_bake_ms
+                ));
+            }
+            ui.separator();
+            let t = self.project.age.t;
+            if let Some(h) = &self.snapshot.hair {
+                ui.label(format!("hairs: {} of {}", h.count(t), h.len()));
+            }
+            if let Some(l) = &self.snapshot.large {
+                let (_, hi) = l.height.min_max();
+                ui.label(format!("deepest large wrinkle: {hi:.2}"));
+            }
+        });
+    }
+
+    fn inspector_ui(&mut self, ui: &mut egui::Ui) {
+        let Some((fi, gi)) = self.persisted.map_view.selected else {
+            ui.label("Click a fibre's handle on the map to select it.");
+            return;
+        };
+        let mut wrinkles = self.wrinkles().to_vec();
+        if wrinkles
+            .get(fi)
+            .and_then(|w| w.file.groups.get(gi))
+            .is_none()
+        {
+            return;
+        }
+        ui.label(format!("{} — group {}", wrinkles[fi].name, gi + 1));
+        let group = &mut wrinkles[fi].file.groups[gi];
+        let f = group.fibre.clone();
+        let mut changed = None;
+        ui.label(format!(
+            "mA {:.3}; {:.3}   mB {:.3}; {:.3}",
+            f.ma()[0],
+            f.ma()[1],
+            f.mb()[0],
+            f.mb()[1]
+        ));
+        let mut n = f.n();
+        if ui
+            .add(egui::Slider::new(&mut n, 2..=40).text("n (wrinkles)"))
+            .changed()
+        {
+            changed = f.with_n(n).ok();
+        }
+        let mut w = f.rel_width();
+        if ui
+            .add(egui::Slider::new(&mut w, 0.01..=1.0).text("relWidth"))
+            .changed()
+        {
+            changed = f.clone().with_rel_width(w).ok();
+        }
+        let mut a = f.max_angle();
+        if ui
+            .add(egui::Slider::new(&mut a, 1.0..=2.0).text("maxAngle"))
+            .changed()
+        {
+            changed = f.clone().with_max_angle(a).ok();
+        }
+        let mut o = f.omega_low();
+        if ui
+            .add(egui::Slider::new(&mut o, 0.0..=1.0).text("omegaLow"))
+            .changed()
+        {
+            changed = f.clone().with_omega_low(o).ok();
+        }
+        let mut d = f.depth();
+        if ui
+            .add(egui::Slider::new(&mut d, 0.0..=5.0).text("depth"))
+            .changed()
+        {
+            changed = f.clone().with_depth(d).ok();
+        }
+        let mut profile = f.profile();
+        egui::ComboBox::from_label("profile")
+            .selected_text(profile.name())
+            .show_ui(ui, |ui| {
+                for p in agesim_core::muscle::Profile::ALL {
+                    ui.selectable_value(&mut profile, p, p.name());
+                }
+            });
+        if profile != f.profile() {
+            changed = Some(f.clone().with_profile(profile));
+        }
+        let mut own = group.age.is_some();
+        let mut age_changed = false;
+        if ui.checkbox(&mut own, "own age curve").changed() {
+            group.age = own.then_some(self.project.age.large);
+            age_changed = true;
+        }
+        if let Some(curve) = &mut group.age {
+            age_changed |= ui
+                .add(
+                    egui::Slider::new(&mut curve.onset_years, 0.0..=100.0)
+                        .text("age onset (years)"),
+                )
+                .changed();
+            age_changed |= ui
+                .add(egui::Slider::new(&mut curve.full_years, 0.0..=120.0).text("age full (years)"))
+                .changed();
+            curve.full_years = curve.full_years.max(curve.onset_years);
+        }
+        if let Some(fibre) = changed {
+            group.fibre = fibre;
+            age_changed = true;
+        }
+        if age_changed {
+            self.wrinkles = Some(wrinkles);
+            self.submit(ui.ctx().egui_is_using_pointer(), "fibre");
+        }
+    }
+
+    fn maybe_screenshot(&mut self, ctx: &egui::Context) {
+        let Some(path) = self.options.screenshot.clone() else {
+            return;
+        };
+        if self.snapshot.large.is_some() && self.idle() {
+            self.frames_with_maps += 1;
+        }
+        ctx.request_repaint();
+        if self.frames_with_maps >= self.options.frames.max(1) && !self.screenshot_requested {
+            self.screenshot_requested = true;
+            let ctx2 = ctx.clone();
+            ctx.request_screenshot(move |image| {
+                let [w, h] = image.size;
+                let bytes: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
+                let result = image::RgbaImage::from_raw(w as u32, h as u32, bytes)
+                    .map(|img| img.save(&path));
+                match result {
+                    Some(Ok(())) => println!("screenshot {w}×{h} → {}", path.display()),
+                    _ => eprintln!("error: could not write the screenshot {}", path.display()),
+                }
+                ctx2.send_viewport_cmd(egui::ViewportCommand::Close);
+            });
+        }
+    }
+}
+
+impl eframe::App for EditorApp {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        self.poll_worker();
+        let ctx = ui.ctx().clone();
+        let frame_ms = frame.info().cpu_usage.unwrap_or(0.0) * 1e3;
+        egui::Panel::top("menu").show(ui, |ui| self.menu_ui(ui));
+        egui::Panel::bottom("status").show(ui, |ui| self.status_ui(ui, frame_ms));
+        let timeline_edit = egui::Panel::bottom("timeline")
+            .resizable(false)
+            .show(ui, |ui| {
+                timeline::timeline_ui(ui, &self.project, &mut self.persisted.playback)
+            })
+            .inner;
+        if let Some((t, moving)) = timeline_edit.t {
+            self.set_age(t, moving);
+        }
+        if let Some((path, years, dragging)) = timeline_edit.curve {
+            self.apply(path, Value::from(years), dragging);
+        }
+        let doc = self.project.to_value();
+        let edits = egui::Panel::left("layers")
+            .resizable(true)
+            .default_size(340.0)
+            .show(ui, |ui| {
+                ui.heading("Layers");
+                if let Some(e) = &self.error {
+                    ui.colored_label(egui::Color32::from_rgb(255, 110, 90), e);
+                }
+                egui::ScrollArea::vertical()
+                    .show(ui, |ui| fields_ui::layers_ui(ui, &doc, &self.defaults))
+                    .inner
+            })
+            .inner;
+        for edit in edits {
+            self.apply(edit.path, edit.value, edit.dragging);
+        }
+        egui::Panel::right("inspector")
+            .resizable(true)
+            .default_size(260.0)
+            .show(ui, |ui| {
+                ui.heading("Fibre");
+                self.inspector_ui(ui);
+            });
+        let kind = self.persisted.map_view.kind;
+        let texture = self.texture(&ctx, kind);
+        let wrinkles = self.wrinkles().to_vec();
+        let fibre_edit = egui::CentralPanel::default()
+            .show(ui, |ui| {
+                ui.horizontal(|ui| {
+                    egui::ComboBox::from_id_salt("map kind")
+                        .selected_text(kind.name())
+                        .show_ui(ui, |ui| {
+                            for k in MapKind::ALL {
+                                ui.selectable_value(&mut self.persisted.map_view.kind, k, k.name());
+                            }
+                        });
+                    ui.checkbox(&mut self.persisted.map_view.show_fibres, "fibres");
+                    ui.label(
+                        egui::RichText::new(
+                            "scroll: zoom · right-drag: pan · drag a handle: move a fibre",
+                        )
+                        .weak()
+                        .small(),
+                    );
+                });
+                map_view::map_view_ui(
+                    ui,
+                    &mut self.persisted.map_view,
+                    texture.as_ref(),
+                    &wrinkles,
+                )
+            })
+            .inner;
+        if let Some(e) = fibre_edit {
+            let mut w = wrinkles;
+            if let Some(g) = w
+                .get_mut(e.file)
+                .and_then(|f| f.file.groups.get_mut(e.group))
+            {
+                g.fibre = e.fibre;
+                self.wrinkles = Some(w);
+                self.submit(e.dragging, "fibre");
+            }
+        }
+        self.maybe_screenshot(&ctx);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, eframe::APP_KEY, &self.persisted);
+    }
+}

@@ -1,0 +1,263 @@
+//! The layer panel's widgets, made from the engine's field table
+//! (`agesim_core::project::fields::FIELDS`): ranges, units, defaults and tooltips come from
+//! there, not from a second copy here. Double-click a widget to reset it to its default;
+//! a `•` marks values changed from the default.
+
+use agesim_core::project::fields::{FIELDS, Field, Kind, SECTIONS};
+use serde_json::Value;
+
+/// What the panel asks the app to do.
+pub struct Edit {
+    pub path: &'static str,
+    pub value: Value,
+    /// Whether the pointer is still dragging (bake a preview now, the full size later).
+    pub dragging: bool,
+}
+
+/// The value at a dotted path of a JSON document.
+pub fn get<'v>(doc: &'v Value, path: &str) -> Option<&'v Value> {
+    path.split('.').try_fold(doc, |node, key| node.get(key))
+}
+
+/// Sections shown as layers, with an on/off switch where the section has `enabled`.
+pub const LAYER_SECTIONS: &[&str] = &[
+    "large", "pores", "furrows", "noise", "warp", "overlap", "fine", "hair", "skin", "age",
+    "normal", "view", "mesh", "",
+];
+
+/// A readable label: the path below the section, `_` as spaces.
+fn label(field: &Field) -> String {
+    let rest = field
+        .path
+        .split_once('.')
+        .map_or(field.path, |(_, rest)| rest);
+    rest.replace(['_', '.'], " ")
+}
+
+fn tooltip(field: &Field, default: &Value) -> String {
+    let unit = if field.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", field.unit)
+    };
+    format!(
+        "{}{unit}\nrange: {}\ndefault: {default}\n`{}` — double-click to reset",
+        field.doc,
+        field.range_text(),
+        field.path
+    )
+}
+
+/// The whole layer panel. Returns the edits of this frame.
+pub fn layers_ui(ui: &mut egui::Ui, doc: &Value, defaults: &Value) -> Vec<Edit> {
+    let mut edits = Vec::new();
+    for section in LAYER_SECTIONS {
+        let about = SECTIONS
+            .iter()
+            .find(|(s, _)| s == section)
+            .map_or("", |(_, a)| *a);
+        let title = if section.is_empty() {
+            "seed & patch"
+        } else {
+            section
+        };
+        let fields: Vec<&Field> = FIELDS
+            .iter()
+            .filter(|f| f.path != "version")
+            .filter(|f| match f.path.split_once('.') {
+                Some((s, _)) => s == *section,
+                None => section.is_empty(),
+            })
+            .collect();
+        let enabled_path = format!("{section}.enabled");
+        let enabled = get(doc, &enabled_path).and_then(Value::as_bool);
+        let changed_count = fields
+            .iter()
+            .filter(|f| get(doc, f.path) != get(defaults, f.path))
+            .count();
+        let header = if changed_count > 0 {
+            format!("{title}  • {changed_count}")
+        } else {
+            title.to_owned()
+        };
+        egui::CollapsingHeader::new(header)
+            .id_salt(("layer", *section))
+            .default_open(matches!(*section, "large" | "age"))
+            .show(ui, |ui| {
+                ui.label(egui::RichText::new(about).weak().small());
+                if let Some(on) = enabled {
+                    let mut v = on;
+                    if ui.checkbox(&mut v, "enabled").changed() {
+                        edits.push(Edit {
+                            path: FIELDS
+                                .iter()
+                                .find(|f| f.path == enabled_path)
+                                .map_or("", |f| f.path),
+                            value: Value::Bool(v),
+                            dragging: false,
+                        });
+                    }
+                }
+                ui.add_enabled_ui(enabled != Some(false), |ui| {
+                    egui::Grid::new(("fields", *section))
+                        .num_columns(2)
+                        .striped(true)
+                        .show(ui, |ui| {
+                            for field in fields.iter().filter(|f| !f.path.ends_with(".enabled")) {
+                                let value = get(doc, field.path).cloned().unwrap_or(Value::Null);
+                                let default =
+                                    get(defaults, field.path).cloned().unwrap_or(Value::Null);
+                                if let Some(edit) = field_ui(ui, field, &value, &default) {
+                                    edits.push(edit);
+                                }
+                                ui.end_row();
+                            }
+                        });
+                });
+            });
+    }
+    edits
+}
+
+/// One field: a label (marked when changed) and its widget.
+fn field_ui(
+    ui: &mut egui::Ui,
+    field: &'static Field,
+    value: &Value,
+    default: &Value,
+) -> Option<Edit> {
+    let tip = tooltip(field, default);
+    let label_id = ui
+        .horizontal(|ui| {
+            if value != default {
+                ui.label(egui::RichText::new("•").color(egui::Color32::from_rgb(255, 200, 60)))
+                    .on_hover_text("changed from the default");
+            }
+            ui.label(label(field)).on_hover_text(&tip).id
+        })
+        .inner;
+    let mut out: Option<(Value, bool)> = None;
+    let response = match field.kind {
+        Kind::Float { min, max } | Kind::OptFloat { min, max } => {
+            let is_null = value.is_null();
+            let mut x = value.as_f64().unwrap_or(min as f64);
+            let r = ui
+                .horizontal(|ui| {
+                    if matches!(field.kind, Kind::OptFloat { .. }) {
+                        let mut on = !is_null;
+                        if ui
+                            .checkbox(&mut on, "")
+                            .on_hover_text("off = automatic")
+                            .changed()
+                        {
+                            out = Some((if on { Value::from(x) } else { Value::Null }, false));
+                        }
+                    }
+                    let log = min >= 0.0 && max / min.max(1e-6) > 1000.0;
+                    let r = ui.add_enabled(
+                        !is_null,
+                        egui::Slider::new(&mut x, min as f64..=max as f64)
+                            .logarithmic(log)
+                            .clamping(egui::SliderClamping::Always),
+                    );
+                    if r.changed() {
+                        out = Some((Value::from(x), r.dragged()));
+                    }
+                    if r.drag_stopped() && out.is_none() {
+                        out = Some((Value::from(x), false));
+                    }
+                    r
+                })
+                .inner;
+            Some(r)
+        }
+        Kind::Int { min, max } | Kind::OptInt { min, max } => {
+            let is_null = value.is_null();
+            let mut x = value.as_u64().unwrap_or(min);
+            let r = ui
+                .horizontal(|ui| {
+                    if matches!(field.kind, Kind::OptInt { .. }) {
+                        let mut on = !is_null;
+                        if ui
+                            .checkbox(&mut on, "")
+                            .on_hover_text("off = automatic")
+                            .changed()
+                        {
+                            out = Some((if on { Value::from(x) } else { Value::Null }, false));
+                        }
+                    }
+                    let r = if max - min <= 100_000 {
+                        ui.add_enabled(
+                            !is_null,
+                            egui::Slider::new(&mut x, min..=max).logarithmic(max - min > 1000),
+                        )
+                    } else {
+                        ui.add_enabled(!is_null, egui::DragValue::new(&mut x).range(min..=max))
+                    };
+                    if r.changed() {
+                        out = Some((Value::from(x), r.dragged()));
+                    }
+                    r
+                })
+                .inner;
+            Some(r)
+        }
+        Kind::Bool => {
+            let mut b = value.as_bool().unwrap_or(false);
+            let r = ui.checkbox(&mut b, "");
+            if r.changed() {
+                out = Some((Value::Bool(b), false));
+            }
+            Some(r)
+        }
+        Kind::Choice(names) => {
+            let current = value.as_str().unwrap_or("").to_owned();
+            let mut selected = current.clone();
+            let r = egui::ComboBox::from_id_salt(field.path)
+                .selected_text(&selected)
+                .show_ui(ui, |ui| {
+                    for n in names {
+                        ui.selectable_value(&mut selected, n.to_string(), *n);
+                    }
+                })
+                .response;
+            if selected != current {
+                out = Some((Value::String(selected), false));
+            }
+            Some(r)
+        }
+        Kind::Colour => {
+            let mut rgb = value
+                .as_str()
+                .and_then(agesim_core::project::Colour::parse)
+                .map_or([0, 0, 0], |c| c.0);
+            let r = ui.color_edit_button_srgb(&mut rgb);
+            if r.changed() {
+                let c = agesim_core::project::Colour(rgb);
+                out = Some((Value::String(c.to_string()), false));
+            }
+            Some(r)
+        }
+        Kind::Path | Kind::Paths => {
+            let text = match value {
+                Value::Null => "(built-in)".to_owned(),
+                Value::Array(a) if a.is_empty() => "(built-in)".to_owned(),
+                Value::Array(a) => format!("{} files", a.len()),
+                other => other.as_str().unwrap_or("").to_owned(),
+            };
+            Some(ui.label(egui::RichText::new(text).monospace()))
+        }
+    };
+    if let Some(r) = response {
+        // Screen readers and tests find the widget by its field name.
+        let r = r.on_hover_text(&tip).labelled_by(label_id);
+        if r.double_clicked() && value != default {
+            out = Some((default.clone(), false));
+        }
+    }
+    out.map(|(value, dragging)| Edit {
+        path: field.path,
+        value,
+        dragging,
+    })
+}

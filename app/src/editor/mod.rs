@@ -1,0 +1,31 @@
+//! The editor: an eframe window (wgpu backend) on the default head, every layer on
+//! sliders, fibres edited on the UV map, an age timeline. The UI thread only draws: every
+//! bake runs on the [`worker`] thread.
+
+mod app;
+pub mod fields_ui;
+pub mod map_view;
+pub mod timeline;
+pub mod worker;
+
+pub use app::{EditorApp, EditorOptions};
+
+/// Opens the editor window and runs until it is closed.
+pub fn run(options: EditorOptions) -> anyhow::Result<()> {
+    let native = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_inner_size([1280.0, 800.0])
+            .with_min_inner_size([640.0, 400.0])
+            .with_title("agesim"),
+        renderer: eframe::Renderer::Wgpu,
+        // A screenshot run must not restore a previous session's layout.
+        persist_window: options.screenshot.is_none(),
+        ..Default::default()
+    };
+    eframe::run_native(
+        "agesim",
+        native,
+        Box::new(move |cc| Ok(Box::new(EditorApp::new(cc, options)))),
+    )
+    .map_err(|e| anyhow::anyhow!("the editor window could not be opened: {e}"))
+}

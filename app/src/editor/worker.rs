@@ -1,0 +1,297 @@
+//! The bake worker: the editor's [`Scene`] lives on its own thread, so the UI thread never
+//! waits on a bake, a file or a conversion. Requests are "latest wins": submitting cancels
+//! the running bake through its [`CancelToken`], and queued requests are skipped in favour
+//! of the newest one. Results come back as ready-to-show snapshots.
+
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
+use std::time::Instant;
+
+use agesim_core::age::AgeFactors;
+use agesim_core::cancel::CancelToken;
+use agesim_core::hair::HairInstances;
+use agesim_core::project::Project;
+use agesim_core::scene::{BakeRequest, Changed, LargeMap, MicroTile, Scene, WrinkleSource};
+use agesim_core::transition::TransitionTexture;
+use agesim_core::{Error, HeightMap, Mesh};
+
+/// One request: the whole document state and what to bake.
+#[derive(Clone, Debug)]
+pub struct Job {
+    pub id: u64,
+    pub project: Project,
+    /// The wrinkle files as edited in the UI; `None` = as loaded from the project's paths.
+    pub wrinkles: Option<Vec<WrinkleSource>>,
+    pub request: BakeRequest,
+    /// A short description for the status line ("age 52 years", "pores.count").
+    pub what: String,
+}
+
+/// What the UI shows of a finished bake. Each map is shared, not copied, between bakes
+/// that did not change it.
+#[derive(Clone, Debug, Default)]
+pub struct Snapshot {
+    pub project: Option<Project>,
+    pub mesh: Option<Arc<Mesh>>,
+    pub wrinkles: Vec<WrinkleSource>,
+    pub factors: Option<AgeFactors>,
+    pub large: Option<Arc<LargeMap>>,
+    pub micro: Option<Arc<MicroTile>>,
+    pub fine: Option<Arc<HeightMap>>,
+    pub transition: Option<Arc<TransitionTexture>>,
+    pub hair: Option<Arc<HairInstances>>,
+    pub request: Option<BakeRequest>,
+    /// The maps as pictures for the 2D view, remade only when their map changed.
+    pub images: MapImages,
+}
+
+/// Display pictures of the maps (at most [`IMAGE_MAX_PX`] on a side).
+#[derive(Clone, Debug, Default)]
+pub struct MapImages {
+    pub large_height: Option<Arc<egui::ColorImage>>,
+    pub large_normal: Option<Arc<egui::ColorImage>>,
+    pub micro_height: Option<Arc<egui::ColorImage>>,
+    pub micro_normal: Option<Arc<egui::ColorImage>>,
+    pub transition: Option<Arc<egui::ColorImage>>,
+    pub fine: Option<Arc<egui::ColorImage>>,
+}
+
+/// Side of the pictures of the 2D view; larger maps are shown subsampled.
+pub const IMAGE_MAX_PX: u32 = 1024;
+
+/// Grey picture of `values` (w × h), spanning their own range.
+fn grey_image(w: u32, h: u32, values: &[f32]) -> Arc<egui::ColorImage> {
+    let step = w
+        .div_ceil(IMAGE_MAX_PX)
+        .max(h.div_ceil(IMAGE_MAX_PX))
+        .max(1) as usize;
+    let (iw, ih) = (w as usize / step, h as usize / step);
+    let (lo, hi) = values
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let inv = if hi > lo { 255.0 / (hi - lo) } else { 0.0 };
+    let mut pixels = Vec::with_capacity(iw * ih);
+    for y in 0..ih {
+        for x in 0..iw {
+            let v = values[y * step * w as usize + x * step];
+            let g = ((v - lo) * inv) as u8;
+            pixels.push(egui::Color32::from_gray(g));
+        }
+    }
+    Arc::new(egui::ColorImage::new([iw, ih], pixels))
+}
+
+/// RGB picture of interleaved bytes with `channels` per pixel (3 or 4; alpha ignored).
+fn rgb_image(w: u32, h: u32, bytes: &[u8], channels: usize) -> Arc<egui::ColorImage> {
+    let step = w
+        .div_ceil(IMAGE_MAX_PX)
+        .max(h.div_ceil(IMAGE_MAX_PX))
+        .max(1) as usize;
+    let (iw, ih) = (w as usize / step, h as usize / step);
+    let mut pixels = Vec::with_capacity(iw * ih);
+    for y in 0..ih {
+        for x in 0..iw {
+            let i = (y * step * w as usize + x * step) * channels;
+            pixels.push(egui::Color32::from_rgb(
+                bytes[i],
+                bytes[i + 1],
+                bytes[i + 2],
+            ));
+        }
+    }
+    Arc::new(egui::ColorImage::new([iw, ih], pixels))
+}
+
+/// The outcome of one job.
+#[derive(Debug)]
+pub enum Outcome {
+    /// Baked; `changed` says which parts of `snapshot` are new.
+    Done {
+        snapshot: Box<Snapshot>,
+        changed: Changed,
+    },
+    /// The project's inputs or settings were refused: the message names the file or field.
+    /// The worker's scene (and so the last snapshot) is unchanged.
+    Failed(String),
+}
+
+#[derive(Debug)]
+pub struct Report {
+    pub id: u64,
+    pub what: String,
+    pub ms: f64,
+    pub outcome: Outcome,
+}
+
+/// The UI side of the worker.
+pub struct Worker {
+    jobs: Sender<(Job, CancelToken)>,
+    reports: Receiver<Report>,
+    running: CancelToken,
+    next_id: u64,
+    /// The id of the newest submitted job.
+    pub latest: u64,
+}
+
+impl Worker {
+    /// Starts the worker thread on `project`. `wake` is called after each report (the UI
+    /// asks for a repaint there).
+    pub fn spawn(wake: impl Fn() + Send + 'static) -> Self {
+        let (jobs, job_rx) = channel::<(Job, CancelToken)>();
+        let (report_tx, reports) = channel();
+        std::thread::Builder::new()
+            .name("agesim-bake".into())
+            .spawn(move || run(job_rx, report_tx, wake))
+            .ok();
+        Self {
+            jobs,
+            reports,
+            running: CancelToken::new(),
+            next_id: 0,
+            latest: 0,
+        }
+    }
+
+    /// Queues a job and cancels whatever is running: latest wins.
+    pub fn submit(&mut self, mut job: Job) -> u64 {
+        self.running.cancel();
+        self.running = CancelToken::new();
+        self.next_id += 1;
+        job.id = self.next_id;
+        self.latest = job.id;
+        // A send only fails when the worker thread is gone; the UI then shows stale maps.
+        let _ = self.jobs.send((job, self.running.clone()));
+        self.next_id
+    }
+
+    /// Reports that arrived since the last call, oldest first.
+    pub fn poll(&mut self) -> Vec<Report> {
+        let mut out = Vec::new();
+        while let Ok(r) = self.reports.try_recv() {
+            out.push(r);
+        }
+        out
+    }
+
+    /// Whether the newest job has not reported yet.
+    pub fn busy(&self, last_reported: u64) -> bool {
+        last_reported < self.latest
+    }
+}
+
+fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl Fn()) {
+    let mut scene: Option<Scene> = None;
+    let mut snapshot = Snapshot::default();
+    while let Ok(mut next) = jobs.recv() {
+        // Latest wins: skip everything queued behind the newest job.
+        loop {
+            match jobs.try_recv() {
+                Ok(newer) => next = newer,
+                Err(TryRecvError::Empty) => break,
+                Err(TryRecvError::Disconnected) => return,
+            }
+        }
+        let (job, cancel) = next;
+        let start = Instant::now();
+        let outcome = bake(&mut scene, &mut snapshot, &job, &cancel);
+        let outcome = match outcome {
+            Err(Error::Cancelled) => continue,
+            Err(e) => Outcome::Failed(e.to_string()),
+            Ok(changed) => Outcome::Done {
+                snapshot: Box::new(snapshot.clone()),
+                changed,
+            },
+        };
+        let report = Report {
+            id: job.id,
+            what: job.what,
+            ms: start.elapsed().as_secs_f64() * 1e3,
+            outcome,
+        };
+        if reports.send(report).is_err() {
+            return;
+        }
+        wake();
+    }
+}
+
+fn bake(
+    scene: &mut Option<Scene>,
+    snapshot: &mut Snapshot,
+    job: &Job,
+    cancel: &CancelToken,
+) -> Result<Changed, Error> {
+    let mut changed = Changed::default();
+    match scene {
+        Some(s) => {
+            if s.project() != &job.project {
+                changed = s.set_project(job.project.clone())?;
+            }
+        }
+        None => {
+            *scene = Some(Scene::new(job.project.clone())?);
+            changed.mesh = true;
+        }
+    }
+    let Some(s) = scene.as_mut() else {
+        return Err(Error::Cancelled);
+    };
+    if let Some(w) = &job.wrinkles {
+        s.set_wrinkles(w.clone());
+    }
+    let baked = s.bake(&job.request, cancel)?;
+    changed.mesh |= baked.mesh;
+    let merged = Changed {
+        mesh: changed.mesh,
+        ..baked
+    };
+    if merged.mesh || snapshot.mesh.is_none() {
+        snapshot.mesh = Some(s.mesh().clone());
+    }
+    let images = &mut snapshot.images;
+    if merged.large || snapshot.large.is_none() {
+        snapshot.large = s.large().cloned().map(Arc::new);
+        images.large_height = snapshot
+            .large
+            .as_ref()
+            .map(|l| grey_image(l.height.width_px(), l.height.height_px(), l.height.data()));
+        images.large_normal = snapshot
+            .large
+            .as_ref()
+            .filter(|l| !l.packed_rgba.is_empty())
+            .map(|l| rgb_image(l.height.width_px(), l.height.height_px(), &l.packed_rgba, 4));
+    }
+    if merged.micro || snapshot.micro.is_none() {
+        snapshot.micro = s.micro().cloned().map(Arc::new);
+        images.micro_height = snapshot
+            .micro
+            .as_ref()
+            .map(|m| grey_image(m.height.width_px(), m.height.height_px(), m.height.data()));
+        images.micro_normal = snapshot
+            .micro
+            .as_ref()
+            .map(|m| rgb_image(m.height.width_px(), m.height.height_px(), &m.normal_rgb, 3));
+    }
+    if merged.fine || (snapshot.fine.is_none() && s.fine().is_some()) {
+        snapshot.fine = s.fine().cloned();
+        images.fine = snapshot
+            .fine
+            .as_ref()
+            .map(|f| grey_image(f.width_px(), f.height_px(), f.data()));
+    }
+    if merged.transition || (snapshot.transition.is_none() && s.transition().is_some()) {
+        snapshot.transition = s.transition().cloned();
+        images.transition = snapshot
+            .transition
+            .as_ref()
+            .map(|t| grey_image(t.width_px(), t.height_px(), t.ages()));
+    }
+    snapshot.hair = s.hair().cloned();
+    snapshot.factors = Some(s.factors().clone());
+    snapshot.wrinkles = s.wrinkles().to_vec();
+    snapshot.project = Some(s.project().clone());
+    snapshot.request = Some(job.request);
+    Ok(merged)
+}

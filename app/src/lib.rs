@@ -1,0 +1,5 @@
+//! The `agesim` application: the editor ([`editor`]) and the command line ([`cli`]).
+//! A library so that end-to-end tests can drive the real editor with egui_kittest.
+
+pub mod cli;
+pub mod editor;

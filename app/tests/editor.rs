@@ -1,0 +1,175 @@
+//! The real editor driven by egui_kittest: sliders moved and fibres dragged as a person
+//! would, then the document and the baked maps checked.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::time::{Duration, Instant};
+
+use agesim::editor::{EditorApp, EditorOptions};
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable as _;
+
+/// One harness constructor for every test: the real app, 1280×800, no GPU needed.
+fn harness() -> Harness<'static, EditorApp> {
+    Harness::builder()
+        .with_size([1280.0, 800.0])
+        .build_eframe(|cc| EditorApp::new(cc, EditorOptions::default()))
+}
+
+/// Runs frames until the worker has baked the newest request (bakes run on their own
+/// thread, so the test waits in real time).
+fn settle(h: &mut Harness<'static, EditorApp>) {
+    let start = Instant::now();
+    loop {
+        h.run_steps(1);
+        if h.state().idle() && h.state().snapshot().large.is_some() {
+            h.run_steps(1);
+            return;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "the bake never finished"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+fn deepest(h: &Harness<'static, EditorApp>) -> f32 {
+    h.state()
+        .snapshot()
+        .large
+        .as_ref()
+        .unwrap()
+        .height
+        .min_max()
+        .1
+}
+
+fn hair_count(h: &Harness<'static, EditorApp>) -> usize {
+    let t = h.state().project().age.t;
+    h.state().snapshot().hair.as_ref().unwrap().count(t)
+}
+
+#[test]
+fn opens_ready_on_the_default_head_at_50_years() {
+    let mut h = harness();
+    settle(&mut h);
+    let p = h.state().project();
+    assert_eq!(p.age.mapping().years(p.age.t), 50.0);
+    assert!(deepest(&h) > 0.0, "wrinkles at 50");
+    assert!(hair_count(&h) > 1000);
+    assert!(h.state().snapshot().micro.is_some() && h.state().snapshot().fine.is_some());
+}
+
+#[test]
+fn the_age_slider_changes_hair_and_wrinkle_depth() {
+    let mut h = harness();
+    settle(&mut h);
+    let (hair_50, depth_50) = (hair_count(&h), deepest(&h));
+    h.get_by_role_and_label(Role::Slider, "age (years)")
+        .set_value_accesskit(78.0);
+    settle(&mut h);
+    let years = h
+        .state()
+        .project()
+        .age
+        .mapping()
+        .years(h.state().project().age.t);
+    assert!((years - 78.0).abs() < 0.01, "{years}");
+    let (hair_78, depth_78) = (hair_count(&h), deepest(&h));
+    assert!(hair_78 < hair_50, "hair {hair_50} → {hair_78}");
+    assert!(depth_78 > depth_50, "depth {depth_50} → {depth_78}");
+    h.get_by_role_and_label(Role::Slider, "age (years)")
+        .set_value_accesskit(22.0);
+    settle(&mut h);
+    assert!(hair_count(&h) > hair_50);
+    assert!(deepest(&h) < depth_50);
+}
+
+#[test]
+fn a_depth_slider_regenerates_the_map() {
+    let mut h = harness();
+    settle(&mut h);
+    let before = deepest(&h);
+    let map_before = h.state().snapshot().large.clone().unwrap();
+    h.get_by_role_and_label(Role::Slider, "depth")
+        .set_value_accesskit(3.0);
+    settle(&mut h);
+    assert_eq!(h.state().project().large.depth, 3.0);
+    let after = deepest(&h);
+    assert!((after / before - 3.0).abs() < 0.01, "{before} → {after}");
+    assert!(!std::sync::Arc::ptr_eq(
+        &map_before,
+        h.state().snapshot().large.as_ref().unwrap()
+    ));
+}
+
+#[test]
+fn dragging_a_fibre_end_on_the_map_moves_it_and_changes_the_map() {
+    let mut h = harness();
+    settle(&mut h);
+    let square = h.state_mut().map_view_mut().last_square.unwrap();
+    let fibre = h.state().wrinkles()[0].file.groups[0].fibre.clone();
+    let map_before = h
+        .state()
+        .snapshot()
+        .large
+        .as_ref()
+        .unwrap()
+        .height
+        .data()
+        .to_vec();
+    let to_screen = |uv: [f32; 2]| {
+        egui::pos2(
+            square.left() + uv[0] * square.width(),
+            square.top() + (1.0 - uv[1]) * square.height(),
+        )
+    };
+    let start = to_screen(fibre.ma());
+    let end = start + egui::vec2(-25.0, 12.0);
+    h.hover_at(start);
+    h.run_steps(1);
+    h.drag_at(start);
+    h.run_steps(1);
+    for k in 1..=5 {
+        h.hover_at(start + (end - start) * (k as f32 / 5.0));
+        h.run_steps(1);
+    }
+    h.drop_at(end);
+    settle(&mut h);
+    let moved = h.state().wrinkles()[0].file.groups[0].fibre.clone();
+    let du = moved.ma()[0] - fibre.ma()[0];
+    let dv = moved.ma()[1] - fibre.ma()[1];
+    assert!(du < -0.005 && dv < -0.002, "mA moved by ({du}, {dv})");
+    assert_eq!(moved.mb(), fibre.mb(), "only the dragged end moves");
+    let map_after = h
+        .state()
+        .snapshot()
+        .large
+        .as_ref()
+        .unwrap()
+        .height
+        .data()
+        .to_vec();
+    assert_ne!(map_before, map_after, "the map follows the fibre");
+}
+
+#[test]
+fn every_field_tooltip_and_label_has_glyphs_in_the_shipped_fonts() {
+    // kittest panics on a glyph no font has (the app would draw tofu boxes).
+    let mut h = Harness::builder().with_size([800.0, 600.0]).build_ui(|ui| {
+        for f in agesim_core::project::fields::FIELDS.iter() {
+            ui.label(format!(
+                "{} {} {} {}",
+                f.path,
+                f.unit,
+                f.doc,
+                f.range_text()
+            ));
+        }
+        for (_, about) in agesim_core::project::fields::SECTIONS {
+            ui.label(*about);
+        }
+    });
+    h.run();
+}

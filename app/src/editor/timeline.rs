@@ -3,7 +3,7 @@
 //! loop and speed.
 
 use agesim_core::age::AgeCurve;
-use agesim_core::project::Project;
+use agesim_core::project::{Project, fields};
 use egui::{Color32, Pos2, Rect, Sense, Stroke, pos2, vec2};
 
 /// Playback state (persisted: speed and loop).
@@ -187,21 +187,14 @@ pub fn timeline_ui(ui: &mut egui::Ui, project: &Project, playback: &mut Playback
             if (r.dragged() || r.drag_stopped())
                 && let Some(pointer) = r.interact_pointer_pos()
             {
-                {
-                    let years = young + (pointer.x - plot.left()) / plot.width() * (old - young);
-                    let field: &'static str = match (path, which) {
-                        ("age.large", "onset_years") => "age.large.onset_years",
-                        ("age.large", _) => "age.large.full_years",
-                        ("age.fine", "onset_years") => "age.fine.onset_years",
-                        ("age.fine", _) => "age.fine.full_years",
-                        ("age.pores", "onset_years") => "age.pores.onset_years",
-                        ("age.pores", _) => "age.pores.full_years",
-                        ("age.furrows", "onset_years") => "age.furrows.onset_years",
-                        ("age.furrows", _) => "age.furrows.full_years",
-                        (_, "onset_years") => "age.pale.onset_years",
-                        _ => "age.pale.full_years",
-                    };
-                    edit.curve = Some((field, years.round().clamp(0.0, 150.0), !r.drag_stopped()));
+                let years = young + (pointer.x - plot.left()) / plot.width() * (old - young);
+                // The field's own &'static path, from the engine's table.
+                if let Ok(field) = fields::find(&format!("{path}.{which}")) {
+                    edit.curve = Some((
+                        field.path,
+                        years.round().clamp(0.0, 150.0),
+                        !r.drag_stopped(),
+                    ));
                 }
             }
         }

@@ -1,0 +1,63 @@
+//! The real binary opens its window under Xvfb (a virtual X display), draws a few frames
+//! with maps and writes a screenshot; the picture must show the editor, not an empty frame.
+//!
+//! Needs `Xvfb` and a Vulkan driver (lavapipe: `mesa-vulkan-drivers`); `.ci/run` installs
+//! them. Without Xvfb the test prints why and passes, except in CI (`CI=true`) where that
+//! is a failure.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn skip_or_fail(reason: &str) {
+    if std::env::var("CI").is_ok_and(|v| v == "true") {
+        panic!("{reason} (required in CI)");
+    }
+    eprintln!("skipped: {reason}");
+}
+
+#[test]
+fn the_editor_window_starts_and_shows_the_maps() {
+    if Command::new("Xvfb").arg("-help").stderr(Stdio::null()).status().is_err() {
+        return skip_or_fail("Xvfb is not installed");
+    }
+    let display = format!(":{}", 90 + std::process::id() % 50);
+    let mut xvfb = Command::new("Xvfb")
+        .args([&display, "-screen", "0", "1280x800x24", "-nolisten", "tcp"])
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(500));
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("editor.png");
+    let start = Instant::now();
+    let out = Command::new(env!("CARGO_BIN_EXE_agesim"))
+        .args(["--screenshot", shot.to_str().unwrap(), "--frames", "3"])
+        .env("DISPLAY", &display)
+        .env("XDG_RUNTIME_DIR", dir.path())
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let _ = xvfb.kill();
+    let _ = xvfb.wait();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() && stderr.contains("could not be opened") {
+        return skip_or_fail(&format!("no window could be opened: {stderr}"));
+    }
+    assert!(out.status.success(), "{stderr}");
+    eprintln!("window, first bake and screenshot in {:?}", start.elapsed());
+    let img = image::open(&shot).unwrap().to_rgb8();
+    assert!(img.width() >= 1000 && img.height() >= 700, "{}×{}", img.width(), img.height());
+    // Not an empty frame: many distinct colours, and the map (bright wrinkles on a dark
+    // square) in the middle of the window.
+    let mut colours: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(colours.len() > 200, "only {} colours", colours.len());
+    let (w, h) = (img.width(), img.height());
+    let bright = (h / 4..h * 3 / 4)
+        .flat_map(|y| (w / 3..w * 2 / 3).map(move |x| (x, y)))
+        .filter(|&(x, y)| img.get_pixel(x, y).0.iter().all(|&c| c > 120))
+        .count();
+    assert!(bright > 500, "the centre shows no map ({bright} bright pixels)");
+}

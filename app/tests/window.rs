@@ -18,7 +18,12 @@ fn skip_or_fail(reason: &str) {
 
 #[test]
 fn the_editor_window_starts_and_shows_the_maps() {
-    if Command::new("Xvfb").arg("-help").stderr(Stdio::null()).status().is_err() {
+    if Command::new("Xvfb")
+        .arg("-help")
+        .stderr(Stdio::null())
+        .status()
+        .is_err()
+    {
         return skip_or_fail("Xvfb is not installed");
     }
     let display = format!(":{}", 90 + std::process::id() % 50);
@@ -47,7 +52,12 @@ fn the_editor_window_starts_and_shows_the_maps() {
     assert!(out.status.success(), "{stderr}");
     eprintln!("window, first bake and screenshot in {:?}", start.elapsed());
     let img = image::open(&shot).unwrap().to_rgb8();
-    assert!(img.width() >= 1000 && img.height() >= 700, "{}×{}", img.width(), img.height());
+    assert!(
+        img.width() >= 1000 && img.height() >= 700,
+        "{}×{}",
+        img.width(),
+        img.height()
+    );
     // Not an empty frame: many distinct colours, and the map (bright wrinkles on a dark
     // square) in the middle of the window.
     let mut colours: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();
@@ -59,5 +69,8 @@ fn the_editor_window_starts_and_shows_the_maps() {
         .flat_map(|y| (w / 3..w * 2 / 3).map(move |x| (x, y)))
         .filter(|&(x, y)| img.get_pixel(x, y).0.iter().all(|&c| c > 120))
         .count();
-    assert!(bright > 500, "the centre shows no map ({bright} bright pixels)");
+    assert!(
+        bright > 500,
+        "the centre shows no map ({bright} bright pixels)"
+    );
 }

@@ -54,11 +54,26 @@ pub struct Furrow {
     pub taper: f32,
 }
 
+/// Eq. 16's shape in units of A, as a function of q = x²/ω²: 1 − q inside, 0 outside.
+/// The one copy of the formula: [`cross_section`] and the baker both use it.
+#[inline(always)]
+pub fn profile(q: f32) -> f32 {
+    if q < 1.0 { 1.0 - q } else { 0.0 }
+}
+
+/// The width factor (1/2 at an end, 1 from the taper length on) from `e`, the distance to
+/// the nearer end over the taper length: 0.5 + 0.5·smoothstep(e). The one copy of the
+/// taper, shared by [`width_factor`] and the baker.
+#[inline(always)]
+pub fn taper(e: f32) -> f32 {
+    let e = e.clamp(0.0, 1.0);
+    0.5 + 0.5 * (e * e * (3.0 - 2.0 * e))
+}
+
 /// Eq. 16: the height −A·(1 − x²/ω²) at distance `x_mm` from the axis, 0 for |x| ≥ ω.
 #[inline(always)]
 pub fn cross_section(x_mm: f32, depth: f32, width_mm: f32) -> f32 {
-    let q = x_mm * x_mm / (width_mm * width_mm);
-    if q < 1.0 { -depth * (1.0 - q) } else { 0.0 }
+    -depth * profile(x_mm * x_mm / (width_mm * width_mm))
 }
 
 /// The width factor at `along_mm` from the start of a furrow `len_mm` long whose ends
@@ -67,8 +82,7 @@ pub fn cross_section(x_mm: f32, depth: f32, width_mm: f32) -> f32 {
 #[inline(always)]
 pub fn width_factor(along_mm: f32, len_mm: f32, taper_len_mm: f32) -> f32 {
     let a = along_mm.clamp(0.0, len_mm);
-    let e = (a.min(len_mm - a) / taper_len_mm.max(1e-6)).clamp(0.0, 1.0);
-    0.5 + 0.5 * (e * e * (3.0 - 2.0 * e))
+    taper(a.min(len_mm - a) / taper_len_mm.max(1e-6))
 }
 
 /// The height of a furrow (eq. 16 around the segment) at `along_mm` along its axis and

@@ -76,7 +76,7 @@ fn peak_rss_mib() -> Option<f64> {
 
 fn main() {
     let threads = rayon::current_num_threads();
-    let level = agesim_core::simd::Level::detect();
+    let level = agesim_core::SimdLevel::detect();
     println!("micro-relief bake, {threads} threads, kernels compiled for {level:?}");
     let project = workload();
     let normals = NormalSettings {
@@ -86,7 +86,7 @@ fn main() {
     };
 
     let t = Instant::now();
-    let relief = MicroRelief::new(&project).unwrap();
+    let relief = project.micro_relief().unwrap();
     let features_ms = t.elapsed().as_secs_f64() * 1e3;
     println!(
         "features: {} pores, {} furrows, placed in {features_ms:.2} ms",

@@ -176,7 +176,7 @@ fn main() {
             .map(|_| {
                 let t = Instant::now();
                 // Today's path: generate the features, then bake with normals.
-                let relief = agesim_core::micro::MicroRelief::new(&p).unwrap();
+                let relief = p.micro_relief().unwrap();
                 std::hint::black_box(
                     relief
                         .bake_with_normals(4096, &relief.normal_settings())

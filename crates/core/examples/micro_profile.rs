@@ -3,7 +3,6 @@
 //!
 //! `cargo run --release -p agesim-core --example micro_profile -- [SIZE] [ITERS] [cold]`
 #![allow(clippy::unwrap_used, clippy::expect_used)]
-use agesim_core::micro::MicroRelief;
 use agesim_core::normal_map::NormalSettings;
 
 #[path = "../benches/common/workload.rs"]
@@ -15,7 +14,7 @@ fn main() {
     // "cold": fresh buffers every bake (`bake_with_normals`); otherwise `bake_into`.
     let cold = std::env::args().nth(3).is_some_and(|m| m == "cold");
     let p = common::workload();
-    let relief = MicroRelief::new(&p).unwrap();
+    let relief = p.micro_relief().unwrap();
     let normals = NormalSettings {
         strength: p.normal.strength,
         tiling: p.tile,

@@ -77,7 +77,7 @@ pub enum Error {
 
     /// A wrinkle description file has errors (all of them are listed).
     #[error("{0}")]
-    WrinkleFile(#[from] crate::wrinkle_file::ParseErrors),
+    WrinkleFile(#[from] crate::diagnostic::ParseErrors),
 }
 
 impl Error {

@@ -7,6 +7,7 @@
 pub mod age;
 pub mod cancel;
 pub mod defaults;
+pub mod diagnostic;
 pub mod error;
 pub mod export;
 pub mod fine_wrinkles;
@@ -25,7 +26,7 @@ pub mod preview;
 pub mod project;
 pub mod rng;
 pub mod scene;
-pub mod simd;
+mod simd;
 #[cfg(test)]
 mod test_util;
 pub mod transition;
@@ -35,3 +36,5 @@ pub use error::Error;
 pub use heightmap::HeightMap;
 pub use mask::Mask;
 pub use mesh::Mesh;
+/// The instruction set the vectorised kernels run with here (for benchmark reports).
+pub use simd::Level as SimdLevel;

@@ -672,13 +672,13 @@ impl MicroStage {
         let mut changed = Changed::default();
         let mut relief = match &self.relief {
             Some(r) => {
-                let (r, regenerated) = r.with_project(project)?;
+                let (r, regenerated) = r.with_settings(&project.micro_settings()?)?;
                 changed.micro_features = regenerated;
                 r
             }
             None => {
                 changed.micro_features = true;
-                MicroRelief::new(project)?
+                project.micro_relief()?
             }
         };
         let scales = (factors.pore_radius_scale, factors.furrow_depth_scale);

@@ -48,12 +48,6 @@ pub trait Kernel {
     fn run(self) -> Self::Output;
 }
 
-/// Runs `k` compiled for the best level of this CPU.
-#[inline(always)]
-pub fn dispatch<K: Kernel>(k: K) -> K::Output {
-    dispatch_at(Level::detect(), k)
-}
-
 impl Level {
     /// The level [`dispatch_at`] really runs at when asked for `self`: `self`, or the best
     /// level below it this CPU has.
@@ -156,4 +150,26 @@ pub(crate) fn stream_fence() {
     unsafe {
         std::arch::x86_64::_mm_sfence();
     }
+}
+
+/// Padding (in columns) kept after every per-column table and row buffer, and the width of
+/// the chunks the row loops work in.
+pub(crate) const LANES: usize = 16;
+
+/// [`LANES`] floats aligned to 64 bytes (a cache line, an AVX-512 register). Buffers the
+/// hot loops read as whole vectors are `Vec<Chunk>`: a `Vec<f32>` is only 16-byte
+/// aligned, and then most 64-byte loads straddle two cache lines (measured: the noise
+/// sum ran at about half speed that way).
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C, align(64))]
+pub(crate) struct Chunk(pub [f32; LANES]);
+
+impl Chunk {
+    pub(crate) const ZERO: Self = Self([0.0; LANES]);
+}
+
+/// A `Vec<Chunk>` of at least `len` floats, all 0 (reusing `v`'s allocation).
+pub(crate) fn resize_chunks(v: &mut Vec<Chunk>, len: usize) {
+    v.clear();
+    v.resize(len.div_ceil(LANES), Chunk::ZERO);
 }

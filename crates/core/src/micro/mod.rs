@@ -16,3 +16,47 @@ pub mod overlap;
 pub mod pores;
 
 pub use bake::{BakeTimings, MicroRelief};
+
+use crate::normal_map::NormalSettings;
+
+/// Everything the micro-relief depends on, in the micro-relief's own terms (so this module
+/// does not depend on the project file). Made, validated, by
+/// [`crate::project::Project::micro_settings`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct MicroSettings {
+    /// Side of the square skin patch, mm.
+    pub map_size_mm: f32,
+    pub seed: u64,
+    /// Periodic noise, features wrapping around the edges.
+    pub tile: bool,
+    pub pore_count: usize,
+    pub pore_stats: pores::PoreStats,
+    pub placement: pores::Placement,
+    pub pore_shape: pores::PoreShape,
+    /// The furrow network, or `None` when furrows are off.
+    pub furrows: Option<furrows::FurrowParams>,
+    pub noise: noise::FbmParams,
+    /// λ of eq. 17, height units.
+    pub noise_strength: f32,
+    pub warp: noise::FbmParams,
+    /// Largest warp displacement per axis, mm.
+    pub warp_strength_mm: f32,
+    /// β and N of eq. 18.
+    pub overlap_beta: f32,
+    pub overlap_n: f32,
+    pub normal: NormalSettings,
+}
+
+impl MicroSettings {
+    /// Whether the pores and furrows of `self` and `other` are the same (the same seed,
+    /// patch, tiling, pore and furrow settings): then only the bake has to be redone.
+    pub fn same_features(&self, other: &Self) -> bool {
+        self.map_size_mm == other.map_size_mm
+            && self.seed == other.seed
+            && self.tile == other.tile
+            && self.pore_count == other.pore_count
+            && self.pore_stats == other.pore_stats
+            && self.placement == other.placement
+            && self.furrows == other.furrows
+    }
+}

@@ -22,6 +22,8 @@
 //! through in column tiles, so those arrays are read from L1, not L2. The result is
 //! bit-identical to the scalar [`FbmField::sample`].
 
+use crate::simd::{Chunk, LANES, resize_chunks};
+
 /// Parameters of one fBm (SPEC §3 "Noise"); validated by `project::NoiseSection`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FbmParams {
@@ -282,28 +284,6 @@ pub struct RowScratch {
 /// arrays per octave, times the rows a block spans) stay in the L1 cache while every
 /// pixel row of the block reads them.
 const TILE: usize = 256;
-
-/// Padding (in columns) kept after every per-column table and row buffer, and the width of
-/// the chunks the row loops work in.
-pub(crate) const LANES: usize = 16;
-
-/// [`LANES`] floats aligned to 64 bytes (a cache line, an AVX-512 register). Buffers the
-/// hot loops read as whole vectors are `Vec<Chunk>`: a `Vec<f32>` is only 16-byte
-/// aligned, and then most 64-byte loads straddle two cache lines (measured: the noise
-/// sum ran at about half speed that way).
-#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
-#[repr(C, align(64))]
-pub(crate) struct Chunk(pub [f32; LANES]);
-
-impl Chunk {
-    pub(crate) const ZERO: Self = Self([0.0; LANES]);
-}
-
-/// A `Vec<Chunk>` of at least `len` floats, all 0 (reusing `v`'s allocation).
-pub(crate) fn resize_chunks(v: &mut Vec<Chunk>, len: usize) {
-    v.clear();
-    v.resize(len.div_ceil(LANES), Chunk::ZERO);
-}
 
 impl<'a> RowSampler<'a> {
     /// Precomputes the column tables for the positions `us` (must be non-decreasing).

@@ -661,6 +661,43 @@ impl Project {
         (lo, hi)
     }
 
+    /// The micro-relief settings of this project, after checking every field.
+    pub fn micro_settings(&self) -> Result<crate::micro::MicroSettings, Error> {
+        self.validate().map_err(|message| Error::Project {
+            source_name: "project".into(),
+            message,
+        })?;
+        Ok(crate::micro::MicroSettings {
+            map_size_mm: self.map_size_mm,
+            seed: self.seed,
+            tile: self.tile,
+            pore_count: self.pore_count(),
+            pore_stats: self.pore_stats(),
+            placement: self.pores.placement,
+            pore_shape: crate::micro::pores::PoreShape {
+                profile: self.pores.profile,
+                rim: self.pores.rim,
+            },
+            furrows: self.furrows.enabled.then(|| self.furrow_params()),
+            noise: self.noise_params(),
+            noise_strength: self.noise.strength,
+            warp: self.warp_params(),
+            warp_strength_mm: self.warp.strength_mm,
+            overlap_beta: self.overlap.beta,
+            overlap_n: self.overlap.n,
+            normal: crate::normal_map::NormalSettings {
+                strength: self.normal.strength,
+                convention: self.normal.convention,
+                tiling: self.tile,
+            },
+        })
+    }
+
+    /// This project's micro-relief (pores placed, furrows linked), ready to bake.
+    pub fn micro_relief(&self) -> Result<crate::micro::MicroRelief, Error> {
+        crate::micro::MicroRelief::new(&self.micro_settings()?)
+    }
+
     /// The largest depth magnitude any pore or furrow can reach, height units.
     pub fn deepest_feature(&self) -> f32 {
         let p = &self.pores;

@@ -28,7 +28,7 @@
 //!   non-temporal stores ([`crate::simd::stream_copy`]): the output is written once and
 //!   never read in first;
 //! - the hot loops are plain `f32` code over fixed-size chunks; the band function runs
-//!   under [`crate::simd::dispatch`] (AVX-512, AVX2 or the SSE2 baseline, chosen at run
+//!   under `crate::simd::dispatch_at` (AVX-512, AVX2 or the SSE2 baseline, chosen at run
 //!   time). All paths do the same IEEE operations (no fused multiply-add), so their output
 //!   is byte-identical.
 
@@ -38,16 +38,17 @@
 
 use rayon::prelude::*;
 
+use super::MicroSettings;
 use super::furrows::{Furrow, build_network};
-use super::noise::{Chunk, FbmField, LANES, RowSampler, RowScratch};
+use super::noise::{FbmField, RowSampler, RowScratch};
 use super::overlap::resolve;
 use super::pores::{Pore, PoreProfile, PoreShape, Rim, place_pores};
 use crate::cancel::CancelToken;
 use crate::error::Error;
 use crate::heightmap::HeightMap;
 use crate::normal_map::{self, NormalSettings, RowRule};
-use crate::project::Project;
 use crate::simd::Level;
+use crate::simd::{Chunk, LANES};
 
 mod band;
 mod stamps;
@@ -56,6 +57,19 @@ mod tests;
 
 use band::*;
 use stamps::*;
+
+/// The noise field and the two warp fields of `s`.
+fn fields(s: &MicroSettings) -> (FbmField, [FbmField; 2]) {
+    let size = s.map_size_mm;
+    let gain = s.warp_strength_mm;
+    (
+        FbmField::new(&s.noise, size, s.tile, s.noise_strength, s.seed, 0),
+        [
+            FbmField::new(&s.warp, size, s.tile, gain, s.seed, 1),
+            FbmField::new(&s.warp, size, s.tile, gain, s.seed, 2),
+        ],
+    )
+}
 
 /// Rows per parallel band.
 pub const BAND_ROWS: usize = 32;
@@ -87,10 +101,10 @@ impl Default for Parts {
     }
 }
 
-/// A project's micro-relief, ready to bake at any size.
+/// The micro-relief of some [`MicroSettings`], ready to bake at any size.
 #[derive(Clone, Debug)]
 pub struct MicroRelief {
-    project: Project,
+    settings: MicroSettings,
     pores: Vec<Pore>,
     pore_spacing_mm: f32,
     furrows: Vec<Furrow>,
@@ -103,36 +117,27 @@ pub struct MicroRelief {
 }
 
 impl MicroRelief {
-    /// Validates the project and generates its pores and furrows.
-    pub fn new(project: &Project) -> Result<Self, Error> {
-        project.validate().map_err(|message| Error::Project {
-            source_name: "project".into(),
-            message,
-        })?;
+    /// Generates the pores and furrows of `settings` (validated by
+    /// [`crate::project::Project::micro_settings`]).
+    pub fn new(settings: &MicroSettings) -> Result<Self, Error> {
         let t0 = std::time::Instant::now();
-        let p = project;
-        let size = p.map_size_mm;
+        let s = settings;
+        let size = s.map_size_mm;
         let placement = place_pores(
-            p.pore_count(),
-            &p.pore_stats(),
-            p.pores.placement,
+            s.pore_count,
+            &s.pore_stats,
+            s.placement,
             size,
-            p.tile,
-            p.seed,
+            s.tile,
+            s.seed,
         );
-        let furrows = if p.furrows.enabled {
-            build_network(&placement.pores, &p.furrow_params(), size, p.tile, p.seed)
-        } else {
-            Vec::new()
+        let furrows = match &s.furrows {
+            Some(params) => build_network(&placement.pores, params, size, s.tile, s.seed),
+            None => Vec::new(),
         };
-        let noise = FbmField::new(&p.noise_params(), size, p.tile, p.noise.strength, p.seed, 0);
-        let warp_gain = p.warp.strength_mm;
-        let warp = [
-            FbmField::new(&p.warp_params(), size, p.tile, warp_gain, p.seed, 1),
-            FbmField::new(&p.warp_params(), size, p.tile, warp_gain, p.seed, 2),
-        ];
+        let (noise, warp) = fields(s);
         Ok(Self {
-            project: p.clone(),
+            settings: s.clone(),
             pores: placement.pores,
             pore_spacing_mm: placement.min_spacing_mm,
             furrows,
@@ -144,40 +149,25 @@ impl MicroRelief {
         })
     }
 
-    /// The relief of `project`, reusing this one's pores and furrows when the fields they
-    /// depend on (seed, map size, tiling, the `pores` and `furrows` sections) are unchanged:
-    /// a noise, warp, overlap or normal change never re-places a feature. Returns whether
-    /// the features were regenerated.
-    pub fn with_project(&self, project: &Project) -> Result<(Self, bool), Error> {
-        let (a, b) = (&self.project, project);
-        let same_features = a.seed == b.seed
-            && a.map_size_mm == b.map_size_mm
-            && a.tile == b.tile
-            && a.pores == b.pores
-            && a.furrows == b.furrows;
-        if !same_features {
-            let mut fresh = Self::new(project)?;
+    /// The relief of `settings`, reusing this one's pores and furrows when the fields they
+    /// depend on are unchanged ([`MicroSettings::same_features`]): a noise, warp, overlap or
+    /// normal change never re-places a feature. Returns whether the features were
+    /// regenerated.
+    pub fn with_settings(&self, settings: &MicroSettings) -> Result<(Self, bool), Error> {
+        if !self.settings.same_features(settings) {
+            let mut fresh = Self::new(settings)?;
             fresh.set_age_scales(self.pore_radius_scale, self.furrow_depth_scale);
             return Ok((fresh, true));
         }
-        project.validate().map_err(|message| Error::Project {
-            source_name: "project".into(),
-            message,
-        })?;
-        let p = project;
-        let size = p.map_size_mm;
-        let warp_gain = p.warp.strength_mm;
+        let (noise, warp) = fields(settings);
         Ok((
             Self {
-                project: p.clone(),
+                settings: settings.clone(),
                 pores: self.pores.clone(),
                 pore_spacing_mm: self.pore_spacing_mm,
                 furrows: self.furrows.clone(),
-                noise: FbmField::new(&p.noise_params(), size, p.tile, p.noise.strength, p.seed, 0),
-                warp: [
-                    FbmField::new(&p.warp_params(), size, p.tile, warp_gain, p.seed, 1),
-                    FbmField::new(&p.warp_params(), size, p.tile, warp_gain, p.seed, 2),
-                ],
+                noise,
+                warp,
                 features_ms: 0.0,
                 pore_radius_scale: self.pore_radius_scale,
                 furrow_depth_scale: self.furrow_depth_scale,
@@ -223,9 +213,8 @@ impl MicroRelief {
     /// [`MicroRelief::bake_with_normals`].
     pub fn normal_settings(&self) -> NormalSettings {
         NormalSettings {
-            strength: self.project.normal.strength,
-            convention: self.project.normal.convention,
-            tiling: self.project.tile,
+            tiling: self.settings.tile,
+            ..self.settings.normal
         }
     }
 

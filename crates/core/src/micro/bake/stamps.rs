@@ -66,7 +66,7 @@ impl<'a> Context<'a> {
         parts: Parts,
         normals: Option<NormalSettings>,
     ) -> Self {
-        let p = &relief.project;
+        let p = &relief.settings;
         let (w, h) = (size_px, size_px);
         let size_mm = p.map_size_mm;
         let chunks = w.div_ceil(LANES);
@@ -81,7 +81,7 @@ impl<'a> Context<'a> {
             *v = (x as f32 + 0.5) / w as f32 * size_mm;
         }
         let warp_on =
-            parts.features && p.warp.strength_mm > 0.0 && relief.warp[0].octave_count() > 0;
+            parts.features && p.warp_strength_mm > 0.0 && relief.warp[0].octave_count() > 0;
         let warp = warp_on.then(|| {
             // A quarter of the finest warp lattice cell, a power of two in 1..=16 pixels.
             let cell_px = w as f32 / relief.warp[0].finest_cells().max(1e-3);
@@ -101,11 +101,11 @@ impl<'a> Context<'a> {
         });
         // |fBm| ≤ 1 per axis, so the warp moves a point by at most √2·strength.
         let reach = if warp_on {
-            std::f32::consts::SQRT_2 * p.warp.strength_mm
+            std::f32::consts::SQRT_2 * p.warp_strength_mm
         } else {
             0.0
         };
-        let beta = p.overlap.beta;
+        let beta = p.overlap_beta;
         let mut stamps = Vec::new();
         if parts.features {
             for pore in &relief.pores {
@@ -149,7 +149,7 @@ impl<'a> Context<'a> {
                 }
             }
         }
-        let noise = (parts.noise && relief.noise.octave_count() > 0 && p.noise.strength > 0.0)
+        let noise = (parts.noise && relief.noise.octave_count() > 0 && p.noise_strength > 0.0)
             .then(|| RowSampler::new(&relief.noise, &us));
         Self {
             w,
@@ -157,9 +157,9 @@ impl<'a> Context<'a> {
             chunks,
             size_mm,
             beta,
-            inv_n: 1.0 / p.overlap.n,
-            profile: p.pores.profile,
-            rim: p.pores.rim,
+            inv_n: 1.0 / p.overlap_n,
+            profile: p.pore_shape.profile,
+            rim: p.pore_shape.rim,
             stamps,
             bands,
             x_mm,

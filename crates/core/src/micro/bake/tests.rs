@@ -1,6 +1,7 @@
 //! Tests of the micro-relief baker.
 
 use super::*;
+use crate::project::Project;
 
 fn project(tile: bool) -> Project {
     let mut p = Project {
@@ -13,7 +14,7 @@ fn project(tile: bool) -> Project {
 
 #[test]
 fn byte_identical_on_1_and_2_threads_and_across_runs() {
-    let relief = MicroRelief::new(&project(true)).unwrap();
+    let relief = project(true).micro_relief().unwrap();
     let pool1 = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -24,11 +25,7 @@ fn byte_identical_on_1_and_2_threads_and_across_runs() {
         .unwrap();
     let a = pool1.install(|| relief.bake(256).unwrap().0);
     let b = pool2.install(|| relief.bake(256).unwrap().0);
-    let c = MicroRelief::new(&project(true))
-        .unwrap()
-        .bake(256)
-        .unwrap()
-        .0;
+    let c = project(true).micro_relief().unwrap().bake(256).unwrap().0;
     let bits = |m: &HeightMap| m.data().iter().map(|h| h.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&a), bits(&b));
     assert_eq!(bits(&a), bits(&c));
@@ -41,7 +38,7 @@ fn simd_and_scalar_paths_give_the_same_bytes() {
     // Every level this CPU has (AVX-512, AVX2) against the baseline, height and normals,
     // tiled and not, at a width that is not a whole number of chunks.
     for tile in [false, true] {
-        let relief = MicroRelief::new(&project(tile)).unwrap();
+        let relief = project(tile).micro_relief().unwrap();
         let settings = relief.normal_settings();
         let bake = |level| {
             relief
@@ -64,7 +61,7 @@ fn fused_normals_equal_encoding_the_baked_heights() {
         (false, crate::normal_map::Convention::OpenGl),
         (true, crate::normal_map::Convention::DirectX),
     ] {
-        let relief = MicroRelief::new(&project(tile)).unwrap();
+        let relief = project(tile).micro_relief().unwrap();
         let settings = NormalSettings {
             strength: 0.01,
             convention,
@@ -86,7 +83,7 @@ fn fused_normals_equal_encoding_the_baked_heights() {
 
 #[test]
 fn bake_into_reuses_buffers_and_equals_a_fresh_bake() {
-    let relief = MicroRelief::new(&project(true)).unwrap();
+    let relief = project(true).micro_relief().unwrap();
     let settings = relief.normal_settings();
     // Stale buffers of another size, full of values a bake never writes (NaN, 0xAB):
     // growing, shrinking and an unchanged size must all overwrite every value.
@@ -114,7 +111,7 @@ fn bake_into_reuses_buffers_and_equals_a_fresh_bake() {
 fn fused_bands_reusing_their_neighbours_rows_equal_two_passes() {
     // One thread: runs of bands per task, each band taking its first row and halo above
     // from the previous band; the bytes must not change.
-    let relief = MicroRelief::new(&project(true)).unwrap();
+    let relief = project(true).micro_relief().unwrap();
     let settings = relief.normal_settings();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
@@ -150,7 +147,7 @@ fn output_bytes_are_pinned() {
         let text = include_str!("../../../../../assets/presets/rough.agesim.json");
         let mut p = Project::from_json_str(text, "rough").unwrap();
         p.tile = tile;
-        let relief = MicroRelief::new(&p).unwrap();
+        let relief = p.micro_relief().unwrap();
         let (map, rgb, _) = relief
             .bake_with_normals(size, &relief.normal_settings())
             .unwrap();
@@ -182,7 +179,7 @@ fn a_lone_pore_bakes_to_its_profile_for_every_profile_and_rim() {
             p.furrows.enabled = false;
             p.noise.details = 0.0;
             p.warp.strength_mm = 0.0;
-            let relief = MicroRelief::new(&p).unwrap();
+            let relief = p.micro_relief().unwrap();
             let pore = relief.pores()[0];
             let (map, _) = relief.bake(256).unwrap();
             let shape = PoreShape { profile, rim };
@@ -222,7 +219,7 @@ fn a_lone_furrow_bakes_to_eq_16() {
     p.warp.strength_mm = 0.0;
     // A large β makes the log-mean-exp the plain maximum: the furrow's own depth.
     p.overlap.beta = 40.0;
-    let relief = MicroRelief::new(&p).unwrap();
+    let relief = p.micro_relief().unwrap();
     assert_eq!(relief.furrows().len(), 1);
     let f = relief.furrows()[0];
     let (map, _) = relief.bake(256).unwrap();
@@ -248,7 +245,7 @@ fn a_lone_furrow_bakes_to_eq_16() {
 
 #[test]
 fn tiled_maps_match_across_opposite_edges() {
-    let relief = MicroRelief::new(&project(true)).unwrap();
+    let relief = project(true).micro_relief().unwrap();
     let (m, _) = relief.bake(256).unwrap();
     let n = 256;
     let mean_abs = |f: &dyn Fn(u32) -> f32| (0..n).map(f).map(f32::abs).sum::<f32>() / n as f32;
@@ -266,10 +263,7 @@ fn tiled_maps_match_across_opposite_edges() {
         "y seam {seam_y} vs neighbours {inner_y}"
     );
     // An untiled map has a real seam.
-    let (u, _) = MicroRelief::new(&project(false))
-        .unwrap()
-        .bake(256)
-        .unwrap();
+    let (u, _) = project(false).micro_relief().unwrap().bake(256).unwrap();
     let seam_u = (0..n)
         .map(|y| (u.get(0, y) - u.get(n - 1, y)).abs())
         .sum::<f32>()
@@ -286,7 +280,7 @@ fn resolution_independent_within_tolerance() {
     // range in the mean, from sub-pixel detail that only the large bake resolves).
     let mut p = project(false);
     p.noise.details = 3.0;
-    let relief = MicroRelief::new(&p).unwrap();
+    let relief = p.micro_relief().unwrap();
     let (small, _) = relief.bake(1024).unwrap();
     let (big, _) = relief.bake(4096).unwrap();
     let down = big.downsample_box(4).unwrap();

@@ -509,3 +509,19 @@ fn older_bakes_are_deeper() {
         stderr(&o)
     );
 }
+
+#[test]
+fn flag_errors_quote_the_flag_and_the_documented_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x");
+    let o = agesim(&["bake", "--gamma", "nan", "--out", out.to_str().unwrap()]);
+    let e = stderr(&o);
+    assert!(
+        !o.status.success() && e.contains("--gamma NaN") && !e.contains("null"),
+        "{e}"
+    );
+    let o = agesim(&["bake", "--size=-5", "--out", out.to_str().unwrap()]);
+    let e = stderr(&o);
+    assert!(!o.status.success() && e.contains("1..=16384"), "{e}");
+    assert!(!e.contains("4294967295"), "{e}");
+}

@@ -41,7 +41,8 @@ pub struct BakeArgs {
     pub mask: Option<PathBuf>,
 
     /// Side of the square maps in pixels, 1..=16384.
-    #[arg(long, default_value_t = 2048, value_name = "N")]
+    #[arg(long, default_value_t = 2048, value_name = "N",
+          value_parser = clap::value_parser!(u32).range(1..=16384))]
     pub size: u32,
 
     /// Crest-flattening exponent γ of the large wrinkles, in [0.01, 10] (`large.gamma`).
@@ -123,39 +124,57 @@ fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
         }
         (None, None) => Project::default(),
     };
-    let mut edits: Vec<(String, String)> = Vec::new();
-    let mut edit =
-        |path: &str, value: serde_json::Value| edits.push((path.into(), value.to_string()));
+    // (field, value as JSON, what the user typed): errors quote the flag as typed.
+    let mut edits: Vec<(&str, String, String)> = Vec::new();
     if !args.wrinkles.is_empty() {
-        edit("large.wrinkles", json!(args.wrinkles));
+        let typed: Vec<String> = args
+            .wrinkles
+            .iter()
+            .map(|w| format!("--wrinkles {}", w.display()))
+            .collect();
+        edits.push((
+            "large.wrinkles",
+            json!(args.wrinkles).to_string(),
+            typed.join(" "),
+        ));
     }
     if let Some(mask) = &args.mask {
-        edit("large.mask", json!(mask));
+        edits.push((
+            "large.mask",
+            json!(mask).to_string(),
+            format!("--mask {}", mask.display()),
+        ));
     }
     if let Some(g) = args.gamma {
-        edit("large.gamma", f32_json(g));
+        edits.push(("large.gamma", g.to_string(), format!("--gamma {g}")));
     }
     if let Some(s) = args.normal_strength {
-        edit("normal.strength", f32_json(s));
+        edits.push((
+            "normal.strength",
+            s.to_string(),
+            format!("--normal-strength {s}"),
+        ));
     }
     if let Some(c) = args.normal_convention {
-        edit(
+        let name = if c == ConventionArg::Directx {
+            "directx"
+        } else {
+            "opengl"
+        };
+        edits.push((
             "normal.convention",
-            json!(if c == ConventionArg::Directx {
-                "directx"
-            } else {
-                "opengl"
-            }),
-        );
+            name.into(),
+            format!("--normal-convention {name}"),
+        ));
     }
     if args.tile {
-        edit("tile", json!(true));
+        edits.push(("tile", "true".into(), "--tile".into()));
     }
     if let Some(seed) = args.seed {
-        edit("seed", json!(seed));
+        edits.push(("seed", seed.to_string(), format!("--seed {seed}")));
     }
-    for (path, value) in edits {
-        project = project.set(&path, &value)?;
+    for (path, value, typed) in edits {
+        project = project.set_as(path, &value, &typed)?;
     }
     for assignment in &args.set {
         let Some((path, value)) = assignment.split_once('=') else {

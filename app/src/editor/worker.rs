@@ -36,6 +36,9 @@ pub struct Snapshot {
     pub wrinkles: Vec<WrinkleSource>,
     pub factors: Option<AgeFactors>,
     pub large: Option<Arc<LargeMap>>,
+    /// The large-wrinkle layer normalised to [0, 1] (the map over its depth), what the
+    /// renderer marches: 1 = a crest at the polygon, 0 = `disp_scale` below.
+    pub large01: Option<Arc<HeightMap>>,
     pub micro: Option<Arc<MicroTile>>,
     pub fine: Option<Arc<HeightMap>>,
     pub transition: Option<Arc<TransitionTexture>>,
@@ -253,6 +256,14 @@ fn bake(
     let images = &mut snapshot.images;
     if merged.large || snapshot.large.is_none() {
         snapshot.large = s.large().cloned().map(Arc::new);
+        let depth = s.project().large.depth;
+        snapshot.large01 = snapshot.large.as_ref().and_then(|l| {
+            let inv = if depth > 0.0 { 1.0 / depth } else { 0.0 };
+            let data = l.height.data().iter().map(|h| h * inv).collect();
+            HeightMap::from_vec(l.height.width_px(), l.height.height_px(), data)
+                .ok()
+                .map(Arc::new)
+        });
         images.large_height = snapshot
             .large
             .as_ref()

@@ -47,10 +47,31 @@ impl Mask {
     /// Decodes an image file already in memory, as [`Mask::load`] does; `path` only names
     /// it in errors (e.g. a mask built into the binary).
     pub fn decode(bytes: &[u8], path: &Path) -> Result<Self, Error> {
-        let img = image::load_from_memory(bytes).map_err(|e| Error::Image {
+        let fail = |message: String| Error::Image {
             path: path.to_owned(),
-            message: e.to_string(),
-        })?;
+            message,
+        };
+        // The header is checked against the limits before any pixel is decoded: a small
+        // file declaring 20000×20000 pixels is refused, not allocated.
+        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| fail(e.to_string()))?;
+        let (w, h) = reader.into_dimensions().map_err(|e| fail(e.to_string()))?;
+        let max = crate::limits::MAX_IMAGE_SIDE_PX;
+        if w > max || h > max {
+            return Err(fail(format!(
+                "the image declares {w}×{h} pixels, more than the limit of {max} on a side"
+            )));
+        }
+        reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| fail(e.to_string()))?;
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(max);
+        limits.max_image_height = Some(max);
+        limits.max_alloc = Some(crate::limits::MAX_IMAGE_DECODE_BYTES);
+        reader.limits(limits);
+        let img = reader.decode().map_err(|e| fail(e.to_string()))?;
         let grey = img.into_luma16();
         let (w, h) = grey.dimensions();
         let values = grey
@@ -126,6 +147,54 @@ mod tests {
         let m = Mask::from_values(1, 2, vec![1.0, 0.0]).unwrap();
         assert_eq!(m.sample(0.5, 0.75), 1.0);
         assert_eq!(m.sample(0.5, 0.25), 0.0);
+    }
+
+    #[test]
+    fn a_header_bomb_is_refused_before_decoding() {
+        // A valid PNG header declaring 20000×20000 pixels, and nothing else.
+        let mut png = Vec::new();
+        png.extend_from_slice(b"\x89PNG\r\n\x1a\n");
+        let mut ihdr = Vec::new();
+        ihdr.extend_from_slice(b"IHDR");
+        ihdr.extend_from_slice(&20000u32.to_be_bytes());
+        ihdr.extend_from_slice(&20000u32.to_be_bytes());
+        ihdr.extend_from_slice(&[8, 0, 0, 0, 0]);
+        png.extend_from_slice(&13u32.to_be_bytes());
+        png.extend_from_slice(&ihdr);
+        png.extend_from_slice(&crc32(&ihdr).to_be_bytes());
+        for (kind, data) in [
+            (&b"IDAT"[..], &b"\x78\x9c\x03\x00\x00\x00\x00\x01"[..]),
+            (b"IEND", b""),
+        ] {
+            let mut chunk = kind.to_vec();
+            chunk.extend_from_slice(data);
+            png.extend_from_slice(&(data.len() as u32).to_be_bytes());
+            png.extend_from_slice(&chunk);
+            png.extend_from_slice(&crc32(&chunk).to_be_bytes());
+        }
+        assert!(png.len() < 100);
+        let e = Mask::decode(&png, Path::new("bomb.png"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("bomb.png") && e.contains("20000×20000") && e.contains("16384"),
+            "{e}"
+        );
+    }
+
+    fn crc32(data: &[u8]) -> u32 {
+        let mut c = 0xFFFF_FFFFu32;
+        for &b in data {
+            c ^= b as u32;
+            for _ in 0..8 {
+                c = if c & 1 != 0 {
+                    0xEDB8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+            }
+        }
+        !c
     }
 
     #[test]

@@ -26,9 +26,48 @@ use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use super::{MeshPart, MeshWarning, RawMesh};
 use crate::error::Error;
 
+/// Whether a buffer URI stays inside the glTF's folder: a `data:` URI, or a relative path
+/// (percent-encoding decoded) with no `..` component, no scheme, no root or drive.
+fn check_buffer_uri(uri: &str) -> Result<(), &'static str> {
+    if uri.starts_with("data:") {
+        return Ok(());
+    }
+    let decoded = percent_decode(uri);
+    if decoded.contains(':') {
+        return Err("names a scheme or a drive");
+    }
+    if decoded.starts_with('/') || decoded.starts_with('\\') {
+        return Err("is an absolute path");
+    }
+    if decoded.split(['/', '\\']).any(|c| c == "..") {
+        return Err("climbs out of the glTF's folder");
+    }
+    Ok(())
+}
+
+/// `%xx` escapes of a URI decoded (invalid escapes kept as they are).
+fn percent_decode(uri: &str) -> String {
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%'
+            && i + 2 < bytes.len()
+            && let Ok(v) = u8::from_str_radix(&uri[i + 1..i + 3], 16)
+        {
+            out.push(v);
+            i += 3;
+            continue;
+        }
+        out.push(bytes[i]);
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
 /// Reads `path` into a [`RawMesh`] (see the module docs).
 pub fn load(path: &Path) -> Result<RawMesh, Error> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES)?;
     load_bytes(&bytes, path)
 }
 
@@ -44,6 +83,17 @@ pub fn load_bytes(bytes: &[u8], path: &Path) -> Result<RawMesh, Error> {
     for ext in gltf.document.extensions_required() {
         if ext != "KHR_mesh_quantization" {
             return Err(fail(format!("requires the unsupported extension {ext}")));
+        }
+    }
+    for buffer in gltf.document.buffers() {
+        if let ::gltf::buffer::Source::Uri(uri) = buffer.source() {
+            check_buffer_uri(uri).map_err(|why| {
+                fail(format!(
+                    "buffer {} has the URI \"{}\", which {why}: only data: URIs and files inside the glTF's own folder are read",
+                    buffer.index(),
+                    crate::limits::shorten(uri, 80)
+                ))
+            })?;
         }
     }
     let buffers = ::gltf::import_buffers(&gltf.document, path.parent(), gltf.blob.clone())
@@ -893,6 +943,32 @@ mod tests {
                 .warnings
                 .contains(&MeshWarning::OutOfRangeTriangles(1))
         );
+    }
+
+    #[test]
+    fn buffer_uris_outside_the_folder_are_refused() {
+        for (uri, ok) in [
+            ("data:application/octet-stream;base64,AAAA", true),
+            ("mesh.bin", true),
+            ("sub/mesh%20a.bin", true),
+            ("../../../../etc/passwd", false),
+            ("sub/../../x.bin", false),
+            ("%2e%2e/x.bin", false),
+            ("/etc/passwd", false),
+            ("file:///etc/passwd", false),
+            ("C:\\x.bin", false),
+        ] {
+            assert_eq!(check_buffer_uri(uri).is_ok(), ok, "{uri}");
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("escape.gltf");
+        std::fs::write(
+            &path,
+            r#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"../../../../etc/passwd"}]}"#,
+        )
+        .unwrap();
+        let e = load(&path).unwrap_err().to_string();
+        assert!(e.contains("escape.gltf") && e.contains("climbs out"), "{e}");
     }
 
     #[test]

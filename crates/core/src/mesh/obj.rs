@@ -14,7 +14,7 @@ use crate::error::Error;
 /// and NaN-marked for the vertices of objects without them.
 pub fn load(path: &Path) -> Result<RawMesh, Error> {
     // Read the bytes ourselves so that a missing file is an I/O error with its path.
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES)?;
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,

@@ -1,9 +1,11 @@
 //! The command line: one binary, one subcommand per task.
 
 mod bake;
+mod font;
 mod gen_assets;
 mod hair;
 mod mesh_info;
+mod render;
 
 use clap::{CommandFactory as _, Parser, Subcommand};
 
@@ -23,6 +25,8 @@ pub enum Command {
     Hair(hair::HairArgs),
     /// Print what a head mesh (OBJ, glTF, GLB) contains: counts, size, attributes, repairs.
     MeshInfo(mesh_info::MeshInfoArgs),
+    /// Render the head with the GPU renderer (wgpu; works on lavapipe): PNGs or --bench.
+    Render(render::RenderArgs),
     /// Regenerate the default assets (masks, fine-wrinkle tile, pictures) into a folder.
     #[command(hide = true)]
     GenAssets(gen_assets::GenAssetsArgs),
@@ -39,5 +43,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             Ok(())
         }
         Some(Command::Bake(args)) => bake::run(&args),
+        Some(Command::Render(args)) => render::run(&args),
     }
 }

@@ -1,0 +1,214 @@
+//! Mesh data for the GPU: the interleaved vertex, the one-time subdivision for the
+//! displacement mode ([P] eq. 14) and the measured UV density that puts the tiles at
+//! their physical size (SPEC §5).
+
+use std::collections::HashMap;
+
+use agesim_core::Mesh;
+use glam::{Vec2, Vec3, Vec4};
+
+/// One vertex as the skin pipeline reads it (48 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+    pub tangent: [f32; 4],
+}
+
+pub(crate) const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+    0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
+];
+
+/// Geometry ready to upload: vertices and u32 triangle indices.
+pub(crate) struct MeshData {
+    pub vertices: Vec<Vertex>,
+    pub indices: Vec<u32>,
+}
+
+impl MeshData {
+    pub(crate) fn from_mesh(mesh: &Mesh) -> Self {
+        let vertices = mesh
+            .positions()
+            .iter()
+            .zip(mesh.normals())
+            .zip(mesh.uvs())
+            .zip(mesh.tangents())
+            .map(|(((p, n), uv), t)| Vertex {
+                position: p.to_array(),
+                normal: n.to_array(),
+                uv: uv.to_array(),
+                tangent: t.to_array(),
+            })
+            .collect();
+        Self {
+            vertices,
+            indices: mesh.indices().to_vec(),
+        }
+    }
+}
+
+/// Splits every triangle into four at its edge midpoints (shared edges share the new
+/// vertex, so no cracks open when displaced). Positions, UVs and tangents are interpolated
+/// linearly, normals renormalised: the dense source head needs no smoothing scheme, only
+/// more vertices for the height map to move. Done once per mesh upload, never per frame.
+pub fn subdivide(
+    positions: &[Vec3],
+    normals: &[Vec3],
+    uvs: &[Vec2],
+    tangents: &[Vec4],
+    indices: &[u32],
+) -> (Vec<Vec3>, Vec<Vec3>, Vec<Vec2>, Vec<Vec4>, Vec<u32>) {
+    let mut p = positions.to_vec();
+    let mut n = normals.to_vec();
+    let mut uv = uvs.to_vec();
+    let mut t = tangents.to_vec();
+    let mut out = Vec::with_capacity(indices.len() * 4);
+    let mut midpoints: HashMap<(u32, u32), u32> = HashMap::with_capacity(indices.len() * 3 / 2);
+    let mut midpoint = |a: u32, b: u32| -> u32 {
+        let key = (a.min(b), a.max(b));
+        *midpoints.entry(key).or_insert_with(|| {
+            let (a, b) = (a as usize, b as usize);
+            p.push((p[a] + p[b]) * 0.5);
+            n.push((n[a] + n[b]).normalize_or(n[a]));
+            uv.push((uv[a] + uv[b]) * 0.5);
+            let tt = (t[a].truncate() + t[b].truncate()).normalize_or(t[a].truncate());
+            t.push(tt.extend(t[a].w));
+            (p.len() - 1) as u32
+        })
+    };
+    for tri in indices.chunks_exact(3) {
+        let [a, b, c] = [tri[0], tri[1], tri[2]];
+        let ab = midpoint(a, b);
+        let bc = midpoint(b, c);
+        let ca = midpoint(c, a);
+        out.extend_from_slice(&[a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca]);
+    }
+    (p, n, uv, t, out)
+}
+
+/// The subdivided copy of a mesh for the displacement mode.
+pub(crate) fn subdivided(mesh: &Mesh) -> MeshData {
+    let (p, n, uv, t, indices) = subdivide(
+        mesh.positions(),
+        mesh.normals(),
+        mesh.uvs(),
+        mesh.tangents(),
+        mesh.indices(),
+    );
+    let vertices = p
+        .iter()
+        .zip(&n)
+        .zip(&uv)
+        .zip(&t)
+        .map(|(((p, n), uv), t)| Vertex {
+            position: p.to_array(),
+            normal: n.to_array(),
+            uv: uv.to_array(),
+            tangent: t.to_array(),
+        })
+        .collect();
+    MeshData { vertices, indices }
+}
+
+/// How long one UV unit is on the surface, along u and along v, in mesh units: the
+/// area-weighted mean of |∂P/∂u| and |∂P/∂v| over the triangles (the tangent-frame
+/// derivatives of SPEC §4). With the mesh's metres per unit it says how many times a
+/// tile of a given physical size repeats across the UV square.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceScale {
+    /// Mesh units per UV unit along u.
+    pub units_per_u: f32,
+    /// Mesh units per UV unit along v.
+    pub units_per_v: f32,
+}
+
+impl SurfaceScale {
+    /// Measures `mesh`; triangles with degenerate UVs are skipped. `None` when every
+    /// triangle is degenerate.
+    pub fn measure(positions: &[Vec3], uvs: &[Vec2], indices: &[u32]) -> Option<Self> {
+        let mut sum = [0.0f64; 2];
+        let mut area_sum = 0.0f64;
+        for tri in indices.chunks_exact(3) {
+            let [a, b, c] = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
+            let (e1, e2) = (positions[b] - positions[a], positions[c] - positions[a]);
+            let (d1, d2) = (uvs[b] - uvs[a], uvs[c] - uvs[a]);
+            let det = d1.x * d2.y - d2.x * d1.y;
+            let area = 0.5 * e1.cross(e2).length();
+            if det.abs() < 1e-12 || area <= 0.0 || !area.is_finite() {
+                continue;
+            }
+            // Solve [e1 e2] = [dP/du dP/dv]·[d1 d2] (Lengyel's tangent derivation).
+            let dp_du = (e1 * d2.y - e2 * d1.y) / det;
+            let dp_dv = (e2 * d1.x - e1 * d2.x) / det;
+            if !(dp_du.is_finite() && dp_dv.is_finite()) {
+                continue;
+            }
+            sum[0] += f64::from(dp_du.length()) * f64::from(area);
+            sum[1] += f64::from(dp_dv.length()) * f64::from(area);
+            area_sum += f64::from(area);
+        }
+        (area_sum > 0.0).then(|| Self {
+            units_per_u: (sum[0] / area_sum) as f32,
+            units_per_v: (sum[1] / area_sum) as f32,
+        })
+    }
+
+    /// Whole repeats of a tile `tile_size_m` on a side across the UV square: rounded to
+    /// an integer (at least 1) so the tile wraps seamlessly across the UV seam.
+    pub fn repeats(&self, metres_per_unit: f32, tile_size_m: f32) -> [f32; 2] {
+        let per = |units: f32| ((units * metres_per_unit / tile_size_m).round()).max(1.0);
+        [per(self.units_per_u), per(self.units_per_v)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad() -> (Vec<Vec3>, Vec<Vec2>, Vec<u32>) {
+        // 0.2 × 0.1 units, UV 0..1 both ways.
+        let p = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.2, 0.0, 0.0),
+            Vec3::new(0.2, 0.1, 0.0),
+            Vec3::new(0.0, 0.1, 0.0),
+        ];
+        let uv = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(0.0, 1.0),
+        ];
+        (p, uv, vec![0, 1, 2, 0, 2, 3])
+    }
+
+    #[test]
+    fn scale_of_a_stretched_quad() {
+        let (p, uv, idx) = quad();
+        let s = SurfaceScale::measure(&p, &uv, &idx).expect("non-degenerate");
+        assert!((s.units_per_u - 0.2).abs() < 1e-6, "{s:?}");
+        assert!((s.units_per_v - 0.1).abs() < 1e-6, "{s:?}");
+        // 0.2 m / 0.05 m = 4 repeats in u, 2 in v.
+        assert_eq!(s.repeats(1.0, 0.05), [4.0, 2.0]);
+        // Never fewer than one repeat.
+        assert_eq!(s.repeats(1.0, 10.0), [1.0, 1.0]);
+    }
+
+    #[test]
+    fn subdivision_shares_edges() {
+        let (p, uv, idx) = quad();
+        let n = vec![Vec3::Z; 4];
+        let t = vec![Vec4::new(1.0, 0.0, 0.0, 1.0); 4];
+        let (p2, n2, uv2, t2, idx2) = subdivide(&p, &n, &uv, &t, &idx);
+        // 5 edges (4 sides + the diagonal) → 5 new vertices; 2 → 8 triangles.
+        assert_eq!(p2.len(), 9);
+        assert_eq!(n2.len(), 9);
+        assert_eq!(uv2.len(), 9);
+        assert_eq!(t2.len(), 9);
+        assert_eq!(idx2.len(), 24);
+        let s = SurfaceScale::measure(&p2, &uv2, &idx2).expect("non-degenerate");
+        assert!((s.units_per_u - 0.2).abs() < 1e-6);
+    }
+}

@@ -33,7 +33,8 @@ struct Frame {
     hair_gray: vec4<f32>,
     // K_diff, K_spec, shininess, K_amb (SPEC §6).
     hair_k: vec4<f32>,
-    // x: viewport width, px; y: hair droop (fraction of the length); zw: unused.
+    // x: viewport width, px; y: hair droop (fraction of the length);
+    // z: 1 = skin writes the POM hit (hit uv, polygon uv) instead of colour; w: unused.
     hair_misc: vec4<f32>,
 }
 
@@ -79,7 +80,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     if frame.pom.x == MODE_DISPLACEMENT {
         // [P] eq. 14, P' = P + d(u,v)·n, with the same depth convention as POM: the
         // polygon is the top of the height field, h = 0 lies `disp.y` below it.
-        let h = textureSampleLevel(large_map, surface_sampler, in.uv, 0.0).r;
+        let h = textureSampleLevel(large_map, surface_sampler, tex(in.uv), 0.0).r;
         p = p + in.normal * ((h - 1.0) * frame.disp.y);
     }
     var out: VertexOut;
@@ -91,8 +92,13 @@ fn vs_main(in: VertexIn) -> VertexOut {
     return out;
 }
 
+// SPEC §0 UV (v up) → texture coordinates (row 0 of every map is its top, v = 1).
+fn tex(uv: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(uv.x, 1.0 - uv.y);
+}
+
 fn large_height(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> f32 {
-    return textureSampleGrad(large_map, surface_sampler, uv, ddx, ddy).r;
+    return textureSampleGrad(large_map, surface_sampler, tex(uv), ddx, ddy).r;
 }
 
 // The ray at depth `layer` (1 = polygon, 0 = bottom) has moved `shift·(1 − layer)` in UV.
@@ -156,20 +162,20 @@ fn pom(uv0: vec2<f32>, view_ts: vec3<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> ve
 // Tangent-space normal of a height texture by central differences (SPEC §4:
 // n = normalize(−s·∂h/∂u, −s·∂h/∂v, 1), s in UV units per height unit).
 fn height_normal(
-    tex: texture_2d<f32>,
+    map: texture_2d<f32>,
     samp: sampler,
     uv: vec2<f32>,
     strength: f32,
     ddx: vec2<f32>,
     ddy: vec2<f32>,
 ) -> vec3<f32> {
-    let size = vec2<f32>(textureDimensions(tex));
+    let size = vec2<f32>(textureDimensions(map));
     let du = vec2<f32>(1.0 / size.x, 0.0);
     let dv = vec2<f32>(0.0, 1.0 / size.y);
-    let hu = textureSampleGrad(tex, samp, uv + du, ddx, ddy).r
-        - textureSampleGrad(tex, samp, uv - du, ddx, ddy).r;
-    let hv = textureSampleGrad(tex, samp, uv + dv, ddx, ddy).r
-        - textureSampleGrad(tex, samp, uv - dv, ddx, ddy).r;
+    let hu = textureSampleGrad(map, samp, tex(uv + du), ddx, ddy).r
+        - textureSampleGrad(map, samp, tex(uv - du), ddx, ddy).r;
+    let hv = textureSampleGrad(map, samp, tex(uv + dv), ddx, ddy).r
+        - textureSampleGrad(map, samp, tex(uv - dv), ddx, ddy).r;
     let dh = vec2<f32>(hu * size.x, hv * size.y) * 0.5;
     return normalize(vec3<f32>(-strength * dh, 1.0));
 }
@@ -248,13 +254,16 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     if mode <= MODE_COMBINED {
         uv = pom(in.uv, view_ts, ddx, ddy).xy;
     }
+    if frame.hair_misc.z > 0.5 {
+        return vec4<f32>(uv, in.uv);
+    }
     // The micro-relief and fine tiles move with the POM offset: they lie on the surface.
     let offset = uv - in.uv;
 
     // Large-wrinkle normal from the heights at the hit, with the slope the march used.
     let n_large = height_normal(large_map, surface_sampler, uv, frame.disp.x, ddx, ddy);
     let n_fine_tile = height_normal(fine_map, tile_sampler, fine_uv0 + offset * frame.tiling.zw, frame.layers.y, ddx_fine, ddy_fine);
-    let mask = textureSampleGrad(mask_map, surface_sampler, uv, ddx, ddy).r;
+    let mask = textureSampleGrad(mask_map, surface_sampler, tex(uv), ddx, ddy).r;
     let fine = in_large_frame(n_large, n_fine_tile);
     // SPEC §5: the age blends linearly from the surface normal to the fine-wrinkle one.
     var n_ts = normalize(mix(n_large, fine, clamp(frame.disp.z * mask, 0.0, 1.0)));
@@ -267,7 +276,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Albedo: older skin is paler ([T] §3.1.1): toward a desaturated, lighter tone.
     let albedo0 = frame.skin_albedo.rgb;
     let grey = dot(albedo0, vec3<f32>(0.2126, 0.7152, 0.0722));
-    let pale = mix(vec3<f32>(grey), albedo0, 0.55) * 1.18;
+    let pale = mix(vec3<f32>(grey), albedo0, 0.6) * 1.12;
     let albedo = mix(albedo0, pale, frame.skin_albedo.w);
 
     let l = frame.light_dir.xyz;

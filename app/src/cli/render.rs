@@ -52,9 +52,10 @@ pub struct RenderArgs {
     /// Binary search steps B.
     #[arg(long, default_value_t = 4)]
     pub binary: u32,
-    /// dispScale: depth of the large wrinkles in UV units ([T]: 0.005).
-    #[arg(long, default_value_t = 0.005)]
-    pub disp_scale: f32,
+    /// dispScale: depth of the large wrinkles in UV units. Default 0.005 on a head ([T];
+    /// ≈ 2.5 mm on the default head), 0.02 on the 5 cm patch (≈ 1 mm).
+    #[arg(long)]
+    pub disp_scale: Option<f32>,
     /// Image size, WxH pixels.
     #[arg(long, default_value = "800x800", value_parser = parse_size)]
     pub size: (u32, u32),
@@ -162,7 +163,7 @@ impl AgeFrame {
         Self {
             large_scale: muscle::smoothstep(t),
             fine_blend: t,
-            paleness: 0.6 * t,
+            paleness: 0.5 * t,
         }
     }
 }
@@ -377,17 +378,17 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     params.skin.pom_mode = args.pom.into();
     params.skin.linear_steps = args.linear;
     params.skin.binary_steps = args.binary;
-    params.skin.disp_scale = args.disp_scale;
+    params.skin.disp_scale = args
+        .disp_scale
+        .unwrap_or(if args.patch { 0.02 } else { 0.005 });
     params.hair.enabled = !args.no_hair;
     let bounds = inputs.mesh.bounds();
     if args.patch || args.mesh.is_some() {
         params.camera.target = bounds.centre();
-        params.camera.distance = bounds.size().length() * 1.3;
+        params.camera.distance = bounds.size().length() * 1.6;
+        // Face on: the patch lies in the z = 0 plane facing +z, so `--pitch 70` grazes it.
         params.camera.yaw_rad = 0.0;
-    }
-    if args.patch {
-        // The patch lies in the z = 0 plane facing +z: view it from the front, raised.
-        params.camera.pitch_rad = 0.6;
+        params.camera.pitch_rad = 0.0;
     }
     if let Some(y) = args.yaw {
         params.camera.yaw_rad = y.to_radians();

@@ -23,10 +23,10 @@ mod uniforms;
 
 pub use error::RenderError;
 pub use gpu::Gpu;
-pub use mesh::{SurfaceScale, subdivide};
+pub use mesh::SurfaceScale;
 pub use params::{
-    Camera, DEFAULT_FINE_TILE_SIZE_M, FrameParams, GrayingRampParam, HairShading, Light, PomMode,
-    SkinParams,
+    Camera, DEFAULT_FINE_TILE_SIZE_M, FrameOutput, FrameParams, GrayingRampParam, HairShading,
+    Light, PomMode, SkinParams,
 };
 pub use renderer::{COLOUR_FORMAT, DEPTH_FORMAT, Renderer, TileLayer};
 pub use uniforms::FrameUniform;

@@ -53,62 +53,34 @@ impl MeshData {
 /// vertex, so no cracks open when displaced). Positions, UVs and tangents are interpolated
 /// linearly, normals renormalised: the dense source head needs no smoothing scheme, only
 /// more vertices for the height map to move. Done once per mesh upload, never per frame.
-pub fn subdivide(
-    positions: &[Vec3],
-    normals: &[Vec3],
-    uvs: &[Vec2],
-    tangents: &[Vec4],
-    indices: &[u32],
-) -> (Vec<Vec3>, Vec<Vec3>, Vec<Vec2>, Vec<Vec4>, Vec<u32>) {
-    let mut p = positions.to_vec();
-    let mut n = normals.to_vec();
-    let mut uv = uvs.to_vec();
-    let mut t = tangents.to_vec();
-    let mut out = Vec::with_capacity(indices.len() * 4);
-    let mut midpoints: HashMap<(u32, u32), u32> = HashMap::with_capacity(indices.len() * 3 / 2);
+pub(crate) fn subdivide(data: &MeshData) -> MeshData {
+    let mut vertices = data.vertices.clone();
+    let mut indices = Vec::with_capacity(data.indices.len() * 4);
+    let mut midpoints: HashMap<(u32, u32), u32> =
+        HashMap::with_capacity(data.indices.len() * 3 / 2);
     let mut midpoint = |a: u32, b: u32| -> u32 {
-        let key = (a.min(b), a.max(b));
-        *midpoints.entry(key).or_insert_with(|| {
-            let (a, b) = (a as usize, b as usize);
-            p.push((p[a] + p[b]) * 0.5);
-            n.push((n[a] + n[b]).normalize_or(n[a]));
-            uv.push((uv[a] + uv[b]) * 0.5);
-            let tt = (t[a].truncate() + t[b].truncate()).normalize_or(t[a].truncate());
-            t.push(tt.extend(t[a].w));
-            (p.len() - 1) as u32
+        *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            let (va, vb) = (vertices[a as usize], vertices[b as usize]);
+            let mid = |x: [f32; 3], y: [f32; 3]| (Vec3::from(x) + Vec3::from(y)) * 0.5;
+            let na = Vec3::from(va.normal);
+            let ta = Vec4::from(va.tangent).truncate();
+            let t = (ta + Vec4::from(vb.tangent).truncate()).normalize_or(ta);
+            vertices.push(Vertex {
+                position: mid(va.position, vb.position).to_array(),
+                normal: mid(va.normal, vb.normal).normalize_or(na).to_array(),
+                uv: ((Vec2::from(va.uv) + Vec2::from(vb.uv)) * 0.5).to_array(),
+                tangent: t.extend(va.tangent[3]).to_array(),
+            });
+            (vertices.len() - 1) as u32
         })
     };
-    for tri in indices.chunks_exact(3) {
+    for tri in data.indices.chunks_exact(3) {
         let [a, b, c] = [tri[0], tri[1], tri[2]];
         let ab = midpoint(a, b);
         let bc = midpoint(b, c);
         let ca = midpoint(c, a);
-        out.extend_from_slice(&[a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca]);
+        indices.extend_from_slice(&[a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca]);
     }
-    (p, n, uv, t, out)
-}
-
-/// The subdivided copy of a mesh for the displacement mode.
-pub(crate) fn subdivided(mesh: &Mesh) -> MeshData {
-    let (p, n, uv, t, indices) = subdivide(
-        mesh.positions(),
-        mesh.normals(),
-        mesh.uvs(),
-        mesh.tangents(),
-        mesh.indices(),
-    );
-    let vertices = p
-        .iter()
-        .zip(&n)
-        .zip(&uv)
-        .zip(&t)
-        .map(|(((p, n), uv), t)| Vertex {
-            position: p.to_array(),
-            normal: n.to_array(),
-            uv: uv.to_array(),
-            tangent: t.to_array(),
-        })
-        .collect();
     MeshData { vertices, indices }
 }
 
@@ -199,16 +171,31 @@ mod tests {
     #[test]
     fn subdivision_shares_edges() {
         let (p, uv, idx) = quad();
-        let n = vec![Vec3::Z; 4];
-        let t = vec![Vec4::new(1.0, 0.0, 0.0, 1.0); 4];
-        let (p2, n2, uv2, t2, idx2) = subdivide(&p, &n, &uv, &t, &idx);
+        let data = MeshData {
+            vertices: p
+                .iter()
+                .zip(&uv)
+                .map(|(p, uv)| Vertex {
+                    position: p.to_array(),
+                    normal: [0.0, 0.0, 1.0],
+                    uv: uv.to_array(),
+                    tangent: [1.0, 0.0, 0.0, 1.0],
+                })
+                .collect(),
+            indices: idx,
+        };
+        let sub = subdivide(&data);
         // 5 edges (4 sides + the diagonal) → 5 new vertices; 2 → 8 triangles.
-        assert_eq!(p2.len(), 9);
-        assert_eq!(n2.len(), 9);
-        assert_eq!(uv2.len(), 9);
-        assert_eq!(t2.len(), 9);
-        assert_eq!(idx2.len(), 24);
-        let s = SurfaceScale::measure(&p2, &uv2, &idx2).expect("non-degenerate");
+        assert_eq!(sub.vertices.len(), 9);
+        assert_eq!(sub.indices.len(), 24);
+        let p2: Vec<Vec3> = sub
+            .vertices
+            .iter()
+            .map(|v| Vec3::from(v.position))
+            .collect();
+        let uv2: Vec<Vec2> = sub.vertices.iter().map(|v| Vec2::from(v.uv)).collect();
+        let s = SurfaceScale::measure(&p2, &uv2, &sub.indices).expect("non-degenerate");
         assert!((s.units_per_u - 0.2).abs() < 1e-6);
+        assert!((s.units_per_v - 0.1).abs() < 1e-6);
     }
 }

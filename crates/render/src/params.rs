@@ -132,7 +132,7 @@ impl Default for Light {
         Self {
             direction: Vec3::new(0.55, 0.6, 0.6),
             colour: Vec3::new(1.0, 0.97, 0.92),
-            intensity: 2.6,
+            intensity: 1.5,
             ambient: 0.22,
         }
     }
@@ -170,7 +170,7 @@ impl Default for SkinParams {
             disp_scale: 0.005,
             fine_blend: 0.5,
             paleness: 0.0,
-            albedo: Vec3::new(0.62, 0.40, 0.31),
+            albedo: Vec3::new(0.50, 0.30, 0.22),
             micro_relief: true,
         }
     }
@@ -227,6 +227,17 @@ impl Default for HairShading {
     }
 }
 
+/// What the skin pass writes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FrameOutput {
+    /// The lit, tone-mapped picture.
+    #[default]
+    Shaded,
+    /// For tests and tools, on an `Rgba32Float` target: (u, v) where POM hit the height
+    /// field, then (u, v) where the view ray met the polygon, unshaded.
+    PomHit,
+}
+
 /// Everything per frame in one struct.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrameParams {
@@ -238,6 +249,8 @@ pub struct FrameParams {
     pub age: f32,
     /// Background colour, linear RGB.
     pub background: Vec3,
+    /// The picture, or the POM hit coordinates.
+    pub output: FrameOutput,
 }
 
 impl Default for FrameParams {
@@ -249,6 +262,7 @@ impl Default for FrameParams {
             hair: HairShading::default(),
             age: 0.5,
             background: Vec3::new(0.035, 0.04, 0.05),
+            output: FrameOutput::Shaded,
         }
     }
 }

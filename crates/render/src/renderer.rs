@@ -9,7 +9,7 @@ use wgpu::util::DeviceExt as _;
 use crate::RenderError;
 use crate::f16::to_f16_bytes;
 use crate::hair::{INSTANCE_ATTRIBUTES, INSTANCE_STRIDE, VERTICES_PER_HAIR, count_at};
-use crate::mesh::{MeshData, SurfaceScale, VERTEX_ATTRIBUTES, Vertex, subdivided};
+use crate::mesh::{MeshData, SurfaceScale, VERTEX_ATTRIBUTES, Vertex, subdivide};
 use crate::params::{DEFAULT_FINE_TILE_SIZE_M, FrameParams, PomMode};
 use crate::shaders;
 use crate::uniforms::{FrameContext, FrameUniform};
@@ -90,7 +90,8 @@ pub struct Renderer {
 impl Renderer {
     /// Builds pipelines, layouts, samplers and placeholder layers (flat heights, full
     /// mask) for targets of `colour_format`. An sRGB format gets linear output encoded
-    /// by the hardware; any other 8-bit format gets sRGB-encoded values from the shader.
+    /// by the hardware; `Rgba8Unorm`/`Bgra8Unorm` get sRGB-encoded values from the
+    /// shader; float formats get linear values.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -341,8 +342,9 @@ impl Renderer {
         }
         let scale = SurfaceScale::measure(mesh.positions(), mesh.uvs(), mesh.indices())
             .ok_or_else(|| RenderError::InvalidMesh("every triangle has degenerate UVs".into()))?;
-        self.mesh = Some(self.create_mesh("agesim mesh", &MeshData::from_mesh(mesh)));
-        self.displaced_mesh = Some(self.create_mesh("agesim subdivided mesh", &subdivided(mesh)));
+        let data = MeshData::from_mesh(mesh);
+        self.mesh = Some(self.create_mesh("agesim mesh", &data));
+        self.displaced_mesh = Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
         self.surface_scale = scale;
         self.metres_per_unit = metres_per_unit;
         Ok(())
@@ -581,6 +583,16 @@ impl Renderer {
         Ok(())
     }
 
+    /// 8-bit targets without hardware sRGB encoding (eframe's `Bgra8Unorm`) get sRGB
+    /// values from the shader; sRGB formats are encoded by the hardware, float formats
+    /// keep linear values.
+    fn encodes_srgb(&self) -> bool {
+        matches!(
+            self.colour_format,
+            wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm
+        )
+    }
+
     /// The colour target of the last [`Renderer::encode`] (None before the first).
     pub fn colour_texture(&self) -> Option<&wgpu::Texture> {
         self.targets.as_ref().map(|t| &t.colour)
@@ -605,7 +617,7 @@ impl Renderer {
         self.ensure_targets(size_px)?;
         let ctx = FrameContext {
             size_px,
-            encode_srgb: !self.colour_format.is_srgb(),
+            encode_srgb: self.encodes_srgb(),
             micro_repeats: self
                 .surface_scale
                 .repeats(self.metres_per_unit, self.micro_info.size_m),
@@ -625,8 +637,9 @@ impl Renderer {
             return Ok(());
         };
         let bg = params.background;
+        let encode = self.encodes_srgb();
         let to_target = |c: f32| {
-            if self.colour_format.is_srgb() {
+            if !encode {
                 f64::from(c)
             } else {
                 f64::from(if c <= 0.003_130_8 {
@@ -689,12 +702,66 @@ impl Renderer {
     }
 
     /// Renders one frame offscreen and reads it back (issue 11 §4): the copy's rows are
-    /// padded to 256 bytes as wgpu requires and unpadded here. Blocks until done.
+    /// padded to 256 bytes as wgpu requires and unpadded here. Blocks until done. Needs
+    /// an 8-bit RGBA or BGRA colour format.
     pub fn render_to_image(
         &mut self,
         params: &FrameParams,
         size_px: (u32, u32),
     ) -> Result<image::RgbaImage, RenderError> {
+        let (mut pixels, bytes_per_pixel) = self.render_and_read(params, size_px)?;
+        if bytes_per_pixel != 4 {
+            return Err(RenderError::Readback(format!(
+                "render_to_image needs an 8-bit RGBA target, not {:?}",
+                self.colour_format
+            )));
+        }
+        if matches!(
+            self.colour_format,
+            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+        ) {
+            for px in pixels.chunks_exact_mut(4) {
+                px.swap(0, 2);
+            }
+        }
+        image::RgbaImage::from_raw(size_px.0, size_px.1, pixels)
+            .ok_or_else(|| RenderError::Readback("pixel count mismatch".into()))
+    }
+
+    /// Like [`Renderer::render_to_image`] for a renderer made with
+    /// `wgpu::TextureFormat::Rgba32Float`: the raw values, row-major from the top. With
+    /// [`crate::FrameOutput::PomHit`] they are (hit u, hit v, polygon u, polygon v).
+    pub fn render_to_f32(
+        &mut self,
+        params: &FrameParams,
+        size_px: (u32, u32),
+    ) -> Result<Vec<[f32; 4]>, RenderError> {
+        let (bytes, bytes_per_pixel) = self.render_and_read(params, size_px)?;
+        if bytes_per_pixel != 16 {
+            return Err(RenderError::Readback(format!(
+                "render_to_f32 needs an Rgba32Float target, not {:?}",
+                self.colour_format
+            )));
+        }
+        Ok(bytes
+            .chunks_exact(16)
+            .map(|px| {
+                let mut v = [0f32; 4];
+                for (c, b) in v.iter_mut().zip(px.chunks_exact(4)) {
+                    *c = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                }
+                v
+            })
+            .collect())
+    }
+
+    /// Encodes, copies the colour target to a buffer (rows padded to 256 bytes), waits,
+    /// and returns the unpadded bytes with the bytes per pixel.
+    fn render_and_read(
+        &mut self,
+        params: &FrameParams,
+        size_px: (u32, u32),
+    ) -> Result<(Vec<u8>, u32), RenderError> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut encoder = self
             .device
@@ -703,16 +770,12 @@ impl Renderer {
             });
         self.encode(&mut encoder, params, size_px)?;
         let (w, h) = size_px;
-        let bytes_per_pixel = self
-            .colour_format
-            .block_copy_size(None)
-            .filter(|&b| b == 4)
-            .ok_or_else(|| {
-                RenderError::Readback(format!(
-                    "unsupported colour format {:?}",
-                    self.colour_format
-                ))
-            })?;
+        let bytes_per_pixel = self.colour_format.block_copy_size(None).ok_or_else(|| {
+            RenderError::Readback(format!(
+                "unsupported colour format {:?}",
+                self.colour_format
+            ))
+        })?;
         let unpadded = w * bytes_per_pixel;
         let padded = unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
             * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
@@ -773,16 +836,7 @@ impl Renderer {
             }
         }
         buffer.unmap();
-        if matches!(
-            self.colour_format,
-            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
-        ) {
-            for px in pixels.chunks_exact_mut(4) {
-                px.swap(0, 2);
-            }
-        }
-        image::RgbaImage::from_raw(w, h, pixels)
-            .ok_or_else(|| RenderError::Readback("pixel count mismatch".into()))
+        Ok((pixels, bytes_per_pixel))
     }
 }
 

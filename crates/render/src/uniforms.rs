@@ -2,7 +2,7 @@
 //! `shaders/hair.wgsl`. Every member is a 16-byte vector so no implicit WGSL padding
 //! exists to get wrong; `tests/uniforms.rs` checks the size naga computes.
 
-use crate::params::{FrameParams, GrayingRampParam};
+use crate::params::{FrameOutput, FrameParams, GrayingRampParam};
 
 /// `struct Frame` of the shaders (see the field comments there). 256 bytes.
 #[repr(C)]
@@ -85,7 +85,16 @@ impl FrameUniform {
             hair_base: v3(hr.base_colour, hr.length.max(0.0)),
             hair_gray: v3(hr.gray_colour, hr.width_px.max(0.0)),
             hair_k: [hr.k_diff, hr.k_spec, hr.shininess.max(0.0), hr.k_amb],
-            hair_misc: [w as f32, hr.droop.max(0.0), 0.0, 0.0],
+            hair_misc: [
+                w as f32,
+                hr.droop.max(0.0),
+                if p.output == FrameOutput::PomHit {
+                    1.0
+                } else {
+                    0.0
+                },
+                0.0,
+            ],
         }
     }
 }

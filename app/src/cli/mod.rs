@@ -1,9 +1,11 @@
 //! The command line: one binary, one subcommand per task.
 
 pub mod bake;
+mod font;
 pub mod gen_assets;
 pub mod hair;
 pub mod mesh_info;
+pub mod render;
 
 use clap::{Parser, Subcommand};
 
@@ -35,6 +37,8 @@ pub enum Command {
     Hair(hair::HairArgs),
     /// Print what a head mesh (OBJ, glTF, GLB) contains: counts, size, attributes, repairs.
     MeshInfo(mesh_info::MeshInfoArgs),
+    /// Render the head with the GPU renderer (wgpu; works on lavapipe): PNGs or --bench.
+    Render(render::RenderArgs),
     /// Regenerate the default assets (masks, fine-wrinkle tile, pictures) into a folder.
     #[command(hide = true)]
     GenAssets(gen_assets::GenAssetsArgs),
@@ -52,5 +56,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             frames: cli.frames,
         }),
         Some(Command::Bake(args)) => bake::run(&args),
+        Some(Command::Render(args)) => render::run(&args),
     }
 }

@@ -6,6 +6,7 @@ mod app;
 pub mod fields_ui;
 pub mod map_view;
 pub mod timeline;
+pub mod viewport;
 pub mod worker;
 
 pub use app::{EditorApp, EditorOptions};

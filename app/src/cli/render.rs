@@ -1,0 +1,548 @@
+//! `agesim render`: headless renders of the head with the wgpu renderer (issue 11 §4),
+//! and `--bench`, the frame-time table of [T] fig. 8.5 (BENCHMARKS.md).
+//!
+//! The CPU inputs (mesh, large-wrinkle heights, micro-relief tile, fine-wrinkle tile,
+//! wrinkle mask, hair instances) are gathered in ONE place, [`SceneInputs::gather`], and
+//! the age dependence in ONE place, [`AgeFrame::at`]: the engine's `Scene` and age model
+//! replace exactly those two.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use agesim_core::fine_wrinkles::{self, DEFAULT_FINE_WRINKLES};
+use agesim_core::hair::{DEFAULT_DENSITY_PER_CM2, HairInstances, HairParams, SurfaceRef};
+use agesim_core::muscle::{self, Fibre, LargeWrinkleSettings};
+use agesim_core::project::Project;
+use agesim_core::transition::{DistanceMetric, TransitionTexture};
+use agesim_core::{HeightMap, Mask, Mesh, head, wrinkle_file};
+use agesim_render::{FrameParams, Gpu, PomMode, Renderer, TileLayer};
+use anyhow::{Context as _, bail};
+
+/// Render the head with the GPU renderer (wgpu; lavapipe works).
+#[derive(Debug, clap::Args)]
+pub struct RenderArgs {
+    /// Project file (`*.agesim.json`): wrinkles, mask, micro-relief. Default: the default project.
+    #[arg(long, value_name = "FILE")]
+    pub project: Option<PathBuf>,
+    /// Head mesh (OBJ, glTF, GLB). Default: the built-in default head (metres).
+    #[arg(long, value_name = "FILE")]
+    pub mesh: Option<PathBuf>,
+    /// Length of one mesh unit in metres (0.01 for a mesh in centimetres).
+    #[arg(long, default_value_t = 1.0)]
+    pub metres_per_unit: f32,
+    /// Draw the 5 cm skin patch instead of the head (close-ups of the relief).
+    #[arg(long, conflicts_with = "mesh")]
+    pub patch: bool,
+    /// Age t in [0, 1].
+    #[arg(long, conflicts_with_all = ["age_years", "ages"])]
+    pub age: Option<f32>,
+    /// Age in years, 20..=80 (t = (Y − 20)/60).
+    #[arg(long, conflicts_with = "ages")]
+    pub age_years: Option<f32>,
+    /// Several ages t, comma separated: writes FILE_0000.png, FILE_0001.png, ….
+    #[arg(long, value_delimiter = ',')]
+    pub ages: Vec<f32>,
+    /// How the large wrinkles are drawn.
+    #[arg(long, value_enum, default_value = "combined")]
+    pub pom: PomArg,
+    /// Linear search steps L.
+    #[arg(long, default_value_t = 8)]
+    pub linear: u32,
+    /// Binary search steps B.
+    #[arg(long, default_value_t = 4)]
+    pub binary: u32,
+    /// dispScale: depth of the large wrinkles in UV units. Default 0.005 on a head ([T];
+    /// ≈ 2.5 mm on the default head), 0.02 on the 5 cm patch (≈ 1 mm).
+    #[arg(long)]
+    pub disp_scale: Option<f32>,
+    /// Image size, WxH pixels.
+    #[arg(long, default_value = "800x800", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Camera yaw, degrees (0 = from the front, positive = from the subject's left).
+    #[arg(long, allow_hyphen_values = true)]
+    pub yaw: Option<f32>,
+    /// Camera pitch, degrees.
+    #[arg(long, allow_hyphen_values = true)]
+    pub pitch: Option<f32>,
+    /// Camera distance, mesh units.
+    #[arg(long)]
+    pub distance: Option<f32>,
+    /// Vertical field of view, degrees.
+    #[arg(long, default_value_t = 30.0)]
+    pub fov: f32,
+    /// Young and old side by side with their ages printed: T0,T1.
+    #[arg(long, value_delimiter = ',', num_args = 2, conflicts_with = "ages")]
+    pub compare: Vec<f32>,
+    /// No hair pass.
+    #[arg(long)]
+    pub no_hair: bool,
+    /// Hair density, hairs per cm².
+    #[arg(long, default_value_t = DEFAULT_DENSITY_PER_CM2)]
+    pub hair_density: f32,
+    /// Side of the large-wrinkle and micro-relief maps, pixels.
+    #[arg(long, default_value_t = 1024)]
+    pub map_size: u32,
+    /// Print the frame-time table (POM modes × iteration counts, normal-only,
+    /// displacement, hair on/off) instead of writing an image.
+    #[arg(long)]
+    pub bench: bool,
+    /// Output PNG (not needed with --bench).
+    #[arg(long, required_unless_present = "bench")]
+    pub out: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum PomArg {
+    Linear,
+    Binary,
+    Combined,
+    Normal,
+    Displacement,
+}
+
+impl From<PomArg> for PomMode {
+    fn from(p: PomArg) -> Self {
+        match p {
+            PomArg::Linear => PomMode::Linear,
+            PomArg::Binary => PomMode::Binary,
+            PomArg::Combined => PomMode::Combined,
+            PomArg::Normal => PomMode::NormalOnly,
+            PomArg::Displacement => PomMode::Displacement,
+        }
+    }
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WxH, got `{s}`"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&n| (1..=8192).contains(&n))
+            .ok_or_else(|| format!("`{v}` is not a size in 1..=8192"))
+    };
+    Ok((parse(w)?, parse(h)?))
+}
+
+/// Default side of the fine-wrinkle tile, pixels.
+const FINE_TILE_PX: u32 = 512;
+/// Fine-wrinkle normal strength (tile UV per height unit): the default tile's creases
+/// (σ ≈ 0.0035 tile, depth ≈ 1) then tilt the normal by up to ≈ 25°.
+const FINE_STRENGTH: f32 = 0.0015;
+
+/// Everything on the CPU the renderer needs, made once. The engine's `Scene` replaces it.
+pub struct SceneInputs {
+    pub mesh: Mesh,
+    pub metres_per_unit: f32,
+    /// Large wrinkles at full age, normalised to [0, 1] (SPEC §1).
+    pub large_full: HeightMap,
+    pub micro: HeightMap,
+    pub micro_size_m: f32,
+    pub micro_strength: f32,
+    pub fine: HeightMap,
+    pub fine_size_m: f32,
+    pub fine_strength: f32,
+    pub mask: Mask,
+    pub hairs: Option<HairInstances>,
+}
+
+/// What changes with age, computed from t. A stand-in for the engine's age model.
+pub struct AgeFrame {
+    /// Multiplier of the large-wrinkle heights.
+    pub large_scale: f32,
+    pub fine_blend: f32,
+    pub paleness: f32,
+}
+
+impl AgeFrame {
+    pub fn at(t: f32) -> Self {
+        let t = t.clamp(0.0, 1.0);
+        Self {
+            large_scale: muscle::smoothstep(t),
+            fine_blend: t,
+            paleness: 0.5 * t,
+        }
+    }
+}
+
+impl SceneInputs {
+    /// Loads or makes every input: the project's wrinkles (the default head's files and
+    /// mask when it names none) rasterised at `map_px`², the micro-relief baked tileable
+    /// at `map_px`², the default fine-wrinkle tile, the default hair masks' transition
+    /// texture and the hair instances (none when `density` is 0).
+    pub fn gather(
+        project: &Project,
+        mesh: Option<&Path>,
+        patch: bool,
+        metres_per_unit: f32,
+        map_px: u32,
+        density: f32,
+    ) -> anyhow::Result<Self> {
+        let mesh = match (mesh, patch) {
+            (Some(path), _) => Mesh::load(path)?,
+            (None, true) => head::skin_patch(),
+            (None, false) => head::default_head(),
+        };
+        // As `agesim bake`: the project's mask, or the default head's with its default
+        // wrinkle files.
+        let large_mask = match &project.large.mask {
+            Some(path) => Some(Mask::load(path)?),
+            None if project.large.wrinkles.is_empty() => {
+                let (name, bytes) = agesim_core::defaults::WRINKLE_MASK;
+                Some(Mask::decode(bytes, Path::new(name))?)
+            }
+            None => None,
+        };
+        let large_full = if patch {
+            // The patch's UV square is 5 cm of skin: a few parallel forehead-like creases.
+            patch_wrinkles(map_px)?
+        } else {
+            let settings = LargeWrinkleSettings {
+                gamma: project.large.gamma,
+                mask: large_mask.as_ref(),
+            };
+            muscle::rasterize(&load_fibres(project)?, map_px, map_px, &settings)?
+        };
+        // Fine wrinkles show where the large ones may (everywhere without a mask).
+        let mask = match large_mask {
+            Some(mask) if !patch => mask,
+            _ => Mask::from_values(1, 1, vec![1.0])?,
+        };
+        let mut tiled = project.clone();
+        // A tile repeated over the head must wrap.
+        tiled.tile = true;
+        let (micro, _) = tiled.micro_relief()?.bake(map_px)?;
+        let fine = fine_wrinkles::generate(FINE_TILE_PX, &DEFAULT_FINE_WRINKLES)?;
+        let hairs = if density > 0.0 && !patch {
+            let outer = Mask::decode(HAIR_OUTER.1, Path::new(HAIR_OUTER.0))?;
+            let inner = Mask::decode(HAIR_INNER.1, Path::new(HAIR_INNER.0))?;
+            let transition =
+                TransitionTexture::from_masks(&outer, &inner, 512, 512, DistanceMetric::Chebyshev)?;
+            let surface =
+                SurfaceRef::new(mesh.positions(), mesh.normals(), mesh.uvs(), mesh.indices())?;
+            let params = HairParams::new(density, metres_per_unit)?;
+            Some(HairInstances::generate(&surface, &transition, &params)?)
+        } else {
+            None
+        };
+        Ok(Self {
+            mesh,
+            metres_per_unit,
+            large_full,
+            micro,
+            micro_size_m: project.map_size_mm * 1e-3,
+            micro_strength: project.normal.strength,
+            fine,
+            fine_size_m: agesim_render::DEFAULT_FINE_TILE_SIZE_M,
+            fine_strength: FINE_STRENGTH,
+            mask,
+            hairs,
+        })
+    }
+
+    /// Uploads everything that does not change with age.
+    pub fn upload_static(&self, renderer: &mut Renderer) -> anyhow::Result<()> {
+        renderer.upload_mesh(&self.mesh, self.metres_per_unit)?;
+        renderer.upload_tile(
+            TileLayer::Micro,
+            &self.micro,
+            self.micro_size_m,
+            self.micro_strength,
+        )?;
+        renderer.upload_tile(
+            TileLayer::Fine,
+            &self.fine,
+            self.fine_size_m,
+            self.fine_strength,
+        )?;
+        renderer.upload_wrinkle_mask(&self.mask)?;
+        if let Some(hairs) = &self.hairs {
+            renderer.upload_hair(hairs);
+        }
+        Ok(())
+    }
+
+    /// Uploads what changes with age and fills the age fields of `params`.
+    pub fn upload_age(
+        &self,
+        renderer: &mut Renderer,
+        t: f32,
+        params: &mut FrameParams,
+    ) -> anyhow::Result<()> {
+        let age = AgeFrame::at(t);
+        let data = self
+            .large_full
+            .data()
+            .iter()
+            .map(|h| h * age.large_scale)
+            .collect();
+        let large = HeightMap::from_vec(
+            self.large_full.width_px(),
+            self.large_full.height_px(),
+            data,
+        )?;
+        renderer.upload_large_wrinkles(&large)?;
+        params.age = t;
+        params.skin.fine_blend = age.fine_blend;
+        params.skin.paleness = age.paleness;
+        Ok(())
+    }
+}
+
+type DefaultMask = (&'static str, &'static [u8]);
+const HAIR_OUTER: DefaultMask = (
+    "hair-outer.png",
+    include_bytes!("../../../assets/masks/hair-outer.png"),
+);
+const HAIR_INNER: DefaultMask = (
+    "hair-inner.png",
+    include_bytes!("../../../assets/masks/hair-inner.png"),
+);
+
+/// The project's wrinkle files, or the default head's.
+fn load_fibres(project: &Project) -> anyhow::Result<Vec<Fibre>> {
+    let mut fibres = Vec::new();
+    if project.large.wrinkles.is_empty() {
+        for (name, text) in agesim_core::defaults::WRINKLE_FILES {
+            let file =
+                wrinkle_file::parse(text, Path::new(name)).map_err(|e| anyhow::anyhow!("{e}"))?;
+            fibres.extend(file.fibres().cloned());
+        }
+    } else {
+        for path in &project.large.wrinkles {
+            let bytes = std::fs::read(path)
+                .with_context(|| format!("cannot read wrinkle file {}", path.display()))?;
+            let file =
+                wrinkle_file::parse_bytes(&bytes, path).map_err(|e| anyhow::anyhow!("{e}"))?;
+            fibres.extend(file.fibres().cloned());
+        }
+    }
+    Ok(fibres)
+}
+
+/// Horizontal creases with a rounded valley profile over the patch, heights in [0, 1].
+fn patch_wrinkles(size_px: u32) -> anyhow::Result<HeightMap> {
+    let n = size_px as usize;
+    let mut data = Vec::with_capacity(n * n);
+    for y in 0..size_px {
+        let v = agesim_core::heightmap::pixel_to_v(y, size_px);
+        for x in 0..size_px {
+            let u = agesim_core::heightmap::pixel_to_u(x, size_px);
+            // 5 creases over 5 cm, gently waving; crest = 1, valley floor = 0.
+            let phase = (v * 5.0 + 0.04 * (u * 9.0).sin()) * std::f32::consts::TAU;
+            data.push((0.5 + 0.5 * phase.cos()).powf(0.4));
+        }
+    }
+    Ok(HeightMap::from_vec(size_px, size_px, data)?)
+}
+
+fn years_to_t(years: f32) -> f32 {
+    ((years - 20.0) / 60.0).clamp(0.0, 1.0)
+}
+
+fn t_to_years(t: f32) -> f32 {
+    20.0 + 60.0 * t
+}
+
+pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+    for &t in args.ages.iter().chain(&args.compare).chain(&args.age) {
+        if !(0.0..=1.0).contains(&t) {
+            bail!("age t = {t} is outside [0, 1]");
+        }
+    }
+    let project = match &args.project {
+        Some(path) => Project::load(path)?,
+        None => Project::default(),
+    };
+    let start = Instant::now();
+    let density = if args.no_hair { 0.0 } else { args.hair_density };
+    let inputs = SceneInputs::gather(
+        &project,
+        args.mesh.as_deref(),
+        args.patch,
+        args.metres_per_unit,
+        args.map_size,
+        density,
+    )?;
+    let gather_ms = start.elapsed().as_secs_f64() * 1e3;
+
+    let gpu = Gpu::new()?;
+    println!("adapter: {}", gpu.adapter_description());
+    let mut renderer = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT)?;
+    inputs.upload_static(&mut renderer)?;
+
+    let mut params = FrameParams::default();
+    params.skin.pom_mode = args.pom.into();
+    params.skin.linear_steps = args.linear;
+    params.skin.binary_steps = args.binary;
+    params.skin.disp_scale = args
+        .disp_scale
+        .unwrap_or(if args.patch { 0.02 } else { 0.005 });
+    params.hair.enabled = !args.no_hair;
+    let bounds = inputs.mesh.bounds();
+    if args.patch || args.mesh.is_some() {
+        params.camera.target = bounds.centre();
+        params.camera.distance = bounds.size().length() * 1.6;
+        // Face on: the patch lies in the z = 0 plane facing +z, so `--pitch 70` grazes it.
+        params.camera.yaw_rad = 0.0;
+        params.camera.pitch_rad = 0.0;
+    }
+    if let Some(y) = args.yaw {
+        params.camera.yaw_rad = y.to_radians();
+    }
+    if let Some(p) = args.pitch {
+        params.camera.pitch_rad = p.to_radians();
+    }
+    if let Some(d) = args.distance {
+        params.camera.distance = d;
+    }
+    params.camera.fov_y_rad = args.fov.to_radians();
+
+    if args.bench {
+        return bench(&inputs, &mut renderer, params, &gpu);
+    }
+    let Some(out) = &args.out else {
+        bail!("--out is required");
+    };
+
+    if !args.compare.is_empty() {
+        let [t0, t1] = [args.compare[0], args.compare[1]];
+        let mut images = Vec::new();
+        for t in [t0, t1] {
+            inputs.upload_age(&mut renderer, t, &mut params)?;
+            let mut img = renderer.render_to_image(&params, args.size)?;
+            let label = format!("T={t:.2} {:.0}Y", t_to_years(t));
+            crate::cli::font::draw_text(&mut img, 8, 8, 3, &label, [255, 255, 255, 255]);
+            images.push(img);
+        }
+        let (w, h) = args.size;
+        let mut side = image::RgbaImage::new(2 * w, h);
+        for (i, img) in images.iter().enumerate() {
+            image::imageops::replace(&mut side, img, i as i64 * i64::from(w), 0);
+        }
+        save(&side, out)?;
+        println!(
+            "{} (t = {t0} | t = {t1}) in {gather_ms:.0} ms + render",
+            out.display()
+        );
+        return Ok(());
+    }
+
+    let ages: Vec<f32> = if !args.ages.is_empty() {
+        args.ages.clone()
+    } else if let Some(y) = args.age_years {
+        vec![years_to_t(y)]
+    } else {
+        vec![args.age.unwrap_or(0.5)]
+    };
+    for (i, &t) in ages.iter().enumerate() {
+        inputs.upload_age(&mut renderer, t, &mut params)?;
+        let start = Instant::now();
+        let img = renderer.render_to_image(&params, args.size)?;
+        let render_ms = start.elapsed().as_secs_f64() * 1e3;
+        let path = if ages.len() > 1 {
+            numbered(out, i)
+        } else {
+            out.clone()
+        };
+        save(&img, &path)?;
+        println!(
+            "{}: t = {t:.2} ({:.0} years), {} hairs, {} {}+{}, inputs {gather_ms:.0} ms, frame {render_ms:.0} ms",
+            path.display(),
+            t_to_years(t),
+            renderer.hair_count(t) * u32::from(params.hair.enabled),
+            params.skin.pom_mode.name(),
+            params.skin.linear_steps,
+            params.skin.binary_steps,
+        );
+    }
+    Ok(())
+}
+
+/// FILE.png → FILE_0003.png.
+fn numbered(out: &Path, i: usize) -> PathBuf {
+    let stem = out
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    let ext = out
+        .extension()
+        .map_or_else(|| "png".into(), |e| e.to_string_lossy().into_owned());
+    out.with_file_name(format!("{stem}_{i:04}.{ext}"))
+}
+
+fn save(img: &image::RgbaImage, path: &Path) -> anyhow::Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    img.save(path)
+        .with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// [T] fig. 8.5 as a table: median frame time (encode + submit + wait, readback
+/// excluded) at 1280×720 for each mode and iteration count.
+fn bench(
+    inputs: &SceneInputs,
+    renderer: &mut Renderer,
+    mut params: FrameParams,
+    gpu: &Gpu,
+) -> anyhow::Result<()> {
+    const SIZE: (u32, u32) = (1280, 720);
+    const RUNS: usize = 5;
+    inputs.upload_age(renderer, 0.75, &mut params)?;
+    let hairs = renderer.hair_count(0.75);
+    let mut time = |p: &FrameParams| -> anyhow::Result<f64> {
+        let mut samples = Vec::with_capacity(RUNS);
+        for run in 0..=RUNS {
+            let start = Instant::now();
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("agesim bench frame"),
+                });
+            renderer.encode(&mut encoder, p, SIZE)?;
+            let index = gpu.queue.submit([encoder.finish()]);
+            gpu.device
+                .poll(wgpu::PollType::Wait {
+                    submission_index: Some(index),
+                    timeout: None,
+                })
+                .map_err(|e| anyhow::anyhow!("{e}"))?;
+            // The first run warms caches and compiles the pipelines' shaders.
+            if run > 0 {
+                samples.push(start.elapsed().as_secs_f64() * 1e3);
+            }
+        }
+        samples.sort_by(f64::total_cmp);
+        Ok(samples[RUNS / 2])
+    };
+    println!("adapter: {}", gpu.adapter_description());
+    println!("1280×720, default head at t = 0.75, {hairs} hairs; median of {RUNS} frames, ms");
+    println!("| mode | L | B | hair off | hair on |");
+    println!("|---|---|---|---|---|");
+    let mut row = |mode: PomMode, l: u32, b: u32| -> anyhow::Result<()> {
+        let mut p = params;
+        p.skin.pom_mode = mode;
+        p.skin.linear_steps = l;
+        p.skin.binary_steps = b;
+        p.hair.enabled = false;
+        let off = time(&p)?;
+        p.hair.enabled = true;
+        let on = time(&p)?;
+        println!("| {} | {l} | {b} | {off:.1} | {on:.1} |", mode.name());
+        Ok(())
+    };
+    for l in [4, 8, 16, 32] {
+        row(PomMode::Linear, l, 0)?;
+    }
+    for b in [4, 8, 16] {
+        row(PomMode::Binary, 0, b)?;
+    }
+    for (l, b) in [(4, 2), (8, 4), (16, 8), (32, 8)] {
+        row(PomMode::Combined, l, b)?;
+    }
+    row(PomMode::NormalOnly, 0, 0)?;
+    row(PomMode::Displacement, 0, 0)?;
+    Ok(())
+}

@@ -1,0 +1,256 @@
+//! The 3D view: the renderer (`agesim-render`) draws the head into its own colour and
+//! depth targets on eframe's wgpu device; the colour target is shown as an egui image
+//! (registered as a native texture). Drag to orbit, right-drag to pan, scroll to zoom,
+//! Shift+drag to move the light, double-click to frame the head.
+//!
+//! A frame is encoded and submitted only when something it shows changed (the maps, the
+//! project's view, age or shading, the size): on a CPU adapter an unchanged view costs
+//! nothing. Uploads happen when the worker's snapshot brings a new map.
+
+use std::sync::Arc;
+
+use agesim_core::project::Project;
+use agesim_render::{Renderer, TileLayer};
+use eframe::egui_wgpu;
+use egui::{Rect, Sense};
+use glam::Vec3;
+
+use super::worker::Snapshot;
+use crate::frame;
+
+/// The identity of an uploaded map: the address of its shared allocation.
+fn stamp<T>(a: &Option<Arc<T>>) -> usize {
+    a.as_ref().map_or(0, |a| Arc::as_ptr(a) as usize)
+}
+
+#[derive(Default, PartialEq, Eq, Clone, Copy)]
+struct Uploaded {
+    mesh: usize,
+    large: usize,
+    micro: usize,
+    fine: usize,
+    hair: usize,
+}
+
+pub struct Viewport {
+    renderer: Renderer,
+    texture: Option<egui::TextureId>,
+    uploaded: Uploaded,
+    /// The head's centre, the orbit's target (mesh units).
+    centre: Vec3,
+    pan: Vec3,
+    last: Option<(agesim_render::FrameParams, [u32; 2], Uploaded)>,
+    /// Time to encode and submit the last frame, ms.
+    pub encode_ms: f64,
+    /// Hairs drawn in the last frame.
+    pub hairs_drawn: u32,
+    pub error: Option<String>,
+}
+
+impl Viewport {
+    pub fn new(rs: &egui_wgpu::RenderState) -> Result<Self, agesim_render::RenderError> {
+        Ok(Self {
+            renderer: Renderer::new(&rs.device, &rs.queue, agesim_render::COLOUR_FORMAT)?,
+            texture: None,
+            uploaded: Uploaded::default(),
+            centre: Vec3::ZERO,
+            pan: Vec3::ZERO,
+            last: None,
+            encode_ms: 0.0,
+            hairs_drawn: 0,
+            error: None,
+        })
+    }
+
+    /// Uploads what the snapshot brought that the GPU does not have yet.
+    fn upload(&mut self, snapshot: &Snapshot, project: &Project) {
+        let mut result = Ok(());
+        if stamp(&snapshot.mesh) != self.uploaded.mesh
+            && let Some(mesh) = &snapshot.mesh
+        {
+            self.centre = mesh.bounds().centre();
+            result = result.and(
+                self.renderer
+                    .upload_mesh(mesh, project.mesh.metres_per_unit),
+            );
+            self.uploaded.mesh = stamp(&snapshot.mesh);
+        }
+        if stamp(&snapshot.large01) != self.uploaded.large
+            && let Some(large) = &snapshot.large01
+        {
+            result = result.and(self.renderer.upload_large_wrinkles(large));
+            self.uploaded.large = stamp(&snapshot.large01);
+        }
+        if stamp(&snapshot.micro) != self.uploaded.micro
+            && let Some(micro) = &snapshot.micro
+        {
+            result = result.and(self.renderer.upload_tile(
+                TileLayer::Micro,
+                &micro.height,
+                project.map_size_mm / 1000.0,
+                project.normal.strength,
+            ));
+            self.uploaded.micro = stamp(&snapshot.micro);
+        }
+        if stamp(&snapshot.fine) != self.uploaded.fine
+            && let Some(fine) = &snapshot.fine
+        {
+            result = result.and(self.renderer.upload_tile(
+                TileLayer::Fine,
+                fine,
+                project.fine.size_mm / 1000.0,
+                project.fine.strength,
+            ));
+            self.uploaded.fine = stamp(&snapshot.fine);
+        }
+        if stamp(&snapshot.hair) != self.uploaded.hair
+            && let Some(hair) = &snapshot.hair
+        {
+            self.renderer.upload_hair(hair);
+            self.uploaded.hair = stamp(&snapshot.hair);
+        }
+        if let Err(e) = result {
+            self.error = Some(e.to_string());
+        }
+    }
+
+    /// Frames the head: the project's default view, no pan.
+    pub fn reset(&mut self, project: &mut Project) {
+        let d = agesim_core::project::ViewSection::default();
+        project.view.camera_yaw_deg = d.camera_yaw_deg;
+        project.view.camera_pitch_deg = d.camera_pitch_deg;
+        project.view.camera_distance_m = d.camera_distance_m;
+        self.pan = Vec3::ZERO;
+    }
+
+    /// Draws the view into the rest of `ui`; mouse input edits `project.view`.
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        rs: &egui_wgpu::RenderState,
+        snapshot: &Snapshot,
+        project: &mut Project,
+    ) -> Rect {
+        let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
+        self.interact(ui, &response, project);
+        self.upload(snapshot, project);
+        let Some(factors) = &snapshot.factors else {
+            return rect;
+        };
+        // The age shown is the document's; the maps are the last baked ones.
+        let mut factors = factors.clone();
+        factors.t = project.age.t;
+        let mut camera = frame::camera(project, self.centre + self.pan);
+        camera.distance = camera.distance.max(1e-3);
+        let params = frame::frame_params(project, &factors, camera);
+        let ppp = ui.ctx().pixels_per_point();
+        let size = [
+            ((rect.width() * ppp) as u32).clamp(16, 4096),
+            ((rect.height() * ppp) as u32).clamp(16, 4096),
+        ];
+        let key = (params, size, self.uploaded);
+        if self.last.as_ref() != Some(&key) {
+            let start = std::time::Instant::now();
+            let mut encoder =
+                rs.device
+                    .create_command_encoder(&eframe::wgpu::CommandEncoderDescriptor {
+                        label: Some("agesim editor 3D view"),
+                    });
+            match self
+                .renderer
+                .encode(&mut encoder, &params, (size[0], size[1]))
+            {
+                Ok(()) => {
+                    rs.queue.submit([encoder.finish()]);
+                    if let Some(view) = self.renderer.colour_view() {
+                        let mut egui_renderer = rs.renderer.write();
+                        match self.texture {
+                            Some(id) => egui_renderer.update_egui_texture_from_wgpu_texture(
+                                &rs.device,
+                                view,
+                                eframe::wgpu::FilterMode::Linear,
+                                id,
+                            ),
+                            None => {
+                                self.texture = Some(egui_renderer.register_native_texture(
+                                    &rs.device,
+                                    view,
+                                    eframe::wgpu::FilterMode::Linear,
+                                ));
+                            }
+                        }
+                    }
+                    self.hairs_drawn = if params.hair.enabled {
+                        self.renderer.hair_count(params.age)
+                    } else {
+                        0
+                    };
+                    self.error = None;
+                }
+                Err(e) => self.error = Some(e.to_string()),
+            }
+            self.encode_ms = start.elapsed().as_secs_f64() * 1e3;
+            self.last = Some(key);
+        }
+        if let Some(id) = self.texture {
+            ui.painter().image(
+                id,
+                rect,
+                Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                egui::Color32::WHITE,
+            );
+        }
+        if let Some(e) = &self.error {
+            ui.painter().text(
+                rect.left_top() + egui::vec2(8.0, 8.0),
+                egui::Align2::LEFT_TOP,
+                e,
+                egui::FontId::proportional(13.0),
+                egui::Color32::from_rgb(255, 110, 90),
+            );
+        }
+        rect
+    }
+
+    fn interact(&mut self, ui: &egui::Ui, response: &egui::Response, project: &mut Project) {
+        let v = &mut project.view;
+        let shift = ui.input(|i| i.modifiers.shift);
+        if response.dragged_by(egui::PointerButton::Primary) {
+            let d = response.drag_delta();
+            if shift {
+                v.light_yaw_deg = (v.light_yaw_deg - d.x * 0.5).rem_euclid(360.0);
+                v.light_pitch_deg = (v.light_pitch_deg + d.y * 0.5).clamp(-89.0, 89.0);
+            } else {
+                v.camera_yaw_deg = (v.camera_yaw_deg - d.x * 0.4).rem_euclid(360.0);
+                v.camera_pitch_deg = (v.camera_pitch_deg + d.y * 0.4).clamp(-85.0, 85.0);
+            }
+        }
+        if response.dragged_by(egui::PointerButton::Secondary)
+            || response.dragged_by(egui::PointerButton::Middle)
+        {
+            let d = response.drag_delta();
+            let (yaw, pitch) = (
+                v.camera_yaw_deg.to_radians(),
+                v.camera_pitch_deg.to_radians(),
+            );
+            let right = Vec3::new(yaw.cos(), 0.0, -yaw.sin());
+            let up = Vec3::new(
+                -pitch.sin() * yaw.sin(),
+                pitch.cos(),
+                -pitch.sin() * yaw.cos(),
+            );
+            let scale = v.camera_distance_m / project.mesh.metres_per_unit.max(1e-9) * 0.0015;
+            self.pan += (-right * d.x + up * d.y) * scale;
+        }
+        if response.hovered() {
+            let scroll = ui.input(|i| i.smooth_scroll_delta.y + i.zoom_delta().ln() * 200.0);
+            if scroll != 0.0 {
+                v.camera_distance_m =
+                    (v.camera_distance_m * (-scroll * 0.002).exp()).clamp(0.02, 20.0);
+            }
+        }
+        if response.double_clicked() {
+            self.reset(project);
+        }
+    }
+}

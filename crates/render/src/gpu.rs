@@ -1,0 +1,50 @@
+//! A headless device for the command line, tests and benchmarks. The editor does not use
+//! this: it hands eframe's device to [`crate::Renderer::new`].
+
+use crate::RenderError;
+
+/// An adapter, its device and queue, created without a window.
+pub struct Gpu {
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+}
+
+impl Gpu {
+    /// Picks the default adapter (on the CI and dev machines lavapipe, the CPU Vulkan
+    /// driver; `WGPU_BACKEND`/`WGPU_ADAPTER_NAME` are honoured) with the default limits.
+    pub fn new() -> Result<Self, RenderError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter =
+            pollster::block_on(
+                instance.request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::from_env()
+                        .unwrap_or(wgpu::PowerPreference::HighPerformance),
+                    force_fallback_adapter: false,
+                    compatible_surface: None,
+                    ..Default::default()
+                }),
+            )
+            .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("agesim headless device"),
+            ..Default::default()
+        }))
+        .map_err(|e| RenderError::Device(e.to_string()))?;
+        Ok(Self {
+            adapter,
+            device,
+            queue,
+        })
+    }
+
+    /// "name (backend, device type)", for the command line and the benchmark table.
+    pub fn adapter_description(&self) -> String {
+        let info = self.adapter.get_info();
+        format!(
+            "{} ({:?}, {:?}, driver {})",
+            info.name, info.backend, info.device_type, info.driver_info
+        )
+    }
+}

@@ -1,0 +1,71 @@
+//! The hair instance buffer's layout: `agesim_core::hair::HairInstance` (32 bytes, SPEC
+//! §6) read directly as per-instance vertex attributes, so uploads are one memcpy.
+
+use agesim_core::hair::AgeLevel;
+
+/// Quads per hair ribbon; keep equal to `SEGMENTS` in `shaders/hair.wgsl`.
+pub(crate) const SEGMENTS: u32 = 4;
+/// Vertices of one hair's triangle strip.
+pub(crate) const VERTICES_PER_HAIR: u32 = 2 * (SEGMENTS + 1);
+
+pub(crate) const INSTANCE_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
+    0 => Float32x3, // position
+    1 => Float32,   // disappear_age
+    2 => Snorm16x2, // direction_oct
+    3 => Float32,   // graying_onset
+    4 => Unorm16x2, // uv
+    5 => Float32,   // random
+];
+
+/// Stride of one instance, bytes.
+pub(crate) const INSTANCE_STRIDE: u64 = 32;
+
+/// count(t) from the cumulative table (the same rule as `HairInstances::count`: hairs
+/// with a_k ≥ t), kept here so the renderer needs only the table, not the instances.
+pub(crate) fn count_at(levels: &[AgeLevel], t: f32) -> u32 {
+    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+    let k = levels.partition_point(|l| l.age >= t);
+    if k == 0 { 0 } else { levels[k - 1].count }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn instance_layout_matches_core() {
+        assert_eq!(
+            std::mem::size_of::<agesim_core::hair::HairInstance>() as u64,
+            INSTANCE_STRIDE
+        );
+        let end = INSTANCE_ATTRIBUTES
+            .iter()
+            .map(|a| a.offset + a.format.size())
+            .max();
+        assert_eq!(end, Some(INSTANCE_STRIDE));
+    }
+
+    #[test]
+    fn count_follows_levels() {
+        let levels = [
+            AgeLevel {
+                age: 1.0,
+                count: 10,
+            },
+            AgeLevel {
+                age: 0.5,
+                count: 30,
+            },
+            AgeLevel {
+                age: 0.2,
+                count: 35,
+            },
+        ];
+        assert_eq!(count_at(&levels, 0.0), 35);
+        assert_eq!(count_at(&levels, 0.2), 35);
+        assert_eq!(count_at(&levels, 0.3), 30);
+        assert_eq!(count_at(&levels, 0.9), 10);
+        assert_eq!(count_at(&levels, 1.0), 10);
+        assert_eq!(count_at(&[], 0.5), 0);
+    }
+}

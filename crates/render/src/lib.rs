@@ -1,0 +1,32 @@
+//! The agesim renderer (SPEC §5–§6, issue 11): wgpu 30, shared with the editor's eframe
+//! device. The skin pass does parallax occlusion mapping of the large wrinkles with fine
+//! wrinkles and micro-relief on top; the hair pass draws every hair present at age t in
+//! one instanced draw with Kajiya–Kay shading.
+//!
+//! Use: create one [`Renderer`] from the device, queue and colour format; upload each
+//! input once and again only when it changes ([`Renderer::upload_mesh`],
+//! [`Renderer::upload_large_wrinkles`], [`Renderer::upload_tile`] (micro-relief, fine
+//! wrinkles), [`Renderer::upload_wrinkle_mask`],
+//! [`Renderer::upload_hair`]); each frame call [`Renderer::encode`] (into the caller's
+//! encoder, e.g. in an egui callback's `prepare`) with a [`FrameParams`], then composite
+//! [`Renderer::colour_view`]. Headless: [`Gpu::new`] and [`Renderer::render_to_image`].
+
+mod error;
+mod f16;
+mod gpu;
+mod hair;
+mod mesh;
+mod params;
+mod renderer;
+pub mod shaders;
+mod uniforms;
+
+pub use error::RenderError;
+pub use gpu::Gpu;
+pub use mesh::SurfaceScale;
+pub use params::{
+    Camera, DEFAULT_FINE_TILE_SIZE_M, FrameOutput, FrameParams, GrayingRampParam, HairShading,
+    Light, PomMode, SkinParams,
+};
+pub use renderer::{COLOUR_FORMAT, DEPTH_FORMAT, Renderer, TileLayer};
+pub use uniforms::FrameUniform;

@@ -1,0 +1,201 @@
+//! Mesh data for the GPU: the interleaved vertex, the one-time subdivision for the
+//! displacement mode ([P] eq. 14) and the measured UV density that puts the tiles at
+//! their physical size (SPEC §5).
+
+use std::collections::HashMap;
+
+use agesim_core::Mesh;
+use glam::{Vec2, Vec3, Vec4};
+
+/// One vertex as the skin pipeline reads it (48 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+    pub tangent: [f32; 4],
+}
+
+pub(crate) const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+    0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
+];
+
+/// Geometry ready to upload: vertices and u32 triangle indices.
+pub(crate) struct MeshData {
+    pub vertices: Vec<Vertex>,
+    pub indices: Vec<u32>,
+}
+
+impl MeshData {
+    pub(crate) fn from_mesh(mesh: &Mesh) -> Self {
+        let vertices = mesh
+            .positions()
+            .iter()
+            .zip(mesh.normals())
+            .zip(mesh.uvs())
+            .zip(mesh.tangents())
+            .map(|(((p, n), uv), t)| Vertex {
+                position: p.to_array(),
+                normal: n.to_array(),
+                uv: uv.to_array(),
+                tangent: t.to_array(),
+            })
+            .collect();
+        Self {
+            vertices,
+            indices: mesh.indices().to_vec(),
+        }
+    }
+}
+
+/// Splits every triangle into four at its edge midpoints (shared edges share the new
+/// vertex, so no cracks open when displaced). Positions, UVs and tangents are interpolated
+/// linearly, normals renormalised: the dense source head needs no smoothing scheme, only
+/// more vertices for the height map to move. Done once per mesh upload, never per frame.
+pub(crate) fn subdivide(data: &MeshData) -> MeshData {
+    let mut vertices = data.vertices.clone();
+    let mut indices = Vec::with_capacity(data.indices.len() * 4);
+    let mut midpoints: HashMap<(u32, u32), u32> =
+        HashMap::with_capacity(data.indices.len() * 3 / 2);
+    let mut midpoint = |a: u32, b: u32| -> u32 {
+        *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            let (va, vb) = (vertices[a as usize], vertices[b as usize]);
+            let mid = |x: [f32; 3], y: [f32; 3]| (Vec3::from(x) + Vec3::from(y)) * 0.5;
+            let na = Vec3::from(va.normal);
+            let ta = Vec4::from(va.tangent).truncate();
+            let t = (ta + Vec4::from(vb.tangent).truncate()).normalize_or(ta);
+            vertices.push(Vertex {
+                position: mid(va.position, vb.position).to_array(),
+                normal: mid(va.normal, vb.normal).normalize_or(na).to_array(),
+                uv: ((Vec2::from(va.uv) + Vec2::from(vb.uv)) * 0.5).to_array(),
+                tangent: t.extend(va.tangent[3]).to_array(),
+            });
+            (vertices.len() - 1) as u32
+        })
+    };
+    for tri in data.indices.chunks_exact(3) {
+        let [a, b, c] = [tri[0], tri[1], tri[2]];
+        let ab = midpoint(a, b);
+        let bc = midpoint(b, c);
+        let ca = midpoint(c, a);
+        indices.extend_from_slice(&[a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca]);
+    }
+    MeshData { vertices, indices }
+}
+
+/// How long one UV unit is on the surface, along u and along v, in mesh units: the
+/// area-weighted mean of |∂P/∂u| and |∂P/∂v| over the triangles (the tangent-frame
+/// derivatives of SPEC §4). With the mesh's metres per unit it says how many times a
+/// tile of a given physical size repeats across the UV square.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceScale {
+    /// Mesh units per UV unit along u.
+    pub units_per_u: f32,
+    /// Mesh units per UV unit along v.
+    pub units_per_v: f32,
+}
+
+impl SurfaceScale {
+    /// Measures `mesh`; triangles with degenerate UVs are skipped. `None` when every
+    /// triangle is degenerate.
+    pub fn measure(positions: &[Vec3], uvs: &[Vec2], indices: &[u32]) -> Option<Self> {
+        let mut sum = [0.0f64; 2];
+        let mut area_sum = 0.0f64;
+        for tri in indices.chunks_exact(3) {
+            let [a, b, c] = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
+            let (e1, e2) = (positions[b] - positions[a], positions[c] - positions[a]);
+            let (d1, d2) = (uvs[b] - uvs[a], uvs[c] - uvs[a]);
+            let det = d1.x * d2.y - d2.x * d1.y;
+            let area = 0.5 * e1.cross(e2).length();
+            if det.abs() < 1e-12 || area <= 0.0 || !area.is_finite() {
+                continue;
+            }
+            // Solve [e1 e2] = [dP/du dP/dv]·[d1 d2] (Lengyel's tangent derivation).
+            let dp_du = (e1 * d2.y - e2 * d1.y) / det;
+            let dp_dv = (e2 * d1.x - e1 * d2.x) / det;
+            if !(dp_du.is_finite() && dp_dv.is_finite()) {
+                continue;
+            }
+            sum[0] += f64::from(dp_du.length()) * f64::from(area);
+            sum[1] += f64::from(dp_dv.length()) * f64::from(area);
+            area_sum += f64::from(area);
+        }
+        (area_sum > 0.0).then(|| Self {
+            units_per_u: (sum[0] / area_sum) as f32,
+            units_per_v: (sum[1] / area_sum) as f32,
+        })
+    }
+
+    /// Whole repeats of a tile `tile_size_m` on a side across the UV square: rounded to
+    /// an integer (at least 1) so the tile wraps seamlessly across the UV seam.
+    pub fn repeats(&self, metres_per_unit: f32, tile_size_m: f32) -> [f32; 2] {
+        let per = |units: f32| ((units * metres_per_unit / tile_size_m).round()).max(1.0);
+        [per(self.units_per_u), per(self.units_per_v)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad() -> (Vec<Vec3>, Vec<Vec2>, Vec<u32>) {
+        // 0.2 × 0.1 units, UV 0..1 both ways.
+        let p = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.2, 0.0, 0.0),
+            Vec3::new(0.2, 0.1, 0.0),
+            Vec3::new(0.0, 0.1, 0.0),
+        ];
+        let uv = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(0.0, 1.0),
+        ];
+        (p, uv, vec![0, 1, 2, 0, 2, 3])
+    }
+
+    #[test]
+    fn scale_of_a_stretched_quad() {
+        let (p, uv, idx) = quad();
+        let s = SurfaceScale::measure(&p, &uv, &idx).expect("non-degenerate");
+        assert!((s.units_per_u - 0.2).abs() < 1e-6, "{s:?}");
+        assert!((s.units_per_v - 0.1).abs() < 1e-6, "{s:?}");
+        // 0.2 m / 0.05 m = 4 repeats in u, 2 in v.
+        assert_eq!(s.repeats(1.0, 0.05), [4.0, 2.0]);
+        // Never fewer than one repeat.
+        assert_eq!(s.repeats(1.0, 10.0), [1.0, 1.0]);
+    }
+
+    #[test]
+    fn subdivision_shares_edges() {
+        let (p, uv, idx) = quad();
+        let data = MeshData {
+            vertices: p
+                .iter()
+                .zip(&uv)
+                .map(|(p, uv)| Vertex {
+                    position: p.to_array(),
+                    normal: [0.0, 0.0, 1.0],
+                    uv: uv.to_array(),
+                    tangent: [1.0, 0.0, 0.0, 1.0],
+                })
+                .collect(),
+            indices: idx,
+        };
+        let sub = subdivide(&data);
+        // 5 edges (4 sides + the diagonal) → 5 new vertices; 2 → 8 triangles.
+        assert_eq!(sub.vertices.len(), 9);
+        assert_eq!(sub.indices.len(), 24);
+        let p2: Vec<Vec3> = sub
+            .vertices
+            .iter()
+            .map(|v| Vec3::from(v.position))
+            .collect();
+        let uv2: Vec<Vec2> = sub.vertices.iter().map(|v| Vec2::from(v.uv)).collect();
+        let s = SurfaceScale::measure(&p2, &uv2, &sub.indices).expect("non-degenerate");
+        assert!((s.units_per_u - 0.2).abs() < 1e-6);
+        assert!((s.units_per_v - 0.1).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,268 @@
+//! Per-frame parameters: everything a frame needs that is not an uploaded asset. The
+//! caller (the engine's age model, the editor's widgets, the command line) computes the
+//! numbers; the renderer only takes them.
+
+use glam::{Mat4, Vec3};
+
+/// Physical side of the fine-wrinkle tile on the skin, metres. [T] gives only repeat
+/// counts; 4 cm puts the default tile's creases (≈ 0.12 of the tile, SPEC §5) at ≈ 5 mm,
+/// the length of crow's-feet and forehead fine lines.
+pub const DEFAULT_FINE_TILE_SIZE_M: f32 = 0.04;
+
+/// How the large wrinkles are drawn (SPEC §5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PomMode {
+    /// L linear steps, the first one below the surface.
+    Linear,
+    /// B halvings of the whole depth (misses nearer crossings, [T]).
+    Binary,
+    /// L linear steps, then B halvings around the crossing: POM proper.
+    Combined,
+    /// No offset: the large-wrinkle normal only.
+    NormalOnly,
+    /// The subdivided mesh displaced along its normals ([P] eq. 14), normals as above.
+    Displacement,
+}
+
+impl PomMode {
+    /// Every mode, in the order of the benchmark table.
+    pub const ALL: [PomMode; 5] = [
+        PomMode::Linear,
+        PomMode::Binary,
+        PomMode::Combined,
+        PomMode::NormalOnly,
+        PomMode::Displacement,
+    ];
+
+    /// The value of `Frame.pom.x` in the shaders.
+    pub(crate) fn shader_code(self) -> u32 {
+        match self {
+            PomMode::Linear => 0,
+            PomMode::Binary => 1,
+            PomMode::Combined => 2,
+            PomMode::NormalOnly => 3,
+            PomMode::Displacement => 4,
+        }
+    }
+
+    /// Short lower-case name (the command line's `--pom` values).
+    pub fn name(self) -> &'static str {
+        match self {
+            PomMode::Linear => "linear",
+            PomMode::Binary => "binary",
+            PomMode::Combined => "combined",
+            PomMode::NormalOnly => "normal",
+            PomMode::Displacement => "displacement",
+        }
+    }
+}
+
+/// Orbit camera around `target` (SPEC §0 axes: +Y up, the face toward +Z).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Rotation around +Y, radians; 0 looks at the face from +Z, positive turns toward +X.
+    pub yaw_rad: f32,
+    /// Elevation, radians, clamped to ±1.55 (just short of the poles).
+    pub pitch_rad: f32,
+    /// Distance from the target, mesh units, > 0.
+    pub distance: f32,
+    /// The orbit centre, mesh units.
+    pub target: Vec3,
+    /// Vertical field of view, radians, clamped to [0.01, 3.0].
+    pub fov_y_rad: f32,
+}
+
+impl Default for Camera {
+    /// The default head (metres) seen from the front, face filling most of a frame.
+    fn default() -> Self {
+        Self {
+            yaw_rad: 0.35,
+            pitch_rad: 0.08,
+            distance: 0.62,
+            target: Vec3::new(0.0, 0.02, 0.0),
+            fov_y_rad: 30f32.to_radians(),
+        }
+    }
+}
+
+impl Camera {
+    /// Eye position, mesh units.
+    pub fn eye(&self) -> Vec3 {
+        let pitch = self.pitch_rad.clamp(-1.55, 1.55);
+        let dir = Vec3::new(
+            pitch.cos() * self.yaw_rad.sin(),
+            pitch.sin(),
+            pitch.cos() * self.yaw_rad.cos(),
+        );
+        self.target + dir * self.distance.max(1e-6)
+    }
+
+    /// Clip from world for a viewport of `aspect` = width / height; wgpu's depth range 0..1.
+    pub fn clip_from_world(&self, aspect: f32) -> Mat4 {
+        let d = self.distance.max(1e-6);
+        // Near/far scaled with the distance keep depth precision for a 5 cm patch as for
+        // a whole head.
+        let proj = Mat4::perspective_rh(
+            self.fov_y_rad.clamp(0.01, 3.0),
+            aspect.max(1e-3),
+            d * 0.02,
+            d * 20.0,
+        );
+        let view = Mat4::look_at_rh(self.eye(), self.target, Vec3::Y);
+        proj * view
+    }
+}
+
+/// One directional light and a hemisphere ambient.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    /// Direction toward the light (world), normalised by the renderer.
+    pub direction: Vec3,
+    /// Light colour, linear RGB.
+    pub colour: Vec3,
+    /// Multiplier of `colour`, ≥ 0.
+    pub intensity: f32,
+    /// Ambient intensity, ≥ 0 (white, brighter from above).
+    pub ambient: f32,
+}
+
+impl Default for Light {
+    /// A key light from the upper right front.
+    fn default() -> Self {
+        Self {
+            direction: Vec3::new(0.55, 0.6, 0.6),
+            colour: Vec3::new(1.0, 0.97, 0.92),
+            intensity: 1.5,
+            ambient: 0.22,
+        }
+    }
+}
+
+/// Skin parameters of a frame (SPEC §5).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SkinParams {
+    /// How the large wrinkles are drawn.
+    pub pom_mode: PomMode,
+    /// L, linear search steps, 1..=256 ([T]: at least 8, more than binary).
+    pub linear_steps: u32,
+    /// B, binary search halvings, 0..=32 ([T]: at least 4).
+    pub binary_steps: u32,
+    /// dispScale: depth of the large-wrinkle height field in UV units ([T]: 0.005 at half
+    /// intensity). Also the slope scale of the large-wrinkle normals, so the lit relief
+    /// matches the marched one. ≥ 0.
+    pub disp_scale: f32,
+    /// Fine-wrinkle normal blend in [0, 1] (the age model's curve; SPEC §5).
+    pub fine_blend: f32,
+    /// Paleness in [0, 1] (older skin is paler, [T] §3.1.1).
+    pub paleness: f32,
+    /// Skin albedo, linear RGB in [0, 1].
+    pub albedo: Vec3,
+    /// Draw the micro-relief layer.
+    pub micro_relief: bool,
+}
+
+impl Default for SkinParams {
+    fn default() -> Self {
+        Self {
+            pom_mode: PomMode::Combined,
+            linear_steps: 8,
+            binary_steps: 4,
+            disp_scale: 0.005,
+            fine_blend: 0.5,
+            paleness: 0.0,
+            albedo: Vec3::new(0.50, 0.30, 0.22),
+            micro_relief: true,
+        }
+    }
+}
+
+/// Graying ramp of SPEC §6.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GrayingRampParam {
+    /// y_k as is.
+    #[default]
+    Linear,
+    /// 3y² − 2y³.
+    Smoothstep,
+}
+
+/// Hair parameters of a frame (SPEC §6).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HairShading {
+    /// Draw the hair pass at all.
+    pub enabled: bool,
+    /// Kajiya–Kay K_diff, K_spec, shininess, K_amb.
+    pub k_diff: f32,
+    pub k_spec: f32,
+    pub shininess: f32,
+    pub k_amb: f32,
+    /// Base and gray colours, linear RGB.
+    pub base_colour: Vec3,
+    pub gray_colour: Vec3,
+    /// Graying ramp.
+    pub ramp: GrayingRampParam,
+    /// Hair length, mesh units (each hair varies ±15 % by its random number), ≥ 0.
+    pub length: f32,
+    /// Ribbon width at the root, pixels, ≥ 0.
+    pub width_px: f32,
+    /// Sag of the tip below the straight hair, as a fraction of the length, ≥ 0.
+    pub droop: f32,
+}
+
+impl Default for HairShading {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            k_diff: 0.7,
+            k_spec: 0.35,
+            shininess: 40.0,
+            k_amb: 0.08,
+            base_colour: Vec3::new(0.09, 0.05, 0.03),
+            gray_colour: Vec3::new(0.75, 0.74, 0.72),
+            ramp: GrayingRampParam::Linear,
+            length: 0.02,
+            width_px: 1.2,
+            droop: 0.6,
+        }
+    }
+}
+
+/// What the skin pass writes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FrameOutput {
+    /// The lit, tone-mapped picture.
+    #[default]
+    Shaded,
+    /// For tests and tools, on an `Rgba32Float` target: (u, v) where POM hit the height
+    /// field, then (u, v) where the view ray met the polygon, unshaded.
+    PomHit,
+}
+
+/// Everything per frame in one struct.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameParams {
+    pub camera: Camera,
+    pub light: Light,
+    pub skin: SkinParams,
+    pub hair: HairShading,
+    /// Age t in [0, 1] (SPEC §0): which hairs are drawn (count(t)) and how gray they are.
+    pub age: f32,
+    /// Background colour, linear RGB.
+    pub background: Vec3,
+    /// The picture, or the POM hit coordinates.
+    pub output: FrameOutput,
+}
+
+impl Default for FrameParams {
+    fn default() -> Self {
+        Self {
+            camera: Camera::default(),
+            light: Light::default(),
+            skin: SkinParams::default(),
+            hair: HairShading::default(),
+            age: 0.5,
+            background: Vec3::new(0.035, 0.04, 0.05),
+            output: FrameOutput::Shaded,
+        }
+    }
+}

@@ -1,0 +1,876 @@
+//! The long-lived renderer: pipelines, layouts and samplers made once; assets uploaded
+//! on request; per frame one skin pass and one instanced hair pass into its own colour +
+//! depth targets (issue 11 §1; the editor composites the colour target, EGUI-0.37.md).
+
+use agesim_core::hair::{AgeLevel, HairInstances};
+use agesim_core::{HeightMap, Mask, Mesh};
+use wgpu::util::DeviceExt as _;
+
+use crate::RenderError;
+use crate::f16::to_f16_bytes;
+use crate::hair::{INSTANCE_ATTRIBUTES, INSTANCE_STRIDE, VERTICES_PER_HAIR, count_at};
+use crate::mesh::{MeshData, SurfaceScale, VERTEX_ATTRIBUTES, Vertex, subdivide};
+use crate::params::{DEFAULT_FINE_TILE_SIZE_M, FrameParams, PomMode};
+use crate::shaders;
+use crate::uniforms::{FrameContext, FrameUniform};
+
+/// The colour format of headless renders ([`Renderer::render_to_image`]): 8-bit sRGB,
+/// so the hardware encodes and blending would happen in linear light.
+pub const COLOUR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The depth target's format.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Which tile an upload replaces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TileLayer {
+    /// Skin micro-relief ([P], SPEC §3).
+    Micro,
+    /// Fine wrinkles ([T] §5.2, SPEC §5).
+    Fine,
+}
+
+/// A height or mask texture (the view keeps its texture alive).
+struct Layer {
+    view: wgpu::TextureView,
+}
+
+/// A tileable layer's physical size and normal strength.
+#[derive(Clone, Copy)]
+struct TileInfo {
+    size_m: f32,
+    strength: f32,
+}
+
+struct GpuMesh {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+}
+
+struct Targets {
+    size_px: (u32, u32),
+    colour: wgpu::Texture,
+    colour_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+}
+
+struct Hair {
+    instances: wgpu::Buffer,
+    levels: Vec<AgeLevel>,
+}
+
+/// The renderer. Create once per device; see the crate docs for the call order.
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    colour_format: wgpu::TextureFormat,
+    frame_buffer: wgpu::Buffer,
+    skin_layout: wgpu::BindGroupLayout,
+    skin_pipeline: wgpu::RenderPipeline,
+    hair_pipeline: wgpu::RenderPipeline,
+    hair_bind_group: wgpu::BindGroup,
+    surface_sampler: wgpu::Sampler,
+    tile_sampler: wgpu::Sampler,
+    large: Layer,
+    micro: Layer,
+    fine: Layer,
+    mask: Layer,
+    micro_info: TileInfo,
+    fine_info: TileInfo,
+    /// Rebuilt lazily when a texture is replaced.
+    skin_bind_group: Option<wgpu::BindGroup>,
+    mesh: Option<GpuMesh>,
+    displaced_mesh: Option<GpuMesh>,
+    surface_scale: SurfaceScale,
+    metres_per_unit: f32,
+    hair: Option<Hair>,
+    targets: Option<Targets>,
+}
+
+impl Renderer {
+    /// Builds pipelines, layouts, samplers and placeholder layers (flat heights, full
+    /// mask) for targets of `colour_format`. An sRGB format gets linear output encoded
+    /// by the hardware; `Rgba8Unorm`/`Bgra8Unorm` get sRGB-encoded values from the
+    /// shader; float formats get linear values.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        colour_format: wgpu::TextureFormat,
+    ) -> Result<Self, RenderError> {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("agesim frame uniform"),
+            size: std::mem::size_of::<FrameUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let texture_entry = |binding: u32| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let sampler_entry = |binding: u32| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            count: None,
+        };
+        let uniform_entry = wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<FrameUniform>() as u64),
+            },
+            count: None,
+        };
+        let skin_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("agesim skin bind group layout"),
+            entries: &[
+                uniform_entry,
+                texture_entry(1),
+                texture_entry(2),
+                texture_entry(3),
+                texture_entry(4),
+                sampler_entry(5),
+                sampler_entry(6),
+            ],
+        });
+        let hair_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("agesim hair bind group layout"),
+            entries: &[uniform_entry],
+        });
+        let hair_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("agesim hair bind group"),
+            layout: &hair_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: frame_buffer.as_entire_binding(),
+            }],
+        });
+
+        let depth_stencil = wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: wgpu::StencilState::default(),
+            bias: wgpu::DepthBiasState::default(),
+        };
+        let colour_target = [Some(wgpu::ColorTargetState {
+            format: colour_format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })];
+
+        let skin_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("agesim skin.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(shaders::SKIN_WGSL.into()),
+        });
+        let skin_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("agesim skin pipeline layout"),
+            bind_group_layouts: &[Some(&skin_layout)],
+            immediate_size: 0,
+        });
+        let skin_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("agesim skin pipeline"),
+            layout: Some(&skin_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &skin_module,
+                entry_point: Some("vs_main"),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<Vertex>() as u64,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &VERTEX_ATTRIBUTES,
+                })],
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                // Imported heads disagree on winding; the ears and lips are seen from
+                // both sides. The depth test resolves it at the cost of overdraw.
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(depth_stencil.clone()),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &skin_module,
+                entry_point: Some("fs_main"),
+                targets: &colour_target,
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+
+        let hair_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("agesim hair.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(shaders::HAIR_WGSL.into()),
+        });
+        let hair_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("agesim hair pipeline layout"),
+            bind_group_layouts: &[Some(&hair_layout)],
+            immediate_size: 0,
+        });
+        let hair_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("agesim hair pipeline"),
+            layout: Some(&hair_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &hair_module,
+                entry_point: Some("vs_main"),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: INSTANCE_STRIDE,
+                    step_mode: wgpu::VertexStepMode::Instance,
+                    attributes: &INSTANCE_ATTRIBUTES,
+                })],
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleStrip,
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(depth_stencil),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &hair_module,
+                entry_point: Some("fs_main"),
+                targets: &colour_target,
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+
+        let sampler = |label: &str, u: wgpu::AddressMode, v: wgpu::AddressMode| {
+            device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some(label),
+                address_mode_u: u,
+                address_mode_v: v,
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                mipmap_filter: wgpu::MipmapFilterMode::Nearest,
+                ..Default::default()
+            })
+        };
+        let surface_sampler = sampler(
+            "agesim surface sampler (u wraps, v clamps)",
+            wgpu::AddressMode::Repeat,
+            wgpu::AddressMode::ClampToEdge,
+        );
+        let tile_sampler = sampler(
+            "agesim tile sampler (wraps)",
+            wgpu::AddressMode::Repeat,
+            wgpu::AddressMode::Repeat,
+        );
+
+        let flat = |label: &str, value: f32| create_r16f(device, queue, label, 1, 1, &[value]);
+        let large = flat("agesim large-wrinkle heights (placeholder)", 1.0);
+        let micro = flat("agesim micro-relief tile (placeholder)", 0.0);
+        let fine = flat("agesim fine-wrinkle tile (placeholder)", 0.0);
+        let mask = flat("agesim wrinkle mask (placeholder)", 1.0);
+
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(RenderError::Gpu(err.to_string()));
+        }
+        Ok(Self {
+            device: device.clone(),
+            queue: queue.clone(),
+            colour_format,
+            frame_buffer,
+            skin_layout,
+            skin_pipeline,
+            hair_pipeline,
+            hair_bind_group,
+            surface_sampler,
+            tile_sampler,
+            large,
+            micro,
+            fine,
+            mask,
+            micro_info: TileInfo {
+                size_m: agesim_core::project::DEFAULT_MAP_SIZE_MM * 1e-3,
+                strength: 0.0,
+            },
+            fine_info: TileInfo {
+                size_m: DEFAULT_FINE_TILE_SIZE_M,
+                strength: 0.0,
+            },
+            skin_bind_group: None,
+            mesh: None,
+            displaced_mesh: None,
+            surface_scale: SurfaceScale {
+                units_per_u: 1.0,
+                units_per_v: 1.0,
+            },
+            metres_per_unit: 1.0,
+            hair: None,
+            targets: None,
+        })
+    }
+
+    /// The colour format the pipelines were built for.
+    pub fn colour_format(&self) -> wgpu::TextureFormat {
+        self.colour_format
+    }
+
+    /// Uploads the head (positions, normals, UVs, tangents with sign; SPEC §0, §4) and a
+    /// once-subdivided copy for [`PomMode::Displacement`]; measures its UV density so the
+    /// tiles appear at their physical size. `metres_per_unit` is the mesh's unit length
+    /// (1 for the default head), > 0.
+    pub fn upload_mesh(&mut self, mesh: &Mesh, metres_per_unit: f32) -> Result<(), RenderError> {
+        if !(metres_per_unit.is_finite() && metres_per_unit > 0.0) {
+            return Err(RenderError::OutOfRange {
+                what: "metres per unit",
+                value: metres_per_unit,
+                range: "(0, ∞)",
+            });
+        }
+        if mesh.indices().is_empty() || mesh.tangents().len() != mesh.vertex_count() {
+            return Err(RenderError::InvalidMesh(format!(
+                "{} triangles, {} vertices, {} tangents",
+                mesh.triangle_count(),
+                mesh.vertex_count(),
+                mesh.tangents().len()
+            )));
+        }
+        let scale = SurfaceScale::measure(mesh.positions(), mesh.uvs(), mesh.indices())
+            .ok_or_else(|| RenderError::InvalidMesh("every triangle has degenerate UVs".into()))?;
+        let data = MeshData::from_mesh(mesh);
+        self.mesh = Some(self.create_mesh("agesim mesh", &data));
+        self.displaced_mesh = Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
+        self.surface_scale = scale;
+        self.metres_per_unit = metres_per_unit;
+        Ok(())
+    }
+
+    /// The uploaded mesh's measured UV density (mesh units per UV unit).
+    pub fn surface_scale(&self) -> SurfaceScale {
+        self.surface_scale
+    }
+
+    fn create_mesh(&self, label: &str, data: &MeshData) -> GpuMesh {
+        let vertices = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label} vertices")),
+                contents: bytemuck::cast_slice(&data.vertices),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+        let indices = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label} indices")),
+                contents: bytemuck::cast_slice(&data.indices),
+                usage: wgpu::BufferUsages::INDEX,
+            });
+        GpuMesh {
+            vertices,
+            indices,
+            index_count: data.indices.len() as u32,
+        }
+    }
+
+    /// Uploads the large-wrinkle heights over the mesh UV (SPEC §1, §5), normalised to
+    /// [0, 1] (values outside are clamped): 1 = the polygon's surface (wrinkle crest),
+    /// 0 = `disp_scale` below it. Stored as f16 heights only; the normals are derived in
+    /// the shader with the frame's `disp_scale`, so the lit relief always matches the
+    /// marched and the displaced one, at any age scaling of the heights.
+    pub fn upload_large_wrinkles(&mut self, heights01: &HeightMap) -> Result<(), RenderError> {
+        let data: Vec<f32> = heights01.data().iter().map(|h| h.clamp(0.0, 1.0)).collect();
+        self.large = self.create_layer("agesim large-wrinkle heights", heights01, &data)?;
+        self.skin_bind_group = None;
+        Ok(())
+    }
+
+    /// Uploads a tileable height tile: the skin micro-relief (one tile covers the
+    /// project's `map_size_mm`) or the fine wrinkles. `size_m` is the tile's side on the
+    /// skin, metres, > 0; `strength` the normal strength s of SPEC §4 (tile UV units per
+    /// height unit, the project's `normal.strength` for the micro-relief), ≥ 0.
+    pub fn upload_tile(
+        &mut self,
+        layer: TileLayer,
+        heights: &HeightMap,
+        size_m: f32,
+        strength: f32,
+    ) -> Result<(), RenderError> {
+        if !(size_m.is_finite() && size_m > 0.0) {
+            return Err(RenderError::OutOfRange {
+                what: "tile size (m)",
+                value: size_m,
+                range: "(0, ∞)",
+            });
+        }
+        if !(strength.is_finite() && strength >= 0.0) {
+            return Err(RenderError::OutOfRange {
+                what: "tile normal strength",
+                value: strength,
+                range: "[0, ∞)",
+            });
+        }
+        let info = TileInfo { size_m, strength };
+        match layer {
+            TileLayer::Micro => {
+                self.micro =
+                    self.create_layer("agesim micro-relief tile", heights, heights.data())?;
+                self.micro_info = info;
+            }
+            TileLayer::Fine => {
+                self.fine =
+                    self.create_layer("agesim fine-wrinkle tile", heights, heights.data())?;
+                self.fine_info = info;
+            }
+        }
+        self.skin_bind_group = None;
+        Ok(())
+    }
+
+    /// Uploads the wrinkle mask (white = fine wrinkles may show) over the mesh UV.
+    pub fn upload_wrinkle_mask(&mut self, mask: &Mask) -> Result<(), RenderError> {
+        let map = HeightMap::from_vec(mask.width_px(), mask.height_px(), mask.values().to_vec())
+            .map_err(RenderError::Core)?;
+        self.mask = self.create_layer("agesim wrinkle mask", &map, map.data())?;
+        self.skin_bind_group = None;
+        Ok(())
+    }
+
+    /// Uploads the hair instances (SPEC §6: sorted by a_k, 32 bytes each) and keeps
+    /// their count table, so a frame draws the first count(t) in one instanced call.
+    pub fn upload_hair(&mut self, hairs: &HairInstances) {
+        if hairs.is_empty() {
+            self.hair = None;
+            return;
+        }
+        let instances = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("agesim hair instances"),
+                contents: hairs.as_bytes(),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+        self.hair = Some(Hair {
+            instances,
+            levels: hairs.levels().to_vec(),
+        });
+    }
+
+    /// count(t): the hairs drawn at age `t` (0 without hair).
+    pub fn hair_count(&self, t: f32) -> u32 {
+        self.hair.as_ref().map_or(0, |h| count_at(&h.levels, t))
+    }
+
+    fn create_layer(
+        &self,
+        label: &str,
+        map: &HeightMap,
+        data: &[f32],
+    ) -> Result<Layer, RenderError> {
+        let max = self.device.limits().max_texture_dimension_2d;
+        let (w, h) = (map.width_px(), map.height_px());
+        if w == 0 || h == 0 || w > max || h > max {
+            return Err(RenderError::InvalidSize {
+                what: "texture",
+                width: w,
+                height: h,
+                max,
+            });
+        }
+        Ok(create_r16f(&self.device, &self.queue, label, w, h, data))
+    }
+
+    fn skin_bind_group(&mut self) -> wgpu::BindGroup {
+        if let Some(bg) = &self.skin_bind_group {
+            return bg.clone();
+        }
+        let bg = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("agesim skin bind group"),
+            layout: &self.skin_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.frame_buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&self.large.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&self.micro.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&self.fine.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::TextureView(&self.mask.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::Sampler(&self.surface_sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 6,
+                    resource: wgpu::BindingResource::Sampler(&self.tile_sampler),
+                },
+            ],
+        });
+        self.skin_bind_group = Some(bg.clone());
+        bg
+    }
+
+    /// Makes sure the colour + depth targets are `size_px`, recreating them if needed.
+    fn ensure_targets(&mut self, size_px: (u32, u32)) -> Result<(), RenderError> {
+        let max = self.device.limits().max_texture_dimension_2d;
+        let (w, h) = size_px;
+        if w == 0 || h == 0 || w > max || h > max {
+            return Err(RenderError::InvalidSize {
+                what: "render target",
+                width: w,
+                height: h,
+                max,
+            });
+        }
+        if self.targets.as_ref().is_some_and(|t| t.size_px == size_px) {
+            return Ok(());
+        }
+        let extent = wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        };
+        let colour = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("agesim colour target"),
+            size: extent,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: self.colour_format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let depth = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("agesim depth target"),
+            size: extent,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        self.targets = Some(Targets {
+            size_px,
+            colour_view: colour.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("agesim colour target view"),
+                ..Default::default()
+            }),
+            depth_view: depth.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("agesim depth target view"),
+                ..Default::default()
+            }),
+            colour,
+        });
+        Ok(())
+    }
+
+    /// 8-bit targets without hardware sRGB encoding (eframe's `Bgra8Unorm`) get sRGB
+    /// values from the shader; sRGB formats are encoded by the hardware, float formats
+    /// keep linear values.
+    fn encodes_srgb(&self) -> bool {
+        matches!(
+            self.colour_format,
+            wgpu::TextureFormat::Rgba8Unorm | wgpu::TextureFormat::Bgra8Unorm
+        )
+    }
+
+    /// The colour target of the last [`Renderer::encode`] (None before the first).
+    pub fn colour_texture(&self) -> Option<&wgpu::Texture> {
+        self.targets.as_ref().map(|t| &t.colour)
+    }
+
+    /// A view of the colour target, for compositing (e.g. egui's
+    /// `register_native_texture` or a full-screen blit in a paint callback).
+    pub fn colour_view(&self) -> Option<&wgpu::TextureView> {
+        self.targets.as_ref().map(|t| &t.colour_view)
+    }
+
+    /// Records one frame at `size_px` into the renderer's own targets: the skin pass,
+    /// then (if enabled and uploaded) the hair pass with count(`params.age`) instances
+    /// in one draw. Writes the frame uniform through the queue, so submit `encoder`
+    /// after this call. Draws only the background until a mesh is uploaded.
+    pub fn encode(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        params: &FrameParams,
+        size_px: (u32, u32),
+    ) -> Result<(), RenderError> {
+        self.ensure_targets(size_px)?;
+        let ctx = FrameContext {
+            size_px,
+            encode_srgb: self.encodes_srgb(),
+            micro_repeats: self
+                .surface_scale
+                .repeats(self.metres_per_unit, self.micro_info.size_m),
+            fine_repeats: self
+                .surface_scale
+                .repeats(self.metres_per_unit, self.fine_info.size_m),
+            micro_strength: self.micro_info.strength,
+            fine_strength: self.fine_info.strength,
+            mesh_units_per_uv: 0.5
+                * (self.surface_scale.units_per_u + self.surface_scale.units_per_v),
+        };
+        let uniform = FrameUniform::new(params, &ctx);
+        self.queue
+            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&uniform));
+        let skin_bind_group = self.skin_bind_group();
+        let Some(targets) = &self.targets else {
+            return Ok(());
+        };
+        let bg = params.background;
+        let encode = self.encodes_srgb();
+        let to_target = |c: f32| {
+            if !encode {
+                f64::from(c)
+            } else {
+                f64::from(if c <= 0.003_130_8 {
+                    c * 12.92
+                } else {
+                    1.055 * c.powf(1.0 / 2.4) - 0.055
+                })
+            }
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("agesim frame pass"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &targets.colour_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color {
+                        r: to_target(bg.x),
+                        g: to_target(bg.y),
+                        b: to_target(bg.z),
+                        a: 1.0,
+                    }),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        let mesh = if params.skin.pom_mode == PomMode::Displacement {
+            self.displaced_mesh.as_ref()
+        } else {
+            self.mesh.as_ref()
+        };
+        if let Some(mesh) = mesh {
+            pass.set_pipeline(&self.skin_pipeline);
+            pass.set_bind_group(0, &skin_bind_group, &[]);
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        }
+        if let Some(hair) = &self.hair {
+            let count = count_at(&hair.levels, params.age);
+            if params.hair.enabled && count > 0 {
+                pass.set_pipeline(&self.hair_pipeline);
+                pass.set_bind_group(0, &self.hair_bind_group, &[]);
+                pass.set_vertex_buffer(0, hair.instances.slice(..));
+                pass.draw(0..VERTICES_PER_HAIR, 0..count);
+            }
+        }
+        Ok(())
+    }
+
+    /// Renders one frame offscreen and reads it back (issue 11 §4): the copy's rows are
+    /// padded to 256 bytes as wgpu requires and unpadded here. Blocks until done. Needs
+    /// an 8-bit RGBA or BGRA colour format.
+    pub fn render_to_image(
+        &mut self,
+        params: &FrameParams,
+        size_px: (u32, u32),
+    ) -> Result<image::RgbaImage, RenderError> {
+        let (mut pixels, bytes_per_pixel) = self.render_and_read(params, size_px)?;
+        if bytes_per_pixel != 4 {
+            return Err(RenderError::Readback(format!(
+                "render_to_image needs an 8-bit RGBA target, not {:?}",
+                self.colour_format
+            )));
+        }
+        if matches!(
+            self.colour_format,
+            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+        ) {
+            for px in pixels.chunks_exact_mut(4) {
+                px.swap(0, 2);
+            }
+        }
+        image::RgbaImage::from_raw(size_px.0, size_px.1, pixels)
+            .ok_or_else(|| RenderError::Readback("pixel count mismatch".into()))
+    }
+
+    /// Like [`Renderer::render_to_image`] for a renderer made with
+    /// `wgpu::TextureFormat::Rgba32Float`: the raw values, row-major from the top. With
+    /// [`crate::FrameOutput::PomHit`] they are (hit u, hit v, polygon u, polygon v).
+    pub fn render_to_f32(
+        &mut self,
+        params: &FrameParams,
+        size_px: (u32, u32),
+    ) -> Result<Vec<[f32; 4]>, RenderError> {
+        let (bytes, bytes_per_pixel) = self.render_and_read(params, size_px)?;
+        if bytes_per_pixel != 16 {
+            return Err(RenderError::Readback(format!(
+                "render_to_f32 needs an Rgba32Float target, not {:?}",
+                self.colour_format
+            )));
+        }
+        Ok(bytes
+            .chunks_exact(16)
+            .map(|px| {
+                let mut v = [0f32; 4];
+                for (c, b) in v.iter_mut().zip(px.chunks_exact(4)) {
+                    *c = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                }
+                v
+            })
+            .collect())
+    }
+
+    /// Encodes, copies the colour target to a buffer (rows padded to 256 bytes), waits,
+    /// and returns the unpadded bytes with the bytes per pixel.
+    fn render_and_read(
+        &mut self,
+        params: &FrameParams,
+        size_px: (u32, u32),
+    ) -> Result<(Vec<u8>, u32), RenderError> {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("agesim render_to_image"),
+            });
+        self.encode(&mut encoder, params, size_px)?;
+        let (w, h) = size_px;
+        let bytes_per_pixel = self.colour_format.block_copy_size(None).ok_or_else(|| {
+            RenderError::Readback(format!(
+                "unsupported colour format {:?}",
+                self.colour_format
+            ))
+        })?;
+        let unpadded = w * bytes_per_pixel;
+        let padded = unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("agesim readback buffer"),
+            size: u64::from(padded) * u64::from(h),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let Some(targets) = &self.targets else {
+            return Err(RenderError::Readback("no render target".into()));
+        };
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: &targets.colour,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: Some(h),
+                },
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
+        let submission = self.queue.submit([encoder.finish()]);
+        let slice = buffer.slice(..);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| drop(sender.send(r)));
+        self.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(submission),
+                timeout: None,
+            })
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        receiver
+            .recv()
+            .map_err(|e| RenderError::Readback(e.to_string()))?
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(RenderError::Gpu(err.to_string()));
+        }
+        let mut pixels = Vec::with_capacity((unpadded * h) as usize);
+        {
+            let data = slice
+                .get_mapped_range()
+                .map_err(|e| RenderError::Readback(e.to_string()))?;
+            for row in data.chunks(padded as usize) {
+                pixels.extend_from_slice(&row[..unpadded as usize]);
+            }
+        }
+        buffer.unmap();
+        Ok((pixels, bytes_per_pixel))
+    }
+}
+
+/// A 1-channel f16 texture (filterable everywhere) holding `data` (w·h values).
+fn create_r16f(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    width: u32,
+    height: u32,
+    data: &[f32],
+) -> Layer {
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R16Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &to_f16_bytes(data),
+    );
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some(label),
+        ..Default::default()
+    });
+    Layer { view }
+}

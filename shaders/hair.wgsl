@@ -1,0 +1,136 @@
+// Hair pass (SPEC §6): one instanced draw, one hair per instance, the first count(t)
+// instances of the a_k-sorted buffer; graying C_k(t) and Kajiya–Kay shading here.
+// Each hair is a camera-facing ribbon of SEGMENTS quads (a triangle strip): lavapipe and
+// most GPUs draw lines one pixel wide at most, too thin to read at editor zoom levels,
+// while a ribbon keeps a chosen pixel width and can taper toward the tip.
+
+struct Frame {
+    clip_from_world: mat4x4<f32>,
+    camera_pos: vec4<f32>,
+    light_dir: vec4<f32>,
+    light_colour: vec4<f32>,
+    skin_albedo: vec4<f32>,
+    pom: vec4<u32>,
+    disp: vec4<f32>,
+    tiling: vec4<f32>,
+    layers: vec4<f32>,
+    hair_base: vec4<f32>,
+    hair_gray: vec4<f32>,
+    hair_k: vec4<f32>,
+    hair_misc: vec4<f32>,
+}
+
+// Quads per hair; the strip has 2·(SEGMENTS + 1) vertices (crates/render/src/hair.rs).
+const SEGMENTS: u32 = 4u;
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+
+// `agesim_core::hair::HairInstance`, 32 bytes, as vertex attributes.
+struct Instance {
+    @location(0) position: vec3<f32>,
+    @location(1) disappear_age: f32,
+    // Octahedral unit vector, snorm16×2 (decoded to [−1, 1] by the vertex fetch).
+    @location(2) direction_oct: vec2<f32>,
+    @location(3) graying_onset: f32,
+    @location(4) uv: vec2<f32>,
+    @location(5) random: f32,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) tangent: vec3<f32>,
+    @location(1) colour: vec3<f32>,
+    @location(2) world_pos: vec3<f32>,
+}
+
+fn oct_decode(e: vec2<f32>) -> vec3<f32> {
+    var v = vec3<f32>(e.x, e.y, 1.0 - abs(e.x) - abs(e.y));
+    if v.z < 0.0 {
+        let s = vec2<f32>(select(-1.0, 1.0, v.x >= 0.0), select(-1.0, 1.0, v.y >= 0.0));
+        let xy = (vec2<f32>(1.0) - abs(v.yx)) * s;
+        v = vec3<f32>(xy.x, xy.y, v.z);
+    }
+    return normalize(v);
+}
+
+// SPEC §6 "Graying": y_k(t) = clamp((t − t_k)/(1 − t_k), 0, 1), optionally smoothstep.
+fn gray_fraction(t: f32, onset: f32) -> f32 {
+    let y = clamp((t - onset) / max(1.0 - onset, 1e-6), 0.0, 1.0);
+    if frame.pom.w == 1u {
+        return y * y * (3.0 - 2.0 * y);
+    }
+    return y;
+}
+
+// Point of the hair at s ∈ [0, 1] along it: straight out of the scalp, drooping with
+// gravity (−y) quadratically, so long hair lies down instead of standing like bristles.
+fn hair_point(root: vec3<f32>, dir: vec3<f32>, len: f32, s: f32) -> vec3<f32> {
+    let droop = frame.hair_misc.y;
+    return root + dir * (len * s) + vec3<f32>(0.0, -1.0, 0.0) * (droop * len * s * s);
+}
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
+    let dir = oct_decode(inst.direction_oct);
+    // ±15 % length per hair from the spare random number.
+    let len = frame.hair_base.w * (0.85 + 0.3 * inst.random);
+    let s = f32(vertex / 2u) / f32(SEGMENTS);
+    let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
+    let p = hair_point(inst.position, dir, len, s);
+    let p_next = hair_point(inst.position, dir, len, min(s + 0.05, 1.0))
+        - hair_point(inst.position, dir, len, max(s - 0.05, 0.0));
+    let tangent = normalize(p_next);
+
+    // Widen in screen space, perpendicular to the projected hair, by a pixel width that
+    // tapers to a third at the tip.
+    let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
+    let clip_ahead = frame.clip_from_world * vec4<f32>(p + tangent * (len * 0.1), 1.0);
+    let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
+    let screen_dir = (clip_ahead.xy / clip_ahead.w - clip.xy / clip.w) * viewport;
+    let perp = normalize(vec2<f32>(-screen_dir.y, screen_dir.x) + vec2<f32>(1e-6, 0.0));
+    let width_px = frame.hair_gray.w * (1.0 - 0.65 * s);
+    let offset_ndc = perp * (width_px / viewport);
+
+    let base = frame.hair_base.rgb * (0.8 + 0.4 * inst.random);
+    let y = gray_fraction(frame.disp.w, inst.graying_onset);
+    var out: VertexOut;
+    out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
+    out.tangent = tangent;
+    // C_k(t) = (1 − y_k)·C_base + y_k·C_gray.
+    out.colour = mix(base, frame.hair_gray.rgb, y);
+    out.world_pos = p;
+    return out;
+}
+
+fn aces(x: vec3<f32>) -> vec3<f32> {
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
+    let lo = c * 12.92;
+    let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(hi, lo, c <= vec3<f32>(0.0031308));
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    let t = normalize(in.tangent);
+    let l = frame.light_dir.xyz;
+    let v = normalize(frame.camera_pos.xyz - in.world_pos);
+    let h = normalize(l + v);
+    // Kajiya–Kay, SPEC §6: T_diff = √(1 − (L·T)²), T_spec = (√(1 − (H·T)²))^shininess,
+    // C = (K_diff·T_diff + K_spec·T_spec)·C_k + K_amb (K_amb scaled by C_k so that gray
+    // hair stays lighter than dark hair in shadow).
+    let l_t = dot(l, t);
+    let h_t = dot(h, t);
+    let t_diff = sqrt(max(1.0 - l_t * l_t, 0.0));
+    let t_spec = pow(sqrt(max(1.0 - h_t * h_t, 0.0)), frame.hair_k.z);
+    let k = frame.hair_k;
+    let light = frame.light_colour.rgb * frame.light_dir.w;
+    let c = (k.x * t_diff + k.y * t_spec) * in.colour * light + k.w * in.colour;
+    let mapped = aces(c);
+    if frame.camera_pos.w > 0.5 {
+        return vec4<f32>(srgb_encode(mapped), 1.0);
+    }
+    return vec4<f32>(mapped, 1.0);
+}

@@ -1,0 +1,295 @@
+// Skin pass (SPEC §5): parallax occlusion mapping of the large wrinkles ([T] §7.1.2,
+// listing A.1), fine wrinkles in the large wrinkles' tangent frame ([T] §7.2), skin
+// micro-relief ([P]) combined by reoriented normal mapping, wrap-lit skin with a
+// Fresnel-weighted GGX lobe, ACES-fitted tone mapping.
+//
+// Keep `Frame` identical to `FrameUniform` in crates/render/src/uniforms.rs and to the
+// copy in hair.wgsl: a test compares the sizes naga computes with the Rust struct's.
+
+struct Frame {
+    clip_from_world: mat4x4<f32>,
+    // xyz: camera position (mesh units); w: 1 when the shader must encode sRGB itself.
+    camera_pos: vec4<f32>,
+    // xyz: unit direction toward the light (world); w: light intensity.
+    light_dir: vec4<f32>,
+    // rgb: light colour (linear); w: ambient intensity.
+    light_colour: vec4<f32>,
+    // rgb: skin albedo (linear); w: paleness in [0, 1].
+    skin_albedo: vec4<f32>,
+    // x: POM mode (0 linear, 1 binary, 2 combined, 3 normal only, 4 displacement);
+    // y: linear steps L; z: binary steps B; w: graying ramp (0 linear, 1 smoothstep).
+    pom: vec4<u32>,
+    // x: dispScale (UV units of depth); y: displacement depth (mesh units);
+    // z: fine-wrinkle blend in [0, 1]; w: age t in [0, 1].
+    disp: vec4<f32>,
+    // xy: micro-relief tile repeats over the mesh UV; zw: fine-wrinkle tile repeats.
+    tiling: vec4<f32>,
+    // x: micro-relief strength (tile UV per height unit); y: fine-wrinkle strength;
+    // z: micro-relief on (1) / off (0); w: viewport height, px.
+    layers: vec4<f32>,
+    // rgb: hair base colour (linear); w: hair length (mesh units).
+    hair_base: vec4<f32>,
+    // rgb: hair gray colour (linear); w: hair width, px.
+    hair_gray: vec4<f32>,
+    // K_diff, K_spec, shininess, K_amb (SPEC §6).
+    hair_k: vec4<f32>,
+    // x: viewport width, px; y: hair droop (fraction of the length);
+    // z: 1 = skin writes the POM hit (hit uv, polygon uv) instead of colour; w: unused.
+    hair_misc: vec4<f32>,
+}
+
+const MODE_LINEAR: u32 = 0u;
+const MODE_BINARY: u32 = 1u;
+const MODE_COMBINED: u32 = 2u;
+const MODE_NORMAL_ONLY: u32 = 3u;
+const MODE_DISPLACEMENT: u32 = 4u;
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+// Large wrinkles: height in [0, 1] (1 = the polygon's surface, SPEC §5), over the mesh UV.
+@group(0) @binding(1) var large_map: texture_2d<f32>;
+// Tileable micro-relief heights (height units of the project), one tile = map_size_mm.
+@group(0) @binding(2) var micro_map: texture_2d<f32>;
+// Tileable fine-wrinkle heights.
+@group(0) @binding(3) var fine_map: texture_2d<f32>;
+// Where wrinkles may appear (white), over the mesh UV.
+@group(0) @binding(4) var mask_map: texture_2d<f32>;
+// Wraps in u (the head's seam at the back, SPEC §0 UV layout), clamps in v.
+@group(0) @binding(5) var surface_sampler: sampler;
+// Wraps both ways: the tiles repeat over the head.
+@group(0) @binding(6) var tile_sampler: sampler;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    // xyz: tangent (toward +u); w: handedness, bitangent = w·cross(N, T) (toward +v).
+    @location(3) tangent: vec4<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world_pos: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+}
+
+@vertex
+fn vs_main(in: VertexIn) -> VertexOut {
+    var p = in.position;
+    if frame.pom.x == MODE_DISPLACEMENT {
+        // [P] eq. 14, P' = P + d(u,v)·n, with the same depth convention as POM: the
+        // polygon is the top of the height field, h = 0 lies `disp.y` below it.
+        let h = textureSampleLevel(large_map, surface_sampler, tex(in.uv), 0.0).r;
+        p = p + in.normal * ((h - 1.0) * frame.disp.y);
+    }
+    var out: VertexOut;
+    out.clip = frame.clip_from_world * vec4<f32>(p, 1.0);
+    out.world_pos = p;
+    out.normal = in.normal;
+    out.uv = in.uv;
+    out.tangent = in.tangent;
+    return out;
+}
+
+// SPEC §0 UV (v up) → texture coordinates (row 0 of every map is its top, v = 1).
+fn tex(uv: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(uv.x, 1.0 - uv.y);
+}
+
+fn large_height(uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> f32 {
+    return textureSampleGrad(large_map, surface_sampler, tex(uv), ddx, ddy).r;
+}
+
+// The ray at depth `layer` (1 = polygon, 0 = bottom) has moved `shift·(1 − layer)` in UV.
+fn ray_uv(uv0: vec2<f32>, shift: vec2<f32>, layer: f32) -> vec2<f32> {
+    return uv0 + shift * (1.0 - layer);
+}
+
+// Parallax occlusion mapping, SPEC §5 / [T] listing A.1. `view_ts` is the unit vector
+// toward the eye in tangent space. Returns (uv at the hit, depth layer of the hit).
+fn pom(uv0: vec2<f32>, view_ts: vec3<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> vec3<f32> {
+    let mode = frame.pom.x;
+    // Clamped so a ray at the silhouette does not shoot across the whole map.
+    let shift = -view_ts.xy / max(view_ts.z, 0.08) * frame.disp.x;
+    // The interval [lo, hi] of layers holding the first crossing: hi above, lo below.
+    var lo = 0.0;
+    var hi = 1.0;
+    if mode == MODE_LINEAR || mode == MODE_COMBINED {
+        let steps = max(frame.pom.y, 1u);
+        let step = 1.0 / f32(steps);
+        var layer = 1.0;
+        var h = large_height(uv0, ddx, ddy);
+        var i = 0u;
+        // March while the ray is above the height field; h ≥ 0 = layer after L steps,
+        // so the loop always ends below (or on) the surface.
+        loop {
+            if i >= steps || layer <= h {
+                break;
+            }
+            layer = layer - step;
+            h = large_height(ray_uv(uv0, shift, layer), ddx, ddy);
+            i = i + 1u;
+        }
+        lo = layer;
+        hi = min(layer + step, 1.0);
+        if mode == MODE_LINEAR {
+            // Linear only: the first step found below the surface, unrefined ([T]).
+            return vec3<f32>(ray_uv(uv0, shift, lo), lo);
+        }
+    }
+    // Binary search: B halvings of [lo, hi] (the whole depth in binary-only mode, which
+    // is why that mode can settle on a crossing behind the nearest one, [T] §8).
+    let halvings = frame.pom.z;
+    var j = 0u;
+    loop {
+        if j >= halvings {
+            break;
+        }
+        let mid = 0.5 * (lo + hi);
+        let h = large_height(ray_uv(uv0, shift, mid), ddx, ddy);
+        if mid > h {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+        j = j + 1u;
+    }
+    let layer = 0.5 * (lo + hi);
+    return vec3<f32>(ray_uv(uv0, shift, layer), layer);
+}
+
+// Tangent-space normal of a height texture by central differences (SPEC §4:
+// n = normalize(−s·∂h/∂u, −s·∂h/∂v, 1), s in UV units per height unit).
+fn height_normal(
+    map: texture_2d<f32>,
+    samp: sampler,
+    uv: vec2<f32>,
+    strength: f32,
+    ddx: vec2<f32>,
+    ddy: vec2<f32>,
+) -> vec3<f32> {
+    let size = vec2<f32>(textureDimensions(map));
+    let du = vec2<f32>(1.0 / size.x, 0.0);
+    let dv = vec2<f32>(0.0, 1.0 / size.y);
+    let hu = textureSampleGrad(map, samp, tex(uv + du), ddx, ddy).r
+        - textureSampleGrad(map, samp, tex(uv - du), ddx, ddy).r;
+    let hv = textureSampleGrad(map, samp, tex(uv + dv), ddx, ddy).r
+        - textureSampleGrad(map, samp, tex(uv - dv), ddx, ddy).r;
+    let dh = vec2<f32>(hu * size.x, hv * size.y) * 0.5;
+    return normalize(vec3<f32>(-strength * dh, 1.0));
+}
+
+// Reoriented normal mapping (Barré-Brisebois & Hill 2012): `detail` rotated by the
+// rotation that takes +z to `base`. Adding the vectors would flatten both layers.
+fn rnm(base: vec3<f32>, detail: vec3<f32>) -> vec3<f32> {
+    let t = base + vec3<f32>(0.0, 0.0, 1.0);
+    let u = detail * vec3<f32>(-1.0, -1.0, 1.0);
+    return normalize(t * dot(t, u) / t.z - u);
+}
+
+// SPEC §5 "Fine wrinkles": perturb in the large wrinkles' tangent frame,
+// T = normalize(N.z, 0, −N.x), B = normalize(0, N.z, −N.y).
+fn in_large_frame(n_large: vec3<f32>, fine: vec3<f32>) -> vec3<f32> {
+    let t = normalize(vec3<f32>(n_large.z, 0.0, -n_large.x));
+    let b = normalize(vec3<f32>(0.0, n_large.z, -n_large.y));
+    return normalize(t * fine.x + b * fine.y + n_large * fine.z);
+}
+
+// Narkowicz's fit of the ACES filmic curve.
+fn aces(x: vec3<f32>) -> vec3<f32> {
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
+    let lo = c * 12.92;
+    let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(hi, lo, c <= vec3<f32>(0.0031308));
+}
+
+fn output_colour(linear: vec3<f32>) -> vec4<f32> {
+    let mapped = aces(linear);
+    if frame.camera_pos.w > 0.5 {
+        return vec4<f32>(srgb_encode(mapped), 1.0);
+    }
+    return vec4<f32>(mapped, 1.0);
+}
+
+// GGX distribution with Smith-Schlick visibility: a rough, oily dielectric lobe
+// (skin: F0 ≈ 0.028, roughness ≈ 0.4, after the d'Eon & Luebke Kelemen/Szirmay-Kalos fit).
+fn skin_specular(n: vec3<f32>, v: vec3<f32>, l: vec3<f32>, roughness: f32) -> f32 {
+    let h = normalize(v + l);
+    let n_l = max(dot(n, l), 0.0);
+    let n_v = max(dot(n, v), 1e-3);
+    let n_h = max(dot(n, h), 0.0);
+    let a2 = roughness * roughness * roughness * roughness;
+    let d = a2 / (3.14159265 * pow(n_h * n_h * (a2 - 1.0) + 1.0, 2.0));
+    let k = roughness * roughness * 0.5;
+    let vis = 1.0 / ((n_l * (1.0 - k) + k) * (n_v * (1.0 - k) + k) * 4.0);
+    let fresnel = 0.028 + (1.0 - 0.028) * pow(1.0 - max(dot(h, v), 0.0), 5.0);
+    return d * vis * fresnel * n_l;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    // Derivatives taken here, in uniform control flow, for the samples inside the loops.
+    let ddx = dpdx(in.uv);
+    let ddy = dpdy(in.uv);
+    let micro_uv0 = in.uv * frame.tiling.xy;
+    let fine_uv0 = in.uv * frame.tiling.zw;
+    let ddx_micro = ddx * frame.tiling.xy;
+    let ddy_micro = ddy * frame.tiling.xy;
+    let ddx_fine = ddx * frame.tiling.zw;
+    let ddy_fine = ddy * frame.tiling.zw;
+
+    let n_geo = normalize(in.normal);
+    // Gram-Schmidt: interpolation bends the tangent away from the normal.
+    let t_geo = normalize(in.tangent.xyz - n_geo * dot(n_geo, in.tangent.xyz));
+    let b_geo = cross(n_geo, t_geo) * select(-1.0, 1.0, in.tangent.w >= 0.0);
+    let to_eye = normalize(frame.camera_pos.xyz - in.world_pos);
+    let view_ts = vec3<f32>(dot(to_eye, t_geo), dot(to_eye, b_geo), dot(to_eye, n_geo));
+
+    let mode = frame.pom.x;
+    var uv = in.uv;
+    if mode <= MODE_COMBINED {
+        uv = pom(in.uv, view_ts, ddx, ddy).xy;
+    }
+    if frame.hair_misc.z > 0.5 {
+        return vec4<f32>(uv, in.uv);
+    }
+    // The micro-relief and fine tiles move with the POM offset: they lie on the surface.
+    let offset = uv - in.uv;
+
+    // Large-wrinkle normal from the heights at the hit, with the slope the march used.
+    let n_large = height_normal(large_map, surface_sampler, uv, frame.disp.x, ddx, ddy);
+    let n_fine_tile = height_normal(fine_map, tile_sampler, fine_uv0 + offset * frame.tiling.zw, frame.layers.y, ddx_fine, ddy_fine);
+    let mask = textureSampleGrad(mask_map, surface_sampler, tex(uv), ddx, ddy).r;
+    let fine = in_large_frame(n_large, n_fine_tile);
+    // SPEC §5: the age blends linearly from the surface normal to the fine-wrinkle one.
+    var n_ts = normalize(mix(n_large, fine, clamp(frame.disp.z * mask, 0.0, 1.0)));
+    if frame.layers.z > 0.5 {
+        let n_micro = height_normal(micro_map, tile_sampler, micro_uv0 + offset * frame.tiling.xy, frame.layers.x, ddx_micro, ddy_micro);
+        n_ts = rnm(n_ts, n_micro);
+    }
+    let n = normalize(t_geo * n_ts.x + b_geo * n_ts.y + n_geo * n_ts.z);
+
+    // Albedo: older skin is paler ([T] §3.1.1): toward a desaturated, lighter tone.
+    let albedo0 = frame.skin_albedo.rgb;
+    let grey = dot(albedo0, vec3<f32>(0.2126, 0.7152, 0.0722));
+    let pale = mix(vec3<f32>(grey), albedo0, 0.6) * 1.12;
+    let albedo = mix(albedo0, pale, frame.skin_albedo.w);
+
+    let l = frame.light_dir.xyz;
+    let light = frame.light_colour.rgb * frame.light_dir.w;
+    // Wrap lighting per channel: red light scatters farthest under the skin, so its
+    // terminator wraps widest (GPU Gems 1 ch. 16, a cheap stand-in for [P]'s SSS).
+    let wrap = vec3<f32>(0.45, 0.22, 0.15);
+    let n_l = dot(n, l);
+    let diffuse = clamp((vec3<f32>(n_l) + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0));
+    let spec = skin_specular(n, to_eye, l, 0.42);
+    // Hemisphere ambient through the perturbed normal, so micro-relief shows in shadow.
+    let sky = 0.6 + 0.4 * n.y;
+    let ambient = frame.light_colour.w * sky;
+    let colour = albedo * (diffuse * light + vec3<f32>(ambient)) + vec3<f32>(spec) * light;
+    return output_colour(colour);
+}

@@ -11,6 +11,7 @@ use serde_json::Value;
 use super::fields_ui;
 use super::map_view::{self, MapKind, MapViewState};
 use super::timeline::{self, Playback};
+use super::viewport::Viewport;
 use super::worker::{Job, Outcome, Snapshot, Worker};
 
 /// Map sides while a slider or fibre is being dragged (and while the age plays).
@@ -19,12 +20,23 @@ pub const PREVIEW_PX: u32 = 512;
 pub const FULL_LARGE_PX: u32 = 2048;
 pub const FULL_MICRO_PX: u32 = 1024;
 
+/// What the central area shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Layout {
+    /// The 3D view and the UV map side by side.
+    #[default]
+    Both,
+    Head,
+    Map,
+}
+
 /// Settings kept between runs (eframe storage).
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct Persisted {
     pub map_view: MapViewState,
     pub playback: Playback,
+    pub layout: Layout,
 }
 
 /// Options of the run (command line).
@@ -53,6 +65,7 @@ pub struct EditorApp {
     textures: Vec<(MapKind, egui::TextureHandle, usize)>,
     persisted: Persisted,
     adapter: String,
+    viewport: Option<Viewport>,
     options: EditorOptions,
     frames_with_maps: u32,
     screenshot_requested: bool,
@@ -78,6 +91,10 @@ impl EditorApp {
             },
             None => (Project::default(), None),
         };
+        let viewport = cc
+            .wgpu_render_state
+            .as_ref()
+            .and_then(|rs| Viewport::new(rs).ok());
         let ctx = cc.egui_ctx.clone();
         let worker = Worker::spawn(move || ctx.request_repaint());
         let mut app = Self {
@@ -94,6 +111,7 @@ impl EditorApp {
             textures: Vec::new(),
             persisted,
             adapter,
+            viewport,
             options,
             frames_with_maps: 0,
             screenshot_requested: false,
@@ -273,6 +291,9 @@ impl EditorApp {
             if let Some(h) = &self.snapshot.hair {
                 ui.label(format!("hairs: {} of {}", h.count(t), h.len()));
             }
+            if let Some(v) = &self.viewport {
+                ui.label(format!("3D frame encode {:.1} ms", v.encode_ms));
+            }
             if let Some(l) = &self.snapshot.large {
                 let (_, hi) = l.height.min_max();
                 ui.label(format!("deepest large wrinkle: {hi:.2}"));
@@ -450,9 +471,14 @@ impl eframe::App for EditorApp {
         let kind = self.persisted.map_view.kind;
         let texture = self.texture(&ctx, kind);
         let wrinkles = self.wrinkles().to_vec();
+        let render_state = frame.wgpu_render_state().cloned();
         let fibre_edit = egui::CentralPanel::default()
             .show(ui, |ui| {
                 ui.horizontal(|ui| {
+                    for (layout, name) in [(Layout::Both, "head | map"), (Layout::Head, "head"), (Layout::Map, "map")] {
+                        ui.selectable_value(&mut self.persisted.layout, layout, name);
+                    }
+                    ui.separator();
                     egui::ComboBox::from_id_salt("map kind")
                         .selected_text(kind.name())
                         .show_ui(ui, |ui| {
@@ -461,20 +487,43 @@ impl eframe::App for EditorApp {
                             }
                         });
                     ui.checkbox(&mut self.persisted.map_view.show_fibres, "fibres");
-                    ui.label(
-                        egui::RichText::new(
-                            "scroll: zoom · right-drag: pan · drag a handle: move a fibre",
-                        )
-                        .weak()
-                        .small(),
-                    );
+                    if ui.button("frame head").clicked()
+                        && let Some(v) = &mut self.viewport
+                    {
+                        v.reset(&mut self.project);
+                    }
                 });
-                map_view::map_view_ui(
-                    ui,
-                    &mut self.persisted.map_view,
-                    texture.as_ref(),
-                    &wrinkles,
-                )
+                ui.label(
+                    egui::RichText::new(
+                        "head: drag orbit · right-drag pan · scroll zoom · Shift+drag light · double-click frame   map: drag a handle to move a fibre",
+                    )
+                    .weak()
+                    .small(),
+                );
+                let layout = if self.viewport.is_none() { Layout::Map } else { self.persisted.layout };
+                let avail = ui.available_rect_before_wrap();
+                let (head_rect, map_rect) = match layout {
+                    Layout::Both => {
+                        let mid = avail.center().x;
+                        (
+                            Some(egui::Rect::from_min_max(avail.min, egui::pos2(mid - 2.0, avail.max.y))),
+                            Some(egui::Rect::from_min_max(egui::pos2(mid + 2.0, avail.min.y), avail.max)),
+                        )
+                    }
+                    Layout::Head => (Some(avail), None),
+                    Layout::Map => (None, Some(avail)),
+                };
+                if let (Some(r), Some(viewport), Some(rs)) = (head_rect, &mut self.viewport, &render_state) {
+                    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
+                    viewport.ui(&mut child, rs, &self.snapshot, &mut self.project);
+                }
+                let mut edit = None;
+                if let Some(r) = map_rect {
+                    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
+                    edit = map_view::map_view_ui(&mut child, &mut self.persisted.map_view, texture.as_ref(), &wrinkles);
+                }
+                ui.allocate_rect(avail, egui::Sense::hover());
+                edit
             })
             .inner;
         if let Some(e) = fibre_edit {

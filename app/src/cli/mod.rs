@@ -27,6 +27,14 @@ pub struct Cli {
     /// Editor: frames to draw (after the first bake) before the screenshot.
     #[arg(long, default_value_t = 5, value_name = "N")]
     pub frames: u32,
+
+    /// Editor: open at this age in years.
+    #[arg(long, value_name = "Y")]
+    pub age_years: Option<f32>,
+
+    /// Editor: open the compare view with this age (years) on the right.
+    #[arg(long, value_name = "Y")]
+    pub compare_years: Option<f32>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -54,6 +62,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             project: cli.project,
             screenshot: cli.screenshot,
             frames: cli.frames,
+            age_years: cli.age_years,
+            compare_years: cli.compare_years,
         }),
         Some(Command::Bake(args)) => bake::run(&args),
         Some(Command::Render(args)) => render::run(&args),

@@ -31,12 +31,30 @@ pub enum Layout {
 }
 
 /// Settings kept between runs (eframe storage).
-#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct Persisted {
     pub map_view: MapViewState,
     pub playback: Playback,
     pub layout: Layout,
+    /// Compare view: the right part of the head shows `compare_years`.
+    pub compare: bool,
+    pub compare_years: f32,
+    /// Where the compare divider is, as a fraction of the view's width.
+    pub divider: f32,
+}
+
+impl Default for Persisted {
+    fn default() -> Self {
+        Self {
+            map_view: MapViewState::default(),
+            playback: Playback::default(),
+            layout: Layout::default(),
+            compare: false,
+            compare_years: 75.0,
+            divider: 0.5,
+        }
+    }
 }
 
 /// Options of the run (command line).
@@ -47,6 +65,10 @@ pub struct EditorOptions {
     /// Write a screenshot of the window here after `frames` frames with maps, then quit.
     pub screenshot: Option<PathBuf>,
     pub frames: u32,
+    /// Open at this age (years) instead of the project's.
+    pub age_years: Option<f32>,
+    /// Open in the compare view with this age (years) on the right.
+    pub compare_years: Option<f32>,
 }
 
 pub struct EditorApp {
@@ -66,6 +88,7 @@ pub struct EditorApp {
     persisted: Persisted,
     adapter: String,
     viewport: Option<Viewport>,
+    viewport_b: Option<Viewport>,
     options: EditorOptions,
     frames_with_maps: u32,
     screenshot_requested: bool,
@@ -95,6 +118,20 @@ impl EditorApp {
             .wgpu_render_state
             .as_ref()
             .and_then(|rs| Viewport::new(rs).ok());
+        let viewport_b = cc
+            .wgpu_render_state
+            .as_ref()
+            .and_then(|rs| Viewport::new(rs).ok());
+        let mut project = project;
+        if let Some(y) = options.age_years {
+            project.age.t = project.age.mapping().t(y);
+        }
+        let mut persisted = persisted;
+        if let Some(y) = options.compare_years {
+            persisted.compare = true;
+            persisted.compare_years = y;
+            persisted.layout = Layout::Head;
+        }
         let ctx = cc.egui_ctx.clone();
         let worker = Worker::spawn(move || ctx.request_repaint());
         let mut app = Self {
@@ -112,6 +149,7 @@ impl EditorApp {
             persisted,
             adapter,
             viewport,
+            viewport_b,
             options,
             frames_with_maps: 0,
             screenshot_requested: false,
@@ -164,6 +202,10 @@ impl EditorApp {
             wrinkles: self.wrinkles.clone(),
             request,
             what: what.to_owned(),
+            compare_t: self
+                .persisted
+                .compare
+                .then(|| self.project.age.mapping().t(self.persisted.compare_years)),
         });
     }
 
@@ -399,6 +441,71 @@ impl EditorApp {
         }
     }
 
+    /// The compare view: the right part of `rect` (from the divider on) shows the second
+    /// age, in the same camera; the divider drags.
+    fn compare_ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        rs: &eframe::egui_wgpu::RenderState,
+        rect: egui::Rect,
+        pan: glam::Vec3,
+    ) {
+        let (Some(b), Some(snapshot_b)) = (&mut self.viewport_b, self.snapshot.compare.as_deref())
+        else {
+            return;
+        };
+        let mut project_b = self.project.clone();
+        project_b.age.t = project_b.age.mapping().t(self.persisted.compare_years);
+        b.set_pan(pan);
+        let x = rect.left() + rect.width() * self.persisted.divider;
+        if let Some(id) = b.render(ui.ctx(), rs, snapshot_b, &project_b, rect) {
+            let right = egui::Rect::from_min_max(egui::pos2(x, rect.top()), rect.max);
+            ui.painter().image(
+                id,
+                right,
+                egui::Rect::from_min_max(
+                    egui::pos2(self.persisted.divider, 0.0),
+                    egui::pos2(1.0, 1.0),
+                ),
+                egui::Color32::WHITE,
+            );
+        }
+        let handle = egui::Rect::from_center_size(
+            egui::pos2(x, rect.center().y),
+            egui::vec2(14.0, rect.height()),
+        );
+        let r = ui.interact(
+            handle,
+            ui.scope_id().with("compare divider"),
+            egui::Sense::drag(),
+        );
+        if r.dragged() {
+            self.persisted.divider =
+                ((x + r.drag_delta().x - rect.left()) / rect.width()).clamp(0.02, 0.98);
+        }
+        let colour = egui::Color32::from_rgb(255, 200, 60);
+        ui.painter().line_segment(
+            [egui::pos2(x, rect.top()), egui::pos2(x, rect.bottom())],
+            egui::Stroke::new(if r.hovered() || r.dragged() { 3.0 } else { 2.0 }, colour),
+        );
+        let years_a = self.project.age.mapping().years(self.project.age.t);
+        for (pos, align, text) in [
+            (
+                rect.left_bottom() + egui::vec2(10.0, -10.0),
+                egui::Align2::LEFT_BOTTOM,
+                format!("{years_a:.0} years"),
+            ),
+            (
+                rect.right_bottom() + egui::vec2(-10.0, -10.0),
+                egui::Align2::RIGHT_BOTTOM,
+                format!("{:.0} years", self.persisted.compare_years),
+            ),
+        ] {
+            ui.painter()
+                .text(pos, align, text, egui::FontId::proportional(18.0), colour);
+        }
+    }
+
     fn maybe_screenshot(&mut self, ctx: &egui::Context) {
         let Some(path) = self.options.screenshot.clone() else {
             return;
@@ -472,6 +579,7 @@ impl eframe::App for EditorApp {
         let texture = self.texture(&ctx, kind);
         let wrinkles = self.wrinkles().to_vec();
         let render_state = frame.wgpu_render_state().cloned();
+        let mut compare_changed = false;
         let fibre_edit = egui::CentralPanel::default()
             .show(ui, |ui| {
                 ui.horizontal(|ui| {
@@ -487,6 +595,17 @@ impl eframe::App for EditorApp {
                             }
                         });
                     ui.checkbox(&mut self.persisted.map_view.show_fibres, "fibres");
+                    let was = (self.persisted.compare, self.persisted.compare_years);
+                    ui.checkbox(&mut self.persisted.compare, "compare with");
+                    ui.add_enabled(
+                        self.persisted.compare,
+                        egui::DragValue::new(&mut self.persisted.compare_years)
+                            .range(0.0..=150.0)
+                            .suffix(" years"),
+                    );
+                    if was != (self.persisted.compare, self.persisted.compare_years) {
+                        compare_changed = true;
+                    }
                     if ui.button("frame head").clicked()
                         && let Some(v) = &mut self.viewport
                     {
@@ -515,7 +634,11 @@ impl eframe::App for EditorApp {
                 };
                 if let (Some(r), Some(viewport), Some(rs)) = (head_rect, &mut self.viewport, &render_state) {
                     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
-                    viewport.ui(&mut child, rs, &self.snapshot, &mut self.project);
+                    let rect = viewport.ui(&mut child, rs, &self.snapshot, &mut self.project);
+                    if self.persisted.compare {
+                        let pan = viewport.pan();
+                        self.compare_ui(&mut child, rs, rect, pan);
+                    }
                 }
                 let mut edit = None;
                 if let Some(r) = map_rect {
@@ -526,6 +649,9 @@ impl eframe::App for EditorApp {
                 edit
             })
             .inner;
+        if compare_changed {
+            self.submit(false, "compare");
+        }
         if let Some(e) = fibre_edit {
             let mut w = wrinkles;
             if let Some(g) = w

@@ -133,17 +133,54 @@ impl Viewport {
     ) -> Rect {
         let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
         self.interact(ui, &response, project);
+        if let Some(id) = self.render(ui.ctx(), rs, snapshot, project, rect) {
+            ui.painter().image(
+                id,
+                rect,
+                Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                egui::Color32::WHITE,
+            );
+        }
+        if let Some(e) = &self.error {
+            ui.painter().text(
+                rect.left_top() + egui::vec2(8.0, 8.0),
+                egui::Align2::LEFT_TOP,
+                e,
+                egui::FontId::proportional(13.0),
+                egui::Color32::from_rgb(255, 110, 90),
+            );
+        }
+        rect
+    }
+
+    /// The orbit's pan offset (mesh units), to keep a second view in step.
+    pub fn pan(&self) -> Vec3 {
+        self.pan
+    }
+
+    pub fn set_pan(&mut self, pan: Vec3) {
+        self.pan = pan;
+    }
+
+    /// Uploads what changed and, when anything it shows changed, encodes a frame of
+    /// `rect`'s size; returns the texture that holds the latest frame.
+    pub fn render(
+        &mut self,
+        ctx: &egui::Context,
+        rs: &egui_wgpu::RenderState,
+        snapshot: &Snapshot,
+        project: &Project,
+        rect: Rect,
+    ) -> Option<egui::TextureId> {
         self.upload(snapshot, project);
-        let Some(factors) = &snapshot.factors else {
-            return rect;
-        };
+        let factors = snapshot.factors.as_ref()?;
         // The age shown is the document's; the maps are the last baked ones.
         let mut factors = factors.clone();
         factors.t = project.age.t;
         let mut camera = frame::camera(project, self.centre + self.pan);
         camera.distance = camera.distance.max(1e-3);
         let params = frame::frame_params(project, &factors, camera);
-        let ppp = ui.ctx().pixels_per_point();
+        let ppp = ctx.pixels_per_point();
         let size = [
             ((rect.width() * ppp) as u32).clamp(16, 4096),
             ((rect.height() * ppp) as u32).clamp(16, 4096),
@@ -192,24 +229,7 @@ impl Viewport {
             self.encode_ms = start.elapsed().as_secs_f64() * 1e3;
             self.last = Some(key);
         }
-        if let Some(id) = self.texture {
-            ui.painter().image(
-                id,
-                rect,
-                Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
-                egui::Color32::WHITE,
-            );
-        }
-        if let Some(e) = &self.error {
-            ui.painter().text(
-                rect.left_top() + egui::vec2(8.0, 8.0),
-                egui::Align2::LEFT_TOP,
-                e,
-                egui::FontId::proportional(13.0),
-                egui::Color32::from_rgb(255, 110, 90),
-            );
-        }
-        rect
+        self.texture
     }
 
     fn interact(&mut self, ui: &egui::Ui, response: &egui::Response, project: &mut Project) {

@@ -25,6 +25,8 @@ pub struct Job {
     pub request: BakeRequest,
     /// A short description for the status line ("age 52 years", "pores.count").
     pub what: String,
+    /// Also bake this second age, for the compare view.
+    pub compare_t: Option<f32>,
 }
 
 /// What the UI shows of a finished bake. Each map is shared, not copied, between bakes
@@ -46,6 +48,8 @@ pub struct Snapshot {
     pub request: Option<BakeRequest>,
     /// The maps as pictures for the 2D view, remade only when their map changed.
     pub images: MapImages,
+    /// The compare view's second age, baked by a second scene.
+    pub compare: Option<Box<Snapshot>>,
 }
 
 /// Display pictures of the maps (at most [`IMAGE_MAX_PX`] on a side).
@@ -187,6 +191,8 @@ impl Worker {
 fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl Fn()) {
     let mut scene: Option<Scene> = None;
     let mut snapshot = Snapshot::default();
+    let mut scene_b: Option<Scene> = None;
+    let mut snapshot_b = Snapshot::default();
     while let Ok(mut next) = jobs.recv() {
         // Latest wins: skip everything queued behind the newest job.
         loop {
@@ -198,7 +204,22 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         }
         let (job, cancel) = next;
         let start = Instant::now();
-        let outcome = bake(&mut scene, &mut snapshot, &job, &cancel);
+        let mut outcome = bake(&mut scene, &mut snapshot, &job, &cancel);
+        if let (Ok(_), Some(t)) = (&outcome, job.compare_t) {
+            // The second age: a scene of its own, so neither side re-bakes the other's age.
+            let mut job_b = job.clone();
+            job_b.request.t = t;
+            job_b.wrinkles = scene.as_ref().map(|s| s.wrinkles().to_vec());
+            if scene_b.is_none() {
+                scene_b = scene.clone();
+            }
+            match bake(&mut scene_b, &mut snapshot_b, &job_b, &cancel) {
+                Ok(_) => snapshot.compare = Some(Box::new(snapshot_b.clone())),
+                Err(e) => outcome = Err(e),
+            }
+        } else if job.compare_t.is_none() {
+            snapshot.compare = None;
+        }
         let outcome = match outcome {
             Err(Error::Cancelled) => continue,
             Err(e) => Outcome::Failed(e.to_string()),

@@ -62,11 +62,34 @@ fn gray_fraction(t: f32, onset: f32) -> f32 {
     return y;
 }
 
-// Point of the hair at s ∈ [0, 1] along it: straight out of the scalp, drooping with
-// gravity (−y) quadratically, so long hair lies down instead of standing like bristles.
-fn hair_point(root: vec3<f32>, dir: vec3<f32>, len: f32, s: f32) -> vec3<f32> {
-    let droop = frame.hair_misc.y;
-    return root + dir * (len * s) + vec3<f32>(0.0, -1.0, 0.0) * (droop * len * s * s);
+// The hair as a quadratic Bézier: out of the scalp along its direction for a third of
+// its length, then combed down along the scalp (gravity projected onto the plane across
+// the hair's root direction), so hair lies on the head instead of standing like bristles.
+// `droop` ∈ [0, 1] is how far it bends (0: straight along its direction).
+struct HairCurve {
+    p0: vec3<f32>,
+    p1: vec3<f32>,
+    p2: vec3<f32>,
+}
+
+fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32) -> HairCurve {
+    let droop = clamp(frame.hair_misc.y, 0.0, 1.0);
+    let g = vec3<f32>(0.0, -1.0, 0.0);
+    let along = g - dir * dot(g, dir);
+    // At the crown gravity is parallel to the hair: no combing direction, stay straight.
+    let comb = select(dir, normalize(along), length(along) > 1e-3);
+    let p1 = root + dir * (len * mix(0.5, 0.35, droop));
+    let p2 = p1 + normalize(mix(dir, comb, droop)) * (len * mix(0.5, 0.7, droop));
+    return HairCurve(root, p1, p2);
+}
+
+fn curve_point(c: HairCurve, s: f32) -> vec3<f32> {
+    let r = 1.0 - s;
+    return c.p0 * (r * r) + c.p1 * (2.0 * r * s) + c.p2 * (s * s);
+}
+
+fn curve_tangent(c: HairCurve, s: f32) -> vec3<f32> {
+    return normalize((c.p1 - c.p0) * (1.0 - s) + (c.p2 - c.p1) * s);
 }
 
 @vertex
@@ -76,10 +99,9 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let len = frame.hair_base.w * (0.85 + 0.3 * inst.random);
     let s = f32(vertex / 2u) / f32(SEGMENTS);
     let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
-    let p = hair_point(inst.position, dir, len, s);
-    let p_next = hair_point(inst.position, dir, len, min(s + 0.05, 1.0))
-        - hair_point(inst.position, dir, len, max(s - 0.05, 0.0));
-    let tangent = normalize(p_next);
+    let curve = hair_curve(inst.position, dir, len);
+    let p = curve_point(curve, s);
+    let tangent = curve_tangent(curve, s);
 
     // Widen in screen space, perpendicular to the projected hair, by a pixel width that
     // tapers to a third at the tip.

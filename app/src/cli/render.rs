@@ -71,7 +71,12 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 30.0)]
     pub fov: f32,
     /// Young and old side by side with their ages printed: T0,T1.
-    #[arg(long, value_delimiter = ',', num_args = 2, conflicts_with = "ages")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        conflicts_with = "ages",
+        value_name = "T0,T1"
+    )]
     pub compare: Vec<f32>,
     /// No hair pass.
     #[arg(long)]
@@ -408,7 +413,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     };
 
     if !args.compare.is_empty() {
-        let [t0, t1] = [args.compare[0], args.compare[1]];
+        let &[t0, t1] = args.compare.as_slice() else {
+            bail!("--compare takes two ages, T0,T1");
+        };
         let mut images = Vec::new();
         for t in [t0, t1] {
             inputs.upload_age(&mut renderer, t, &mut params)?;

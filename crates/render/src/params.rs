@@ -205,7 +205,8 @@ pub struct HairShading {
     pub length: f32,
     /// Ribbon width at the root, pixels, ≥ 0.
     pub width_px: f32,
-    /// Sag of the tip below the straight hair, as a fraction of the length, ≥ 0.
+    /// How far the hair bends from its growth direction down along the scalp, in [0, 1]
+    /// (0: straight out; 1: combed flat after the first third).
     pub droop: f32,
 }
 
@@ -218,11 +219,11 @@ impl Default for HairShading {
             shininess: 40.0,
             k_amb: 0.08,
             base_colour: Vec3::new(0.09, 0.05, 0.03),
-            gray_colour: Vec3::new(0.75, 0.74, 0.72),
+            gray_colour: Vec3::new(0.32, 0.315, 0.30),
             ramp: GrayingRampParam::Linear,
-            length: 0.02,
+            length: 0.03,
             width_px: 1.2,
-            droop: 0.6,
+            droop: 0.85,
         }
     }
 }

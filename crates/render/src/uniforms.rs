@@ -87,7 +87,7 @@ impl FrameUniform {
             hair_k: [hr.k_diff, hr.k_spec, hr.shininess.max(0.0), hr.k_amb],
             hair_misc: [
                 w as f32,
-                hr.droop.max(0.0),
+                hr.droop.clamp(0.0, 1.0),
                 if p.output == FrameOutput::PomHit {
                     1.0
                 } else {

@@ -86,11 +86,15 @@ fn head_is_lit_and_where_expected() {
     let bg = background(&p);
     let (mut count, mut sum, mut min_x, mut max_x, mut min_y, mut max_y) =
         (0u32, 0f64, u32::MAX, 0, u32::MAX, 0);
+    // A NaN anywhere in the lighting writes 0 (black) on lavapipe and most GPUs: the
+    // skin, lit by an ambient term everywhere, never goes that dark.
+    let mut black = 0u32;
     for (x, y, px) in img.enumerate_pixels() {
         assert_eq!(px.0[3], 255, "alpha at {x},{y}");
         if !is_background(px, bg) {
             count += 1;
             sum += f64::from(px.0[0]) + f64::from(px.0[1]) + f64::from(px.0[2]);
+            black += u32::from(px.0[..3].iter().all(|&c| c < 4));
             (min_x, max_x, min_y, max_y) = (min_x.min(x), max_x.max(x), min_y.min(y), max_y.max(y));
         }
     }
@@ -104,6 +108,7 @@ fn head_is_lit_and_where_expected() {
         "head covers {coverage:.3} of the frame"
     );
     assert!(mean > 60.0, "head pixels are too dark: mean {mean:.1}");
+    assert_eq!(black, 0, "black (NaN?) pixels on the head");
     let centre_x = f64::from(min_x + max_x) / 2.0;
     assert!(
         (centre_x - 64.0).abs() < 10.0,

@@ -106,8 +106,10 @@ fn errors_texels(gpu: &Gpu, mode: PomMode, linear: u32, binary: u32) -> Vec<(f32
     let mut r = Renderer::new(&gpu.device, &gpu.queue, wgpu::TextureFormat::Rgba32Float).unwrap();
     r.upload_mesh(&head::skin_patch(), 1.0).unwrap();
     r.upload_large_wrinkles(&map).unwrap();
-    let mut p = FrameParams::default();
-    p.output = FrameOutput::PomHit;
+    let mut p = FrameParams {
+        output: FrameOutput::PomHit,
+        ..Default::default()
+    };
     p.hair.enabled = false;
     p.skin.pom_mode = mode;
     p.skin.linear_steps = linear;

@@ -329,7 +329,7 @@ impl Default for HairSection {
             seed: 0,
             max_deviation_deg: crate::hair::DEFAULT_MAX_DEVIATION_RAD.to_degrees(),
             length_mm: 30.0,
-            base_colour: Colour([0x3b, 0x2a, 0x1e]),
+            base_colour: Colour([0x5a, 0x3d, 0x28]),
             gray_colour: Colour([0xd9, 0xd6, 0xcf]),
             graying_onset_min_years: 30.0,
             graying_onset_max_years: 65.0,

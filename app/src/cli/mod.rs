@@ -35,6 +35,11 @@ pub struct Cli {
     /// Editor: open the compare view with this age (years) on the right.
     #[arg(long, value_name = "Y")]
     pub compare_years: Option<f32>,
+
+    /// Editor: run the scripted UI benchmark (frame time during a 4096² bake, slider to
+    /// visible, scrubbing), print its table and quit.
+    #[arg(long)]
+    pub bench_ui: bool,
 }
 
 #[derive(Debug, Subcommand)]
@@ -64,6 +69,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             frames: cli.frames,
             age_years: cli.age_years,
             compare_years: cli.compare_years,
+            bench_ui: cli.bench_ui,
         }),
         Some(Command::Bake(args)) => bake::run(&args),
         Some(Command::Render(args)) => render::run(&args),

@@ -69,6 +69,8 @@ pub struct EditorOptions {
     pub age_years: Option<f32>,
     /// Open in the compare view with this age (years) on the right.
     pub compare_years: Option<f32>,
+    /// Run the scripted UI benchmark, print its table and quit.
+    pub bench_ui: bool,
 }
 
 pub struct EditorApp {
@@ -92,6 +94,9 @@ pub struct EditorApp {
     options: EditorOptions,
     frames_with_maps: u32,
     screenshot_requested: bool,
+    bench: Option<super::bench_ui::BenchUi>,
+    /// An age change waits for the worker (see [`EditorApp::set_age`]).
+    age_pending: bool,
 }
 
 impl EditorApp {
@@ -153,7 +158,14 @@ impl EditorApp {
             options,
             frames_with_maps: 0,
             screenshot_requested: false,
+            bench: None,
+            age_pending: false,
         };
+        if app.options.bench_ui {
+            app.bench = Some(super::bench_ui::BenchUi::new());
+            app.persisted.layout = Layout::Head;
+            app.persisted.compare = false;
+        }
         app.submit(false, "open");
         app
     }
@@ -234,6 +246,14 @@ impl EditorApp {
     /// Sets the age t and bakes (a preview while it is still moving).
     pub fn set_age(&mut self, t: f32, moving: bool) {
         self.project.age.t = t.clamp(0.0, 1.0);
+        // While the age moves, bake only when the worker is free: the view shows the
+        // newest age at once (hair, fine wrinkles, paling are uniforms) and the maps
+        // follow, instead of a bake per frame competing with drawing for the cores.
+        if moving && self.worker.busy(self.reported) {
+            self.age_pending = true;
+            return;
+        }
+        self.age_pending = false;
         let years = self.project.age.mapping().years(self.project.age.t);
         self.submit(moving, &format!("age {years:.0} years"));
     }
@@ -256,6 +276,9 @@ impl EditorApp {
                     self.project = self.last_good.clone();
                 }
             }
+        }
+            if self.age_pending && !self.worker.busy(self.reported) {
+            self.set_age(self.project.age.t, true);
         }
     }
 
@@ -506,6 +529,41 @@ impl EditorApp {
         }
     }
 
+    fn bench_step(&mut self, ctx: &egui::Context) {
+        let Some(bench) = &mut self.bench else {
+            return;
+        };
+        ctx.request_repaint();
+        let hairs = self.viewport.as_ref().map_or(0, |v| v.hairs_drawn);
+        let idle = !self.worker.busy(self.reported);
+        let years = self.project.age.mapping().years(self.project.age.t);
+        match bench.frame(idle, self.reported, self.worker.latest, hairs, years) {
+            super::bench_ui::Action::None => {}
+            super::bench_ui::Action::BigBake => {
+                let request = BakeRequest {
+                    large_size_px: 4096,
+                    micro_size_px: 4096,
+                    t: self.project.age.t,
+                    fine: true,
+                    hair: true,
+                    packed: true,
+                };
+                self.worker.submit(Job {
+                    id: 0,
+                    project: self.project.clone(),
+                    wrinkles: self.wrinkles.clone(),
+                    request,
+                    what: "4096² bake".into(),
+                    compare_t: None,
+                });
+            }
+            super::bench_ui::Action::SetAge(t) => self.set_age(t, true),
+            super::bench_ui::Action::Play => self.persisted.playback.playing = true,
+            super::bench_ui::Action::Stop => self.persisted.playback.playing = false,
+            super::bench_ui::Action::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
+        }
+    }
+
     fn maybe_screenshot(&mut self, ctx: &egui::Context) {
         let Some(path) = self.options.screenshot.clone() else {
             return;
@@ -579,6 +637,13 @@ impl eframe::App for EditorApp {
         let texture = self.texture(&ctx, kind);
         let wrinkles = self.wrinkles().to_vec();
         let render_state = frame.wgpu_render_state().cloned();
+        // While the age plays or the pointer drags, draw the head at a third of the
+        // resolution (upscaled): interaction stays fluid on a CPU adapter; the full
+        // resolution returns on the first still frame.
+        let moving = self.persisted.playback.playing || ui.input(|i| i.pointer.any_down());
+        for v in [&mut self.viewport, &mut self.viewport_b].into_iter().flatten() {
+            v.scale = if moving { 1.0 / 3.0 } else { 1.0 };
+        }
         let mut compare_changed = false;
         let fibre_edit = egui::CentralPanel::default()
             .show(ui, |ui| {
@@ -664,6 +729,7 @@ impl eframe::App for EditorApp {
             }
         }
         self.maybe_screenshot(&ctx);
+        self.bench_step(&ctx);
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

@@ -3,6 +3,7 @@
 //! bake runs on the [`worker`] thread.
 
 mod app;
+mod bench_ui;
 pub mod fields_ui;
 pub mod map_view;
 pub mod timeline;

@@ -81,7 +81,9 @@ pub fn timeline_ui(ui: &mut egui::Ui, project: &Project, playback: &mut Playback
 
     // Playback advances the age by wall-clock time.
     if playback.playing {
-        let dt = ui.input(|i| i.stable_dt).min(0.1);
+        // Wall-clock time since the last frame, so playback runs in real time however
+        // fast frames come.
+        let dt = ui.input(|i| i.unstable_dt).min(0.25);
         years += dt * playback.speed;
         if years > old {
             if playback.looping {
@@ -113,14 +115,18 @@ pub fn timeline_ui(ui: &mut egui::Ui, project: &Project, playback: &mut Playback
             });
         ui.separator();
         ui.spacing_mut().slider_width = (ui.available_width() - 190.0).max(100.0);
+        let shown = years;
         let r = ui.add(
             egui::Slider::new(&mut years, young..=old)
                 .text("age (years)")
                 .fixed_decimals(1),
         );
-        if r.changed() {
+        // The slider rounds what it shows to 0.1 year; only a larger change is the user's.
+        if r.changed() && (years - shown).abs() > 0.051 {
             playback.playing = false;
             edit.t = Some((mapping.t(years), r.dragged()));
+        } else {
+            years = shown;
         }
         if r.drag_stopped() {
             edit.t = Some((mapping.t(years), false));

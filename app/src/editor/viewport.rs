@@ -33,6 +33,9 @@ struct Uploaded {
 }
 
 pub struct Viewport {
+    /// Resolution scale of the next frames (1 = full; lower while the age plays or the
+    /// view is dragged, so the view keeps up on slow adapters; the image is upscaled).
+    pub scale: f32,
     renderer: Renderer,
     texture: Option<egui::TextureId>,
     uploaded: Uploaded,
@@ -50,6 +53,7 @@ pub struct Viewport {
 impl Viewport {
     pub fn new(rs: &egui_wgpu::RenderState) -> Result<Self, agesim_render::RenderError> {
         Ok(Self {
+            scale: 1.0,
             renderer: Renderer::new(&rs.device, &rs.queue, agesim_render::COLOUR_FORMAT)?,
             texture: None,
             uploaded: Uploaded::default(),
@@ -180,7 +184,7 @@ impl Viewport {
         let mut camera = frame::camera(project, self.centre + self.pan);
         camera.distance = camera.distance.max(1e-3);
         let params = frame::frame_params(project, &factors, camera);
-        let ppp = ctx.pixels_per_point();
+        let ppp = ctx.pixels_per_point() * self.scale.clamp(0.1, 1.0);
         let size = [
             ((rect.width() * ppp) as u32).clamp(16, 4096),
             ((rect.height() * ppp) as u32).clamp(16, 4096),

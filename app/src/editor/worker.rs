@@ -193,6 +193,21 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
     let mut snapshot = Snapshot::default();
     let mut scene_b: Option<Scene> = None;
     let mut snapshot_b = Snapshot::default();
+    // Bakes use all cores but one, so the UI thread (and a CPU graphics adapter) always
+    // has a core: the editor stays fluid while a large bake runs. The maps are the same
+    // bytes on any thread count.
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get().saturating_sub(1))
+        .max(1);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|i| format!("agesim-bake-{i}"))
+        .build()
+        .ok();
+    let install = |f: &mut (dyn FnMut() + Send)| match &pool {
+        Some(p) => p.install(f),
+        None => f(),
+    };
     while let Ok(mut next) = jobs.recv() {
         // Latest wins: skip everything queued behind the newest job.
         loop {
@@ -204,7 +219,8 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         }
         let (job, cancel) = next;
         let start = Instant::now();
-        let mut outcome = bake(&mut scene, &mut snapshot, &job, &cancel);
+        let mut outcome = Err(Error::Cancelled);
+        install(&mut || outcome = bake(&mut scene, &mut snapshot, &job, &cancel));
         if let (Ok(_), Some(t)) = (&outcome, job.compare_t) {
             // The second age: a scene of its own, so neither side re-bakes the other's age.
             let mut job_b = job.clone();
@@ -213,7 +229,9 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             if scene_b.is_none() {
                 scene_b = scene.clone();
             }
-            match bake(&mut scene_b, &mut snapshot_b, &job_b, &cancel) {
+            let mut result_b = Err(Error::Cancelled);
+            install(&mut || result_b = bake(&mut scene_b, &mut snapshot_b, &job_b, &cancel));
+            match result_b {
                 Ok(_) => snapshot.compare = Some(Box::new(snapshot_b.clone())),
                 Err(e) => outcome = Err(e),
             }

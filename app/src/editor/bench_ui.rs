@@ -1,0 +1,177 @@
+//! `agesim --bench-ui`: a scripted run of the real editor window that measures what the
+//! artist feels (issue 12 §6), printed as a table:
+//! 1. the UI's frame interval while a 4096² bake runs on the worker;
+//! 2. the time from an age-slider change to the first frame that shows its bake (preview);
+//! 3. frames per second while the age plays (scrubbing) with the default head's hair.
+//!
+//! Each phase drives the app through the same calls the widgets make.
+
+use std::time::Instant;
+
+/// The phases, in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Phase {
+    /// Waiting for the first bake.
+    Warmup,
+    BigBake,
+    Slider,
+    Scrub,
+    Done,
+}
+
+pub struct BenchUi {
+    phase: Phase,
+    phase_start: Instant,
+    last_frame: Instant,
+    intervals_ms: Vec<f64>,
+    big_bake_frames: Vec<f64>,
+    slider_latencies_ms: Vec<f64>,
+    slider_sent: Option<(Instant, u64)>,
+    scrub_frames: usize,
+    scrub_hairs: Vec<u32>,
+    scrub_years: Vec<f32>,
+    results: Vec<String>,
+    idle_ms: f64,
+}
+
+/// What the bench asks the app to do this frame.
+pub enum Action {
+    None,
+    /// Bake the maps at full size 4096².
+    BigBake,
+    /// Set the age (preview bake), remembering the job id.
+    SetAge(f32),
+    Play,
+    Stop,
+    Quit,
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn max(v: &[f64]) -> f64 {
+    v.iter().copied().fold(f64::NAN, f64::max)
+}
+
+impl BenchUi {
+    pub fn new() -> Self {
+        Self {
+            phase: Phase::Warmup,
+            phase_start: Instant::now(),
+            last_frame: Instant::now(),
+            intervals_ms: Vec::new(),
+            big_bake_frames: Vec::new(),
+            slider_latencies_ms: Vec::new(),
+            slider_sent: None,
+            scrub_frames: 0,
+            scrub_hairs: Vec::new(),
+            scrub_years: Vec::new(),
+            results: Vec::new(),
+            idle_ms: f64::NAN,
+        }
+    }
+
+    /// Called once per frame with the worker state: whether it is idle, the newest job id
+    /// that reported, and the hairs drawn. Returns what to do.
+    pub fn frame(&mut self, idle: bool, reported: u64, latest: u64, hairs: u32, years: f32) -> Action {
+        let now = Instant::now();
+        let dt = (now - self.last_frame).as_secs_f64() * 1e3;
+        self.last_frame = now;
+        let elapsed = (now - self.phase_start).as_secs_f64();
+        match self.phase {
+            Phase::Warmup => {
+                if idle && elapsed > 0.5 {
+                    self.intervals_ms.push(dt);
+                }
+                if idle && elapsed > 2.5 {
+                    let frames = self.intervals_ms.len();
+                    let med = median(&mut self.intervals_ms);
+                    self.idle_ms = med;
+                    self.results.push(format!(
+                        "| baseline: UI frame interval, nothing baking, view still ({frames} frames) | median {med:.1} ms | — |"
+                    ));
+                    self.intervals_ms.clear();
+                    self.next(Phase::BigBake);
+                    return Action::BigBake;
+                }
+            }
+            Phase::BigBake => {
+                if elapsed > 0.05 {
+                    self.big_bake_frames.push(dt);
+                }
+                if idle && elapsed > 0.2 {
+                    let frames = self.big_bake_frames.len();
+                    let worst = max(&self.big_bake_frames);
+                    let med = median(&mut self.big_bake_frames);
+                    self.results.push(format!(
+                        "| UI frame interval while a 4096² bake runs ({elapsed:.1} s, {frames} frames) | median {med:.1} ms ({:.1}× the baseline), worst {worst:.1} ms | ≤ 50 ms |",
+                        med / self.idle_ms
+                    ));
+                    self.next(Phase::Slider);
+                }
+            }
+            Phase::Slider => {
+                match self.slider_sent {
+                    Some((sent, id)) if reported >= id => {
+                        // This frame shows the bake (the app uploads before drawing).
+                        self.slider_latencies_ms
+                            .push((now - sent).as_secs_f64() * 1e3);
+                        self.slider_sent = None;
+                    }
+                    Some(_) => {}
+                    None => {
+                        if self.slider_latencies_ms.len() >= 12 {
+                            let worst = max(&self.slider_latencies_ms);
+                            let med = median(&mut self.slider_latencies_ms);
+                            self.results.push(format!(
+                                "| age slider → first frame showing it (preview 512², 12 moves) | median {med:.0} ms, worst {worst:.0} ms | ≤ 100 ms |"
+                            ));
+                            self.next(Phase::Scrub);
+                            return Action::Play;
+                        }
+                        let k = self.slider_latencies_ms.len();
+                        self.slider_sent = Some((now, latest + 1));
+                        return Action::SetAge(0.2 + 0.05 * k as f32);
+                    }
+                }
+            }
+            Phase::Scrub => {
+                self.scrub_frames += 1;
+                self.scrub_hairs.push(hairs);
+                self.scrub_years.push(years);
+                self.intervals_ms.push(dt);
+                if elapsed > 5.0 {
+                    let fps = self.scrub_frames as f64 / elapsed;
+                    let most = self.scrub_hairs.iter().copied().max().unwrap_or(0);
+                    let least = self.scrub_hairs.iter().copied().min().unwrap_or(0);
+                    let med = median(&mut self.intervals_ms);
+                    let y0 = self.scrub_years.iter().copied().fold(f32::INFINITY, f32::min);
+                    let y1 = self.scrub_years.iter().copied().fold(0.0, f32::max);
+                    self.results.push(format!(
+                        "| scrubbing the age (playing {y0:.0}–{y1:.0} years, {least}–{most} hairs drawn) | {fps:.1} fps (median frame {med:.1} ms) | ≥ 15 fps |"
+                    ));
+                    self.next(Phase::Done);
+                    return Action::Stop;
+                }
+            }
+            Phase::Done => {
+                println!("| figure | measured | target |\n|---|---|---|");
+                for r in &self.results {
+                    println!("{r}");
+                }
+                return Action::Quit;
+            }
+        }
+        Action::None
+    }
+
+    fn next(&mut self, phase: Phase) {
+        self.phase = phase;
+        self.phase_start = Instant::now();
+    }
+}

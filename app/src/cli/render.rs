@@ -529,8 +529,9 @@ fn bench(
         samples.sort_by(f64::total_cmp);
         Ok((samples[0], samples[RUNS / 2]))
     };
-    println!("adapter: {}", gpu.adapter_description());
-    println!("1280×720, default head at t = 0.75 ({hairs} hairs); fastest / median of {RUNS} frames, ms");
+    println!(
+        "1280×720, default head at t = 0.75 ({hairs} hairs); fastest / median of {RUNS} frames, ms"
+    );
     println!("| mode | L | B | hair off | hair on |");
     println!("|---|---|---|---|---|");
     let mut row = |mode: PomMode, l: u32, b: u32| -> anyhow::Result<()> {

@@ -358,6 +358,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             bail!("age t = {t} is outside [0, 1]");
         }
     }
+    if !args.compare.is_empty() && args.compare.len() != 2 {
+        bail!("--compare takes two ages, T0,T1");
+    }
     let project = match &args.project {
         Some(path) => Project::load(path)?,
         None => Project::default(),

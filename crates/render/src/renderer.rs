@@ -255,7 +255,7 @@ impl Renderer {
                 address_mode_v: v,
                 mag_filter: wgpu::FilterMode::Linear,
                 min_filter: wgpu::FilterMode::Linear,
-                mipmap_filter: wgpu::MipmapFilterMode::Nearest,
+                mipmap_filter: wgpu::MipmapFilterMode::Linear,
                 ..Default::default()
             })
         };
@@ -270,7 +270,8 @@ impl Renderer {
             wgpu::AddressMode::Repeat,
         );
 
-        let flat = |label: &str, value: f32| create_r16f(device, queue, label, 1, 1, &[value]);
+        let flat =
+            |label: &str, value: f32| create_r16f(device, queue, label, (1, 1), &[value], false);
         let large = flat("agesim large-wrinkle heights (placeholder)", 1.0);
         let micro = flat("agesim micro-relief tile (placeholder)", 0.0);
         let fine = flat("agesim fine-wrinkle tile (placeholder)", 0.0);
@@ -384,7 +385,7 @@ impl Renderer {
     /// marched and the displaced one, at any age scaling of the heights.
     pub fn upload_large_wrinkles(&mut self, heights01: &HeightMap) -> Result<(), RenderError> {
         let data: Vec<f32> = heights01.data().iter().map(|h| h.clamp(0.0, 1.0)).collect();
-        self.large = self.create_layer("agesim large-wrinkle heights", heights01, &data)?;
+        self.large = self.create_layer("agesim large-wrinkle heights", heights01, &data, false)?;
         self.skin_bind_group = None;
         Ok(())
     }
@@ -418,12 +419,12 @@ impl Renderer {
         match layer {
             TileLayer::Micro => {
                 self.micro =
-                    self.create_layer("agesim micro-relief tile", heights, heights.data())?;
+                    self.create_layer("agesim micro-relief tile", heights, heights.data(), true)?;
                 self.micro_info = info;
             }
             TileLayer::Fine => {
                 self.fine =
-                    self.create_layer("agesim fine-wrinkle tile", heights, heights.data())?;
+                    self.create_layer("agesim fine-wrinkle tile", heights, heights.data(), true)?;
                 self.fine_info = info;
             }
         }
@@ -435,7 +436,7 @@ impl Renderer {
     pub fn upload_wrinkle_mask(&mut self, mask: &Mask) -> Result<(), RenderError> {
         let map = HeightMap::from_vec(mask.width_px(), mask.height_px(), mask.values().to_vec())
             .map_err(RenderError::Core)?;
-        self.mask = self.create_layer("agesim wrinkle mask", &map, map.data())?;
+        self.mask = self.create_layer("agesim wrinkle mask", &map, map.data(), true)?;
         self.skin_bind_group = None;
         Ok(())
     }
@@ -470,6 +471,7 @@ impl Renderer {
         label: &str,
         map: &HeightMap,
         data: &[f32],
+        mips: bool,
     ) -> Result<Layer, RenderError> {
         let max = self.device.limits().max_texture_dimension_2d;
         let (w, h) = (map.width_px(), map.height_px());
@@ -481,7 +483,14 @@ impl Renderer {
                 max,
             });
         }
-        Ok(create_r16f(&self.device, &self.queue, label, w, h, data))
+        Ok(create_r16f(
+            &self.device,
+            &self.queue,
+            label,
+            (w, h),
+            data,
+            mips,
+        ))
     }
 
     fn skin_bind_group(&mut self) -> wgpu::BindGroup {
@@ -840,15 +849,43 @@ impl Renderer {
     }
 }
 
-/// A 1-channel f16 texture (filterable everywhere) holding `data` (w·h values).
+/// A 1-channel f16 texture (filterable everywhere) holding `data` (w·h values), with
+/// `mips`, its box-filtered mip chain (halving while both sides are even):
+/// `textureSampleGrad` then averages micro-relief and fine wrinkles smaller than a pixel
+/// instead of aliasing them into speckle. The large-wrinkle map has no mips: POM marches
+/// the exact height field (`tests/pom_reference.rs`), and at ≈ 1 texel per pixel on a
+/// whole-head view it does not alias much.
 fn create_r16f(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
     data: &[f32],
+    mips: bool,
 ) -> Layer {
+    let mut bytes = to_f16_bytes(data);
+    let mut levels = 1;
+    let (mut w, mut h) = (width as usize, height as usize);
+    let mut level: Vec<f32> = data.to_vec();
+    while mips && w % 2 == 0 && h % 2 == 0 && w > 1 && h > 1 {
+        let (nw, nh) = (w / 2, h / 2);
+        let mut next = Vec::with_capacity(nw * nh);
+        for y in 0..nh {
+            for x in 0..nw {
+                let at = |xx: usize, yy: usize| level[yy * w + xx];
+                next.push(
+                    0.25 * (at(2 * x, 2 * y)
+                        + at(2 * x + 1, 2 * y)
+                        + at(2 * x, 2 * y + 1)
+                        + at(2 * x + 1, 2 * y + 1)),
+                );
+            }
+        }
+        bytes.extend(to_f16_bytes(&next));
+        level = next;
+        (w, h) = (nw, nh);
+        levels += 1;
+    }
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
@@ -858,7 +895,7 @@ fn create_r16f(
                 height,
                 depth_or_array_layers: 1,
             },
-            mip_level_count: 1,
+            mip_level_count: levels,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: wgpu::TextureFormat::R16Float,
@@ -866,7 +903,7 @@ fn create_r16f(
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
-        &to_f16_bytes(data),
+        &bytes,
     );
     let view = texture.create_view(&wgpu::TextureViewDescriptor {
         label: Some(label),

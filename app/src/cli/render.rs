@@ -379,8 +379,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
 
     let gpu = Gpu::new()?;
     println!("adapter: {}", gpu.adapter_description());
+    let start = Instant::now();
     let mut renderer = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT)?;
     inputs.upload_static(&mut renderer)?;
+    let setup_ms = start.elapsed().as_secs_f64() * 1e3;
 
     let mut params = FrameParams::default();
     params.skin.pom_mode = args.pom.into();
@@ -460,7 +462,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         };
         save(&img, &path)?;
         println!(
-            "{}: t = {t:.2} ({:.0} years), {} hairs, {} {}+{}, inputs {gather_ms:.0} ms, frame {render_ms:.0} ms",
+            "{}: t = {t:.2} ({:.0} years), {} hairs, {} {}+{}, inputs {gather_ms:.0} ms, \
+             renderer + uploads {setup_ms:.0} ms, frame {render_ms:.0} ms",
             path.display(),
             t_to_years(t),
             renderer.hair_count(t) * u32::from(params.hair.enabled),

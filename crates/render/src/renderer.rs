@@ -80,7 +80,11 @@ pub struct Renderer {
     /// Rebuilt lazily when a texture is replaced.
     skin_bind_group: Option<wgpu::BindGroup>,
     mesh: Option<GpuMesh>,
+    /// The subdivided copy, made on the first displacement frame (4× the triangles:
+    /// editors that never use the mode never pay for it).
     displaced_mesh: Option<GpuMesh>,
+    /// The uploaded mesh kept on the CPU until it is subdivided.
+    mesh_to_subdivide: Option<MeshData>,
     surface_scale: SurfaceScale,
     metres_per_unit: f32,
     hair: Option<Hair>,
@@ -306,6 +310,7 @@ impl Renderer {
             skin_bind_group: None,
             mesh: None,
             displaced_mesh: None,
+            mesh_to_subdivide: None,
             surface_scale: SurfaceScale {
                 units_per_u: 1.0,
                 units_per_v: 1.0,
@@ -321,9 +326,10 @@ impl Renderer {
         self.colour_format
     }
 
-    /// Uploads the head (positions, normals, UVs, tangents with sign; SPEC §0, §4) and a
-    /// once-subdivided copy for [`PomMode::Displacement`]; measures its UV density so the
-    /// tiles appear at their physical size. `metres_per_unit` is the mesh's unit length
+    /// Uploads the head (positions, normals, UVs, tangents with sign; SPEC §0, §4) —
+    /// its once-subdivided copy for [`PomMode::Displacement`] follows on the first frame
+    /// in that mode — and measures its UV density so the tiles appear at their physical
+    /// size. `metres_per_unit` is the mesh's unit length
     /// (1 for the default head), > 0.
     pub fn upload_mesh(&mut self, mesh: &Mesh, metres_per_unit: f32) -> Result<(), RenderError> {
         if !(metres_per_unit.is_finite() && metres_per_unit > 0.0) {
@@ -345,7 +351,8 @@ impl Renderer {
             .ok_or_else(|| RenderError::InvalidMesh("every triangle has degenerate UVs".into()))?;
         let data = MeshData::from_mesh(mesh);
         self.mesh = Some(self.create_mesh("agesim mesh", &data));
-        self.displaced_mesh = Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
+        self.displaced_mesh = None;
+        self.mesh_to_subdivide = Some(data);
         self.surface_scale = scale;
         self.metres_per_unit = metres_per_unit;
         Ok(())
@@ -624,6 +631,12 @@ impl Renderer {
         size_px: (u32, u32),
     ) -> Result<(), RenderError> {
         self.ensure_targets(size_px)?;
+        if params.skin.pom_mode == PomMode::Displacement
+            && let Some(data) = self.mesh_to_subdivide.take()
+        {
+            self.displaced_mesh =
+                Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
+        }
         let ctx = FrameContext {
             size_px,
             encode_srgb: self.encodes_srgb(),

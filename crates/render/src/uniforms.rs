@@ -128,8 +128,10 @@ mod tests {
 
     #[test]
     fn nan_parameters_never_reach_the_gpu() {
-        let mut p = FrameParams::default();
-        p.age = f32::NAN;
+        let mut p = FrameParams {
+            age: f32::NAN,
+            ..Default::default()
+        };
         p.skin.paleness = f32::NAN;
         p.skin.fine_blend = f32::NAN;
         p.skin.disp_scale = f32::NAN;

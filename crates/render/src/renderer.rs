@@ -89,6 +89,8 @@ pub struct Renderer {
     metres_per_unit: f32,
     hair: Option<Hair>,
     targets: Option<Targets>,
+    /// Bumped whenever the targets are recreated (see [`Renderer::target_generation`]).
+    target_generation: u64,
 }
 
 impl Renderer {
@@ -318,6 +320,7 @@ impl Renderer {
             metres_per_unit: 1.0,
             hair: None,
             targets: None,
+            target_generation: 0,
         })
     }
 
@@ -584,6 +587,7 @@ impl Renderer {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
             view_formats: &[],
         });
+        self.target_generation += 1;
         self.targets = Some(Targets {
             size_px,
             colour_view: colour.create_view(&wgpu::TextureViewDescriptor {
@@ -609,6 +613,13 @@ impl Renderer {
         )
     }
 
+    /// Changes whenever [`Renderer::encode`] recreated the targets (first frame, new
+    /// size): a view registered elsewhere (egui's `register_native_texture`) must then be
+    /// registered again.
+    pub fn target_generation(&self) -> u64 {
+        self.target_generation
+    }
+
     /// The colour target of the last [`Renderer::encode`] (None before the first).
     pub fn colour_texture(&self) -> Option<&wgpu::Texture> {
         self.targets.as_ref().map(|t| &t.colour)
@@ -623,7 +634,9 @@ impl Renderer {
     /// Records one frame at `size_px` into the renderer's own targets: the skin pass,
     /// then (if enabled and uploaded) the hair pass with count(`params.age`) instances
     /// in one draw. Writes the frame uniform through the queue, so submit `encoder`
-    /// after this call. Draws only the background until a mesh is uploaded.
+    /// after this call, and encode one view per submission (a second `encode` before the
+    /// submit would overwrite the first's uniform). Draws only the background until a
+    /// mesh is uploaded.
     pub fn encode(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,

@@ -9,7 +9,13 @@
 //! wrinkles), [`Renderer::upload_wrinkle_mask`],
 //! [`Renderer::upload_hair`]); each frame call [`Renderer::encode`] (into the caller's
 //! encoder, e.g. in an egui callback's `prepare`) with a [`FrameParams`], then composite
-//! [`Renderer::colour_view`]. Headless: [`Gpu::new`] and [`Renderer::render_to_image`].
+//! [`Renderer::colour_view`] (re-register it when [`Renderer::target_generation`]
+//! changes). Headless: [`Gpu::new`] and [`Renderer::render_to_image`].
+//!
+//! In the editor (EGUI-0.37.md): keep the `Renderer` in egui-wgpu's `callback_resources`,
+//! call `encode(egui_encoder, …)` in the callback's `prepare`, and composite the colour
+//! target in `paint` (or show it through `register_native_texture` with a renderer made
+//! for `Rgba8Unorm`, for which the shader writes sRGB values itself).
 
 mod error;
 mod f16;

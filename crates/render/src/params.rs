@@ -267,3 +267,38 @@ impl Default for FrameParams {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn orbit_camera_positions() {
+        let mut c = Camera {
+            yaw_rad: 0.0,
+            pitch_rad: 0.0,
+            distance: 2.0,
+            target: Vec3::new(0.0, 1.0, 0.0),
+            fov_y_rad: 1.0,
+        };
+        assert!(
+            (c.eye() - Vec3::new(0.0, 1.0, 2.0)).length() < 1e-6,
+            "front: {}",
+            c.eye()
+        );
+        c.yaw_rad = std::f32::consts::FRAC_PI_2;
+        assert!(
+            (c.eye() - Vec3::new(2.0, 1.0, 0.0)).length() < 1e-5,
+            "+x: {}",
+            c.eye()
+        );
+        // The target projects to the centre of the frame, in front of the camera.
+        let clip = c.clip_from_world(1.5) * c.target.extend(1.0);
+        let ndc = clip.truncate() / clip.w;
+        assert!(ndc.x.abs() < 1e-5 && ndc.y.abs() < 1e-5, "{ndc}");
+        assert!((0.0..1.0).contains(&ndc.z), "depth {}", ndc.z);
+        // Pitch is clamped short of the pole, so look_at never degenerates.
+        c.pitch_rad = 10.0;
+        assert!(c.clip_from_world(1.0).is_finite());
+    }
+}

@@ -80,11 +80,17 @@ pub struct Renderer {
     /// Rebuilt lazily when a texture is replaced.
     skin_bind_group: Option<wgpu::BindGroup>,
     mesh: Option<GpuMesh>,
+    /// The subdivided copy, made on the first displacement frame (4× the triangles:
+    /// editors that never use the mode never pay for it).
     displaced_mesh: Option<GpuMesh>,
+    /// The uploaded mesh kept on the CPU until it is subdivided.
+    mesh_to_subdivide: Option<MeshData>,
     surface_scale: SurfaceScale,
     metres_per_unit: f32,
     hair: Option<Hair>,
     targets: Option<Targets>,
+    /// Bumped whenever the targets are recreated (see [`Renderer::target_generation`]).
+    target_generation: u64,
 }
 
 impl Renderer {
@@ -255,7 +261,7 @@ impl Renderer {
                 address_mode_v: v,
                 mag_filter: wgpu::FilterMode::Linear,
                 min_filter: wgpu::FilterMode::Linear,
-                mipmap_filter: wgpu::MipmapFilterMode::Nearest,
+                mipmap_filter: wgpu::MipmapFilterMode::Linear,
                 ..Default::default()
             })
         };
@@ -270,7 +276,8 @@ impl Renderer {
             wgpu::AddressMode::Repeat,
         );
 
-        let flat = |label: &str, value: f32| create_r16f(device, queue, label, 1, 1, &[value]);
+        let flat =
+            |label: &str, value: f32| create_r16f(device, queue, label, (1, 1), &[value], false);
         let large = flat("agesim large-wrinkle heights (placeholder)", 1.0);
         let micro = flat("agesim micro-relief tile (placeholder)", 0.0);
         let fine = flat("agesim fine-wrinkle tile (placeholder)", 0.0);
@@ -305,6 +312,7 @@ impl Renderer {
             skin_bind_group: None,
             mesh: None,
             displaced_mesh: None,
+            mesh_to_subdivide: None,
             surface_scale: SurfaceScale {
                 units_per_u: 1.0,
                 units_per_v: 1.0,
@@ -312,6 +320,7 @@ impl Renderer {
             metres_per_unit: 1.0,
             hair: None,
             targets: None,
+            target_generation: 0,
         })
     }
 
@@ -320,9 +329,10 @@ impl Renderer {
         self.colour_format
     }
 
-    /// Uploads the head (positions, normals, UVs, tangents with sign; SPEC §0, §4) and a
-    /// once-subdivided copy for [`PomMode::Displacement`]; measures its UV density so the
-    /// tiles appear at their physical size. `metres_per_unit` is the mesh's unit length
+    /// Uploads the head (positions, normals, UVs, tangents with sign; SPEC §0, §4) —
+    /// its once-subdivided copy for [`PomMode::Displacement`] follows on the first frame
+    /// in that mode — and measures its UV density so the tiles appear at their physical
+    /// size. `metres_per_unit` is the mesh's unit length
     /// (1 for the default head), > 0.
     pub fn upload_mesh(&mut self, mesh: &Mesh, metres_per_unit: f32) -> Result<(), RenderError> {
         if !(metres_per_unit.is_finite() && metres_per_unit > 0.0) {
@@ -344,7 +354,8 @@ impl Renderer {
             .ok_or_else(|| RenderError::InvalidMesh("every triangle has degenerate UVs".into()))?;
         let data = MeshData::from_mesh(mesh);
         self.mesh = Some(self.create_mesh("agesim mesh", &data));
-        self.displaced_mesh = Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
+        self.displaced_mesh = None;
+        self.mesh_to_subdivide = Some(data);
         self.surface_scale = scale;
         self.metres_per_unit = metres_per_unit;
         Ok(())
@@ -384,7 +395,7 @@ impl Renderer {
     /// marched and the displaced one, at any age scaling of the heights.
     pub fn upload_large_wrinkles(&mut self, heights01: &HeightMap) -> Result<(), RenderError> {
         let data: Vec<f32> = heights01.data().iter().map(|h| h.clamp(0.0, 1.0)).collect();
-        self.large = self.create_layer("agesim large-wrinkle heights", heights01, &data)?;
+        self.large = self.create_layer("agesim large-wrinkle heights", heights01, &data, false)?;
         self.skin_bind_group = None;
         Ok(())
     }
@@ -418,12 +429,12 @@ impl Renderer {
         match layer {
             TileLayer::Micro => {
                 self.micro =
-                    self.create_layer("agesim micro-relief tile", heights, heights.data())?;
+                    self.create_layer("agesim micro-relief tile", heights, heights.data(), true)?;
                 self.micro_info = info;
             }
             TileLayer::Fine => {
                 self.fine =
-                    self.create_layer("agesim fine-wrinkle tile", heights, heights.data())?;
+                    self.create_layer("agesim fine-wrinkle tile", heights, heights.data(), true)?;
                 self.fine_info = info;
             }
         }
@@ -435,7 +446,7 @@ impl Renderer {
     pub fn upload_wrinkle_mask(&mut self, mask: &Mask) -> Result<(), RenderError> {
         let map = HeightMap::from_vec(mask.width_px(), mask.height_px(), mask.values().to_vec())
             .map_err(RenderError::Core)?;
-        self.mask = self.create_layer("agesim wrinkle mask", &map, map.data())?;
+        self.mask = self.create_layer("agesim wrinkle mask", &map, map.data(), true)?;
         self.skin_bind_group = None;
         Ok(())
     }
@@ -470,6 +481,7 @@ impl Renderer {
         label: &str,
         map: &HeightMap,
         data: &[f32],
+        mips: bool,
     ) -> Result<Layer, RenderError> {
         let max = self.device.limits().max_texture_dimension_2d;
         let (w, h) = (map.width_px(), map.height_px());
@@ -481,7 +493,14 @@ impl Renderer {
                 max,
             });
         }
-        Ok(create_r16f(&self.device, &self.queue, label, w, h, data))
+        Ok(create_r16f(
+            &self.device,
+            &self.queue,
+            label,
+            (w, h),
+            data,
+            mips,
+        ))
     }
 
     fn skin_bind_group(&mut self) -> wgpu::BindGroup {
@@ -568,6 +587,7 @@ impl Renderer {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
             view_formats: &[],
         });
+        self.target_generation += 1;
         self.targets = Some(Targets {
             size_px,
             colour_view: colour.create_view(&wgpu::TextureViewDescriptor {
@@ -593,6 +613,13 @@ impl Renderer {
         )
     }
 
+    /// Changes whenever [`Renderer::encode`] recreated the targets (first frame, new
+    /// size): a view registered elsewhere (egui's `register_native_texture`) must then be
+    /// registered again.
+    pub fn target_generation(&self) -> u64 {
+        self.target_generation
+    }
+
     /// The colour target of the last [`Renderer::encode`] (None before the first).
     pub fn colour_texture(&self) -> Option<&wgpu::Texture> {
         self.targets.as_ref().map(|t| &t.colour)
@@ -607,7 +634,9 @@ impl Renderer {
     /// Records one frame at `size_px` into the renderer's own targets: the skin pass,
     /// then (if enabled and uploaded) the hair pass with count(`params.age`) instances
     /// in one draw. Writes the frame uniform through the queue, so submit `encoder`
-    /// after this call. Draws only the background until a mesh is uploaded.
+    /// after this call, and encode one view per submission (a second `encode` before the
+    /// submit would overwrite the first's uniform). Draws only the background until a
+    /// mesh is uploaded.
     pub fn encode(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
@@ -615,6 +644,12 @@ impl Renderer {
         size_px: (u32, u32),
     ) -> Result<(), RenderError> {
         self.ensure_targets(size_px)?;
+        if params.skin.pom_mode == PomMode::Displacement
+            && let Some(data) = self.mesh_to_subdivide.take()
+        {
+            self.displaced_mesh =
+                Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
+        }
         let ctx = FrameContext {
             size_px,
             encode_srgb: self.encodes_srgb(),
@@ -840,15 +875,43 @@ impl Renderer {
     }
 }
 
-/// A 1-channel f16 texture (filterable everywhere) holding `data` (w·h values).
+/// A 1-channel f16 texture (filterable everywhere) holding `data` (w·h values), with
+/// `mips`, its box-filtered mip chain (halving while both sides are even):
+/// `textureSampleGrad` then averages micro-relief and fine wrinkles smaller than a pixel
+/// instead of aliasing them into speckle. The large-wrinkle map has no mips: POM marches
+/// the exact height field (`tests/pom_reference.rs`), and at ≈ 1 texel per pixel on a
+/// whole-head view it does not alias much.
 fn create_r16f(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
     data: &[f32],
+    mips: bool,
 ) -> Layer {
+    let mut bytes = to_f16_bytes(data);
+    let mut levels = 1;
+    let (mut w, mut h) = (width as usize, height as usize);
+    let mut level: Vec<f32> = data.to_vec();
+    while mips && w % 2 == 0 && h % 2 == 0 && w > 1 && h > 1 {
+        let (nw, nh) = (w / 2, h / 2);
+        let mut next = Vec::with_capacity(nw * nh);
+        for y in 0..nh {
+            for x in 0..nw {
+                let at = |xx: usize, yy: usize| level[yy * w + xx];
+                next.push(
+                    0.25 * (at(2 * x, 2 * y)
+                        + at(2 * x + 1, 2 * y)
+                        + at(2 * x, 2 * y + 1)
+                        + at(2 * x + 1, 2 * y + 1)),
+                );
+            }
+        }
+        bytes.extend(to_f16_bytes(&next));
+        level = next;
+        (w, h) = (nw, nh);
+        levels += 1;
+    }
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
@@ -858,7 +921,7 @@ fn create_r16f(
                 height,
                 depth_or_array_layers: 1,
             },
-            mip_level_count: 1,
+            mip_level_count: levels,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: wgpu::TextureFormat::R16Float,
@@ -866,7 +929,7 @@ fn create_r16f(
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
-        &to_f16_bytes(data),
+        &bytes,
     );
     let view = texture.create_view(&wgpu::TextureViewDescriptor {
         label: Some(label),

@@ -38,6 +38,16 @@ pub(crate) struct FrameContext {
     pub mesh_units_per_uv: f32,
 }
 
+/// Clamps to [0, 1]; NaN (which `clamp` keeps) becomes 0, so no NaN reaches the GPU.
+fn unit(x: f32) -> f32 {
+    if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) }
+}
+
+/// ≥ 0, NaN → 0 (`f32::max` already drops the NaN operand).
+fn non_negative(x: f32) -> f32 {
+    x.max(0.0)
+}
+
 impl FrameUniform {
     pub(crate) fn new(p: &FrameParams, ctx: &FrameContext) -> Self {
         let (w, h) = ctx.size_px;
@@ -50,9 +60,9 @@ impl FrameUniform {
         Self {
             clip_from_world: clip.to_cols_array_2d(),
             camera_pos: [eye.x, eye.y, eye.z, if ctx.encode_srgb { 1.0 } else { 0.0 }],
-            light_dir: v3(l, p.light.intensity.max(0.0)),
-            light_colour: v3(p.light.colour, p.light.ambient.max(0.0)),
-            skin_albedo: v3(s.albedo, s.paleness.clamp(0.0, 1.0)),
+            light_dir: v3(l, non_negative(p.light.intensity)),
+            light_colour: v3(p.light.colour, non_negative(p.light.ambient)),
+            skin_albedo: v3(s.albedo, unit(s.paleness)),
             pom: [
                 s.pom_mode.shader_code(),
                 s.linear_steps.clamp(1, 256),
@@ -63,12 +73,12 @@ impl FrameUniform {
                 },
             ],
             disp: [
-                s.disp_scale.max(0.0),
+                non_negative(s.disp_scale),
                 // dispScale is depth in UV units; in mesh units through the UV density,
                 // so POM and displaced geometry show the same relief.
-                s.disp_scale.max(0.0) * ctx.mesh_units_per_uv,
-                s.fine_blend.clamp(0.0, 1.0),
-                p.age.clamp(0.0, 1.0),
+                non_negative(s.disp_scale) * ctx.mesh_units_per_uv,
+                unit(s.fine_blend),
+                unit(p.age),
             ],
             tiling: [
                 ctx.micro_repeats[0],
@@ -82,12 +92,12 @@ impl FrameUniform {
                 if s.micro_relief { 1.0 } else { 0.0 },
                 h as f32,
             ],
-            hair_base: v3(hr.base_colour, hr.length.max(0.0)),
-            hair_gray: v3(hr.gray_colour, hr.width_px.max(0.0)),
-            hair_k: [hr.k_diff, hr.k_spec, hr.shininess.max(0.0), hr.k_amb],
+            hair_base: v3(hr.base_colour, non_negative(hr.length)),
+            hair_gray: v3(hr.gray_colour, non_negative(hr.width_px)),
+            hair_k: [hr.k_diff, hr.k_spec, non_negative(hr.shininess), hr.k_amb],
             hair_misc: [
                 w as f32,
-                hr.droop.clamp(0.0, 1.0),
+                unit(hr.droop),
                 if p.output == FrameOutput::PomHit {
                     1.0
                 } else {
@@ -96,5 +106,57 @@ impl FrameUniform {
                 0.0,
             ],
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::PomMode;
+
+    fn ctx() -> FrameContext {
+        FrameContext {
+            size_px: (200, 100),
+            encode_srgb: false,
+            micro_repeats: [12.0, 10.0],
+            fine_repeats: [15.0, 12.0],
+            micro_strength: 0.002,
+            fine_strength: 0.0015,
+            mesh_units_per_uv: 0.5,
+        }
+    }
+
+    #[test]
+    fn nan_parameters_never_reach_the_gpu() {
+        let mut p = FrameParams {
+            age: f32::NAN,
+            ..Default::default()
+        };
+        p.skin.paleness = f32::NAN;
+        p.skin.fine_blend = f32::NAN;
+        p.skin.disp_scale = f32::NAN;
+        p.hair.droop = f32::NAN;
+        p.hair.length = f32::NAN;
+        let u = FrameUniform::new(&p, &ctx());
+        let floats: &[f32] = bytemuck::cast_slice(std::slice::from_ref(&u));
+        for (i, f) in floats.iter().enumerate() {
+            // The `pom` member holds integers; reinterpreted they are small finite floats.
+            assert!(f.is_finite(), "member float {i} is {f}");
+        }
+    }
+
+    #[test]
+    fn modes_steps_and_depth_reach_the_uniform() {
+        let mut p = FrameParams::default();
+        p.skin.pom_mode = PomMode::Binary;
+        p.skin.linear_steps = 1000;
+        p.skin.binary_steps = 5;
+        p.skin.disp_scale = 0.01;
+        let u = FrameUniform::new(&p, &ctx());
+        assert_eq!(u.pom[..3], [1, 256, 5]);
+        // Depth in mesh units = dispScale × mesh units per UV.
+        assert!((u.disp[1] - 0.005).abs() < 1e-7, "{}", u.disp[1]);
+        assert_eq!(u.hair_misc[0], 200.0);
+        assert_eq!(u.layers[3], 100.0);
     }
 }

@@ -1,21 +1,19 @@
 //! `agesim render`: headless renders of the head with the wgpu renderer (issue 11 §4),
 //! and `--bench`, the frame-time table of [T] fig. 8.5 (BENCHMARKS.md).
 //!
-//! The CPU inputs (mesh, large-wrinkle heights, micro-relief tile, fine-wrinkle tile,
-//! wrinkle mask, hair instances) are gathered in ONE place, [`SceneInputs::gather`], and
-//! the age dependence in ONE place, [`AgeFrame::at`]: the engine's `Scene` and age model
-//! replace exactly those two.
+//! The CPU inputs (mesh, large-wrinkle heights at an age, micro-relief and fine tiles,
+//! hair instances) come from the engine's `Scene`, and every age-dependent number from its
+//! age model ([`crate::frame::frame_params`]), as in the editor.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use agesim_core::fine_wrinkles::{self, DEFAULT_FINE_WRINKLES};
-use agesim_core::hair::{DEFAULT_DENSITY_PER_CM2, HairInstances, HairParams, SurfaceRef};
-use agesim_core::muscle::{self, Fibre, LargeWrinkleSettings};
-use agesim_core::project::Project;
-use agesim_core::transition::{DistanceMetric, TransitionTexture};
-use agesim_core::{HeightMap, Mask, Mesh, head, wrinkle_file};
-use agesim_render::{FrameParams, Gpu, PomMode, Renderer, TileLayer};
+use agesim_core::cancel::CancelToken;
+use agesim_core::hair::DEFAULT_DENSITY_PER_CM2;
+use agesim_core::project::{BuiltinMesh, Project};
+use agesim_core::scene::{BakeRequest, Scene};
+use agesim_core::{HeightMap, Mesh};
+use agesim_render::{FrameParams, Gpu, HairShading, PomMode, Renderer, TileLayer};
 use anyhow::{Context as _, bail};
 
 /// Render the head with the GPU renderer (wgpu; lavapipe works).
@@ -131,52 +129,19 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((parse(w)?, parse(h)?))
 }
 
-/// Default side of the fine-wrinkle tile, pixels.
-const FINE_TILE_PX: u32 = 512;
-/// Fine-wrinkle normal strength (tile UV per height unit): the default tile's creases
-/// (σ ≈ 0.0035 tile, depth ≈ 1) then tilt the normal by up to ≈ 25°.
-const FINE_STRENGTH: f32 = 0.0015;
-
-/// Everything on the CPU the renderer needs, made once. The engine's `Scene` replaces it.
+/// Everything on the CPU the renderer needs: the engine's [`Scene`] of the project (mesh,
+/// large wrinkles at an age, micro-relief and fine tiles, hair), baked at `map_px`.
 pub struct SceneInputs {
-    pub mesh: Mesh,
-    pub metres_per_unit: f32,
-    /// Large wrinkles at full age, normalised to [0, 1] (SPEC §1).
-    pub large_full: HeightMap,
-    pub micro: HeightMap,
-    pub micro_size_m: f32,
-    pub micro_strength: f32,
-    pub fine: HeightMap,
-    pub fine_size_m: f32,
-    pub fine_strength: f32,
-    pub mask: Mask,
-    pub hairs: Option<HairInstances>,
-}
-
-/// What changes with age, computed from t. A stand-in for the engine's age model.
-pub struct AgeFrame {
-    /// Multiplier of the large-wrinkle heights.
-    pub large_scale: f32,
-    pub fine_blend: f32,
-    pub paleness: f32,
-}
-
-impl AgeFrame {
-    pub fn at(t: f32) -> Self {
-        let t = t.clamp(0.0, 1.0);
-        Self {
-            large_scale: muscle::smoothstep(t),
-            fine_blend: t,
-            paleness: 0.5 * t,
-        }
-    }
+    scene: Scene,
+    map_px: u32,
+    hair: bool,
+    /// The skin patch's own creases (its UV square is 5 cm of skin, not a face).
+    patch_large: Option<HeightMap>,
 }
 
 impl SceneInputs {
-    /// Loads or makes every input: the project's wrinkles (the default head's files and
-    /// mask when it names none) rasterised at `map_px`², the micro-relief baked tileable
-    /// at `map_px`², the default fine-wrinkle tile, the default hair masks' transition
-    /// texture and the hair instances (none when `density` is 0).
+    /// The scene of `project` with the command line's mesh and hair settings. The
+    /// micro-relief tile is repeated over the surface, so it is baked tileable.
     pub fn gather(
         project: &Project,
         mesh: Option<&Path>,
@@ -185,146 +150,122 @@ impl SceneInputs {
         map_px: u32,
         density: f32,
     ) -> anyhow::Result<Self> {
-        let mesh = match (mesh, patch) {
-            (Some(path), _) => Mesh::load(path)?,
-            (None, true) => head::skin_patch(),
-            (None, false) => head::default_head(),
-        };
-        // As `agesim bake`: the project's mask, or the default head's with its default
-        // wrinkle files.
-        let large_mask = match &project.large.mask {
-            Some(path) => Some(Mask::load(path)?),
-            None if project.large.wrinkles.is_empty() => {
-                let (name, bytes) = agesim_core::defaults::WRINKLE_MASK;
-                Some(Mask::decode(bytes, Path::new(name))?)
-            }
-            None => None,
-        };
-        let large_full = if patch {
-            // The patch's UV square is 5 cm of skin: a few parallel forehead-like creases.
-            patch_wrinkles(map_px)?
-        } else {
-            let settings = LargeWrinkleSettings {
-                gamma: project.large.gamma,
-                mask: large_mask.as_ref(),
-            };
-            muscle::rasterize(&load_fibres(project)?, map_px, map_px, &settings)?
-        };
-        // Fine wrinkles show where the large ones may (everywhere without a mask).
-        let mask = match large_mask {
-            Some(mask) if !patch => mask,
-            _ => Mask::from_values(1, 1, vec![1.0])?,
-        };
-        let mut tiled = project.clone();
-        // A tile repeated over the head must wrap.
-        tiled.tile = true;
-        let (micro, _) = tiled.micro_relief()?.bake(map_px)?;
-        let fine = fine_wrinkles::generate(FINE_TILE_PX, &DEFAULT_FINE_WRINKLES)?;
-        let hairs = if density > 0.0 && !patch {
-            let outer = Mask::decode(HAIR_OUTER.1, Path::new(HAIR_OUTER.0))?;
-            let inner = Mask::decode(HAIR_INNER.1, Path::new(HAIR_INNER.0))?;
-            let transition =
-                TransitionTexture::from_masks(&outer, &inner, 512, 512, DistanceMetric::Chebyshev)?;
-            let surface =
-                SurfaceRef::new(mesh.positions(), mesh.normals(), mesh.uvs(), mesh.indices())?;
-            let params = HairParams::new(density, metres_per_unit)?;
-            Some(HairInstances::generate(&surface, &transition, &params)?)
-        } else {
-            None
-        };
+        let mut p = project.clone();
+        p.tile = true;
+        if let Some(path) = mesh {
+            p.mesh.path = Some(path.to_owned());
+            p.mesh.metres_per_unit = metres_per_unit;
+        } else if patch {
+            p.mesh.builtin = BuiltinMesh::SkinPatch;
+        }
+        p.hair.enabled = density > 0.0 && !patch;
+        if p.hair.enabled {
+            p.hair.density_per_cm2 = density;
+        }
         Ok(Self {
-            mesh,
-            metres_per_unit,
-            large_full,
-            micro,
-            micro_size_m: project.map_size_mm * 1e-3,
-            micro_strength: project.normal.strength,
-            fine,
-            fine_size_m: agesim_render::DEFAULT_FINE_TILE_SIZE_M,
-            fine_strength: FINE_STRENGTH,
-            mask,
-            hairs,
+            scene: Scene::new(p)?,
+            map_px,
+            hair: density > 0.0 && !patch,
+            patch_large: if patch {
+                Some(patch_wrinkles(map_px)?)
+            } else {
+                None
+            },
         })
     }
 
-    /// Uploads everything that does not change with age.
-    pub fn upload_static(&self, renderer: &mut Renderer) -> anyhow::Result<()> {
-        renderer.upload_mesh(&self.mesh, self.metres_per_unit)?;
-        renderer.upload_tile(
-            TileLayer::Micro,
-            &self.micro,
-            self.micro_size_m,
-            self.micro_strength,
-        )?;
-        renderer.upload_tile(
-            TileLayer::Fine,
-            &self.fine,
-            self.fine_size_m,
-            self.fine_strength,
-        )?;
-        renderer.upload_wrinkle_mask(&self.mask)?;
-        if let Some(hairs) = &self.hairs {
-            renderer.upload_hair(hairs);
-        }
-        Ok(())
+    pub fn mesh(&self) -> &Mesh {
+        self.scene.mesh()
     }
 
-    /// Uploads what changes with age and fills the age fields of `params`.
+    pub fn project(&self) -> &Project {
+        self.scene.project()
+    }
+
+    /// Bakes at age `t`, uploads what changed (everything, the first time), and fills
+    /// `params`' age-dependent fields from the engine's age model.
     pub fn upload_age(
-        &self,
+        &mut self,
         renderer: &mut Renderer,
         t: f32,
         params: &mut FrameParams,
     ) -> anyhow::Result<()> {
-        let age = AgeFrame::at(t);
-        let data = self
-            .large_full
-            .data()
-            .iter()
-            .map(|h| h * age.large_scale)
-            .collect();
-        let large = HeightMap::from_vec(
-            self.large_full.width_px(),
-            self.large_full.height_px(),
-            data,
-        )?;
-        renderer.upload_large_wrinkles(&large)?;
-        params.age = t;
-        params.skin.fine_blend = age.fine_blend;
-        params.skin.paleness = age.paleness;
+        let request = BakeRequest {
+            large_size_px: self.map_px,
+            micro_size_px: self.map_px,
+            t,
+            fine: true,
+            hair: self.hair,
+            packed: false,
+        };
+        let first = self.scene.large().is_none() && self.scene.micro().is_none();
+        let changed = self.scene.bake(&request, &CancelToken::never())?;
+        let project = self.scene.project().clone();
+        if first {
+            renderer.upload_mesh(self.scene.mesh(), project.mesh.metres_per_unit)?;
+        }
+        if first || changed.large {
+            match (&self.patch_large, self.scene.large()) {
+                (Some(patch), _) => {
+                    // The patch's creases follow the layer's default age curve.
+                    let f = project.age.factors(t, &[None]).large[0];
+                    let data = patch.data().iter().map(|h| h * f).collect();
+                    renderer.upload_large_wrinkles(&HeightMap::from_vec(
+                        patch.width_px(),
+                        patch.height_px(),
+                        data,
+                    )?)?;
+                }
+                (None, Some(large)) => {
+                    let depth = project.large.depth;
+                    let inv = if depth > 0.0 { 1.0 / depth } else { 0.0 };
+                    let data = large.height.data().iter().map(|h| h * inv).collect();
+                    renderer.upload_large_wrinkles(&HeightMap::from_vec(
+                        large.height.width_px(),
+                        large.height.height_px(),
+                        data,
+                    )?)?;
+                }
+                (None, None) => {}
+            }
+        }
+        if (first || changed.micro)
+            && let Some(micro) = self.scene.micro()
+        {
+            renderer.upload_tile(
+                TileLayer::Micro,
+                &micro.height,
+                project.map_size_mm * 1e-3,
+                project.normal.strength,
+            )?;
+        }
+        if (first || changed.fine)
+            && let Some(fine) = self.scene.fine()
+        {
+            renderer.upload_tile(
+                TileLayer::Fine,
+                fine,
+                project.fine.size_mm * 1e-3,
+                project.fine.strength,
+            )?;
+        }
+        if (first || changed.hair)
+            && let Some(hair) = self.scene.hair()
+        {
+            renderer.upload_hair(hair);
+        }
+        let p = crate::frame::frame_params(&project, self.scene.factors(), params.camera);
+        params.age = p.age;
+        params.skin.fine_blend = p.skin.fine_blend;
+        params.skin.paleness = p.skin.paleness;
+        params.skin.albedo = p.skin.albedo;
+        params.skin.micro_relief = p.skin.micro_relief;
+        params.hair = HairShading {
+            enabled: params.hair.enabled,
+            ..p.hair
+        };
         Ok(())
     }
-}
-
-type DefaultMask = (&'static str, &'static [u8]);
-const HAIR_OUTER: DefaultMask = (
-    "hair-outer.png",
-    include_bytes!("../../../assets/masks/hair-outer.png"),
-);
-const HAIR_INNER: DefaultMask = (
-    "hair-inner.png",
-    include_bytes!("../../../assets/masks/hair-inner.png"),
-);
-
-/// The project's wrinkle files, or the default head's.
-fn load_fibres(project: &Project) -> anyhow::Result<Vec<Fibre>> {
-    let mut fibres = Vec::new();
-    if project.large.wrinkles.is_empty() {
-        for (name, text) in agesim_core::defaults::WRINKLE_FILES {
-            let file =
-                wrinkle_file::parse(text, Path::new(name)).map_err(|e| anyhow::anyhow!("{e}"))?;
-            fibres.extend(file.fibres().cloned());
-        }
-    } else {
-        for path in &project.large.wrinkles {
-            let bytes = std::fs::read(path)
-                .with_context(|| format!("cannot read wrinkle file {}", path.display()))?;
-            let file =
-                wrinkle_file::parse_bytes(&bytes, path).map_err(|e| anyhow::anyhow!("{e}"))?;
-            fibres.extend(file.fibres().cloned());
-        }
-    }
-    Ok(fibres)
 }
 
 /// Horizontal creases with a rounded valley profile over the patch, heights in [0, 1].
@@ -343,14 +284,6 @@ fn patch_wrinkles(size_px: u32) -> anyhow::Result<HeightMap> {
     Ok(HeightMap::from_vec(size_px, size_px, data)?)
 }
 
-fn years_to_t(years: f32) -> f32 {
-    ((years - 20.0) / 60.0).clamp(0.0, 1.0)
-}
-
-fn t_to_years(t: f32) -> f32 {
-    20.0 + 60.0 * t
-}
-
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     for &t in args.ages.iter().chain(&args.compare).chain(&args.age) {
         if !(0.0..=1.0).contains(&t) {
@@ -366,7 +299,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     };
     let start = Instant::now();
     let density = if args.no_hair { 0.0 } else { args.hair_density };
-    let inputs = SceneInputs::gather(
+    let mut inputs = SceneInputs::gather(
         &project,
         args.mesh.as_deref(),
         args.patch,
@@ -380,7 +313,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     println!("adapter: {}", gpu.adapter_description());
     let start = Instant::now();
     let mut renderer = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT)?;
-    inputs.upload_static(&mut renderer)?;
     let setup_ms = start.elapsed().as_secs_f64() * 1e3;
 
     let mut params = FrameParams::default();
@@ -391,7 +323,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         .disp_scale
         .unwrap_or(if args.patch { 0.02 } else { 0.005 });
     params.hair.enabled = !args.no_hair;
-    let bounds = inputs.mesh.bounds();
+    let bounds = inputs.mesh().bounds();
     if args.patch || args.mesh.is_some() {
         params.camera.target = bounds.centre();
         params.camera.distance = bounds.size().length() * 1.6;
@@ -411,7 +343,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     params.camera.fov_y_rad = args.fov.to_radians();
 
     if args.bench {
-        return bench(&inputs, &mut renderer, params, &gpu);
+        return bench(&mut inputs, &mut renderer, params, &gpu);
     }
     let Some(out) = &args.out else {
         bail!("--out is required");
@@ -425,7 +357,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         for t in [t0, t1] {
             inputs.upload_age(&mut renderer, t, &mut params)?;
             let mut img = renderer.render_to_image(&params, args.size)?;
-            let label = format!("T={t:.2} {:.0}Y", t_to_years(t));
+            let label = format!("T={t:.2} {:.0}Y", inputs.project().age.mapping().years(t));
             crate::cli::font::draw_text(&mut img, 8, 8, 3, &label, [255, 255, 255, 255]);
             images.push(img);
         }
@@ -445,7 +377,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let ages: Vec<f32> = if !args.ages.is_empty() {
         args.ages.clone()
     } else if let Some(y) = args.age_years {
-        vec![years_to_t(y)]
+        vec![project.age.mapping().t(y)]
     } else {
         vec![args.age.unwrap_or(0.5)]
     };
@@ -464,7 +396,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             "{}: t = {t:.2} ({:.0} years), {} hairs, {} {}+{}, inputs {gather_ms:.0} ms, \
              renderer + uploads {setup_ms:.0} ms, frame {render_ms:.0} ms",
             path.display(),
-            t_to_years(t),
+            inputs.project().age.mapping().years(t),
             renderer.hair_count(t) * u32::from(params.hair.enabled),
             params.skin.pom_mode.name(),
             params.skin.linear_steps,
@@ -498,7 +430,7 @@ fn save(img: &image::RgbaImage, path: &Path) -> anyhow::Result<()> {
 /// hairs drawn. Prints the fastest of the runs (robust to other work on a shared
 /// machine) and the median.
 fn bench(
-    inputs: &SceneInputs,
+    inputs: &mut SceneInputs,
     renderer: &mut Renderer,
     mut params: FrameParams,
     gpu: &Gpu,

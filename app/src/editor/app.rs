@@ -277,7 +277,7 @@ impl EditorApp {
                 }
             }
         }
-            if self.age_pending && !self.worker.busy(self.reported) {
+        if self.age_pending && !self.worker.busy(self.reported) {
             self.set_age(self.project.age.t, true);
         }
     }
@@ -641,7 +641,10 @@ impl eframe::App for EditorApp {
         // resolution (upscaled): interaction stays fluid on a CPU adapter; the full
         // resolution returns on the first still frame.
         let moving = self.persisted.playback.playing || ui.input(|i| i.pointer.any_down());
-        for v in [&mut self.viewport, &mut self.viewport_b].into_iter().flatten() {
+        for v in [&mut self.viewport, &mut self.viewport_b]
+            .into_iter()
+            .flatten()
+        {
             v.scale = if moving { 1.0 / 3.0 } else { 1.0 };
         }
         let mut compare_changed = false;

@@ -78,7 +78,14 @@ impl BenchUi {
 
     /// Called once per frame with the worker state: whether it is idle, the newest job id
     /// that reported, and the hairs drawn. Returns what to do.
-    pub fn frame(&mut self, idle: bool, reported: u64, latest: u64, hairs: u32, years: f32) -> Action {
+    pub fn frame(
+        &mut self,
+        idle: bool,
+        reported: u64,
+        latest: u64,
+        hairs: u32,
+        years: f32,
+    ) -> Action {
         let now = Instant::now();
         let dt = (now - self.last_frame).as_secs_f64() * 1e3;
         self.last_frame = now;
@@ -150,7 +157,11 @@ impl BenchUi {
                     let most = self.scrub_hairs.iter().copied().max().unwrap_or(0);
                     let least = self.scrub_hairs.iter().copied().min().unwrap_or(0);
                     let med = median(&mut self.intervals_ms);
-                    let y0 = self.scrub_years.iter().copied().fold(f32::INFINITY, f32::min);
+                    let y0 = self
+                        .scrub_years
+                        .iter()
+                        .copied()
+                        .fold(f32::INFINITY, f32::min);
                     let y1 = self.scrub_years.iter().copied().fold(0.0, f32::max);
                     self.results.push(format!(
                         "| scrubbing the age (playing {y0:.0}–{y1:.0} years, {least}–{most} hairs drawn) | {fps:.1} fps (median frame {med:.1} ms) | ≥ 15 fps |"

@@ -101,8 +101,12 @@ pub struct EditorApp {
 
 impl EditorApp {
     pub fn new(cc: &eframe::CreationContext<'_>, options: EditorOptions) -> Self {
+        // Scripted runs (screenshot, benchmark) start from the defaults, not from the last
+        // session, so they show the same thing on every machine.
+        let scripted = options.screenshot.is_some() || options.bench_ui;
         let persisted: Persisted = cc
             .storage
+            .filter(|_| !scripted)
             .and_then(|s| eframe::get_value(s, eframe::APP_KEY))
             .unwrap_or_default();
         let adapter = cc.wgpu_render_state.as_ref().map_or_else(
@@ -736,6 +740,9 @@ impl eframe::App for EditorApp {
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        if self.options.screenshot.is_some() || self.options.bench_ui {
+            return;
+        }
         eframe::set_value(storage, eframe::APP_KEY, &self.persisted);
     }
 }

@@ -266,14 +266,18 @@ fn bake(
     cancel: &CancelToken,
 ) -> Result<Changed, Error> {
     let mut changed = Changed::default();
+    // The micro-relief is repeated over the head, so the editor always bakes it tileable
+    // (no seams where tiles meet); the document's own `tile` is what exports use.
+    let mut project = job.project.clone();
+    project.tile = true;
     match scene {
         Some(s) => {
-            if s.project() != &job.project {
-                changed = s.set_project(job.project.clone())?;
+            if s.project() != &project {
+                changed = s.set_project(project)?;
             }
         }
         None => {
-            *scene = Some(Scene::new(job.project.clone())?);
+            *scene = Some(Scene::new(project)?);
             changed.mesh = true;
         }
     }
@@ -341,7 +345,7 @@ fn bake(
     snapshot.hair = s.hair().cloned();
     snapshot.factors = Some(s.factors().clone());
     snapshot.wrinkles = s.wrinkles().to_vec();
-    snapshot.project = Some(s.project().clone());
+    snapshot.project = Some(job.project.clone());
     snapshot.request = Some(job.request);
     Ok(merged)
 }

@@ -370,7 +370,57 @@ impl EditorApp {
         });
     }
 
+    /// Adds a fibre (3 wrinkles across the middle of the UV square) to the selected
+    /// fibre's file, or the first file, and selects it.
+    pub fn add_fibre(&mut self) {
+        let mut wrinkles = self.wrinkles().to_vec();
+        let fi = self.persisted.map_view.selected.map_or(0, |(f, _)| f);
+        let Ok(fibre) = agesim_core::muscle::Fibre::new([0.45, 0.5], [0.55, 0.5], 3) else {
+            return;
+        };
+        let Some(file) = wrinkles.get_mut(fi) else {
+            return;
+        };
+        file.file.groups.push(agesim_core::wrinkle_file::WrinkleGroup {
+            fibre,
+            age: None,
+            comments: vec![" added in the editor".into()],
+        });
+        self.persisted.map_view.selected = Some((fi, file.file.groups.len() - 1));
+        self.wrinkles = Some(wrinkles);
+        self.submit(false, "add fibre");
+    }
+
+    /// Deletes the selected fibre.
+    pub fn delete_fibre(&mut self) {
+        let Some((fi, gi)) = self.persisted.map_view.selected else {
+            return;
+        };
+        let mut wrinkles = self.wrinkles().to_vec();
+        if let Some(file) = wrinkles.get_mut(fi)
+            && gi < file.file.groups.len()
+        {
+            file.file.groups.remove(gi);
+            self.persisted.map_view.selected = None;
+            self.wrinkles = Some(wrinkles);
+            self.submit(false, "delete fibre");
+        }
+    }
+
     fn inspector_ui(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            if ui.button("Add fibre").clicked() {
+                self.add_fibre();
+            }
+            let selected = self.persisted.map_view.selected.is_some();
+            if ui
+                .add_enabled(selected, egui::Button::new("Delete fibre"))
+                .clicked()
+                || (selected && ui.input(|i| i.key_pressed(egui::Key::Delete)))
+            {
+                self.delete_fibre();
+            }
+        });
         let Some((fi, gi)) = self.persisted.map_view.selected else {
             ui.label("Click a fibre's handle on the map to select it.");
             return;

@@ -179,27 +179,63 @@ fn fibres_are_added_and_deleted_from_the_inspector() {
     let mut h = harness();
     settle(&mut h);
     let count = |h: &Harness<'static, EditorApp>| {
-        h.state().wrinkles().iter().map(|w| w.file.groups.len()).sum::<usize>()
+        h.state()
+            .wrinkles()
+            .iter()
+            .map(|w| w.file.groups.len())
+            .sum::<usize>()
     };
     let before = count(&h);
-    let map_before = h.state().snapshot().large.as_ref().unwrap().height.data().to_vec();
+    let map_before = h
+        .state()
+        .snapshot()
+        .large
+        .as_ref()
+        .unwrap()
+        .height
+        .data()
+        .to_vec();
     h.get_by_role_and_label(Role::Button, "Add fibre").click();
     settle(&mut h);
     assert_eq!(count(&h), before + 1);
-    let map_added = h.state().snapshot().large.as_ref().unwrap().height.data().to_vec();
-    assert_ne!(map_before, map_added, "the new fibre's wrinkles are in the map");
-    h.get_by_role_and_label(Role::Button, "Delete fibre").click();
+    let map_added = h
+        .state()
+        .snapshot()
+        .large
+        .as_ref()
+        .unwrap()
+        .height
+        .data()
+        .to_vec();
+    assert_ne!(
+        map_before, map_added,
+        "the new fibre's wrinkles are in the map"
+    );
+    h.get_by_role_and_label(Role::Button, "Delete fibre")
+        .click();
     settle(&mut h);
     assert_eq!(count(&h), before);
-    let map_deleted = h.state().snapshot().large.as_ref().unwrap().height.data().to_vec();
-    assert_eq!(map_before, map_deleted, "deleting it gives back the same map");
+    let map_deleted = h
+        .state()
+        .snapshot()
+        .large
+        .as_ref()
+        .unwrap()
+        .height
+        .data()
+        .to_vec();
+    assert_eq!(
+        map_before, map_deleted,
+        "deleting it gives back the same map"
+    );
 }
 
 #[test]
 fn compare_mode_bakes_two_different_ages() {
     let mut h = harness();
     settle(&mut h);
-    h.get_by_role_and_label(Role::CheckBox, "compare with").click();
+    h.get_by_role_and_label(Role::CheckBox, "compare with")
+        .click();
     settle(&mut h);
     let start = Instant::now();
     while h.state().snapshot().compare.is_none() {
@@ -209,11 +245,38 @@ fn compare_mode_bakes_two_different_ages() {
     }
     let left = h.state().snapshot();
     let right = left.compare.as_ref().unwrap();
-    let (fl, fr) = (left.factors.as_ref().unwrap(), right.factors.as_ref().unwrap());
+    let (fl, fr) = (
+        left.factors.as_ref().unwrap(),
+        right.factors.as_ref().unwrap(),
+    );
     assert_eq!(fl.years, 50.0);
     assert_eq!(fr.years, 75.0);
-    let deepest = |s: &agesim::editor::worker::Snapshot| s.large.as_ref().unwrap().height.min_max().1;
+    let deepest =
+        |s: &agesim::editor::worker::Snapshot| s.large.as_ref().unwrap().height.min_max().1;
     assert!(deepest(right) > deepest(left));
     let hairs = |s: &agesim::editor::worker::Snapshot, t: f32| s.hair.as_ref().unwrap().count(t);
     assert!(hairs(right, fr.t) < hairs(left, fl.t));
+}
+
+#[test]
+fn main_window_snapshot_on_the_gpu_adapter() {
+    // The whole window, head and map drawn by the GPU path (lavapipe in CI). Regenerate
+    // with UPDATE_SNAPSHOTS=1 after a deliberate change; the tolerance absorbs driver
+    // differences, not layout changes.
+    if std::env::var("CI").is_err() && !std::path::Path::new("/usr/share/vulkan/icd.d").exists() {
+        eprintln!("skipped: no Vulkan driver on this machine (CI=true makes this a failure)");
+        return;
+    }
+    let mut h = Harness::builder()
+        .with_size([960.0, 600.0])
+        .wgpu()
+        .build_eframe(|cc| EditorApp::new(cc, EditorOptions::default()));
+    settle(&mut h);
+    h.run_steps(2);
+    h.snapshot_options(
+        "editor_main_window",
+        &egui_kittest::SnapshotOptions::new()
+            .threshold(2.0)
+            .max_failed_pixels(4000),
+    );
 }

@@ -91,6 +91,9 @@ pub struct EditorApp {
     adapter: String,
     viewport: Option<Viewport>,
     viewport_b: Option<Viewport>,
+    /// eframe's wgpu state (device, queue, egui's renderer), kept from creation so the
+    /// view also draws where the frame does not expose it (egui_kittest).
+    render_state: Option<eframe::egui_wgpu::RenderState>,
     options: EditorOptions,
     frames_with_maps: u32,
     screenshot_requested: bool,
@@ -159,6 +162,7 @@ impl EditorApp {
             adapter,
             viewport,
             viewport_b,
+            render_state: cc.wgpu_render_state.clone(),
             options,
             frames_with_maps: 0,
             screenshot_requested: false,
@@ -341,7 +345,7 @@ impl EditorApp {
     }
 
     fn status_ui(&mut self, ui: &mut egui::Ui, frame_ms: f32) {
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             ui.label(format!("adapter: {}", self.adapter));
             ui.separator();
             ui.label(format!("frame {frame_ms:.1} ms"));
@@ -381,11 +385,13 @@ impl EditorApp {
         let Some(file) = wrinkles.get_mut(fi) else {
             return;
         };
-        file.file.groups.push(agesim_core::wrinkle_file::WrinkleGroup {
-            fibre,
-            age: None,
-            comments: vec![" added in the editor".into()],
-        });
+        file.file
+            .groups
+            .push(agesim_core::wrinkle_file::WrinkleGroup {
+                fibre,
+                age: None,
+                comments: vec![" added in the editor".into()],
+            });
         self.persisted.map_view.selected = Some((fi, file.file.groups.len() - 1));
         self.wrinkles = Some(wrinkles);
         self.submit(false, "add fibre");
@@ -690,7 +696,10 @@ impl eframe::App for EditorApp {
         let kind = self.persisted.map_view.kind;
         let texture = self.texture(&ctx, kind);
         let wrinkles = self.wrinkles().to_vec();
-        let render_state = frame.wgpu_render_state().cloned();
+        let render_state = frame
+            .wgpu_render_state()
+            .cloned()
+            .or_else(|| self.render_state.clone());
         // While the age plays or the pointer drags, draw the head at a third of the
         // resolution (upscaled): interaction stays fluid on a CPU adapter; the full
         // resolution returns on the first still frame.
@@ -704,7 +713,7 @@ impl eframe::App for EditorApp {
         let mut compare_changed = false;
         let fibre_edit = egui::CentralPanel::default()
             .show(ui, |ui| {
-                ui.horizontal(|ui| {
+                ui.horizontal_wrapped(|ui| {
                     for (layout, name) in [(Layout::Both, "head | map"), (Layout::Head, "head"), (Layout::Map, "map")] {
                         ui.selectable_value(&mut self.persisted.layout, layout, name);
                     }

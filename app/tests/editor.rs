@@ -34,15 +34,20 @@ fn settle(h: &mut Harness<'static, EditorApp>) {
     }
 }
 
-fn deepest(h: &Harness<'static, EditorApp>) -> f32 {
+/// The large-wrinkle heights of the last bake.
+fn large_map(h: &Harness<'static, EditorApp>) -> Vec<f32> {
     h.state()
         .snapshot()
         .large
         .as_ref()
         .unwrap()
         .height
-        .min_max()
-        .1
+        .data()
+        .to_vec()
+}
+
+fn deepest(h: &Harness<'static, EditorApp>) -> f32 {
+    large_map(h).into_iter().fold(0.0, f32::max)
 }
 
 fn hair_count(h: &Harness<'static, EditorApp>) -> usize {
@@ -110,15 +115,7 @@ fn dragging_a_fibre_end_on_the_map_moves_it_and_changes_the_map() {
     settle(&mut h);
     let square = h.state_mut().map_view_mut().last_square.unwrap();
     let fibre = h.state().wrinkles()[0].file.groups[0].fibre.clone();
-    let map_before = h
-        .state()
-        .snapshot()
-        .large
-        .as_ref()
-        .unwrap()
-        .height
-        .data()
-        .to_vec();
+    let map_before = large_map(&h);
     let to_screen = |uv: [f32; 2]| {
         egui::pos2(
             square.left() + uv[0] * square.width(),
@@ -142,15 +139,7 @@ fn dragging_a_fibre_end_on_the_map_moves_it_and_changes_the_map() {
     let dv = moved.ma()[1] - fibre.ma()[1];
     assert!(du < -0.005 && dv < -0.002, "mA moved by ({du}, {dv})");
     assert_eq!(moved.mb(), fibre.mb(), "only the dragged end moves");
-    let map_after = h
-        .state()
-        .snapshot()
-        .large
-        .as_ref()
-        .unwrap()
-        .height
-        .data()
-        .to_vec();
+    let map_after = large_map(&h);
     assert_ne!(map_before, map_after, "the map follows the fibre");
 }
 
@@ -186,27 +175,11 @@ fn fibres_are_added_and_deleted_from_the_inspector() {
             .sum::<usize>()
     };
     let before = count(&h);
-    let map_before = h
-        .state()
-        .snapshot()
-        .large
-        .as_ref()
-        .unwrap()
-        .height
-        .data()
-        .to_vec();
+    let map_before = large_map(&h);
     h.get_by_role_and_label(Role::Button, "Add fibre").click();
     settle(&mut h);
     assert_eq!(count(&h), before + 1);
-    let map_added = h
-        .state()
-        .snapshot()
-        .large
-        .as_ref()
-        .unwrap()
-        .height
-        .data()
-        .to_vec();
+    let map_added = large_map(&h);
     assert_ne!(
         map_before, map_added,
         "the new fibre's wrinkles are in the map"
@@ -215,15 +188,7 @@ fn fibres_are_added_and_deleted_from_the_inspector() {
         .click();
     settle(&mut h);
     assert_eq!(count(&h), before);
-    let map_deleted = h
-        .state()
-        .snapshot()
-        .large
-        .as_ref()
-        .unwrap()
-        .height
-        .data()
-        .to_vec();
+    let map_deleted = large_map(&h);
     assert_eq!(
         map_before, map_deleted,
         "deleting it gives back the same map"

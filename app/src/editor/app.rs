@@ -457,33 +457,43 @@ impl EditorApp {
         {
             changed = f.with_n(n).ok();
         }
-        let mut w = f.rel_width();
-        if ui
-            .add(egui::Slider::new(&mut w, 0.01..=1.0).text("relWidth"))
-            .changed()
-        {
-            changed = f.clone().with_rel_width(w).ok();
-        }
-        let mut a = f.max_angle();
-        if ui
-            .add(egui::Slider::new(&mut a, 1.0..=2.0).text("maxAngle"))
-            .changed()
-        {
-            changed = f.clone().with_max_angle(a).ok();
-        }
-        let mut o = f.omega_low();
-        if ui
-            .add(egui::Slider::new(&mut o, 0.0..=1.0).text("omegaLow"))
-            .changed()
-        {
-            changed = f.clone().with_omega_low(o).ok();
-        }
-        let mut d = f.depth();
-        if ui
-            .add(egui::Slider::new(&mut d, 0.0..=5.0).text("depth"))
-            .changed()
-        {
-            changed = f.clone().with_depth(d).ok();
+        type Setter = fn(
+            agesim_core::muscle::Fibre,
+            f32,
+        ) -> Result<agesim_core::muscle::Fibre, agesim_core::Error>;
+        let rows: [(&str, f32, std::ops::RangeInclusive<f32>, Setter); 4] = [
+            (
+                "relWidth",
+                f.rel_width(),
+                0.01..=1.0,
+                agesim_core::muscle::Fibre::with_rel_width,
+            ),
+            (
+                "maxAngle",
+                f.max_angle(),
+                1.0..=2.0,
+                agesim_core::muscle::Fibre::with_max_angle,
+            ),
+            (
+                "omegaLow",
+                f.omega_low(),
+                0.0..=1.0,
+                agesim_core::muscle::Fibre::with_omega_low,
+            ),
+            (
+                "depth",
+                f.depth(),
+                0.0..=5.0,
+                agesim_core::muscle::Fibre::with_depth,
+            ),
+        ];
+        for (label, mut value, range, set) in rows {
+            if ui
+                .add(egui::Slider::new(&mut value, range).text(label))
+                .changed()
+            {
+                changed = set(f.clone(), value).ok();
+            }
         }
         let mut profile = f.profile();
         egui::ComboBox::from_label("profile")

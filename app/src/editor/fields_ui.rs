@@ -119,6 +119,18 @@ pub fn layers_ui(ui: &mut egui::Ui, doc: &Value, defaults: &Value) -> Vec<Edit> 
     edits
 }
 
+/// The on/off box of an optional field (off = `null`, automatic).
+fn auto_toggle(ui: &mut egui::Ui, is_null: bool, when_on: Value, out: &mut Option<(Value, bool)>) {
+    let mut on = !is_null;
+    if ui
+        .checkbox(&mut on, "")
+        .on_hover_text("off = automatic")
+        .changed()
+    {
+        *out = Some((if on { when_on } else { Value::Null }, false));
+    }
+}
+
 /// One field: a label (marked when changed) and its widget.
 fn field_ui(
     ui: &mut egui::Ui,
@@ -144,14 +156,7 @@ fn field_ui(
             let r = ui
                 .horizontal(|ui| {
                     if matches!(field.kind, Kind::OptFloat { .. }) {
-                        let mut on = !is_null;
-                        if ui
-                            .checkbox(&mut on, "")
-                            .on_hover_text("off = automatic")
-                            .changed()
-                        {
-                            out = Some((if on { Value::from(x) } else { Value::Null }, false));
-                        }
+                        auto_toggle(ui, is_null, Value::from(x), &mut out);
                     }
                     let log = min >= 0.0 && max / min.max(1e-6) > 1000.0;
                     let r = ui.add_enabled(
@@ -177,14 +182,7 @@ fn field_ui(
             let r = ui
                 .horizontal(|ui| {
                     if matches!(field.kind, Kind::OptInt { .. }) {
-                        let mut on = !is_null;
-                        if ui
-                            .checkbox(&mut on, "")
-                            .on_hover_text("off = automatic")
-                            .changed()
-                        {
-                            out = Some((if on { Value::from(x) } else { Value::Null }, false));
-                        }
+                        auto_toggle(ui, is_null, Value::from(x), &mut out);
                     }
                     let r = if max - min <= 100_000 {
                         ui.add_enabled(

@@ -100,6 +100,7 @@ pub struct EditorApp {
     bench: Option<super::bench_ui::BenchUi>,
     /// An age change waits for the worker (see [`EditorApp::set_age`]).
     age_pending: bool,
+    last_hover_uv: Option<[f32; 2]>,
 }
 
 impl EditorApp {
@@ -168,6 +169,7 @@ impl EditorApp {
             screenshot_requested: false,
             bench: None,
             age_pending: false,
+            last_hover_uv: None,
         };
         if app.options.bench_ui {
             app.bench = Some(super::bench_ui::BenchUi::new());
@@ -792,6 +794,23 @@ impl eframe::App for EditorApp {
             .inner;
         if compare_changed {
             self.submit(false, "compare");
+        }
+        // Head ↔ map: a click on the head marks its UV on the map; the pointer over the
+        // map marks the surface point on the head.
+        if let Some(v) = &mut self.viewport {
+            if let Some(p) = v.picked.take() {
+                self.persisted.map_view.marker_uv = Some([p.uv.x, p.uv.y]);
+            }
+            let hover = self.persisted.map_view.hover_uv;
+            if hover != self.last_hover_uv {
+                self.last_hover_uv = hover;
+                v.marker = match (hover, &self.snapshot.mesh) {
+                    (Some(uv), Some(mesh)) => {
+                        super::pick::uv_to_surface(mesh, glam::Vec2::from(uv)).map(|p| p.position)
+                    }
+                    _ => None,
+                };
+            }
         }
         if let Some(e) = fibre_edit {
             let mut w = wrinkles;

@@ -62,6 +62,12 @@ pub struct MapViewState {
     /// Where the UV square was drawn last frame (for tests and picking).
     #[serde(skip)]
     pub last_square: Option<egui::Rect>,
+    /// A UV to mark (the point clicked on the head).
+    #[serde(skip)]
+    pub marker_uv: Option<[f32; 2]>,
+    /// The UV under the pointer, when it is over the UV square.
+    #[serde(skip)]
+    pub hover_uv: Option<[f32; 2]>,
 }
 
 impl Default for MapViewState {
@@ -73,6 +79,8 @@ impl Default for MapViewState {
             show_fibres: true,
             selected: None,
             last_square: None,
+            marker_uv: None,
+            hover_uv: None,
         }
     }
 }
@@ -147,6 +155,10 @@ pub fn map_view_ui(
         Rect::from_center_size(rect.center() + Vec2::from(state.offset), Vec2::splat(side));
     let uv = UvRect(square);
     state.last_square = Some(square);
+    state.hover_uv = background
+        .hover_pos()
+        .filter(|p| square.contains(*p))
+        .map(|p| uv.to_uv(p));
     match texture {
         Some(t) => {
             painter.image(
@@ -172,6 +184,25 @@ pub fn map_view_ui(
         Stroke::new(1.0, Color32::from_gray(90)),
         egui::StrokeKind::Outside,
     );
+    if let Some(m) = state.marker_uv {
+        let at = uv.to_screen(m);
+        let colour = Color32::from_rgb(255, 200, 60);
+        painter.line_segment(
+            [at - vec2(9.0, 0.0), at + vec2(9.0, 0.0)],
+            Stroke::new(2.0, colour),
+        );
+        painter.line_segment(
+            [at - vec2(0.0, 9.0), at + vec2(0.0, 9.0)],
+            Stroke::new(2.0, colour),
+        );
+        painter.text(
+            at + vec2(10.0, -10.0),
+            egui::Align2::LEFT_BOTTOM,
+            format!("{:.3}; {:.3}", m[0], m[1]),
+            egui::FontId::monospace(11.0),
+            colour,
+        );
+    }
     if !(state.show_fibres && state.kind.is_head_uv()) {
         return None;
     }

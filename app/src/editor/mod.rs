@@ -6,6 +6,7 @@ mod app;
 mod bench_ui;
 pub mod fields_ui;
 pub mod map_view;
+pub mod pick;
 pub mod timeline;
 pub mod viewport;
 pub mod worker;

@@ -48,6 +48,11 @@ pub struct Viewport {
     /// Hairs drawn in the last frame.
     pub hairs_drawn: u32,
     pub error: Option<String>,
+    /// The surface point clicked last (taken by the app to show it on the map).
+    pub picked: Option<super::pick::SurfacePoint>,
+    /// A surface point to mark on the head (the point under the pointer on the map).
+    pub marker: Option<Vec3>,
+    mesh: Option<Arc<agesim_core::Mesh>>,
 }
 
 impl Viewport {
@@ -63,6 +68,9 @@ impl Viewport {
             encode_ms: 0.0,
             hairs_drawn: 0,
             error: None,
+            picked: None,
+            marker: None,
+            mesh: None,
         })
     }
 
@@ -73,6 +81,7 @@ impl Viewport {
             && let Some(mesh) = &snapshot.mesh
         {
             self.centre = mesh.bounds().centre();
+            self.mesh = Some(mesh.clone());
             result = result.and(
                 self.renderer
                     .upload_mesh(mesh, project.mesh.metres_per_unit),
@@ -137,6 +146,17 @@ impl Viewport {
     ) -> Rect {
         let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
         self.interact(ui, &response, project);
+        if response.clicked()
+            && let (Some(pos), Some(mesh)) = (response.interact_pointer_pos(), &self.mesh)
+        {
+            let ndc = glam::Vec2::new(
+                2.0 * (pos.x - rect.left()) / rect.width() - 1.0,
+                1.0 - 2.0 * (pos.y - rect.top()) / rect.height(),
+            );
+            let clip = self.clip_from_world(project, rect);
+            let (origin, dir) = super::pick::view_ray(clip, ndc);
+            self.picked = super::pick::ray_pick(mesh, origin, dir);
+        }
         if let Some(id) = self.render(ui.ctx(), rs, snapshot, project, rect) {
             ui.painter().image(
                 id,
@@ -144,6 +164,21 @@ impl Viewport {
                 Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
                 egui::Color32::WHITE,
             );
+        }
+        if let Some(p) = self.marker {
+            let clip = self.clip_from_world(project, rect);
+            let c = clip * p.extend(1.0);
+            if c.w > 0.0 {
+                let (x, y) = (c.x / c.w, c.y / c.w);
+                let at = egui::pos2(
+                    rect.left() + (x + 1.0) * 0.5 * rect.width(),
+                    rect.top() + (1.0 - y) * 0.5 * rect.height(),
+                );
+                let colour = egui::Color32::from_rgb(255, 200, 60);
+                ui.painter()
+                    .circle_stroke(at, 7.0, egui::Stroke::new(2.0, colour));
+                ui.painter().circle_filled(at, 2.0, colour);
+            }
         }
         if let Some(e) = &self.error {
             ui.painter().text(
@@ -155,6 +190,13 @@ impl Viewport {
             );
         }
         rect
+    }
+
+    /// The view's clip-from-world matrix for `rect` (as the renderer uses it).
+    fn clip_from_world(&self, project: &Project, rect: Rect) -> glam::Mat4 {
+        let mut camera = frame::camera(project, self.centre + self.pan);
+        camera.distance = camera.distance.max(1e-3);
+        camera.clip_from_world(rect.width() / rect.height().max(1.0))
     }
 
     /// The orbit's pan offset (mesh units), to keep a second view in step.

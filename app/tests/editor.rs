@@ -242,6 +242,6 @@ fn main_window_snapshot_on_the_gpu_adapter() {
         "editor_main_window",
         &egui_kittest::SnapshotOptions::new()
             .threshold(2.0)
-            .max_failed_pixels(4000),
+            .max_failed_pixels(8000),
     );
 }

@@ -525,3 +525,65 @@ fn flag_errors_quote_the_flag_and_the_documented_range() {
     assert!(!o.status.success() && e.contains("1..=16384"), "{e}");
     assert!(!e.contains("4294967295"), "{e}");
 }
+
+#[test]
+fn nothing_asked_is_never_dropped_and_nothing_baked_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let empty = dir.path().join("empty.wrk");
+    std::fs::write(&empty, "# only a comment\n").unwrap();
+    let out = dir.path().join("out");
+    let o = agesim(&[
+        "bake",
+        "--wrinkles",
+        empty.to_str().unwrap(),
+        "--size",
+        "32",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let e = stderr(&o);
+    assert!(
+        !o.status.success() && e.contains("nothing to bake") && e.contains("empty.wrk"),
+        "{e}"
+    );
+    assert!(!out.exists(), "nothing was written");
+    // A micro-relief field given with --set bakes the micro-relief (it is not ignored).
+    let o = agesim(&[
+        "bake",
+        "--set",
+        "pores.count=50",
+        "--size",
+        "64",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    assert_eq!(r["inputs"]["pores"], 50, "{r}");
+    // --wrinkles with a skin-patch preset turns the large layer on.
+    let o = agesim(&[
+        "bake",
+        "--preset",
+        "fine",
+        "--wrinkles",
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../assets/wrinkles/forehead.wrk"
+        ),
+        "--size",
+        "64",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    assert!(
+        r["inputs"]["layers"]
+            .as_array()
+            .unwrap()
+            .contains(&serde_json::json!("large")),
+        "{r}"
+    );
+}

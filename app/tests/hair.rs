@@ -158,3 +158,20 @@ fn bad_inputs_fail_with_a_message_naming_them() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("density"));
 }
+
+#[test]
+fn an_empty_outer_mask_is_an_error_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let black = dir.path().join("black.png");
+    image::GrayImage::new(16, 16).save(&black).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_agesim"))
+        .args(["hair", "--outer", black.to_str().unwrap(), "--out"])
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && e.contains("black.png") && e.contains("empty"),
+        "{e}"
+    );
+}

@@ -182,10 +182,35 @@ fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
         };
         project = project.set(path.trim(), value.trim())?;
     }
+    // One rule, so nothing the user asked for is dropped: without --layers, a bake with
+    // neither project nor preset is large wrinkles only *unless* a --set names a
+    // micro-relief field (then it is everything); an explicit --wrinkles or --mask turns
+    // the large-wrinkle layer on even where a preset had it off. An explicit --layers is
+    // the user's own choice and wins (the fields stay in bake.json's project).
+    let micro_asked = args.set.iter().any(|a| {
+        let path = a.split_once('=').map_or(a.as_str(), |(p, _)| p).trim();
+        [
+            "pores.",
+            "furrows.",
+            "noise.",
+            "warp.",
+            "overlap.",
+            "map_size_mm",
+        ]
+        .iter()
+        .any(|prefix| path.starts_with(prefix))
+    });
+    if !args.wrinkles.is_empty() || args.mask.is_some() {
+        project.large.enabled = true;
+    }
     let layers = args
         .layers
         .or(if args.project.is_none() && args.preset.is_none() {
-            Some(LayersArg::Large)
+            Some(if micro_asked {
+                LayersArg::All
+            } else {
+                LayersArg::Large
+            })
         } else {
             None
         });
@@ -273,6 +298,19 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         .relief()
         .map_or((0, 0), |r| (r.pores().len(), r.furrows().len()));
     let normal_settings = scene.normal_settings();
+    if project.large.enabled && fibres.is_empty() {
+        let files: Vec<&str> = scene.wrinkles().iter().map(|w| w.name.as_str()).collect();
+        if !scene.micro_enabled() {
+            bail!(
+                "nothing to bake: the wrinkle files ({}) hold no fibre and no micro-relief layer is on; nothing was written",
+                files.join(", ")
+            );
+        }
+        eprintln!(
+            "warning: the wrinkle files ({}) hold no fibre: the large-wrinkle layer is flat",
+            files.join(", ")
+        );
+    }
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;

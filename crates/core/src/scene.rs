@@ -451,6 +451,24 @@ impl Scene {
         if self.transition_key.as_ref() != Some(&tkey) || self.transition.is_none() {
             cancel.check()?;
             let (outer, inner) = &*masks;
+            // An all-black outer mask means no hair at age 0; it is almost surely the
+            // wrong file, and would leave only the inner region's hair: say so.
+            if outer
+                .values()
+                .iter()
+                .all(|&v| v < crate::transition::REGION_THRESHOLD)
+            {
+                return Err(Error::InvalidValue {
+                    what: format!(
+                        "outer hair mask {}",
+                        h.outer_mask
+                            .as_ref()
+                            .map_or("(built-in)".into(), |p| p.display().to_string())
+                    ),
+                    value: "empty (no pixel at or above 50 % grey)".into(),
+                    expected: "white where hair grows at age 0".into(),
+                });
+            }
             let size = h.transition_size_px.unwrap_or_else(|| {
                 outer
                     .width_px()

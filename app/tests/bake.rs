@@ -587,3 +587,94 @@ fn nothing_asked_is_never_dropped_and_nothing_baked_is_an_error() {
         "{r}"
     );
 }
+
+/// Files in `dir` and their bytes.
+fn snapshot_dir(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .map(|p| {
+            let bytes = if p.is_dir() {
+                Vec::new()
+            } else {
+                std::fs::read(&p).unwrap()
+            };
+            (p.file_name().unwrap().to_string_lossy().into_owned(), bytes)
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn an_output_set_is_all_old_or_all_new() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("maps");
+    let o = agesim(&["bake", "--size", "64", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let old = snapshot_dir(&out);
+    assert_eq!(old.len(), 4);
+
+    // A later output that cannot be written (normal.png is a directory): nothing changes.
+    std::fs::remove_file(out.join("normal.png")).unwrap();
+    std::fs::create_dir(out.join("normal.png")).unwrap();
+    let before = snapshot_dir(&out.join("..").join("maps"));
+    let o = agesim(&["bake", "--size", "96", "--out", out.to_str().unwrap()]);
+    assert!(!o.status.success());
+    let after: Vec<(String, Vec<u8>)> = snapshot_dir(&out);
+    assert_eq!(before.iter().filter(|(n, _)| n != "normal.png").count(), 3);
+    for (name, bytes) in before.iter().filter(|(n, _)| n != "normal.png") {
+        let now = after.iter().find(|(n, _)| n == name).unwrap();
+        assert_eq!(&now.1, bytes, "{name} was replaced although the set failed");
+    }
+    assert!(
+        after.iter().all(|(n, _)| !n.ends_with(".tmp")),
+        "{:?}",
+        after.iter().map(|x| &x.0).collect::<Vec<_>>()
+    );
+    std::fs::remove_dir(out.join("normal.png")).unwrap();
+    std::fs::write(
+        out.join("normal.png"),
+        &old.iter().find(|(n, _)| n == "normal.png").unwrap().1,
+    )
+    .unwrap();
+
+    // SIGINT while the maps are being written: the old set stays, no temporary is left.
+    #[cfg(target_os = "linux")]
+    {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_agesim"))
+            .args(["bake", "--size", "8192", "--out", out.to_str().unwrap()])
+            .stderr(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        let start = std::time::Instant::now();
+        let mut interrupted = false;
+        while start.elapsed() < std::time::Duration::from_secs(120) {
+            let tmp = std::fs::read_dir(&out)
+                .unwrap()
+                .any(|e| e.unwrap().file_name().to_string_lossy().ends_with(".tmp"));
+            if tmp {
+                // SAFETY: sending a signal to our own child process.
+                unsafe { libc::kill(child.id() as i32, libc::SIGINT) };
+                interrupted = true;
+                break;
+            }
+            if child.try_wait().unwrap().is_some() {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(2));
+        }
+        let status = child.wait().unwrap();
+        assert!(
+            interrupted,
+            "the bake finished before it could be interrupted"
+        );
+        assert!(!status.success());
+        assert_eq!(
+            snapshot_dir(&out),
+            old,
+            "the old set must be intact, with no temporary"
+        );
+    }
+}

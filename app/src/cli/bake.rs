@@ -314,20 +314,44 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let t = Instant::now();
-    let (lo, hi) = export::write_height_png16(&args.out.join("height.png"), &height)?;
-    let png_ms = ms(t);
-    let t = Instant::now();
-    export::write_height_exr(&args.out.join("height.exr"), &height)?;
-    let exr_ms = ms(t);
-    let t = Instant::now();
-    export::write_rgb8_png(
-        &args.out.join("normal.png"),
-        args.size,
-        args.size,
-        &normal_rgb,
-    )?;
-    let normal_png_ms = ms(t);
+    // The whole set is old or new: each map goes to a temporary (the three encoded at
+    // once), and only when all are written are they renamed into place, bake.json last.
+    let outputs = export::OutputSet::new();
+    let write_start = Instant::now();
+    let timed = |f: &dyn Fn() -> Result<(), agesim_core::Error>| {
+        let t = Instant::now();
+        f().map(|()| ms(t))
+    };
+    let (png, (exr, normal_png)) = rayon::join(
+        || {
+            let t = Instant::now();
+            export::stage_height_png16(&outputs, &args.out.join("height.png"), &height)
+                .map(|r| (r, ms(t)))
+        },
+        || {
+            rayon::join(
+                || {
+                    timed(&|| {
+                        export::stage_height_exr(&outputs, &args.out.join("height.exr"), &height)
+                    })
+                },
+                || {
+                    timed(&|| {
+                        export::stage_rgb8_png(
+                            &outputs,
+                            &args.out.join("normal.png"),
+                            args.size,
+                            args.size,
+                            &normal_rgb,
+                        )
+                    })
+                },
+            )
+        },
+    );
+    let ((lo, hi), png_ms) = png?;
+    let (exr_ms, normal_png_ms) = (exr?, normal_png?);
+    let maps_ms = ms(write_start);
 
     let report = json!({
         "agesim_version": env!("CARGO_PKG_VERSION"),
@@ -367,14 +391,16 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
             "write_height_png": png_ms,
             "write_height_exr": exr_ms,
             "write_normal_png": normal_png_ms,
+            "write_maps_concurrently": maps_ms,
             "total": ms(total),
         },
         "threads": rayon::current_num_threads(),
     });
     let text = serde_json::to_string_pretty(&report)?;
-    export::write_atomically(&args.out.join("bake.json"), |w| {
+    outputs.stage(&args.out.join("bake.json"), |w| {
         std::io::Write::write_all(w, text.as_bytes())
     })?;
+    outputs.commit()?;
     println!(
         "baked {layers} ({fibres} fibres, {pores} pores, {furrows} furrows) at {size}×{size} in {total_ms:.0} ms → {out}",
         layers = layer_names(project).join("+"),

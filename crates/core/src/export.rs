@@ -46,12 +46,14 @@ pub fn write_atomically(
     set.commit()
 }
 
+/// One staged file: (staging rank, temporary, final path, signal-cleanup slot).
+type Staged = (u64, PathBuf, PathBuf, Option<usize>);
+
 /// Files written to temporaries and renamed into place together (module docs). `stage`
 /// takes `&self`, so files can be staged from several threads at once.
 #[derive(Debug, Default)]
 pub struct OutputSet {
-    /// (staging rank, temporary, final path, signal-cleanup slot).
-    staged: std::sync::Mutex<Vec<(u64, PathBuf, PathBuf, Option<usize>)>>,
+    staged: std::sync::Mutex<Vec<Staged>>,
     /// Staging positions, so the commit order is the order `stage` was *called*.
     order: AtomicU64,
 }
@@ -96,7 +98,7 @@ impl OutputSet {
         let mut staged =
             std::mem::take(&mut *self.staged.lock().unwrap_or_else(|p| p.into_inner()));
         staged.sort_by_key(|(rank, ..)| *rank);
-        let cleanup = |staged: &[(u64, PathBuf, PathBuf, Option<usize>)]| {
+        let cleanup = |staged: &[Staged]| {
             for (_, tmp, _, slot) in staged {
                 let _ = std::fs::remove_file(tmp);
                 signals::unregister(*slot);

@@ -67,7 +67,7 @@ impl fmt::Display for Diagnostic {
         if self.found.is_empty() {
             Ok(())
         } else {
-            write!(f, ", found `{}`", self.found)
+            write!(f, ", found `{}`", crate::limits::shorten(&self.found, 80))
         }
     }
 }

@@ -706,6 +706,14 @@ mod tests {
     }
 
     #[test]
+    fn a_huge_token_is_cut_in_the_message() {
+        let text = format!("!\nma={}\n", "9".repeat(10_000_000));
+        let e = parse(&text, Path::new("big.wrk")).unwrap_err().to_string();
+        assert!(e.len() < 1000, "{} bytes of message", e.len());
+        assert!(e.contains("big.wrk:2"), "{}", &e[..e.len().min(300)]);
+    }
+
+    #[test]
     fn syntax_error_and_not_utf8() {
         assert_eq!(
             positions("!\nma 0.1\n"),

@@ -87,6 +87,7 @@ pub struct EditorApp {
     last_what: String,
     error: Option<String>,
     textures: Vec<(MapKind, egui::TextureHandle, usize)>,
+    layout_texture: Option<(egui::TextureHandle, usize)>,
     persisted: Persisted,
     adapter: String,
     viewport: Option<Viewport>,
@@ -159,6 +160,7 @@ impl EditorApp {
             last_what: String::new(),
             error,
             textures: Vec::new(),
+            layout_texture: None,
             persisted,
             adapter,
             viewport,
@@ -289,6 +291,24 @@ impl EditorApp {
         }
         if self.age_pending && !self.worker.busy(self.reported) {
             self.set_age(self.project.age.t, true);
+        }
+    }
+
+    /// The UV layout overlay's texture, made once per mesh.
+    fn layout_texture(&mut self, ctx: &egui::Context) -> Option<egui::TextureHandle> {
+        let image = self.snapshot.images.uv_layout.clone()?;
+        let stamp = Arc::as_ptr(&image) as usize;
+        match &mut self.layout_texture {
+            Some((t, s)) if *s == stamp => Some(t.clone()),
+            slot => {
+                let t = ctx.load_texture(
+                    "uv layout",
+                    image.as_ref().clone(),
+                    egui::TextureOptions::LINEAR,
+                );
+                *slot = Some((t.clone(), stamp));
+                Some(t)
+            }
         }
     }
 
@@ -707,6 +727,7 @@ impl eframe::App for EditorApp {
             });
         let kind = self.persisted.map_view.kind;
         let texture = self.texture(&ctx, kind);
+        let layout_texture = self.layout_texture(&ctx);
         let wrinkles = self.wrinkles().to_vec();
         let render_state = frame
             .wgpu_render_state()
@@ -738,6 +759,7 @@ impl eframe::App for EditorApp {
                             }
                         });
                     ui.checkbox(&mut self.persisted.map_view.show_fibres, "fibres");
+                    ui.checkbox(&mut self.persisted.map_view.show_layout, "UV layout");
                     let was = (self.persisted.compare, self.persisted.compare_years);
                     ui.checkbox(&mut self.persisted.compare, "compare with");
                     ui.add_enabled(
@@ -786,7 +808,7 @@ impl eframe::App for EditorApp {
                 let mut edit = None;
                 if let Some(r) = map_rect {
                     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
-                    edit = map_view::map_view_ui(&mut child, &mut self.persisted.map_view, texture.as_ref(), &wrinkles);
+                    edit = map_view::map_view_ui(&mut child, &mut self.persisted.map_view, texture.as_ref(), layout_texture.as_ref(), &wrinkles);
                 }
                 ui.allocate_rect(avail, egui::Sense::hover());
                 edit

@@ -56,6 +56,8 @@ pub struct MapViewState {
     pub zoom: f32,
     pub offset: [f32; 2],
     pub show_fibres: bool,
+    /// Draw the mesh's UV layout over the map.
+    pub show_layout: bool,
     /// (file index, group index) of the selected fibre.
     #[serde(skip)]
     pub selected: Option<(usize, usize)>,
@@ -77,6 +79,7 @@ impl Default for MapViewState {
             zoom: 1.0,
             offset: [0.0, 0.0],
             show_fibres: true,
+            show_layout: true,
             selected: None,
             last_square: None,
             marker_uv: None,
@@ -122,6 +125,7 @@ pub fn map_view_ui(
     ui: &mut egui::Ui,
     state: &mut MapViewState,
     texture: Option<&egui::TextureHandle>,
+    layout: Option<&egui::TextureHandle>,
     wrinkles: &[WrinkleSource],
 ) -> Option<FibreEdit> {
     let (rect, background) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
@@ -177,6 +181,17 @@ pub fn map_view_ui(
                 Color32::GRAY,
             );
         }
+    }
+    if state.show_layout
+        && state.kind.is_head_uv()
+        && let Some(l) = layout
+    {
+        painter.image(
+            l.id(),
+            square,
+            Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0)),
+            Color32::WHITE,
+        );
     }
     painter.rect_stroke(
         square,

@@ -61,6 +61,36 @@ pub struct MapImages {
     pub micro_normal: Option<Arc<egui::ColorImage>>,
     pub transition: Option<Arc<egui::ColorImage>>,
     pub fine: Option<Arc<egui::ColorImage>>,
+    /// The mesh's UV layout (triangle edges), white lines on transparent, for the overlay.
+    pub uv_layout: Option<Arc<egui::ColorImage>>,
+}
+
+/// The triangle edges of `mesh` in UV space, drawn into a `size`² transparent picture (v up,
+/// row 0 at the top); made once per mesh on the worker.
+fn uv_layout_image(mesh: &agesim_core::Mesh, size: usize) -> Arc<egui::ColorImage> {
+    let mut pixels = vec![egui::Color32::TRANSPARENT; size * size];
+    let uv = mesh.uvs();
+    let to_px = |p: glam::Vec2| ((p.x * size as f32), ((1.0 - p.y) * size as f32));
+    let line = egui::Color32::from_rgba_unmultiplied(255, 255, 255, 40);
+    for [a, b, c] in mesh.triangles() {
+        for (i, j) in [(a, b), (b, c), (c, a)] {
+            let (x0, y0) = to_px(uv[i as usize]);
+            let (x1, y1) = to_px(uv[j as usize]);
+            let steps = (x1 - x0).abs().max((y1 - y0).abs()).ceil().max(1.0) as usize;
+            // UV seams jump across the layout: such edges are not drawn.
+            if steps > size / 4 {
+                continue;
+            }
+            for k in 0..=steps {
+                let t = k as f32 / steps as f32;
+                let (x, y) = (x0 + (x1 - x0) * t, y0 + (y1 - y0) * t);
+                if x >= 0.0 && y >= 0.0 && (x as usize) < size && (y as usize) < size {
+                    pixels[y as usize * size + x as usize] = line;
+                }
+            }
+        }
+    }
+    Arc::new(egui::ColorImage::new([size, size], pixels))
 }
 
 /// Side of the pictures of the 2D view; larger maps are shown subsampled.
@@ -295,6 +325,7 @@ fn bake(
     };
     if merged.mesh || snapshot.mesh.is_none() {
         snapshot.mesh = Some(s.mesh().clone());
+        snapshot.images.uv_layout = Some(uv_layout_image(s.mesh(), 1024));
     }
     let images = &mut snapshot.images;
     if merged.large || snapshot.large.is_none() {

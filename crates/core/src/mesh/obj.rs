@@ -15,19 +15,24 @@ use crate::error::Error;
 pub fn load(path: &Path) -> Result<RawMesh, Error> {
     // Read the bytes ourselves so that a missing file is an I/O error with its path.
     let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES)?;
+    load_bytes(&bytes, path)
+}
+
+/// Reads an OBJ file already in memory; `path` names it in errors.
+pub fn load_bytes(bytes: &[u8], path: &Path) -> Result<RawMesh, Error> {
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, _materials) =
-        tobj::load_obj_buf(&mut bytes.as_slice(), &options, |_| Ok(Default::default())).map_err(
-            |e| Error::MeshFile {
-                path: path.to_owned(),
-                message: format!("not a valid OBJ file: {e}"),
-            },
-        )?;
+    let (models, _materials) = tobj::load_obj_buf(&mut &bytes[..], &options, |_| {
+        Ok(Default::default())
+    })
+    .map_err(|e| Error::MeshFile {
+        path: path.to_owned(),
+        message: format!("not a valid OBJ file: {e}"),
+    })?;
     Ok(merge(&models))
 }
 

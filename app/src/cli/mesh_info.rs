@@ -20,7 +20,7 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
     let (name, mesh) = match &args.file {
         Some(path) if !args.default_head => (path.display().to_string(), Mesh::load(path)?),
         _ => (
-            "default head (generated, metres)".to_owned(),
+            "assets/meshes/default-head.glb (built in)".to_owned(),
             agesim_core::head::default_head(),
         ),
     };

@@ -35,7 +35,7 @@ pub struct HairArgs {
     /// Hair density, hairs per cm² of surface.
     #[arg(long, default_value_t = DEFAULT_DENSITY_PER_CM2)]
     pub density: f32,
-    /// How hair fronts advance: chebyshev (SPEC §6's 8-neighbourhood growth) or euclidean
+    /// How hair fronts advance: chebyshev (the 8-neighbourhood growth of docs/models.md §9) or euclidean
     /// (rounder fronts).
     #[arg(long, default_value = "chebyshev")]
     pub metric: DistanceMetric,

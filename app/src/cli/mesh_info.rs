@@ -62,7 +62,7 @@ pub fn describe(name: &str, mesh: &Mesh) -> String {
     );
     let uv = if r.uvs_generated {
         format!(
-            "generated (inverse spherical mapping, SPEC §5; {} seam/pole vertices added)",
+            "generated (inverse spherical mapping, docs/models.md §6; {} seam/pole vertices added)",
             r.seam_vertices_added
         )
     } else {

@@ -46,7 +46,7 @@ pub struct Cli {
 pub enum Command {
     /// Bake height and normal maps: large wrinkles and skin micro-relief, from a project.
     Bake(bake::BakeArgs),
-    /// Hair aging (SPEC §6): transition texture, hair instances and their counts per age.
+    /// Hair aging (docs/models.md §9): transition texture, hair instances and their counts per age.
     Hair(hair::HairArgs),
     /// Print what a head mesh (OBJ, glTF, GLB) contains: counts, size, attributes, repairs.
     MeshInfo(mesh_info::MeshInfoArgs),

@@ -293,3 +293,14 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let colour = albedo * (diffuse * light + vec3<f32>(ambient)) + vec3<f32>(spec) * light;
     return output_colour(colour);
 }
+
+// Wireframe overlay: the mesh's edges drawn as lines over the skin (same vertex stage), a
+// flat colour encoded like the skin's output.
+@fragment
+fn fs_wire(in: VertexOut) -> @location(0) vec4<f32> {
+    let c = vec3<f32>(0.25, 0.85, 1.0);
+    if frame.camera_pos.w > 0.5 {
+        return vec4<f32>(pow(c, vec3<f32>(1.0 / 2.2)), 1.0);
+    }
+    return vec4<f32>(c, 1.0);
+}

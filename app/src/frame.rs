@@ -84,6 +84,7 @@ pub fn frame_params(project: &Project, factors: &AgeFactors, camera: Camera) -> 
             ..HairShading::default()
         },
         age: factors.t,
+        wireframe: v.wireframe,
         ..FrameParams::default()
     }
 }

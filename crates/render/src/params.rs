@@ -250,6 +250,8 @@ pub struct FrameParams {
     pub age: f32,
     /// Background colour, linear RGB.
     pub background: Vec3,
+    /// Draw the mesh's triangle edges over the skin (the undisplaced mesh).
+    pub wireframe: bool,
     /// The picture, or the POM hit coordinates.
     pub output: FrameOutput,
 }
@@ -263,6 +265,7 @@ impl Default for FrameParams {
             hair: HairShading::default(),
             age: 0.5,
             background: Vec3::new(0.035, 0.04, 0.05),
+            wireframe: false,
             output: FrameOutput::Shaded,
         }
     }

@@ -47,6 +47,18 @@ struct GpuMesh {
     index_count: u32,
 }
 
+/// The unique edges of a triangle list as a line list (each edge once).
+fn edge_indices(indices: &[u32]) -> Vec<u32> {
+    let mut edges: Vec<(u32, u32)> = indices
+        .chunks_exact(3)
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    edges.into_iter().flat_map(|(a, b)| [a, b]).collect()
+}
+
 struct Targets {
     size_px: (u32, u32),
     colour: wgpu::Texture,
@@ -64,6 +76,9 @@ pub struct Renderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
     colour_format: wgpu::TextureFormat,
+    wire_pipeline: wgpu::RenderPipeline,
+    /// The uploaded mesh's edges (line list), for the wireframe overlay.
+    wire_edges: Option<(wgpu::Buffer, u32)>,
     frame_buffer: wgpu::Buffer,
     skin_layout: wgpu::BindGroupLayout,
     skin_pipeline: wgpu::RenderPipeline,
@@ -215,6 +230,40 @@ impl Renderer {
             cache: None,
         });
 
+        let wire_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("agesim wireframe pipeline"),
+            layout: Some(&skin_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &skin_module,
+                entry_point: Some("vs_main"),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<Vertex>() as u64,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &VERTEX_ATTRIBUTES,
+                })],
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::LineList,
+                ..Default::default()
+            },
+            // Over the skin it was drawn from: equal depth passes, nothing is written.
+            depth_stencil: Some(wgpu::DepthStencilState {
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                ..depth_stencil.clone()
+            }),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &skin_module,
+                entry_point: Some("fs_wire"),
+                targets: &colour_target,
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+
         let hair_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("agesim hair.wgsl"),
             source: wgpu::ShaderSource::Wgsl(shaders::HAIR_WGSL.into()),
@@ -294,6 +343,8 @@ impl Renderer {
             skin_layout,
             skin_pipeline,
             hair_pipeline,
+            wire_pipeline,
+            wire_edges: None,
             hair_bind_group,
             surface_sampler,
             tile_sampler,
@@ -354,6 +405,16 @@ impl Renderer {
             .ok_or_else(|| RenderError::InvalidMesh("every triangle has degenerate UVs".into()))?;
         let data = MeshData::from_mesh(mesh);
         self.mesh = Some(self.create_mesh("agesim mesh", &data));
+        let edges = edge_indices(mesh.indices());
+        self.wire_edges = Some((
+            self.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("agesim mesh edges"),
+                    contents: bytemuck::cast_slice(&edges),
+                    usage: wgpu::BufferUsages::INDEX,
+                }),
+            edges.len() as u32,
+        ));
         self.displaced_mesh = None;
         self.mesh_to_subdivide = Some(data);
         self.surface_scale = scale;
@@ -723,6 +784,16 @@ impl Renderer {
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        }
+        if params.wireframe
+            && params.skin.pom_mode != PomMode::Displacement
+            && let (Some(mesh), Some((edges, count))) = (&self.mesh, &self.wire_edges)
+        {
+            pass.set_pipeline(&self.wire_pipeline);
+            pass.set_bind_group(0, &skin_bind_group, &[]);
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_index_buffer(edges.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..*count, 0, 0..1);
         }
         if let Some(hair) = &self.hair {
             let count = count_at(&hair.levels, params.age);

@@ -237,3 +237,31 @@ fn hair_thins_and_grays_with_age() {
     assert!(old_lum > young_lum + 20.0, "hair not lighter when old");
     assert!(old_sat < young_sat, "hair not grayer when old");
 }
+
+#[test]
+fn wireframe_draws_the_edges_over_the_skin() {
+    let Some(gpu) = gpu_or_skip("wireframe_draws_the_edges_over_the_skin") else {
+        return;
+    };
+    let mesh = head::skin_patch();
+    let mut r = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT).unwrap();
+    r.upload_mesh(&mesh, 1.0).unwrap();
+    let mut p = FrameParams::default();
+    p.camera.target = mesh.bounds().centre();
+    p.camera.distance = mesh.bounds().size().length() * 1.6;
+    p.camera.yaw_rad = 0.0;
+    p.camera.pitch_rad = 0.0;
+    p.skin.pom_mode = PomMode::NormalOnly;
+    p.hair.enabled = false;
+    let plain = r.render_to_image(&p, (96, 96)).unwrap();
+    p.wireframe = true;
+    let wire = r.render_to_image(&p, (96, 96)).unwrap();
+    // Cyan lines (blue and green well above red) where the plain render has skin.
+    let cyan = |px: &image::Rgba<u8>| {
+        let [r, g, b, _] = px.0.map(i32::from);
+        b > r + 60 && g > r + 40
+    };
+    let lines = wire.pixels().filter(|px| cyan(px)).count();
+    assert_eq!(plain.pixels().filter(|px| cyan(px)).count(), 0);
+    assert!(lines > 500, "{lines} wire pixels");
+}

@@ -687,6 +687,11 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             "vertical field of view",
         ),
         k("view.show_hair", Kind::Bool, "draw the hair"),
+        k(
+            "view.wireframe",
+            Kind::Bool,
+            "draw the mesh's triangle edges over the skin",
+        ),
     ]);
     v
 });

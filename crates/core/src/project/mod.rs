@@ -196,6 +196,8 @@ pub struct ViewSection {
     pub camera_distance_m: f32,
     pub fov_deg: f32,
     pub show_hair: bool,
+    /// Draw the mesh's triangle edges over the skin.
+    pub wireframe: bool,
 }
 
 /// How the large-wrinkle relief is drawn (SPEC §5).
@@ -389,6 +391,7 @@ impl Default for ViewSection {
             camera_distance_m: 0.6,
             fov_deg: 30.0,
             show_hair: true,
+            wireframe: false,
         }
     }
 }

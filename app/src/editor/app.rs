@@ -322,6 +322,7 @@ impl EditorApp {
             MapKind::MicroNormal => images.micro_normal.clone(),
             MapKind::Transition => images.transition.clone(),
             MapKind::Fine => images.fine.clone(),
+            MapKind::Mask => images.mask.clone(),
         }?;
         let stamp = Arc::as_ptr(&image) as usize;
         if let Some((_, t, s)) = self.textures.iter_mut().find(|(k, _, _)| *k == kind) {

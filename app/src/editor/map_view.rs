@@ -16,16 +16,18 @@ pub enum MapKind {
     MicroNormal,
     Transition,
     Fine,
+    Mask,
 }
 
 impl MapKind {
-    pub const ALL: [MapKind; 6] = [
+    pub const ALL: [MapKind; 7] = [
         MapKind::LargeHeight,
         MapKind::LargeNormal,
         MapKind::MicroHeight,
         MapKind::MicroNormal,
         MapKind::Transition,
         MapKind::Fine,
+        MapKind::Mask,
     ];
 
     pub fn name(self) -> &'static str {
@@ -36,6 +38,7 @@ impl MapKind {
             MapKind::MicroNormal => "micro-relief tile: normal",
             MapKind::Transition => "hair transition",
             MapKind::Fine => "fine-wrinkle tile",
+            MapKind::Mask => "large-wrinkle mask",
         }
     }
 
@@ -43,7 +46,7 @@ impl MapKind {
     pub fn is_head_uv(self) -> bool {
         matches!(
             self,
-            MapKind::LargeHeight | MapKind::LargeNormal | MapKind::Transition
+            MapKind::LargeHeight | MapKind::LargeNormal | MapKind::Transition | MapKind::Mask
         )
     }
 }

@@ -50,6 +50,8 @@ pub struct Snapshot {
     pub images: MapImages,
     /// The compare view's second age, baked by a second scene.
     pub compare: Option<Box<Snapshot>>,
+    /// Which mask `images.mask` shows.
+    mask_stamp: usize,
 }
 
 /// Display pictures of the maps (at most [`IMAGE_MAX_PX`] on a side).
@@ -63,6 +65,8 @@ pub struct MapImages {
     pub fine: Option<Arc<egui::ColorImage>>,
     /// The mesh's UV layout (triangle edges), white lines on transparent, for the overlay.
     pub uv_layout: Option<Arc<egui::ColorImage>>,
+    /// The large-wrinkle mask.
+    pub mask: Option<Arc<egui::ColorImage>>,
 }
 
 /// The triangle edges of `mesh` in UV space, drawn into a `size`² transparent picture (v up,
@@ -323,6 +327,13 @@ fn bake(
         mesh: changed.mesh,
         ..baked
     };
+    let mask_stamp = s.large_mask().map_or(0, |m| Arc::as_ptr(m) as usize);
+    if mask_stamp != snapshot.mask_stamp {
+        snapshot.mask_stamp = mask_stamp;
+        snapshot.images.mask = s
+            .large_mask()
+            .map(|m| grey_image(m.width_px(), m.height_px(), m.values()));
+    }
     if merged.mesh || snapshot.mesh.is_none() {
         snapshot.mesh = Some(s.mesh().clone());
         snapshot.images.uv_layout = Some(uv_layout_image(s.mesh(), 1024));

@@ -306,6 +306,12 @@ impl Scene {
         &self.inputs.mesh
     }
 
+    /// The large-wrinkle mask in use (the project's, or the default head's with its
+    /// default wrinkle files), if any.
+    pub fn large_mask(&self) -> Option<&Arc<Mask>> {
+        self.inputs.large_mask.as_ref()
+    }
+
     /// The age factors of the last bake.
     pub fn factors(&self) -> &AgeFactors {
         &self.factors

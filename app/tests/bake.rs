@@ -11,6 +11,11 @@ fn agesim(args: &[&str]) -> Output {
         .expect("the agesim binary runs")
 }
 
+/// The bake.json written into `out`.
+fn bake_json(out: &Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap()
+}
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -32,8 +37,7 @@ fn default_bake_writes_the_four_files() {
     for f in ["height.png", "height.exr", "normal.png", "bake.json"] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
-    let report: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    let report: serde_json::Value = bake_json(&out);
     let range = report["height_range"].as_array().unwrap();
     let (lo, hi) = (range[0].as_f64().unwrap(), range[1].as_f64().unwrap());
     assert_eq!(
@@ -91,8 +95,7 @@ fn thesis_example_crests_on_its_forehead() {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let report: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    let report: serde_json::Value = bake_json(&out);
     assert_eq!(
         report["inputs"]["mask"],
         serde_json::Value::Null,
@@ -248,8 +251,7 @@ fn every_preset_bakes_micro_relief() {
             out.to_str().unwrap(),
         ]);
         assert!(o.status.success(), "{preset}: {}", stderr(&o));
-        let report: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+        let report: serde_json::Value = bake_json(&out);
         let layers = report["inputs"]["layers"].as_array().unwrap();
         assert!(
             layers.contains(&"pores".into()) && !layers.contains(&"large".into()),
@@ -288,8 +290,7 @@ fn bake_json_alone_reproduces_the_bake() {
         first.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let report: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(first.join("bake.json")).unwrap()).unwrap();
+    let report: serde_json::Value = bake_json(&first);
     assert_eq!(report["seed"], 7);
     assert_eq!(report["project"]["pores"]["count"], 300);
     assert_eq!(report["project"]["large"]["enabled"], true);
@@ -489,8 +490,7 @@ fn older_bakes_are_deeper() {
             out.to_str().unwrap(),
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
-        let r: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+        let r: serde_json::Value = bake_json(&out);
         r["height_range"][1].as_f64().unwrap()
     };
     let (a, b, c) = (range("30"), range("50"), range("80"));
@@ -558,8 +558,7 @@ fn nothing_asked_is_never_dropped_and_nothing_baked_is_an_error() {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let r: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    let r: serde_json::Value = bake_json(&out);
     assert_eq!(r["inputs"]["pores"], 50, "{r}");
     // --wrinkles with a skin-patch preset turns the large layer on.
     let o = agesim(&[
@@ -577,8 +576,7 @@ fn nothing_asked_is_never_dropped_and_nothing_baked_is_an_error() {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let r: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    let r: serde_json::Value = bake_json(&out);
     assert!(
         r["inputs"]["layers"]
             .as_array()

@@ -207,11 +207,17 @@ impl EditorApp {
     }
 
     fn submit(&mut self, preview: bool, what: &str) {
-        let (large, micro) = if preview {
+        let size = if preview {
             (PREVIEW_PX, PREVIEW_PX)
         } else {
             (FULL_LARGE_PX, FULL_MICRO_PX)
         };
+        self.submit_sized(size, what);
+    }
+
+    /// Sends the document to the worker, maps at (large, micro) px, at the document's age
+    /// (and the compare age when compare mode is on).
+    fn submit_sized(&mut self, (large, micro): (u32, u32), what: &str) {
         let request = BakeRequest {
             large_size_px: large,
             micro_size_px: micro,
@@ -632,24 +638,7 @@ impl EditorApp {
         let years = self.project.age.mapping().years(self.project.age.t);
         match bench.frame(idle, self.reported, self.worker.latest, hairs, years) {
             super::bench_ui::Action::None => {}
-            super::bench_ui::Action::BigBake => {
-                let request = BakeRequest {
-                    large_size_px: 4096,
-                    micro_size_px: 4096,
-                    t: self.project.age.t,
-                    fine: true,
-                    hair: true,
-                    packed: true,
-                };
-                self.worker.submit(Job {
-                    id: 0,
-                    project: self.project.clone(),
-                    wrinkles: self.wrinkles.clone(),
-                    request,
-                    what: "4096² bake".into(),
-                    compare_t: None,
-                });
-            }
+            super::bench_ui::Action::BigBake => self.submit_sized((4096, 4096), "4096² bake"),
             super::bench_ui::Action::SetAge(t) => self.set_age(t, true),
             super::bench_ui::Action::Play => self.persisted.playback.playing = true,
             super::bench_ui::Action::Stop => self.persisted.playback.playing = false,

@@ -198,19 +198,22 @@ impl Renderer {
             bind_group_layouts: &[Some(&skin_layout)],
             immediate_size: 0,
         });
+        let skin_vertex_buffers = [Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &VERTEX_ATTRIBUTES,
+        })];
+        // The skin and the wireframe overlay share the vertex stage.
+        let skin_vertex = wgpu::VertexState {
+            module: &skin_module,
+            entry_point: Some("vs_main"),
+            buffers: &skin_vertex_buffers,
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+        };
         let skin_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("agesim skin pipeline"),
             layout: Some(&skin_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &skin_module,
-                entry_point: Some("vs_main"),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &VERTEX_ATTRIBUTES,
-                })],
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-            },
+            vertex: skin_vertex.clone(),
             primitive: wgpu::PrimitiveState {
                 topology: wgpu::PrimitiveTopology::TriangleList,
                 // Imported heads disagree on winding; the ears and lips are seen from
@@ -233,16 +236,7 @@ impl Renderer {
         let wire_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("agesim wireframe pipeline"),
             layout: Some(&skin_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &skin_module,
-                entry_point: Some("vs_main"),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &VERTEX_ATTRIBUTES,
-                })],
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-            },
+            vertex: skin_vertex.clone(),
             primitive: wgpu::PrimitiveState {
                 topology: wgpu::PrimitiveTopology::LineList,
                 ..Default::default()

@@ -9,21 +9,11 @@ use std::path::PathBuf;
 
 use agesim_core::fine_wrinkles::{self, DEFAULT_FINE_WRINKLES};
 use agesim_core::{HeightMap, head};
-use agesim_render::{FrameParams, Gpu, PomMode, Renderer, TileLayer};
+use agesim_render::{FrameParams, PomMode, Renderer, TileLayer};
 use glam::Vec3;
 
-fn gpu_or_skip(test: &str) -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(gpu) => Some(gpu),
-        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => {
-            panic!("{test}: CI=true but no GPU adapter: {e}")
-        }
-        Err(e) => {
-            eprintln!("{test}: skipped, {e}");
-            None
-        }
-    }
-}
+mod common;
+use common::gpu_or_skip;
 
 fn creases(size: u32) -> HeightMap {
     let mut data = Vec::new();

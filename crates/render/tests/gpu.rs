@@ -12,18 +12,8 @@ use agesim_core::{HeightMap, Mesh, head, head_assets};
 use agesim_render::{FrameParams, Gpu, PomMode, Renderer};
 use glam::Vec3;
 
-fn gpu_or_skip(test: &str) -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(gpu) => Some(gpu),
-        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => {
-            panic!("{test}: CI=true but no GPU adapter: {e} (install mesa-vulkan-drivers)")
-        }
-        Err(e) => {
-            eprintln!("{test}: skipped, {e}");
-            None
-        }
-    }
-}
+mod common;
+use common::gpu_or_skip;
 
 fn map_from_fn(size: u32, f: impl Fn(f32, f32) -> f32) -> HeightMap {
     let mut data = Vec::new();

@@ -8,22 +8,12 @@ use agesim_core::{HeightMap, head};
 use agesim_render::{FrameOutput, FrameParams, Gpu, PomMode, Renderer};
 use glam::{Vec2, Vec3};
 
+mod common;
+use common::gpu_or_skip;
+
 const MAP_PX: u32 = 64;
 const DISP_SCALE: f32 = 0.05;
 const FRAME_PX: u32 = 96;
-
-fn gpu_or_skip(test: &str) -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(gpu) => Some(gpu),
-        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => {
-            panic!("{test}: CI=true but no GPU adapter: {e}")
-        }
-        Err(e) => {
-            eprintln!("{test}: skipped, {e}");
-            None
-        }
-    }
-}
 
 /// Bumps and ridges with several crossings per ray, values in [0, 1].
 fn height(u: f32, v: f32) -> f32 {

@@ -3,4 +3,5 @@
 
 pub mod cli;
 pub mod editor;
+pub mod export;
 pub mod frame;

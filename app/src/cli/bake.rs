@@ -90,6 +90,15 @@ pub enum ConventionArg {
     Directx,
 }
 
+impl From<ConventionArg> for agesim_core::normal_map::Convention {
+    fn from(c: ConventionArg) -> Self {
+        match c {
+            ConventionArg::Opengl => Self::OpenGl,
+            ConventionArg::Directx => Self::DirectX,
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum LayersArg {
     /// Large wrinkles (muscle fibres) only.
@@ -245,35 +254,11 @@ fn layer_names(project: &Project) -> Vec<&'static str> {
     names
 }
 
-/// Bytes a bake of `size_px`² needs at its peak: the f32 large and total heights, the u16
-/// copy and its PNG byte buffer, and the RGB normals.
-fn peak_bytes(size_px: u32) -> u64 {
-    (size_px as u64).pow(2) * (4 + 4 + 2 + 2 + 3)
-}
-
-/// MemAvailable from /proc/meminfo, when the platform has it.
-fn available_memory_bytes() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
-}
-
 pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let total = Instant::now();
     // Everything that can be checked is checked before any output exists.
     heightmap::check_size(args.size, args.size)?;
-    if let Some(available) = available_memory_bytes() {
-        let needed = peak_bytes(args.size);
-        if needed > available {
-            bail!(
-                "a {0}×{0} bake needs about {1} MiB but only {2} MiB are available; use a smaller --size",
-                args.size,
-                needed >> 20,
-                available >> 20
-            );
-        }
-    }
+    crate::export::check_map_size(args.size, "--size")?;
     let t = Instant::now();
     let project = resolve_project(args)?;
     let age_t = match (args.age, args.age_years) {

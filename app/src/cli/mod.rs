@@ -1,6 +1,7 @@
 //! The command line: one binary, one subcommand per task.
 
 pub mod bake;
+pub mod export;
 mod font;
 pub mod gen_assets;
 pub mod hair;
@@ -50,6 +51,9 @@ pub enum Command {
     Hair(hair::HairArgs),
     /// Print what a head mesh (OBJ, glTF, GLB) contains: counts, size, attributes, repairs.
     MeshInfo(mesh_info::MeshInfoArgs),
+    /// Export maps, renders and the aged head (GLB) at an age: what the editor's Export
+    /// window writes, as one all-or-nothing set of files.
+    Export(export::ExportArgs),
     /// Render the head with the GPU renderer (wgpu; works on lavapipe): PNGs or --bench.
     Render(render::RenderArgs),
     /// Regenerate the default assets (masks, fine-wrinkle tile, pictures) into a folder.
@@ -73,5 +77,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         }),
         Some(Command::Bake(args)) => bake::run(&args),
         Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Export(args)) => export::run(&args),
     }
 }

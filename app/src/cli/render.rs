@@ -178,6 +178,11 @@ impl SceneInputs {
         self.scene.mesh()
     }
 
+    /// Replaces the wrinkle files' contents (the editor's fibre edits).
+    pub fn set_wrinkles(&mut self, wrinkles: Vec<agesim_core::scene::WrinkleSource>) {
+        self.scene.set_wrinkles(wrinkles);
+    }
+
     pub fn project(&self) -> &Project {
         self.scene.project()
     }
@@ -356,17 +361,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         let mut images = Vec::new();
         for t in [t0, t1] {
             inputs.upload_age(&mut renderer, t, &mut params)?;
-            let mut img = renderer.render_to_image(&params, args.size)?;
+            let img = renderer.render_to_image(&params, args.size)?;
             let label = format!("T={t:.2} {:.0}Y", inputs.project().age.mapping().years(t));
-            crate::cli::font::draw_text(&mut img, 8, 8, 3, &label, [255, 255, 255, 255]);
-            images.push(img);
+            images.push((label, img));
         }
-        let (w, h) = args.size;
-        let mut side = image::RgbaImage::new(2 * w, h);
-        for (i, img) in images.iter().enumerate() {
-            image::imageops::replace(&mut side, img, i as i64 * i64::from(w), 0);
-        }
-        save(&side, out)?;
+        save(&side_by_side(images), out)?;
         println!(
             "{} (t = {t0} | t = {t1}) in {gather_ms:.0} ms + render",
             out.display()
@@ -387,7 +386,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         let img = renderer.render_to_image(&params, args.size)?;
         let render_ms = start.elapsed().as_secs_f64() * 1e3;
         let path = if ages.len() > 1 {
-            numbered(out, i)
+            crate::export::numbered(out, i)
         } else {
             out.clone()
         };
@@ -406,15 +405,15 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// FILE.png → FILE_0003.png.
-fn numbered(out: &Path, i: usize) -> PathBuf {
-    let stem = out
-        .file_stem()
-        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
-    let ext = out
-        .extension()
-        .map_or_else(|| "png".into(), |e| e.to_string_lossy().into_owned());
-    out.with_file_name(format!("{stem}_{i:04}.{ext}"))
+/// Images of one size side by side, each labelled in its top-left corner.
+pub fn side_by_side(images: Vec<(String, image::RgbaImage)>) -> image::RgbaImage {
+    let (w, h) = images.first().map_or((1, 1), |(_, i)| i.dimensions());
+    let mut side = image::RgbaImage::new(w * images.len().max(1) as u32, h);
+    for (i, (label, mut img)) in images.into_iter().enumerate() {
+        crate::cli::font::draw_text(&mut img, 8, 8, 3, &label, [255, 255, 255, 255]);
+        image::imageops::replace(&mut side, &img, i as i64 * i64::from(w), 0);
+    }
+    side
 }
 
 fn save(img: &image::RgbaImage, path: &Path) -> anyhow::Result<()> {

@@ -397,6 +397,26 @@ impl Loader<'_> {
 /// same data up to the rounding of the v flip and of normalisation (a few ulps).
 /// Deterministic: the same mesh gives the same bytes.
 pub fn write_glb(mesh: &super::Mesh) -> Vec<u8> {
+    write_glb_with_material(mesh, None)
+}
+
+/// A glTF metallic-roughness material for [`write_glb_with_material`].
+#[derive(Clone, Debug)]
+pub struct GlbMaterial {
+    pub name: String,
+    /// Linear RGBA (`baseColorFactor`).
+    pub base_colour: [f32; 4],
+    pub roughness: f32,
+    pub metallic: f32,
+    /// A tangent-space normal map as PNG bytes (OpenGL convention: green = +bitangent, as
+    /// glTF 2.0 §3.9.3 asks), embedded in the binary chunk as `normalTexture`.
+    pub normal_png: Option<Vec<u8>>,
+    /// Recorded in the file's `extras` (glTF has no displacement: a height map beside).
+    pub extras: serde_json::Value,
+}
+
+/// [`write_glb`], with every primitive using `material` when given.
+pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial>) -> Vec<u8> {
     let mut bin: Vec<u8> = Vec::new();
     let mut views = Vec::new();
     let mut accessors = Vec::new();
@@ -480,9 +500,43 @@ pub fn write_glb(mesh: &super::Mesh) -> Vec<u8> {
             ),
         );
         meshes.push(format!(
-            r#"{{"name":{},"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4}}]}}"#,
-            json_string(&part.name)
+            r#"{{"name":{},"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4{}}}]}}"#,
+            json_string(&part.name),
+            if material.is_some() { r#","material":0"# } else { "" }
         ));
+    }
+    // The material, and its normal map as an image in the binary chunk.
+    let mut material_json = String::new();
+    if let Some(m) = material {
+        let mut normal = String::new();
+        let mut images = String::new();
+        if let Some(png) = &m.normal_png {
+            while !bin.len().is_multiple_of(4) {
+                bin.push(0);
+            }
+            views.push(format!(
+                r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
+                bin.len(),
+                png.len()
+            ));
+            bin.extend_from_slice(png);
+            normal = r#","normalTexture":{"index":0}"#.to_owned();
+            images = format!(
+                r#","images":[{{"bufferView":{},"mimeType":"image/png","name":"normal"}}],"textures":[{{"source":0,"sampler":0}}],"samplers":[{{"magFilter":9729,"minFilter":9987,"wrapS":33071,"wrapT":33071}}]"#,
+                views.len() - 1
+            );
+        }
+        let f = |x: f32| if x.is_finite() { x } else { 0.0 };
+        let [r, g, b, a] = m.base_colour.map(f);
+        material_json = format!(
+            r#","materials":[{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}],"metallicFactor":{},"roughnessFactor":{}}}{normal}}}]{images}"#,
+            json_string(&m.name),
+            f(m.metallic),
+            f(m.roughness),
+        );
+        if !m.extras.is_null() {
+            material_json.push_str(&format!(r#","extras":{}"#, m.extras));
+        }
     }
     while !bin.len().is_multiple_of(4) {
         bin.push(0);
@@ -495,7 +549,7 @@ pub fn write_glb(mesh: &super::Mesh) -> Vec<u8> {
         .collect();
     let scene_nodes: Vec<String> = (0..nodes.len()).map(|k| k.to_string()).collect();
     let mut json = format!(
-        r#"{{"asset":{{"version":"2.0","generator":"agesim"}},"scene":0,"scenes":[{{"nodes":[{}]}}],"nodes":[{}],"meshes":[{}],"accessors":[{}],"bufferViews":[{}],"buffers":[{{"byteLength":{}}}]}}"#,
+        r#"{{"asset":{{"version":"2.0","generator":"agesim"}},"scene":0,"scenes":[{{"nodes":[{}]}}],"nodes":[{}],"meshes":[{}],"accessors":[{}],"bufferViews":[{}],"buffers":[{{"byteLength":{}}}]{material_json}}}"#,
         scene_nodes.join(","),
         nodes.join(","),
         meshes.join(","),
@@ -842,6 +896,54 @@ mod tests {
             assert_close(ua.x, ub.x, 0.0, "u");
             assert_close(ua.y, ub.y, 1e-6, "v (flipped twice)");
         }
+    }
+
+    #[test]
+    fn a_material_with_an_embedded_normal_map_is_valid_gltf() {
+        let original = crate::mesh::Mesh::build(
+            RawMesh {
+                positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+                uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::Y]),
+                indices: vec![0, 1, 2],
+                ..RawMesh::default()
+            },
+            "triangle",
+        )
+        .unwrap();
+        // A 1×1 PNG: the importer only needs valid bytes in the chunk.
+        let mut png = Vec::new();
+        image::RgbImage::from_pixel(1, 1, image::Rgb([128, 128, 255]))
+            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        let material = GlbMaterial {
+            name: "aged skin".into(),
+            base_colour: [0.6, 0.4, 0.3, 1.0],
+            roughness: 0.45,
+            metallic: 0.0,
+            normal_png: Some(png.clone()),
+            extras: serde_json::json!({"age_years": 70.0}),
+        };
+        let glb = write_glb_with_material(&original, Some(&material));
+        let gltf = ::gltf::Gltf::from_slice(&glb).expect("a valid GLB");
+        let m = gltf.materials().next().expect("one material");
+        assert_eq!(m.name(), Some("aged skin"));
+        let pbr = m.pbr_metallic_roughness();
+        assert_eq!(pbr.base_color_factor(), [0.6, 0.4, 0.3, 1.0]);
+        assert_eq!(pbr.roughness_factor(), 0.45);
+        let normal = m.normal_texture().expect("a normal texture");
+        let ::gltf::image::Source::View { view, mime_type } = normal.texture().source().source()
+        else {
+            panic!("the image is embedded");
+        };
+        assert_eq!(mime_type, "image/png");
+        let blob = gltf.blob.as_deref().unwrap();
+        let start = view.offset();
+        assert_eq!(&blob[start..start + view.length()], png.as_slice());
+        let prim = gltf.meshes().next().unwrap().primitives().next().unwrap();
+        assert_eq!(prim.material().index(), Some(0));
+        assert!(prim.get(&::gltf::Semantic::Tangents).is_some());
+        // And it still loads as a mesh.
+        load_bytes(&glb, Path::new("x.glb")).unwrap();
     }
 
     #[test]

@@ -1,0 +1,151 @@
+//! `agesim export`: the editor's Export window as a command, sharing its code
+//! ([`crate::export`]), so pipelines can batch what an artist does by hand.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use agesim_core::cancel::CancelToken;
+use agesim_core::defaults;
+use agesim_core::project::Project;
+use anyhow::bail;
+
+use crate::export::{ExportRequest, GlbOut, MapsOut, RendersOut};
+
+/// Export maps, renders and the aged head (GLB) of a project at an age.
+#[derive(Debug, clap::Args)]
+pub struct ExportArgs {
+    /// Project file (`*.agesim.json`). Default: the default project.
+    #[arg(long, value_name = "FILE", conflicts_with = "preset")]
+    pub project: Option<PathBuf>,
+    /// A shipped preset instead of a project.
+    #[arg(long, value_name = "NAME")]
+    pub preset: Option<String>,
+    /// The age, in years (through the project's `age` section). Default: the project's age.
+    #[arg(long, value_name = "Y")]
+    pub age_years: Option<f32>,
+    /// Side of the maps and of the GLB's textures, px (1..=16384; beyond 8192 only as far
+    /// as memory allows).
+    #[arg(long, default_value_t = 2048, value_name = "N")]
+    pub size: u32,
+    /// Height map as a 16-bit PNG.
+    #[arg(long, value_name = "FILE.png")]
+    pub height_png: Option<PathBuf>,
+    /// Height map as a 32-bit float EXR.
+    #[arg(long, value_name = "FILE.exr")]
+    pub height_exr: Option<PathBuf>,
+    /// Normal map as an 8-bit PNG.
+    #[arg(long, value_name = "FILE.png")]
+    pub normal_png: Option<PathBuf>,
+    /// The normal map's green channel (default: the project's `normal.convention`).
+    #[arg(long, value_enum)]
+    pub normal_convention: Option<crate::cli::bake::ConventionArg>,
+    /// Bake the micro-relief periodic so the maps tile (skin patches).
+    #[arg(long)]
+    pub tileable: bool,
+    /// The aged head as binary glTF (normal map and base colour at the age; the height
+    /// map beside it as FILE_height.png).
+    #[arg(long, value_name = "FILE.glb")]
+    pub glb: Option<PathBuf>,
+    /// A render at the age.
+    #[arg(long, value_name = "FILE.png")]
+    pub render: Option<PathBuf>,
+    /// Renders at several ages (years, comma separated; see --years): FILE_0000.png, ….
+    #[arg(long, value_name = "FILE.png", requires = "years")]
+    pub sequence: Option<PathBuf>,
+    /// The ages of --sequence, years.
+    #[arg(long, value_delimiter = ',', value_name = "Y,Y,…")]
+    pub years: Vec<f32>,
+    /// A young | old comparison image at the two ages of --compare-years.
+    #[arg(long, value_name = "FILE.png")]
+    pub compare: Option<PathBuf>,
+    /// The two ages of --compare, years.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "25,75",
+        value_name = "Y0,Y1"
+    )]
+    pub compare_years: Vec<f32>,
+    /// Size of the renders, WxH px.
+    #[arg(long, default_value = "1024x1024", value_parser = parse_size)]
+    pub render_size: (u32, u32),
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X', '×'])
+        .ok_or_else(|| format!("`{s}`: expected WxH, e.g. 1024x1024"))?;
+    let parse = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("`{s}`: expected WxH, e.g. 1024x1024"))
+    };
+    Ok((parse(w)?, parse(h)?))
+}
+
+pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
+    let start = Instant::now();
+    let project = match (&args.project, &args.preset) {
+        (Some(path), _) => Project::load(path)?,
+        (None, Some(name)) => {
+            let Some((file, text)) = defaults::preset(name) else {
+                bail!(
+                    "unknown preset `{name}`: expected one of {}",
+                    defaults::preset_names().join(", ")
+                );
+            };
+            Project::from_json_str(text, file)?
+        }
+        (None, None) => Project::default(),
+    };
+    let years = args
+        .age_years
+        .unwrap_or_else(|| project.age.mapping().years(project.age.t));
+    let compare = match (&args.compare, args.compare_years.as_slice()) {
+        (None, _) => None,
+        (Some(path), &[a, b]) => Some((path.clone(), [a, b])),
+        (Some(_), other) => bail!(
+            "--compare-years takes two ages, Y0,Y1 (got {} values)",
+            other.len()
+        ),
+    };
+    let request = ExportRequest {
+        years,
+        maps: MapsOut {
+            size_px: args.size,
+            height_png: args.height_png.clone(),
+            height_exr: args.height_exr.clone(),
+            normal_png: args.normal_png.clone(),
+            convention: args.normal_convention.map(Into::into),
+            tileable: args.tileable,
+        },
+        glb: args.glb.clone().map(|path| GlbOut {
+            path,
+            size_px: args.size,
+        }),
+        renders: RendersOut {
+            size: args.render_size,
+            image: args.render.clone(),
+            sequence: args.sequence.clone().map(|p| (p, args.years.clone())),
+            compare,
+        },
+    };
+    let last = std::sync::Mutex::new(String::new());
+    let progress = |_: f32, what: &str| {
+        let mut last = last.lock().unwrap_or_else(|p| p.into_inner());
+        if *last != what {
+            eprintln!("  {what}…");
+            *last = what.to_owned();
+        }
+    };
+    let files = crate::export::run(&project, None, &request, &progress, &CancelToken::never())?;
+    println!(
+        "exported {} file(s) at {years:.0} years in {:.0} ms:",
+        files.len(),
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    for f in files {
+        println!("  {}", f.display());
+    }
+    Ok(())
+}

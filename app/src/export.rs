@@ -1,0 +1,652 @@
+//! Exports at an age, shared by `agesim export` and the editor's Export window: the maps
+//! (height as 16-bit PNG and 32-bit EXR, normal PNG), renders (one image, an age sequence,
+//! a young | old comparison) and the aged head as GLB.
+//!
+//! Everything one request writes is one output set (`agesim_core::export::OutputSet`):
+//! each file goes to a temporary first, and only when every file is written are they all
+//! renamed into place. An error or a cancel leaves the old files whole and no temporary.
+
+use std::path::{Path, PathBuf};
+
+use agesim_core::cancel::CancelToken;
+use agesim_core::export::OutputSet;
+use agesim_core::mesh::gltf::{GlbMaterial, write_glb_with_material};
+use agesim_core::normal_map::Convention;
+use agesim_core::project::Project;
+use agesim_core::scene::{BakeRequest, Scene, WrinkleSource};
+use agesim_core::{HeightMap, export as out, heightmap};
+use anyhow::{Context as _, bail};
+use glam::Vec3;
+
+/// The maps of `agesim bake` (the large wrinkles on the head's UV plus the micro-relief
+/// over the whole square), at one size.
+#[derive(Clone, Debug, Default)]
+pub struct MapsOut {
+    pub size_px: u32,
+    pub height_png: Option<PathBuf>,
+    pub height_exr: Option<PathBuf>,
+    pub normal_png: Option<PathBuf>,
+    /// The normal map's green channel; `None`: the project's `normal.convention`.
+    pub convention: Option<Convention>,
+    /// Bake the micro-relief periodic, so the maps tile (the skin patch).
+    pub tileable: bool,
+}
+
+impl MapsOut {
+    fn any(&self) -> bool {
+        self.height_png.is_some() || self.height_exr.is_some() || self.normal_png.is_some()
+    }
+}
+
+/// The aged head as a binary glTF: mesh with tangents, a material whose `normalTexture`
+/// is the large-wrinkle, fine-wrinkle and micro-relief normal map at the age, and a base
+/// colour for the age. glTF has no displacement, so the large-wrinkle height map is
+/// written beside it (`NAME_height.png`, 16-bit).
+#[derive(Clone, Debug)]
+pub struct GlbOut {
+    pub path: PathBuf,
+    /// Side of the normal and height maps, px.
+    pub size_px: u32,
+}
+
+impl GlbOut {
+    /// `head.glb` → `head_height.png`.
+    pub fn height_path(&self) -> PathBuf {
+        sibling(&self.path, "_height", "png")
+    }
+}
+
+/// Renders with the wgpu renderer, in the project's camera and light.
+#[derive(Clone, Debug, Default)]
+pub struct RendersOut {
+    /// Image size, px.
+    pub size: (u32, u32),
+    /// One image at the request's age.
+    pub image: Option<PathBuf>,
+    /// One image per age (years): `FILE_0000.png`, `FILE_0001.png`, ….
+    pub sequence: Option<(PathBuf, Vec<f32>)>,
+    /// Two ages (years) side by side, each labelled.
+    pub compare: Option<(PathBuf, [f32; 2])>,
+}
+
+impl RendersOut {
+    fn any(&self) -> bool {
+        self.image.is_some() || self.sequence.is_some() || self.compare.is_some()
+    }
+}
+
+/// One export: what to write, at which age.
+#[derive(Clone, Debug, Default)]
+pub struct ExportRequest {
+    /// The age, years (mapped to t through the project's `age` section).
+    pub years: f32,
+    pub maps: MapsOut,
+    pub glb: Option<GlbOut>,
+    pub renders: RendersOut,
+}
+
+impl ExportRequest {
+    /// Every file the request writes, in order.
+    pub fn outputs(&self) -> Vec<PathBuf> {
+        let m = &self.maps;
+        let mut files: Vec<PathBuf> = [&m.height_png, &m.height_exr, &m.normal_png]
+            .into_iter()
+            .flatten()
+            .cloned()
+            .collect();
+        if let Some(g) = &self.glb {
+            files.push(g.path.clone());
+            files.push(g.height_path());
+        }
+        let r = &self.renders;
+        files.extend(r.image.iter().cloned());
+        if let Some((path, years)) = &r.sequence {
+            files.extend((0..years.len()).map(|i| numbered(path, i)));
+        }
+        files.extend(r.compare.iter().map(|(p, _)| p.clone()));
+        files
+    }
+}
+
+/// Reports progress: a fraction in [0, 1] and what is being done.
+pub type Progress<'a> = &'a (dyn Fn(f32, &str) + Sync);
+
+/// Bytes a map bake of `size_px`² needs at its peak: the f32 large and total heights, the
+/// u16 copy and its PNG byte buffer, and the RGB normals.
+pub fn peak_bytes(size_px: u32) -> u64 {
+    (size_px as u64).pow(2) * (4 + 4 + 2 + 2 + 3)
+}
+
+/// MemAvailable from /proc/meminfo, when the platform has it.
+pub fn available_memory_bytes() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// Refuses a map size outside the engine's range, or one this machine's free memory
+/// cannot hold, before any work starts; `what` names the setting in the message.
+pub fn check_map_size(size_px: u32, what: &str) -> anyhow::Result<()> {
+    heightmap::check_size(size_px, size_px).with_context(|| format!("{what} {size_px}"))?;
+    if let Some(available) = available_memory_bytes() {
+        let needed = peak_bytes(size_px);
+        if needed > available {
+            bail!(
+                "{what} {size_px}: a {size_px}×{size_px} map needs about {} MiB but only {} MiB are available; choose a smaller size",
+                needed >> 20,
+                available >> 20
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Runs `request` for `project` (with the editor's edited wrinkle files when given).
+/// Returns the files written. On an error or a cancel nothing at the outputs changed.
+pub fn run(
+    project: &Project,
+    wrinkles: Option<&[WrinkleSource]>,
+    request: &ExportRequest,
+    progress: Progress<'_>,
+    cancel: &CancelToken,
+) -> anyhow::Result<Vec<PathBuf>> {
+    let outputs = request.outputs();
+    if outputs.is_empty() {
+        bail!("nothing to export: choose at least one map, the GLB or a render");
+    }
+    if !(0.0..=150.0).contains(&request.years) {
+        bail!("age {} years: expected 0..=150", request.years);
+    }
+    for (i, a) in outputs.iter().enumerate() {
+        if outputs[..i].contains(a) {
+            bail!("{} is chosen twice as an output", a.display());
+        }
+    }
+    if request.maps.any() {
+        check_map_size(request.maps.size_px, "map size")?;
+    }
+    if let Some(g) = &request.glb {
+        check_map_size(g.size_px, "GLB texture size")?;
+        if g.path.extension().and_then(|e| e.to_str()) != Some("glb") {
+            bail!(
+                "{}: the aged head is written as binary glTF; name the file *.glb",
+                g.path.display()
+            );
+        }
+    }
+    let r = &request.renders;
+    if r.any() {
+        let (w, h) = r.size;
+        if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+            bail!("render size {w}×{h}: expected 1..=8192 on each side");
+        }
+    }
+    for path in &outputs {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("cannot create the folder {}", dir.display()))?;
+        }
+    }
+    let t = project.age.mapping().t(request.years);
+    let set = OutputSet::new();
+    // Shares of the progress bar per part, by rough cost.
+    let parts = [
+        request.maps.any() as u8 as f32,
+        request.glb.is_some() as u8 as f32,
+        r.any() as u8 as f32 * 1.5,
+    ];
+    let total: f32 = parts.iter().sum();
+    let mut done = 0.0;
+    let mut step = |k: usize| {
+        let start = done / total;
+        done += parts[k];
+        (start, parts[k] / total)
+    };
+    if request.maps.any() {
+        let (start, share) = step(0);
+        let p = |f: f32, what: &str| progress(start + share * f, what);
+        export_maps(project, wrinkles, t, &request.maps, &set, &p, cancel)?;
+    }
+    if let Some(glb) = &request.glb {
+        let (start, share) = step(1);
+        let p = |f: f32, what: &str| progress(start + share * f, what);
+        export_glb(project, wrinkles, t, request.years, glb, &set, &p, cancel)?;
+    }
+    if r.any() {
+        let (start, share) = step(2);
+        let p = |f: f32, what: &str| progress(start + share * f, what);
+        export_renders(project, wrinkles, t, r, &set, &p, cancel)?;
+    }
+    cancel.check()?;
+    progress(1.0, "putting the files in place");
+    set.commit()?;
+    Ok(outputs)
+}
+
+/// A scene of `project` with the edited wrinkle files.
+fn scene(project: Project, wrinkles: Option<&[WrinkleSource]>) -> anyhow::Result<Scene> {
+    let mut scene = Scene::new(project)?;
+    if let Some(w) = wrinkles {
+        scene.set_wrinkles(w.to_vec());
+    }
+    Ok(scene)
+}
+
+fn export_maps(
+    project: &Project,
+    wrinkles: Option<&[WrinkleSource]>,
+    t: f32,
+    maps: &MapsOut,
+    set: &OutputSet,
+    progress: Progress<'_>,
+    cancel: &CancelToken,
+) -> anyhow::Result<()> {
+    let mut p = project.clone();
+    p.tile = maps.tileable;
+    if let Some(c) = maps.convention {
+        p.normal.convention = c;
+    }
+    progress(0.0, "loading the inputs");
+    let mut scene = scene(p, wrinkles)?;
+    progress(0.1, "baking the maps");
+    scene.bake(&BakeRequest::maps(maps.size_px, t), cancel)?;
+    progress(0.5, "making the normal map");
+    let (height, normal_rgb) = scene.export_maps()?;
+    cancel.check()?;
+    progress(0.6, "writing the maps");
+    let n = maps.size_px;
+    // The three encoders at once (EXR and PNG deflate are single-threaded each).
+    let (png, (exr, normal)) = rayon::join(
+        || match &maps.height_png {
+            Some(path) => out::stage_height_png16(set, path, &height).map(|_| ()),
+            None => Ok(()),
+        },
+        || {
+            rayon::join(
+                || match &maps.height_exr {
+                    Some(path) => out::stage_height_exr(set, path, &height),
+                    None => Ok(()),
+                },
+                || match &maps.normal_png {
+                    Some(path) => out::stage_rgb8_png(set, path, n, n, &normal_rgb),
+                    None => Ok(()),
+                },
+            )
+        },
+    );
+    png?;
+    exr?;
+    normal?;
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn export_glb(
+    project: &Project,
+    wrinkles: Option<&[WrinkleSource]>,
+    t: f32,
+    years: f32,
+    glb: &GlbOut,
+    set: &OutputSet,
+    progress: Progress<'_>,
+    cancel: &CancelToken,
+) -> anyhow::Result<()> {
+    let mut p = project.clone();
+    // The tiles repeat over the head: they must wrap.
+    p.tile = true;
+    progress(0.0, "loading the head");
+    let mut scene = scene(p, wrinkles)?;
+    progress(0.1, "baking the head's maps");
+    let request = BakeRequest {
+        large_size_px: glb.size_px,
+        micro_size_px: 1024.min(glb.size_px.max(64)),
+        t,
+        fine: true,
+        hair: false,
+        packed: false,
+    };
+    scene.bake(&request, cancel)?;
+    progress(0.5, "composing the normal map");
+    let normals = head_normal_map(&scene, glb.size_px, cancel)?;
+    progress(0.7, "encoding the textures");
+    let mut png = Vec::new();
+    image::ImageEncoder::write_image(
+        image::codecs::png::PngEncoder::new_with_quality(
+            &mut png,
+            image::codecs::png::CompressionType::Fast,
+            image::codecs::png::FilterType::Adaptive,
+        ),
+        &normals,
+        glb.size_px,
+        glb.size_px,
+        image::ExtendedColorType::Rgb8,
+    )
+    .context("encoding the normal map")?;
+    cancel.check()?;
+    let project = scene.project();
+    let params = crate::frame::frame_params(
+        project,
+        scene.factors(),
+        crate::frame::camera(project, Vec3::ZERO),
+    );
+    let large = scene.large().map(|l| &l.height);
+    let height_name = glb
+        .height_path()
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let range = large.map(|h| h.min_max());
+    let a = params.skin.albedo;
+    let material = GlbMaterial {
+        name: format!("agesim skin, {years:.0} years"),
+        base_colour: [a.x, a.y, a.z, 1.0],
+        roughness: 0.42,
+        metallic: 0.0,
+        normal_png: Some(png),
+        extras: serde_json::json!({
+            "agesim_version": env!("CARGO_PKG_VERSION"),
+            "age_years": years,
+            "age_t": t,
+            "height_map": height_name,
+            "height_range": range.map(|(lo, hi)| [lo, hi]),
+            "height_meaning": "large-wrinkle height = lo + (hi - lo) * p / 65535 for a 16-bit value p, in the project's height units (large.depth = deepest)",
+        }),
+    };
+    let bytes = write_glb_with_material(scene.mesh(), Some(&material));
+    progress(0.9, "writing the GLB");
+    set.stage(&glb.path, |w| std::io::Write::write_all(w, &bytes))?;
+    let flat;
+    let height = match large {
+        Some(h) => h,
+        None => {
+            flat = HeightMap::zeros(glb.size_px, glb.size_px)?;
+            &flat
+        }
+    };
+    out::stage_height_png16(set, &glb.height_path(), height)?;
+    Ok(())
+}
+
+/// The head's tangent-space normal map at the scene's age, OpenGL convention (green =
+/// +v), RGB8, `size_px`² over the head's UV square: the CPU twin of `shaders/skin.wgsl`'s
+/// `fs_main` without parallax. Large wrinkles from their heights with `view.disp_scale`
+/// (SPEC §4); the fine-wrinkle tile in the large wrinkles' frame, blended by the age
+/// (SPEC §5); the micro-relief tile on top by reoriented normal mapping. The tiles repeat
+/// a whole number of times across the UV square, as in the renderer, and are box-filtered
+/// to about one texel per output pixel first (the GPU's mip level).
+pub fn head_normal_map(
+    scene: &Scene,
+    size_px: u32,
+    cancel: &CancelToken,
+) -> anyhow::Result<Vec<u8>> {
+    use rayon::prelude::*;
+    let project = scene.project();
+    let mesh = scene.mesh();
+    let scale = agesim_render::SurfaceScale::measure(mesh.positions(), mesh.uvs(), mesh.indices())
+        .context("the mesh's UVs are degenerate: no normal map can be laid on it")?;
+    let mpu = project.mesh.metres_per_unit;
+    let n = size_px as usize;
+    // Large-wrinkle heights in [0, 1] (÷ depth), as uploaded to the renderer.
+    let large: Option<(Vec<f32>, usize)> = scene.large().map(|l| {
+        let inv = if project.large.depth > 0.0 {
+            1.0 / project.large.depth
+        } else {
+            0.0
+        };
+        (
+            l.height.data().iter().map(|h| h * inv).collect(),
+            l.height.width_px() as usize,
+        )
+    });
+    let disp = project.view.disp_scale;
+    let fine_blend = if project.fine.enabled {
+        scene.factors().fine_blend.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let micro_on = project.pores.enabled || project.furrows.enabled || project.noise.strength > 0.0;
+    let tile =
+        |map: Option<&HeightMap>, size_m: f32, strength: f32| -> anyhow::Result<Option<Tile>> {
+            let Some(map) = map else { return Ok(None) };
+            let repeats = scale.repeats(mpu, size_m.max(1e-6));
+            // Texels of the tile per output pixel; box-filter down to about one.
+            let per_px = map.width_px() as f32 * repeats[0].max(repeats[1]) / n as f32;
+            let side = map.width_px().min(map.height_px());
+            let factor = (1..=(per_px.floor() as u32).clamp(1, side))
+                .rev()
+                .find(|f| map.width_px() % f == 0 && map.height_px() % f == 0)
+                .unwrap_or(1);
+            let filtered = if factor > 1 {
+                map.downsample_box(factor)?
+            } else {
+                map.clone()
+            };
+            Ok(Some(Tile {
+                map: filtered,
+                repeats,
+                strength,
+            }))
+        };
+    let micro = if micro_on {
+        tile(
+            scene.micro().map(|m| &m.height),
+            project.map_size_mm * 1e-3,
+            project.normal.strength,
+        )?
+    } else {
+        None
+    };
+    let fine = if fine_blend > 0.0 {
+        tile(
+            scene.fine().map(|f| f.as_ref()),
+            project.fine.size_mm * 1e-3,
+            project.fine.strength,
+        )?
+    } else {
+        None
+    };
+    let mut rgb = vec![0u8; n * n * 3];
+    rgb.par_chunks_mut(n * 3).enumerate().try_for_each(
+        |(y, row)| -> Result<(), agesim_core::Error> {
+            if y % 64 == 0 {
+                cancel.check()?;
+            }
+            let v = heightmap::pixel_to_v(y as u32, size_px);
+            for (x, px) in row.chunks_exact_mut(3).enumerate() {
+                let u = heightmap::pixel_to_u(x as u32, size_px);
+                let n_large = match &large {
+                    Some((h, side)) => {
+                        // Central differences in texels of the large map (row 0 = top, v up).
+                        let s = *side;
+                        let (lx, ly) = ((u * s as f32) as usize, ((1.0 - v) * s as f32) as usize);
+                        let at = |x: isize, y: isize| {
+                            h[(y.clamp(0, s as isize - 1) as usize) * s
+                                + x.clamp(0, s as isize - 1) as usize]
+                        };
+                        let (lx, ly) = (lx.min(s - 1) as isize, ly.min(s - 1) as isize);
+                        let du = (at(lx + 1, ly) - at(lx - 1, ly)) * 0.5 * s as f32;
+                        let dv = (at(lx, ly - 1) - at(lx, ly + 1)) * 0.5 * s as f32;
+                        Vec3::new(-disp * du, -disp * dv, 1.0).normalize()
+                    }
+                    None => Vec3::Z,
+                };
+                let mut n_ts = n_large;
+                if let Some(f) = &fine {
+                    let nf = f.normal(u, v);
+                    let t = Vec3::new(n_large.z, 0.0, -n_large.x).normalize();
+                    let b = Vec3::new(0.0, n_large.z, -n_large.y).normalize();
+                    let in_frame = (t * nf.x + b * nf.y + n_large * nf.z).normalize();
+                    n_ts = n_large.lerp(in_frame, fine_blend).normalize();
+                }
+                if let Some(m) = &micro {
+                    n_ts = rnm(n_ts, m.normal(u, v));
+                }
+                for (c, value) in px.iter_mut().zip(n_ts.to_array()) {
+                    *c = agesim_core::normal_map::encode_unorm8(value * 0.5 + 0.5);
+                }
+            }
+            Ok(())
+        },
+    )?;
+    Ok(rgb)
+}
+
+/// A height tile repeated over the UV square, for [`head_normal_map`].
+struct Tile {
+    map: HeightMap,
+    repeats: [f32; 2],
+    strength: f32,
+}
+
+impl Tile {
+    /// Tangent-space normal at (u, v) of the surface: SPEC §4 on the wrapped tile.
+    fn normal(&self, u: f32, v: f32) -> Vec3 {
+        let (w, h) = (self.map.width_px() as f32, self.map.height_px() as f32);
+        // Texel coordinates (row 0 at the top, v up) of the repeated tile.
+        let tx = (u * self.repeats[0]).fract() * w;
+        let ty = (1.0 - (v * self.repeats[1]).fract()) * h;
+        let du = (self.sample(tx + 1.0, ty) - self.sample(tx - 1.0, ty)) * 0.5 * w;
+        let dv = (self.sample(tx, ty - 1.0) - self.sample(tx, ty + 1.0)) * 0.5 * h;
+        Vec3::new(-self.strength * du, -self.strength * dv, 1.0).normalize()
+    }
+
+    /// Bilinear, wrapping, at texel coordinates (centres at +0.5).
+    fn sample(&self, x: f32, y: f32) -> f32 {
+        let (w, h) = (self.map.width_px() as i64, self.map.height_px() as i64);
+        let (x, y) = (x - 0.5, y - 0.5);
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let at = |xi: i64, yi: i64| {
+            self.map
+                .get(xi.rem_euclid(w) as u32, yi.rem_euclid(h) as u32)
+        };
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1, y0) * fx;
+        let bottom = at(x0, y0 + 1) * (1.0 - fx) + at(x0 + 1, y0 + 1) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+}
+
+/// Reoriented normal mapping (Barré-Brisebois & Hill 2012), as in `skin.wgsl`.
+fn rnm(base: Vec3, detail: Vec3) -> Vec3 {
+    let t = base + Vec3::Z;
+    let u = detail * Vec3::new(-1.0, -1.0, 1.0);
+    (t * t.dot(u) / t.z - u).normalize()
+}
+
+fn export_renders(
+    project: &Project,
+    wrinkles: Option<&[WrinkleSource]>,
+    t: f32,
+    r: &RendersOut,
+    set: &OutputSet,
+    progress: Progress<'_>,
+    cancel: &CancelToken,
+) -> anyhow::Result<()> {
+    use agesim_render::{FrameParams, Gpu, Renderer};
+    progress(0.0, "starting the renderer");
+    let density = if project.hair.enabled {
+        project.hair.density_per_cm2
+    } else {
+        0.0
+    };
+    let mut inputs = crate::cli::render::SceneInputs::gather(
+        project,
+        None,
+        false,
+        project.mesh.metres_per_unit,
+        1024,
+        density,
+    )?;
+    if let Some(w) = wrinkles {
+        inputs.set_wrinkles(w.to_vec());
+    }
+    let gpu = Gpu::new()?;
+    let mut renderer = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT)?;
+    let centre = inputs.mesh().bounds().centre();
+    let camera = crate::frame::camera(project, centre);
+    let mut params: FrameParams =
+        crate::frame::frame_params(project, &project.age.factors(t, &[]), camera);
+    let mapping = project.age.mapping();
+    // (years, where, label?) for every picture, then the comparison's two halves.
+    let mut jobs: Vec<(f32, Option<PathBuf>)> = Vec::new();
+    if let Some(path) = &r.image {
+        jobs.push((mapping.years(t), Some(path.clone())));
+    }
+    if let Some((path, years)) = &r.sequence {
+        jobs.extend(
+            years
+                .iter()
+                .enumerate()
+                .map(|(i, &y)| (y, Some(numbered(path, i)))),
+        );
+    }
+    if let Some((_, [a, b])) = &r.compare {
+        jobs.push((*a, None));
+        jobs.push((*b, None));
+    }
+    let mut halves = Vec::new();
+    let count = jobs.len() as f32;
+    for (i, (years, path)) in jobs.into_iter().enumerate() {
+        cancel.check()?;
+        if !(0.0..=150.0).contains(&years) {
+            bail!("render age {years} years: expected 0..=150");
+        }
+        progress(
+            0.05 + 0.95 * i as f32 / count,
+            &format!("rendering {years:.0} years"),
+        );
+        inputs.upload_age(&mut renderer, mapping.t(years), &mut params)?;
+        let img = renderer.render_to_image(&params, r.size)?;
+        match path {
+            Some(path) => stage_png(set, &path, &img)?,
+            None => halves.push((years, img)),
+        }
+    }
+    if let Some((path, _)) = &r.compare {
+        let labelled: Vec<(String, image::RgbaImage)> = halves
+            .into_iter()
+            .map(|(y, img)| (format!("{y:.0}Y"), img))
+            .collect();
+        stage_png(set, path, &crate::cli::render::side_by_side(labelled))?;
+    }
+    Ok(())
+}
+
+fn stage_png(set: &OutputSet, path: &Path, img: &image::RgbaImage) -> anyhow::Result<()> {
+    set.stage(path, |w| {
+        image::ImageEncoder::write_image(
+            image::codecs::png::PngEncoder::new_with_quality(
+                w,
+                image::codecs::png::CompressionType::Fast,
+                image::codecs::png::FilterType::Adaptive,
+            ),
+            img.as_raw(),
+            img.width(),
+            img.height(),
+            image::ExtendedColorType::Rgba8,
+        )
+        .map_err(std::io::Error::other)
+    })?;
+    Ok(())
+}
+
+/// FILE.png → FILE_0003.png.
+pub fn numbered(out: &Path, i: usize) -> PathBuf {
+    let stem = out
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    let ext = out
+        .extension()
+        .map_or_else(|| "png".into(), |e| e.to_string_lossy().into_owned());
+    out.with_file_name(format!("{stem}_{i:04}.{ext}"))
+}
+
+/// `dir/head.glb` → `dir/head{suffix}.{ext}`.
+fn sibling(path: &Path, suffix: &str, ext: &str) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    path.with_file_name(format!("{stem}{suffix}.{ext}"))
+}

@@ -1,0 +1,157 @@
+//! `agesim export` and the export code the editor shares with it: the aged head as GLB
+//! read back with the `gltf` crate, maps at an age, all-or-nothing on errors and cancels.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::process::{Command, Output};
+
+use agesim::export::{ExportRequest, GlbOut, MapsOut};
+use agesim_core::cancel::CancelToken;
+use agesim_core::project::Project;
+
+fn agesim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_agesim"))
+        .args(args)
+        .output()
+        .expect("the agesim binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn the_aged_head_glb_loads_back_with_its_material() {
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("head.glb");
+    let o = agesim(&[
+        "export",
+        "--age-years",
+        "70",
+        "--size",
+        "256",
+        "--glb",
+        glb.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (doc, buffers, images) = gltf::import(&glb).expect("the GLB imports");
+    let material = doc.materials().next().expect("a material");
+    assert!(material.name().unwrap().contains("70 years"));
+    let pbr = material.pbr_metallic_roughness();
+    let [r, g, b, a] = pbr.base_color_factor();
+    assert!(r > g && g > b && a == 1.0, "a skin tone, got {r} {g} {b}");
+    let normal = material.normal_texture().expect("a normal texture");
+    let image = &images[normal.texture().source().index()];
+    assert_eq!((image.width, image.height), (256, 256));
+    // A tangent-space normal map: mostly +z, with the wrinkles bending it.
+    let pixels: Vec<&[u8]> = image.pixels.chunks_exact(3).collect();
+    let mean_blue = pixels.iter().map(|p| f64::from(p[2])).sum::<f64>() / pixels.len() as f64;
+    assert!(mean_blue > 230.0, "mean blue {mean_blue}");
+    let bent = pixels
+        .iter()
+        .filter(|p| (i32::from(p[0]) - 128).abs() > 20)
+        .count();
+    assert!(bent > 100, "only {bent} texels bent by wrinkles");
+    for mesh in doc.meshes() {
+        for prim in mesh.primitives() {
+            assert_eq!(prim.material().index(), Some(0));
+            let reader = prim.reader(|b| Some(&buffers[b.index()]));
+            assert!(reader.read_tangents().is_some(), "tangents are written");
+            assert!(reader.read_tex_coords(0).is_some());
+        }
+    }
+    // The height map beside it, and the file says where it is.
+    assert!(dir.path().join("head_height.png").is_file());
+    let bytes = std::fs::read(&glb).unwrap();
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    assert_eq!(json["extras"]["height_map"], "head_height.png");
+    assert_eq!(json["extras"]["age_years"], 70.0);
+}
+
+#[test]
+fn maps_at_two_ages_differ_and_the_old_one_is_deeper() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut ranges = Vec::new();
+    for years in ["25", "75"] {
+        let exr = dir.path().join(format!("h{years}.exr"));
+        let o = agesim(&[
+            "export",
+            "--age-years",
+            years,
+            "--size",
+            "128",
+            "--height-exr",
+            exr.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let img = exr::prelude::read_first_flat_layer_from_file(&exr).unwrap();
+        let (lo, hi) = img.layer_data.channel_data.list[0]
+            .sample_data
+            .values_as_f32()
+            .fold((f32::MAX, f32::MIN), |(lo, hi), h| (lo.min(h), hi.max(h)));
+        ranges.push(hi - lo);
+    }
+    assert!(ranges[1] > ranges[0] * 1.2, "relief by age: {ranges:?}");
+}
+
+#[test]
+fn a_bad_request_or_a_cancel_leaves_the_old_files_and_no_temporary() {
+    let dir = tempfile::tempdir().unwrap();
+    let normal = dir.path().join("normal.png");
+    let glb = dir.path().join("head.glb");
+    std::fs::write(&normal, b"old").unwrap();
+    // Cancelled while the GLB's maps bake: the maps already staged must not appear.
+    let token = CancelToken::new();
+    let request = ExportRequest {
+        years: 60.0,
+        maps: MapsOut {
+            size_px: 128,
+            normal_png: Some(normal.clone()),
+            ..MapsOut::default()
+        },
+        glb: Some(GlbOut {
+            path: glb.clone(),
+            size_px: 256,
+        }),
+        ..ExportRequest::default()
+    };
+    let progress = |f: f32, _: &str| {
+        if f > 0.5 {
+            token.cancel();
+        }
+    };
+    let err = agesim::export::run(&Project::default(), None, &request, &progress, &token)
+        .expect_err("cancelled");
+    assert!(err.to_string().contains("cancel"), "{err:#}");
+    assert_eq!(std::fs::read(&normal).unwrap(), b"old");
+    assert!(!glb.exists());
+    let names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["normal.png"], "no temporary is left");
+
+    // A GLB named .gltf is refused before anything is written, naming the file.
+    let o = agesim(&[
+        "export",
+        "--size",
+        "64",
+        "--normal-png",
+        normal.to_str().unwrap(),
+        "--glb",
+        dir.path().join("head.gltf").to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("head.gltf"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&normal).unwrap(), b"old");
+    // So is a size beyond the engine's range, naming the value.
+    let o = agesim(&[
+        "export",
+        "--size",
+        "80000",
+        "--normal-png",
+        normal.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("80000"), "{}", stderr(&o));
+}

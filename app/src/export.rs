@@ -41,7 +41,7 @@ impl MapsOut {
 /// The aged head as a binary glTF: mesh with tangents, a material whose `normalTexture`
 /// is the large-wrinkle, fine-wrinkle and micro-relief normal map at the age, and a base
 /// colour for the age. glTF has no displacement, so the large-wrinkle height map is
-/// written beside it (`NAME_height.png`, 16-bit).
+/// written beside it (`NAME_wrinkle_height.png`, 16-bit).
 #[derive(Clone, Debug)]
 pub struct GlbOut {
     pub path: PathBuf,
@@ -50,9 +50,9 @@ pub struct GlbOut {
 }
 
 impl GlbOut {
-    /// `head.glb` → `head_height.png`.
+    /// `head.glb` → `head_wrinkle_height.png`.
     pub fn height_path(&self) -> PathBuf {
-        sibling(&self.path, "_height", "png")
+        sibling(&self.path, "_wrinkle_height", "png")
     }
 }
 

@@ -9,42 +9,8 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 
-/// One harness constructor for every test: the real app, 1280×800, no GPU needed.
-fn harness() -> Harness<'static, EditorApp> {
-    Harness::builder()
-        .with_size([1280.0, 800.0])
-        .build_eframe(|cc| EditorApp::new(cc, EditorOptions::default()))
-}
-
-/// Runs frames until the worker has baked the newest request (bakes run on their own
-/// thread, so the test waits in real time).
-fn settle(h: &mut Harness<'static, EditorApp>) {
-    let start = Instant::now();
-    loop {
-        h.run_steps(1);
-        if h.state().idle() && h.state().snapshot().large.is_some() {
-            h.run_steps(1);
-            return;
-        }
-        assert!(
-            start.elapsed() < Duration::from_secs(120),
-            "the bake never finished"
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
-}
-
-/// The large-wrinkle heights of the last bake.
-fn large_map(h: &Harness<'static, EditorApp>) -> Vec<f32> {
-    h.state()
-        .snapshot()
-        .large
-        .as_ref()
-        .unwrap()
-        .height
-        .data()
-        .to_vec()
-}
+mod common;
+use common::{drag, fibre_count, harness, large_map, map_point, settle};
 
 fn deepest(h: &Harness<'static, EditorApp>) -> f32 {
     large_map(h).into_iter().fold(0.0, f32::max)
@@ -113,26 +79,10 @@ fn a_depth_slider_regenerates_the_map() {
 fn dragging_a_fibre_end_on_the_map_moves_it_and_changes_the_map() {
     let mut h = harness();
     settle(&mut h);
-    let square = h.state_mut().map_view_mut().last_square.unwrap();
     let fibre = h.state().wrinkles()[0].file.groups[0].fibre.clone();
     let map_before = large_map(&h);
-    let to_screen = |uv: [f32; 2]| {
-        egui::pos2(
-            square.left() + uv[0] * square.width(),
-            square.top() + (1.0 - uv[1]) * square.height(),
-        )
-    };
-    let start = to_screen(fibre.ma());
-    let end = start + egui::vec2(-25.0, 12.0);
-    h.hover_at(start);
-    h.run_steps(1);
-    h.drag_at(start);
-    h.run_steps(1);
-    for k in 1..=5 {
-        h.hover_at(start + (end - start) * (k as f32 / 5.0));
-        h.run_steps(1);
-    }
-    h.drop_at(end);
+    let start = map_point(&mut h, fibre.ma());
+    drag(&mut h, start, start + egui::vec2(-25.0, 12.0));
     settle(&mut h);
     let moved = h.state().wrinkles()[0].file.groups[0].fibre.clone();
     let du = moved.ma()[0] - fibre.ma()[0];
@@ -167,13 +117,7 @@ fn every_field_tooltip_and_label_has_glyphs_in_the_shipped_fonts() {
 fn fibres_are_added_and_deleted_from_the_inspector() {
     let mut h = harness();
     settle(&mut h);
-    let count = |h: &Harness<'static, EditorApp>| {
-        h.state()
-            .wrinkles()
-            .iter()
-            .map(|w| w.file.groups.len())
-            .sum::<usize>()
-    };
+    let count = fibre_count;
     let before = count(&h);
     let map_before = large_map(&h);
     h.get_by_role_and_label(Role::Button, "Add fibre").click();

@@ -60,11 +60,11 @@ fn the_aged_head_glb_loads_back_with_its_material() {
         }
     }
     // The height map beside it, and the file says where it is.
-    assert!(dir.path().join("head_height.png").is_file());
+    assert!(dir.path().join("head_wrinkle_height.png").is_file());
     let bytes = std::fs::read(&glb).unwrap();
     let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
     let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
-    assert_eq!(json["extras"]["height_map"], "head_height.png");
+    assert_eq!(json["extras"]["height_map"], "head_wrinkle_height.png");
     assert_eq!(json["extras"]["age_years"], 70.0);
 }
 

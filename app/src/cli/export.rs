@@ -43,7 +43,7 @@ pub struct ExportArgs {
     #[arg(long)]
     pub tileable: bool,
     /// The aged head as binary glTF (normal map and base colour at the age; the height
-    /// map beside it as FILE_height.png).
+    /// map beside it as FILE_wrinkle_height.png).
     #[arg(long, value_name = "FILE.glb")]
     pub glb: Option<PathBuf>,
     /// A render at the age.

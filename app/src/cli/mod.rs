@@ -74,6 +74,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             age_years: cli.age_years,
             compare_years: cli.compare_years,
             bench_ui: cli.bench_ui,
+            ..Default::default()
         }),
         Some(Command::Bake(args)) => bake::run(&args),
         Some(Command::Render(args)) => render::run(&args),

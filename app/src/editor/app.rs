@@ -8,8 +8,15 @@ use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, WrinkleSource};
 use serde_json::Value;
 
+mod commands;
+pub use commands::Pending;
+
+use super::export_ui::{ExportRun, ExportSettings};
 use super::fields_ui;
+use super::files::{Dialogs, Io, NativeDialogs};
+use super::history::History;
 use super::map_view::{self, MapKind, MapViewState};
+use super::notices::Notices;
 use super::timeline::{self, Playback};
 use super::viewport::Viewport;
 use super::worker::{Job, Outcome, Snapshot, Worker};
@@ -42,6 +49,9 @@ pub struct Persisted {
     pub compare_years: f32,
     /// Where the compare divider is, as a fraction of the view's width.
     pub divider: f32,
+    /// Recent project files, newest first.
+    pub recent: Vec<PathBuf>,
+    pub export: ExportSettings,
 }
 
 impl Default for Persisted {
@@ -53,13 +63,19 @@ impl Default for Persisted {
             compare: false,
             compare_years: 75.0,
             divider: 0.5,
+            recent: Vec::new(),
+            export: ExportSettings::default(),
         }
     }
 }
 
-/// Options of the run (command line).
+/// Options of the run (command line; tests).
 #[derive(Clone, Debug, Default)]
 pub struct EditorOptions {
+    /// The file dialogs (default: the platform's, through rfd); tests script them.
+    pub dialogs: Option<Arc<dyn Dialogs>>,
+    /// Where the user's presets are kept (default: the platform's settings folder).
+    pub config_dir: Option<PathBuf>,
     /// Open this project instead of the default one.
     pub project: Option<PathBuf>,
     /// Write a screenshot of the window here after `frames` frames with maps, then quit.
@@ -71,6 +87,15 @@ pub struct EditorOptions {
     pub compare_years: Option<f32>,
     /// Run the scripted UI benchmark, print its table and quit.
     pub bench_ui: bool,
+}
+
+/// Which windows are open.
+#[derive(Debug, Default)]
+struct Windows {
+    export: bool,
+    help: bool,
+    messages: bool,
+    about: bool,
 }
 
 pub struct EditorApp {
@@ -85,7 +110,31 @@ pub struct EditorApp {
     reported: u64,
     last_bake_ms: f64,
     last_what: String,
-    error: Option<String>,
+    notices: Notices,
+    /// egui's clock, seconds (for the toasts).
+    now: f64,
+    ctx: egui::Context,
+    history: History,
+    /// The document's revision, the newest handed out, the saved one and the one being
+    /// saved (see [`History`]).
+    revision: u64,
+    next_revision: u64,
+    saved_revision: u64,
+    saving_revision: Option<u64>,
+    /// The project file of the document.
+    path: Option<PathBuf>,
+    dialogs: Arc<dyn Dialogs>,
+    io: Io,
+    /// The unsaved-changes prompt, and what runs after a save it asked for.
+    prompt: Option<Pending>,
+    after_save: Option<Pending>,
+    quit_confirmed: bool,
+    export_run: Option<ExportRun>,
+    windows: Windows,
+    config_dir: Option<PathBuf>,
+    user_presets: Vec<PathBuf>,
+    preset_name: String,
+    title: String,
     textures: Vec<(MapKind, egui::TextureHandle, usize)>,
     layout_texture: Option<(egui::TextureHandle, usize)>,
     persisted: Persisted,
@@ -121,12 +170,12 @@ impl EditorApp {
                 format!("{} ({:?})", info.name, info.backend)
             },
         );
-        let (project, error) = match &options.project {
+        let (project, error, path) = match &options.project {
             Some(path) => match Project::load(path) {
-                Ok(p) => (p, None),
-                Err(e) => (Project::default(), Some(e.to_string())),
+                Ok(p) => (p, None, Some(path.clone())),
+                Err(e) => (Project::default(), Some(e.to_string()), None),
             },
-            None => (Project::default(), None),
+            None => (Project::default(), None, None),
         };
         let viewport = cc
             .wgpu_render_state
@@ -148,6 +197,16 @@ impl EditorApp {
         }
         let ctx = cc.egui_ctx.clone();
         let worker = Worker::spawn(move || ctx.request_repaint());
+        let ctx = cc.egui_ctx.clone();
+        let io = Io::new(move || ctx.request_repaint());
+        let dialogs = options
+            .dialogs
+            .clone()
+            .unwrap_or_else(|| Arc::new(NativeDialogs));
+        let config_dir = options
+            .config_dir
+            .clone()
+            .or_else(|| eframe::storage_dir("agesim"));
         let mut app = Self {
             last_good: project.clone(),
             defaults: Project::default().to_value(),
@@ -158,7 +217,26 @@ impl EditorApp {
             reported: 0,
             last_bake_ms: 0.0,
             last_what: String::new(),
-            error,
+            notices: Notices::default(),
+            now: 0.0,
+            ctx: cc.egui_ctx.clone(),
+            history: History::default(),
+            revision: 0,
+            next_revision: 0,
+            saved_revision: 0,
+            saving_revision: None,
+            path,
+            dialogs,
+            io,
+            prompt: None,
+            after_save: None,
+            quit_confirmed: false,
+            export_run: None,
+            windows: Windows::default(),
+            config_dir,
+            user_presets: Vec::new(),
+            preset_name: String::new(),
+            title: String::new(),
             textures: Vec::new(),
             layout_texture: None,
             persisted,
@@ -178,6 +256,15 @@ impl EditorApp {
             app.persisted.layout = Layout::Head;
             app.persisted.compare = false;
         }
+        if let Some(e) = error {
+            app.error(format!("Could not open the project: {e}"));
+        }
+        if let Some(p) = &app.path {
+            let p = p.clone();
+            app.persisted.recent.retain(|r| r != &p);
+            app.persisted.recent.insert(0, p);
+        }
+        app.refresh_user_presets();
         app.submit(false, "open");
         app
     }
@@ -252,12 +339,15 @@ impl EditorApp {
         *node = value;
         match Project::from_value(doc, path) {
             Ok(p) => {
+                if p == self.project {
+                    return;
+                }
+                self.record(path, path, dragging);
                 self.project = p;
-                self.error = None;
                 let what = path.to_owned();
                 self.submit(dragging, &what);
             }
-            Err(e) => self.error = Some(e.to_string()),
+            Err(e) => self.error(e.to_string()),
         }
     }
 
@@ -290,7 +380,7 @@ impl EditorApp {
                 }
                 Outcome::Failed(message) => {
                     // Keep the previous state whole: the document goes back to what baked.
-                    self.error = Some(message);
+                    self.error(format!("{message}\n(the previous state is kept)"));
                     self.project = self.last_good.clone();
                 }
             }
@@ -349,27 +439,35 @@ impl EditorApp {
 
     fn menu_ui(&mut self, ui: &mut egui::Ui) {
         egui::MenuBar::new().ui(ui, |ui| {
-            ui.menu_button("File", |ui| {
-                if ui.button("New (default head)").clicked() {
-                    self.project = Project::default();
-                    self.wrinkles = None;
-                    self.submit(false, "new project");
-                }
-                if ui.button("Quit").clicked() {
-                    ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
-                }
-            });
+            ui.menu_button("File", |ui| self.file_menu(ui));
+            ui.menu_button("Edit", |ui| self.edit_menu(ui));
             ui.menu_button("View", |ui| {
                 for kind in MapKind::ALL {
                     ui.radio_value(&mut self.persisted.map_view.kind, kind, kind.name());
                 }
                 ui.separator();
                 ui.checkbox(&mut self.persisted.map_view.show_fibres, "show fibres");
+                ui.checkbox(&mut self.persisted.map_view.show_layout, "show UV layout");
                 if ui.button("Reset map view").clicked() {
                     self.persisted.map_view.zoom = 1.0;
                     self.persisted.map_view.offset = [0.0, 0.0];
                 }
+                if ui.button("Frame the head").clicked()
+                    && let Some(v) = &mut self.viewport
+                {
+                    v.reset(&mut self.project);
+                }
+                ui.separator();
+                for (layout, name) in [
+                    (Layout::Both, "Head and map"),
+                    (Layout::Head, "Head only"),
+                    (Layout::Map, "Map only"),
+                ] {
+                    ui.radio_value(&mut self.persisted.layout, layout, name);
+                }
             });
+            ui.menu_button("Presets", |ui| self.presets_menu(ui));
+            ui.menu_button("Help", |ui| self.help_menu(ui));
         });
     }
 
@@ -422,6 +520,7 @@ impl EditorApp {
                 comments: vec![" added in the editor".into()],
             });
         self.persisted.map_view.selected = Some((fi, file.file.groups.len() - 1));
+        self.record("add fibre", "add fibre", false);
         self.wrinkles = Some(wrinkles);
         self.submit(false, "add fibre");
     }
@@ -437,6 +536,7 @@ impl EditorApp {
         {
             file.file.groups.remove(gi);
             self.persisted.map_view.selected = None;
+            self.record("delete fibre", "delete fibre", false);
             self.wrinkles = Some(wrinkles);
             self.submit(false, "delete fibre");
         }
@@ -558,8 +658,10 @@ impl EditorApp {
             age_changed = true;
         }
         if age_changed {
+            let dragging = ui.ctx().egui_is_using_pointer();
+            self.record("fibre edit", &format!("fibre {fi}/{gi}"), dragging);
             self.wrinkles = Some(wrinkles);
-            self.submit(ui.ctx().egui_is_using_pointer(), "fibre");
+            self.submit(dragging, "fibre");
         }
     }
 
@@ -674,8 +776,21 @@ impl EditorApp {
 
 impl eframe::App for EditorApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        self.poll_worker();
         let ctx = ui.ctx().clone();
+        self.now = ctx.input(|i| i.time);
+        self.poll_worker();
+        self.poll_io();
+        self.poll_export();
+        self.intercept_close(&ctx);
+        if self.prompt.is_none() {
+            self.shortcuts(&ctx);
+        }
+        self.handle_drops(&ctx);
+        let title = self.title();
+        if title != self.title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
+        }
         let frame_ms = frame.info().cpu_usage.unwrap_or(0.0) * 1e3;
         egui::Panel::top("menu").show(ui, |ui| self.menu_ui(ui));
         egui::Panel::bottom("status").show(ui, |ui| self.status_ui(ui, frame_ms));
@@ -686,6 +801,10 @@ impl eframe::App for EditorApp {
             })
             .inner;
         if let Some((t, moving)) = timeline_edit.t {
+            // A scrub is an edit (one step per drag); playback is not.
+            if !self.persisted.playback.playing && t != self.project.age.t {
+                self.record("age", "age", moving);
+            }
             self.set_age(t, moving);
         }
         if let Some((path, years, dragging)) = timeline_edit.curve {
@@ -697,16 +816,16 @@ impl eframe::App for EditorApp {
             .default_size(340.0)
             .show(ui, |ui| {
                 ui.heading("Layers");
-                if let Some(e) = &self.error {
-                    ui.colored_label(egui::Color32::from_rgb(255, 110, 90), e);
-                }
                 egui::ScrollArea::vertical()
                     .show(ui, |ui| fields_ui::layers_ui(ui, &doc, &self.defaults))
                     .inner
             })
             .inner;
         for edit in edits {
-            self.apply(edit.path, edit.value, edit.dragging);
+            match edit.pick {
+                Some(pick) => self.pick_for_field(edit.path, pick),
+                None => self.apply(edit.path, edit.value, edit.dragging),
+            }
         }
         egui::Panel::right("inspector")
             .resizable(true)
@@ -741,7 +860,7 @@ impl eframe::App for EditorApp {
                         ui.selectable_value(&mut self.persisted.layout, layout, name);
                     }
                     ui.separator();
-                    egui::ComboBox::from_id_salt("map kind")
+                    egui::ComboBox::new("map kind", "map")
                         .selected_text(kind.name())
                         .show_ui(ui, |ui| {
                             for k in MapKind::ALL {
@@ -831,10 +950,17 @@ impl eframe::App for EditorApp {
                 .and_then(|f| f.file.groups.get_mut(e.group))
             {
                 g.fibre = e.fibre;
+                self.record(
+                    "fibre drag",
+                    &format!("fibre {}/{}", e.file, e.group),
+                    e.dragging,
+                );
                 self.wrinkles = Some(w);
                 self.submit(e.dragging, "fibre");
             }
         }
+        self.windows_ui(&ctx);
+        self.notices.toasts_ui(&ctx, 150.0);
         self.maybe_screenshot(&ctx);
         self.bench_step(&ctx);
     }

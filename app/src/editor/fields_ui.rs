@@ -12,6 +12,17 @@ pub struct Edit {
     pub value: Value,
     /// Whether the pointer is still dragging (bake a preview now, the full size later).
     pub dragging: bool,
+    /// A path field's Load… / Add… button: open a file dialog for it (`value` unused).
+    pub pick: Option<Pick>,
+}
+
+/// Which button of a path field was clicked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pick {
+    /// Load… : replace the file(s).
+    Replace,
+    /// Add… : one more file (the wrinkle files).
+    Add,
 }
 
 /// The value at a dotted path of a JSON document.
@@ -95,6 +106,7 @@ pub fn layers_ui(ui: &mut egui::Ui, doc: &Value, defaults: &Value) -> Vec<Edit> 
                                 .map_or("", |f| f.path),
                             value: Value::Bool(v),
                             dragging: false,
+                            pick: None,
                         });
                     }
                 }
@@ -149,6 +161,7 @@ fn field_ui(
         })
         .inner;
     let mut out: Option<(Value, bool)> = None;
+    let mut pick = None;
     let response = match field.kind {
         Kind::Float { min, max } | Kind::OptFloat { min, max } => {
             let is_null = value.is_null();
@@ -243,9 +256,35 @@ fn field_ui(
                 Value::Array(a) => format!("{} files", a.len()),
                 other => other.as_str().unwrap_or("").to_owned(),
             };
-            Some(ui.label(egui::RichText::new(text).monospace()))
+            // The file name only: the whole path is in the tooltip.
+            let short = std::path::Path::new(&text)
+                .file_name()
+                .map_or_else(|| text.clone(), |n| n.to_string_lossy().into_owned());
+            let r = ui
+                .horizontal(|ui| {
+                    let r = ui
+                        .label(egui::RichText::new(short).monospace())
+                        .on_hover_text(&text);
+                    if ui.small_button("Load…").clicked() {
+                        pick = Some(Pick::Replace);
+                    }
+                    if matches!(field.kind, Kind::Paths) && ui.small_button("Add…").clicked() {
+                        pick = Some(Pick::Add);
+                    }
+                    r
+                })
+                .inner;
+            Some(r)
         }
     };
+    if pick.is_some() {
+        return Some(Edit {
+            path: field.path,
+            value: Value::Null,
+            dragging: false,
+            pick,
+        });
+    }
     if let Some(r) = response {
         // Screen readers and tests find the widget by its field name.
         let r = r.on_hover_text(&tip).labelled_by(label_id);
@@ -257,5 +296,6 @@ fn field_ui(
         path: field.path,
         value,
         dragging,
+        pick: None,
     })
 }

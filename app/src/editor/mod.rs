@@ -4,14 +4,18 @@
 
 mod app;
 mod bench_ui;
+pub mod export_ui;
 pub mod fields_ui;
+pub mod files;
+pub mod history;
 pub mod map_view;
+mod notices;
 pub mod pick;
 pub mod timeline;
 pub mod viewport;
 pub mod worker;
 
-pub use app::{EditorApp, EditorOptions};
+pub use app::{EditorApp, EditorOptions, Pending};
 
 /// Opens the editor window and runs until it is closed.
 pub fn run(options: EditorOptions) -> anyhow::Result<()> {

@@ -106,7 +106,7 @@ pub fn timeline_ui(ui: &mut egui::Ui, project: &Project, playback: &mut Playback
             }
         }
         ui.checkbox(&mut playback.looping, "loop");
-        egui::ComboBox::from_id_salt("speed")
+        egui::ComboBox::new("speed", "speed")
             .selected_text(format!("{} years/s", playback.speed))
             .show_ui(ui, |ui| {
                 for s in [2.0, 5.0, 10.0, 20.0] {

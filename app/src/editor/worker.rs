@@ -318,8 +318,11 @@ fn bake(
     let Some(s) = scene.as_mut() else {
         return Err(Error::Cancelled);
     };
-    if let Some(w) = &job.wrinkles {
-        s.set_wrinkles(w.clone());
+    match &job.wrinkles {
+        Some(w) => s.set_wrinkles(w.clone()),
+        // The document has no edited fibres (a new or opened project, an undo to before
+        // the first edit): the files as they are.
+        None => s.reset_wrinkles()?,
     }
     let baked = s.bake(&job.request, cancel)?;
     changed.mesh |= baked.mesh;

@@ -158,6 +158,8 @@ struct Inputs {
     mesh: Arc<Mesh>,
     wrinkles_key: Vec<PathBuf>,
     wrinkles: Vec<WrinkleSource>,
+    /// Whether `wrinkles` came from [`Scene::set_wrinkles`] rather than the files.
+    wrinkles_edited: bool,
     large_mask_key: (Option<PathBuf>, bool),
     large_mask: Option<Arc<Mask>>,
     hair_masks_key: (Option<PathBuf>, Option<PathBuf>),
@@ -289,7 +291,20 @@ impl Scene {
         if wrinkles != self.inputs.wrinkles {
             self.inputs.wrinkles = wrinkles;
             self.inputs.generation += 1;
+            self.inputs.wrinkles_edited = true;
         }
+    }
+
+    /// Goes back to the wrinkle files the project names, as they are on disk (or the
+    /// built-in ones), after [`Scene::set_wrinkles`]; nothing is read when there was no
+    /// edit.
+    pub fn reset_wrinkles(&mut self) -> Result<(), Error> {
+        if self.inputs.wrinkles_edited {
+            let files = load_wrinkles(&self.inputs.wrinkles_key)?;
+            self.set_wrinkles(files);
+            self.inputs.wrinkles_edited = false;
+        }
+        Ok(())
     }
 
     /// Every fibre with its own age curve (`None` = the layer default), in order.
@@ -784,8 +799,12 @@ impl Inputs {
             },
         };
         let wrinkles_key = project.large.wrinkles.clone();
+        let mut wrinkles_edited = false;
         let wrinkles = match previous.filter(|p| p.wrinkles_key == wrinkles_key) {
-            Some(p) => Some(p.wrinkles.clone()),
+            Some(p) => {
+                wrinkles_edited = p.wrinkles_edited;
+                Some(p.wrinkles.clone())
+            }
             None => match load_wrinkles(&wrinkles_key) {
                 Ok(w) => Some(w),
                 Err(e) => {
@@ -860,6 +879,7 @@ impl Inputs {
                     mesh,
                     wrinkles_key,
                     wrinkles,
+                    wrinkles_edited,
                     large_mask_key,
                     large_mask,
                     hair_masks_key,

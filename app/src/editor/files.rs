@@ -1,0 +1,328 @@
+//! Files: the native dialogs behind [`Dialogs`] (tests script them instead), and every
+//! read and write on a thread of its own, its result coming back as an [`IoResult`] that
+//! the UI thread applies. The UI never waits on a dialog or a disk.
+
+use std::collections::VecDeque;
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::{Arc, Mutex};
+
+use agesim_core::defaults;
+use agesim_core::project::Project;
+use agesim_core::scene::WrinkleSource;
+use agesim_core::wrinkle_file::{self, WrinkleFile};
+
+/// What a dialog was opened for.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Purpose {
+    OpenProject,
+    SaveProject,
+    ImportMesh,
+    /// Replace the wrinkle files with one (`add: false`) or add one to them.
+    LoadWrinkles {
+        add: bool,
+    },
+    /// Save the wrinkle file at this index of the edited files.
+    SaveWrinkles(usize),
+    /// A grey-scale image for this project field (`large.mask`, `hair.outer_mask`, …).
+    Image(&'static str),
+    /// The folder the Export window writes into.
+    ExportFolder,
+}
+
+impl Purpose {
+    /// The dialog's title, filters and mode.
+    pub fn request(&self, file_name: Option<String>) -> DialogRequest {
+        const PROJECT: (&str, &[&str]) = ("agesim project", &["json"]);
+        const IMAGES: (&str, &[&str]) = (
+            "Images",
+            &["png", "jpg", "jpeg", "tif", "tiff", "bmp", "tga"],
+        );
+        let (title, filters, mode): (String, Vec<(&str, &[&str])>, Mode) = match self {
+            Self::OpenProject => ("Open project".into(), vec![PROJECT], Mode::Open),
+            Self::SaveProject => ("Save project as".into(), vec![PROJECT], Mode::Save),
+            Self::ImportMesh => (
+                "Import head mesh".into(),
+                vec![("Meshes", &["obj", "gltf", "glb"])],
+                Mode::Open,
+            ),
+            Self::LoadWrinkles { add: false } => (
+                "Load wrinkle file".into(),
+                vec![("Wrinkle files", &["wrk", "txt"])],
+                Mode::Open,
+            ),
+            Self::LoadWrinkles { add: true } => (
+                "Add wrinkle file".into(),
+                vec![("Wrinkle files", &["wrk", "txt"])],
+                Mode::Open,
+            ),
+            Self::SaveWrinkles(_) => (
+                "Save wrinkle file as".into(),
+                vec![("Wrinkle files", &["wrk"])],
+                Mode::Save,
+            ),
+            Self::Image(field) => (format!("Load image for {field}"), vec![IMAGES], Mode::Open),
+            Self::ExportFolder => ("Export into folder".into(), Vec::new(), Mode::Folder),
+        };
+        DialogRequest {
+            title,
+            filters: filters
+                .into_iter()
+                .map(|(n, e)| (n.to_owned(), e.iter().map(|s| (*s).to_owned()).collect()))
+                .collect(),
+            mode,
+            file_name,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    Open,
+    Save,
+    Folder,
+}
+
+/// One dialog to show.
+#[derive(Clone, Debug)]
+pub struct DialogRequest {
+    pub title: String,
+    /// (name, extensions without the dot).
+    pub filters: Vec<(String, Vec<String>)>,
+    pub mode: Mode,
+    /// Suggested file name for a save dialog.
+    pub file_name: Option<String>,
+}
+
+/// Shows a file dialog and blocks until the user picks a path (or cancels: `None`).
+/// Called on a thread of its own, never on the UI thread.
+pub trait Dialogs: Send + Sync + std::fmt::Debug {
+    fn pick(&self, request: &DialogRequest) -> Option<PathBuf>;
+}
+
+/// The platform's dialogs through `rfd` (the XDG portal on Linux, zenity without one).
+#[derive(Debug, Default)]
+pub struct NativeDialogs;
+
+impl Dialogs for NativeDialogs {
+    fn pick(&self, r: &DialogRequest) -> Option<PathBuf> {
+        let mut d = rfd::FileDialog::new().set_title(&r.title);
+        for (name, ext) in &r.filters {
+            d = d.add_filter(name, ext);
+        }
+        if let Some(name) = &r.file_name {
+            d = d.set_file_name(name);
+        }
+        match r.mode {
+            Mode::Open => d.pick_file(),
+            Mode::Save => d.save_file(),
+            Mode::Folder => d.pick_folder(),
+        }
+    }
+}
+
+/// Dialogs answered from a queue, for tests: each `pick` takes the next answer (`None`
+/// when the queue is empty, like a cancelled dialog) and records the title it was asked.
+#[derive(Debug, Default)]
+pub struct ScriptedDialogs {
+    answers: Mutex<VecDeque<Option<PathBuf>>>,
+    asked: Mutex<Vec<String>>,
+}
+
+impl ScriptedDialogs {
+    pub fn answer(&self, path: Option<PathBuf>) {
+        lock(&self.answers).push_back(path);
+    }
+
+    /// The titles of the dialogs shown so far.
+    pub fn asked(&self) -> Vec<String> {
+        lock(&self.asked).clone()
+    }
+}
+
+impl Dialogs for ScriptedDialogs {
+    fn pick(&self, request: &DialogRequest) -> Option<PathBuf> {
+        lock(&self.asked).push(request.title.clone());
+        lock(&self.answers).pop_front().flatten()
+    }
+}
+
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+/// What a file thread brings back.
+#[derive(Debug)]
+pub enum IoResult {
+    /// A dialog ended with a path; the UI decides (the worker loads meshes and images).
+    Picked(Purpose, PathBuf),
+    /// A dialog was cancelled.
+    Cancelled,
+    ProjectLoaded {
+        path: PathBuf,
+        result: Result<Project, String>,
+    },
+    WrinklesLoaded {
+        path: PathBuf,
+        add: bool,
+        result: Result<WrinkleFile, String>,
+    },
+    /// A project was saved; `project` is what the file now says (its wrinkle files may
+    /// have been written beside it), `wrinkles` the edited files with their new paths.
+    ProjectSaved {
+        path: PathBuf,
+        result: Result<(Project, Option<Vec<WrinkleSource>>), String>,
+    },
+    Saved {
+        what: String,
+        result: Result<PathBuf, String>,
+    },
+    /// The user's presets folder listed.
+    UserPresets(Vec<PathBuf>),
+    PresetLoaded {
+        name: String,
+        result: Result<Project, String>,
+    },
+}
+
+/// The file threads' mailbox.
+pub struct Io {
+    tx: Sender<IoResult>,
+    rx: Receiver<IoResult>,
+    wake: Arc<dyn Fn() + Send + Sync>,
+    /// Tasks started and not yet polled back.
+    pending: usize,
+}
+
+impl Io {
+    pub fn new(wake: impl Fn() + Send + Sync + 'static) -> Self {
+        let (tx, rx) = channel();
+        Self {
+            tx,
+            rx,
+            wake: Arc::new(wake),
+            pending: 0,
+        }
+    }
+
+    /// Whether a dialog or file task is still running.
+    pub fn busy(&self) -> bool {
+        self.pending > 0
+    }
+
+    /// Runs `task` on a thread of its own.
+    pub fn spawn(&mut self, task: impl FnOnce() -> IoResult + Send + 'static) {
+        let tx = self.tx.clone();
+        let wake = self.wake.clone();
+        self.pending += 1;
+        std::thread::spawn(move || {
+            let _ = tx.send(task());
+            wake();
+        });
+    }
+
+    /// Shows the dialog for `purpose`, then loads what it picked when that is a file the
+    /// UI applies directly (a project, a wrinkle file).
+    pub fn ask(&mut self, dialogs: &Arc<dyn Dialogs>, purpose: Purpose, file_name: Option<String>) {
+        let dialogs = dialogs.clone();
+        self.spawn(move || {
+            let Some(path) = dialogs.pick(&purpose.request(file_name)) else {
+                return IoResult::Cancelled;
+            };
+            match purpose {
+                Purpose::OpenProject => load_project(path),
+                Purpose::LoadWrinkles { add } => load_wrinkles(path, add),
+                other => IoResult::Picked(other, path),
+            }
+        });
+    }
+
+    pub fn poll(&mut self) -> Vec<IoResult> {
+        let results: Vec<IoResult> = self.rx.try_iter().collect();
+        self.pending = self.pending.saturating_sub(results.len());
+        results
+    }
+}
+
+pub fn load_project(path: PathBuf) -> IoResult {
+    let result = Project::load(&path).map_err(|e| e.to_string());
+    IoResult::ProjectLoaded { path, result }
+}
+
+pub fn load_wrinkles(path: PathBuf, add: bool) -> IoResult {
+    let result = wrinkle_file::load(&path).map_err(|e| e.to_string());
+    IoResult::WrinklesLoaded { path, add, result }
+}
+
+/// What a dropped or opened path is, by its name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileKind {
+    Project,
+    Mesh,
+    Wrinkles,
+    Image,
+}
+
+pub fn kind_of(path: &Path) -> Option<FileKind> {
+    let name = path.file_name()?.to_string_lossy().to_lowercase();
+    let ext = name.rsplit('.').next().unwrap_or_default();
+    Some(match ext {
+        "json" => FileKind::Project,
+        "obj" | "gltf" | "glb" => FileKind::Mesh,
+        "wrk" | "txt" => FileKind::Wrinkles,
+        "png" | "jpg" | "jpeg" | "tif" | "tiff" | "bmp" | "tga" => FileKind::Image,
+        _ => return None,
+    })
+}
+
+/// Saves `project` to `path`. Edited wrinkle files are written beside it as
+/// `STEM-NAME.wrk` (never over the files they were loaded from) and the project points
+/// at them; when those were the built-in files, the built-in mask that goes with them is
+/// written beside too, so the saved project bakes exactly what the editor shows.
+pub fn save_project(
+    path: &Path,
+    project: &Project,
+    wrinkles: Option<&[WrinkleSource]>,
+) -> Result<(Project, Option<Vec<WrinkleSource>>), String> {
+    let mut project = project.clone();
+    let dir = path.parent().unwrap_or(Path::new("")).to_owned();
+    let stem = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let stem = stem
+        .strip_suffix(".agesim.json")
+        .or_else(|| stem.strip_suffix(".json"))
+        .unwrap_or(&stem)
+        .to_owned();
+    let mut saved = None;
+    if let Some(wrinkles) = wrinkles {
+        let builtin = project.large.wrinkles.is_empty();
+        let mut out = Vec::new();
+        let mut paths = Vec::new();
+        for w in wrinkles {
+            let base = Path::new(&w.name)
+                .file_stem()
+                .map_or_else(|| "wrinkles".into(), |s| s.to_string_lossy().into_owned());
+            let target = dir.join(format!("{stem}-{base}.wrk"));
+            wrinkle_file::save(&w.file, &target).map_err(|e| e.to_string())?;
+            paths.push(target.clone());
+            out.push(WrinkleSource {
+                name: target.display().to_string(),
+                path: Some(target),
+                file: w.file.clone(),
+            });
+        }
+        if builtin && project.large.mask.is_none() {
+            let (_, bytes) = defaults::WRINKLE_MASK;
+            let target = dir.join(format!("{stem}-wrinkle-mask.png"));
+            agesim_core::export::write_atomically(&target, |w| std::io::Write::write_all(w, bytes))
+                .map_err(|e| e.to_string())?;
+            project.large.mask = Some(target);
+        }
+        project.large.wrinkles = paths;
+        saved = Some(out);
+    }
+    project.save(path).map_err(|e| e.to_string())?;
+    Ok((project, saved))
+}

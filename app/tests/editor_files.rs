@@ -1,0 +1,283 @@
+//! The editor's files and comforts, driven through its menus, shortcuts and windows with
+//! egui_kittest: wrinkle files with errors, undo / redo, save and reopen, the unsaved-
+//! changes prompt, presets, and exports (cancelled, and a GLB read back). File dialogs are
+//! scripted ([`ScriptedDialogs`]): each answer is the path a person would pick.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use agesim::editor::files::ScriptedDialogs;
+use agesim::editor::{EditorApp, EditorOptions};
+use egui::accesskit::Role;
+use egui::{Key, Modifiers};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable as _;
+
+mod common;
+use common::{drag, fibre_count, harness_with, large_map, map_point, settle, wait_for};
+
+/// A harness whose dialogs answer from `dialogs` and whose presets live in `dir`.
+fn scripted(dialogs: &Arc<ScriptedDialogs>, dir: &Path) -> Harness<'static, EditorApp> {
+    let mut h = harness_with(EditorOptions {
+        dialogs: Some(dialogs.clone()),
+        config_dir: Some(dir.join("config")),
+        ..EditorOptions::default()
+    });
+    settle(&mut h);
+    h
+}
+
+/// Clicks a menu of the menu bar, then one of its entries.
+fn menu(h: &mut Harness<'static, EditorApp>, menu: &str, entry: &str) {
+    h.get_by_role_and_label(Role::Button, menu).click();
+    h.run_steps(2);
+    // An entry's name carries its shortcut ("Open project… Ctrl+O").
+    h.get_by(|n| n.role() == Role::Button && n.label().is_some_and(|l| l.starts_with(entry)))
+        .click();
+    h.run_steps(2);
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn a_wrinkle_file_with_errors_is_refused_with_its_lines_and_the_fibres_are_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.wrk");
+    std::fs::write(
+        &bad,
+        "# three bad lines\n!\nma=0.4;0.7\nmb=0.5;x\nn=three\nrelWidth=-1\n",
+    )
+    .unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    dialogs.answer(Some(bad));
+    let mut h = scripted(&dialogs, dir.path());
+    let (fibres, map) = (fibre_count(&h), large_map(&h));
+    menu(&mut h, "File", "Load wrinkle file…");
+    wait_for(&mut h, "the error", |app| !app.open_errors().is_empty());
+    assert_eq!(dialogs.asked(), ["Load wrinkle file"]);
+    let error = h.state().open_errors().join("\n");
+    for line in [":4:", ":5:", ":6:"] {
+        assert!(
+            error.contains(&format!("bad.wrk{line}")),
+            "{line} in: {error}"
+        );
+    }
+    settle(&mut h);
+    assert_eq!(fibre_count(&h), fibres, "the old fibres are kept");
+    assert_eq!(large_map(&h), map);
+    assert!(!h.state().modified());
+}
+
+#[test]
+fn undo_and_redo_restore_a_slider_drag_and_a_fibre_drag() {
+    let dir = tempfile::tempdir().unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    let mut h = scripted(&dialogs, dir.path());
+    // A slider dragged by hand over several frames is one step.
+    let gamma0 = h.state().project().large.gamma;
+    let slider = h.get_by_role_and_label(Role::Slider, "gamma").rect();
+    drag(
+        &mut h,
+        slider.center(),
+        slider.center() + egui::vec2(60.0, 0.0),
+    );
+    settle(&mut h);
+    let gamma1 = h.state().project().large.gamma;
+    assert!(gamma1 > gamma0, "the drag moved gamma: {gamma0} → {gamma1}");
+    assert!(h.state().modified() && h.state().title().ends_with("* — agesim"));
+    // The fibre's end dragged on the map.
+    let fibre = h.state().wrinkles()[0].file.groups[0].fibre.clone();
+    let start = map_point(&mut h, fibre.ma());
+    drag(&mut h, start, start + egui::vec2(-25.0, 12.0));
+    settle(&mut h);
+    let moved = h.state().wrinkles()[0].file.groups[0].fibre.clone();
+    assert_ne!(moved.ma(), fibre.ma());
+    // Undo the fibre drag, then the slider drag, each with one Ctrl+Z.
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut h);
+    assert_eq!(
+        h.state().wrinkles()[0].file.groups[0].fibre.ma(),
+        fibre.ma()
+    );
+    assert_eq!(h.state().project().large.gamma, gamma1);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut h);
+    assert_eq!(h.state().project().large.gamma, gamma0);
+    assert!(!h.state().modified(), "back at the opened state");
+    // Redo both: Ctrl+Shift+Z and Ctrl+Y.
+    h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
+    settle(&mut h);
+    assert_eq!(h.state().project().large.gamma, gamma1);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Y);
+    settle(&mut h);
+    assert_eq!(
+        h.state().wrinkles()[0].file.groups[0].fibre.ma(),
+        moved.ma()
+    );
+    // The Edit menu names the step.
+    h.get_by_role_and_label(Role::Button, "Edit").click();
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("Undo fibre drag").is_some());
+}
+
+#[test]
+fn save_then_reopen_gives_the_same_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let path: PathBuf = dir.path().join("old man.agesim.json");
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    let mut h = scripted(&dialogs, dir.path());
+    h.get_by_role_and_label(Role::Slider, "depth")
+        .set_value_accesskit(2.0);
+    h.get_by_role_and_label(Role::Button, "Add fibre").click();
+    settle(&mut h);
+    let (fibres, map, project) = (fibre_count(&h), large_map(&h), h.state().project().clone());
+    // Ctrl+S on an untitled document asks where.
+    dialogs.answer(Some(path.clone()));
+    h.key_press_modifiers(Modifiers::COMMAND, Key::S);
+    wait_for(&mut h, "the save", |app| !app.modified());
+    assert_eq!(h.state().title(), "old man.agesim.json — agesim");
+    // The edited built-in wrinkle files and their mask are written beside it.
+    let names = files_in(dir.path());
+    for f in [
+        "old man-forehead.wrk",
+        "old man-wrinkle-mask.png",
+        "old man.agesim.json",
+    ] {
+        assert!(names.iter().any(|n| n == f), "{f} in {names:?}");
+    }
+    // New, then File › Open project….
+    h.key_press_modifiers(Modifiers::COMMAND, Key::N);
+    settle(&mut h);
+    assert_ne!(fibre_count(&h), fibres);
+    dialogs.answer(Some(path.clone()));
+    menu(&mut h, "File", "Open project…");
+    wait_for(&mut h, "the open", |app| app.path() == Some(path.as_path()));
+    settle(&mut h);
+    assert_eq!(fibre_count(&h), fibres);
+    assert_eq!(h.state().project().large.depth, project.large.depth);
+    assert_eq!(h.state().project().age, project.age);
+    assert_eq!(h.state().project().pores, project.pores);
+    assert_eq!(
+        large_map(&h),
+        map,
+        "the reopened project bakes the same map"
+    );
+    assert!(!h.state().modified());
+}
+
+#[test]
+fn the_unsaved_changes_prompt_keeps_or_drops_the_changes() {
+    let dir = tempfile::tempdir().unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    let mut h = scripted(&dialogs, dir.path());
+    h.get_by_role_and_label(Role::Slider, "depth")
+        .set_value_accesskit(2.5);
+    settle(&mut h);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::N);
+    h.run_steps(2);
+    assert!(h.query_by_label("Unsaved changes").is_some());
+    h.get_by_role_and_label(Role::Button, "Cancel").click();
+    h.run_steps(2);
+    assert!(h.query_by_label("Unsaved changes").is_none());
+    assert_eq!(
+        h.state().project().large.depth,
+        2.5,
+        "Cancel keeps the changes"
+    );
+    menu(&mut h, "File", "New (default head)");
+    h.get_by_role_and_label(Role::Button, "Don't save").click();
+    settle(&mut h);
+    assert_eq!(h.state().project().large.depth, 1.0);
+    assert!(!h.state().modified());
+}
+
+#[test]
+fn a_preset_applies_its_skin_and_undo_takes_it_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    let mut h = scripted(&dialogs, dir.path());
+    let before = h.state().project().clone();
+    menu(&mut h, "Presets", "goose-skin");
+    settle(&mut h);
+    let after = h.state().project().clone();
+    assert_ne!(after.pores, before.pores);
+    assert_eq!(
+        after.large, before.large,
+        "wrinkles are not part of a skin preset"
+    );
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut h);
+    assert_eq!(h.state().project().pores, before.pores);
+}
+
+#[test]
+fn an_export_cancelled_from_its_window_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    let mut h = scripted(&dialogs, dir.path());
+    h.key_press_modifiers(Modifiers::COMMAND, Key::E);
+    h.run_steps(2);
+    dialogs.answer(Some(out.clone()));
+    h.get_by_role_and_label(Role::Button, "Choose…").click();
+    wait_for(&mut h, "the folder", |app| {
+        app.export_settings().folder.as_deref() == Some(out.as_path())
+    });
+    let s = h.state_mut().export_settings_mut();
+    s.size_px = 4096;
+    s.height_exr = true;
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Export").click();
+    h.run_steps(2);
+    assert!(h.state().exporting(), "{:?}", h.state().open_errors());
+    h.get_by_role_and_label(Role::Button, "Cancel").click();
+    wait_for(&mut h, "the cancel", |app| !app.exporting());
+    assert!(files_in(&out).is_empty(), "left: {:?}", files_in(&out));
+    assert!(
+        h.state().open_errors().is_empty(),
+        "{:?}",
+        h.state().open_errors()
+    );
+}
+
+#[test]
+fn the_glb_exported_from_the_window_loads_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    let mut h = scripted(&dialogs, dir.path());
+    {
+        let s = h.state_mut().export_settings_mut();
+        s.folder = Some(dir.path().to_owned());
+        s.base = "aged".into();
+        s.size_px = 512;
+        s.height_png = false;
+        s.normal_png = false;
+        s.glb = true;
+        s.at_current_age = false;
+        s.years = 72.0;
+    }
+    menu(&mut h, "File", "Export…");
+    h.get_by_role_and_label(Role::Button, "Export").click();
+    h.run_steps(2);
+    wait_for(&mut h, "the export", |app| !app.exporting());
+    assert!(
+        h.state().open_errors().is_empty(),
+        "{:?}",
+        h.state().open_errors()
+    );
+    let (doc, _, images) = gltf::import(dir.path().join("aged.glb")).unwrap();
+    let material = doc.materials().next().unwrap();
+    assert!(material.name().unwrap().contains("72 years"));
+    let normal = material.normal_texture().unwrap();
+    assert_eq!(images[normal.texture().source().index()].width, 512);
+    assert!(dir.path().join("aged_wrinkle_height.png").is_file());
+}

@@ -216,6 +216,20 @@ fn a_preset_applies_its_skin_and_undo_takes_it_back() {
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(&mut h);
     assert_eq!(h.state().project().pores, before.pores);
+    // The user's own preset: saved under a name, then listed in the menu.
+    menu(&mut h, "Presets", "Save as preset…");
+    h.get_by_role_and_label(Role::TextInput, "Name").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::TextInput, "Name")
+        .type_text("my skin");
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Save").click();
+    let saved = dir.path().join("config/presets/my skin.agesim.json");
+    wait_for(&mut h, "the preset file", |_| saved.is_file());
+    h.run_steps(3);
+    h.get_by_role_and_label(Role::Button, "Presets").click();
+    h.run_steps(2);
+    assert!(h.query_by_label("my skin").is_some());
 }
 
 #[test]

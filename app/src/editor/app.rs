@@ -93,6 +93,7 @@ pub struct EditorOptions {
 #[derive(Debug, Default)]
 struct Windows {
     export: bool,
+    save_preset: bool,
     help: bool,
     messages: bool,
     about: bool,
@@ -382,6 +383,12 @@ impl EditorApp {
                     // Keep the previous state whole: the document goes back to what baked.
                     self.error(format!("{message}\n(the previous state is kept)"));
                     self.project = self.last_good.clone();
+                    // The refused change leaves no undo step and no modified mark.
+                    let good = &self.last_good;
+                    if let Some(doc) = self.history.discard_last_if(|d| &d.project == good) {
+                        self.revision = doc.revision;
+                        self.wrinkles = doc.wrinkles;
+                    }
                 }
             }
         }
@@ -810,7 +817,11 @@ impl eframe::App for EditorApp {
         if let Some((path, years, dragging)) = timeline_edit.curve {
             self.apply(path, Value::from(years), dragging);
         }
-        let doc = self.project.to_value();
+        let mut doc = self.project.to_value();
+        // Edited fibres: the panel lists the files being edited, not "(built-in)".
+        if let (Some(w), Some(large)) = (&self.wrinkles, doc.get_mut("large")) {
+            large["wrinkles"] = w.iter().map(|w| Value::from(w.name.clone())).collect();
+        }
         let edits = egui::Panel::left("layers")
             .resizable(true)
             .default_size(340.0)

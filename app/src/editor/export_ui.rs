@@ -207,13 +207,23 @@ pub fn export_ui(
             .num_columns(2)
             .spacing([12.0, 6.0])
             .show(ui, |ui| {
-                ui.label("Folder");
+                let label = ui.label("Folder").id;
                 ui.horizontal(|ui| {
-                    let text = s
+                    // Typed or chosen: both are what artists expect.
+                    let mut text = s
                         .folder
                         .as_ref()
-                        .map_or_else(|| "(none chosen)".to_owned(), |f| f.display().to_string());
-                    ui.label(egui::RichText::new(text).monospace());
+                        .map_or_else(String::new, |f| f.display().to_string());
+                    let r = ui
+                        .add(
+                            egui::TextEdit::singleline(&mut text)
+                                .hint_text("type a folder or choose one")
+                                .desired_width(280.0),
+                        )
+                        .labelled_by(label);
+                    if r.changed() {
+                        s.folder = (!text.is_empty()).then(|| PathBuf::from(text));
+                    }
                     if ui.button("Choose…").clicked() {
                         action = ExportAction::ChooseFolder;
                     }

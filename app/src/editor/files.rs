@@ -179,6 +179,10 @@ pub enum IoResult {
     },
     /// The user's presets folder listed.
     UserPresets(Vec<PathBuf>),
+    PresetSaved {
+        path: PathBuf,
+        result: Result<(), String>,
+    },
     PresetLoaded {
         name: String,
         result: Result<Project, String>,

@@ -75,6 +75,16 @@ impl History {
         Some((name, step.doc))
     }
 
+    /// Takes back the newest step when `refused` says the change it recorded did not
+    /// happen (the worker refused it), returning the document before it.
+    pub fn discard_last_if(&mut self, refused: impl Fn(&Doc) -> bool) -> Option<Doc> {
+        if self.undo.last().is_some_and(|s| refused(&s.doc)) {
+            self.open = None;
+            return self.undo.pop().map(|s| s.doc);
+        }
+        None
+    }
+
     pub fn undo_name(&self) -> Option<&str> {
         self.undo.last().map(|s| s.name.as_str())
     }

@@ -88,10 +88,14 @@ impl Viewport {
             );
             self.uploaded.mesh = stamp(&snapshot.mesh);
         }
-        if stamp(&snapshot.large01) != self.uploaded.large
-            && let Some(large) = &snapshot.large01
-        {
-            result = result.and(self.renderer.upload_large_wrinkles(large));
+        if stamp(&snapshot.large01) != self.uploaded.large {
+            result = result.and(match &snapshot.large01 {
+                Some(large) => self.renderer.upload_large_wrinkles(large),
+                // The layer is off: a flat surface (height 1 = no depth), not the last map.
+                None => agesim_core::HeightMap::from_vec(1, 1, vec![1.0])
+                    .map_err(agesim_render::RenderError::from)
+                    .and_then(|flat| self.renderer.upload_large_wrinkles(&flat)),
+            });
             self.uploaded.large = stamp(&snapshot.large01);
         }
         if stamp(&snapshot.micro) != self.uploaded.micro

@@ -81,6 +81,9 @@ impl EditorApp {
     /// Records the document before a change named `name` (one step per drag of `key`)
     /// and gives the changed document a new revision.
     pub(super) fn record(&mut self, name: &str, key: &str, dragging: bool) {
+        // Field paths read as words in the Edit menu: "large gamma", "hair density per cm2".
+        let name = name.replace(['.', '_'], " ");
+        let name = name.as_str();
         let before = self.doc();
         self.history.record(name, key, &before, dragging);
         self.next_revision += 1;
@@ -343,6 +346,13 @@ impl EditorApp {
                     Err(e) => self.error(format!("The {what} was not saved: {e}")),
                 },
                 IoResult::UserPresets(list) => self.user_presets = list,
+                IoResult::PresetSaved { path, result } => match result {
+                    Ok(()) => {
+                        self.info(format!("Saved the preset {}", path.display()));
+                        self.refresh_user_presets();
+                    }
+                    Err(e) => self.error(format!("The preset was not saved: {e}")),
+                },
                 IoResult::PresetLoaded { name, result } => match result {
                     Ok(preset) => self.apply_preset(&name, &preset, true),
                     Err(e) => self.error(format!("The preset {name} was not loaded: {e}")),
@@ -480,14 +490,12 @@ impl EditorApp {
         }
         let project = self.project.clone();
         let path = dir.join(format!("{name}.agesim.json"));
-        self.io.spawn(move || IoResult::Saved {
-            what: "preset".into(),
-            result: std::fs::create_dir_all(&dir)
+        self.io.spawn(move || {
+            let result = std::fs::create_dir_all(&dir)
                 .map_err(|e| format!("{}: {e}", dir.display()))
-                .and_then(|()| project.save(&path).map_err(|e| e.to_string()))
-                .map(|()| path),
+                .and_then(|()| project.save(&path).map_err(|e| e.to_string()));
+            IoResult::PresetSaved { path, result }
         });
-        self.refresh_user_presets();
     }
 
     // ---- export ----
@@ -731,16 +739,9 @@ impl EditorApp {
             }
         }
         ui.separator();
-        ui.horizontal(|ui| {
-            ui.add(
-                egui::TextEdit::singleline(&mut self.preset_name)
-                    .hint_text("name")
-                    .desired_width(120.0),
-            );
-            if ui.button("Save as preset").clicked() {
-                self.save_user_preset();
-            }
-        });
+        if ui.button("Save as preset…").clicked() {
+            self.windows.save_preset = true;
+        }
     }
 
     pub(super) fn help_menu(&mut self, ui: &mut egui::Ui) {
@@ -796,6 +797,7 @@ impl EditorApp {
         let running = self.export_run.as_ref().map(ExportRun::progress);
         let mut action = ExportAction::None;
         egui::Window::new("Export")
+            .default_pos(ctx.content_rect().center() - egui::vec2(240.0, 200.0))
             .open(&mut open)
             .resizable(false)
             .show(ctx, |ui| {
@@ -812,8 +814,34 @@ impl EditorApp {
                 }
             }
         }
+        let mut open = self.windows.save_preset;
+        let mut save = false;
+        egui::Window::new("Save as preset")
+            .default_pos(ctx.content_rect().center() - egui::vec2(240.0, 200.0))
+            .open(&mut open)
+            .resizable(false)
+            .collapsible(false)
+            .show(ctx, |ui| {
+                ui.label(
+                    "The skin look (micro-relief, fine wrinkles, skin) under a name of yours:",
+                );
+                ui.horizontal(|ui| {
+                    let label = ui.label("Name").id;
+                    let r = ui
+                        .text_edit_singleline(&mut self.preset_name)
+                        .labelled_by(label);
+                    let enter = r.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter));
+                    save = ui.button("Save").clicked() || enter;
+                });
+            });
+        if save {
+            self.save_user_preset();
+            open = false;
+        }
+        self.windows.save_preset = open;
         let mut open = self.windows.help;
         egui::Window::new("Keyboard shortcuts")
+            .default_pos(ctx.content_rect().center() - egui::vec2(240.0, 200.0))
             .open(&mut open)
             .show(ctx, |ui| {
                 egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
@@ -833,6 +861,7 @@ impl EditorApp {
         self.windows.messages = open;
         let mut open = self.windows.about;
         egui::Window::new("About agesim")
+            .default_pos(ctx.content_rect().center() - egui::vec2(240.0, 200.0))
             .open(&mut open)
             .resizable(false)
             .show(ctx, |ui| {

@@ -295,3 +295,39 @@ fn the_glb_exported_from_the_window_loads_back() {
     assert_eq!(images[normal.texture().source().index()].width, 512);
     assert!(dir.path().join("aged_wrinkle_height.png").is_file());
 }
+
+/// A file dropped on the window, as the windowing integration hands it to egui.
+#[derive(Debug)]
+struct Dropped(PathBuf);
+
+impl egui::DroppedFile for Dropped {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+#[test]
+fn a_wrinkle_file_dropped_on_the_window_is_added_and_undo_removes_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    let mut h = scripted(&dialogs, dir.path());
+    let fibres = fibre_count(&h);
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/wrinkles/thesis-forehead.wrk");
+    let added = agesim_core::wrinkle_file::load(&file).unwrap().groups.len();
+    h.input_mut()
+        .dropped_files
+        .push(Arc::new(Dropped(file.clone())));
+    wait_for(&mut h, "the dropped file", |app| {
+        app.wrinkles().len() == agesim_core::defaults::WRINKLE_FILES.len() + 1
+    });
+    settle(&mut h);
+    assert_eq!(fibre_count(&h), fibres + added);
+    assert!(dialogs.asked().is_empty(), "a drop opens no dialog");
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut h);
+    assert_eq!(fibre_count(&h), fibres);
+}

@@ -51,6 +51,11 @@ fn tooltip(field: &Field, default: &Value) -> String {
     } else {
         format!(" ({})", field.unit)
     };
+    // Numbers are f32 in the project: show 0.4, not the f64 widening 0.4000000059604645.
+    let default = match default.as_f64() {
+        Some(x) if default.is_f64() => (x as f32).to_string(),
+        _ => default.to_string(),
+    };
     format!(
         "{}{unit}\nrange: {}\ndefault: {default}\n`{}` — double-click to reset",
         field.doc,

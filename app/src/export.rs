@@ -407,7 +407,7 @@ pub fn head_normal_map(
     };
     let micro_on = project.pores.enabled || project.furrows.enabled || project.noise.strength > 0.0;
     let tile =
-        |map: Option<&HeightMap>, size_m: f32, strength: f32| -> anyhow::Result<Option<Tile>> {
+        |map: Option<&HeightMap>, size_m: f32, strength: f32| -> anyhow::Result<Option<Placed>> {
             let Some(map) = map else { return Ok(None) };
             let repeats = scale.repeats(mpu, size_m.max(1e-6));
             // Texels of the tile per output pixel; box-filter down to about one.
@@ -422,10 +422,11 @@ pub fn head_normal_map(
             } else {
                 map.clone()
             };
-            Ok(Some(Tile {
-                map: filtered,
-                repeats,
-                strength,
+            let tile = Tile::new(&filtered, repeats, strength);
+            Ok(Some(Placed {
+                columns: tile.taps(size_px, false),
+                rows: tile.taps(size_px, true),
+                tile,
             }))
         };
     let micro = if micro_on {
@@ -452,35 +453,34 @@ pub fn head_normal_map(
             if y % 64 == 0 {
                 cancel.check()?;
             }
-            let v = heightmap::pixel_to_v(y as u32, size_px);
             for (x, px) in row.chunks_exact_mut(3).enumerate() {
-                let u = heightmap::pixel_to_u(x as u32, size_px);
                 let n_large = match &large {
                     Some((h, side)) => {
                         // Central differences in texels of the large map (row 0 = top, v up).
+                        // The texel under the pixel (the map is baked at `size_px`, so
+                        // usually the same one), its neighbours clamped at the border.
                         let s = *side;
-                        let (lx, ly) = ((u * s as f32) as usize, ((1.0 - v) * s as f32) as usize);
-                        let at = |x: isize, y: isize| {
-                            h[(y.clamp(0, s as isize - 1) as usize) * s
-                                + x.clamp(0, s as isize - 1) as usize]
-                        };
-                        let (lx, ly) = (lx.min(s - 1) as isize, ly.min(s - 1) as isize);
-                        let du = (at(lx + 1, ly) - at(lx - 1, ly)) * 0.5 * s as f32;
-                        let dv = (at(lx, ly - 1) - at(lx, ly + 1)) * 0.5 * s as f32;
+                        let (lx, ly) = (x * s / n, y * s / n);
+                        let row = |y: usize| &h[y * s..(y + 1) * s];
+                        let (left, right) = (lx.saturating_sub(1), (lx + 1).min(s - 1));
+                        let (up, down) = (ly.saturating_sub(1), (ly + 1).min(s - 1));
+                        let here = row(ly);
+                        let du = (here[right] - here[left]) * 0.5 * s as f32;
+                        let dv = (row(up)[lx] - row(down)[lx]) * 0.5 * s as f32;
                         Vec3::new(-disp * du, -disp * dv, 1.0).normalize()
                     }
                     None => Vec3::Z,
                 };
                 let mut n_ts = n_large;
                 if let Some(f) = &fine {
-                    let nf = f.normal(u, v);
+                    let nf = f.tile.normal(f.columns[x], f.rows[y]);
                     let t = Vec3::new(n_large.z, 0.0, -n_large.x).normalize();
                     let b = Vec3::new(0.0, n_large.z, -n_large.y).normalize();
                     let in_frame = (t * nf.x + b * nf.y + n_large * nf.z).normalize();
                     n_ts = n_large.lerp(in_frame, fine_blend).normalize();
                 }
                 if let Some(m) = &micro {
-                    n_ts = rnm(n_ts, m.normal(u, v));
+                    n_ts = rnm(n_ts, m.tile.normal(m.columns[x], m.rows[y]));
                 }
                 for (c, value) in px.iter_mut().zip(n_ts.to_array()) {
                     *c = agesim_core::normal_map::encode_unorm8(value * 0.5 + 0.5);
@@ -492,39 +492,82 @@ pub fn head_normal_map(
     Ok(rgb)
 }
 
-/// A height tile repeated over the UV square, for [`head_normal_map`].
+/// A tile with its column and row taps on the output map.
+struct Placed {
+    tile: Tile,
+    columns: Vec<(usize, usize, f32)>,
+    rows: Vec<(usize, usize, f32)>,
+}
+
+/// A height tile repeated over the UV square, for [`head_normal_map`]: its tangent-space
+/// normals (SPEC §4 by central differences on the wrapped tile) made once per texel, then
+/// interpolated per output pixel.
 struct Tile {
-    map: HeightMap,
+    normals: Vec<Vec3>,
+    width: usize,
+    height: usize,
     repeats: [f32; 2],
-    strength: f32,
 }
 
 impl Tile {
-    /// Tangent-space normal at (u, v) of the surface: SPEC §4 on the wrapped tile.
-    fn normal(&self, u: f32, v: f32) -> Vec3 {
-        let (w, h) = (self.map.width_px() as f32, self.map.height_px() as f32);
-        // Texel coordinates (row 0 at the top, v up) of the repeated tile.
-        let tx = (u * self.repeats[0]).fract() * w;
-        let ty = (1.0 - (v * self.repeats[1]).fract()) * h;
-        let du = (self.sample(tx + 1.0, ty) - self.sample(tx - 1.0, ty)) * 0.5 * w;
-        let dv = (self.sample(tx, ty - 1.0) - self.sample(tx, ty + 1.0)) * 0.5 * h;
-        Vec3::new(-self.strength * du, -self.strength * dv, 1.0).normalize()
+    fn new(map: &HeightMap, repeats: [f32; 2], strength: f32) -> Self {
+        let (w, h) = (map.width_px() as usize, map.height_px() as usize);
+        let d = map.data();
+        let mut normals = Vec::with_capacity(w * h);
+        for y in 0..h {
+            let (up, down) = ((y + h - 1) % h, (y + 1) % h);
+            for x in 0..w {
+                let (left, right) = ((x + w - 1) % w, (x + 1) % w);
+                // Row 0 is the top (v up): +v is the row above.
+                let du = (d[y * w + right] - d[y * w + left]) * 0.5 * w as f32;
+                let dv = (d[up * w + x] - d[down * w + x]) * 0.5 * h as f32;
+                normals.push(Vec3::new(-strength * du, -strength * dv, 1.0).normalize());
+            }
+        }
+        Self {
+            normals,
+            width: w,
+            height: h,
+            repeats,
+        }
     }
 
-    /// Bilinear, wrapping, at texel coordinates (centres at +0.5).
-    fn sample(&self, x: f32, y: f32) -> f32 {
-        let (w, h) = (self.map.width_px() as i64, self.map.height_px() as i64);
-        let (x, y) = (x - 0.5, y - 0.5);
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let at = |xi: i64, yi: i64| {
-            self.map
-                .get(xi.rem_euclid(w) as u32, yi.rem_euclid(h) as u32)
+    /// Where each output column (or row) of a `size_px` map falls on the repeated tile:
+    /// (texel, next texel, weight of the next), wrapping. Made once per map, so the
+    /// per-pixel work is four loads and two lerps.
+    fn taps(&self, size_px: u32, along_v: bool) -> Vec<(usize, usize, f32)> {
+        let (side, repeats) = if along_v {
+            (self.height, self.repeats[1])
+        } else {
+            (self.width, self.repeats[0])
         };
-        let (x0, y0) = (x0 as i64, y0 as i64);
-        let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1, y0) * fx;
-        let bottom = at(x0, y0 + 1) * (1.0 - fx) + at(x0 + 1, y0 + 1) * fx;
-        top * (1.0 - fy) + bottom * fy
+        (0..size_px)
+            .map(|i| {
+                let t = if along_v {
+                    // Row 0 is the top (v up).
+                    1.0 - (heightmap::pixel_to_v(i, size_px) * repeats).fract()
+                } else {
+                    (heightmap::pixel_to_u(i, size_px) * repeats).fract()
+                };
+                let t = t * side as f32 - 0.5;
+                let t0 = t.floor();
+                let i0 = if t0 < 0.0 {
+                    side - 1
+                } else {
+                    (t0 as usize).min(side - 1)
+                };
+                (i0, if i0 + 1 == side { 0 } else { i0 + 1 }, t - t0)
+            })
+            .collect()
+    }
+
+    /// The normal between the four texels of a column tap and a row tap.
+    #[inline]
+    fn normal(&self, (x0, x1, fx): (usize, usize, f32), (y0, y1, fy): (usize, usize, f32)) -> Vec3 {
+        let (w, n) = (self.width, &self.normals);
+        let top = n[y0 * w + x0].lerp(n[y0 * w + x1], fx);
+        let bottom = n[y1 * w + x0].lerp(n[y1 * w + x1], fx);
+        top.lerp(bottom, fy).normalize()
     }
 }
 

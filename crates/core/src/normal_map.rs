@@ -310,9 +310,21 @@ pub(crate) fn encode_rgb8_at(
     settings: &NormalSettings,
     level: Level,
 ) -> Result<Vec<u8>, Error> {
+    let mut out = crate::heightmap::zeroed_vec::<u8>(map.data().len() * 3, "normal map")?;
+    encode_rgb8_into(map, settings, level, &mut out)?;
+    Ok(out)
+}
+
+/// [`encode_rgb8_at`] into `out` (resized to 3 bytes per pixel; its allocation is kept).
+pub(crate) fn encode_rgb8_into(
+    map: &HeightMap,
+    settings: &NormalSettings,
+    level: Level,
+    out: &mut Vec<u8>,
+) -> Result<(), Error> {
     settings.validate()?;
     let (w, h) = (map.width_px() as usize, map.height_px() as usize);
-    let mut out = crate::heightmap::zeroed_vec::<u8>(map.data().len() * 3, "normal map")?;
+    out.resize(map.data().len() * 3, 0);
     let data = map.data();
     out.par_chunks_mut(w * 3 * ROWS_PER_TASK)
         .enumerate()
@@ -329,7 +341,7 @@ pub(crate) fn encode_rgb8_at(
                 },
             )
         });
-    Ok(out)
+    Ok(())
 }
 
 /// Encodes the rows `dst` holds, from `first_row` on (a [`crate::simd::Kernel`]).

@@ -680,6 +680,11 @@ impl LargeStage {
     }
 }
 
+/// Tiles up to this side keep their features and their noise as separate maps (the
+/// editor's preview and full tiles), so an age change re-bakes only the features and a
+/// noise change only the noise; larger tiles (one-off exports) bake in one fused pass.
+const SPLIT_MAX_PX: u32 = 1024;
+
 /// The micro-relief stage: features and the tile at an age.
 #[derive(Clone, Debug, Default)]
 struct MicroStage {
@@ -688,6 +693,30 @@ struct MicroStage {
     tile: Option<MicroTile>,
     /// The previous tile's buffers, baked into next.
     spare: Option<MicroTile>,
+    /// The tile's features alone (pores and furrows at the age scales), and its key.
+    features: Option<(Project, (f32, f32), u32, HeightMap)>,
+    /// The tile's noise alone, and its key.
+    noise: Option<(Project, u32, HeightMap)>,
+}
+
+/// The fields the micro-relief noise depends on.
+fn noise_relevant(p: &Project) -> Project {
+    Project {
+        seed: p.seed,
+        map_size_mm: p.map_size_mm,
+        tile: p.tile,
+        noise: p.noise.clone(),
+        ..Project::default()
+    }
+}
+
+/// The fields the micro-relief features depend on (all but the noise and normals).
+fn features_relevant(p: &Project) -> Project {
+    Project {
+        noise: Project::default().noise,
+        normal: Project::default().normal,
+        ..micro_relevant(p)
+    }
 }
 
 impl MicroStage {
@@ -744,13 +773,20 @@ impl MicroStage {
                 )?,
             },
         };
-        if let Err(e) = relief.bake_into_cancellable(
-            size,
-            &mut spare.height,
-            &mut spare.normal_rgb,
-            normal,
-            cancel,
-        ) {
+        let baked = if size <= SPLIT_MAX_PX {
+            self.bake_split(&relief, project, scales, size, normal, &mut spare, cancel)
+        } else {
+            relief
+                .bake_into_cancellable(
+                    size,
+                    &mut spare.height,
+                    &mut spare.normal_rgb,
+                    normal,
+                    cancel,
+                )
+                .map(|_| ())
+        };
+        if let Err(e) = baked {
             self.spare = Some(spare);
             return Err(e);
         }
@@ -759,6 +795,89 @@ impl MicroStage {
         self.key = Some(key);
         changed.micro = true;
         Ok(changed)
+    }
+
+    /// The tile as features + noise from the kept parts, re-baking only the part whose
+    /// key changed, then its normal map: the same bytes as the fused pass.
+    #[allow(clippy::too_many_arguments)]
+    fn bake_split(
+        &mut self,
+        relief: &MicroRelief,
+        project: &Project,
+        scales: (f32, f32),
+        size: u32,
+        normal: &NormalSettings,
+        out: &mut MicroTile,
+        cancel: &CancelToken,
+    ) -> Result<(), Error> {
+        use crate::micro::bake::Parts;
+        use rayon::prelude::*;
+        let features_key = (features_relevant(project), scales, size);
+        let features_valid = self
+            .features
+            .as_ref()
+            .is_some_and(|(p, sc, sz, _)| (p, *sc, *sz) == (&features_key.0, scales, size));
+        let noise_key = (noise_relevant(project), size);
+        let noise_valid = self
+            .noise
+            .as_ref()
+            .is_some_and(|(p, sz, _)| (p, *sz) == (&noise_key.0, size));
+        let (mut features, mut noise) = (self.features.take(), self.noise.take());
+        let result = (|| {
+            // Features and noise at once when both are needed (each pass is parallel too).
+            let bake = |part: Parts, kept: Option<HeightMap>| -> Result<HeightMap, Error> {
+                let mut map = match kept {
+                    Some(m) => m,
+                    None => HeightMap::zeros(size, size)?,
+                };
+                relief.bake_parts_into(size, part, &mut map, cancel)?;
+                Ok(map)
+            };
+            let only = |features: bool| Parts {
+                features,
+                noise: !features,
+            };
+            // A stale part's buffer is baked over (no fresh pages to fault in).
+            let stale_f = (!features_valid).then(|| features.take().map(|(.., m)| m));
+            let stale_n = (!noise_valid).then(|| noise.take().map(|(.., m)| m));
+            let (f, n) = rayon::join(
+                || stale_f.map(|kept| bake(only(true), kept)).transpose(),
+                || stale_n.map(|kept| bake(only(false), kept)).transpose(),
+            );
+            if let Some(f) = f? {
+                features = Some((features_key.0.clone(), scales, size, f));
+            }
+            if let Some(n) = n? {
+                noise = Some((noise_key.0.clone(), size, n));
+            }
+            let (Some((.., f)), Some((.., n))) = (&features, &noise) else {
+                return Err(Error::Cancelled);
+            };
+            if out.height.width_px() != size || out.height.height_px() != size {
+                out.height = HeightMap::zeros(size, size)?;
+            }
+            out.height
+                .data_mut()
+                .par_chunks_mut(size as usize)
+                .zip(f.data().par_chunks(size as usize))
+                .zip(n.data().par_chunks(size as usize))
+                .for_each(|((h, f), n)| {
+                    for ((h, f), n) in h.iter_mut().zip(f).zip(n) {
+                        *h = f + n;
+                    }
+                });
+            cancel.check()?;
+            normal_map::encode_rgb8_into(
+                &out.height,
+                normal,
+                crate::simd::Level::detect(),
+                &mut out.normal_rgb,
+            )
+        })();
+        // Each kept part carries its own key, so what was baked before an error stays.
+        self.features = features;
+        self.noise = noise;
+        result
     }
 }
 

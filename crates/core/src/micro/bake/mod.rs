@@ -299,6 +299,29 @@ impl MicroRelief {
         Ok(timings)
     }
 
+    /// Bakes only `parts` (features or noise) into `map` (reusing its allocation), no
+    /// normals: the editor keeps the two apart so an age change re-bakes the features
+    /// and a noise change the noise. Features + noise, added per pixel, are the bytes of
+    /// the whole bake (the band pass adds the noise's octave sum to the features the
+    /// same way).
+    pub fn bake_parts_into(
+        &self,
+        size_px: u32,
+        parts: Parts,
+        map: &mut HeightMap,
+        cancel: &CancelToken,
+    ) -> Result<(), Error> {
+        crate::heightmap::check_size(size_px, size_px)?;
+        if map.width_px() != size_px || map.height_px() != size_px {
+            let placeholder = HeightMap::zeros(1, 1)?;
+            let mut data = std::mem::replace(map, placeholder).into_vec();
+            data.resize(size_px as usize * size_px as usize, 0.0);
+            *map = HeightMap::from_vec(size_px, size_px, data)?;
+        }
+        self.bake_band_pass(map, &mut [], parts, None, Level::detect(), cancel);
+        cancel.check()
+    }
+
     /// The bake, with the normal map when `normals` is given, for instruction-set `level`,
     /// into freshly allocated buffers.
     fn bake_at(

@@ -6,9 +6,12 @@
 use std::path::{Path, PathBuf};
 
 use agesim_core::export::{write_grey8_png, write_height_png16, write_rgb8_png};
-use agesim_core::preview::{self, View};
-use agesim_core::{HeightMap, Mask, fine_wrinkles, head, head_assets, muscle, wrinkle_file};
+use agesim_core::{HeightMap, Mask, fine_wrinkles, head, muscle, wrinkle_file};
 use anyhow::Context as _;
+
+use crate::assets::head as generator;
+use crate::assets::masks as head_assets;
+use crate::assets::preview::{self, View};
 use glam::{Vec2, Vec3};
 
 #[derive(Debug, clap::Args)]
@@ -42,7 +45,7 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
             .with_context(|| format!("cannot create {}", out.join(dir).display()))?;
     }
     // The default head, built into agesim-core (include_bytes!) for a fast start-up.
-    let mesh = head::generate_default_head();
+    let mesh = generator::generate_default_head()?;
     let glb = out.join(head::DEFAULT_HEAD_ASSET);
     std::fs::write(&glb, agesim_core::mesh::gltf::write_glb(&mesh))
         .with_context(|| format!("cannot write {}", glb.display()))?;

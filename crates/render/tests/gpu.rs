@@ -8,7 +8,7 @@
 
 use agesim_core::hair::{HairInstances, HairParams, SurfaceRef};
 use agesim_core::transition::{DistanceMetric, TransitionTexture};
-use agesim_core::{HeightMap, Mesh, head, head_assets};
+use agesim_core::{HeightMap, Mask, Mesh, defaults, head};
 use agesim_render::{FrameParams, Gpu, PomMode, Renderer};
 use glam::Vec3;
 
@@ -174,8 +174,17 @@ fn hair_thins_and_grays_with_age() {
         return;
     };
     let mesh = head::default_head();
-    let outer = head_assets::paint(128, head_assets::hair_outer).unwrap();
-    let inner = head_assets::paint(128, head_assets::hair_inner).unwrap();
+    // The shipped masks, at 128² (what the transition texture below is made at).
+    let shipped = |(name, bytes): (&str, &[u8])| {
+        Mask::decode(bytes, std::path::Path::new(name))
+            .unwrap()
+            .resampled(128, 128)
+            .unwrap()
+    };
+    let (outer, inner) = (
+        shipped(defaults::HAIR_OUTER_MASK),
+        shipped(defaults::HAIR_INNER_MASK),
+    );
     let transition =
         TransitionTexture::from_masks(&outer, &inner, 128, 128, DistanceMetric::Chebyshev).unwrap();
     let surface =

@@ -5,7 +5,7 @@
 use glam::{Mat3, Vec2, Vec3};
 use image::RgbImage;
 
-use crate::mesh::Mesh;
+use agesim_core::Mesh;
 
 /// How to look at a mesh: turn it by `yaw_deg` around +Y (0 = the +Z side, the face,
 /// toward the camera; 90 = the subject's left, +X, toward the camera) and tilt by
@@ -110,11 +110,12 @@ pub fn render(mesh: &Mesh, view: View, size_px: u32, albedo: impl Fn(Vec2) -> Ve
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
     use super::*;
 
     #[test]
     fn a_patch_seen_from_the_front_fills_the_middle_and_its_back_is_culled() {
-        let patch = crate::head::skin_patch();
+        let patch = agesim_core::head::skin_patch();
         let img = render(&patch, View::FRONT, 64, |_| Vec3::ONE);
         let bg = img.get_pixel(0, 0).0;
         let mid = img.get_pixel(32, 32).0;

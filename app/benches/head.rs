@@ -2,13 +2,14 @@
 //!
 //! Ours: `head::default_head()` (reads the shipped GLB built into the binary) and
 //! `head::skin_patch()` (exact analytic tangents). Baselines, measured in the same run:
-//! the old paths, `head::generate_default_head()` (profile tracing + `Mesh::build` with
+//! the old paths, `generator::generate_default_head().unwrap()` (profile tracing + `Mesh::build` with
 //! smooth normals and MikkTSpace) and the skin patch built through MikkTSpace. The
 //! breakdown of the generation (shape, normals, MikkTSpace) is printed too.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::time::{Duration, Instant};
 
+use agesim::assets::head as generator;
 use agesim_core::Mesh;
 use agesim_core::head;
 
@@ -45,14 +46,17 @@ fn main() {
     });
     // Baselines: the old generation paths.
     let generated = time(7, || {
-        std::hint::black_box(head::generate_default_head());
+        std::hint::black_box(generator::generate_default_head().unwrap());
     });
     let patch_mikk = time(7, || {
         std::hint::black_box(Mesh::build(head::skin_patch_raw(), "skin patch").unwrap());
     });
     // Breakdown of the generation.
     let raw = time(7, || {
-        std::hint::black_box(head::head_raw(head::HEAD_COLUMNS, head::HEAD_ROWS));
+        std::hint::black_box(generator::head_raw(
+            generator::HEAD_COLUMNS,
+            generator::HEAD_ROWS,
+        ));
     });
     let m = head::default_head();
     let normals = time(7, || {

@@ -1,5 +1,5 @@
 //! The default head's masks (SPEC §1 "Mask", §6 hair masks), painted in 3D and sampled
-//! on its UV layout, so that they match [`crate::head`]'s layout by construction.
+//! on its UV layout, so that they match the default head's layout by construction.
 //!
 //! Each UV pixel is mapped to its surface point with [`head::head_column`]; regions are
 //! defined on the head in metres (hairline height as a function of the longitude around
@@ -9,10 +9,11 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::error::Error;
-use crate::head::{self, head_sdf};
-use crate::heightmap::{check_size, pixel_to_u, pixel_to_v};
-use crate::mask::Mask;
+use agesim_core::Error;
+use agesim_core::heightmap::{check_size, pixel_to_u, pixel_to_v};
+use agesim_core::mask::Mask;
+
+use super::head::{self, head_sdf};
 
 /// Centre of the skull the hairline longitudes are measured around (metres).
 const SKULL_CENTRE_M: Vec3 = Vec3::new(0.0, 0.03, -0.005);
@@ -151,6 +152,7 @@ pub fn lit_layout(size_px: u32) -> Result<Mask, Error> {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
     use super::*;
 
     #[test]
@@ -202,10 +204,15 @@ mod tests {
 #[cfg(test)]
 mod asset_file_tests {
     //! The files shipped in `assets/` for the default head.
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
     use std::path::PathBuf;
 
+    use agesim_core::Mask;
+
+    use super::head;
+
     fn assets() -> PathBuf {
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets")
     }
 
     #[test]
@@ -221,7 +228,7 @@ mod asset_file_tests {
         ];
         for name in names {
             let path = assets().join(format!("wrinkles/{name}.wrk"));
-            let file = crate::wrinkle_file::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            let file = agesim_core::wrinkle_file::load(&path).unwrap_or_else(|e| panic!("{e}"));
             assert!(!file.groups.is_empty(), "{name} has no group");
             for fibre in file.fibres() {
                 for [u, v] in [fibre.ma(), fibre.mb()] {
@@ -230,7 +237,7 @@ mod asset_file_tests {
                         (0.35..=0.65).contains(&u) && (0.0..=0.78).contains(&v),
                         "{name}: ({u}, {v})"
                     );
-                    let p = crate::head::head_point(u, v);
+                    let p = head::head_point(u, v);
                     assert!(p.z > 0.0, "{name}: ({u}, {v}) is not on the front: {p}");
                 }
             }
@@ -248,18 +255,18 @@ mod asset_file_tests {
     #[test]
     fn the_shipped_masks_and_tile_load_and_match_the_generators() {
         for name in ["hair-outer", "hair-inner", "wrinkles"] {
-            let mask = crate::Mask::load(&assets().join(format!("masks/{name}.png"))).unwrap();
+            let mask = Mask::load(&assets().join(format!("masks/{name}.png"))).unwrap();
             assert_eq!((mask.width_px(), mask.height_px()), (1024, 1024), "{name}");
         }
-        let outer = crate::Mask::load(&assets().join("masks/hair-outer.png")).unwrap();
-        let inner = crate::Mask::load(&assets().join("masks/hair-inner.png")).unwrap();
+        let outer = Mask::load(&assets().join("masks/hair-outer.png")).unwrap();
+        let inner = Mask::load(&assets().join("masks/hair-inner.png")).unwrap();
         // Spot checks against the analytic regions: crown hair, face bare, inner ⊂ outer.
         assert!(outer.sample(0.5, 0.98) > 0.99 && outer.sample(0.5, 0.6) < 0.01);
         assert!(inner.sample(0.5, 0.95) < 0.01 && inner.sample(0.02, 0.6) > 0.99);
         for (a, b) in inner.values().iter().zip(outer.values()) {
             assert!(a <= b, "inner hair outside the outer region");
         }
-        let tile = crate::Mask::load(&assets().join("tiles/fine-wrinkles.png")).unwrap();
+        let tile = Mask::load(&assets().join("tiles/fine-wrinkles.png")).unwrap();
         assert_eq!(tile.width_px(), 512);
     }
 }

@@ -1,8 +1,8 @@
 //! Renders the default head from four sides into a directory (default /tmp):
-//! `cargo run -p agesim-core --example head_preview -- /tmp`.
+//! `cargo run -p agesim --example head_preview -- /tmp`.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use agesim_core::preview::{View, render};
+use agesim::assets::preview::{View, render};
 use glam::Vec3;
 
 fn main() {

@@ -18,6 +18,8 @@ struct Frame {
     hair_gray: vec4<f32>,
     hair_k: vec4<f32>,
     hair_misc: vec4<f32>,
+    skin_wrap: vec4<f32>,
+    skin_spec: vec4<f32>,
 }
 
 // Quads per hair; the strip has 2·(SEGMENTS + 1) vertices (crates/render/src/hair.rs).

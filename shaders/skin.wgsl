@@ -36,6 +36,10 @@ struct Frame {
     // x: viewport width, px; y: hair droop (fraction of the length);
     // z: 1 = skin writes the POM hit (hit uv, polygon uv) instead of colour; w: unused.
     hair_misc: vec4<f32>,
+    // rgb: wrap lighting per channel in [0, 1]; w: specular roughness.
+    skin_wrap: vec4<f32>,
+    // x: specular reflectance at normal incidence (F0); yzw: unused.
+    skin_spec: vec4<f32>,
 }
 
 const MODE_LINEAR: u32 = 0u;
@@ -217,7 +221,7 @@ fn output_colour(linear: vec3<f32>) -> vec4<f32> {
 
 // GGX distribution with Smith-Schlick visibility: a rough, oily dielectric lobe
 // (skin: F0 ≈ 0.028, roughness ≈ 0.4, after the d'Eon & Luebke Kelemen/Szirmay-Kalos fit).
-fn skin_specular(n: vec3<f32>, v: vec3<f32>, l: vec3<f32>, roughness: f32) -> f32 {
+fn skin_specular(n: vec3<f32>, v: vec3<f32>, l: vec3<f32>, roughness: f32, f0: f32) -> f32 {
     let h = normalize(v + l);
     let n_l = max(dot(n, l), 0.0);
     let n_v = max(dot(n, v), 1e-3);
@@ -226,7 +230,7 @@ fn skin_specular(n: vec3<f32>, v: vec3<f32>, l: vec3<f32>, roughness: f32) -> f3
     let d = a2 / (3.14159265 * pow(n_h * n_h * (a2 - 1.0) + 1.0, 2.0));
     let k = roughness * roughness * 0.5;
     let vis = 1.0 / ((n_l * (1.0 - k) + k) * (n_v * (1.0 - k) + k) * 4.0);
-    let fresnel = 0.028 + (1.0 - 0.028) * pow(1.0 - max(dot(h, v), 0.0), 5.0);
+    let fresnel = f0 + (1.0 - f0) * pow(1.0 - max(dot(h, v), 0.0), 5.0);
     return d * vis * fresnel * n_l;
 }
 
@@ -283,10 +287,10 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let light = frame.light_colour.rgb * frame.light_dir.w;
     // Wrap lighting per channel: red light scatters farthest under the skin, so its
     // terminator wraps widest (GPU Gems 1 ch. 16, a cheap stand-in for [P]'s SSS).
-    let wrap = vec3<f32>(0.45, 0.22, 0.15);
+    let wrap = frame.skin_wrap.rgb;
     let n_l = dot(n, l);
     let diffuse = clamp((vec3<f32>(n_l) + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0));
-    let spec = skin_specular(n, to_eye, l, 0.42);
+    let spec = skin_specular(n, to_eye, l, frame.skin_wrap.w, frame.skin_spec.x);
     // Hemisphere ambient through the perturbed normal, so micro-relief shows in shadow.
     let sky = 0.6 + 0.4 * n.y;
     let ambient = frame.light_colour.w * sky;

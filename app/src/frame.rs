@@ -36,6 +36,15 @@ pub fn camera(project: &Project, target: Vec3) -> Camera {
     }
 }
 
+/// Wrap lighting per channel: `wrap` scaled so 0.35 wraps the subsurface colour's
+/// strongest channel by 0.45, the others in proportion to the colour (sRGB values; the
+/// default #ff7d55 gives 0.45, 0.22, 0.15).
+pub fn wrap_rgb(wrap: f32, subsurface: Colour) -> Vec3 {
+    let c = Vec3::from(subsurface.0.map(f32::from)) / 255.0;
+    let c = c / c.max_element().max(1e-6);
+    (c * wrap * (0.45 / 0.35)).clamp(Vec3::ZERO, Vec3::ONE)
+}
+
 /// Everything but the camera, from the project and the age factors of the frame's age.
 pub fn frame_params(project: &Project, factors: &AgeFactors, camera: Camera) -> FrameParams {
     let v = &project.view;
@@ -67,6 +76,10 @@ pub fn frame_params(project: &Project, factors: &AgeFactors, camera: Camera) -> 
             micro_relief: project.pores.enabled
                 || project.furrows.enabled
                 || project.noise.strength > 0.0,
+            wrap: wrap_rgb(s.wrap, s.subsurface_colour),
+            roughness: s.roughness,
+            // The Fresnel reflectance of a dielectric, 0.08·specular (skin: 0.35 → 0.028).
+            f0: 0.08 * s.specular,
         },
         hair: HairShading {
             enabled: h.enabled && v.show_hair,

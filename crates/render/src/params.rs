@@ -159,6 +159,13 @@ pub struct SkinParams {
     pub albedo: Vec3,
     /// Draw the micro-relief layer.
     pub micro_relief: bool,
+    /// Wrap lighting per channel in [0, 1] (red scatters farthest under the skin, so its
+    /// terminator wraps widest; GPU Gems 1 ch. 16).
+    pub wrap: Vec3,
+    /// Specular roughness (GGX α = roughness²), [0.05, 1].
+    pub roughness: f32,
+    /// Specular reflectance at normal incidence (skin ≈ 0.028).
+    pub f0: f32,
 }
 
 impl Default for SkinParams {
@@ -171,6 +178,9 @@ impl Default for SkinParams {
             fine_blend: 0.5,
             paleness: 0.0,
             albedo: Vec3::new(0.50, 0.30, 0.22),
+            wrap: Vec3::new(0.45, 0.22, 0.15),
+            roughness: 0.42,
+            f0: 0.028,
             micro_relief: true,
         }
     }

@@ -4,7 +4,7 @@
 
 use crate::params::{FrameOutput, FrameParams, GrayingRampParam};
 
-/// `struct Frame` of the shaders (see the field comments there). 256 bytes.
+/// `struct Frame` of the shaders (see the field comments there). 288 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniform {
@@ -21,6 +21,8 @@ pub struct FrameUniform {
     pub hair_gray: [f32; 4],
     pub hair_k: [f32; 4],
     pub hair_misc: [f32; 4],
+    pub skin_wrap: [f32; 4],
+    pub skin_spec: [f32; 4],
 }
 
 /// What the renderer knows beyond the frame parameters.
@@ -105,6 +107,13 @@ impl FrameUniform {
                 },
                 0.0,
             ],
+            skin_wrap: [
+                unit(s.wrap.x),
+                unit(s.wrap.y),
+                unit(s.wrap.z),
+                s.roughness.clamp(0.05, 1.0),
+            ],
+            skin_spec: [unit(s.f0), 0.0, 0.0, 0.0],
         }
     }
 }

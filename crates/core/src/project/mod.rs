@@ -352,9 +352,12 @@ impl Default for SkinSection {
             // measured faces darkening and yellowing with age (docs/models.md "Age").
             pale_albedo: Colour([0xd9, 0xb8, 0xa4]),
             pale_amount: 0.4,
-            subsurface_colour: Colour([0xc8, 0x3c, 0x28]),
+            // With `wrap` 0.35: red wraps 0.45, green 0.22, blue 0.15 (docs/models.md
+            // "Rendering"): red light scatters farthest under the skin.
+            subsurface_colour: Colour([0xff, 0x7d, 0x55]),
             wrap: 0.35,
-            roughness: 0.55,
+            // GGX roughness and F0 = 0.08 · specular = 0.028, d'Eon & Luebke's skin fit.
+            roughness: 0.42,
             specular: 0.35,
         }
     }

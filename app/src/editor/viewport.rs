@@ -10,7 +10,7 @@
 use std::sync::Arc;
 
 use agesim_core::project::Project;
-use agesim_render::{Renderer, TileLayer};
+use agesim_render::{Renderer, TileLayer, Upload};
 use eframe::egui_wgpu;
 use egui::{Rect, Sense};
 use glam::Vec3;
@@ -88,37 +88,38 @@ impl Viewport {
             );
             self.uploaded.mesh = stamp(&snapshot.mesh);
         }
-        if stamp(&snapshot.large01) != self.uploaded.large {
-            result = result.and(match &snapshot.large01 {
-                Some(large) => self.renderer.upload_large_wrinkles(large),
+        // The layers come converted from the worker: an upload here is a copy.
+        if stamp(&snapshot.gpu_large) != self.uploaded.large {
+            result = result.and(match &snapshot.gpu_large {
+                Some(large) => self.renderer.upload_prepared(&Upload::LargeWrinkles(large)),
                 // The layer is off: a flat surface (height 1 = no depth), not the last map.
                 None => agesim_core::HeightMap::from_vec(1, 1, vec![1.0])
                     .map_err(agesim_render::RenderError::from)
                     .and_then(|flat| self.renderer.upload_large_wrinkles(&flat)),
             });
-            self.uploaded.large = stamp(&snapshot.large01);
+            self.uploaded.large = stamp(&snapshot.gpu_large);
         }
-        if stamp(&snapshot.micro) != self.uploaded.micro
-            && let Some(micro) = &snapshot.micro
+        if stamp(&snapshot.gpu_micro) != self.uploaded.micro
+            && let Some(micro) = &snapshot.gpu_micro
         {
-            result = result.and(self.renderer.upload_tile(
-                TileLayer::Micro,
-                &micro.height,
-                project.map_size_mm / 1000.0,
-                project.normal.strength,
-            ));
-            self.uploaded.micro = stamp(&snapshot.micro);
+            result = result.and(self.renderer.upload_prepared(&Upload::Tile {
+                layer: TileLayer::Micro,
+                tile: micro,
+                size_m: project.map_size_mm / 1000.0,
+                strength: project.normal.strength,
+            }));
+            self.uploaded.micro = stamp(&snapshot.gpu_micro);
         }
-        if stamp(&snapshot.fine) != self.uploaded.fine
-            && let Some(fine) = &snapshot.fine
+        if stamp(&snapshot.gpu_fine) != self.uploaded.fine
+            && let Some(fine) = &snapshot.gpu_fine
         {
-            result = result.and(self.renderer.upload_tile(
-                TileLayer::Fine,
-                fine,
-                project.fine.size_mm / 1000.0,
-                project.fine.strength,
-            ));
-            self.uploaded.fine = stamp(&snapshot.fine);
+            result = result.and(self.renderer.upload_prepared(&Upload::Tile {
+                layer: TileLayer::Fine,
+                tile: fine,
+                size_m: project.fine.size_mm / 1000.0,
+                strength: project.fine.strength,
+            }));
+            self.uploaded.fine = stamp(&snapshot.gpu_fine);
         }
         if stamp(&snapshot.hair) != self.uploaded.hair
             && let Some(hair) = &snapshot.hair

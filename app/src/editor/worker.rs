@@ -14,6 +14,7 @@ use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Changed, LargeMap, MicroTile, Scene, WrinkleSource};
 use agesim_core::transition::TransitionTexture;
 use agesim_core::{Error, HeightMap, Mesh};
+use agesim_render::PreparedLayer;
 
 /// One request: the whole document state and what to bake.
 #[derive(Clone, Debug)]
@@ -43,6 +44,11 @@ pub struct Snapshot {
     pub large01: Option<Arc<HeightMap>>,
     pub micro: Option<Arc<MicroTile>>,
     pub fine: Option<Arc<HeightMap>>,
+    /// The three height layers converted for the GPU here (f16, tile mips), so the UI
+    /// thread's upload is a copy: the large wrinkles of `large01`, the micro and fine tiles.
+    pub gpu_large: Option<Arc<PreparedLayer>>,
+    pub gpu_micro: Option<Arc<PreparedLayer>>,
+    pub gpu_fine: Option<Arc<PreparedLayer>>,
     pub transition: Option<Arc<TransitionTexture>>,
     pub hair: Option<Arc<HairInstances>>,
     pub request: Option<BakeRequest>,
@@ -352,6 +358,10 @@ fn bake(
                 .ok()
                 .map(Arc::new)
         });
+        snapshot.gpu_large = snapshot
+            .large01
+            .as_deref()
+            .map(|h| Arc::new(PreparedLayer::large_wrinkles(h)));
         images.large_height = snapshot
             .large
             .as_ref()
@@ -364,6 +374,10 @@ fn bake(
     }
     if merged.micro || snapshot.micro.is_none() {
         snapshot.micro = s.micro().cloned().map(Arc::new);
+        snapshot.gpu_micro = snapshot
+            .micro
+            .as_ref()
+            .map(|m| Arc::new(PreparedLayer::tile(&m.height)));
         images.micro_height = snapshot
             .micro
             .as_ref()
@@ -375,6 +389,10 @@ fn bake(
     }
     if merged.fine || (snapshot.fine.is_none() && s.fine().is_some()) {
         snapshot.fine = s.fine().cloned();
+        snapshot.gpu_fine = snapshot
+            .fine
+            .as_deref()
+            .map(|f| Arc::new(PreparedLayer::tile(f)));
         images.fine = snapshot
             .fine
             .as_ref()

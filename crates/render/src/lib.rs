@@ -34,5 +34,5 @@ pub use params::{
     Camera, DEFAULT_FINE_TILE_SIZE_M, FrameOutput, FrameParams, GrayingRampParam, HairShading,
     Light, PomMode, SkinParams,
 };
-pub use renderer::{COLOUR_FORMAT, DEPTH_FORMAT, Renderer, TileLayer};
+pub use renderer::{COLOUR_FORMAT, DEPTH_FORMAT, PreparedLayer, Renderer, TileLayer, Upload};
 pub use uniforms::FrameUniform;

@@ -29,6 +29,21 @@ pub enum TileLayer {
     Fine,
 }
 
+/// A prepared layer and where it goes ([`Renderer::upload_prepared`]).
+#[derive(Clone, Copy, Debug)]
+pub enum Upload<'a> {
+    /// The large-wrinkle heights ([`PreparedLayer::large_wrinkles`]).
+    LargeWrinkles(&'a PreparedLayer),
+    /// A tile ([`PreparedLayer::tile`]) with its side on the skin (m) and its normal
+    /// strength, as [`Renderer::upload_tile`] takes them.
+    Tile {
+        layer: TileLayer,
+        tile: &'a PreparedLayer,
+        size_m: f32,
+        strength: f32,
+    },
+}
+
 /// A height or mask texture (the view keeps its texture alive).
 struct Layer {
     view: wgpu::TextureView,
@@ -319,8 +334,9 @@ impl Renderer {
             wgpu::AddressMode::Repeat,
         );
 
-        let flat =
-            |label: &str, value: f32| create_r16f(device, queue, label, (1, 1), &[value], false);
+        let flat = |label: &str, value: f32| {
+            create_r16f(device, queue, label, &prepare_r16f((1, 1), &[value], false))
+        };
         let large = flat("agesim large-wrinkle heights (placeholder)", 1.0);
         let micro = flat("agesim micro-relief tile (placeholder)", 0.0);
         let fine = flat("agesim fine-wrinkle tile (placeholder)", 0.0);
@@ -449,8 +465,51 @@ impl Renderer {
     /// the shader with the frame's `disp_scale`, so the lit relief always matches the
     /// marched and the displaced one, at any age scaling of the heights.
     pub fn upload_large_wrinkles(&mut self, heights01: &HeightMap) -> Result<(), RenderError> {
-        let data: Vec<f32> = heights01.data().iter().map(|h| h.clamp(0.0, 1.0)).collect();
-        self.large = self.create_layer("agesim large-wrinkle heights", heights01, &data, false)?;
+        self.upload_prepared(&Upload::LargeWrinkles(&PreparedLayer::large_wrinkles(
+            heights01,
+        )))
+    }
+
+    /// Uploads a layer prepared on another thread (the editor's worker converts to f16
+    /// and builds mips there, so the drawing thread only copies bytes).
+    pub fn upload_prepared(&mut self, upload: &Upload<'_>) -> Result<(), RenderError> {
+        match *upload {
+            Upload::LargeWrinkles(layer) => {
+                self.large = self.create_layer("agesim large-wrinkle heights", layer)?;
+            }
+            Upload::Tile {
+                layer,
+                tile,
+                size_m,
+                strength,
+            } => {
+                if !(size_m.is_finite() && size_m > 0.0) {
+                    return Err(RenderError::OutOfRange {
+                        what: "tile size (m)",
+                        value: size_m,
+                        range: "(0, ∞)",
+                    });
+                }
+                if !(strength.is_finite() && strength >= 0.0) {
+                    return Err(RenderError::OutOfRange {
+                        what: "tile normal strength",
+                        value: strength,
+                        range: "[0, ∞)",
+                    });
+                }
+                let info = TileInfo { size_m, strength };
+                match layer {
+                    TileLayer::Micro => {
+                        self.micro = self.create_layer("agesim micro-relief tile", tile)?;
+                        self.micro_info = info;
+                    }
+                    TileLayer::Fine => {
+                        self.fine = self.create_layer("agesim fine-wrinkle tile", tile)?;
+                        self.fine_info = info;
+                    }
+                }
+            }
+        }
         self.skin_bind_group = None;
         Ok(())
     }
@@ -466,42 +525,19 @@ impl Renderer {
         size_m: f32,
         strength: f32,
     ) -> Result<(), RenderError> {
-        if !(size_m.is_finite() && size_m > 0.0) {
-            return Err(RenderError::OutOfRange {
-                what: "tile size (m)",
-                value: size_m,
-                range: "(0, ∞)",
-            });
-        }
-        if !(strength.is_finite() && strength >= 0.0) {
-            return Err(RenderError::OutOfRange {
-                what: "tile normal strength",
-                value: strength,
-                range: "[0, ∞)",
-            });
-        }
-        let info = TileInfo { size_m, strength };
-        match layer {
-            TileLayer::Micro => {
-                self.micro =
-                    self.create_layer("agesim micro-relief tile", heights, heights.data(), true)?;
-                self.micro_info = info;
-            }
-            TileLayer::Fine => {
-                self.fine =
-                    self.create_layer("agesim fine-wrinkle tile", heights, heights.data(), true)?;
-                self.fine_info = info;
-            }
-        }
-        self.skin_bind_group = None;
-        Ok(())
+        self.upload_prepared(&Upload::Tile {
+            layer,
+            tile: &PreparedLayer::tile(heights),
+            size_m,
+            strength,
+        })
     }
 
     /// Uploads the wrinkle mask (white = fine wrinkles may show) over the mesh UV.
     pub fn upload_wrinkle_mask(&mut self, mask: &Mask) -> Result<(), RenderError> {
         let map = HeightMap::from_vec(mask.width_px(), mask.height_px(), mask.values().to_vec())
             .map_err(RenderError::Core)?;
-        self.mask = self.create_layer("agesim wrinkle mask", &map, map.data(), true)?;
+        self.mask = self.create_layer("agesim wrinkle mask", &PreparedLayer::tile(&map))?;
         self.skin_bind_group = None;
         Ok(())
     }
@@ -531,15 +567,9 @@ impl Renderer {
         self.hair.as_ref().map_or(0, |h| count_at(&h.levels, t))
     }
 
-    fn create_layer(
-        &self,
-        label: &str,
-        map: &HeightMap,
-        data: &[f32],
-        mips: bool,
-    ) -> Result<Layer, RenderError> {
+    fn create_layer(&self, label: &str, layer: &PreparedLayer) -> Result<Layer, RenderError> {
         let max = self.device.limits().max_texture_dimension_2d;
-        let (w, h) = (map.width_px(), map.height_px());
+        let (w, h) = layer.size_px();
         if w == 0 || h == 0 || w > max || h > max {
             return Err(RenderError::InvalidSize {
                 what: "texture",
@@ -548,14 +578,7 @@ impl Renderer {
                 max,
             });
         }
-        Ok(create_r16f(
-            &self.device,
-            &self.queue,
-            label,
-            (w, h),
-            data,
-            mips,
-        ))
+        Ok(create_r16f(&self.device, &self.queue, label, layer))
     }
 
     fn skin_bind_group(&mut self) -> wgpu::BindGroup {
@@ -946,14 +969,43 @@ impl Renderer {
 /// instead of aliasing them into speckle. The large-wrinkle map has no mips: POM marches
 /// the exact height field (`tests/pom_reference.rs`), and at ≈ 1 texel per pixel on a
 /// whole-head view it does not alias much.
-fn create_r16f(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    label: &str,
-    (width, height): (u32, u32),
-    data: &[f32],
-    mips: bool,
-) -> Layer {
+/// A height layer converted for the GPU: f16 texels and, for tiles, the box-filtered mip
+/// chain. Made on any thread ([`PreparedLayer::large_wrinkles`], [`PreparedLayer::tile`]),
+/// so the thread that draws only copies bytes ([`Renderer::upload_prepared`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedLayer {
+    width: u32,
+    height: u32,
+    levels: u32,
+    bytes: Vec<u8>,
+}
+
+impl PreparedLayer {
+    /// The large-wrinkle heights, clamped to [0, 1] (see
+    /// [`Renderer::upload_large_wrinkles`]), one level.
+    pub fn large_wrinkles(heights01: &HeightMap) -> Self {
+        let data: Vec<f32> = heights01.data().iter().map(|h| h.clamp(0.0, 1.0)).collect();
+        prepare_r16f((heights01.width_px(), heights01.height_px()), &data, false)
+    }
+
+    /// A tileable height tile with its mip chain (see [`Renderer::upload_tile`]).
+    pub fn tile(heights: &HeightMap) -> Self {
+        prepare_r16f(
+            (heights.width_px(), heights.height_px()),
+            heights.data(),
+            true,
+        )
+    }
+
+    /// (width, height) of level 0, texels.
+    pub fn size_px(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+}
+
+/// f16 bytes of `data` and, with `mips`, of its 2×2 box-filtered levels down to an odd
+/// side.
+fn prepare_r16f((width, height): (u32, u32), data: &[f32], mips: bool) -> PreparedLayer {
     let mut bytes = to_f16_bytes(data);
     let mut levels = 1;
     let (mut w, mut h) = (width as usize, height as usize);
@@ -977,16 +1029,30 @@ fn create_r16f(
         (w, h) = (nw, nh);
         levels += 1;
     }
+    PreparedLayer {
+        width,
+        height,
+        levels,
+        bytes,
+    }
+}
+
+fn create_r16f(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    layer: &PreparedLayer,
+) -> Layer {
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
             label: Some(label),
             size: wgpu::Extent3d {
-                width,
-                height,
+                width: layer.width,
+                height: layer.height,
                 depth_or_array_layers: 1,
             },
-            mip_level_count: levels,
+            mip_level_count: layer.levels,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: wgpu::TextureFormat::R16Float,
@@ -994,7 +1060,7 @@ fn create_r16f(
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
-        &bytes,
+        &layer.bytes,
     );
     let view = texture.create_view(&wgpu::TextureViewDescriptor {
         label: Some(label),

@@ -30,6 +30,8 @@ pub struct MapsOut {
     pub convention: Option<Convention>,
     /// Bake the micro-relief periodic, so the maps tile (the skin patch).
     pub tileable: bool,
+    /// The height EXR's (lossless) compression.
+    pub exr_compression: agesim_core::export::ExrCompression,
 }
 
 impl MapsOut {
@@ -265,7 +267,9 @@ fn export_maps(
         || {
             rayon::join(
                 || match &maps.height_exr {
-                    Some(path) => out::stage_height_exr(set, path, &height),
+                    Some(path) => {
+                        out::stage_height_exr_with(set, path, &height, maps.exr_compression)
+                    }
                     None => Ok(()),
                 },
                 || match &maps.normal_png {

@@ -676,3 +676,33 @@ fn an_output_set_is_all_old_or_all_new() {
         );
     }
 }
+
+#[test]
+fn every_exr_compression_reads_back_the_same_heights() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut heights = Vec::new();
+    for c in ["rle", "none", "zip"] {
+        let out = dir.path().join(c);
+        let o = agesim(&[
+            "bake",
+            "--size",
+            "96",
+            "--exr-compression",
+            c,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert_eq!(bake_json(&out)["inputs"]["exr_compression"], c);
+        let exr = exr::prelude::read_first_flat_layer_from_file(out.join("height.exr")).unwrap();
+        heights.push(
+            exr.layer_data.channel_data.list[0]
+                .sample_data
+                .values_as_f32()
+                .collect::<Vec<f32>>(),
+        );
+    }
+    assert!(heights[0].iter().any(|&h| h != 0.0));
+    assert_eq!(heights[0], heights[1], "none is lossless");
+    assert_eq!(heights[0], heights[2], "zip is lossless");
+}

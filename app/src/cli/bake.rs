@@ -79,9 +79,31 @@ pub struct BakeArgs {
     #[arg(long, value_name = "Y")]
     pub age_years: Option<f32>,
 
+    /// Compression of height.exr (all lossless): rle (default), none (fastest to write),
+    /// zip (smallest).
+    #[arg(long, value_enum, default_value = "rle")]
+    pub exr_compression: ExrCompressionArg,
+
     /// Output directory (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ExrCompressionArg {
+    Rle,
+    None,
+    Zip,
+}
+
+impl From<ExrCompressionArg> for export::ExrCompression {
+    fn from(c: ExrCompressionArg) -> Self {
+        match c {
+            ExrCompressionArg::Rle => Self::Rle,
+            ExrCompressionArg::None => Self::None,
+            ExrCompressionArg::Zip => Self::Zip,
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -317,7 +339,12 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
             rayon::join(
                 || {
                     timed(&|| {
-                        export::stage_height_exr(&outputs, &args.out.join("height.exr"), &height)
+                        export::stage_height_exr_with(
+                            &outputs,
+                            &args.out.join("height.exr"),
+                            &height,
+                            args.exr_compression.into(),
+                        )
                     })
                 },
                 || {
@@ -359,6 +386,7 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
             "layers": layer_names(project),
             "pores": pores,
             "furrows": furrows,
+            "exr_compression": export::ExrCompression::from(args.exr_compression),
             "age_t": age_t,
             "age_years": project.age.mapping().years(age_t),
         },

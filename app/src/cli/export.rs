@@ -33,6 +33,9 @@ pub struct ExportArgs {
     /// Height map as a 32-bit float EXR.
     #[arg(long, value_name = "FILE.exr")]
     pub height_exr: Option<PathBuf>,
+    /// Compression of the height EXR (lossless): rle, none (fastest), zip (smallest).
+    #[arg(long, value_enum, default_value = "rle")]
+    pub exr_compression: crate::cli::bake::ExrCompressionArg,
     /// Normal map as an 8-bit PNG.
     #[arg(long, value_name = "FILE.png")]
     pub normal_png: Option<PathBuf>,
@@ -118,6 +121,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
             normal_png: args.normal_png.clone(),
             convention: args.normal_convention.map(Into::into),
             tileable: args.tileable,
+            exr_compression: args.exr_compression.into(),
         },
         glb: args.glb.clone().map(|path| GlbOut {
             path,

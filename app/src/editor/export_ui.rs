@@ -26,6 +26,7 @@ pub struct ExportSettings {
     pub size_px: u32,
     pub height_png: bool,
     pub height_exr: bool,
+    pub exr_compression: agesim_core::export::ExrCompression,
     pub normal_png: bool,
     pub directx: bool,
     pub tileable: bool,
@@ -49,6 +50,7 @@ impl Default for ExportSettings {
             size_px: 2048,
             height_png: true,
             height_exr: false,
+            exr_compression: agesim_core::export::ExrCompression::Rle,
             normal_png: true,
             directx: false,
             tileable: false,
@@ -110,6 +112,7 @@ impl ExportSettings {
                     Convention::OpenGl
                 }),
                 tileable: self.tileable,
+                exr_compression: self.exr_compression,
             },
             glb: self.glb.then(|| GlbOut {
                 path: file(".glb"),
@@ -261,7 +264,13 @@ pub fn export_ui(
                 ui.label("Maps");
                 ui.vertical(|ui| {
                     ui.checkbox(&mut s.height_png, "height, 16-bit PNG");
-                    ui.checkbox(&mut s.height_exr, "height, 32-bit float EXR");
+                    ui.horizontal(|ui| {
+                        use agesim_core::export::ExrCompression as C;
+                        ui.checkbox(&mut s.height_exr, "height, 32-bit float EXR");
+                        for (c, name) in [(C::Rle, "RLE"), (C::None, "none"), (C::Zip, "ZIP")] {
+                            ui.radio_value(&mut s.exr_compression, c, name);
+                        }
+                    });
                     ui.horizontal(|ui| {
                         ui.checkbox(&mut s.normal_png, "normal PNG");
                         ui.radio_value(&mut s.directx, false, "OpenGL");

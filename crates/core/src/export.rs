@@ -314,15 +314,43 @@ pub fn write_height_exr(path: &Path, map: &HeightMap) -> Result<(), Error> {
     set.commit()
 }
 
-/// [`write_height_exr`] into an [`OutputSet`].
+/// How the height EXR is compressed; every choice is lossless.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ExrCompression {
+    /// Run-length, 64² tiles: the `exr` crate's fast default; gains little on noisy heights.
+    #[default]
+    Rle,
+    /// None: the fastest to write (4 bytes per pixel on disk).
+    None,
+    /// ZIP, 16 scan lines per block: the smallest files, the slowest to write.
+    Zip,
+}
+
+/// [`write_height_exr`] into an [`OutputSet`] (RLE).
 pub fn stage_height_exr(set: &OutputSet, path: &Path, map: &HeightMap) -> Result<(), Error> {
+    stage_height_exr_with(set, path, map, ExrCompression::Rle)
+}
+
+/// [`stage_height_exr`] with a chosen compression.
+pub fn stage_height_exr_with(
+    set: &OutputSet,
+    path: &Path,
+    map: &HeightMap,
+    compression: ExrCompression,
+) -> Result<(), Error> {
     use exr::prelude::*;
     let (w, h) = (map.width_px() as usize, map.height_px() as usize);
     let data = map.data();
     let channels = SpecificChannels::build()
         .with_channel("Y")
         .with_pixel_fn(|pos: Vec2<usize>| (data[pos.y() * w + pos.x()],));
-    let image = Image::from_channels((w, h), channels);
+    let encoding = match compression {
+        ExrCompression::Rle => Encoding::FAST_LOSSLESS,
+        ExrCompression::None => Encoding::UNCOMPRESSED,
+        ExrCompression::Zip => Encoding::SMALL_LOSSLESS,
+    };
+    let image = Image::from_encoded_channels((w, h), encoding, channels);
     set.stage(path, |out| {
         // `out` is already buffered (and seekable, which exr needs for its offset table).
         image

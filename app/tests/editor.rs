@@ -189,3 +189,21 @@ fn main_window_snapshot_on_the_gpu_adapter() {
             .max_failed_pixels(8000),
     );
 }
+
+#[test]
+fn the_large_wrinkle_normal_picture_is_baked_only_while_shown() {
+    let mut h = harness();
+    settle(&mut h);
+    assert!(
+        h.state().snapshot().images.large_normal.is_none(),
+        "not baked on every change (the renderer reads heights)"
+    );
+    h.state_mut().map_view_mut().kind = agesim::editor::map_view::MapKind::LargeNormal;
+    h.run_steps(2);
+    let start = Instant::now();
+    while h.state().snapshot().images.large_normal.is_none() {
+        assert!(start.elapsed() < Duration::from_secs(120), "never baked");
+        h.run_steps(1);
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}

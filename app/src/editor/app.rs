@@ -136,6 +136,8 @@ pub struct EditorApp {
     user_presets: Vec<PathBuf>,
     preset_name: String,
     title: String,
+    /// Whether the bakes make the large-wrinkle normal picture (the map view shows it).
+    baked_normal_picture: bool,
     textures: Vec<(MapKind, egui::TextureHandle, usize)>,
     layout_texture: Option<(egui::TextureHandle, usize)>,
     persisted: Persisted,
@@ -238,6 +240,7 @@ impl EditorApp {
             user_presets: Vec::new(),
             preset_name: String::new(),
             title: String::new(),
+            baked_normal_picture: false,
             textures: Vec::new(),
             layout_texture: None,
             persisted,
@@ -266,6 +269,7 @@ impl EditorApp {
             app.persisted.recent.insert(0, p);
         }
         app.refresh_user_presets();
+        app.baked_normal_picture = app.persisted.map_view.kind == MapKind::LargeNormal;
         app.submit(false, "open");
         app
     }
@@ -312,7 +316,9 @@ impl EditorApp {
             t: self.project.age.t,
             fine: true,
             hair: true,
-            packed: true,
+            // The packing is only a picture for the map view (the renderer reads the
+            // heights): made when that picture is shown, not on every age change.
+            packed: self.persisted.map_view.kind == MapKind::LargeNormal,
         };
         self.worker.submit(Job {
             id: 0,
@@ -936,6 +942,12 @@ impl eframe::App for EditorApp {
             .inner;
         if compare_changed {
             self.submit(false, "compare");
+        }
+        // The large-wrinkle normal picture is baked only while it is shown.
+        let wants_normals = self.persisted.map_view.kind == MapKind::LargeNormal;
+        if wants_normals != self.baked_normal_picture {
+            self.baked_normal_picture = wants_normals;
+            self.submit(false, "map view");
         }
         // Head ↔ map: a click on the head marks its UV on the map; the pointer over the
         // map marks the surface point on the head.

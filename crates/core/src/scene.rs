@@ -73,7 +73,8 @@ pub struct BakeRequest {
 }
 
 impl BakeRequest {
-    /// Everything the renderer shows, at preview sizes.
+    /// Everything the renderer shows, at preview sizes. The renderer reads the heights,
+    /// so no RGBA packing (ask for it only to show it).
     pub fn preview(t: f32) -> Self {
         Self {
             large_size_px: 1024,
@@ -81,7 +82,7 @@ impl BakeRequest {
             t,
             fine: true,
             hair: true,
-            packed: true,
+            packed: false,
         }
     }
 

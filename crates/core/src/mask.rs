@@ -97,13 +97,37 @@ impl Mask {
 
     /// Bilinear sample at (u, v), clamped to the border texels.
     pub fn sample(&self, u: f32, v: f32) -> f32 {
-        let (w, h) = (self.width_px as usize, self.height_px as usize);
-        // Continuous pixel coordinates whose integer points are texel centres.
+        self.sample_taps(self.tap_u(u), self.tap_v(v))
+    }
+
+    /// The texel pair and weight along x for `u` (continuous pixel coordinates whose
+    /// integer points are texel centres, clamped to the border).
+    #[inline]
+    pub(crate) fn tap_u(&self, u: f32) -> (usize, usize, f32) {
+        let w = self.width_px as usize;
         let fx = (u * w as f32 - 0.5).clamp(0.0, (w - 1) as f32);
+        let x0 = fx.floor() as usize;
+        (x0, (x0 + 1).min(w - 1), fx - x0 as f32)
+    }
+
+    /// The texel-row pair and weight along y for `v` (row 0 at the top, v up).
+    #[inline]
+    pub(crate) fn tap_v(&self, v: f32) -> (usize, usize, f32) {
+        let h = self.height_px as usize;
         let fy = ((1.0 - v) * h as f32 - 0.5).clamp(0.0, (h - 1) as f32);
-        let (x0, y0) = (fx.floor() as usize, fy.floor() as usize);
-        let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
-        let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+        let y0 = fy.floor() as usize;
+        (y0, (y0 + 1).min(h - 1), fy - y0 as f32)
+    }
+
+    /// The bilinear sample between two taps: [`Mask::sample`] with the taps made once per
+    /// column and per row when a whole grid is sampled (same bytes, no floor per pixel).
+    #[inline]
+    pub(crate) fn sample_taps(
+        &self,
+        (x0, x1, tx): (usize, usize, f32),
+        (y0, y1, ty): (usize, usize, f32),
+    ) -> f32 {
+        let w = self.width_px as usize;
         let at = |x: usize, y: usize| self.values[y * w + x];
         let top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * tx;
         let bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * tx;

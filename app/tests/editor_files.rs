@@ -192,6 +192,31 @@ fn the_unsaved_changes_prompt_keeps_or_drops_the_changes() {
         2.5,
         "Cancel keeps the changes"
     );
+    // Save, then cancel the save dialog: nothing is saved and New does not follow,
+    // not even after a later save.
+    h.key_press_modifiers(Modifiers::COMMAND, Key::N);
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Save").click();
+    wait_for(&mut h, "the cancelled dialog", |_| {
+        dialogs.asked().len() == 1
+    });
+    h.run_steps(3);
+    assert_eq!(h.state().project().large.depth, 2.5);
+    let path = dir.path().join("kept.agesim.json");
+    dialogs.answer(Some(path.clone()));
+    h.key_press_modifiers(Modifiers::COMMAND, Key::S);
+    wait_for(&mut h, "the save", |app| !app.modified());
+    h.run_steps(3);
+    assert_eq!(
+        h.state().project().large.depth,
+        2.5,
+        "no New after the later save"
+    );
+    assert_eq!(h.state().path(), Some(path.as_path()));
+    // Now New asks nothing (saved); with a change, "Don't save" drops it.
+    h.get_by_role_and_label(Role::Slider, "depth")
+        .set_value_accesskit(2.5 + 0.5);
+    settle(&mut h);
     menu(&mut h, "File", "New (default head)");
     h.get_by_role_and_label(Role::Button, "Don't save").click();
     settle(&mut h);

@@ -284,7 +284,10 @@ impl EditorApp {
     pub(super) fn poll_io(&mut self) {
         for result in self.io.poll() {
             match result {
-                IoResult::Cancelled => {}
+                // A cancelled dialog also cancels what was to follow it (the Save of the
+                // unsaved-changes prompt: no New, Open or Quit after a save that did not
+                // happen).
+                IoResult::Cancelled => self.after_save = None,
                 IoResult::Picked(purpose, path) => match purpose {
                     Purpose::SaveProject => self.save_to(path),
                     Purpose::ImportMesh => self.import_mesh(path),

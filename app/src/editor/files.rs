@@ -304,11 +304,20 @@ pub fn save_project(
         let builtin = project.large.wrinkles.is_empty();
         let mut out = Vec::new();
         let mut paths = Vec::new();
+        let mut used: Vec<String> = Vec::new();
         for w in wrinkles {
             let base = Path::new(&w.name)
                 .file_stem()
                 .map_or_else(|| "wrinkles".into(), |s| s.to_string_lossy().into_owned());
-            let target = dir.join(format!("{stem}-{base}.wrk"));
+            // Two files of one name (from different folders) get their own copies.
+            let mut name = base.clone();
+            let mut k = 2;
+            while used.contains(&name) {
+                name = format!("{base}-{k}");
+                k += 1;
+            }
+            used.push(name.clone());
+            let target = dir.join(format!("{stem}-{name}.wrk"));
             wrinkle_file::save(&w.file, &target).map_err(|e| e.to_string())?;
             paths.push(target.clone());
             out.push(WrinkleSource {
@@ -329,4 +338,42 @@ pub fn save_project(
     }
     project.save(path).map_err(|e| e.to_string())?;
     Ok((project, saved))
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    use super::*;
+
+    #[test]
+    fn two_wrinkle_files_of_one_name_get_two_copies() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = |x: f32| {
+            wrinkle_file::parse(
+                &format!("!\nma={x};0.5\nmb={};0.6\nn=3\n", x + 0.05),
+                Path::new("forehead.wrk"),
+            )
+            .unwrap()
+        };
+        let sources: Vec<WrinkleSource> = ["a/forehead.wrk", "b/forehead.wrk"]
+            .iter()
+            .zip([0.3, 0.6])
+            .map(|(name, x)| WrinkleSource {
+                name: (*name).to_owned(),
+                path: Some(PathBuf::from(name)),
+                file: file(x),
+            })
+            .collect();
+        let path = dir.path().join("p.agesim.json");
+        let (project, saved) = save_project(&path, &Project::default(), Some(&sources)).unwrap();
+        let paths = &project.large.wrinkles;
+        assert_eq!(paths.len(), 2);
+        assert_ne!(paths[0], paths[1]);
+        for (p, s) in paths.iter().zip(&sources) {
+            assert_eq!(&wrinkle_file::load(p).unwrap(), &s.file);
+        }
+        assert_eq!(saved.unwrap().len(), 2);
+        // The built-in mask went beside it (the files were the built-in set's stand-ins).
+        assert!(project.large.mask.unwrap().is_file());
+    }
 }

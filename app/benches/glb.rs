@@ -56,6 +56,7 @@ fn main() {
             fine: true,
             hair: false,
             packed: false,
+            one_off: true,
         };
         scene.bake(&request, &never).unwrap();
         let large = scene.large().unwrap().height.clone();

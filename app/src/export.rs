@@ -254,7 +254,7 @@ fn export_maps(
     progress(0.1, "baking the maps");
     scene.bake(&BakeRequest::maps(maps.size_px, t), cancel)?;
     progress(0.5, "making the normal map");
-    let (height, normal_rgb) = scene.export_maps()?;
+    let (height, normal_rgb) = scene.take_maps()?;
     cancel.check()?;
     progress(0.6, "writing the maps");
     let n = maps.size_px;
@@ -309,22 +309,19 @@ fn export_glb(
         fine: true,
         hair: false,
         packed: false,
+        one_off: true,
     };
     scene.bake(&request, cancel)?;
     progress(0.5, "composing the normal map");
     let normals = head_normal_map(&scene, glb.size_px, cancel)?;
     progress(0.7, "encoding the textures");
     let mut png = Vec::new();
-    image::ImageEncoder::write_image(
-        image::codecs::png::PngEncoder::new_with_quality(
-            &mut png,
-            image::codecs::png::CompressionType::Fast,
-            image::codecs::png::FilterType::Adaptive,
-        ),
+    out::encode_png(
+        &mut png,
+        glb.size_px,
+        glb.size_px,
+        out::PngPixels::Rgb8,
         &normals,
-        glb.size_px,
-        glb.size_px,
-        image::ExtendedColorType::Rgb8,
     )
     .context("encoding the normal map")?;
     cancel.check()?;
@@ -663,18 +660,13 @@ fn export_renders(
 
 fn stage_png(set: &OutputSet, path: &Path, img: &image::RgbaImage) -> anyhow::Result<()> {
     set.stage(path, |w| {
-        image::ImageEncoder::write_image(
-            image::codecs::png::PngEncoder::new_with_quality(
-                w,
-                image::codecs::png::CompressionType::Fast,
-                image::codecs::png::FilterType::Adaptive,
-            ),
-            img.as_raw(),
+        out::encode_png(
+            w,
             img.width(),
             img.height(),
-            image::ExtendedColorType::Rgba8,
+            out::PngPixels::Rgba8,
+            img.as_raw(),
         )
-        .map_err(std::io::Error::other)
     })?;
     Ok(())
 }

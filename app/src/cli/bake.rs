@@ -297,7 +297,7 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     scene.bake(&BakeRequest::maps(args.size, age_t), &CancelToken::never())?;
     let bake_ms = ms(t);
     let t = Instant::now();
-    let (height, normal_rgb) = scene.export_maps()?;
+    let (height, normal_rgb) = scene.take_maps()?;
     let normal_ms = ms(t);
     let project = scene.project();
     let (fibres, _) = scene.fibres();

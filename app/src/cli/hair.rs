@@ -94,6 +94,7 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
         fine: false,
         hair: true,
         packed: false,
+        one_off: true,
     };
     scene.bake(&request, &CancelToken::never())?;
     let bake_ms = ms(start);

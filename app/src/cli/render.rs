@@ -202,6 +202,7 @@ impl SceneInputs {
             fine: true,
             hair: self.hair,
             packed: false,
+            one_off: true,
         };
         let first = self.scene.large().is_none() && self.scene.micro().is_none();
         let changed = self.scene.bake(&request, &CancelToken::never())?;

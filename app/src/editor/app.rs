@@ -319,6 +319,7 @@ impl EditorApp {
             // The packing is only a picture for the map view (the renderer reads the
             // heights): made when that picture is shown, not on every age change.
             packed: self.persisted.map_view.kind == MapKind::LargeNormal,
+            one_off: false,
         };
         self.worker.submit(Job {
             id: 0,

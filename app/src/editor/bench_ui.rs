@@ -11,8 +11,10 @@ use std::time::Instant;
 /// The phases, in order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Phase {
-    /// Waiting for the first bake.
+    /// Waiting for the first bakes and the first frames that show them.
     Warmup,
+    /// Frames with nothing baking and the view still.
+    Idle,
     BigBake,
     Slider,
     Scrub,
@@ -45,6 +47,9 @@ pub enum Action {
     Stop,
     Quit,
 }
+
+/// Idle frames measured for the baseline.
+const IDLE_FRAMES: usize = 40;
 
 fn median(v: &mut [f64]) -> f64 {
     if v.is_empty() {
@@ -92,10 +97,16 @@ impl BenchUi {
         let elapsed = (now - self.phase_start).as_secs_f64();
         match self.phase {
             Phase::Warmup => {
-                if idle && elapsed > 0.5 {
-                    self.intervals_ms.push(dt);
+                // The worker is idle and the uploads and first frames are done.
+                if !idle {
+                    self.phase_start = now;
+                } else if elapsed > 1.0 {
+                    self.next(Phase::Idle);
                 }
-                if idle && elapsed > 2.5 {
+            }
+            Phase::Idle => {
+                self.intervals_ms.push(dt);
+                if self.intervals_ms.len() >= IDLE_FRAMES {
                     let frames = self.intervals_ms.len();
                     let med = median(&mut self.intervals_ms);
                     self.idle_ms = med;

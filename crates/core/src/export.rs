@@ -18,11 +18,13 @@ use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use image::ImageEncoder as _;
-use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-
 use crate::error::Error;
 use crate::heightmap::HeightMap;
+
+mod openexr;
+mod png_file;
+
+pub use png_file::{PngPixels, encode_png, encode_png_rows};
 
 /// The temporary sibling of `path`: `.<name>.<pid>.<n>.tmp`, hidden and unique per call.
 fn temp_path(path: &Path) -> PathBuf {
@@ -256,23 +258,48 @@ mod signals {
     pub(super) fn install() {}
 }
 
-fn png_error(path: &Path, e: image::ImageError) -> std::io::Error {
-    std::io::Error::other(format!("PNG encoding of {} failed: {e}", path.display()))
-}
-
 /// Heights → 16-bit values: p = round((h − lo)/(hi − lo)·65535), so that
 /// h = lo + (hi − lo)·p/65535. A flat map (hi = lo) is all 0.
 pub fn quantize_u16(map: &HeightMap, range: (f32, f32)) -> Vec<u16> {
-    let (lo, hi) = range;
-    let scale = if hi > lo {
+    let scale = quantize_scale(range);
+    map.data()
+        .iter()
+        .map(|&h| quantize(h, range.0, scale))
+        .collect()
+}
+
+/// 65535/(hi − lo), or 0 for a flat map.
+fn quantize_scale((lo, hi): (f32, f32)) -> f64 {
+    if hi > lo {
         65535.0 / (hi as f64 - lo as f64)
     } else {
         0.0
-    };
-    map.data()
-        .iter()
-        .map(|&h| (((h as f64 - lo as f64) * scale).round()).clamp(0.0, 65535.0) as u16)
-        .collect()
+    }
+}
+
+/// Heights → big-endian 16-bit samples ([`quantize`]), compiled per CPU level so the
+/// rounding is inlined (without SSE4.1 `f64::round` is a libm call per pixel).
+struct QuantizeBe<'a> {
+    rows: &'a [f32],
+    lo: f32,
+    scale: f64,
+    out: &'a mut [u8],
+}
+
+impl crate::simd::Kernel for QuantizeBe<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        for (o, &h) in self.out.chunks_exact_mut(2).zip(self.rows) {
+            o.copy_from_slice(&quantize(h, self.lo, self.scale).to_be_bytes());
+        }
+    }
+}
+
+/// One height → its 16-bit value ([`quantize_u16`]).
+#[inline(always)]
+fn quantize(h: f32, lo: f32, scale: f64) -> u16 {
+    (((h as f64 - lo as f64) * scale).round()).clamp(0.0, 65535.0) as u16
 }
 
 /// Writes the height map as a 16-bit grey PNG spanning its own [min, max]; returns the
@@ -291,18 +318,26 @@ pub fn stage_height_png16(
     map: &HeightMap,
 ) -> Result<(f32, f32), Error> {
     let range = map.min_max();
-    let values = quantize_u16(map, range);
-    // `image` takes 16-bit samples in native byte order and swaps them for PNG itself.
-    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_ne_bytes()).collect();
+    let scale = quantize_scale(range);
+    let width = map.width_px() as usize;
     set.stage(path, |w| {
-        PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
-            .write_image(
-                &bytes,
-                map.width_px(),
-                map.height_px(),
-                image::ExtendedColorType::L16,
-            )
-            .map_err(|e| png_error(path, e))
+        encode_png_rows(
+            w,
+            map.width_px(),
+            map.height_px(),
+            PngPixels::Grey16,
+            |first, count, buf| {
+                let rows = &map.data()[first as usize * width..][..count as usize * width];
+                buf.resize(rows.len() * 2, 0);
+                let kernel = QuantizeBe {
+                    rows,
+                    lo: range.0,
+                    scale,
+                    out: buf,
+                };
+                crate::simd::dispatch_at(crate::simd::Level::detect(), kernel);
+            },
+        )
     })?;
     Ok(range)
 }
@@ -318,12 +353,14 @@ pub fn write_height_exr(path: &Path, map: &HeightMap) -> Result<(), Error> {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ExrCompression {
-    /// Run-length, 64² tiles: the `exr` crate's fast default; gains little on noisy heights.
+    /// Run-length, one scan line per block, the lines coded on all cores: fast, and small
+    /// on smooth maps (it gains little on noisy heights).
     #[default]
     Rle,
-    /// None: the fastest to write (4 bytes per pixel on disk).
+    /// None: 4 bytes per pixel on disk; the least work, but the most bytes to write.
     None,
-    /// ZIP, 16 scan lines per block: the smallest files, the slowest to write.
+    /// ZIP, 16 scan lines per block (the `exr` crate, one core): the smallest files, the
+    /// slowest to write.
     Zip,
 }
 
@@ -339,25 +376,28 @@ pub fn stage_height_exr_with(
     map: &HeightMap,
     compression: ExrCompression,
 ) -> Result<(), Error> {
-    use exr::prelude::*;
     let (w, h) = (map.width_px() as usize, map.height_px() as usize);
     let data = map.data();
-    let channels = SpecificChannels::build()
-        .with_channel("Y")
-        .with_pixel_fn(|pos: Vec2<usize>| (data[pos.y() * w + pos.x()],));
-    let encoding = match compression {
-        ExrCompression::Rle => Encoding::FAST_LOSSLESS,
-        ExrCompression::None => Encoding::UNCOMPRESSED,
-        ExrCompression::Zip => Encoding::SMALL_LOSSLESS,
+    let blocks = match compression {
+        ExrCompression::None => openexr::Blocks::Uncompressed,
+        ExrCompression::Rle => openexr::Blocks::Rle,
+        ExrCompression::Zip => {
+            use exr::prelude::*;
+            let channels = SpecificChannels::build()
+                .with_channel("Y")
+                .with_pixel_fn(|pos: Vec2<usize>| (data[pos.y() * w + pos.x()],));
+            let image = Image::from_encoded_channels((w, h), Encoding::SMALL_LOSSLESS, channels);
+            return set.stage(path, |out| {
+                // `out` is already buffered (and seekable, which exr needs for its offset
+                // table).
+                image
+                    .write()
+                    .to_unbuffered(out)
+                    .map_err(|e| std::io::Error::other(format!("OpenEXR encoding failed: {e}")))
+            });
+        }
     };
-    let image = Image::from_encoded_channels((w, h), encoding, channels);
-    set.stage(path, |out| {
-        // `out` is already buffered (and seekable, which exr needs for its offset table).
-        image
-            .write()
-            .to_unbuffered(out)
-            .map_err(|e| std::io::Error::other(format!("OpenEXR encoding failed: {e}")))
-    })
+    set.stage(path, |out| openexr::write_y_f32(out, w, h, data, blocks))
 }
 
 /// Writes 8-bit RGB pixels (`width × height × 3` bytes) as PNG.
@@ -376,9 +416,7 @@ pub fn stage_rgb8_png(
     rgb: &[u8],
 ) -> Result<(), Error> {
     set.stage(path, |w| {
-        PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
-            .write_image(rgb, width_px, height_px, image::ExtendedColorType::Rgb8)
-            .map_err(|e| png_error(path, e))
+        encode_png(w, width_px, height_px, PngPixels::Rgb8, rgb)
     })
 }
 
@@ -390,9 +428,7 @@ pub fn write_grey8_png(
     grey: &[u8],
 ) -> Result<(), Error> {
     write_atomically(path, |w| {
-        PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
-            .write_image(grey, width_px, height_px, image::ExtendedColorType::L8)
-            .map_err(|e| png_error(path, e))
+        encode_png(w, width_px, height_px, PngPixels::Grey8, grey)
     })
 }
 

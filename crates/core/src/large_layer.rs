@@ -66,28 +66,7 @@ impl LargeLayer {
         height_px: u32,
         cancel: &CancelToken,
     ) -> Result<usize, Error> {
-        crate::heightmap::check_size(width_px, height_px)?;
-        if fibres.len() > MAX_FIBRES {
-            return Err(Error::InvalidValue {
-                what: "number of wrinkle fibres".into(),
-                value: fibres.len().to_string(),
-                expected: format!("at most {MAX_FIBRES}"),
-            });
-        }
-        let area: u64 = fibres
-            .iter()
-            .filter_map(|f| muscle::pixel_bounds(f, width_px, height_px))
-            .map(|[x0, y0, x1, y1]| (x1 - x0) as u64 * (y1 - y0) as u64)
-            .sum();
-        if area > MAX_TOTAL_AREA_PX {
-            return Err(Error::InvalidValue {
-                what: format!("total area of the wrinkle fibres at {width_px}×{height_px}"),
-                value: format!("{area} px"),
-                expected: format!(
-                    "at most {MAX_TOTAL_AREA_PX} px (use fewer or narrower fibres, or a smaller map)"
-                ),
-            });
-        }
+        check_total_area(fibres, width_px, height_px)?;
         let same_size = (width_px, height_px) == (self.width_px, self.height_px);
         let mut old = if same_size {
             std::mem::take(&mut self.stamps)
@@ -208,6 +187,93 @@ impl LargeLayer {
         cancel.check()?;
         muscle::finish_impl(out, gamma, self.full_max, mask, cancel)
     }
+}
+
+/// The size, fibre-count and total-area limits ([`MAX_FIBRES`], [`MAX_TOTAL_AREA_PX`]).
+fn check_total_area(fibres: &[Fibre], width_px: u32, height_px: u32) -> Result<(), Error> {
+    crate::heightmap::check_size(width_px, height_px)?;
+    if fibres.len() > MAX_FIBRES {
+        return Err(Error::InvalidValue {
+            what: "number of wrinkle fibres".into(),
+            value: fibres.len().to_string(),
+            expected: format!("at most {MAX_FIBRES}"),
+        });
+    }
+    let area: u64 = fibres
+        .iter()
+        .filter_map(|f| muscle::pixel_bounds(f, width_px, height_px))
+        .map(|[x0, y0, x1, y1]| (x1 - x0) as u64 * (y1 - y0) as u64)
+        .sum();
+    if area > MAX_TOTAL_AREA_PX {
+        return Err(Error::InvalidValue {
+            what: format!("total area of the wrinkle fibres at {width_px}×{height_px}"),
+            value: format!("{area} px"),
+            expected: format!(
+                "at most {MAX_TOTAL_AREA_PX} px (use fewer or narrower fibres, or a smaller map)"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The layer at an age in one pass, keeping nothing (one-off bakes: `agesim bake`, the
+/// exports): each fibre is evaluated once per pixel of its rectangle, added to the row's
+/// full-age sum Σ_i h_i (for the normaliser) and to the aged sum Σ_i c_i·h_i, in fibre
+/// order. The same bytes as [`LargeLayer::update`] + [`LargeLayer::combine_with`] (the
+/// same evaluations, additions and order), without a stamp per fibre or a second pass.
+pub(crate) fn bake_direct(
+    fibres: &[Fibre],
+    factors: &[f32],
+    gamma: f32,
+    mask: MaskValues<'_>,
+    out: &mut HeightMap,
+    cancel: &CancelToken,
+) -> Result<(), Error> {
+    let (w, h) = (out.width_px(), out.height_px());
+    check_total_area(fibres, w, h)?;
+    let covering: Vec<(&Fibre, [u32; 4], f32)> = fibres
+        .iter()
+        .enumerate()
+        .filter_map(|(i, f)| {
+            muscle::pixel_bounds(f, w, h).map(|b| (f, b, factors.get(i).copied().unwrap_or(1.0)))
+        })
+        .collect();
+    let us: Vec<f32> = (0..w).map(|x| pixel_to_u(x, w)).collect();
+    let full_max = out
+        .data_mut()
+        .par_chunks_mut(w as usize)
+        .enumerate()
+        .map_init(
+            || vec![0.0f32; w as usize],
+            |full, (y, row)| {
+                row.fill(0.0);
+                if cancel.is_cancelled() {
+                    return 0.0;
+                }
+                full.fill(0.0);
+                let y = y as u32;
+                let v = pixel_to_v(y, h);
+                for &(fibre, [x0, y0, x1, y1], c) in &covering {
+                    if y < y0 || y >= y1 {
+                        continue;
+                    }
+                    let span = x0 as usize..x1 as usize;
+                    for ((dst, all), &u) in row[span.clone()]
+                        .iter_mut()
+                        .zip(&mut full[span.clone()])
+                        .zip(&us[span])
+                    {
+                        let height = fibre.height_at(u, v);
+                        *all += height;
+                        *dst += c * height;
+                    }
+                }
+                full.iter().copied().fold(0.0f32, f32::max)
+            },
+        )
+        .reduce(|| 0.0, f32::max);
+    cancel.check()?;
+    muscle::finish_impl(out, gamma, full_max, mask, cancel)
 }
 
 /// Adds c_i·h_i of every stamp covering row `y`, in stamp order.

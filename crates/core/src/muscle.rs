@@ -464,6 +464,16 @@ pub(crate) enum MaskValues<'a> {
     Sample(&'a Mask),
     /// Already sampled at this map's pixel centres (by [`sample_mask`]: the same values).
     Values(&'a [f32]),
+    /// Sampled from the column taps (`Mask::tap_u` of every pixel column) and each row's
+    /// tap: the same values again, without a map-sized buffer.
+    Taps(&'a Mask, &'a [(usize, usize, f32)]),
+}
+
+/// The column taps of `mask` for a map `width_px` wide ([`MaskValues::Taps`]).
+pub(crate) fn mask_columns(mask: &Mask, width_px: u32) -> Vec<(usize, usize, f32)> {
+    (0..width_px)
+        .map(|x| mask.tap_u(pixel_to_u(x, width_px)))
+        .collect()
 }
 
 /// `mask` sampled at every pixel centre of a `width_px × height_px` map, in parallel; the
@@ -473,9 +483,7 @@ pub(crate) fn sample_mask(mask: &Mask, width_px: u32, height_px: u32) -> Vec<f32
     // Huge pages where the platform has them: a 4096² map faults in 32 pages, not 16k.
     let mut out = crate::heightmap::zeroed_vec(n, "mask samples").unwrap_or_else(|_| vec![0.0; n]);
     // The column taps once for all rows: the same samples as `Mask::sample` per pixel.
-    let columns: Vec<_> = (0..width_px)
-        .map(|x| mask.tap_u(pixel_to_u(x, width_px)))
-        .collect();
+    let columns = mask_columns(mask, width_px);
     out.par_chunks_mut(width_px as usize)
         .enumerate()
         .for_each(|(y, row)| {
@@ -515,6 +523,10 @@ pub(crate) fn finish_impl(
                 return;
             }
             let v = pixel_to_v(y as u32, h);
+            let row_tap = match mask {
+                MaskValues::Taps(m, _) => m.tap_v(v),
+                _ => (0, 0, 0.0),
+            };
             for (x, p) in row.iter_mut().enumerate() {
                 // Most of a face map is untouched skin: 0^γ = 0, skip the powf.
                 if *p <= 0.0 {
@@ -526,6 +538,7 @@ pub(crate) fn finish_impl(
                     MaskValues::None => {}
                     MaskValues::Sample(m) => value *= m.sample(pixel_to_u(x as u32, w), v),
                     MaskValues::Values(m) => value *= m[y * w as usize + x],
+                    MaskValues::Taps(m, columns) => value *= m.sample_taps(columns[x], row_tap),
                 }
                 *p = value;
             }

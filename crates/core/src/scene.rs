@@ -70,6 +70,11 @@ pub struct BakeRequest {
     pub hair: bool,
     /// Also make the SPEC §4 RGBA8 packing of the large-wrinkle map (for the renderer).
     pub packed: bool,
+    /// A one-off bake (`agesim bake`, exports): the large-wrinkle map is made in one pass
+    /// without keeping per-fibre stamps or the sampled mask for later edits — the same
+    /// bytes with less memory touched. A later bake of the same scene still works; it
+    /// rasterises the stamps then.
+    pub one_off: bool,
 }
 
 impl BakeRequest {
@@ -83,10 +88,11 @@ impl BakeRequest {
             fine: true,
             hair: true,
             packed: false,
+            one_off: false,
         }
     }
 
-    /// The maps of `agesim bake`: one size, no hair, no packing.
+    /// The maps of `agesim bake`: one size, no hair, no packing, one-off.
     pub fn maps(size_px: u32, t: f32) -> Self {
         Self {
             large_size_px: size_px,
@@ -95,6 +101,7 @@ impl BakeRequest {
             fine: false,
             hair: false,
             packed: false,
+            one_off: true,
         }
     }
 }
@@ -538,37 +545,74 @@ impl Scene {
     /// large-wrinkle map added pixel by pixel (both baked at the same size; a layer that is
     /// off adds nothing), and the RGB8 normal map of the sum.
     pub fn export_maps(&self) -> Result<(HeightMap, Vec<u8>), Error> {
+        self.export_size()?;
+        let micro = self.micro.tile.as_ref().map(|m| m.height.clone());
+        let large = self.large.map.as_ref().map(|l| &l.height);
+        self.compose(micro, large)
+    }
+
+    /// [`Scene::export_maps`] for a one-off bake (`agesim bake`, exports): moves the kept
+    /// maps out instead of copying them (at 4096² a copy is 64 MB of fresh memory). The
+    /// scene forgets them; a later bake makes them again.
+    pub fn take_maps(&mut self) -> Result<(HeightMap, Vec<u8>), Error> {
+        self.export_size()?;
+        self.micro.key = None;
+        self.large.key = None;
+        let micro = self.micro.tile.take().map(|m| m.height);
+        let large = self.large.map.take().map(|l| l.height);
+        match micro {
+            Some(_) => self.compose(micro, large.as_ref()),
+            None => self.compose(large, None),
+        }
+    }
+
+    /// The side of the exported maps: the tile's or the large map's (they must agree).
+    fn export_size(&self) -> Result<u32, Error> {
         let size = match (&self.micro.tile, &self.large.map) {
             (Some(m), _) => m.height.width_px(),
             (None, Some(l)) => l.height.width_px(),
-            (None, None) => {
-                return Err(Error::InvalidValue {
-                    what: "bake".into(),
-                    value: "no layer".into(),
-                    expected:
-                        "at least one enabled layer (large wrinkles, pores, furrows or noise)"
-                            .into(),
-                });
-            }
+            (None, None) => return Err(no_layer()),
         };
-        let mut height = match &self.micro.tile {
-            Some(m) => m.height.clone(),
-            None => HeightMap::zeros(size, size)?,
+        if let Some(large) = &self.large.map
+            && large.height.width_px() != size
+        {
+            return Err(Error::InvalidValue {
+                what: "export size".into(),
+                value: format!("{} and {size}", large.height.width_px()),
+                expected: "the large-wrinkle and micro-relief maps baked at one size".into(),
+            });
+        }
+        Ok(size)
+    }
+
+    /// `base` (the micro tile's heights, or the large map's alone) plus `large`, and the
+    /// normal map of the sum.
+    fn compose(
+        &self,
+        base: Option<HeightMap>,
+        large: Option<&HeightMap>,
+    ) -> Result<(HeightMap, Vec<u8>), Error> {
+        let (mut height, large) = match (base, large) {
+            (Some(b), l) => (b, l),
+            (None, Some(l)) => (l.clone(), None),
+            (None, None) => return Err(no_layer()),
         };
-        if let Some(large) = &self.large.map {
-            if large.height.width_px() != size {
-                return Err(Error::InvalidValue {
-                    what: "export size".into(),
-                    value: format!("{} and {size}", large.height.width_px()),
-                    expected: "the large-wrinkle and micro-relief maps baked at one size".into(),
-                });
-            }
-            for (h, l) in height.data_mut().iter_mut().zip(large.height.data()) {
+        if let Some(large) = large {
+            for (h, l) in height.data_mut().iter_mut().zip(large.data()) {
                 *h += l;
             }
         }
         let rgb = normal_map::encode_rgb8(&height, &self.normal_settings())?;
         Ok((height, rgb))
+    }
+}
+
+/// The error of an export with no layer baked.
+fn no_layer() -> Error {
+    Error::InvalidValue {
+        what: "bake".into(),
+        value: "no layer".into(),
+        expected: "at least one enabled layer (large wrinkles, pores, furrows or noise)".into(),
     }
 }
 
@@ -614,7 +658,9 @@ impl LargeStage {
     ) -> Result<Changed, Error> {
         let mut changed = Changed::default();
         let size = request.large_size_px;
-        changed.large_stamps = self.layer.update(fibres, size, size, cancel)? > 0;
+        if !request.one_off {
+            changed.large_stamps = self.layer.update(fibres, size, size, cancel)? > 0;
+        }
         let key = LargeKey {
             layer_fibres: fibres.to_vec(),
             size,
@@ -627,6 +673,9 @@ impl LargeStage {
         };
         if self.key.as_ref() == Some(&key) && self.map.is_some() {
             return Ok(changed);
+        }
+        if request.one_off {
+            return self.bake_one_off(p, fibres, factors, large_mask, request, normal, key, cancel);
         }
         let mask_samples = match (large_mask.mask, &self.mask_samples) {
             (None, _) => None,
@@ -655,7 +704,65 @@ impl LargeStage {
             self.spare = Some(height);
             return Err(e);
         }
-        let depth = p.large.depth;
+        self.keep(height, p.large.depth, request, normal, key, cancel)?;
+        changed.large = true;
+        Ok(changed)
+    }
+
+    /// [`LargeStage::bake`] for a one-off request: one pass, no stamps, no mask buffer.
+    #[allow(clippy::too_many_arguments)]
+    fn bake_one_off(
+        &mut self,
+        p: &Project,
+        fibres: &[Fibre],
+        factors: &AgeFactors,
+        large_mask: LargeMask<'_>,
+        request: &BakeRequest,
+        normal: &NormalSettings,
+        key: LargeKey,
+        cancel: &CancelToken,
+    ) -> Result<Changed, Error> {
+        let size = request.large_size_px;
+        let columns = large_mask
+            .mask
+            .map(|m| crate::muscle::mask_columns(m, size))
+            .unwrap_or_default();
+        let mask = match large_mask.mask {
+            Some(m) => MaskValues::Taps(m, &columns),
+            None => MaskValues::None,
+        };
+        let mut height = match self.spare.take() {
+            Some(h) if h.width_px() == size && h.height_px() == size => h,
+            _ => HeightMap::zeros(size, size)?,
+        };
+        if let Err(e) = crate::large_layer::bake_direct(
+            fibres,
+            &factors.large,
+            p.large.gamma,
+            mask,
+            &mut height,
+            cancel,
+        ) {
+            self.spare = Some(height);
+            return Err(e);
+        }
+        self.keep(height, p.large.depth, request, normal, key, cancel)?;
+        Ok(Changed {
+            large: true,
+            ..Changed::default()
+        })
+    }
+
+    /// Scales a finished map by the depth, packs it if asked and keeps it as the map.
+    fn keep(
+        &mut self,
+        mut height: HeightMap,
+        depth: f32,
+        request: &BakeRequest,
+        normal: &NormalSettings,
+        key: LargeKey,
+        cancel: &CancelToken,
+    ) -> Result<(), Error> {
         if depth != 1.0 {
             for h in height.data_mut() {
                 *h *= depth;
@@ -676,8 +783,7 @@ impl LargeStage {
         });
         self.spare = previous.map(|l| l.height);
         self.key = Some(key);
-        changed.large = true;
-        Ok(changed)
+        Ok(())
     }
 }
 

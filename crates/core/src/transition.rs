@@ -610,23 +610,20 @@ impl TransitionTexture {
     /// Writes [`Self::to_luma16`] as a 16-bit grey PNG, atomically
     /// ([`crate::export::write_atomically`]).
     pub fn write_png16(&self, path: &std::path::Path) -> Result<(), Error> {
-        use image::ImageEncoder as _;
-        use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-        // `image` takes 16-bit samples in native byte order and swaps them for PNG itself.
-        let bytes: Vec<u8> = self
-            .to_luma16()
-            .iter()
-            .flat_map(|v| v.to_ne_bytes())
-            .collect();
+        use crate::export::{PngPixels, encode_png_rows};
+        let values = self.to_luma16();
+        let width = self.width_px as usize;
         crate::export::write_atomically(path, |w| {
-            PngEncoder::new_with_quality(w, CompressionType::Fast, FilterType::Adaptive)
-                .write_image(
-                    &bytes,
-                    self.width_px,
-                    self.height_px,
-                    image::ExtendedColorType::L16,
-                )
-                .map_err(|e| std::io::Error::other(format!("PNG encoding failed: {e}")))
+            encode_png_rows(
+                w,
+                self.width_px,
+                self.height_px,
+                PngPixels::Grey16,
+                |first, count, buf| {
+                    let rows = &values[first as usize * width..][..count as usize * width];
+                    buf.extend(rows.iter().flat_map(|v| v.to_be_bytes()));
+                },
+            )
         })
     }
 }

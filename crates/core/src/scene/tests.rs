@@ -8,6 +8,7 @@ fn small(t: f32) -> BakeRequest {
         fine: false,
         hair: false,
         packed: true,
+        one_off: false,
     }
 }
 
@@ -231,4 +232,61 @@ fn the_split_micro_tile_equals_the_fused_bake_byte_for_byte() {
         assert_eq!(m.height.data(), height.data(), "heights at t = {t}");
         assert_eq!(m.normal_rgb, rgb, "normals at t = {t}");
     }
+}
+
+#[test]
+fn a_one_off_bake_equals_the_kept_layer_bake_byte_for_byte() {
+    let mut p = project();
+    p.large.gamma = 0.7;
+    p.large.depth = 0.8;
+    for t in [0.3, 1.0] {
+        let kept = fresh(&p, &small(t));
+        let mut one = fresh(
+            &p,
+            &BakeRequest {
+                one_off: true,
+                ..small(t)
+            },
+        );
+        assert!(
+            kept.large_mask().is_some(),
+            "the mask is part of the comparison"
+        );
+        let (a, b) = (kept.large().unwrap(), one.large().unwrap());
+        let bits = |m: &HeightMap| m.data().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&a.height), bits(&b.height), "t = {t}");
+        assert_eq!(a.packed_rgba, b.packed_rgba, "t = {t}");
+        // The one-off scene still serves an editing bake: it rasterises its stamps then.
+        let c = one.bake(&small(0.6), &CancelToken::never()).unwrap();
+        assert!(c.large && c.large_stamps, "{c:?}");
+        assert_eq!(bytes(&one), bytes(&fresh(&p, &small(0.6))));
+    }
+}
+
+#[test]
+fn take_maps_moves_what_export_maps_copies_and_the_scene_bakes_again() {
+    let p = project();
+    let never = CancelToken::never();
+    let request = BakeRequest::maps(64, 0.7);
+    let mut s = fresh(&p, &request);
+    let copied = s.export_maps().unwrap();
+    let taken = s.take_maps().unwrap();
+    assert_eq!(copied.0.data(), taken.0.data());
+    assert_eq!(copied.1, taken.1);
+    assert!(s.large().is_none() && s.micro().is_none());
+    let c = s.bake(&request, &never).unwrap();
+    assert!(c.large && c.micro, "{c:?}");
+    assert_eq!(s.export_maps().unwrap().1, copied.1);
+    // The large map alone (no micro-relief layer) is moved, not summed onto zeros.
+    let mut large_only = p.clone();
+    large_only.pores.enabled = false;
+    large_only.furrows.enabled = false;
+    large_only.noise.details = 0.0;
+    let mut s = fresh(&large_only, &request);
+    let copied = s.export_maps().unwrap();
+    let kept = s.large().unwrap().height.data().to_vec();
+    let taken = s.take_maps().unwrap();
+    assert_eq!(taken.0.data(), &kept[..]);
+    assert_eq!(copied.0.data(), taken.0.data());
+    assert_eq!(copied.1, taken.1);
 }

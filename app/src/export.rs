@@ -253,35 +253,21 @@ fn export_maps(
     let mut scene = scene(p, wrinkles)?;
     progress(0.1, "baking the maps");
     scene.bake(&BakeRequest::maps(maps.size_px, t), cancel)?;
-    progress(0.5, "making the normal map");
-    let (height, normal_rgb) = scene.take_maps()?;
+    let height = scene.take_height()?;
+    let normal = scene.normal_settings();
     cancel.check()?;
     progress(0.6, "writing the maps");
-    let n = maps.size_px;
-    // The three encoders at once (EXR and PNG deflate are single-threaded each).
-    let (png, (exr, normal)) = rayon::join(
-        || match &maps.height_png {
-            Some(path) => out::stage_height_png16(set, path, &height).map(|_| ()),
-            None => Ok(()),
+    out::stage_maps(
+        set,
+        out::MapPaths {
+            height_png: maps.height_png.as_deref(),
+            height_exr: maps.height_exr.as_deref(),
+            normal_png: maps.normal_png.as_deref(),
         },
-        || {
-            rayon::join(
-                || match &maps.height_exr {
-                    Some(path) => {
-                        out::stage_height_exr_with(set, path, &height, maps.exr_compression)
-                    }
-                    None => Ok(()),
-                },
-                || match &maps.normal_png {
-                    Some(path) => out::stage_rgb8_png(set, path, n, n, &normal_rgb),
-                    None => Ok(()),
-                },
-            )
-        },
-    );
-    png?;
-    exr?;
-    normal?;
+        &height,
+        &normal,
+        maps.exr_compression,
+    )?;
     Ok(())
 }
 

@@ -297,8 +297,8 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     scene.bake(&BakeRequest::maps(args.size, age_t), &CancelToken::never())?;
     let bake_ms = ms(t);
     let t = Instant::now();
-    let (height, normal_rgb) = scene.take_maps()?;
-    let normal_ms = ms(t);
+    let height = scene.take_height()?;
+    let sum_ms = ms(t);
     let project = scene.project();
     let (fibres, _) = scene.fibres();
     let (pores, furrows) = scene
@@ -325,44 +325,18 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     // once), and only when all are written are they renamed into place, bake.json last.
     let outputs = export::OutputSet::new();
     let write_start = Instant::now();
-    let timed = |f: &dyn Fn() -> Result<(), agesim_core::Error>| {
-        let t = Instant::now();
-        f().map(|()| ms(t))
-    };
-    let (png, (exr, normal_png)) = rayon::join(
-        || {
-            let t = Instant::now();
-            export::stage_height_png16(&outputs, &args.out.join("height.png"), &height)
-                .map(|r| (r, ms(t)))
+    let staged = export::stage_maps(
+        &outputs,
+        export::MapPaths {
+            height_png: Some(&args.out.join("height.png")),
+            height_exr: Some(&args.out.join("height.exr")),
+            normal_png: Some(&args.out.join("normal.png")),
         },
-        || {
-            rayon::join(
-                || {
-                    timed(&|| {
-                        export::stage_height_exr_with(
-                            &outputs,
-                            &args.out.join("height.exr"),
-                            &height,
-                            args.exr_compression.into(),
-                        )
-                    })
-                },
-                || {
-                    timed(&|| {
-                        export::stage_rgb8_png(
-                            &outputs,
-                            &args.out.join("normal.png"),
-                            args.size,
-                            args.size,
-                            &normal_rgb,
-                        )
-                    })
-                },
-            )
-        },
-    );
-    let ((lo, hi), png_ms) = png?;
-    let (exr_ms, normal_png_ms) = (exr?, normal_png?);
+        &height,
+        &normal_settings,
+        args.exr_compression.into(),
+    )?;
+    let (lo, hi) = staged.height_png_range.unwrap_or_default();
     let maps_ms = ms(write_start);
 
     let report = json!({
@@ -400,10 +374,10 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         "timings_ms": {
             "parse_and_features": parse_ms,
             "bake": bake_ms,
-            "export_sum_and_normal_map": normal_ms,
-            "write_height_png": png_ms,
-            "write_height_exr": exr_ms,
-            "write_normal_png": normal_png_ms,
+            "export_sum": sum_ms,
+            "write_height_png": staged.height_png_ms,
+            "write_height_exr": staged.height_exr_ms,
+            "write_normal_png": staged.normal_png_ms,
             "write_maps_concurrently": maps_ms,
             "total": ms(total),
         },

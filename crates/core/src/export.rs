@@ -400,6 +400,110 @@ pub fn stage_height_exr_with(
     set.stage(path, |out| openexr::write_y_f32(out, w, h, data, blocks))
 }
 
+/// The normal map of `map` (`docs/models.md` "Normal maps") as an 8-bit RGB PNG, into an
+/// [`OutputSet`]: computed band by band as the encoder takes it, so no map-sized RGB
+/// buffer is made (at 4096² that is 48 MB of fresh memory and a pass over it). The same
+/// pixels as [`crate::normal_map::encode_rgb8`] written with [`stage_rgb8_png`].
+pub fn stage_normal_png(
+    set: &OutputSet,
+    path: &Path,
+    map: &HeightMap,
+    settings: &crate::normal_map::NormalSettings,
+) -> Result<(), Error> {
+    settings.validate()?;
+    let width = map.width_px() as usize;
+    let mut failed = None;
+    set.stage(path, |w| {
+        encode_png_rows(
+            w,
+            map.width_px(),
+            map.height_px(),
+            PngPixels::Rgb8,
+            |first, count, buf| {
+                buf.resize(3 * width * count as usize, 0);
+                if let Err(e) =
+                    crate::normal_map::encode_rgb8_rows(map, settings, first as usize, buf)
+                {
+                    failed.get_or_insert(e);
+                }
+            },
+        )
+    })?;
+    match failed {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// Where [`stage_maps`] writes a bake's maps; `None` skips that map.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MapPaths<'a> {
+    pub height_png: Option<&'a Path>,
+    pub height_exr: Option<&'a Path>,
+    pub normal_png: Option<&'a Path>,
+}
+
+/// What [`stage_maps`] did: the 16-bit PNG's height range, and each writer's wall time.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MapsStaged {
+    /// (lo, hi) of [`stage_height_png16`], when the PNG was written.
+    pub height_png_range: Option<(f32, f32)>,
+    pub height_png_ms: f64,
+    pub height_exr_ms: f64,
+    pub normal_png_ms: f64,
+}
+
+/// Stages a bake's three maps at once (each encoder is single-threaded but the EXR's RLE,
+/// so they share the cores): the 16-bit height PNG, the float height EXR and the normal
+/// map PNG of `height`. The first error, in that order, is returned.
+pub fn stage_maps(
+    set: &OutputSet,
+    paths: MapPaths<'_>,
+    height: &HeightMap,
+    normal: &crate::normal_map::NormalSettings,
+    exr: ExrCompression,
+) -> Result<MapsStaged, Error> {
+    fn timed<T>(f: impl FnOnce() -> Result<T, Error>) -> Result<(T, f64), Error> {
+        let start = std::time::Instant::now();
+        f().map(|v| (v, start.elapsed().as_secs_f64() * 1e3))
+    }
+    let (png, (exr, normal_png)) = rayon::join(
+        || {
+            timed(|| {
+                paths
+                    .height_png
+                    .map(|p| stage_height_png16(set, p, height))
+                    .transpose()
+            })
+        },
+        || {
+            rayon::join(
+                || {
+                    timed(|| match paths.height_exr {
+                        Some(p) => stage_height_exr_with(set, p, height, exr),
+                        None => Ok(()),
+                    })
+                },
+                || {
+                    timed(|| match paths.normal_png {
+                        Some(p) => stage_normal_png(set, p, height, normal),
+                        None => Ok(()),
+                    })
+                },
+            )
+        },
+    );
+    let (height_png_range, height_png_ms) = png?;
+    let ((), height_exr_ms) = exr?;
+    let ((), normal_png_ms) = normal_png?;
+    Ok(MapsStaged {
+        height_png_range,
+        height_png_ms,
+        height_exr_ms,
+        normal_png_ms,
+    })
+}
+
 /// Writes 8-bit RGB pixels (`width × height × 3` bytes) as PNG.
 pub fn write_rgb8_png(path: &Path, width_px: u32, height_px: u32, rgb: &[u8]) -> Result<(), Error> {
     let set = OutputSet::new();
@@ -439,6 +543,30 @@ mod tests {
 
     fn sample() -> HeightMap {
         HeightMap::from_vec(3, 2, vec![-1.0, 0.0, 1.0, 0.5, 0.25, -0.5]).unwrap()
+    }
+
+    #[test]
+    fn the_streamed_normal_png_has_the_pixels_of_encode_rgb8() {
+        use crate::normal_map::{Convention, NormalSettings};
+        let data: Vec<f32> = (0..57 * 45)
+            .map(|i| ((i % 57) as f32 * 0.3).sin() + (i / 57) as f32 * 0.05)
+            .collect();
+        let map = HeightMap::from_vec(57, 45, data).unwrap();
+        let settings = NormalSettings {
+            strength: 3.0,
+            convention: Convention::DirectX,
+            tiling: true,
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("normal.png");
+        let set = OutputSet::new();
+        stage_normal_png(&set, &path, &map, &settings).unwrap();
+        set.commit().unwrap();
+        let back = image::open(&path).unwrap().into_rgb8().into_raw();
+        assert_eq!(
+            back,
+            crate::normal_map::encode_rgb8(&map, &settings).unwrap()
+        );
     }
 
     #[test]

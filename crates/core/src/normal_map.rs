@@ -344,6 +344,38 @@ pub(crate) fn encode_rgb8_into(
     Ok(())
 }
 
+/// The RGB bytes of the rows `first_row..` that fit in `dst` (3·width bytes each), on
+/// this thread: the same bytes as those rows of [`encode_rgb8`] (for streaming a normal
+/// map into an encoder without a map-sized buffer).
+pub(crate) fn encode_rgb8_rows(
+    map: &HeightMap,
+    settings: &NormalSettings,
+    first_row: usize,
+    dst: &mut [u8],
+) -> Result<(), Error> {
+    settings.validate()?;
+    let (w, h) = (map.width_px() as usize, map.height_px() as usize);
+    if !dst.len().is_multiple_of(3 * w) || first_row + dst.len() / (3 * w) > h {
+        return Err(Error::InvalidValue {
+            what: "normal-map rows".into(),
+            value: format!("{} bytes from row {first_row}", dst.len()),
+            expected: format!("whole rows of {w}×{h}"),
+        });
+    }
+    crate::simd::dispatch_at(
+        Level::detect(),
+        EncodeRows {
+            data: map.data(),
+            w,
+            h,
+            first_row,
+            settings,
+            dst,
+        },
+    );
+    Ok(())
+}
+
 /// Encodes the rows `dst` holds, from `first_row` on (a [`crate::simd::Kernel`]).
 struct EncodeRows<'a> {
     data: &'a [f32],

@@ -546,24 +546,40 @@ impl Scene {
     /// off adds nothing), and the RGB8 normal map of the sum.
     pub fn export_maps(&self) -> Result<(HeightMap, Vec<u8>), Error> {
         self.export_size()?;
-        let micro = self.micro.tile.as_ref().map(|m| m.height.clone());
-        let large = self.large.map.as_ref().map(|l| &l.height);
-        self.compose(micro, large)
+        let height = match (&self.micro.tile, &self.large.map) {
+            (Some(m), large) => {
+                let mut height = m.height.clone();
+                if let Some(l) = large {
+                    add_into(&mut height, &l.height);
+                }
+                height
+            }
+            (None, Some(l)) => l.height.clone(),
+            (None, None) => return Err(no_layer()),
+        };
+        let rgb = normal_map::encode_rgb8(&height, &self.normal_settings())?;
+        Ok((height, rgb))
     }
 
-    /// [`Scene::export_maps`] for a one-off bake (`agesim bake`, exports): moves the kept
-    /// maps out instead of copying them (at 4096² a copy is 64 MB of fresh memory). The
-    /// scene forgets them; a later bake makes them again.
-    pub fn take_maps(&mut self) -> Result<(HeightMap, Vec<u8>), Error> {
+    /// The exported height map of a one-off bake (`agesim bake`, exports; the normal map
+    /// is then streamed from it, [`crate::export::stage_normal_png`]): the kept maps are
+    /// moved out, not copied (at 4096² a copy is 64 MB of fresh memory). The scene forgets
+    /// them; a later bake makes them again. The same heights as [`Scene::export_maps`].
+    pub fn take_height(&mut self) -> Result<HeightMap, Error> {
         self.export_size()?;
         self.micro.key = None;
         self.large.key = None;
         let micro = self.micro.tile.take().map(|m| m.height);
         let large = self.large.map.take().map(|l| l.height);
-        match micro {
-            Some(_) => self.compose(micro, large.as_ref()),
-            None => self.compose(large, None),
+        let (mut height, large) = match (micro, large) {
+            (Some(m), l) => (m, l),
+            (None, Some(l)) => (l, None),
+            (None, None) => return Err(no_layer()),
+        };
+        if let Some(large) = large {
+            add_into(&mut height, &large);
         }
+        Ok(height)
     }
 
     /// The side of the exported maps: the tile's or the large map's (they must agree).
@@ -584,26 +600,12 @@ impl Scene {
         }
         Ok(size)
     }
+}
 
-    /// `base` (the micro tile's heights, or the large map's alone) plus `large`, and the
-    /// normal map of the sum.
-    fn compose(
-        &self,
-        base: Option<HeightMap>,
-        large: Option<&HeightMap>,
-    ) -> Result<(HeightMap, Vec<u8>), Error> {
-        let (mut height, large) = match (base, large) {
-            (Some(b), l) => (b, l),
-            (None, Some(l)) => (l.clone(), None),
-            (None, None) => return Err(no_layer()),
-        };
-        if let Some(large) = large {
-            for (h, l) in height.data_mut().iter_mut().zip(large.data()) {
-                *h += l;
-            }
-        }
-        let rgb = normal_map::encode_rgb8(&height, &self.normal_settings())?;
-        Ok((height, rgb))
+/// h += l, pixel by pixel.
+fn add_into(height: &mut HeightMap, large: &HeightMap) {
+    for (h, l) in height.data_mut().iter_mut().zip(large.data()) {
+        *h += l;
     }
 }
 
@@ -1012,88 +1014,87 @@ impl Inputs {
     /// Loads what `project` names, reusing `previous`'s inputs whose key is unchanged.
     /// Every failing input is reported (wrinkle files with all their diagnostics).
     fn load(project: &Project, previous: Option<&Inputs>) -> Result<Self, Error> {
-        let mut errors: Vec<Error> = Vec::new();
         let mesh_key = (project.mesh.path.clone(), project.mesh.builtin);
-        let mesh = match previous.filter(|p| p.mesh_key == mesh_key) {
-            Some(p) => Some(p.mesh.clone()),
-            None => match load_mesh(project) {
-                Ok(m) => Some(Arc::new(m)),
-                Err(e) => {
-                    errors.push(e);
-                    None
-                }
-            },
-        };
         let wrinkles_key = project.large.wrinkles.clone();
-        let mut wrinkles_edited = false;
-        let wrinkles = match previous.filter(|p| p.wrinkles_key == wrinkles_key) {
-            Some(p) => {
-                wrinkles_edited = p.wrinkles_edited;
-                Some(p.wrinkles.clone())
-            }
-            None => match load_wrinkles(&wrinkles_key) {
-                Ok(w) => Some(w),
-                Err(e) => {
-                    errors.push(e);
-                    None
-                }
-            },
-        };
         let large_mask_key = (
             project.large.mask.clone(),
             project.large.wrinkles.is_empty(),
         );
-        let large_mask = match previous.filter(|p| p.large_mask_key == large_mask_key) {
-            Some(p) => Some(p.large_mask.clone()),
-            None => match load_large_mask(&large_mask_key) {
-                Ok(m) => Some(m.map(Arc::new)),
-                Err(e) => {
-                    errors.push(e);
-                    None
-                }
-            },
-        };
         let hair_masks_key = (
             project.hair.outer_mask.clone(),
             project.hair.inner_mask.clone(),
         );
-        let hair_masks = match previous.filter(|p| p.hair_masks_key == hair_masks_key) {
-            Some(p) => Some(p.hair_masks.clone()),
+        let fine_tile_key = project.fine.tile.clone();
+        // The inputs are independent: decoded at once on the pool (the mesh and the
+        // masks are most of a bake's start-up). Errors are reported in this fixed order.
+        let load_mesh_part = || match previous.filter(|p| p.mesh_key == mesh_key) {
+            Some(p) => Ok(p.mesh.clone()),
+            None => load_mesh(project).map(Arc::new),
+        };
+        let load_wrinkles_part = || match previous.filter(|p| p.wrinkles_key == wrinkles_key) {
+            Some(p) => Ok((p.wrinkles.clone(), p.wrinkles_edited)),
+            None => load_wrinkles(&wrinkles_key).map(|w| (w, false)),
+        };
+        let load_large_mask_part = || match previous.filter(|p| p.large_mask_key == large_mask_key)
+        {
+            Some(p) => Ok(p.large_mask.clone()),
+            None => load_large_mask(&large_mask_key).map(|m| m.map(Arc::new)),
+        };
+        let load_hair_part = || match previous.filter(|p| p.hair_masks_key == hair_masks_key) {
+            Some(p) => (Ok(p.hair_masks.clone()), Ok(())),
             None => {
-                let outer = load_mask_or(
-                    hair_masks_key.0.as_deref(),
-                    crate::defaults::HAIR_OUTER_MASK,
-                );
-                let inner = load_mask_or(
-                    hair_masks_key.1.as_deref(),
-                    crate::defaults::HAIR_INNER_MASK,
+                let (outer, inner) = rayon::join(
+                    || {
+                        load_mask_or(
+                            hair_masks_key.0.as_deref(),
+                            crate::defaults::HAIR_OUTER_MASK,
+                        )
+                    },
+                    || {
+                        load_mask_or(
+                            hair_masks_key.1.as_deref(),
+                            crate::defaults::HAIR_INNER_MASK,
+                        )
+                    },
                 );
                 match (outer, inner) {
-                    (Ok(o), Ok(i)) => Some(Some(Arc::new((o, i)))),
-                    (o, i) => {
-                        errors.extend(o.err());
-                        errors.extend(i.err());
-                        None
-                    }
+                    (Ok(o), Ok(i)) => (Ok(Some(Arc::new((o, i)))), Ok(())),
+                    (o, i) => (o.map(|_| None), i.map(|_| ())),
                 }
             }
         };
-        let fine_tile_key = project.fine.tile.clone();
-        let fine_tile = match previous.filter(|p| p.fine_tile_key == fine_tile_key) {
-            Some(p) => Some(p.fine_tile.clone()),
+        let load_fine_part = || match previous.filter(|p| p.fine_tile_key == fine_tile_key) {
+            Some(p) => Ok(p.fine_tile.clone()),
             None => match &fine_tile_key {
-                None => Some(None),
-                Some(path) => match Mask::load(path).and_then(|m| {
-                    HeightMap::from_vec(m.width_px(), m.height_px(), m.values().to_vec())
-                }) {
-                    Ok(h) => Some(Some(Arc::new(h))),
-                    Err(e) => {
-                        errors.push(e);
-                        None
-                    }
-                },
+                None => Ok(None),
+                Some(path) => Mask::load(path)
+                    .and_then(|m| {
+                        HeightMap::from_vec(m.width_px(), m.height_px(), m.values().to_vec())
+                    })
+                    .map(|h| Some(Arc::new(h))),
             },
         };
+        let (mesh, ((wrinkles, large_mask), ((hair_masks, inner_error), fine_tile))) =
+            rayon::join(load_mesh_part, || {
+                rayon::join(
+                    || rayon::join(load_wrinkles_part, load_large_mask_part),
+                    || rayon::join(load_hair_part, load_fine_part),
+                )
+            });
+        let mut errors: Vec<Error> = Vec::new();
+        let mut ok = |r: Result<(), Error>| errors.extend(r.err());
+        let mesh = mesh.map_err(|e| ok(Err(e))).ok();
+        let (wrinkles, wrinkles_edited) = match wrinkles {
+            Ok((w, edited)) => (Some(w), edited),
+            Err(e) => {
+                ok(Err(e));
+                (None, false)
+            }
+        };
+        let large_mask = large_mask.map_err(|e| ok(Err(e))).ok();
+        let hair_masks = hair_masks.map_err(|e| ok(Err(e))).ok();
+        ok(inner_error);
+        let fine_tile = fine_tile.map_err(|e| ok(Err(e))).ok();
         match (mesh, wrinkles, large_mask, hair_masks, fine_tile) {
             (Some(mesh), Some(wrinkles), Some(large_mask), Some(hair_masks), Some(fine_tile))
                 if errors.is_empty() =>

@@ -264,29 +264,31 @@ fn a_one_off_bake_equals_the_kept_layer_bake_byte_for_byte() {
 }
 
 #[test]
-fn take_maps_moves_what_export_maps_copies_and_the_scene_bakes_again() {
+fn take_height_moves_what_export_maps_copies_and_the_scene_bakes_again() {
     let p = project();
     let never = CancelToken::never();
     let request = BakeRequest::maps(64, 0.7);
     let mut s = fresh(&p, &request);
-    let copied = s.export_maps().unwrap();
-    let taken = s.take_maps().unwrap();
-    assert_eq!(copied.0.data(), taken.0.data());
-    assert_eq!(copied.1, taken.1);
+    let (copied, rgb) = s.export_maps().unwrap();
+    let taken = s.take_height().unwrap();
+    assert_eq!(copied.data(), taken.data());
+    assert_eq!(
+        rgb,
+        normal_map::encode_rgb8(&taken, &s.normal_settings()).unwrap()
+    );
     assert!(s.large().is_none() && s.micro().is_none());
     let c = s.bake(&request, &never).unwrap();
     assert!(c.large && c.micro, "{c:?}");
-    assert_eq!(s.export_maps().unwrap().1, copied.1);
+    assert_eq!(s.export_maps().unwrap().1, rgb);
     // The large map alone (no micro-relief layer) is moved, not summed onto zeros.
     let mut large_only = p.clone();
     large_only.pores.enabled = false;
     large_only.furrows.enabled = false;
     large_only.noise.details = 0.0;
     let mut s = fresh(&large_only, &request);
-    let copied = s.export_maps().unwrap();
+    let (copied, _) = s.export_maps().unwrap();
     let kept = s.large().unwrap().height.data().to_vec();
-    let taken = s.take_maps().unwrap();
-    assert_eq!(taken.0.data(), &kept[..]);
-    assert_eq!(copied.0.data(), taken.0.data());
-    assert_eq!(copied.1, taken.1);
+    let taken = s.take_height().unwrap();
+    assert_eq!(taken.data(), &kept[..]);
+    assert_eq!(copied.data(), taken.data());
 }

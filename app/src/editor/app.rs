@@ -805,6 +805,11 @@ impl eframe::App for EditorApp {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title = title;
         }
+        if self.bench.as_ref().is_some_and(|b| b.floor()) {
+            egui::CentralPanel::default().show(ui, |_| {});
+            self.bench_step(&ctx);
+            return;
+        }
         let frame_ms = frame.info().cpu_usage.unwrap_or(0.0) * 1e3;
         egui::Panel::top("menu").show(ui, |ui| self.menu_ui(ui));
         egui::Panel::bottom("status").show(ui, |ui| self.status_ui(ui, frame_ms));

@@ -246,10 +246,12 @@ pub(crate) fn bake_direct(
         .map_init(
             || vec![0.0f32; w as usize],
             |full, (y, row)| {
-                row.fill(0.0);
+                // Cancelled: leave the row (the caller drops the buffer's content), so the
+                // rest of the map is not even touched.
                 if cancel.is_cancelled() {
                     return 0.0;
                 }
+                row.fill(0.0);
                 full.fill(0.0);
                 let y = y as u32;
                 let v = pixel_to_v(y, h);

@@ -5,8 +5,8 @@
 //! 3. frames per second while the age plays (scrubbing) with the default head's hair.
 //!
 //! Two yardsticks are measured in the same run: the idle editor's frame interval, and the
-//! adapter's floor, the interval of frames in which the app paints nothing but one empty
-//! full-window panel (on a CPU rasteriser that alone is tens of milliseconds).
+//! adapter's floor, the interval of frames in which the app paints nothing (the window is
+//! only cleared and presented).
 //!
 //! Each phase drives the app through the same calls the widgets make.
 
@@ -19,8 +19,8 @@ enum Phase {
     Warmup,
     /// Frames with nothing baking and the view still.
     Idle,
-    /// Frames in which the app paints nothing but an empty full-window panel: what this
-    /// adapter costs per egui frame, whatever the editor draws (the floor).
+    /// Frames in which the app paints nothing (the window cleared to the panel colour):
+    /// what this adapter costs per egui frame, whatever the editor draws (the floor).
     Floor,
     BigBake,
     Slider,
@@ -135,7 +135,7 @@ impl BenchUi {
                     let med = median(&mut self.intervals_ms);
                     self.floor_ms = med;
                     self.results.push(format!(
-                        "| adapter floor: an empty full-window egui frame ({IDLE_FRAMES} frames) | median {med:.1} ms ({:.0} % of the baseline) | — |",
+                        "| adapter floor: an empty egui frame (clear and present) ({IDLE_FRAMES} frames) | median {med:.1} ms ({:.0} % of the baseline) | — |",
                         100.0 * med / self.idle_ms
                     ));
                     self.intervals_ms.clear();

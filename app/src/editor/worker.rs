@@ -228,6 +228,27 @@ impl Worker {
     }
 }
 
+/// Bakes up to this side run on the normal-priority pool (previews); larger ones on the
+/// low-priority pool.
+const PREVIEW_MAX_PX: u32 = 1024;
+
+/// Gives the calling thread a lower scheduling priority (Linux `nice` 10, per thread):
+/// when a full-resolution bake and a frame want the same cores, the frame (the UI thread
+/// and, on a CPU adapter, the rasteriser's threads) goes first, so the editor keeps
+/// responding; a bake alone still gets every core it asks for. Best effort: a failure
+/// changes nothing.
+fn lower_priority() {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: gettid has no preconditions; setpriority on our own thread id only
+        // changes that thread's nice value (raising it needs no privilege).
+        unsafe {
+            let tid = libc::gettid();
+            libc::setpriority(libc::PRIO_PROCESS, tid as libc::id_t, 10);
+        }
+    }
+}
+
 fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl Fn()) {
     let mut scene: Option<Scene> = None;
     let mut snapshot = Snapshot::default();
@@ -239,14 +260,33 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
     let threads = std::thread::available_parallelism()
         .map_or(1, |n| n.get().saturating_sub(1))
         .max(1);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .thread_name(|i| format!("agesim-bake-{i}"))
-        .build()
-        .ok();
-    let install = |f: &mut (dyn FnMut() + Send)| match &pool {
-        Some(p) => p.install(f),
-        None => f(),
+    // Two pools of the same size: previews (what a slider drag or a scrub waits for) at
+    // normal priority, full-resolution bakes at a lower one, so a long bake gives way to
+    // the frames and to the previews asked for meanwhile.
+    let pool = |name: &'static str, low: bool| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .thread_name(move |i| format!("{name}-{i}"))
+            .start_handler(move |_| {
+                if low {
+                    lower_priority();
+                }
+            })
+            .build()
+            .ok()
+    };
+    let (preview_pool, full_pool) = (pool("agesim-preview", false), pool("agesim-bake", true));
+    let install = |job: &Job, f: &mut (dyn FnMut() + Send)| {
+        let r = &job.request;
+        let pool = if r.large_size_px.max(r.micro_size_px) > PREVIEW_MAX_PX {
+            &full_pool
+        } else {
+            &preview_pool
+        };
+        match pool {
+            Some(p) => p.install(f),
+            None => f(),
+        }
     };
     while let Ok(mut next) = jobs.recv() {
         // Latest wins: skip everything queued behind the newest job.
@@ -260,7 +300,9 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         let (job, cancel) = next;
         let start = Instant::now();
         let mut outcome = Err(Error::Cancelled);
-        install(&mut || outcome = bake(&mut scene, &mut snapshot, &job, &cancel));
+        install(&job, &mut || {
+            outcome = bake(&mut scene, &mut snapshot, &job, &cancel)
+        });
         if let (Ok(_), Some(t)) = (&outcome, job.compare_t) {
             // The second age: a scene of its own, so neither side re-bakes the other's age.
             let mut job_b = job.clone();
@@ -270,7 +312,9 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
                 scene_b = scene.clone();
             }
             let mut result_b = Err(Error::Cancelled);
-            install(&mut || result_b = bake(&mut scene_b, &mut snapshot_b, &job_b, &cancel));
+            install(&job_b, &mut || {
+                result_b = bake(&mut scene_b, &mut snapshot_b, &job_b, &cancel)
+            });
             match result_b {
                 Ok(_) => snapshot.compare = Some(Box::new(snapshot_b.clone())),
                 Err(e) => outcome = Err(e),

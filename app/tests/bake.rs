@@ -1,23 +1,16 @@
 //! End-to-end tests of `agesim bake`: the real binary on real files.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod cli;
 
-fn agesim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_agesim"))
-        .args(args)
-        .output()
-        .expect("the agesim binary runs")
-}
+use cli::{agesim, stderr};
+
+use std::path::Path;
+use std::process::Command;
 
 /// The bake.json written into `out`.
 fn bake_json(out: &Path) -> serde_json::Value {
     serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 #[test]

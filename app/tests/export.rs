@@ -2,22 +2,13 @@
 //! read back with the `gltf` crate, maps at an age, all-or-nothing on errors and cancels.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::process::{Command, Output};
+mod cli;
+
+use cli::{agesim, stderr};
 
 use agesim::export::{ExportRequest, GlbOut, MapsOut};
 use agesim_core::cancel::CancelToken;
 use agesim_core::project::Project;
-
-fn agesim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_agesim"))
-        .args(args)
-        .output()
-        .expect("the agesim binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 #[test]
 fn the_aged_head_glb_loads_back_with_its_material() {

@@ -1,15 +1,12 @@
 //! End-to-end tests of `agesim hair` (SPEC §6): the real binary on real files.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod cli;
 
-fn agesim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_agesim"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use cli::agesim;
+
+use std::path::Path;
+use std::process::Output;
 
 fn ok(args: &[&str]) -> Output {
     let out = agesim(args);

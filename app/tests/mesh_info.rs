@@ -2,6 +2,10 @@
 //! glTF written by the test, and on bad input.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod cli;
+
+use cli::stdout;
+
 use std::process::{Command, Output};
 
 fn mesh_info(args: &[&str]) -> Output {
@@ -10,10 +14,6 @@ fn mesh_info(args: &[&str]) -> Output {
         .args(args)
         .output()
         .unwrap()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 #[test]

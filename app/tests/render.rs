@@ -2,15 +2,11 @@
 //! Without a GPU adapter the rendering tests print why and pass, except with `CI=true`.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::process::{Command, Output};
+mod cli;
 
-fn agesim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_agesim"))
-        .args(args)
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .output()
-        .unwrap()
-}
+use cli::agesim;
+
+use std::process::Output;
 
 /// Runs a render; `None` when no adapter exists on a machine that is not CI.
 fn render(args: &[&str]) -> Option<Output> {

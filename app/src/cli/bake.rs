@@ -142,19 +142,8 @@ fn project_source(args: &BakeArgs) -> String {
 
 /// The project of `args`, fully resolved and validated.
 fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
-    let mut project = match (&args.project, &args.preset) {
-        (Some(path), _) => Project::load(path)?,
-        (None, Some(name)) => {
-            let Some((file, text)) = defaults::preset(name) else {
-                bail!(
-                    "unknown preset `{name}`: expected one of {}",
-                    defaults::preset_names().join(", ")
-                );
-            };
-            Project::from_json_str(text, file)?
-        }
-        (None, None) => Project::default(),
-    };
+    let mut project =
+        super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
     // (field, value as JSON, what the user typed): errors quote the flag as typed.
     let mut edits: Vec<(&str, String, String)> = Vec::new();
     if !args.wrinkles.is_empty() {

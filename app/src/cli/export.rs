@@ -5,8 +5,6 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use agesim_core::cancel::CancelToken;
-use agesim_core::defaults;
-use agesim_core::project::Project;
 use anyhow::bail;
 
 use crate::export::{ExportRequest, GlbOut, MapsOut, RendersOut};
@@ -70,37 +68,13 @@ pub struct ExportArgs {
     )]
     pub compare_years: Vec<f32>,
     /// Size of the renders, WxH px.
-    #[arg(long, default_value = "1024x1024", value_parser = parse_size)]
+    #[arg(long, default_value = "1024x1024", value_parser = super::parse_size)]
     pub render_size: (u32, u32),
-}
-
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X', '×'])
-        .ok_or_else(|| format!("`{s}`: expected WxH, e.g. 1024x1024"))?;
-    let parse = |t: &str| {
-        t.trim()
-            .parse::<u32>()
-            .map_err(|_| format!("`{s}`: expected WxH, e.g. 1024x1024"))
-    };
-    Ok((parse(w)?, parse(h)?))
 }
 
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let start = Instant::now();
-    let project = match (&args.project, &args.preset) {
-        (Some(path), _) => Project::load(path)?,
-        (None, Some(name)) => {
-            let Some((file, text)) = defaults::preset(name) else {
-                bail!(
-                    "unknown preset `{name}`: expected one of {}",
-                    defaults::preset_names().join(", ")
-                );
-            };
-            Project::from_json_str(text, file)?
-        }
-        (None, None) => Project::default(),
-    };
+    let project = super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
     let years = args
         .age_years
         .unwrap_or_else(|| project.age.mapping().years(project.age.t));

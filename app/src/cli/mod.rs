@@ -81,3 +81,40 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Export(args)) => export::run(&args),
     }
 }
+
+/// The project a command starts from: `--project FILE`, else `--preset NAME`, else the
+/// default project.
+pub(crate) fn load_project_or_preset(
+    project: Option<&std::path::Path>,
+    preset: Option<&str>,
+) -> anyhow::Result<agesim_core::project::Project> {
+    use agesim_core::{defaults, project::Project};
+    Ok(match (project, preset) {
+        (Some(path), _) => Project::load(path)?,
+        (None, Some(name)) => {
+            let Some((file, text)) = defaults::preset(name) else {
+                anyhow::bail!(
+                    "unknown preset `{name}`: expected one of {}",
+                    defaults::preset_names().join(", ")
+                );
+            };
+            Project::from_json_str(text, file)?
+        }
+        (None, None) => Project::default(),
+    })
+}
+
+/// A `WxH` size in pixels, each side in 1..=8192 (`1024x1024`, `1280X720`, `640×480`).
+pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X', '×'])
+        .ok_or_else(|| format!("expected WxH, e.g. 1024x1024, got `{s}`"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&n| (1..=8192).contains(&n))
+            .ok_or_else(|| format!("`{v}` is not a size in 1..=8192"))
+    };
+    Ok((parse(w)?, parse(h)?))
+}

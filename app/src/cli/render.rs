@@ -54,7 +54,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub disp_scale: Option<f32>,
     /// Image size, WxH pixels.
-    #[arg(long, default_value = "800x800", value_parser = parse_size)]
+    #[arg(long, default_value = "800x800", value_parser = super::parse_size)]
     pub size: (u32, u32),
     /// Camera yaw, degrees (0 = from the front, positive = from the subject's left).
     #[arg(long, allow_hyphen_values = true)]
@@ -113,20 +113,6 @@ impl From<PomArg> for PomMode {
             PomArg::Displacement => PomMode::Displacement,
         }
     }
-}
-
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WxH, got `{s}`"))?;
-    let parse = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|&n| (1..=8192).contains(&n))
-            .ok_or_else(|| format!("`{v}` is not a size in 1..=8192"))
-    };
-    Ok((parse(w)?, parse(h)?))
 }
 
 /// Everything on the CPU the renderer needs: the engine's [`Scene`] of the project (mesh,

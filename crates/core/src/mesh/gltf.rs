@@ -305,26 +305,18 @@ impl Loader<'_> {
             .ok_or_else(|| missing("POSITION"))?
             .map(Vec3::from_array)
             .collect();
-        let normals: Option<Vec<Vec3>> = match normal_count {
-            Some(_) => Some(
-                reader
-                    .read_normals()
-                    .ok_or_else(|| missing("NORMAL"))?
-                    .map(Vec3::from_array)
-                    .collect(),
-            ),
-            None => None,
-        };
-        let tangents: Option<Vec<Vec4>> = match tangent_count {
-            Some(_) => Some(
-                reader
-                    .read_tangents()
-                    .ok_or_else(|| missing("TANGENT"))?
-                    .map(Vec4::from_array)
-                    .collect(),
-            ),
-            None => None,
-        };
+        let normals: Option<Vec<Vec3>> = normal_count
+            .map(|_| {
+                let read = reader.read_normals().ok_or_else(|| missing("NORMAL"))?;
+                Ok::<_, String>(read.map(Vec3::from_array).collect())
+            })
+            .transpose()?;
+        let tangents: Option<Vec<Vec4>> = tangent_count
+            .map(|_| {
+                let read = reader.read_tangents().ok_or_else(|| missing("TANGENT"))?;
+                Ok::<_, String>(read.map(Vec4::from_array).collect())
+            })
+            .transpose()?;
         let uvs: Option<Vec<Vec2>> = match uv_count {
             Some(_) => Some(
                 reader
@@ -637,20 +629,25 @@ mod tests {
         let mut bin = Vec::new();
         let mut views = Vec::new();
         let mut accessors = Vec::new();
-        let mut push =
-            |bytes: &[u8], acc: String, views: &mut Vec<String>, accessors: &mut Vec<String>| {
-                while !bin.len().is_multiple_of(4) {
-                    bin.push(0);
-                }
-                views.push(format!(
-                    r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
-                    bin.len(),
-                    bytes.len()
-                ));
-                bin.extend_from_slice(bytes);
-                accessors.push(acc.replace("VIEW", &(views.len() - 1).to_string()));
-                accessors.len() - 1
-            };
+        // One buffer view and its accessor: `kind` is the accessor's componentType, type
+        // and count (and bounds), `VIEW` standing for the view's index.
+        let mut push = |bytes: &[u8], kind: String| {
+            while !bin.len().is_multiple_of(4) {
+                bin.push(0);
+            }
+            views.push(format!(
+                r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
+                bin.len(),
+                bytes.len()
+            ));
+            bin.extend_from_slice(bytes);
+            let view = (views.len() - 1).to_string();
+            accessors.push(format!(r#"{{"bufferView":VIEW,{kind}}}"#).replace("VIEW", &view));
+            accessors.len() - 1
+        };
+        let floats = |count: usize, ty: &str| {
+            format!(r#""componentType":5126,"count":{count},"type":"{ty}""#)
+        };
         let mut mesh_json = Vec::new();
         for prims in meshes {
             let mut prim_json = Vec::new();
@@ -665,48 +662,26 @@ mod tests {
                                 [hi[0].max(q[0]), hi[1].max(q[1]), hi[2].max(q[2])],
                             )
                         });
+                let bounds = format!(r#","min":{lo:?},"max":{hi:?}"#);
                 let a = push(
                     bytemuck::cast_slice(&p.positions),
-                    format!(
-                        r#"{{"bufferView":VIEW,"componentType":5126,"count":{},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#,
-                        p.positions.len()
-                    ),
-                    &mut views,
-                    &mut accessors,
+                    floats(p.positions.len(), "VEC3") + &bounds,
                 );
                 attrs.push(format!(r#""POSITION":{a}"#));
                 if let Some(n) = &p.normals {
-                    let a = push(
-                        bytemuck::cast_slice(n),
-                        format!(
-                            r#"{{"bufferView":VIEW,"componentType":5126,"count":{},"type":"VEC3"}}"#,
-                            n.len()
-                        ),
-                        &mut views,
-                        &mut accessors,
-                    );
+                    let a = push(bytemuck::cast_slice(n), floats(n.len(), "VEC3"));
                     attrs.push(format!(r#""NORMAL":{a}"#));
                 }
                 if let Some(t) = &p.uvs {
-                    let a = push(
-                        bytemuck::cast_slice(t),
-                        format!(
-                            r#"{{"bufferView":VIEW,"componentType":5126,"count":{},"type":"VEC2"}}"#,
-                            t.len()
-                        ),
-                        &mut views,
-                        &mut accessors,
-                    );
+                    let a = push(bytemuck::cast_slice(t), floats(t.len(), "VEC2"));
                     attrs.push(format!(r#""TEXCOORD_0":{a}"#));
                 }
                 let i = push(
                     bytemuck::cast_slice(&p.indices),
                     format!(
-                        r#"{{"bufferView":VIEW,"componentType":5123,"count":{},"type":"SCALAR"}}"#,
+                        r#""componentType":5123,"count":{},"type":"SCALAR""#,
                         p.indices.len()
                     ),
-                    &mut views,
-                    &mut accessors,
                 );
                 prim_json.push(format!(
                     r#"{{"attributes":{{{}}},"indices":{i}}}"#,

@@ -515,6 +515,12 @@ impl EditorApp {
             }
             if let Some(v) = &self.viewport {
                 ui.label(format!("3D frame encode {:.1} ms", v.encode_ms));
+                if v.sparse_hair {
+                    ui.label(format!(
+                        "(moving: 1 hair in {} drawn)",
+                        agesim_render::SPARSE_HAIR_STRIDE
+                    ));
+                }
             }
             if let Some(l) = &self.snapshot.large {
                 let key = std::sync::Arc::as_ptr(l) as usize;

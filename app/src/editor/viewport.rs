@@ -51,8 +51,10 @@ pub struct Viewport {
     last: Option<(agesim_render::FrameParams, [u32; 2], Uploaded)>,
     /// Time to encode and submit the last frame, ms.
     pub encode_ms: f64,
-    /// Hairs drawn in the last frame.
+    /// The hairs of the last frame's age (count(t)).
     pub hairs_drawn: u32,
+    /// Whether the last frame drew one hair in `SPARSE_HAIR_STRIDE` of them.
+    pub sparse_hair: bool,
     pub error: Option<String>,
     /// The surface point clicked last (taken by the app to show it on the map).
     pub picked: Option<super::pick::SurfacePoint>,
@@ -73,6 +75,7 @@ impl Viewport {
             last: None,
             encode_ms: 0.0,
             hairs_drawn: 0,
+            sparse_hair: false,
             error: None,
             picked: None,
             marker: None,
@@ -236,7 +239,10 @@ impl Viewport {
         factors.t = project.age.t;
         let mut camera = frame::camera(project, self.centre + self.pan);
         camera.distance = camera.distance.max(1e-3);
-        let params = frame::frame_params(project, &factors, camera);
+        let mut params = frame::frame_params(project, &factors, camera);
+        // While the view moves or the age plays (drawn at a lower resolution), one hair in
+        // SPARSE_HAIR_STRIDE: the still frame that follows draws them all.
+        params.hair.sparse = self.scale < 1.0;
         let ppp = ctx.pixels_per_point() * self.scale.clamp(0.1, 1.0);
         let size = [
             ((rect.width() * ppp) as u32).clamp(16, 4096),
@@ -279,6 +285,7 @@ impl Viewport {
                     } else {
                         0
                     };
+                    self.sparse_hair = params.hair.sparse;
                     self.error = None;
                 }
                 Err(e) => self.error = Some(e.to_string()),

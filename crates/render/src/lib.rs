@@ -32,7 +32,7 @@ pub use gpu::Gpu;
 pub use mesh::SurfaceScale;
 pub use params::{
     Camera, DEFAULT_FINE_TILE_SIZE_M, FrameOutput, FrameParams, GrayingRampParam, HairShading,
-    Light, PomMode, SkinParams,
+    Light, PomMode, SPARSE_HAIR_STRIDE, SkinParams,
 };
 pub use renderer::{COLOUR_FORMAT, DEPTH_FORMAT, PreparedLayer, Renderer, TileLayer, Upload};
 pub use uniforms::FrameUniform;

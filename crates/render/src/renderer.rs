@@ -10,7 +10,7 @@ use crate::RenderError;
 use crate::f16::to_f16_bytes;
 use crate::hair::{INSTANCE_ATTRIBUTES, INSTANCE_STRIDE, VERTICES_PER_HAIR, count_at};
 use crate::mesh::{MeshData, SurfaceScale, VERTEX_ATTRIBUTES, Vertex, subdivide};
-use crate::params::{DEFAULT_FINE_TILE_SIZE_M, FrameParams, PomMode};
+use crate::params::{DEFAULT_FINE_TILE_SIZE_M, FrameParams, PomMode, SPARSE_HAIR_STRIDE};
 use crate::shaders;
 use crate::uniforms::{FrameContext, FrameUniform};
 
@@ -98,6 +98,8 @@ pub struct Renderer {
     skin_layout: wgpu::BindGroupLayout,
     skin_pipeline: wgpu::RenderPipeline,
     hair_pipeline: wgpu::RenderPipeline,
+    /// The hair pipeline reading every [`SPARSE_HAIR_STRIDE`]-th instance.
+    sparse_hair_pipeline: wgpu::RenderPipeline,
     hair_bind_group: wgpu::BindGroup,
     surface_sampler: wgpu::Sampler,
     tile_sampler: wgpu::Sampler,
@@ -282,35 +284,44 @@ impl Renderer {
             bind_group_layouts: &[Some(&hair_layout)],
             immediate_size: 0,
         });
-        let hair_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("agesim hair pipeline"),
-            layout: Some(&hair_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &hair_module,
-                entry_point: Some("vs_main"),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: INSTANCE_STRIDE,
-                    step_mode: wgpu::VertexStepMode::Instance,
-                    attributes: &INSTANCE_ATTRIBUTES,
-                })],
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-            },
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleStrip,
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(depth_stencil),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &hair_module,
-                entry_point: Some("fs_main"),
-                targets: &colour_target,
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        // Two pipelines over the same instance buffer: every hair, and every
+        // SPARSE_HAIR_STRIDE-th (a wider instance stride reads one record in that many).
+        let hair_pipeline_with = |label: &str, stride: u64| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&hair_pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &hair_module,
+                    entry_point: Some("vs_main"),
+                    buffers: &[Some(wgpu::VertexBufferLayout {
+                        array_stride: stride,
+                        step_mode: wgpu::VertexStepMode::Instance,
+                        attributes: &INSTANCE_ATTRIBUTES,
+                    })],
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology: wgpu::PrimitiveTopology::TriangleStrip,
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil: Some(depth_stencil.clone()),
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &hair_module,
+                    entry_point: Some("fs_main"),
+                    targets: &colour_target,
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let hair_pipeline = hair_pipeline_with("agesim hair pipeline", INSTANCE_STRIDE);
+        let sparse_hair_pipeline = hair_pipeline_with(
+            "agesim sparse hair pipeline",
+            INSTANCE_STRIDE * SPARSE_HAIR_STRIDE as u64,
+        );
 
         let sampler = |label: &str, u: wgpu::AddressMode, v: wgpu::AddressMode| {
             device.create_sampler(&wgpu::SamplerDescriptor {
@@ -353,6 +364,7 @@ impl Renderer {
             skin_layout,
             skin_pipeline,
             hair_pipeline,
+            sparse_hair_pipeline,
             wire_pipeline,
             wire_edges: None,
             hair_bind_group,
@@ -815,10 +827,20 @@ impl Renderer {
         if let Some(hair) = &self.hair {
             let count = count_at(&hair.levels, params.age);
             if params.hair.enabled && count > 0 {
-                pass.set_pipeline(&self.hair_pipeline);
+                // Sparse: instances 0, S, 2S, … of the first `count` (the last one read,
+                // (⌈count/S⌉ − 1)·S, is below count).
+                let (pipeline, drawn) = if params.hair.sparse {
+                    (
+                        &self.sparse_hair_pipeline,
+                        count.div_ceil(SPARSE_HAIR_STRIDE),
+                    )
+                } else {
+                    (&self.hair_pipeline, count)
+                };
+                pass.set_pipeline(pipeline);
                 pass.set_bind_group(0, &self.hair_bind_group, &[]);
                 pass.set_vertex_buffer(0, hair.instances.slice(..));
-                pass.draw(0..VERTICES_PER_HAIR, 0..count);
+                pass.draw(0..VERTICES_PER_HAIR, 0..drawn);
             }
         }
         Ok(())

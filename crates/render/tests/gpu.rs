@@ -9,7 +9,7 @@
 use agesim_core::hair::{HairInstances, HairParams, SurfaceRef};
 use agesim_core::transition::{DistanceMetric, TransitionTexture};
 use agesim_core::{HeightMap, Mask, Mesh, defaults, head};
-use agesim_render::{FrameParams, Gpu, PomMode, Renderer};
+use agesim_render::{FrameParams, Gpu, HairShading, PomMode, Renderer};
 use glam::Vec3;
 
 mod common;
@@ -168,11 +168,8 @@ fn pom_differs_from_normal_only_and_tracks_displacement() {
     );
 }
 
-#[test]
-fn hair_thins_and_grays_with_age() {
-    let Some(gpu) = gpu_or_skip("hair_thins_and_grays_with_age") else {
-        return;
-    };
+/// A renderer with the default head and its hair at the shipped masks (128²).
+fn haired_head(gpu: &Gpu) -> Renderer {
     let mesh = head::default_head();
     // The shipped masks, at 128² (what the transition texture below is made at).
     let shipped = |(name, bytes): (&str, &[u8])| {
@@ -192,38 +189,62 @@ fn hair_thins_and_grays_with_age() {
     let hairs =
         HairInstances::generate(&surface, &transition, &HairParams::new(40.0, 1.0).unwrap())
             .unwrap();
-    let mut r = head_renderer(&gpu, &mesh);
+    let mut r = head_renderer(gpu, &mesh);
     r.upload_hair(&hairs);
-    assert!(r.hair_count(0.0) > r.hair_count(1.0));
+    r
+}
 
+/// The pixels the hair pass changes (vs the same frame without hair), and their mean
+/// chroma and brightness.
+fn hair_pixels(r: &mut Renderer, p: &FrameParams, size: u32) -> (u32, f64, f64) {
+    let bare = r
+        .render_to_image(
+            &FrameParams {
+                hair: HairShading {
+                    enabled: false,
+                    ..p.hair
+                },
+                ..*p
+            },
+            (size, size),
+        )
+        .unwrap();
+    let haired = r.render_to_image(p, (size, size)).unwrap();
+    let (mut count, mut sat, mut lum) = (0u32, 0f64, 0f64);
+    for (a, b) in bare.pixels().zip(haired.pixels()) {
+        if a.0[..3]
+            .iter()
+            .zip(&b.0[..3])
+            .any(|(x, y)| x.abs_diff(*y) > 8)
+        {
+            count += 1;
+            let [r, g, b] = [b.0[0], b.0[1], b.0[2]].map(f64::from);
+            sat += r.max(g).max(b) - r.min(g).min(b);
+            lum += (r + g + b) / 3.0;
+        }
+    }
+    let n = f64::from(count.max(1));
+    (count, sat / n, lum / n)
+}
+
+/// From behind and above, where the scalp recedes.
+fn behind(t: f32) -> FrameParams {
     let mut p = FrameParams::default();
-    // From behind and above, where the scalp recedes.
     p.camera.yaw_rad = 2.6;
     p.camera.pitch_rad = 0.5;
-    let mut hair_stats = |t: f32| {
-        p.age = t;
-        p.hair.enabled = false;
-        let bare = r.render_to_image(&p, (128, 128)).unwrap();
-        p.hair.enabled = true;
-        let haired = r.render_to_image(&p, (128, 128)).unwrap();
-        let (mut count, mut sat, mut lum) = (0u32, 0f64, 0f64);
-        for (a, b) in bare.pixels().zip(haired.pixels()) {
-            if a.0[..3]
-                .iter()
-                .zip(&b.0[..3])
-                .any(|(x, y)| x.abs_diff(*y) > 8)
-            {
-                count += 1;
-                let [r, g, b] = [b.0[0], b.0[1], b.0[2]].map(f64::from);
-                sat += r.max(g).max(b) - r.min(g).min(b);
-                lum += (r + g + b) / 3.0;
-            }
-        }
-        let n = f64::from(count.max(1));
-        (count, sat / n, lum / n)
+    p.age = t;
+    p
+}
+
+#[test]
+fn hair_thins_and_grays_with_age() {
+    let Some(gpu) = gpu_or_skip("hair_thins_and_grays_with_age") else {
+        return;
     };
-    let (young_px, young_sat, young_lum) = hair_stats(0.0);
-    let (old_px, old_sat, old_lum) = hair_stats(1.0);
+    let mut r = haired_head(&gpu);
+    assert!(r.hair_count(0.0) > r.hair_count(1.0));
+    let (young_px, young_sat, young_lum) = hair_pixels(&mut r, &behind(0.0), 128);
+    let (old_px, old_sat, old_lum) = hair_pixels(&mut r, &behind(1.0), 128);
     eprintln!(
         "hair pixels {young_px} → {old_px}, chroma {young_sat:.1} → {old_sat:.1}, \
          brightness {young_lum:.1} → {old_lum:.1}"
@@ -235,6 +256,35 @@ fn hair_thins_and_grays_with_age() {
     );
     assert!(old_lum > young_lum + 20.0, "hair not lighter when old");
     assert!(old_sat < young_sat, "hair not grayer when old");
+}
+
+#[test]
+fn a_sparse_frame_draws_a_thinned_share_of_the_same_hair() {
+    let Some(gpu) = gpu_or_skip("a_sparse_frame_draws_a_thinned_share_of_the_same_hair") else {
+        return;
+    };
+    let mut r = haired_head(&gpu);
+    let full = behind(0.0);
+    let mut sparse = behind(0.0);
+    sparse.hair.sparse = true;
+    // Large enough that single ribbons are told apart (at 128² the hair is a solid mass;
+    // at 384² one hair in 8 covers ≈ 56 % of what all of them cover).
+    let (full_px, _, full_lum) = hair_pixels(&mut r, &full, 384);
+    let (sparse_px, _, sparse_lum) = hair_pixels(&mut r, &sparse, 384);
+    eprintln!("hair pixels: all {full_px}, sparse {sparse_px}");
+    assert!(
+        sparse_px > 20,
+        "a sparse frame shows no hair: {sparse_px} px"
+    );
+    assert!(
+        f64::from(sparse_px) < 0.7 * f64::from(full_px),
+        "a sparse frame is not thinner: {sparse_px} of {full_px} px"
+    );
+    // The same hairs (young, dark): not another colour.
+    assert!(
+        (sparse_lum - full_lum).abs() < 25.0,
+        "{sparse_lum} vs {full_lum}"
+    );
 }
 
 #[test]

@@ -57,6 +57,7 @@ fn main() {
             hair: false,
             packed: false,
             one_off: true,
+            micro_normals: false,
         };
         scene.bake(&request, &never).unwrap();
         let large = scene.large().unwrap().height.clone();

@@ -296,6 +296,7 @@ fn export_glb(
         hair: false,
         packed: false,
         one_off: true,
+        micro_normals: false,
     };
     scene.bake(&request, cancel)?;
     progress(0.5, "composing the normal map");

@@ -191,19 +191,34 @@ fn main_window_snapshot_on_the_gpu_adapter() {
 }
 
 #[test]
-fn the_large_wrinkle_normal_picture_is_baked_only_while_shown() {
+fn the_normal_pictures_are_baked_only_while_shown() {
+    use agesim::editor::map_view::MapKind;
     let mut h = harness();
     settle(&mut h);
+    let images = &h.state().snapshot().images;
     assert!(
-        h.state().snapshot().images.large_normal.is_none(),
+        images.large_normal.is_none() && images.micro_normal.is_none(),
         "not baked on every change (the renderer reads heights)"
     );
-    h.state_mut().map_view_mut().kind = agesim::editor::map_view::MapKind::LargeNormal;
-    h.run_steps(2);
-    let start = Instant::now();
-    while h.state().snapshot().images.large_normal.is_none() {
-        assert!(start.elapsed() < Duration::from_secs(120), "never baked");
-        h.run_steps(1);
-        std::thread::sleep(Duration::from_millis(20));
+    for kind in [MapKind::LargeNormal, MapKind::MicroNormal] {
+        h.state_mut().map_view_mut().kind = kind;
+        h.run_steps(2);
+        let start = Instant::now();
+        loop {
+            let images = &h.state().snapshot().images;
+            let shown = match kind {
+                MapKind::LargeNormal => images.large_normal.is_some(),
+                _ => images.micro_normal.is_some(),
+            };
+            if shown {
+                break;
+            }
+            assert!(
+                start.elapsed() < Duration::from_secs(120),
+                "{kind:?} never baked"
+            );
+            h.run_steps(1);
+            std::thread::sleep(Duration::from_millis(20));
+        }
     }
 }

@@ -95,6 +95,7 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
         hair: true,
         packed: false,
         one_off: true,
+        micro_normals: false,
     };
     scene.bake(&request, &CancelToken::never())?;
     let bake_ms = ms(start);

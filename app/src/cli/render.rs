@@ -189,6 +189,7 @@ impl SceneInputs {
             hair: self.hair,
             packed: false,
             one_off: true,
+            micro_normals: false,
         };
         let first = self.scene.large().is_none() && self.scene.micro().is_none();
         let changed = self.scene.bake(&request, &CancelToken::never())?;

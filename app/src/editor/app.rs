@@ -136,8 +136,9 @@ pub struct EditorApp {
     user_presets: Vec<PathBuf>,
     preset_name: String,
     title: String,
-    /// Whether the bakes make the large-wrinkle normal picture (the map view shows it).
-    baked_normal_picture: bool,
+    /// Whether the bakes make the normal-map pictures, (large, micro) (the map view shows
+    /// one).
+    baked_normal_picture: (bool, bool),
     textures: Vec<(MapKind, egui::TextureHandle, usize)>,
     layout_texture: Option<(egui::TextureHandle, usize)>,
     persisted: Persisted,
@@ -243,7 +244,7 @@ impl EditorApp {
             user_presets: Vec::new(),
             preset_name: String::new(),
             title: String::new(),
-            baked_normal_picture: false,
+            baked_normal_picture: (false, false),
             textures: Vec::new(),
             layout_texture: None,
             persisted,
@@ -273,7 +274,7 @@ impl EditorApp {
             app.persisted.recent.insert(0, p);
         }
         app.refresh_user_presets();
-        app.baked_normal_picture = app.persisted.map_view.kind == MapKind::LargeNormal;
+        app.baked_normal_picture = app.persisted.map_view.kind.normal_picture();
         app.submit(false, "open");
         app
     }
@@ -324,6 +325,7 @@ impl EditorApp {
             // heights): made when that picture is shown, not on every age change.
             packed: self.persisted.map_view.kind == MapKind::LargeNormal,
             one_off: false,
+            micro_normals: self.persisted.map_view.kind == MapKind::MicroNormal,
         };
         self.worker.submit(Job {
             id: 0,
@@ -990,8 +992,8 @@ impl eframe::App for EditorApp {
         if compare_changed {
             self.submit(false, "compare");
         }
-        // The large-wrinkle normal picture is baked only while it is shown.
-        let wants_normals = self.persisted.map_view.kind == MapKind::LargeNormal;
+        // The normal-map pictures are baked only while one is shown.
+        let wants_normals = self.persisted.map_view.kind.normal_picture();
         if wants_normals != self.baked_normal_picture {
             self.baked_normal_picture = wants_normals;
             self.submit(false, "map view");

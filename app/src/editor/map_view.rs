@@ -20,6 +20,12 @@ pub enum MapKind {
 }
 
 impl MapKind {
+    /// Which normal-map picture this kind shows, (large, micro): the worker bakes them
+    /// only while shown.
+    pub fn normal_picture(self) -> (bool, bool) {
+        (self == Self::LargeNormal, self == Self::MicroNormal)
+    }
+
     pub const ALL: [MapKind; 7] = [
         MapKind::LargeHeight,
         MapKind::LargeNormal,

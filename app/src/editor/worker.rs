@@ -429,6 +429,7 @@ fn bake(
         images.micro_normal = snapshot
             .micro
             .as_ref()
+            .filter(|m| !m.normal_rgb.is_empty())
             .map(|m| rgb_image(m.height.width_px(), m.height.height_px(), &m.normal_rgb, 3));
     }
     if merged.fine || (snapshot.fine.is_none() && s.fine().is_some()) {

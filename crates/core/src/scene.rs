@@ -75,6 +75,11 @@ pub struct BakeRequest {
     /// bytes with less memory touched. A later bake of the same scene still works; it
     /// rasterises the stamps then.
     pub one_off: bool,
+    /// Also make the micro-relief tile's 8-bit normal map (`MicroTile::normal_rgb`), for
+    /// showing it: the renderer and the exports make their normals from the heights.
+    /// Without it the editor's tiles (up to 1024²) leave `normal_rgb` empty; larger tiles
+    /// always have it.
+    pub micro_normals: bool,
 }
 
 impl BakeRequest {
@@ -89,6 +94,7 @@ impl BakeRequest {
             hair: true,
             packed: false,
             one_off: false,
+            micro_normals: false,
         }
     }
 
@@ -102,6 +108,7 @@ impl BakeRequest {
             hair: false,
             packed: false,
             one_off: true,
+            micro_normals: true,
         }
     }
 }
@@ -156,6 +163,7 @@ pub struct LargeMap {
 #[derive(Clone, Debug)]
 pub struct MicroTile {
     pub height: HeightMap,
+    /// The tile's 8-bit normal map; empty unless asked for (`BakeRequest::micro_normals`).
     pub normal_rgb: Vec<u8>,
 }
 
@@ -196,6 +204,7 @@ struct MicroKey {
     project: Project,
     scales: (f32, f32),
     size: u32,
+    normals: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -864,6 +873,7 @@ impl MicroStage {
             project: micro_relevant(project),
             scales,
             size: request.micro_size_px,
+            normals: request.micro_normals || request.micro_size_px > SPLIT_MAX_PX,
         };
         if self.key.as_ref() == Some(&key) && self.tile.is_some() {
             self.relief = Some(relief);
@@ -883,6 +893,7 @@ impl MicroStage {
             },
         };
         let baked = if size <= SPLIT_MAX_PX {
+            let normal = key.normals.then_some(normal);
             self.bake_split(&relief, project, scales, size, normal, &mut spare, cancel)
         } else {
             relief
@@ -907,7 +918,8 @@ impl MicroStage {
     }
 
     /// The tile as features + noise from the kept parts, re-baking only the part whose
-    /// key changed, then its normal map: the same bytes as the fused pass.
+    /// key changed, then its normal map if `normal` is given (else `normal_rgb` is left
+    /// empty): the same bytes as the fused pass.
     #[allow(clippy::too_many_arguments)]
     fn bake_split(
         &mut self,
@@ -915,7 +927,7 @@ impl MicroStage {
         project: &Project,
         scales: (f32, f32),
         size: u32,
-        normal: &NormalSettings,
+        normal: Option<&NormalSettings>,
         out: &mut MicroTile,
         cancel: &CancelToken,
     ) -> Result<(), Error> {
@@ -976,12 +988,18 @@ impl MicroStage {
                     }
                 });
             cancel.check()?;
-            normal_map::encode_rgb8_into(
-                &out.height,
-                normal,
-                crate::simd::Level::detect(),
-                &mut out.normal_rgb,
-            )
+            match normal {
+                Some(normal) => normal_map::encode_rgb8_into(
+                    &out.height,
+                    normal,
+                    crate::simd::Level::detect(),
+                    &mut out.normal_rgb,
+                ),
+                None => {
+                    out.normal_rgb.clear();
+                    Ok(())
+                }
+            }
         })();
         // Each kept part carries its own key, so what was baked before an error stays.
         self.features = features;

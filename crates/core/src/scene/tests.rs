@@ -9,6 +9,7 @@ fn small(t: f32) -> BakeRequest {
         hair: false,
         packed: true,
         one_off: false,
+        micro_normals: true,
     }
 }
 
@@ -245,6 +246,7 @@ fn a_one_off_bake_equals_the_kept_layer_bake_byte_for_byte() {
             &p,
             &BakeRequest {
                 one_off: true,
+                micro_normals: true,
                 ..small(t)
             },
         );

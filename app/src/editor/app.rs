@@ -87,6 +87,11 @@ pub struct EditorOptions {
     pub compare_years: Option<f32>,
     /// Run the scripted UI benchmark, print its table and quit.
     pub bench_ui: bool,
+    /// The window is cleared to the panel colour ([`EditorApp::clear_color`], eframe's
+    /// real window, set by [`super::run`]): the panels are then drawn without their fill,
+    /// which a CPU rasteriser would shade at every pixel. Off under egui_kittest, which
+    /// clears to transparent.
+    pub cleared_to_panel_colour: bool,
 }
 
 /// Which windows are open.
@@ -152,9 +157,10 @@ pub struct EditorApp {
     frames_with_maps: u32,
     screenshot_requested: bool,
     bench: Option<super::bench_ui::BenchUi>,
-    /// The shown large map's identity and its deepest value (the status line's figure,
-    /// computed once per map, not once per frame).
-    deepest: (usize, f32),
+    /// The shown large map and its deepest value (the status line's figure, computed once
+    /// per map, not once per frame). Weak: the old map's data is freed as usual, but its
+    /// address is not reused while this refers to it.
+    deepest: (std::sync::Weak<agesim_core::scene::LargeMap>, f32),
     /// An age change waits for the worker (see [`EditorApp::set_age`]).
     age_pending: bool,
     last_hover_uv: Option<[f32; 2]>,
@@ -256,7 +262,7 @@ impl EditorApp {
             frames_with_maps: 0,
             screenshot_requested: false,
             bench: None,
-            deepest: (0, 0.0),
+            deepest: (std::sync::Weak::new(), 0.0),
             age_pending: false,
             last_hover_uv: None,
         };
@@ -517,17 +523,13 @@ impl EditorApp {
             }
             if let Some(v) = &self.viewport {
                 ui.label(format!("3D frame encode {:.1} ms", v.encode_ms));
-                if v.sparse_hair {
-                    ui.label(format!(
-                        "(moving: 1 hair in {} drawn)",
-                        agesim_render::SPARSE_HAIR_STRIDE
-                    ));
+                if v.sparse_hair > 1 {
+                    ui.label(format!("(moving: 1 hair in {} drawn)", v.sparse_hair));
                 }
             }
             if let Some(l) = &self.snapshot.large {
-                let key = std::sync::Arc::as_ptr(l) as usize;
-                if self.deepest.0 != key {
-                    self.deepest = (key, l.height.min_max().1);
+                if !std::ptr::eq(self.deepest.0.as_ptr(), std::sync::Arc::as_ptr(l)) {
+                    self.deepest = (std::sync::Arc::downgrade(l), l.height.min_max().1);
                 }
                 ui.label(format!("deepest large wrinkle: {:.2}", self.deepest.1));
             }
@@ -845,6 +847,8 @@ impl eframe::App for EditorApp {
         }
         let frame_ms = frame.info().cpu_usage.unwrap_or(0.0) * 1e3;
         let style = ui.style().clone();
+        let cleared = self.options.cleared_to_panel_colour;
+        let bare = move |frame: egui::Frame| if cleared { bare(frame) } else { frame };
         let side = bare(egui::Frame::side_top_panel(&style));
         egui::Panel::top("menu")
             .frame(side)

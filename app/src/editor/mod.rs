@@ -18,7 +18,8 @@ pub mod worker;
 pub use app::{EditorApp, EditorOptions, Pending};
 
 /// Opens the editor window and runs until it is closed.
-pub fn run(options: EditorOptions) -> anyhow::Result<()> {
+pub fn run(mut options: EditorOptions) -> anyhow::Result<()> {
+    options.cleared_to_panel_colour = true;
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_inner_size([1280.0, 800.0])

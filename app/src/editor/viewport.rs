@@ -53,8 +53,8 @@ pub struct Viewport {
     pub encode_ms: f64,
     /// The hairs of the last frame's age (count(t)).
     pub hairs_drawn: u32,
-    /// Whether the last frame drew one hair in `SPARSE_HAIR_STRIDE` of them.
-    pub sparse_hair: bool,
+    /// The last frame drew one hair in this many (1: all of them).
+    pub sparse_hair: u32,
     pub error: Option<String>,
     /// The surface point clicked last (taken by the app to show it on the map).
     pub picked: Option<super::pick::SurfacePoint>,
@@ -75,7 +75,7 @@ impl Viewport {
             last: None,
             encode_ms: 0.0,
             hairs_drawn: 0,
-            sparse_hair: false,
+            sparse_hair: 1,
             error: None,
             picked: None,
             marker: None,
@@ -285,7 +285,11 @@ impl Viewport {
                     } else {
                         0
                     };
-                    self.sparse_hair = params.hair.sparse;
+                    self.sparse_hair = if params.hair.sparse {
+                        self.renderer.sparse_hair_stride()
+                    } else {
+                        1
+                    };
                     self.error = None;
                 }
                 Err(e) => self.error = Some(e.to_string()),

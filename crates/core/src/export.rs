@@ -336,6 +336,7 @@ pub fn stage_height_png16(
                     out: buf,
                 };
                 crate::simd::dispatch_at(crate::simd::Level::detect(), kernel);
+                Ok(())
             },
         )
     })?;
@@ -412,7 +413,6 @@ pub fn stage_normal_png(
 ) -> Result<(), Error> {
     settings.validate()?;
     let width = map.width_px() as usize;
-    let mut failed = None;
     set.stage(path, |w| {
         encode_png_rows(
             w,
@@ -421,18 +421,11 @@ pub fn stage_normal_png(
             PngPixels::Rgb8,
             |first, count, buf| {
                 buf.resize(3 * width * count as usize, 0);
-                if let Err(e) =
-                    crate::normal_map::encode_rgb8_rows(map, settings, first as usize, buf)
-                {
-                    failed.get_or_insert(e);
-                }
+                crate::normal_map::encode_rgb8_rows(map, settings, first as usize, buf)
+                    .map_err(std::io::Error::other)
             },
         )
-    })?;
-    match failed {
-        Some(e) => Err(e),
-        None => Ok(()),
-    }
+    })
 }
 
 /// Where [`stage_maps`] writes a bake's maps; `None` skips that map.

@@ -108,7 +108,8 @@ impl BakeRequest {
             hair: false,
             packed: false,
             one_off: true,
-            micro_normals: true,
+            // The exports make their normal map from the summed heights.
+            micro_normals: false,
         }
     }
 }

@@ -622,6 +622,7 @@ impl TransitionTexture {
                 |first, count, buf| {
                     let rows = &values[first as usize * width..][..count as usize * width];
                     buf.extend(rows.iter().flat_map(|v| v.to_be_bytes()));
+                    Ok(())
                 },
             )
         })

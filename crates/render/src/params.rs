@@ -225,7 +225,8 @@ pub struct HairShading {
     pub sparse: bool,
 }
 
-/// Of the hairs of an age, a sparse frame ([`HairShading::sparse`]) draws one in this many.
+/// Of the hairs of an age, a sparse frame ([`HairShading::sparse`]) draws one in this many
+/// (or fewer where the device's vertex stride limit is lower: `Renderer::sparse_hair_stride`).
 pub const SPARSE_HAIR_STRIDE: u32 = 8;
 
 impl Default for HairShading {

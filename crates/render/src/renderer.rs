@@ -98,8 +98,11 @@ pub struct Renderer {
     skin_layout: wgpu::BindGroupLayout,
     skin_pipeline: wgpu::RenderPipeline,
     hair_pipeline: wgpu::RenderPipeline,
-    /// The hair pipeline reading every [`SPARSE_HAIR_STRIDE`]-th instance.
-    sparse_hair_pipeline: wgpu::RenderPipeline,
+    /// The hair pipeline reading every `sparse_hair_stride`-th instance (None where the
+    /// device allows no wider stride than one instance).
+    sparse_hair_pipeline: Option<wgpu::RenderPipeline>,
+    /// [`SPARSE_HAIR_STRIDE`], or less where the device's vertex stride limit is lower.
+    sparse_hair_stride: u32,
     hair_bind_group: wgpu::BindGroup,
     surface_sampler: wgpu::Sampler,
     tile_sampler: wgpu::Sampler,
@@ -318,10 +321,17 @@ impl Renderer {
             })
         };
         let hair_pipeline = hair_pipeline_with("agesim hair pipeline", INSTANCE_STRIDE);
-        let sparse_hair_pipeline = hair_pipeline_with(
-            "agesim sparse hair pipeline",
-            INSTANCE_STRIDE * SPARSE_HAIR_STRIDE as u64,
-        );
+        // The device bounds the instance stride (WebGL2-level limits, as eframe asks for
+        // on OpenGL, allow 255 bytes: one hair in 7 there).
+        let sparse_hair_stride = (u64::from(device.limits().max_vertex_buffer_array_stride)
+            / INSTANCE_STRIDE)
+            .clamp(1, u64::from(SPARSE_HAIR_STRIDE)) as u32;
+        let sparse_hair_pipeline = (sparse_hair_stride > 1).then(|| {
+            hair_pipeline_with(
+                "agesim sparse hair pipeline",
+                INSTANCE_STRIDE * u64::from(sparse_hair_stride),
+            )
+        });
 
         let sampler = |label: &str, u: wgpu::AddressMode, v: wgpu::AddressMode| {
             device.create_sampler(&wgpu::SamplerDescriptor {
@@ -365,6 +375,7 @@ impl Renderer {
             skin_pipeline,
             hair_pipeline,
             sparse_hair_pipeline,
+            sparse_hair_stride,
             wire_pipeline,
             wire_edges: None,
             hair_bind_group,
@@ -572,6 +583,12 @@ impl Renderer {
             instances,
             levels: hairs.levels().to_vec(),
         });
+    }
+
+    /// One hair in how many a sparse frame draws (`HairShading::sparse`); 1 where the
+    /// device cannot draw sparse frames.
+    pub fn sparse_hair_stride(&self) -> u32 {
+        self.sparse_hair_stride
     }
 
     /// count(t): the hairs drawn at age `t` (0 without hair).
@@ -829,13 +846,11 @@ impl Renderer {
             if params.hair.enabled && count > 0 {
                 // Sparse: instances 0, S, 2S, … of the first `count` (the last one read,
                 // (⌈count/S⌉ − 1)·S, is below count).
-                let (pipeline, drawn) = if params.hair.sparse {
-                    (
-                        &self.sparse_hair_pipeline,
-                        count.div_ceil(SPARSE_HAIR_STRIDE),
-                    )
-                } else {
-                    (&self.hair_pipeline, count)
+                let (pipeline, drawn) = match &self.sparse_hair_pipeline {
+                    Some(sparse) if params.hair.sparse => {
+                        (sparse, count.div_ceil(self.sparse_hair_stride))
+                    }
+                    _ => (&self.hair_pipeline, count),
                 };
                 pass.set_pipeline(pipeline);
                 pass.set_bind_group(0, &self.hair_bind_group, &[]);

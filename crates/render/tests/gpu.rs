@@ -314,3 +314,30 @@ fn wireframe_draws_the_edges_over_the_skin() {
     assert_eq!(plain.pixels().filter(|px| cyan(px)).count(), 0);
     assert!(lines > 500, "{lines} wire pixels");
 }
+
+#[test]
+fn the_renderer_builds_under_opengl_level_limits_with_a_narrower_sparse_stride() {
+    // eframe asks for WebGL2-level limits on the OpenGL backend: a vertex stride of at
+    // most 255 bytes. The sparse hair pipeline must fit them (one hair in 7), not fail the
+    // whole renderer (which would leave the editor without its 3D view).
+    let Some(gpu) = gpu_or_skip("the_renderer_builds_under_opengl_level_limits") else {
+        return;
+    };
+    let limits = wgpu::Limits::downlevel_webgl2_defaults().using_resolution(gpu.adapter.limits());
+    let (device, queue) = pollster::block_on(gpu.adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("webgl2-level limits"),
+        required_limits: limits,
+        ..Default::default()
+    }))
+    .unwrap();
+    assert_eq!(device.limits().max_vertex_buffer_array_stride, 255);
+    let r = Renderer::new(&device, &queue, agesim_render::COLOUR_FORMAT).unwrap();
+    assert_eq!(r.sparse_hair_stride(), 7);
+    assert_eq!(gpu_default_stride(&gpu), agesim_render::SPARSE_HAIR_STRIDE);
+}
+
+fn gpu_default_stride(gpu: &Gpu) -> u32 {
+    Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT)
+        .unwrap()
+        .sparse_hair_stride()
+}

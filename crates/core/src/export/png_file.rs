@@ -80,13 +80,14 @@ pub fn encode_png<W: Write>(
 }
 
 /// Encodes an image whose rows are produced band by band: `rows(first_row, row_count, buf)`
-/// appends `row_count` rows starting at `first_row` to the empty `buf`.
+/// appends `row_count` rows starting at `first_row` to the empty `buf`; its error ends
+/// the encoding with that error.
 pub fn encode_png_rows<W: Write>(
     w: W,
     width_px: u32,
     height_px: u32,
     pixels: PngPixels,
-    mut rows: impl FnMut(u32, u32, &mut Vec<u8>),
+    mut rows: impl FnMut(u32, u32, &mut Vec<u8>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let row_bytes = width_px as usize * pixels.bytes_per_pixel();
     let mut writer = encoder(w, width_px, height_px, pixels)
@@ -100,7 +101,7 @@ pub fn encode_png_rows<W: Write>(
     while first < height_px {
         let count = BAND_ROWS.min(height_px - first);
         buf.clear();
-        rows(first, count, &mut buf);
+        rows(first, count, &mut buf)?;
         if buf.len() != row_bytes * count as usize {
             return Err(std::io::Error::other(format!(
                 "PNG encoding failed: rows {first}.. gave {} bytes, not {}",
@@ -111,7 +112,9 @@ pub fn encode_png_rows<W: Write>(
         stream.write_all(&buf)?;
         first += count;
     }
-    stream.finish().map_err(io_error)
+    stream.finish().map_err(io_error)?;
+    // The image end (IEND): written by `finish`, so that its error is not lost.
+    writer.finish().map_err(io_error)
 }
 
 #[cfg(test)]
@@ -134,6 +137,7 @@ mod tests {
             |first, count, buf| {
                 let a = first as usize * row;
                 buf.extend_from_slice(&data[a..a + count as usize * row]);
+                Ok(())
             },
         )
         .unwrap();
@@ -152,7 +156,13 @@ mod tests {
     fn a_wrong_byte_count_is_an_error_not_a_panic() {
         let mut out = Vec::new();
         assert!(encode_png(&mut out, 4, 4, PngPixels::Rgb8, &[0; 5]).is_err());
-        let e = encode_png_rows(&mut out, 4, 4, PngPixels::Grey8, |_, _, buf| buf.push(1));
+        let e = encode_png_rows(&mut out, 4, 4, PngPixels::Grey8, |_, _, buf| {
+            buf.push(1);
+            Ok(())
+        });
         assert!(e.is_err());
+        let failing = |_, _, _: &mut Vec<u8>| Err(std::io::Error::other("no rows"));
+        let e = encode_png_rows(&mut out, 4, 4, PngPixels::Grey8, failing).unwrap_err();
+        assert_eq!(e.to_string(), "no rows");
     }
 }

@@ -31,7 +31,8 @@ pub struct ExportArgs {
     /// Height map as a 32-bit float EXR.
     #[arg(long, value_name = "FILE.exr")]
     pub height_exr: Option<PathBuf>,
-    /// Compression of the height EXR (lossless): rle, none (fastest), zip (smallest).
+    /// Compression of the height EXR (lossless): rle (usually the fastest), none, zip
+    /// (smallest).
     #[arg(long, value_enum, default_value = "rle")]
     pub exr_compression: crate::cli::bake::ExrCompressionArg,
     /// Normal map as an 8-bit PNG.

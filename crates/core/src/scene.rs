@@ -686,11 +686,15 @@ impl LargeStage {
         if self.key.as_ref() == Some(&key) && self.map.is_some() {
             return Ok(changed);
         }
-        if request.one_off {
-            return self.bake_one_off(p, fibres, factors, large_mask, request, normal, key, cancel);
-        }
+        // A one-off bake samples the mask from its taps (no map-sized buffer kept); the
+        // editor's bakes keep the samples for the next change.
+        let columns = match (request.one_off, large_mask.mask) {
+            (true, Some(m)) => crate::muscle::mask_columns(m, size),
+            _ => Vec::new(),
+        };
         let mask_samples = match (large_mask.mask, &self.mask_samples) {
             (None, _) => None,
+            _ if request.one_off => None,
             (Some(_), Some((g, s, v))) if *g == large_mask.generation && *s == size => {
                 Some(v.clone())
             }
@@ -700,69 +704,38 @@ impl LargeStage {
                 Some(v)
             }
         };
-        let mask = match &mask_samples {
-            Some(v) => MaskValues::Values(v),
-            None => MaskValues::None,
+        let mask = match (&mask_samples, large_mask.mask) {
+            (Some(v), _) => MaskValues::Values(v),
+            (None, Some(m)) if request.one_off => MaskValues::Taps(m, &columns),
+            _ => MaskValues::None,
         };
         // The spare buffer, not the kept map: that stays whole if this bake is cancelled.
         let mut height = match self.spare.take() {
             Some(h) if h.width_px() == size && h.height_px() == size => h,
             _ => HeightMap::zeros(size, size)?,
         };
-        if let Err(e) =
+        let gamma = p.large.gamma;
+        let baked = if request.one_off {
+            // One pass, no stamps (`large_layer::bake_direct`: the same bytes).
+            crate::large_layer::bake_direct(
+                fibres,
+                &factors.large,
+                gamma,
+                mask,
+                &mut height,
+                cancel,
+            )
+        } else {
             self.layer
-                .combine_with(&factors.large, p.large.gamma, mask, &mut height, cancel)
-        {
+                .combine_with(&factors.large, gamma, mask, &mut height, cancel)
+        };
+        if let Err(e) = baked {
             self.spare = Some(height);
             return Err(e);
         }
         self.keep(height, p.large.depth, request, normal, key, cancel)?;
         changed.large = true;
         Ok(changed)
-    }
-
-    /// [`LargeStage::bake`] for a one-off request: one pass, no stamps, no mask buffer.
-    #[allow(clippy::too_many_arguments)]
-    fn bake_one_off(
-        &mut self,
-        p: &Project,
-        fibres: &[Fibre],
-        factors: &AgeFactors,
-        large_mask: LargeMask<'_>,
-        request: &BakeRequest,
-        normal: &NormalSettings,
-        key: LargeKey,
-        cancel: &CancelToken,
-    ) -> Result<Changed, Error> {
-        let size = request.large_size_px;
-        let columns = large_mask
-            .mask
-            .map(|m| crate::muscle::mask_columns(m, size))
-            .unwrap_or_default();
-        let mask = match large_mask.mask {
-            Some(m) => MaskValues::Taps(m, &columns),
-            None => MaskValues::None,
-        };
-        let mut height = match self.spare.take() {
-            Some(h) if h.width_px() == size && h.height_px() == size => h,
-            _ => HeightMap::zeros(size, size)?,
-        };
-        if let Err(e) = crate::large_layer::bake_direct(
-            fibres,
-            &factors.large,
-            p.large.gamma,
-            mask,
-            &mut height,
-            cancel,
-        ) {
-            self.spare = Some(height);
-            return Err(e);
-        }
-        self.keep(height, p.large.depth, request, normal, key, cancel)?;
-        Ok(Changed {
-            large: true,
-            ..Changed::default()
-        })
     }
 
     /// Scales a finished map by the depth, packs it if asked and keeps it as the map.

@@ -6,6 +6,7 @@
 
 struct Frame {
     clip_from_world: mat4x4<f32>,
+    world_from_clip: mat4x4<f32>,
     camera_pos: vec4<f32>,
     light_dir: vec4<f32>,
     light_colour: vec4<f32>,
@@ -22,8 +23,9 @@ struct Frame {
     skin_spec: vec4<f32>,
 }
 
-// Quads per hair; the strip has 2·(SEGMENTS + 1) vertices (crates/render/src/hair.rs).
-const SEGMENTS: u32 = 4u;
+// Quads per hair; the strip has 2·(SEGMENTS + 1) vertices. Set per pipeline
+// (crates/render/src/hair.rs: fewer for the sparse frames).
+override SEGMENTS: u32 = 4u;
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 

@@ -3,11 +3,16 @@
 // micro-relief ([P]) combined by reoriented normal mapping, wrap-lit skin with a
 // Fresnel-weighted GGX lobe, ACES-fitted tone mapping.
 //
+// Two passes: `vs_main` + `fs_surface` rasterise the mesh into a G-buffer (`Surface`),
+// `vs_fullscreen` + `fs_shade` shade it. The second alone redraws an age step or a new map.
+//
 // Keep `Frame` identical to `FrameUniform` in crates/render/src/uniforms.rs and to the
 // copy in hair.wgsl: a test compares the sizes naga computes with the Rust struct's.
 
 struct Frame {
     clip_from_world: mat4x4<f32>,
+    // Its inverse (the shading pass turns a pixel into its view ray).
+    world_from_clip: mat4x4<f32>,
     // xyz: camera position (mesh units); w: 1 when the shader must encode sRGB itself.
     camera_pos: vec4<f32>,
     // xyz: unit direction toward the light (world); w: light intensity.
@@ -234,35 +239,131 @@ fn skin_specular(n: vec3<f32>, v: vec3<f32>, l: vec3<f32>, roughness: f32, f0: f
     return d * vis * fresnel * n_l;
 }
 
+// What the skin's shading needs of the surface at one pixel: everything but the age, the
+// maps and the light. The surface pass stores it per pixel (`fs_surface`); the shading
+// pass (`fs_shade`) reads it back, so a frame whose view did not move (an age step, a
+// re-baked map) shades the stored surface without rasterising the mesh again.
+struct Surface {
+    uv: vec2<f32>,
+    // Screen-space derivatives of uv, taken while rasterising (for the samples' mips).
+    ddx: vec2<f32>,
+    ddy: vec2<f32>,
+    // The geometric frame: unit normal, unit tangent (Gram-Schmidt), bitangent sign.
+    n: vec3<f32>,
+    t: vec3<f32>,
+    b_sign: f32,
+    // Unit vector toward the eye.
+    to_eye: vec3<f32>,
+}
+
+// Octahedral encoding of a unit vector (Cigolle et al. 2014), two numbers in [−1, 1].
+fn oct_encode(n: vec3<f32>) -> vec2<f32> {
+    let p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    if n.z >= 0.0 {
+        return p;
+    }
+    return (1.0 - abs(p.yx)) * select(vec2<f32>(-1.0), vec2<f32>(1.0), p >= vec2<f32>(0.0));
+}
+
+fn oct_decode(e: vec2<f32>) -> vec3<f32> {
+    var n = vec3<f32>(e, 1.0 - abs(e.x) - abs(e.y));
+    let t = max(-n.z, 0.0);
+    n.x = n.x + select(t, -t, n.x >= 0.0);
+    n.y = n.y + select(t, -t, n.y >= 0.0);
+    return normalize(n);
+}
+
+// The surface in three targets (32 bytes, the smallest per-sample limit wgpu allows):
+// uv in f32, since POM marches it; the derivatives and the frame in f16. The direction to
+// the eye is not stored: the shading pass has it from the pixel's view ray. Alpha 0 in
+// `s0` is the background.
+struct SurfaceOut {
+    // uv, bitangent sign, 1.
+    @location(0) s0: vec4<f32>,
+    // dpdx(uv), dpdy(uv).
+    @location(1) s1: vec4<f32>,
+    // Octahedral normal, octahedral tangent.
+    @location(2) s2: vec4<f32>,
+}
+
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    // Derivatives taken here, in uniform control flow, for the samples inside the loops.
-    let ddx = dpdx(in.uv);
-    let ddy = dpdy(in.uv);
-    let micro_uv0 = in.uv * frame.tiling.xy;
-    let fine_uv0 = in.uv * frame.tiling.zw;
+fn fs_surface(in: VertexOut) -> SurfaceOut {
+    let n = normalize(in.normal);
+    // Gram-Schmidt: interpolation bends the tangent away from the normal.
+    let t = normalize(in.tangent.xyz - n * dot(n, in.tangent.xyz));
+    var out: SurfaceOut;
+    out.s0 = vec4<f32>(in.uv, select(-1.0, 1.0, in.tangent.w >= 0.0), 1.0);
+    out.s1 = vec4<f32>(dpdx(in.uv), dpdy(in.uv));
+    out.s2 = vec4<f32>(oct_encode(n), oct_encode(t));
+    return out;
+}
+
+// The stored surface: the surface pass's three targets.
+@group(1) @binding(0) var surface0: texture_2d<f32>;
+@group(1) @binding(1) var surface1: texture_2d<f32>;
+@group(1) @binding(2) var surface2: texture_2d<f32>;
+
+// One triangle covering the target (vertices 0, 1, 2).
+@vertex
+fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let x = f32((i << 1u) & 2u) * 2.0 - 1.0;
+    let y = f32(i & 2u) * 2.0 - 1.0;
+    return vec4<f32>(x, y, 0.0, 1.0);
+}
+
+@fragment
+fn fs_shade(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(pos.xy);
+    let s0 = textureLoad(surface0, p, 0);
+    if s0.w == 0.0 {
+        // Background: the pass cleared it.
+        discard;
+    }
+    let s1 = textureLoad(surface1, p, 0);
+    let s2 = textureLoad(surface2, p, 0);
+    // The pixel centre's view ray: the surface point seen there lies on it, so the
+    // direction to the eye is the ray's, reversed (the camera is a perspective one).
+    let size = vec2<f32>(frame.hair_misc.x, frame.layers.w);
+    let ndc = vec2<f32>(2.0 * pos.x / size.x - 1.0, 1.0 - 2.0 * pos.y / size.y);
+    let on_ray = frame.world_from_clip * vec4<f32>(ndc, 0.5, 1.0);
+    var s: Surface;
+    s.uv = s0.xy;
+    s.ddx = s1.xy;
+    s.ddy = s1.zw;
+    s.n = oct_decode(s2.xy);
+    s.t = oct_decode(s2.zw);
+    s.b_sign = s0.z;
+    s.to_eye = normalize(frame.camera_pos.xyz - on_ray.xyz / on_ray.w);
+    return shade(s);
+}
+
+// The skin's colour at a surface point (SPEC §5).
+fn shade(s: Surface) -> vec4<f32> {
+    let ddx = s.ddx;
+    let ddy = s.ddy;
+    let micro_uv0 = s.uv * frame.tiling.xy;
+    let fine_uv0 = s.uv * frame.tiling.zw;
     let ddx_micro = ddx * frame.tiling.xy;
     let ddy_micro = ddy * frame.tiling.xy;
     let ddx_fine = ddx * frame.tiling.zw;
     let ddy_fine = ddy * frame.tiling.zw;
 
-    let n_geo = normalize(in.normal);
-    // Gram-Schmidt: interpolation bends the tangent away from the normal.
-    let t_geo = normalize(in.tangent.xyz - n_geo * dot(n_geo, in.tangent.xyz));
-    let b_geo = cross(n_geo, t_geo) * select(-1.0, 1.0, in.tangent.w >= 0.0);
-    let to_eye = normalize(frame.camera_pos.xyz - in.world_pos);
+    let n_geo = s.n;
+    let t_geo = s.t;
+    let b_geo = cross(n_geo, t_geo) * s.b_sign;
+    let to_eye = s.to_eye;
     let view_ts = vec3<f32>(dot(to_eye, t_geo), dot(to_eye, b_geo), dot(to_eye, n_geo));
 
     let mode = frame.pom.x;
-    var uv = in.uv;
+    var uv = s.uv;
     if mode <= MODE_COMBINED {
-        uv = pom(in.uv, view_ts, ddx, ddy).xy;
+        uv = pom(s.uv, view_ts, ddx, ddy).xy;
     }
     if frame.hair_misc.z > 0.5 {
-        return vec4<f32>(uv, in.uv);
+        return vec4<f32>(uv, s.uv);
     }
     // The micro-relief and fine tiles move with the POM offset: they lie on the surface.
-    let offset = uv - in.uv;
+    let offset = uv - s.uv;
 
     // Large-wrinkle normal from the heights at the hit, with the slope the march used.
     let n_large = height_normal(large_map, surface_sampler, uv, frame.disp.x, ddx, ddy);

@@ -358,7 +358,7 @@ fn export_glb(
 
 /// The head's tangent-space normal map at the scene's age, OpenGL convention (green =
 /// +v), RGB8, `size_px`² over the head's UV square: the CPU twin of `shaders/skin.wgsl`'s
-/// `fs_main` without parallax. Large wrinkles from their heights with `view.disp_scale`
+/// `shade` without parallax. Large wrinkles from their heights with `view.disp_scale`
 /// (SPEC §4); the fine-wrinkle tile in the large wrinkles' frame, blended by the age
 /// (SPEC §5); the micro-relief tile on top by reoriented normal mapping. The tiles repeat
 /// a whole number of times across the UV square, as in the renderer, and are box-filtered

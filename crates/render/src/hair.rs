@@ -3,10 +3,17 @@
 
 use agesim_core::hair::AgeLevel;
 
-/// Quads per hair ribbon; keep equal to `SEGMENTS` in `shaders/hair.wgsl`.
+/// Quads per hair ribbon (`SEGMENTS`, a pipeline constant of `shaders/hair.wgsl`).
 pub(crate) const SEGMENTS: u32 = 4;
-/// Vertices of one hair's triangle strip.
-pub(crate) const VERTICES_PER_HAIR: u32 = 2 * (SEGMENTS + 1);
+/// Quads per ribbon of a sparse frame (`HairShading::sparse`): drawn at a fraction of
+/// the resolution, the curve needs fewer, and on a CPU adapter the pass's cost follows
+/// its vertices.
+pub(crate) const SPARSE_SEGMENTS: u32 = 2;
+
+/// Vertices of one hair's triangle strip of `segments` quads.
+pub(crate) const fn vertices_per_hair(segments: u32) -> u32 {
+    2 * (segments + 1)
+}
 
 pub(crate) const INSTANCE_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
     0 => Float32x3, // position

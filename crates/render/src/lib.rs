@@ -1,7 +1,8 @@
 //! The agesim renderer (SPEC §5–§6, issue 11): wgpu 30, shared with the editor's eframe
 //! device. The skin pass does parallax occlusion mapping of the large wrinkles with fine
-//! wrinkles and micro-relief on top; the hair pass draws every hair present at age t in
-//! one instanced draw with Kajiya–Kay shading.
+//! wrinkles and micro-relief on top, shading a stored surface (the mesh is rasterised
+//! again only when the view, the size or the mesh change); the hair pass draws every hair
+//! present at age t in one instanced draw with Kajiya–Kay shading.
 //!
 //! Use: create one [`Renderer`] from the device, queue and colour format; upload each
 //! input once and again only when it changes ([`Renderer::upload_mesh`],

@@ -221,7 +221,8 @@ pub struct HairShading {
     /// Draw every [`SPARSE_HAIR_STRIDE`]-th of the hairs of the age instead of all: a
     /// lighter pass while the age plays or the view moves (on a CPU adapter the hair pass
     /// costs ≈ 2.6 ms per 1,000 hairs whatever the resolution). The same hairs, evenly
-    /// thinned: every one drawn is one of count(t), in the same order.
+    /// thinned: every one drawn is one of count(t), in the same order, as a ribbon of
+    /// half the quads.
     pub sparse: bool,
 }
 

@@ -1,6 +1,15 @@
 //! The long-lived renderer: pipelines, layouts and samplers made once; assets uploaded
-//! on request; per frame one skin pass and one instanced hair pass into its own colour +
-//! depth targets (issue 11 §1; the editor composites the colour target, EGUI-0.37.md).
+//! on request; per frame a skin shading pass and one instanced hair pass into its own
+//! colour + depth targets (issue 11 §1; the editor composites the colour target,
+//! EGUI-0.37.md).
+//!
+//! The skin is drawn in two steps. The *surface pass* rasterises the mesh into a small
+//! G-buffer: per pixel the UV, its derivatives, the geometric frame and the direction to
+//! the eye (`fs_surface` in skin.wgsl). The *shading pass* runs the skin shader once per
+//! covered pixel from it (`fs_shade`). The surface pass runs only when what it stores
+//! changes (the camera, the size, the mesh, displacement): an age step or a re-baked map
+//! is one full-screen pass, whatever the mesh's triangle count. On a CPU rasteriser the
+//! head's 128k triangles cost more than shading the pixels they cover.
 
 use agesim_core::hair::{AgeLevel, HairInstances};
 use agesim_core::{HeightMap, Mask, Mesh};
@@ -8,7 +17,9 @@ use wgpu::util::DeviceExt as _;
 
 use crate::RenderError;
 use crate::f16::to_f16_bytes;
-use crate::hair::{INSTANCE_ATTRIBUTES, INSTANCE_STRIDE, VERTICES_PER_HAIR, count_at};
+use crate::hair::{
+    INSTANCE_ATTRIBUTES, INSTANCE_STRIDE, SEGMENTS, SPARSE_SEGMENTS, count_at, vertices_per_hair,
+};
 use crate::mesh::{MeshData, SurfaceScale, VERTEX_ATTRIBUTES, Vertex, subdivide};
 use crate::params::{DEFAULT_FINE_TILE_SIZE_M, FrameParams, PomMode, SPARSE_HAIR_STRIDE};
 use crate::shaders;
@@ -78,7 +89,36 @@ struct Targets {
     size_px: (u32, u32),
     colour: wgpu::Texture,
     colour_view: wgpu::TextureView,
+    /// The surface pass's G-buffer ([`SURFACE_FORMATS`], skin.wgsl `SurfaceOut`).
+    surface_views: [wgpu::TextureView; 3],
+    /// The shading pass's group 1: the surface targets.
+    surface_bind_group: wgpu::BindGroup,
+    /// The skin's depth, written by the surface pass and kept while the surface is.
+    surface_depth: wgpu::Texture,
+    surface_depth_view: wgpu::TextureView,
+    /// A copy of it per frame, which the hair and the wireframe test and write.
+    depth: wgpu::Texture,
     depth_view: wgpu::TextureView,
+}
+
+/// The G-buffer's formats (skin.wgsl `SurfaceOut`): 32 bytes a pixel, wgpu's lowest
+/// per-sample limit. UV in f32 (POM marches it), its derivatives and the frame in f16.
+const SURFACE_FORMATS: [wgpu::TextureFormat; 3] = [
+    wgpu::TextureFormat::Rgba32Float,
+    wgpu::TextureFormat::Rgba16Float,
+    wgpu::TextureFormat::Rgba16Float,
+];
+
+/// What the stored surface depends on: the camera, the targets and the mesh (a
+/// generation bumped when either is replaced), and when displacing, the depth and the
+/// large-wrinkle map that move the vertices.
+#[derive(Clone, Copy, PartialEq)]
+struct SurfaceKey {
+    clip_from_world: [[f32; 4]; 4],
+    camera_pos: [f32; 4],
+    generation: u64,
+    /// (displacement depth, large-map generation) in displacement mode.
+    displacement: Option<(f32, u64)>,
 }
 
 struct Hair {
@@ -96,7 +136,17 @@ pub struct Renderer {
     wire_edges: Option<(wgpu::Buffer, u32)>,
     frame_buffer: wgpu::Buffer,
     skin_layout: wgpu::BindGroupLayout,
-    skin_pipeline: wgpu::RenderPipeline,
+    /// Rasterises the mesh into the surface targets (`fs_surface`).
+    surface_pipeline: wgpu::RenderPipeline,
+    surface_layout: wgpu::BindGroupLayout,
+    /// Shades the stored surface in one full-screen triangle (`fs_shade`).
+    shade_pipeline: wgpu::RenderPipeline,
+    /// What the surface targets hold (None: nothing yet, or stale).
+    surface_key: Option<SurfaceKey>,
+    /// Bumped when the targets or the mesh are replaced (see [`SurfaceKey`]).
+    surface_generation: u64,
+    /// Bumped on every large-wrinkle upload (displacement moves the surface with it).
+    large_generation: u64,
     hair_pipeline: wgpu::RenderPipeline,
     /// The hair pipeline reading every `sparse_hair_stride`-th instance (None where the
     /// device allows no wider stride than one instance).
@@ -230,14 +280,22 @@ impl Renderer {
             buffers: &skin_vertex_buffers,
             compilation_options: wgpu::PipelineCompilationOptions::default(),
         };
-        let skin_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("agesim skin pipeline"),
+        // The surface pass: both sides of every triangle (imported heads disagree on
+        // winding; the ears and lips are seen from both sides), the depth test keeps
+        // the nearest.
+        let surface_targets = SURFACE_FORMATS.map(|format| {
+            Some(wgpu::ColorTargetState {
+                format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })
+        });
+        let surface_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("agesim skin surface pipeline"),
             layout: Some(&skin_pipeline_layout),
             vertex: skin_vertex.clone(),
             primitive: wgpu::PrimitiveState {
                 topology: wgpu::PrimitiveTopology::TriangleList,
-                // Imported heads disagree on winding; the ears and lips are seen from
-                // both sides. The depth test resolves it at the cost of overdraw.
                 cull_mode: None,
                 ..Default::default()
             },
@@ -245,7 +303,48 @@ impl Renderer {
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &skin_module,
-                entry_point: Some("fs_main"),
+                entry_point: Some("fs_surface"),
+                targets: &surface_targets,
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let surface_entry = |binding: u32| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let surface_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("agesim stored surface bind group layout"),
+            entries: &[surface_entry(0), surface_entry(1), surface_entry(2)],
+        });
+        let shade_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("agesim skin shading pipeline layout"),
+                bind_group_layouts: &[Some(&skin_layout), Some(&surface_layout)],
+                immediate_size: 0,
+            });
+        let shade_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("agesim skin shading pipeline"),
+            layout: Some(&shade_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &skin_module,
+                entry_point: Some("vs_fullscreen"),
+                buffers: &[],
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &skin_module,
+                entry_point: Some("fs_shade"),
                 targets: &colour_target,
                 compilation_options: wgpu::PipelineCompilationOptions::default(),
             }),
@@ -288,8 +387,9 @@ impl Renderer {
             immediate_size: 0,
         });
         // Two pipelines over the same instance buffer: every hair, and every
-        // SPARSE_HAIR_STRIDE-th (a wider instance stride reads one record in that many).
-        let hair_pipeline_with = |label: &str, stride: u64| {
+        // SPARSE_HAIR_STRIDE-th (a wider instance stride reads one record in that many)
+        // as a ribbon of fewer quads.
+        let hair_pipeline_with = |label: &str, stride: u64, segments: u32| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
                 layout: Some(&hair_pipeline_layout),
@@ -301,7 +401,10 @@ impl Renderer {
                         step_mode: wgpu::VertexStepMode::Instance,
                         attributes: &INSTANCE_ATTRIBUTES,
                     })],
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &[("SEGMENTS", f64::from(segments))],
+                        ..Default::default()
+                    },
                 },
                 primitive: wgpu::PrimitiveState {
                     topology: wgpu::PrimitiveTopology::TriangleStrip,
@@ -320,7 +423,7 @@ impl Renderer {
                 cache: None,
             })
         };
-        let hair_pipeline = hair_pipeline_with("agesim hair pipeline", INSTANCE_STRIDE);
+        let hair_pipeline = hair_pipeline_with("agesim hair pipeline", INSTANCE_STRIDE, SEGMENTS);
         // The device bounds the instance stride (WebGL2-level limits, as eframe asks for
         // on OpenGL, allow 255 bytes: one hair in 7 there).
         let sparse_hair_stride = (u64::from(device.limits().max_vertex_buffer_array_stride)
@@ -330,6 +433,7 @@ impl Renderer {
             hair_pipeline_with(
                 "agesim sparse hair pipeline",
                 INSTANCE_STRIDE * u64::from(sparse_hair_stride),
+                SPARSE_SEGMENTS,
             )
         });
 
@@ -372,7 +476,12 @@ impl Renderer {
             colour_format,
             frame_buffer,
             skin_layout,
-            skin_pipeline,
+            surface_pipeline,
+            surface_layout,
+            shade_pipeline,
+            surface_key: None,
+            surface_generation: 0,
+            large_generation: 0,
             hair_pipeline,
             sparse_hair_pipeline,
             sparse_hair_stride,
@@ -450,6 +559,7 @@ impl Renderer {
         ));
         self.displaced_mesh = None;
         self.mesh_to_subdivide = Some(data);
+        self.surface_generation += 1;
         self.surface_scale = scale;
         self.metres_per_unit = metres_per_unit;
         Ok(())
@@ -499,6 +609,7 @@ impl Renderer {
         match *upload {
             Upload::LargeWrinkles(layer) => {
                 self.large = self.create_layer("agesim large-wrinkle heights", layer)?;
+                self.large_generation += 1;
             }
             Upload::Tile {
                 layer,
@@ -684,28 +795,63 @@ impl Renderer {
                 | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[],
         });
-        let depth = self.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("agesim depth target"),
-            size: extent,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
+        let texture = |label: &str, format, usage| {
+            self.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: extent,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let labels = [
+            "agesim surface target 0 (uv, bitangent sign, coverage)",
+            "agesim surface target 1 (uv derivatives)",
+            "agesim surface target 2 (normal, tangent)",
+        ];
+        let surface_views = [0, 1, 2].map(|i| {
+            texture(
+                labels[i],
+                SURFACE_FORMATS[i],
+                attachment | wgpu::TextureUsages::TEXTURE_BINDING,
+            )
+            .create_view(&wgpu::TextureViewDescriptor::default())
         });
+        let surface_bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("agesim stored surface bind group"),
+            layout: &self.surface_layout,
+            entries: &[0, 1, 2].map(|i| wgpu::BindGroupEntry {
+                binding: i,
+                resource: wgpu::BindingResource::TextureView(&surface_views[i as usize]),
+            }),
+        });
+        let surface_depth = texture(
+            "agesim surface depth",
+            DEPTH_FORMAT,
+            attachment | wgpu::TextureUsages::COPY_SRC,
+        );
+        let depth = texture(
+            "agesim depth target",
+            DEPTH_FORMAT,
+            attachment | wgpu::TextureUsages::COPY_DST,
+        );
+        let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
         self.target_generation += 1;
+        self.surface_generation += 1;
         self.targets = Some(Targets {
             size_px,
-            colour_view: colour.create_view(&wgpu::TextureViewDescriptor {
-                label: Some("agesim colour target view"),
-                ..Default::default()
-            }),
-            depth_view: depth.create_view(&wgpu::TextureViewDescriptor {
-                label: Some("agesim depth target view"),
-                ..Default::default()
-            }),
+            colour_view: view(&colour),
             colour,
+            surface_views,
+            surface_bind_group,
+            surface_depth_view: view(&surface_depth),
+            surface_depth,
+            depth_view: view(&depth),
+            depth,
         });
         Ok(())
     }
@@ -756,6 +902,7 @@ impl Renderer {
         {
             self.displaced_mesh =
                 Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
+            self.surface_generation += 1;
         }
         let ctx = FrameContext {
             size_px,
@@ -791,26 +938,127 @@ impl Renderer {
                 })
             }
         };
+        let mesh = if params.skin.pom_mode == PomMode::Displacement {
+            self.displaced_mesh.as_ref()
+        } else {
+            self.mesh.as_ref()
+        };
+        let key = SurfaceKey {
+            clip_from_world: uniform.clip_from_world,
+            camera_pos: uniform.camera_pos,
+            generation: self.surface_generation,
+            displacement: (params.skin.pom_mode == PomMode::Displacement)
+                .then_some((uniform.disp[1], self.large_generation)),
+        };
+        if self.surface_key != Some(key) {
+            // The surface pass: the mesh into the G-buffer and the skin's depth.
+            let clear = wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                store: wgpu::StoreOp::Store,
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("agesim surface pass"),
+                color_attachments: &targets.surface_views.each_ref().map(|view| {
+                    Some(wgpu::RenderPassColorAttachment {
+                        view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: clear,
+                    })
+                }),
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.surface_depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            if let Some(mesh) = mesh {
+                pass.set_pipeline(&self.surface_pipeline);
+                pass.set_bind_group(0, &skin_bind_group, &[]);
+                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+            }
+            drop(pass);
+            self.surface_key = Some(key);
+        }
+        {
+            // The shading pass: the background, then the skin from the stored surface.
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("agesim skin shading pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &targets.colour_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color {
+                            r: to_target(bg.x),
+                            g: to_target(bg.y),
+                            b: to_target(bg.z),
+                            a: 1.0,
+                        }),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.shade_pipeline);
+            pass.set_bind_group(0, &skin_bind_group, &[]);
+            pass.set_bind_group(1, &targets.surface_bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        let wire = params.wireframe && params.skin.pom_mode != PomMode::Displacement;
+        let hair = self.hair.as_ref().and_then(|hair| {
+            let count = count_at(&hair.levels, params.age);
+            if !params.hair.enabled || count == 0 {
+                return None;
+            }
+            // Sparse: instances 0, S, 2S, … of the first `count` (the last one read,
+            // (⌈count/S⌉ − 1)·S, is below count).
+            Some(match &self.sparse_hair_pipeline {
+                Some(sparse) if params.hair.sparse => (
+                    hair,
+                    sparse,
+                    count.div_ceil(self.sparse_hair_stride),
+                    SPARSE_SEGMENTS,
+                ),
+                _ => (hair, &self.hair_pipeline, count, SEGMENTS),
+            })
+        });
+        if !wire && hair.is_none() {
+            return Ok(());
+        }
+        // The hair and the wireframe are tested against the skin's depth and write their
+        // own into a copy: the stored surface's depth stays as the surface pass left it.
+        encoder.copy_texture_to_texture(
+            targets.surface_depth.as_image_copy(),
+            targets.depth.as_image_copy(),
+            targets.depth.size(),
+        );
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("agesim frame pass"),
+            label: Some("agesim hair and wireframe pass"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                 view: &targets.colour_view,
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color {
-                        r: to_target(bg.x),
-                        g: to_target(bg.y),
-                        b: to_target(bg.z),
-                        a: 1.0,
-                    }),
+                    load: wgpu::LoadOp::Load,
                     store: wgpu::StoreOp::Store,
                 },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth_view,
                 depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
+                    load: wgpu::LoadOp::Load,
                     store: wgpu::StoreOp::Store,
                 }),
                 stencil_ops: None,
@@ -819,44 +1067,18 @@ impl Renderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        let mesh = if params.skin.pom_mode == PomMode::Displacement {
-            self.displaced_mesh.as_ref()
-        } else {
-            self.mesh.as_ref()
-        };
-        if let Some(mesh) = mesh {
-            pass.set_pipeline(&self.skin_pipeline);
-            pass.set_bind_group(0, &skin_bind_group, &[]);
-            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
-        }
-        if params.wireframe
-            && params.skin.pom_mode != PomMode::Displacement
-            && let (Some(mesh), Some((edges, count))) = (&self.mesh, &self.wire_edges)
-        {
+        if wire && let (Some(mesh), Some((edges, count))) = (&self.mesh, &self.wire_edges) {
             pass.set_pipeline(&self.wire_pipeline);
             pass.set_bind_group(0, &skin_bind_group, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_index_buffer(edges.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..*count, 0, 0..1);
         }
-        if let Some(hair) = &self.hair {
-            let count = count_at(&hair.levels, params.age);
-            if params.hair.enabled && count > 0 {
-                // Sparse: instances 0, S, 2S, … of the first `count` (the last one read,
-                // (⌈count/S⌉ − 1)·S, is below count).
-                let (pipeline, drawn) = match &self.sparse_hair_pipeline {
-                    Some(sparse) if params.hair.sparse => {
-                        (sparse, count.div_ceil(self.sparse_hair_stride))
-                    }
-                    _ => (&self.hair_pipeline, count),
-                };
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &self.hair_bind_group, &[]);
-                pass.set_vertex_buffer(0, hair.instances.slice(..));
-                pass.draw(0..VERTICES_PER_HAIR, 0..drawn);
-            }
+        if let Some((hair, pipeline, drawn, segments)) = hair {
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &self.hair_bind_group, &[]);
+            pass.set_vertex_buffer(0, hair.instances.slice(..));
+            pass.draw(0..vertices_per_hair(segments), 0..drawn);
         }
         Ok(())
     }

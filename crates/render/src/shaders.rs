@@ -1,7 +1,8 @@
 //! The WGSL sources of `shaders/`, the one place they are loaded (`include_str!`), so the
 //! binary runs from any folder and the validation test sees exactly what the GPU gets.
 
-/// The skin pass: POM, fine wrinkles, micro-relief, skin lighting (SPEC §5).
+/// The skin: the surface pass (the mesh into a G-buffer) and the shading pass (POM, fine
+/// wrinkles, micro-relief, skin lighting, SPEC §5).
 pub const SKIN_WGSL: &str = include_str!("../../../shaders/skin.wgsl");
 /// The hair pass: instanced ribbons, graying, Kajiya–Kay (SPEC §6).
 pub const HAIR_WGSL: &str = include_str!("../../../shaders/hair.wgsl");

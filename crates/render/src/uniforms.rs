@@ -4,11 +4,12 @@
 
 use crate::params::{FrameOutput, FrameParams, GrayingRampParam};
 
-/// `struct Frame` of the shaders (see the field comments there). 288 bytes.
+/// `struct Frame` of the shaders (see the field comments there). 352 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniform {
     pub clip_from_world: [[f32; 4]; 4],
+    pub world_from_clip: [[f32; 4]; 4],
     pub camera_pos: [f32; 4],
     pub light_dir: [f32; 4],
     pub light_colour: [f32; 4],
@@ -61,6 +62,7 @@ impl FrameUniform {
         let v3 = |v: glam::Vec3, w: f32| [v.x, v.y, v.z, w];
         Self {
             clip_from_world: clip.to_cols_array_2d(),
+            world_from_clip: clip.inverse().to_cols_array_2d(),
             camera_pos: [eye.x, eye.y, eye.z, if ctx.encode_srgb { 1.0 } else { 0.0 }],
             light_dir: v3(l, non_negative(p.light.intensity)),
             light_colour: v3(p.light.colour, non_negative(p.light.ambient)),

@@ -62,5 +62,5 @@ fn frame_uniform_matches_wgsl() {
             "struct Frame in {name} vs FrameUniform"
         );
     }
-    assert_eq!(std::mem::size_of::<FrameUniform>(), 288);
+    assert_eq!(std::mem::size_of::<FrameUniform>(), 352);
 }

@@ -147,6 +147,8 @@ pub struct Renderer {
     surface_generation: u64,
     /// Bumped on every large-wrinkle upload (displacement moves the surface with it).
     large_generation: u64,
+    /// Surface passes run so far ([`Renderer::surface_passes`]).
+    surface_passes: u64,
     hair_pipeline: wgpu::RenderPipeline,
     /// The hair pipeline reading every `sparse_hair_stride`-th instance (None where the
     /// device allows no wider stride than one instance).
@@ -482,6 +484,7 @@ impl Renderer {
             surface_key: None,
             surface_generation: 0,
             large_generation: 0,
+            surface_passes: 0,
             hair_pipeline,
             sparse_hair_pipeline,
             sparse_hair_stride,
@@ -873,6 +876,12 @@ impl Renderer {
         self.target_generation
     }
 
+    /// How many frames rasterised the mesh (the surface pass) so far; the others shaded
+    /// the stored surface. For diagnostics and tests.
+    pub fn surface_passes(&self) -> u64 {
+        self.surface_passes
+    }
+
     /// The colour target of the last [`Renderer::encode`] (None before the first).
     pub fn colour_texture(&self) -> Option<&wgpu::Texture> {
         self.targets.as_ref().map(|t| &t.colour)
@@ -987,6 +996,7 @@ impl Renderer {
             }
             drop(pass);
             self.surface_key = Some(key);
+            self.surface_passes += 1;
         }
         {
             // The shading pass: the background, then the skin from the stored surface.

@@ -341,3 +341,76 @@ fn gpu_default_stride(gpu: &Gpu) -> u32 {
         .unwrap()
         .sparse_hair_stride()
 }
+
+/// The skin is shaded from a stored surface: a frame that changes only the age, the
+/// shading or a map shades it without rasterising the mesh again, and shows exactly what a
+/// fresh renderer draws; the camera, the size, a new mesh or (when displacing) a new map
+/// redraw the surface.
+#[test]
+fn the_stored_surface_is_reused_only_while_it_is_valid() {
+    let Some(gpu) = gpu_or_skip("the_stored_surface_is_reused_only_while_it_is_valid") else {
+        return;
+    };
+    let mesh = head::default_head();
+    let size = (96, 96);
+    let mut young = FrameParams::default();
+    young.hair.enabled = false;
+    young.age = 0.1;
+    let mut old = young;
+    old.age = 0.9;
+    old.skin.paleness = 0.8;
+    old.skin.fine_blend = 1.0;
+    old.wireframe = true;
+    let deeper = creases(256, 25.0);
+    let fresh = |p: &FrameParams, mesh: &Mesh, large: &HeightMap| {
+        let mut r = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT).unwrap();
+        r.upload_mesh(mesh, 1.0).unwrap();
+        r.upload_large_wrinkles(large).unwrap();
+        r.render_to_image(p, size).unwrap()
+    };
+
+    let mut r = head_renderer(&gpu, &mesh);
+    r.render_to_image(&young, size).unwrap();
+    assert_eq!(r.surface_passes(), 1);
+    // An age step with a re-baked map: shading only.
+    r.upload_large_wrinkles(&deeper).unwrap();
+    let aged = r.render_to_image(&old, size).unwrap();
+    assert_eq!(
+        r.surface_passes(),
+        1,
+        "an age step rasterised the mesh again"
+    );
+    assert!(
+        aged == fresh(&old, &mesh, &deeper),
+        "the stored surface shows another frame"
+    );
+
+    // The camera moves: the surface is redrawn.
+    let mut turned = old;
+    turned.camera.yaw_rad += 0.4;
+    let img = r.render_to_image(&turned, size).unwrap();
+    assert_eq!(r.surface_passes(), 2);
+    assert!(img == fresh(&turned, &mesh, &deeper));
+
+    // Another size: redrawn.
+    let small = r.render_to_image(&turned, (64, 80)).unwrap();
+    assert_eq!(r.surface_passes(), 3);
+    assert_eq!(small.dimensions(), (64, 80));
+
+    // Displacement moves the surface with the map: a new map redraws it there.
+    let mut displaced = turned;
+    displaced.skin.pom_mode = PomMode::Displacement;
+    r.render_to_image(&displaced, size).unwrap();
+    let passes = r.surface_passes();
+    let flatter = creases(256, 60.0);
+    r.upload_large_wrinkles(&flatter).unwrap();
+    let img = r.render_to_image(&displaced, size).unwrap();
+    assert_eq!(r.surface_passes(), passes + 1);
+    assert!(img == fresh(&displaced, &mesh, &flatter));
+
+    // Another mesh: redrawn.
+    let patch = head::skin_patch();
+    r.upload_mesh(&patch, 1.0).unwrap();
+    let img = r.render_to_image(&turned, size).unwrap();
+    assert!(img == fresh(&turned, &patch, &flatter));
+}

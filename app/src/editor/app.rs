@@ -268,7 +268,7 @@ impl EditorApp {
         };
         if app.options.bench_ui {
             app.bench = Some(super::bench_ui::BenchUi::new());
-            app.persisted.layout = Layout::Head;
+            app.persisted.layout = Layout::default();
             app.persisted.compare = false;
         }
         if let Some(e) = error {
@@ -778,6 +778,10 @@ impl EditorApp {
             super::bench_ui::Action::BigBake => self.submit_sized((4096, 4096), "4096² bake"),
             super::bench_ui::Action::SetAge(t) => self.set_age(t, true),
             super::bench_ui::Action::Play => self.persisted.playback.playing = true,
+            super::bench_ui::Action::PlayHeadOnly => {
+                self.persisted.layout = Layout::Head;
+                self.persisted.playback.playing = true;
+            }
             super::bench_ui::Action::Stop => self.persisted.playback.playing = false,
             super::bench_ui::Action::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
         }

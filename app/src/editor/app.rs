@@ -717,17 +717,9 @@ impl EditorApp {
         project_b.age.t = project_b.age.mapping().t(self.persisted.compare_years);
         b.set_pan(pan);
         let x = rect.left() + rect.width() * self.persisted.divider;
-        if let Some(id) = b.render(ui.ctx(), rs, snapshot_b, &project_b, rect) {
+        if b.render(ui.ctx(), rs, snapshot_b, &project_b, rect) {
             let right = egui::Rect::from_min_max(egui::pos2(x, rect.top()), rect.max);
-            ui.painter().image(
-                id,
-                right,
-                egui::Rect::from_min_max(
-                    egui::pos2(self.persisted.divider, 0.0),
-                    egui::pos2(1.0, 1.0),
-                ),
-                egui::Color32::WHITE,
-            );
+            b.show(&ui.painter().with_clip_rect(right), rect);
         }
         let handle = egui::Rect::from_center_size(
             egui::pos2(x, rect.center().y),

@@ -1,7 +1,7 @@
 //! The 3D view: the renderer (`agesim-render`) draws the head into its own colour and
-//! depth targets on eframe's wgpu device; the colour target is shown as an egui image
-//! (registered as a native texture). Drag to orbit, right-drag to pan, scroll to zoom,
-//! Shift+drag to move the light, double-click to frame the head.
+//! depth targets on eframe's wgpu device; an egui paint callback blits the colour target
+//! into egui's pass (`agesim_render::Blit`). Drag to orbit, right-drag to pan, scroll to
+//! zoom, Shift+drag to move the light, double-click to frame the head.
 //!
 //! A frame is encoded and submitted only when something it shows changed (the maps, the
 //! project's view, age or shading, the size): on a CPU adapter an unchanged view costs
@@ -19,9 +19,9 @@ use super::worker::Snapshot;
 use crate::frame;
 
 /// The 3D view's colour target: 8-bit with the sRGB encoding done by the skin and hair
-/// shaders, which egui shows as it is (its textures hold gamma-encoded values). An sRGB
-/// format would make the CPU rasteriser decode four texels per shown pixel: drawing the
-/// view's image cost ≈ 29 ms of every frame on llvmpipe at 1280×800.
+/// shaders, copied as it is into egui's (non-sRGB) frame. An sRGB format would make the
+/// CPU rasteriser decode four texels per shown pixel: drawing the view's image cost
+/// ≈ 29 ms of every frame on llvmpipe at 1280×800.
 const VIEW_FORMAT: eframe::wgpu::TextureFormat = eframe::wgpu::TextureFormat::Rgba8Unorm;
 
 /// The identity of an uploaded map: the address of its shared allocation.
@@ -43,7 +43,10 @@ pub struct Viewport {
     /// view is dragged, so the view keeps up on slow adapters; the image is upscaled).
     pub scale: f32,
     renderer: Renderer,
-    texture: Option<egui::TextureId>,
+    /// Shows the colour target in egui's pass, with its bind group for the current
+    /// target (remade when the renderer recreates its targets).
+    blit: Arc<agesim_render::Blit>,
+    shown: Option<(u64, eframe::wgpu::BindGroup)>,
     uploaded: Uploaded,
     /// The head's centre, the orbit's target (mesh units).
     centre: Vec3,
@@ -68,7 +71,8 @@ impl Viewport {
         Ok(Self {
             scale: 1.0,
             renderer: Renderer::new(&rs.device, &rs.queue, VIEW_FORMAT)?,
-            texture: None,
+            blit: Arc::new(agesim_render::Blit::new(&rs.device, rs.target_format)),
+            shown: None,
             uploaded: Uploaded::default(),
             centre: Vec3::ZERO,
             pan: Vec3::ZERO,
@@ -171,13 +175,8 @@ impl Viewport {
             let (origin, dir) = super::pick::view_ray(clip, ndc);
             self.picked = super::pick::ray_pick(mesh, origin, dir);
         }
-        if let Some(id) = self.render(ui.ctx(), rs, snapshot, project, rect) {
-            ui.painter().image(
-                id,
-                rect,
-                Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
-                egui::Color32::WHITE,
-            );
+        if self.render(ui.ctx(), rs, snapshot, project, rect) {
+            self.show(ui.painter(), rect);
         }
         if let Some(p) = self.marker {
             let clip = self.clip_from_world(project, rect);
@@ -222,8 +221,22 @@ impl Viewport {
         self.pan = pan;
     }
 
+    /// Shows the latest frame over `rect`, through `painter`'s clip rectangle (the compare
+    /// view shows the part right of its divider).
+    pub fn show(&self, painter: &egui::Painter, rect: Rect) {
+        if let Some((_, bind_group)) = &self.shown {
+            painter.add(egui_wgpu::Callback::new_paint_callback(
+                rect,
+                ShowFrame {
+                    blit: self.blit.clone(),
+                    bind_group: bind_group.clone(),
+                },
+            ));
+        }
+    }
+
     /// Uploads what changed and, when anything it shows changed, encodes a frame of
-    /// `rect`'s size; returns the texture that holds the latest frame.
+    /// `rect`'s size; returns whether there is a frame to show.
     pub fn render(
         &mut self,
         ctx: &egui::Context,
@@ -231,9 +244,11 @@ impl Viewport {
         snapshot: &Snapshot,
         project: &Project,
         rect: Rect,
-    ) -> Option<egui::TextureId> {
+    ) -> bool {
         self.upload(snapshot, project);
-        let factors = snapshot.factors.as_ref()?;
+        let Some(factors) = snapshot.factors.as_ref() else {
+            return self.shown.is_some();
+        };
         // The age shown is the document's; the maps are the last baked ones.
         let mut factors = factors.clone();
         factors.t = project.age.t;
@@ -243,10 +258,15 @@ impl Viewport {
         // While the view moves or the age plays (drawn at a lower resolution), one hair in
         // SPARSE_HAIR_STRIDE: the still frame that follows draws them all.
         params.hair.sparse = self.scale < 1.0;
-        let ppp = ctx.pixels_per_point() * self.scale.clamp(0.1, 1.0);
+        // The pixels egui's paint callback covers (its viewport rounds the rectangle's
+        // edges to pixels): at full resolution one texel lands on one pixel.
+        let ppp = ctx.pixels_per_point();
+        let scale = self.scale.clamp(0.1, 1.0);
+        let pixels =
+            |a: f32, b: f32| (((b * ppp).round() - (a * ppp).round()) * scale).round() as u32;
         let size = [
-            ((rect.width() * ppp) as u32).clamp(16, 4096),
-            ((rect.height() * ppp) as u32).clamp(16, 4096),
+            pixels(rect.left(), rect.right()).clamp(16, 4096),
+            pixels(rect.top(), rect.bottom()).clamp(16, 4096),
         ];
         let key = (params, size, self.uploaded);
         if self.last.as_ref() != Some(&key) {
@@ -262,23 +282,11 @@ impl Viewport {
             {
                 Ok(()) => {
                     rs.queue.submit([encoder.finish()]);
-                    if let Some(view) = self.renderer.colour_view() {
-                        let mut egui_renderer = rs.renderer.write();
-                        match self.texture {
-                            Some(id) => egui_renderer.update_egui_texture_from_wgpu_texture(
-                                &rs.device,
-                                view,
-                                eframe::wgpu::FilterMode::Linear,
-                                id,
-                            ),
-                            None => {
-                                self.texture = Some(egui_renderer.register_native_texture(
-                                    &rs.device,
-                                    view,
-                                    eframe::wgpu::FilterMode::Linear,
-                                ));
-                            }
-                        }
+                    let generation = self.renderer.target_generation();
+                    if self.shown.as_ref().is_none_or(|(g, _)| *g != generation)
+                        && let Some(view) = self.renderer.colour_view()
+                    {
+                        self.shown = Some((generation, self.blit.bind(&rs.device, view)));
                     }
                     self.hairs_drawn = if params.hair.enabled {
                         self.renderer.hair_count(params.age)
@@ -297,7 +305,7 @@ impl Viewport {
             self.encode_ms = start.elapsed().as_secs_f64() * 1e3;
             self.last = Some(key);
         }
-        self.texture
+        self.shown.is_some()
     }
 
     fn interact(&mut self, ui: &egui::Ui, response: &egui::Response, project: &mut Project) {
@@ -340,5 +348,22 @@ impl Viewport {
         if response.double_clicked() {
             self.reset(project);
         }
+    }
+}
+
+/// The paint callback that blits the view's frame into egui's render pass.
+struct ShowFrame {
+    blit: Arc<agesim_render::Blit>,
+    bind_group: eframe::wgpu::BindGroup,
+}
+
+impl egui_wgpu::CallbackTrait for ShowFrame {
+    fn paint(
+        &self,
+        _info: egui::PaintCallbackInfo,
+        render_pass: &mut eframe::wgpu::RenderPass<'static>,
+        _resources: &egui_wgpu::CallbackResources,
+    ) {
+        self.blit.draw(render_pass, &self.bind_group);
     }
 }

@@ -18,6 +18,7 @@
 //! target in `paint` (or show it through `register_native_texture` with a renderer made
 //! for `Rgba8Unorm`, for which the shader writes sRGB values itself).
 
+mod blit;
 mod error;
 mod f16;
 mod gpu;
@@ -28,6 +29,7 @@ mod renderer;
 pub mod shaders;
 mod uniforms;
 
+pub use blit::Blit;
 pub use error::RenderError;
 pub use gpu::Gpu;
 pub use mesh::SurfaceScale;

@@ -47,7 +47,8 @@ fn every_shader_file_validates() {
 
 #[test]
 fn frame_uniform_matches_wgsl() {
-    for (name, source) in shaders::ALL {
+    // The shaders of the frame (the blit reads no uniform).
+    for (name, source) in shaders::ALL.iter().filter(|(n, _)| *n != "blit.wgsl") {
         let module = parse_and_validate(name, source).unwrap();
         let (handle, _) = module
             .types

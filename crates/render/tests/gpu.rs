@@ -414,3 +414,109 @@ fn the_stored_surface_is_reused_only_while_it_is_valid() {
     let img = r.render_to_image(&turned, size).unwrap();
     assert!(img == fresh(&turned, &patch, &flatter));
 }
+
+/// The blit copies a texture onto a same-sized viewport texel for texel, top row first,
+/// and onto a sub-rectangle through the pass's viewport.
+#[test]
+fn the_blit_copies_texel_for_texel_into_the_viewport() {
+    let Some(gpu) = gpu_or_skip("the_blit_copies_texel_for_texel_into_the_viewport") else {
+        return;
+    };
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let (w, h) = (64u32, 48u32);
+    // Every texel different: r = x·4, g = y·5, b = (x ^ y)·3.
+    let source: Vec<u8> = (0..h)
+        .flat_map(|y| {
+            (0..w).flat_map(move |x| [(x * 4) as u8, (y * 5) as u8, ((x ^ y) * 3) as u8, 255])
+        })
+        .collect();
+    let texture = |usage| {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: None,
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    };
+    let src = texture(wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
+    queue.write_texture(
+        src.as_image_copy(),
+        &source,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * w),
+            rows_per_image: None,
+        },
+        src.size(),
+    );
+    let dst = texture(wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC);
+    let blit = agesim_render::Blit::new(device, format);
+    let bind = blit.bind(device, &src.create_view(&Default::default()));
+    let read = |viewport: Option<[f32; 4]>| -> Vec<u8> {
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let view = dst.create_view(&Default::default());
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: None,
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            if let Some([x, y, vw, vh]) = viewport {
+                pass.set_viewport(x, y, vw, vh, 0.0, 1.0);
+            }
+            blit.draw(&mut pass, &bind);
+        }
+        // 64 texels · 4 bytes = 256: rows need no padding.
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: None,
+            size: u64::from(4 * w * h),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        encoder.copy_texture_to_buffer(
+            dst.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(4 * w),
+                    rows_per_image: Some(h),
+                },
+            },
+            dst.size(),
+        );
+        queue.submit([encoder.finish()]);
+        buffer
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, |r| r.unwrap());
+        device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+        buffer.slice(..).get_mapped_range().unwrap().to_vec()
+    };
+    assert!(read(None) == source, "a full-size blit changed texels");
+    // Into the right half: the texture squeezed there, the left half untouched.
+    let half = read(Some([32.0, 0.0, 32.0, 48.0]));
+    let px = |x: u32, y: u32| &half[(4 * (y * w + x)) as usize..][..4];
+    assert_eq!(px(10, 10), [0, 0, 0, 255]);
+    assert_eq!(px(32, 0)[1], 0, "the top row first");
+    assert!(px(63, 47)[1] >= 5 * 46, "the bottom row last");
+}

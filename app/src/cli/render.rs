@@ -416,6 +416,10 @@ fn save(img: &image::RgbaImage, path: &Path) -> anyhow::Result<()> {
 /// 1280×720 for each mode and iteration count, then the hair pass against the number of
 /// hairs drawn. Prints the fastest of the runs (robust to other work on a shared
 /// machine) and the median.
+///
+/// A *new view* frame moves the camera a little each run, so the mesh is rasterised into
+/// the stored surface and shaded (what orbiting costs); an *age step* keeps the view and
+/// changes the age, so only the shading pass and the hair run (what scrubbing costs).
 fn bench(
     inputs: &mut SceneInputs,
     renderer: &mut Renderer,
@@ -428,9 +432,20 @@ fn bench(
     let hairs = renderer.hair_count(0.75);
     const HAIR_AGES: [f32; 4] = [0.0, 0.5, 0.75, 1.0];
     let hair_counts = HAIR_AGES.map(|t| renderer.hair_count(t));
-    let mut time = |p: &FrameParams| -> anyhow::Result<(f64, f64)> {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Vary {
+        View,
+        Age,
+    }
+    let mut time = |p: &FrameParams, vary: Vary| -> anyhow::Result<(f64, f64)> {
         let mut samples = Vec::with_capacity(RUNS);
         for run in 0..=RUNS {
+            let mut p = *p;
+            match vary {
+                Vary::View => p.camera.yaw_rad += 1e-4 * run as f32,
+                Vary::Age => p.age += 1e-4 * run as f32,
+            }
+            let p = &p;
             let start = Instant::now();
             let mut encoder = gpu
                 .device
@@ -456,22 +471,25 @@ fn bench(
     println!(
         "1280×720, default head at t = 0.75 ({hairs} hairs); fastest / median of {RUNS} frames, ms"
     );
-    println!("| mode | L | B | hair off | hair on |");
-    println!("|---|---|---|---|---|");
+    println!("| mode | L | B | new view, hair off | age step, hair off | new view, hair on |");
+    println!("|---|---|---|---|---|---|");
     let mut row = |mode: PomMode, l: u32, b: u32| -> anyhow::Result<()> {
         let mut p = params;
         p.skin.pom_mode = mode;
         p.skin.linear_steps = l;
         p.skin.binary_steps = b;
         p.hair.enabled = false;
-        let off = time(&p)?;
+        let off = time(&p, Vary::View)?;
+        let step = time(&p, Vary::Age)?;
         p.hair.enabled = true;
-        let on = time(&p)?;
+        let on = time(&p, Vary::View)?;
         println!(
-            "| {} | {l} | {b} | {:.0} / {:.0} | {:.0} / {:.0} |",
+            "| {} | {l} | {b} | {:.0} / {:.0} | {:.0} / {:.0} | {:.0} / {:.0} |",
             mode.name(),
             off.0,
             off.1,
+            step.0,
+            step.1,
             on.0,
             on.1
         );
@@ -490,12 +508,12 @@ fn bench(
     row(PomMode::Displacement, 0, 0)?;
     // One instanced draw: the hair pass should cost in proportion to count(t).
     println!();
-    println!("| age t | hairs drawn | combined 8+4, hair on |");
+    println!("| age t | hairs drawn | combined 8+4, hair on, age step |");
     println!("|---|---|---|");
     for (t, count) in HAIR_AGES.into_iter().zip(hair_counts) {
         let mut p = params;
         p.age = t;
-        let on = time(&p)?;
+        let on = time(&p, Vary::Age)?;
         println!("| {t} | {count} | {:.0} / {:.0} |", on.0, on.1);
     }
     Ok(())

@@ -762,7 +762,10 @@ impl EditorApp {
             return;
         };
         ctx.request_repaint();
-        let hairs = self.viewport.as_ref().map_or(0, |v| v.hairs_drawn);
+        let hairs = self
+            .viewport
+            .as_ref()
+            .map_or((0, 1), |v| (v.hairs_drawn, v.sparse_hair));
         let idle = !self.worker.busy(self.reported);
         let years = self.project.age.mapping().years(self.project.age.t);
         match bench.frame(idle, self.reported, self.worker.latest, hairs, years) {

@@ -332,27 +332,14 @@ impl Renderer {
                 bind_group_layouts: &[Some(&skin_layout), Some(&surface_layout)],
                 immediate_size: 0,
             });
-        let shade_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("agesim skin shading pipeline"),
-            layout: Some(&shade_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &skin_module,
-                entry_point: Some("vs_fullscreen"),
-                buffers: &[],
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &skin_module,
-                entry_point: Some("fs_shade"),
-                targets: &colour_target,
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let shade_pipeline = crate::blit::fullscreen_pipeline(
+            device,
+            "agesim skin shading pipeline",
+            &shade_pipeline_layout,
+            &skin_module,
+            ("vs_fullscreen", "fs_shade"),
+            colour_format,
+        );
 
         let wire_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("agesim wireframe pipeline"),

@@ -913,7 +913,9 @@ impl eframe::App for EditorApp {
         // While the age plays or the pointer drags, draw the head at a third of the
         // resolution (upscaled): interaction stays fluid on a CPU adapter; the full
         // resolution returns on the first still frame.
-        let moving = self.persisted.playback.playing || ui.input(|i| i.pointer.any_down());
+        let moving = self.persisted.playback.playing
+            || ui.input(|i| i.pointer.any_down())
+            || self.bench.as_ref().is_some_and(|b| b.dragging());
         for v in [&mut self.viewport, &mut self.viewport_b]
             .into_iter()
             .flatten()

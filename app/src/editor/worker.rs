@@ -250,7 +250,13 @@ fn lower_priority() {
 }
 
 fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl Fn()) {
-    let mut scene: Option<Scene> = None;
+    // Two scenes: previews, and full-resolution bakes. Each keeps its maps at its own
+    // size, so the preview after a full bake (the next slider drag) and the full bake
+    // after a drag re-bake only what changed, instead of every layer at the other size.
+    let mut preview_scene: Option<Scene> = None;
+    let mut full_scene: Option<Scene> = None;
+    // Which of them the snapshot was last filled from (true: the full one).
+    let mut snapshot_full: Option<bool> = None;
     let mut snapshot = Snapshot::default();
     let mut scene_b: Option<Scene> = None;
     let mut snapshot_b = Snapshot::default();
@@ -277,8 +283,7 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
     };
     let (preview_pool, full_pool) = (pool("agesim-preview", false), pool("agesim-bake", true));
     let install = |job: &Job, f: &mut (dyn FnMut() + Send)| {
-        let r = &job.request;
-        let pool = if r.large_size_px.max(r.micro_size_px) > PREVIEW_MAX_PX {
+        let pool = if is_full(&job.request) {
             &full_pool
         } else {
             &preview_pool
@@ -299,10 +304,26 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         }
         let (job, cancel) = next;
         let start = Instant::now();
+        let full = is_full(&job.request);
+        // A new scene starts as a copy of the other: the inputs (mesh, masks, files)
+        // are shared, not loaded again.
+        let (scene, other) = if full {
+            (&mut full_scene, &preview_scene)
+        } else {
+            (&mut preview_scene, &full_scene)
+        };
+        if scene.is_none() {
+            *scene = other.clone();
+        }
+        // The snapshot shows the other scene's maps: take every layer from this one.
+        let switched = snapshot_full != Some(full);
         let mut outcome = Err(Error::Cancelled);
         install(&job, &mut || {
-            outcome = bake(&mut scene, &mut snapshot, &job, &cancel)
+            outcome = bake(scene, &mut snapshot, &job, switched, &cancel)
         });
+        if outcome.is_ok() {
+            snapshot_full = Some(full);
+        }
         if let (Ok(_), Some(t)) = (&outcome, job.compare_t) {
             // The second age: a scene of its own, so neither side re-bakes the other's age.
             let mut job_b = job.clone();
@@ -313,7 +334,7 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             }
             let mut result_b = Err(Error::Cancelled);
             install(&job_b, &mut || {
-                result_b = bake(&mut scene_b, &mut snapshot_b, &job_b, &cancel)
+                result_b = bake(&mut scene_b, &mut snapshot_b, &job_b, false, &cancel)
             });
             match result_b {
                 Ok(_) => snapshot.compare = Some(Box::new(snapshot_b.clone())),
@@ -343,10 +364,18 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
     }
 }
 
+/// Whether a request goes to the full-resolution scene and pool.
+fn is_full(r: &BakeRequest) -> bool {
+    r.large_size_px.max(r.micro_size_px) > PREVIEW_MAX_PX
+}
+
+/// Bakes `job` in `scene` and refreshes what changed in `snapshot` (everything when
+/// `refresh_all`: the snapshot was filled from another scene).
 fn bake(
     scene: &mut Option<Scene>,
     snapshot: &mut Snapshot,
     job: &Job,
+    refresh_all: bool,
     cancel: &CancelToken,
 ) -> Result<Changed, Error> {
     let mut changed = Changed::default();
@@ -376,9 +405,26 @@ fn bake(
     }
     let baked = s.bake(&job.request, cancel)?;
     changed.mesh |= baked.mesh;
-    let merged = Changed {
-        mesh: changed.mesh,
-        ..baked
+    let merged = if refresh_all {
+        Changed {
+            mesh: changed.mesh
+                || snapshot
+                    .mesh
+                    .as_ref()
+                    .is_none_or(|m| !Arc::ptr_eq(m, s.mesh())),
+            large_stamps: true,
+            large: true,
+            micro_features: true,
+            micro: true,
+            fine: true,
+            transition: true,
+            hair: true,
+        }
+    } else {
+        Changed {
+            mesh: changed.mesh,
+            ..baked
+        }
     };
     let mask_stamp = s.large_mask().map_or(0, |m| Arc::as_ptr(m) as usize);
     if mask_stamp != snapshot.mask_stamp {

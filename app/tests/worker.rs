@@ -1,0 +1,74 @@
+//! The editor's bake worker: previews and full-resolution bakes run in scenes of their
+//! own, and the snapshot the UI shows always comes whole from the scene that baked last.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::time::{Duration, Instant};
+
+use agesim::editor::worker::{Job, Outcome, Snapshot, Worker};
+use agesim_core::project::Project;
+use agesim_core::scene::BakeRequest;
+
+/// Submits a bake of `project` at `size_px` and waits for its snapshot.
+fn bake(worker: &mut Worker, project: &Project, size_px: u32, t: f32) -> Snapshot {
+    let request = BakeRequest {
+        large_size_px: size_px,
+        micro_size_px: size_px,
+        hair: false,
+        ..BakeRequest::preview(t)
+    };
+    let id = worker.submit(Job {
+        id: 0,
+        project: project.clone(),
+        wrinkles: None,
+        request,
+        what: format!("{size_px}²"),
+        compare_t: None,
+    });
+    let start = Instant::now();
+    loop {
+        for report in worker.poll() {
+            if report.id == id {
+                match report.outcome {
+                    Outcome::Done { snapshot, .. } => return *snapshot,
+                    Outcome::Failed(e) => panic!("bake failed: {e}"),
+                }
+            }
+        }
+        assert!(start.elapsed() < Duration::from_secs(300), "no report");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+}
+
+/// The sides of the large map, its GPU copy, the micro-relief tile and the map view's
+/// picture of the large map (which is at most 1024 px a side).
+fn sizes(s: &Snapshot) -> [u32; 4] {
+    [
+        s.large.as_ref().unwrap().height.width_px(),
+        s.gpu_large.as_ref().unwrap().size_px().0,
+        s.micro.as_ref().unwrap().height.width_px(),
+        s.images.large_height.as_ref().unwrap().size[0] as u32,
+    ]
+}
+
+#[test]
+fn previews_and_full_bakes_each_show_their_own_maps() {
+    let mut worker = Worker::spawn(|| {});
+    let project = Project::default();
+    // 1100 is above the preview limit (1024): the full-resolution scene.
+    let full = 1100;
+    assert_eq!(sizes(&bake(&mut worker, &project, 256, 0.5)), [256; 4]);
+    assert_eq!(
+        sizes(&bake(&mut worker, &project, full, 0.5)),
+        [full, full, full, full / 2]
+    );
+    // Back to previews, nothing changed in the document: the preview scene had nothing to
+    // re-bake, and the snapshot still shows its maps, not the full scene's.
+    assert_eq!(sizes(&bake(&mut worker, &project, 256, 0.5)), [256; 4]);
+    let old = bake(&mut worker, &project, 256, 0.9);
+    assert_eq!(sizes(&old), [256; 4]);
+    assert_eq!(old.factors.as_ref().unwrap().t, 0.9);
+    // And the full scene at the new age.
+    let old_full = bake(&mut worker, &project, full, 0.9);
+    assert_eq!(sizes(&old_full), [full, full, full, full / 2]);
+    assert_eq!(old_full.factors.as_ref().unwrap().t, 0.9);
+}

@@ -305,15 +305,15 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         let (job, cancel) = next;
         let start = Instant::now();
         let full = is_full(&job.request);
-        // A new scene starts as a copy of the other: the inputs (mesh, masks, files)
-        // are shared, not loaded again.
+        // A new scene starts as a fork of the other: the inputs (mesh, masks, files)
+        // are shared, not loaded again, and no map of the other size is copied.
         let (scene, other) = if full {
             (&mut full_scene, &preview_scene)
         } else {
             (&mut preview_scene, &full_scene)
         };
         if scene.is_none() {
-            *scene = other.clone();
+            *scene = other.as_ref().map(Scene::fork);
         }
         // The snapshot shows the other scene's maps: take every layer from this one.
         let switched = snapshot_full != Some(full);

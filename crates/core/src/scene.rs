@@ -268,6 +268,30 @@ impl Scene {
         })
     }
 
+    /// A scene of the same project and inputs, sharing this one's reference-counted
+    /// outputs (fine tile, transition texture, hair: kept while their keys hold) but none
+    /// of its large-wrinkle and micro-relief buffers. For baking the same document at
+    /// another size (the editor's previews beside its full-resolution bakes) without
+    /// copying maps that the other size would replace anyway.
+    pub fn fork(&self) -> Self {
+        Self {
+            project: self.project.clone(),
+            inputs: self.inputs.clone(),
+            mesh_generation: self.mesh_generation,
+            mask_generation: self.mask_generation,
+            factors: self.factors.clone(),
+            large: LargeStage::default(),
+            micro: MicroStage::default(),
+            fine_key: self.fine_key.clone(),
+            fine: self.fine.clone(),
+            transition_key: self.transition_key.clone(),
+            transition_generation: self.transition_generation,
+            transition: self.transition.clone(),
+            hair_key: self.hair_key.clone(),
+            hair: self.hair.clone(),
+        }
+    }
+
     pub fn project(&self) -> &Project {
         &self.project
     }

@@ -294,3 +294,27 @@ fn take_height_moves_what_export_maps_copies_and_the_scene_bakes_again() {
     assert_eq!(taken.data(), &kept[..]);
     assert_eq!(copied.data(), taken.data());
 }
+
+#[test]
+fn a_fork_shares_the_inputs_and_bakes_what_a_fresh_scene_bakes() {
+    let p = project();
+    let mut request = small(0.6);
+    request.hair = true;
+    request.fine = true;
+    let parent = fresh(&p, &request);
+    let mut fork = parent.fork();
+    assert!(
+        Arc::ptr_eq(fork.mesh(), parent.mesh()),
+        "the mesh was loaded again"
+    );
+    assert!(fork.large().is_none() && fork.micro().is_none());
+    // Another size and age in the fork, as the editor's previews beside its full bakes.
+    let mut other = request;
+    other.large_size_px = 48;
+    other.micro_size_px = 32;
+    other.t = 0.3;
+    fork.bake(&other, &CancelToken::never()).unwrap();
+    assert_eq!(bytes(&fork), bytes(&fresh(&p, &other)));
+    // The parent keeps its own maps.
+    assert_eq!(bytes(&parent), bytes(&fresh(&p, &request)));
+}

@@ -2,6 +2,10 @@
 // editor shows the 3D view's colour target with it: on a CPU rasteriser a plain textured
 // triangle is much cheaper per pixel than egui's image shader.
 
+// The texture holds sRGB-encoded values and the target encodes on write (an sRGB
+// format): decode first, so the values land unchanged.
+override DECODE_SRGB: bool = false;
+
 @group(0) @binding(0) var source: texture_2d<f32>;
 @group(0) @binding(1) var source_sampler: sampler;
 
@@ -22,5 +26,11 @@ fn vs_main(@builtin(vertex_index) i: u32) -> VertexOut {
 
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    return textureSample(source, source_sampler, in.uv);
+    let c = textureSample(source, source_sampler, in.uv);
+    if DECODE_SRGB {
+        let lo = c.rgb / 12.92;
+        let hi = pow((c.rgb + 0.055) / 1.055, vec3<f32>(2.4));
+        return vec4<f32>(select(hi, lo, c.rgb <= vec3<f32>(0.04045)), c.a);
+    }
+    return c;
 }

@@ -275,10 +275,11 @@ fn oct_decode(e: vec2<f32>) -> vec3<f32> {
 
 // The surface in three targets (32 bytes, the smallest per-sample limit wgpu allows):
 // uv in f32, since POM marches it; the derivatives and the frame in f16. The direction to
-// the eye is not stored: the shading pass has it from the pixel's view ray. Alpha 0 in
-// `s0` is the background.
+// the eye is not stored: the shading pass has it from the pixel's view ray. The depth is
+// kept too (in [0, 1]; the renderer clears it to 2, the background), so a frame can
+// restore the depth buffer from it without copying a depth texture.
 struct SurfaceOut {
-    // uv, bitangent sign, 1.
+    // uv, bitangent sign, depth.
     @location(0) s0: vec4<f32>,
     // dpdx(uv), dpdy(uv).
     @location(1) s1: vec4<f32>,
@@ -292,7 +293,7 @@ fn fs_surface(in: VertexOut) -> SurfaceOut {
     // Gram-Schmidt: interpolation bends the tangent away from the normal.
     let t = normalize(in.tangent.xyz - n * dot(n, in.tangent.xyz));
     var out: SurfaceOut;
-    out.s0 = vec4<f32>(in.uv, select(-1.0, 1.0, in.tangent.w >= 0.0), 1.0);
+    out.s0 = vec4<f32>(in.uv, select(-1.0, 1.0, in.tangent.w >= 0.0), in.clip.z);
     out.s1 = vec4<f32>(dpdx(in.uv), dpdy(in.uv));
     out.s2 = vec4<f32>(oct_encode(n), oct_encode(t));
     return out;
@@ -315,7 +316,7 @@ fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> 
 fn fs_shade(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(pos.xy);
     let s0 = textureLoad(surface0, p, 0);
-    if s0.w == 0.0 {
+    if s0.w > 1.5 {
         // Background: the pass cleared it.
         discard;
     }
@@ -335,6 +336,18 @@ fn fs_shade(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     s.b_sign = s0.z;
     s.to_eye = normalize(frame.camera_pos.xyz - on_ray.xyz / on_ray.w);
     return shade(s);
+}
+
+// The skin's depth from the stored surface, into a depth buffer cleared to 1: the hair and
+// the wireframe are then tested against the skin, and write their own depth, without
+// touching the stored surface.
+@fragment
+fn fs_depth(@builtin(position) pos: vec4<f32>) -> @builtin(frag_depth) f32 {
+    let s0 = textureLoad(surface0, vec2<i32>(pos.xy), 0);
+    if s0.w > 1.5 {
+        discard;
+    }
+    return s0.w;
 }
 
 // The skin's colour at a surface point (SPEC §5).

@@ -330,7 +330,7 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             job_b.request.t = t;
             job_b.wrinkles = scene.as_ref().map(|s| s.wrinkles().to_vec());
             if scene_b.is_none() {
-                scene_b = scene.clone();
+                scene_b = scene.as_ref().map(Scene::fork);
             }
             let mut result_b = Err(Error::Cancelled);
             install(&job_b, &mut || {

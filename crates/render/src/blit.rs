@@ -13,7 +13,9 @@ pub struct Blit {
 }
 
 impl Blit {
-    /// A pipeline drawing into `target_format` (no depth, one sample).
+    /// A pipeline drawing into `target_format` (no depth, one sample). The texture's
+    /// values are written as they are; into an sRGB target they are decoded first, so
+    /// the hardware's encoding gives them back.
     pub fn new(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> Self {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("agesim blit bind group layout"),
@@ -52,6 +54,10 @@ impl Blit {
             &module,
             ("vs_main", "fs_main"),
             target_format,
+            &[(
+                "DECODE_SRGB",
+                if target_format.is_srgb() { 1.0 } else { 0.0 },
+            )],
         );
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("agesim blit sampler"),
@@ -101,6 +107,7 @@ pub(crate) fn fullscreen_pipeline(
     module: &wgpu::ShaderModule,
     (vs, fs): (&str, &str),
     format: wgpu::TextureFormat,
+    fragment_constants: &[(&str, f64)],
 ) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
@@ -122,7 +129,10 @@ pub(crate) fn fullscreen_pipeline(
                 blend: None,
                 write_mask: wgpu::ColorWrites::ALL,
             })],
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: fragment_constants,
+                ..Default::default()
+            },
         }),
         multiview_mask: None,
         cache: None,

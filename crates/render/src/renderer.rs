@@ -4,9 +4,10 @@
 //! EGUI-0.37.md).
 //!
 //! The skin is drawn in two steps. The *surface pass* rasterises the mesh into a small
-//! G-buffer: per pixel the UV, its derivatives, the geometric frame and the direction to
-//! the eye (`fs_surface` in skin.wgsl). The *shading pass* runs the skin shader once per
-//! covered pixel from it (`fs_shade`). The surface pass runs only when what it stores
+//! G-buffer: per pixel the UV, its derivatives, the geometric frame and the depth
+//! (`fs_surface` in skin.wgsl). The *shading pass* runs the skin shader once per covered
+//! pixel from it (`fs_shade`), the eye direction coming from the pixel's view ray; a depth
+//! pass (`fs_depth`) restores the skin's depth for the hair and the wireframe. The surface pass runs only when what it stores
 //! changes (the camera, the size, the mesh, displacement): an age step or a re-baked map
 //! is one full-screen pass, whatever the mesh's triangle count. On a CPU rasteriser the
 //! head's 128k triangles cost more than shading the pixels they cover.
@@ -93,11 +94,10 @@ struct Targets {
     surface_views: [wgpu::TextureView; 3],
     /// The shading pass's group 1: the surface targets.
     surface_bind_group: wgpu::BindGroup,
-    /// The skin's depth, written by the surface pass and kept while the surface is.
-    surface_depth: wgpu::Texture,
+    /// The surface pass's depth test.
     surface_depth_view: wgpu::TextureView,
-    /// A copy of it per frame, which the hair and the wireframe test and write.
-    depth: wgpu::Texture,
+    /// The skin's depth restored from the stored surface each frame (`fs_depth`), which
+    /// the hair and the wireframe test and write.
     depth_view: wgpu::TextureView,
 }
 
@@ -141,6 +141,8 @@ pub struct Renderer {
     surface_layout: wgpu::BindGroupLayout,
     /// Shades the stored surface in one full-screen triangle (`fs_shade`).
     shade_pipeline: wgpu::RenderPipeline,
+    /// Writes the stored surface's depth into the depth target (`fs_depth`).
+    depth_pipeline: wgpu::RenderPipeline,
     /// What the surface targets hold (None: nothing yet, or stale).
     surface_key: Option<SurfaceKey>,
     /// Bumped when the targets or the mesh are replaced (see [`SurfaceKey`]).
@@ -339,7 +341,32 @@ impl Renderer {
             &skin_module,
             ("vs_fullscreen", "fs_shade"),
             colour_format,
+            &[],
         );
+        let depth_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("agesim skin depth pipeline"),
+            layout: Some(&shade_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &skin_module,
+                entry_point: Some("vs_fullscreen"),
+                buffers: &[],
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                ..depth_stencil.clone()
+            }),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &skin_module,
+                entry_point: Some("fs_depth"),
+                targets: &[],
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
 
         let wire_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("agesim wireframe pipeline"),
@@ -468,6 +495,7 @@ impl Renderer {
             surface_pipeline,
             surface_layout,
             shade_pipeline,
+            depth_pipeline,
             surface_key: None,
             surface_generation: 0,
             large_generation: 0,
@@ -819,16 +847,8 @@ impl Renderer {
                 resource: wgpu::BindingResource::TextureView(&surface_views[i as usize]),
             }),
         });
-        let surface_depth = texture(
-            "agesim surface depth",
-            DEPTH_FORMAT,
-            attachment | wgpu::TextureUsages::COPY_SRC,
-        );
-        let depth = texture(
-            "agesim depth target",
-            DEPTH_FORMAT,
-            attachment | wgpu::TextureUsages::COPY_DST,
-        );
+        let surface_depth = texture("agesim surface depth", DEPTH_FORMAT, attachment);
+        let depth = texture("agesim depth target", DEPTH_FORMAT, attachment);
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
         self.target_generation += 1;
         self.surface_generation += 1;
@@ -839,9 +859,7 @@ impl Renderer {
             surface_views,
             surface_bind_group,
             surface_depth_view: view(&surface_depth),
-            surface_depth,
             depth_view: view(&depth),
-            depth,
         });
         Ok(())
     }
@@ -884,8 +902,10 @@ impl Renderer {
     /// then (if enabled and uploaded) the hair pass with count(`params.age`) instances
     /// in one draw. Writes the frame uniform through the queue, so submit `encoder`
     /// after this call, and encode one view per submission (a second `encode` before the
-    /// submit would overwrite the first's uniform). Draws only the background until a
-    /// mesh is uploaded.
+    /// submit would overwrite the first's uniform). The stored surface counts as drawn
+    /// once recorded: an encoder dropped without being submitted leaves it stale until
+    /// the view, the size or the mesh change. Draws only the background until a mesh is
+    /// uploaded.
     pub fn encode(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
@@ -947,19 +967,23 @@ impl Renderer {
                 .then_some((uniform.disp[1], self.large_generation)),
         };
         if self.surface_key != Some(key) {
-            // The surface pass: the mesh into the G-buffer and the skin's depth.
-            let clear = wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            // The surface pass: the mesh into the G-buffer. The first target's alpha (the
+            // depth) is cleared to 2: the background.
+            let clear = |a: f64| wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color {
+                    a,
+                    ..wgpu::Color::TRANSPARENT
+                }),
                 store: wgpu::StoreOp::Store,
             };
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("agesim surface pass"),
-                color_attachments: &targets.surface_views.each_ref().map(|view| {
+                color_attachments: &[0, 1, 2].map(|k| {
                     Some(wgpu::RenderPassColorAttachment {
-                        view,
+                        view: &targets.surface_views[k],
                         depth_slice: None,
                         resolve_target: None,
-                        ops: clear,
+                        ops: clear(if k == 0 { 2.0 } else { 0.0 }),
                     })
                 }),
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
@@ -1035,12 +1059,29 @@ impl Renderer {
             return Ok(());
         }
         // The hair and the wireframe are tested against the skin's depth and write their
-        // own into a copy: the stored surface's depth stays as the surface pass left it.
-        encoder.copy_texture_to_texture(
-            targets.surface_depth.as_image_copy(),
-            targets.depth.as_image_copy(),
-            targets.depth.size(),
-        );
+        // own: the skin's depth is restored from the stored surface into the depth target
+        // (a draw, not a depth-texture copy, which OpenGL backends cannot do).
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("agesim skin depth pass"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.depth_pipeline);
+            pass.set_bind_group(0, &skin_bind_group, &[]);
+            pass.set_bind_group(1, &targets.surface_bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("agesim hair and wireframe pass"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {

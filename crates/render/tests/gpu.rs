@@ -408,10 +408,13 @@ fn the_stored_surface_is_reused_only_while_it_is_valid() {
     assert_eq!(r.surface_passes(), passes + 1);
     assert!(img == fresh(&displaced, &mesh, &flatter));
 
-    // Another mesh: redrawn.
+    // Another mesh, the camera and size unchanged: redrawn.
+    r.render_to_image(&turned, size).unwrap();
+    let passes = r.surface_passes();
     let patch = head::skin_patch();
     r.upload_mesh(&patch, 1.0).unwrap();
     let img = r.render_to_image(&turned, size).unwrap();
+    assert_eq!(r.surface_passes(), passes + 1);
     assert!(img == fresh(&turned, &patch, &flatter));
 }
 
@@ -431,7 +434,7 @@ fn the_blit_copies_texel_for_texel_into_the_viewport() {
             (0..w).flat_map(move |x| [(x * 4) as u8, (y * 5) as u8, ((x ^ y) * 3) as u8, 255])
         })
         .collect();
-    let texture = |usage| {
+    let texture = |format, usage| {
         device.create_texture(&wgpu::TextureDescriptor {
             label: None,
             size: wgpu::Extent3d {
@@ -447,7 +450,10 @@ fn the_blit_copies_texel_for_texel_into_the_viewport() {
             view_formats: &[],
         })
     };
-    let src = texture(wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
+    let src = texture(
+        format,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
     queue.write_texture(
         src.as_image_copy(),
         &source,
@@ -458,10 +464,13 @@ fn the_blit_copies_texel_for_texel_into_the_viewport() {
         },
         src.size(),
     );
-    let dst = texture(wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC);
-    let blit = agesim_render::Blit::new(device, format);
-    let bind = blit.bind(device, &src.create_view(&Default::default()));
-    let read = |viewport: Option<[f32; 4]>| -> Vec<u8> {
+    let read = |target: wgpu::TextureFormat, viewport: Option<[f32; 4]>| -> Vec<u8> {
+        let dst = texture(
+            target,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        );
+        let blit = agesim_render::Blit::new(device, target);
+        let bind = blit.bind(device, &src.create_view(&Default::default()));
         let mut encoder = device.create_command_encoder(&Default::default());
         {
             let view = dst.create_view(&Default::default());
@@ -512,9 +521,19 @@ fn the_blit_copies_texel_for_texel_into_the_viewport() {
         device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
         buffer.slice(..).get_mapped_range().unwrap().to_vec()
     };
-    assert!(read(None) == source, "a full-size blit changed texels");
+    assert!(
+        read(format, None) == source,
+        "a full-size blit changed texels"
+    );
+    // An sRGB target (egui's frame may be one) receives the same values.
+    let srgb = read(wgpu::TextureFormat::Rgba8UnormSrgb, None);
+    let off = srgb.iter().zip(&source).map(|(a, b)| a.abs_diff(*b)).max();
+    assert!(
+        off <= Some(1),
+        "into an sRGB target the values moved by {off:?}"
+    );
     // Into the right half: the texture squeezed there, the left half untouched.
-    let half = read(Some([32.0, 0.0, 32.0, 48.0]));
+    let half = read(format, Some([32.0, 0.0, 32.0, 48.0]));
     let px = |x: u32, y: u32| &half[(4 * (y * w + x)) as usize..][..4];
     assert_eq!(px(10, 10), [0, 0, 0, 255]);
     assert_eq!(px(32, 0)[1], 0, "the top row first");

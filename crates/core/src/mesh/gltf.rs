@@ -408,6 +408,22 @@ pub struct GlbMaterial {
 }
 
 /// [`write_glb`], with every primitive using `material` when given.
+/// Appends `bytes` to the binary chunk `bin` (4-byte aligned) and a buffer view on them to
+/// `views` (`extra`: more members of the view, e.g. `,"target":34962`); returns the view's
+/// index.
+fn push_view(bin: &mut Vec<u8>, views: &mut Vec<String>, bytes: &[u8], extra: &str) -> usize {
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    views.push(format!(
+        r#"{{"buffer":0,"byteOffset":{},"byteLength":{}{extra}}}"#,
+        bin.len(),
+        bytes.len()
+    ));
+    bin.extend_from_slice(bytes);
+    views.len() - 1
+}
+
 pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial>) -> Vec<u8> {
     let mut bin: Vec<u8> = Vec::new();
     let mut views = Vec::new();
@@ -415,16 +431,13 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
     let mut meshes = Vec::new();
     // Appends `bytes` as a buffer view (4-byte aligned) and an accessor on it.
     let mut push = |bytes: &[u8], target: u32, accessor: String| {
-        while !bin.len().is_multiple_of(4) {
-            bin.push(0);
-        }
-        views.push(format!(
-            r#"{{"buffer":0,"byteOffset":{},"byteLength":{},"target":{target}}}"#,
-            bin.len(),
-            bytes.len()
-        ));
-        bin.extend_from_slice(bytes);
-        accessors.push(accessor.replace("VIEW", &(views.len() - 1).to_string()));
+        let view = push_view(
+            &mut bin,
+            &mut views,
+            bytes,
+            &format!(r#","target":{target}"#),
+        );
+        accessors.push(accessor.replace("VIEW", &view.to_string()));
         accessors.len() - 1
     };
     let f32s =
@@ -503,19 +516,10 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
         let mut normal = String::new();
         let mut images = String::new();
         if let Some(png) = &m.normal_png {
-            while !bin.len().is_multiple_of(4) {
-                bin.push(0);
-            }
-            views.push(format!(
-                r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
-                bin.len(),
-                png.len()
-            ));
-            bin.extend_from_slice(png);
+            let view = push_view(&mut bin, &mut views, png, "");
             normal = r#","normalTexture":{"index":0}"#.to_owned();
             images = format!(
-                r#","images":[{{"bufferView":{},"mimeType":"image/png","name":"normal"}}],"textures":[{{"source":0,"sampler":0}}],"samplers":[{{"magFilter":9729,"minFilter":9987,"wrapS":33071,"wrapT":33071}}]"#,
-                views.len() - 1
+                r#","images":[{{"bufferView":{view},"mimeType":"image/png","name":"normal"}}],"textures":[{{"source":0,"sampler":0}}],"samplers":[{{"magFilter":9729,"minFilter":9987,"wrapS":33071,"wrapT":33071}}]"#
             );
         }
         let f = |x: f32| if x.is_finite() { x } else { 0.0 };
@@ -632,17 +636,8 @@ mod tests {
         // One buffer view and its accessor: `kind` is the accessor's componentType, type
         // and count (and bounds), `VIEW` standing for the view's index.
         let mut push = |bytes: &[u8], kind: String| {
-            while !bin.len().is_multiple_of(4) {
-                bin.push(0);
-            }
-            views.push(format!(
-                r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
-                bin.len(),
-                bytes.len()
-            ));
-            bin.extend_from_slice(bytes);
-            let view = (views.len() - 1).to_string();
-            accessors.push(format!(r#"{{"bufferView":VIEW,{kind}}}"#).replace("VIEW", &view));
+            let view = super::push_view(&mut bin, &mut views, bytes, "");
+            accessors.push(format!(r#"{{"bufferView":{view},{kind}}}"#));
             accessors.len() - 1
         };
         let floats = |count: usize, ty: &str| {

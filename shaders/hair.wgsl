@@ -1,33 +1,15 @@
-// Hair pass (SPEC §6): one instanced draw, one hair per instance, the first count(t)
+// Hair pass (docs/models.md §9). `Frame` and its binding come from frame.wgsl.
+//: one instanced draw, one hair per instance, the first count(t)
 // instances of the a_k-sorted buffer; graying C_k(t) and Kajiya–Kay shading here.
 // Each hair is a camera-facing ribbon of SEGMENTS quads (a triangle strip): lavapipe and
 // most GPUs draw lines one pixel wide at most, too thin to read at editor zoom levels,
 // while a ribbon keeps a chosen pixel width and can taper toward the tip.
 
-struct Frame {
-    clip_from_world: mat4x4<f32>,
-    world_from_clip: mat4x4<f32>,
-    camera_pos: vec4<f32>,
-    light_dir: vec4<f32>,
-    light_colour: vec4<f32>,
-    skin_albedo: vec4<f32>,
-    pom: vec4<u32>,
-    disp: vec4<f32>,
-    tiling: vec4<f32>,
-    layers: vec4<f32>,
-    hair_base: vec4<f32>,
-    hair_gray: vec4<f32>,
-    hair_k: vec4<f32>,
-    hair_misc: vec4<f32>,
-    skin_wrap: vec4<f32>,
-    skin_spec: vec4<f32>,
-}
 
 // Quads per hair; the strip has 2·(SEGMENTS + 1) vertices. Set per pipeline
 // (crates/render/src/hair.rs: fewer for the sparse frames).
 override SEGMENTS: u32 = 4u;
 
-@group(0) @binding(0) var<uniform> frame: Frame;
 
 // `agesim_core::hair::HairInstance`, 32 bytes, as vertex attributes.
 struct Instance {
@@ -57,7 +39,7 @@ fn oct_decode(e: vec2<f32>) -> vec3<f32> {
     return normalize(v);
 }
 
-// SPEC §6 "Graying": y_k(t) = clamp((t − t_k)/(1 − t_k), 0, 1), optionally smoothstep.
+// docs/models.md §9 "Graying": y_k(t) = clamp((t − t_k)/(1 − t_k), 0, 1), optionally smoothstep.
 fn gray_fraction(t: f32, onset: f32) -> f32 {
     let y = clamp((t - onset) / max(1.0 - onset, 1e-6), 0.0, 1.0);
     if frame.pom.w == 1u {
@@ -144,7 +126,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let l = frame.light_dir.xyz;
     let v = normalize(frame.camera_pos.xyz - in.world_pos);
     let h = normalize(l + v);
-    // Kajiya–Kay, SPEC §6: T_diff = √(1 − (L·T)²), T_spec = (√(1 − (H·T)²))^shininess,
+    // Kajiya–Kay, docs/models.md §9: T_diff = √(1 − (L·T)²), T_spec = (√(1 − (H·T)²))^shininess,
     // C = (K_diff·T_diff + K_spec·T_spec)·C_k + K_amb (K_amb scaled by C_k so that gray
     // hair stays lighter than dark hair in shadow).
     let l_t = dot(l, t);

@@ -1,4 +1,4 @@
-// Skin pass (SPEC §5): parallax occlusion mapping of the large wrinkles ([T] §7.1.2,
+// Skin pass (docs/models.md §10): parallax occlusion mapping of the large wrinkles ([T] §7.1.2,
 // listing A.1), fine wrinkles in the large wrinkles' tangent frame ([T] §7.2), skin
 // micro-relief ([P]) combined by reoriented normal mapping, wrap-lit skin with a
 // Fresnel-weighted GGX lobe, ACES-fitted tone mapping.
@@ -6,46 +6,9 @@
 // Two passes: `vs_main` + `fs_surface` rasterise the mesh into a G-buffer (`Surface`),
 // `vs_fullscreen` + `fs_shade` shade it. The second alone redraws an age step or a new map.
 //
-// Keep `Frame` identical to `FrameUniform` in crates/render/src/uniforms.rs and to the
-// copy in hair.wgsl: a test compares the sizes naga computes with the Rust struct's.
+// `Frame` and its binding come from frame.wgsl, put in front of this file when it is
+// loaded (crates/render/src/shaders.rs).
 
-struct Frame {
-    clip_from_world: mat4x4<f32>,
-    // Its inverse (the shading pass turns a pixel into its view ray).
-    world_from_clip: mat4x4<f32>,
-    // xyz: camera position (mesh units); w: 1 when the shader must encode sRGB itself.
-    camera_pos: vec4<f32>,
-    // xyz: unit direction toward the light (world); w: light intensity.
-    light_dir: vec4<f32>,
-    // rgb: light colour (linear); w: ambient intensity.
-    light_colour: vec4<f32>,
-    // rgb: skin albedo (linear); w: paleness in [0, 1].
-    skin_albedo: vec4<f32>,
-    // x: POM mode (0 linear, 1 binary, 2 combined, 3 normal only, 4 displacement);
-    // y: linear steps L; z: binary steps B; w: graying ramp (0 linear, 1 smoothstep).
-    pom: vec4<u32>,
-    // x: dispScale (UV units of depth); y: displacement depth (mesh units);
-    // z: fine-wrinkle blend in [0, 1]; w: age t in [0, 1].
-    disp: vec4<f32>,
-    // xy: micro-relief tile repeats over the mesh UV; zw: fine-wrinkle tile repeats.
-    tiling: vec4<f32>,
-    // x: micro-relief strength (tile UV per height unit); y: fine-wrinkle strength;
-    // z: micro-relief on (1) / off (0); w: viewport height, px.
-    layers: vec4<f32>,
-    // rgb: hair base colour (linear); w: hair length (mesh units).
-    hair_base: vec4<f32>,
-    // rgb: hair gray colour (linear); w: hair width, px.
-    hair_gray: vec4<f32>,
-    // K_diff, K_spec, shininess, K_amb (SPEC §6).
-    hair_k: vec4<f32>,
-    // x: viewport width, px; y: hair droop (fraction of the length);
-    // z: 1 = skin writes the POM hit (hit uv, polygon uv) instead of colour; w: unused.
-    hair_misc: vec4<f32>,
-    // rgb: wrap lighting per channel in [0, 1]; w: specular roughness.
-    skin_wrap: vec4<f32>,
-    // x: specular reflectance at normal incidence (F0); yzw: unused.
-    skin_spec: vec4<f32>,
-}
 
 const MODE_LINEAR: u32 = 0u;
 const MODE_BINARY: u32 = 1u;
@@ -53,19 +16,16 @@ const MODE_COMBINED: u32 = 2u;
 const MODE_NORMAL_ONLY: u32 = 3u;
 const MODE_DISPLACEMENT: u32 = 4u;
 
-@group(0) @binding(0) var<uniform> frame: Frame;
-// Large wrinkles: height in [0, 1] (1 = the polygon's surface, SPEC §5), over the mesh UV.
+// Large wrinkles: height in [0, 1] (1 = the polygon's surface, docs/models.md §10), over the mesh UV.
 @group(0) @binding(1) var large_map: texture_2d<f32>;
 // Tileable micro-relief heights (height units of the project), one tile = map_size_mm.
 @group(0) @binding(2) var micro_map: texture_2d<f32>;
 // Tileable fine-wrinkle heights.
 @group(0) @binding(3) var fine_map: texture_2d<f32>;
-// Where wrinkles may appear (white), over the mesh UV.
-@group(0) @binding(4) var mask_map: texture_2d<f32>;
-// Wraps in u (the head's seam at the back, SPEC §0 UV layout), clamps in v.
-@group(0) @binding(5) var surface_sampler: sampler;
+// Wraps in u (the head's seam at the back, docs/models.md §1 UV layout), clamps in v.
+@group(0) @binding(4) var surface_sampler: sampler;
 // Wraps both ways: the tiles repeat over the head.
-@group(0) @binding(6) var tile_sampler: sampler;
+@group(0) @binding(5) var tile_sampler: sampler;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -101,7 +61,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     return out;
 }
 
-// SPEC §0 UV (v up) → texture coordinates (row 0 of every map is its top, v = 1).
+// docs/models.md §1 UV (v up) → texture coordinates (row 0 of every map is its top, v = 1).
 fn tex(uv: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(uv.x, 1.0 - uv.y);
 }
@@ -115,7 +75,7 @@ fn ray_uv(uv0: vec2<f32>, shift: vec2<f32>, layer: f32) -> vec2<f32> {
     return uv0 + shift * (1.0 - layer);
 }
 
-// Parallax occlusion mapping, SPEC §5 / [T] listing A.1. `view_ts` is the unit vector
+// Parallax occlusion mapping, docs/models.md §10 / [T] listing A.1. `view_ts` is the unit vector
 // toward the eye in tangent space. Returns (uv at the hit, depth layer of the hit).
 fn pom(uv0: vec2<f32>, view_ts: vec3<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> vec3<f32> {
     let mode = frame.pom.x;
@@ -168,7 +128,7 @@ fn pom(uv0: vec2<f32>, view_ts: vec3<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> ve
     return vec3<f32>(ray_uv(uv0, shift, layer), layer);
 }
 
-// Tangent-space normal of a height texture by central differences (SPEC §4:
+// Tangent-space normal of a height texture by central differences (docs/models.md §5:
 // n = normalize(−s·∂h/∂u, −s·∂h/∂v, 1), s in UV units per height unit).
 fn height_normal(
     map: texture_2d<f32>,
@@ -197,7 +157,7 @@ fn rnm(base: vec3<f32>, detail: vec3<f32>) -> vec3<f32> {
     return normalize(t * dot(t, u) / t.z - u);
 }
 
-// SPEC §5 "Fine wrinkles": perturb in the large wrinkles' tangent frame,
+// docs/models.md §10 "Fine wrinkles": perturb in the large wrinkles' tangent frame,
 // T = normalize(N.z, 0, −N.x), B = normalize(0, N.z, −N.y).
 fn in_large_frame(n_large: vec3<f32>, fine: vec3<f32>) -> vec3<f32> {
     let t = normalize(vec3<f32>(n_large.z, 0.0, -n_large.x));
@@ -350,7 +310,7 @@ fn fs_depth(@builtin(position) pos: vec4<f32>) -> @builtin(frag_depth) f32 {
     return s0.w;
 }
 
-// The skin's colour at a surface point (SPEC §5).
+// The skin's colour at a surface point (docs/models.md §10).
 fn shade(s: Surface) -> vec4<f32> {
     let ddx = s.ddx;
     let ddy = s.ddy;
@@ -372,7 +332,7 @@ fn shade(s: Surface) -> vec4<f32> {
     if mode <= MODE_COMBINED {
         uv = pom(s.uv, view_ts, ddx, ddy).xy;
     }
-    if frame.hair_misc.z > 0.5 {
+    if frame.hair_misc.z > 0.5 && frame.hair_misc.z < 1.5 {
         return vec4<f32>(uv, s.uv);
     }
     // The micro-relief and fine tiles move with the POM offset: they lie on the surface.
@@ -381,21 +341,20 @@ fn shade(s: Surface) -> vec4<f32> {
     // Large-wrinkle normal from the heights at the hit, with the slope the march used.
     let n_large = height_normal(large_map, surface_sampler, uv, frame.disp.x, ddx, ddy);
     let n_fine_tile = height_normal(fine_map, tile_sampler, fine_uv0 + offset * frame.tiling.zw, frame.layers.y, ddx_fine, ddy_fine);
-    let mask = textureSampleGrad(mask_map, surface_sampler, tex(uv), ddx, ddy).r;
     let fine = in_large_frame(n_large, n_fine_tile);
-    // SPEC §5: the age blends linearly from the surface normal to the fine-wrinkle one.
-    var n_ts = normalize(mix(n_large, fine, clamp(frame.disp.z * mask, 0.0, 1.0)));
+    // docs/models.md §10: the age blends linearly from the surface normal to the fine-wrinkle one.
+    var n_ts = normalize(mix(n_large, fine, clamp(frame.disp.z, 0.0, 1.0)));
     if frame.layers.z > 0.5 {
         let n_micro = height_normal(micro_map, tile_sampler, micro_uv0 + offset * frame.tiling.xy, frame.layers.x, ddx_micro, ddy_micro);
         n_ts = rnm(n_ts, n_micro);
     }
+    if frame.hair_misc.z > 1.5 {
+        return vec4<f32>(n_ts, 1.0);
+    }
     let n = normalize(t_geo * n_ts.x + b_geo * n_ts.y + n_geo * n_ts.z);
 
-    // Albedo: older skin is paler ([T] §3.1.1): toward a desaturated, lighter tone.
-    let albedo0 = frame.skin_albedo.rgb;
-    let grey = dot(albedo0, vec3<f32>(0.2126, 0.7152, 0.0722));
-    let pale = mix(vec3<f32>(grey), albedo0, 0.6) * 1.12;
-    let albedo = mix(albedo0, pale, frame.skin_albedo.w);
+    // The albedo arrives with the age's paling applied (docs/models.md "Age").
+    let albedo = frame.skin_albedo.rgb;
 
     let l = frame.light_dir.xyz;
     let light = frame.light_colour.rgb * frame.light_dir.w;

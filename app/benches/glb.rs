@@ -1,4 +1,4 @@
-//! The aged head's GLB export (issue 13 §2): its composed normal map (large wrinkles, fine
+//! The aged head's GLB export: its composed normal map (large wrinkles, fine
 //! wrinkles and micro-relief in the head's UV, `agesim::export::head_normal_map`) against
 //! the baseline of the large-wrinkle normal map alone (`normal_map::encode_rgb8`, what a
 //! plain bake writes) at the same size, then the PNG encode and the whole export, in one
@@ -53,6 +53,7 @@ fn main() {
             large_size_px: size,
             micro_size_px: 1024,
             t,
+            tileable: true,
             fine: true,
             hair: false,
             packed: false,
@@ -68,7 +69,7 @@ fn main() {
         });
         let mut rgb = Vec::new();
         let composed = time(runs, || {
-            rgb = head_normal_map(&scene, size, &never).unwrap();
+            rgb = head_normal_map(&scene, t, size, &never).unwrap();
         });
         let png = time(runs, || {
             let mut out = Vec::new();

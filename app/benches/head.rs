@@ -1,4 +1,4 @@
-//! Start-up cost of the default head and the skin patch (issue 4 budget: 100 ms).
+//! Start-up cost of the default head and the skin patch (budget: 100 ms).
 //!
 //! Ours: `head::default_head()` (reads the shipped GLB built into the binary) and
 //! `head::skin_patch()` (exact analytic tangents). Baselines, measured in the same run:

@@ -10,13 +10,16 @@ use std::path::{Path, PathBuf};
 
 use agesim_core::cancel::CancelToken;
 use agesim_core::export::OutputSet;
+use agesim_core::mesh::SurfaceScale;
 use agesim_core::mesh::gltf::{GlbMaterial, write_glb_with_material};
 use agesim_core::normal_map::Convention;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Scene, WrinkleSource};
-use agesim_core::{HeightMap, export as out, heightmap};
+use agesim_core::{HeightMap, compose, export as out, heightmap};
 use anyhow::{Context as _, bail};
 use glam::Vec3;
+
+use crate::view;
 
 /// The maps of `agesim bake` (the large wrinkles on the head's UV plus the micro-relief
 /// over the whole square), at one size.
@@ -103,7 +106,7 @@ impl ExportRequest {
         let r = &self.renders;
         files.extend(r.image.iter().cloned());
         if let Some((path, years)) = &r.sequence {
-            files.extend((0..years.len()).map(|i| numbered(path, i)));
+            files.extend((0..years.len()).map(|i| view::numbered(path, i)));
         }
         files.extend(r.compare.iter().map(|(p, _)| p.clone()));
         files
@@ -245,14 +248,13 @@ fn export_maps(
     cancel: &CancelToken,
 ) -> anyhow::Result<()> {
     let mut p = project.clone();
-    p.tile = maps.tileable;
     if let Some(c) = maps.convention {
         p.normal.convention = c;
     }
     progress(0.0, "loading the inputs");
     let mut scene = scene(p, wrinkles)?;
     progress(0.1, "baking the maps");
-    scene.bake(&BakeRequest::maps(maps.size_px, t), cancel)?;
+    scene.bake(&BakeRequest::maps(maps.size_px, t, maps.tileable), cancel)?;
     let height = scene.take_height()?;
     let normal = scene.normal_settings();
     cancel.check()?;
@@ -282,16 +284,15 @@ fn export_glb(
     progress: Progress<'_>,
     cancel: &CancelToken,
 ) -> anyhow::Result<()> {
-    let mut p = project.clone();
-    // The tiles repeat over the head: they must wrap.
-    p.tile = true;
     progress(0.0, "loading the head");
-    let mut scene = scene(p, wrinkles)?;
+    let mut scene = scene(project.clone(), wrinkles)?;
     progress(0.1, "baking the head's maps");
     let request = BakeRequest {
         large_size_px: glb.size_px,
         micro_size_px: 1024.min(glb.size_px.max(64)),
         t,
+        // The tiles repeat over the head: they must wrap.
+        tileable: true,
         fine: true,
         hair: false,
         packed: false,
@@ -300,7 +301,7 @@ fn export_glb(
     };
     scene.bake(&request, cancel)?;
     progress(0.5, "composing the normal map");
-    let normals = head_normal_map(&scene, glb.size_px, cancel)?;
+    let normals = head_normal_map(&scene, t, glb.size_px, cancel)?;
     progress(0.7, "encoding the textures");
     let mut png = Vec::new();
     out::encode_png(
@@ -313,18 +314,18 @@ fn export_glb(
     .context("encoding the normal map")?;
     cancel.check()?;
     let project = scene.project();
-    let params = crate::frame::frame_params(
-        project,
-        scene.factors(),
-        crate::frame::camera(project, Vec3::ZERO),
-    );
-    let large = scene.large().map(|l| &l.height);
+    let params = view::frame_params(project, t, view::camera(project, Vec3::ZERO));
+    let depth = project.large.depth;
+    let height = match scene.large() {
+        Some(l) => l.scaled(depth)?,
+        None => HeightMap::zeros(glb.size_px, glb.size_px)?,
+    };
     let height_name = glb
         .height_path()
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let range = large.map(|h| h.min_max());
+    let range = scene.large().map(|_| height.min_max());
     let a = params.skin.albedo;
     let material = GlbMaterial {
         name: format!("agesim skin, {years:.0} years"),
@@ -344,226 +345,42 @@ fn export_glb(
     let bytes = write_glb_with_material(scene.mesh(), Some(&material));
     progress(0.9, "writing the GLB");
     set.stage(&glb.path, |w| std::io::Write::write_all(w, &bytes))?;
-    let flat;
-    let height = match large {
-        Some(h) => h,
-        None => {
-            flat = HeightMap::zeros(glb.size_px, glb.size_px)?;
-            &flat
-        }
-    };
-    out::stage_height_png16(set, &glb.height_path(), height)?;
+    out::stage_height_png16(set, &glb.height_path(), &height)?;
     Ok(())
 }
 
-/// The head's tangent-space normal map at the scene's age, OpenGL convention (green =
-/// +v), RGB8, `size_px`² over the head's UV square: the CPU twin of `shaders/skin.wgsl`'s
-/// `shade` without parallax. Large wrinkles from their heights with `view.disp_scale`
-/// (SPEC §4); the fine-wrinkle tile in the large wrinkles' frame, blended by the age
-/// (SPEC §5); the micro-relief tile on top by reoriented normal mapping. The tiles repeat
-/// a whole number of times across the UV square, as in the renderer, and are box-filtered
-/// to about one texel per output pixel first (the GPU's mip level).
+/// The head's tangent-space normal map of `scene` at age `t`, `size_px`² over the head's
+/// UV square: the layers composed as the renderer's skin pass does
+/// ([`agesim_core::compose`]), with the same relief depth, tiles and fine blend as the
+/// 3D view ([`view::frame_params`]).
 pub fn head_normal_map(
     scene: &Scene,
+    t: f32,
     size_px: u32,
     cancel: &CancelToken,
 ) -> anyhow::Result<Vec<u8>> {
-    use rayon::prelude::*;
     let project = scene.project();
     let mesh = scene.mesh();
-    let scale = agesim_render::SurfaceScale::measure(mesh.positions(), mesh.uvs(), mesh.indices())
+    let scale = SurfaceScale::measure(mesh.positions(), mesh.uvs(), mesh.indices())
         .context("the mesh's UVs are degenerate: no normal map can be laid on it")?;
     let mpu = project.mesh.metres_per_unit;
-    let n = size_px as usize;
-    // Large-wrinkle heights in [0, 1] (÷ depth), as uploaded to the renderer.
-    let large: Option<(Vec<f32>, usize)> = scene.large().map(|l| {
-        let inv = if project.large.depth > 0.0 {
-            1.0 / project.large.depth
-        } else {
-            0.0
-        };
-        (
-            l.height.data().iter().map(|h| h * inv).collect(),
-            l.height.width_px() as usize,
-        )
-    });
-    let disp = project.view.disp_scale;
-    let fine_blend = if project.fine.enabled {
-        scene.factors().fine_blend.clamp(0.0, 1.0)
-    } else {
-        0.0
+    let skin = view::frame_params(project, t, view::camera(project, Vec3::ZERO)).skin;
+    let tile = |heights, placement: agesim_render::TilePlacement| compose::RepeatedTile {
+        heights,
+        repeats: scale.repeats(mpu, placement.size_m.max(1e-6)),
+        strength: placement.strength,
     };
-    let micro_on = project.pores.enabled || project.furrows.enabled || project.noise.strength > 0.0;
-    let tile =
-        |map: Option<&HeightMap>, size_m: f32, strength: f32| -> anyhow::Result<Option<Placed>> {
-            let Some(map) = map else { return Ok(None) };
-            let repeats = scale.repeats(mpu, size_m.max(1e-6));
-            // Texels of the tile per output pixel; box-filter down to about one.
-            let per_px = map.width_px() as f32 * repeats[0].max(repeats[1]) / n as f32;
-            let side = map.width_px().min(map.height_px());
-            let factor = (1..=(per_px.floor() as u32).clamp(1, side))
-                .rev()
-                .find(|f| map.width_px() % f == 0 && map.height_px() % f == 0)
-                .unwrap_or(1);
-            let filtered = if factor > 1 {
-                map.downsample_box(factor)?
-            } else {
-                map.clone()
-            };
-            let tile = Tile::new(&filtered, repeats, strength);
-            Ok(Some(Placed {
-                columns: tile.taps(size_px, false),
-                rows: tile.taps(size_px, true),
-                tile,
-            }))
-        };
-    let micro = if micro_on {
-        tile(
-            scene.micro().map(|m| &m.height),
-            project.map_size_mm * 1e-3,
-            project.normal.strength,
-        )?
-    } else {
-        None
+    let layers = compose::Layers {
+        large: scene.large().map(|l| &l.height),
+        disp_scale: skin.disp_scale,
+        fine: scene.fine().map(|f| tile(f.as_ref(), skin.fine_tile)),
+        fine_blend: skin.fine_blend,
+        micro: scene
+            .micro()
+            .filter(|_| skin.micro_relief)
+            .map(|m| tile(&m.height, skin.micro_tile)),
     };
-    let fine = if fine_blend > 0.0 {
-        tile(
-            scene.fine().map(|f| f.as_ref()),
-            project.fine.size_mm * 1e-3,
-            project.fine.strength,
-        )?
-    } else {
-        None
-    };
-    let mut rgb = vec![0u8; n * n * 3];
-    rgb.par_chunks_mut(n * 3).enumerate().try_for_each(
-        |(y, row)| -> Result<(), agesim_core::Error> {
-            if y % 64 == 0 {
-                cancel.check()?;
-            }
-            for (x, px) in row.chunks_exact_mut(3).enumerate() {
-                let n_large = match &large {
-                    Some((h, side)) => {
-                        // Central differences in texels of the large map (row 0 = top, v up).
-                        // The texel under the pixel (the map is baked at `size_px`, so
-                        // usually the same one), its neighbours clamped at the border.
-                        let s = *side;
-                        let (lx, ly) = (x * s / n, y * s / n);
-                        let row = |y: usize| &h[y * s..(y + 1) * s];
-                        let (left, right) = (lx.saturating_sub(1), (lx + 1).min(s - 1));
-                        let (up, down) = (ly.saturating_sub(1), (ly + 1).min(s - 1));
-                        let here = row(ly);
-                        let du = (here[right] - here[left]) * 0.5 * s as f32;
-                        let dv = (row(up)[lx] - row(down)[lx]) * 0.5 * s as f32;
-                        Vec3::new(-disp * du, -disp * dv, 1.0).normalize()
-                    }
-                    None => Vec3::Z,
-                };
-                let mut n_ts = n_large;
-                if let Some(f) = &fine {
-                    let nf = f.tile.normal(f.columns[x], f.rows[y]);
-                    let t = Vec3::new(n_large.z, 0.0, -n_large.x).normalize();
-                    let b = Vec3::new(0.0, n_large.z, -n_large.y).normalize();
-                    let in_frame = (t * nf.x + b * nf.y + n_large * nf.z).normalize();
-                    n_ts = n_large.lerp(in_frame, fine_blend).normalize();
-                }
-                if let Some(m) = &micro {
-                    n_ts = rnm(n_ts, m.tile.normal(m.columns[x], m.rows[y]));
-                }
-                for (c, value) in px.iter_mut().zip(n_ts.to_array()) {
-                    *c = agesim_core::normal_map::encode_unorm8(value * 0.5 + 0.5);
-                }
-            }
-            Ok(())
-        },
-    )?;
-    Ok(rgb)
-}
-
-/// A tile with its column and row taps on the output map.
-struct Placed {
-    tile: Tile,
-    columns: Vec<(usize, usize, f32)>,
-    rows: Vec<(usize, usize, f32)>,
-}
-
-/// A height tile repeated over the UV square, for [`head_normal_map`]: its tangent-space
-/// normals (SPEC §4 by central differences on the wrapped tile) made once per texel, then
-/// interpolated per output pixel.
-struct Tile {
-    normals: Vec<Vec3>,
-    width: usize,
-    height: usize,
-    repeats: [f32; 2],
-}
-
-impl Tile {
-    fn new(map: &HeightMap, repeats: [f32; 2], strength: f32) -> Self {
-        let (w, h) = (map.width_px() as usize, map.height_px() as usize);
-        let d = map.data();
-        let mut normals = Vec::with_capacity(w * h);
-        for y in 0..h {
-            let (up, down) = ((y + h - 1) % h, (y + 1) % h);
-            for x in 0..w {
-                let (left, right) = ((x + w - 1) % w, (x + 1) % w);
-                // Row 0 is the top (v up): +v is the row above.
-                let du = (d[y * w + right] - d[y * w + left]) * 0.5 * w as f32;
-                let dv = (d[up * w + x] - d[down * w + x]) * 0.5 * h as f32;
-                normals.push(Vec3::new(-strength * du, -strength * dv, 1.0).normalize());
-            }
-        }
-        Self {
-            normals,
-            width: w,
-            height: h,
-            repeats,
-        }
-    }
-
-    /// Where each output column (or row) of a `size_px` map falls on the repeated tile:
-    /// (texel, next texel, weight of the next), wrapping. Made once per map, so the
-    /// per-pixel work is four loads and two lerps.
-    fn taps(&self, size_px: u32, along_v: bool) -> Vec<(usize, usize, f32)> {
-        let (side, repeats) = if along_v {
-            (self.height, self.repeats[1])
-        } else {
-            (self.width, self.repeats[0])
-        };
-        (0..size_px)
-            .map(|i| {
-                let t = if along_v {
-                    // Row 0 is the top (v up).
-                    1.0 - (heightmap::pixel_to_v(i, size_px) * repeats).fract()
-                } else {
-                    (heightmap::pixel_to_u(i, size_px) * repeats).fract()
-                };
-                let t = t * side as f32 - 0.5;
-                let t0 = t.floor();
-                let i0 = if t0 < 0.0 {
-                    side - 1
-                } else {
-                    (t0 as usize).min(side - 1)
-                };
-                (i0, if i0 + 1 == side { 0 } else { i0 + 1 }, t - t0)
-            })
-            .collect()
-    }
-
-    /// The normal between the four texels of a column tap and a row tap.
-    #[inline]
-    fn normal(&self, (x0, x1, fx): (usize, usize, f32), (y0, y1, fy): (usize, usize, f32)) -> Vec3 {
-        let (w, n) = (self.width, &self.normals);
-        let top = n[y0 * w + x0].lerp(n[y0 * w + x1], fx);
-        let bottom = n[y1 * w + x0].lerp(n[y1 * w + x1], fx);
-        top.lerp(bottom, fy).normalize()
-    }
-}
-
-/// Reoriented normal mapping (Barré-Brisebois & Hill 2012), as in `skin.wgsl`.
-fn rnm(base: Vec3, detail: Vec3) -> Vec3 {
-    let t = base + Vec3::Z;
-    let u = detail * Vec3::new(-1.0, -1.0, 1.0);
-    (t * t.dot(u) / t.z - u).normalize()
+    Ok(compose::normal_map(&layers, size_px, cancel)?)
 }
 
 fn export_renders(
@@ -575,32 +392,16 @@ fn export_renders(
     progress: Progress<'_>,
     cancel: &CancelToken,
 ) -> anyhow::Result<()> {
-    use agesim_render::{FrameParams, Gpu, Renderer};
+    use agesim_render::{Gpu, Renderer};
     progress(0.0, "starting the renderer");
-    let density = if project.hair.enabled {
-        project.hair.density_per_cm2
-    } else {
-        0.0
-    };
-    let mut inputs = crate::cli::render::SceneInputs::gather(
-        project,
-        None,
-        false,
-        project.mesh.metres_per_unit,
-        1024,
-        density,
-    )?;
-    if let Some(w) = wrinkles {
-        inputs.set_wrinkles(w.to_vec());
-    }
+    let scene = scene(project.clone(), wrinkles)?;
+    let centre = scene.mesh().bounds().centre();
+    let mut shown = view::HeadlessView::new(scene, 1024, project.hair.enabled);
     let gpu = Gpu::new()?;
     let mut renderer = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT)?;
-    let centre = inputs.mesh().bounds().centre();
-    let camera = crate::frame::camera(project, centre);
-    let mut params: FrameParams =
-        crate::frame::frame_params(project, &project.age.factors(t, &[]), camera);
+    let camera = view::camera(project, centre);
     let mapping = project.age.mapping();
-    // (years, where, label?) for every picture, then the comparison's two halves.
+    // (years, where) for every picture; the comparison's two halves have no file.
     let mut jobs: Vec<(f32, Option<PathBuf>)> = Vec::new();
     if let Some(path) = &r.image {
         jobs.push((mapping.years(t), Some(path.clone())));
@@ -610,7 +411,7 @@ fn export_renders(
             years
                 .iter()
                 .enumerate()
-                .map(|(i, &y)| (y, Some(numbered(path, i)))),
+                .map(|(i, &y)| (y, Some(view::numbered(path, i)))),
         );
     }
     if let Some((_, [a, b])) = &r.compare {
@@ -628,8 +429,9 @@ fn export_renders(
             0.05 + 0.95 * i as f32 / count,
             &format!("rendering {years:.0} years"),
         );
-        inputs.upload_age(&mut renderer, mapping.t(years), &mut params)?;
-        let img = renderer.render_to_image(&params, r.size)?;
+        let t = mapping.t(years);
+        shown.bake_and_upload(&mut renderer, t)?;
+        let img = renderer.render_to_image(&shown.frame_params(t, camera), r.size)?;
         match path {
             Some(path) => stage_png(set, &path, &img)?,
             None => halves.push((years, img)),
@@ -640,7 +442,7 @@ fn export_renders(
             .into_iter()
             .map(|(y, img)| (format!("{y:.0}Y"), img))
             .collect();
-        stage_png(set, path, &crate::cli::render::side_by_side(labelled))?;
+        stage_png(set, path, &view::side_by_side(labelled))?;
     }
     Ok(())
 }
@@ -656,17 +458,6 @@ fn stage_png(set: &OutputSet, path: &Path, img: &image::RgbaImage) -> anyhow::Re
         )
     })?;
     Ok(())
-}
-
-/// FILE.png → FILE_0003.png.
-pub fn numbered(out: &Path, i: usize) -> PathBuf {
-    let stem = out
-        .file_stem()
-        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
-    let ext = out
-        .extension()
-        .map_or_else(|| "png".into(), |e| e.to_string_lossy().into_owned());
-    out.with_file_name(format!("{stem}_{i:04}.{ext}"))
 }
 
 /// `dir/head.glb` → `dir/head{suffix}.{ext}`.

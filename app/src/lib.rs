@@ -5,4 +5,4 @@ pub mod assets;
 pub mod cli;
 pub mod editor;
 pub mod export;
-pub mod frame;
+pub mod view;

@@ -57,22 +57,27 @@ fn the_age_slider_changes_hair_and_wrinkle_depth() {
     assert!(deepest(&h) < depth_50);
 }
 
+/// The large-wrinkle map is kept normalised: the depth slider re-bakes nothing (the
+/// same map stays shown) and scales the relief the 3D view draws.
 #[test]
-fn a_depth_slider_regenerates_the_map() {
+fn the_depth_slider_deepens_the_drawn_relief_without_a_bake() {
     let mut h = harness();
     settle(&mut h);
-    let before = deepest(&h);
     let map_before = h.state().snapshot().large.clone().unwrap();
+    let relief_before = agesim::view::relief_depth(h.state().project());
     h.get_by_role_and_label(Role::Slider, "depth")
         .set_value_accesskit(3.0);
     settle(&mut h);
     assert_eq!(h.state().project().large.depth, 3.0);
-    let after = deepest(&h);
-    assert!((after / before - 3.0).abs() < 0.01, "{before} → {after}");
-    assert!(!std::sync::Arc::ptr_eq(
-        &map_before,
-        h.state().snapshot().large.as_ref().unwrap()
-    ));
+    let relief = agesim::view::relief_depth(h.state().project());
+    assert!(
+        (relief / relief_before - 3.0).abs() < 1e-4,
+        "{relief_before} → {relief}"
+    );
+    assert!(
+        std::sync::Arc::ptr_eq(&map_before, h.state().snapshot().large.as_ref().unwrap()),
+        "the depth slider re-baked the large-wrinkle map"
+    );
 }
 
 #[test]
@@ -172,9 +177,11 @@ fn main_window_snapshot_on_the_gpu_adapter() {
     // The whole window, head and map drawn by the GPU path (lavapipe in CI). Regenerate
     // with UPDATE_SNAPSHOTS=1 after a deliberate change; the tolerance absorbs driver
     // differences, not layout changes.
-    if std::env::var("CI").is_err() && !std::path::Path::new("/usr/share/vulkan/icd.d").exists() {
-        eprintln!("skipped: no Vulkan driver on this machine (CI=true makes this a failure)");
-        return;
+    if !std::path::Path::new("/usr/share/vulkan/icd.d").exists() {
+        return agesim_render::ci::skip_or_fail(
+            "main_window_snapshot_on_the_gpu_adapter",
+            "no Vulkan driver on this machine",
+        );
     }
     let mut h = Harness::builder()
         .with_size([960.0, 600.0])

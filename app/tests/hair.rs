@@ -1,4 +1,4 @@
-//! End-to-end tests of `agesim hair` (SPEC §6): the real binary on real files.
+//! End-to-end tests of `agesim hair` (docs/models.md §9): the real binary on real files.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod cli;

@@ -44,7 +44,7 @@ fn bake(worker: &mut Worker, project: &Project, size_px: u32, t: f32) -> Snapsho
 fn sizes(s: &Snapshot) -> [u32; 4] {
     [
         s.large.as_ref().unwrap().height.width_px(),
-        s.gpu_large.as_ref().unwrap().size_px().0,
+        s.layers.large.as_ref().unwrap().size_px().0,
         s.micro.as_ref().unwrap().height.width_px(),
         s.images.large_height.as_ref().unwrap().size[0] as u32,
     ]

@@ -28,14 +28,14 @@
 //!     v ≈ 0.20–0.26, chin front ≈ 0.30, lips ≈ 0.37–0.43, base of the nose ≈ 0.47, nose
 //!     tip ≈ 0.50, eyes ≈ 0.555 (centres at u ≈ 0.446 / 0.554), brows ≈ 0.60, front
 //!     hairline ≈ 0.78;
-//!   - forehead: u ∈ [0.40, 0.60], v ∈ [0.61, 0.77] (the example fibres of SPEC §2,
+//!   - forehead: u ∈ [0.40, 0.60], v ∈ [0.61, 0.77] (the example fibres of docs/models.md §3,
 //!     u 0.42–0.56, v 0.64–0.73, lie on it);
 //!   - ears: around u ≈ 0.25 and 0.75, v ≈ 0.47–0.60;
 //!   - scalp: v > 0.78 at the front, down to v ≈ 0.31 at the nape (u = 0 ≡ 1); exactly
 //!     the white of `assets/masks/hair-outer.png`;
 //!   - neck: v < 0.24 in front (u ∈ [0.35, 0.65]), up to the hairline at the back.
 //!
-//! # Start-up (issue 4: < 100 ms)
+//! # Start-up (< 100 ms)
 //! Generating the head takes about 1 s in release on the 2-core dev machine (profile
 //! tracing ~0.15–0.3 s, MikkTSpace tangents ~0.35–0.45 s, the rest of `Mesh::build`), so
 //! [`default_head`] does not generate it: it reads `assets/meshes/default-head.glb`
@@ -551,7 +551,7 @@ mod tests {
         assert!(front.z > 0.08 && front.x.abs() < 1e-4, "{front}");
         let left = head_point(0.75, 0.6);
         assert!(left.x > 0.06, "{left}");
-        // The example fibres of SPEC §2 lie on the forehead: above the eyes and brows,
+        // The example fibres of docs/models.md §3 lie on the forehead: above the eyes and brows,
         // below the hairline, on the front of the head.
         for (u, v) in [
             (0.423, 0.727),

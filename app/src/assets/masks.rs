@@ -1,4 +1,4 @@
-//! The default head's masks (SPEC §1 "Mask", §6 hair masks), painted in 3D and sampled
+//! The default head's masks (docs/models.md §2 "Mask", §6 hair masks), painted in 3D and sampled
 //! on its UV layout, so that they match the default head's layout by construction.
 //!
 //! Each UV pixel is mapped to its surface point with [`head::head_column`]; regions are

@@ -1,4 +1,4 @@
-//! `agesim bake`: a project (or flags) in, height and normal maps out (SPEC §1–§4).
+//! `agesim bake`: a project (or flags) in, height and normal maps out (docs/models.md §2–§4).
 //!
 //! Settings resolve in this order, each step validated like the project file:
 //! the default project, or `--preset NAME`, or `--project FILE`; then the shorthand flags
@@ -70,14 +70,9 @@ pub struct BakeArgs {
     #[arg(long, value_name = "S")]
     pub seed: Option<u64>,
 
-    /// Bake at age t ∈ [0, 1] (0 = `age.young_years`, 1 = `age.old_years`); default: the
-    /// project's `age.t` (0.5 for a new project, 1 for a version-1 file).
-    #[arg(long, value_name = "T", conflicts_with = "age_years")]
-    pub age: Option<f32>,
-
-    /// Bake at this age in years (mapped through the project's `age` section).
-    #[arg(long, value_name = "Y")]
-    pub age_years: Option<f32>,
+    /// The age to bake at.
+    #[command(flatten)]
+    pub age: super::AgeArgs,
 
     /// Compression of height.exr (all lossless): rle (default; coded on all cores, usually
     /// the fastest), none (4 bytes per pixel), zip (smallest, slowest).
@@ -272,18 +267,16 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     crate::export::check_map_size(args.size, "--size")?;
     let t = Instant::now();
     let project = resolve_project(args)?;
-    let age_t = match (args.age, args.age_years) {
-        (Some(t), _) if (0.0..=1.0).contains(&t) => t,
-        (Some(t), _) => bail!("--age {t}: expected an age t in 0..=1 (or use --age-years)"),
-        (None, Some(y)) if (0.0..=150.0).contains(&y) => project.age.mapping().t(y),
-        (None, Some(y)) => bail!("--age-years {y}: expected years in 0..=150"),
-        (None, None) => project.age.t,
-    };
+    let age_t = args.age.t(&project)?;
+    let tileable = project.tile;
     // Loads the mesh, wrinkle files and masks, and checks every setting.
     let mut scene = Scene::new(project)?;
     let parse_ms = ms(t);
     let t = Instant::now();
-    scene.bake(&BakeRequest::maps(args.size, age_t), &CancelToken::never())?;
+    scene.bake(
+        &BakeRequest::maps(args.size, age_t, tileable),
+        &CancelToken::never(),
+    )?;
     let bake_ms = ms(t);
     let t = Instant::now();
     let height = scene.take_height()?;

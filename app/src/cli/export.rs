@@ -18,9 +18,9 @@ pub struct ExportArgs {
     /// A shipped preset instead of a project.
     #[arg(long, value_name = "NAME")]
     pub preset: Option<String>,
-    /// The age, in years (through the project's `age` section). Default: the project's age.
-    #[arg(long, value_name = "Y")]
-    pub age_years: Option<f32>,
+    /// The age of the export.
+    #[command(flatten)]
+    pub age: super::AgeArgs,
     /// Side of the maps and of the GLB's textures, px (1..=16384; beyond 8192 only as far
     /// as memory allows).
     #[arg(long, default_value_t = 2048, value_name = "N")]
@@ -76,9 +76,7 @@ pub struct ExportArgs {
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let start = Instant::now();
     let project = super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
-    let years = args
-        .age_years
-        .unwrap_or_else(|| project.age.mapping().years(project.age.t));
+    let years = project.age.mapping().years(args.age.t(&project)?);
     let compare = match (&args.compare, args.compare_years.as_slice()) {
         (None, _) => None,
         (Some(path), &[a, b]) => Some((path.clone(), [a, b])),

@@ -1,4 +1,4 @@
-//! `agesim hair`: the hair transition texture and hair instances of a head (SPEC §6).
+//! `agesim hair`: the hair transition texture and hair instances of a head (docs/models.md §9).
 //!
 //! Writes `DIR/transition.png` (16-bit grey: the disappearance age a per texel, white =
 //! inner hair that never goes, black = no hair; see `agesim_core::transition`) and
@@ -91,6 +91,7 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
         large_size_px: 1,
         micro_size_px: 1,
         t: 0.0,
+        tileable: false,
         fine: false,
         hair: true,
         packed: false,

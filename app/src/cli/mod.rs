@@ -2,7 +2,6 @@
 
 pub mod bake;
 pub mod export;
-mod font;
 pub mod gen_assets;
 pub mod hair;
 pub mod mesh_info;
@@ -79,6 +78,33 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Bake(args)) => bake::run(&args),
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Export(args)) => export::run(&args),
+    }
+}
+
+/// The age flags of `bake`, `render` and `export`: one of them, or the project's age.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct AgeArgs {
+    /// Age t ∈ [0, 1] (0 = `age.young_years`, 1 = `age.old_years`); default: the
+    /// project's `age.t` (0.5 for a new project).
+    #[arg(long, value_name = "T", conflicts_with = "age_years")]
+    pub age: Option<f32>,
+    /// Age in years (mapped to t through the project's `age` section).
+    #[arg(long, value_name = "Y")]
+    pub age_years: Option<f32>,
+}
+
+impl AgeArgs {
+    /// The age t these flags ask for, checked; the project's `age.t` when neither is given.
+    pub fn t(&self, project: &agesim_core::project::Project) -> anyhow::Result<f32> {
+        Ok(match (self.age, self.age_years) {
+            (Some(t), _) if (0.0..=1.0).contains(&t) => t,
+            (Some(t), _) => {
+                anyhow::bail!("--age {t}: expected an age t in 0..=1 (or use --age-years)")
+            }
+            (None, Some(y)) if (0.0..=150.0).contains(&y) => project.age.mapping().t(y),
+            (None, Some(y)) => anyhow::bail!("--age-years {y}: expected years in 0..=150"),
+            (None, None) => project.age.t,
+        })
     }
 }
 

@@ -1,20 +1,21 @@
-//! `agesim render`: headless renders of the head with the wgpu renderer (issue 11 §4),
-//! and `--bench`, the frame-time table of [T] fig. 8.5 (BENCHMARKS.md).
+//! `agesim render`: headless renders of the head with the wgpu renderer, and `--bench`,
+//! the frame-time table of the thesis's fig. 8.5 (BENCHMARKS.md).
 //!
-//! The CPU inputs (mesh, large-wrinkle heights at an age, micro-relief and fine tiles,
-//! hair instances) come from the engine's `Scene`, and every age-dependent number from its
-//! age model ([`crate::frame::frame_params`]), as in the editor.
+//! The scene, its layers and every per-frame number go through [`crate::view`], as in
+//! the editor: the project's view section (light, camera, relief mode) unless a flag
+//! says otherwise.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use agesim_core::cancel::CancelToken;
+use agesim_core::HeightMap;
 use agesim_core::hair::DEFAULT_DENSITY_PER_CM2;
 use agesim_core::project::{BuiltinMesh, Project};
-use agesim_core::scene::{BakeRequest, Scene};
-use agesim_core::{HeightMap, Mesh};
-use agesim_render::{FrameParams, Gpu, HairShading, PomMode, Renderer, TileLayer};
+use agesim_core::scene::Scene;
+use agesim_render::{FrameParams, Gpu, PomMode, Renderer};
 use anyhow::{Context as _, bail};
+
+use crate::view::{self, HeadlessView};
 
 /// Render the head with the GPU renderer (wgpu; lavapipe works).
 #[derive(Debug, clap::Args)]
@@ -31,26 +32,24 @@ pub struct RenderArgs {
     /// Draw the 5 cm skin patch instead of the head (close-ups of the relief).
     #[arg(long, conflicts_with = "mesh")]
     pub patch: bool,
-    /// Age t in [0, 1].
-    #[arg(long, conflicts_with_all = ["age_years", "ages"])]
-    pub age: Option<f32>,
-    /// Age in years, 20..=80 (t = (Y − 20)/60).
-    #[arg(long, conflicts_with = "ages")]
-    pub age_years: Option<f32>,
+    /// The age of one render (default: the project's).
+    #[command(flatten)]
+    pub age: super::AgeArgs,
     /// Several ages t, comma separated: writes FILE_0000.png, FILE_0001.png, ….
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', conflicts_with_all = ["age", "age_years"])]
     pub ages: Vec<f32>,
-    /// How the large wrinkles are drawn.
-    #[arg(long, value_enum, default_value = "combined")]
-    pub pom: PomArg,
-    /// Linear search steps L.
-    #[arg(long, default_value_t = 8)]
-    pub linear: u32,
-    /// Binary search steps B.
-    #[arg(long, default_value_t = 4)]
-    pub binary: u32,
-    /// dispScale: depth of the large wrinkles in UV units. Default 0.005 on a head ([T];
-    /// ≈ 2.5 mm on the default head), 0.02 on the 5 cm patch (≈ 1 mm).
+    /// How the large wrinkles are drawn (default: the project's `view.pom`).
+    #[arg(long, value_enum)]
+    pub pom: Option<PomArg>,
+    /// Linear search steps L (default: the project's `view.linear_steps`).
+    #[arg(long)]
+    pub linear: Option<u32>,
+    /// Binary search steps B (default: the project's `view.binary_steps`).
+    #[arg(long)]
+    pub binary: Option<u32>,
+    /// dispScale: depth of the large wrinkles in UV units (default: the project's
+    /// `view.disp_scale`, 0.005 ≈ 2.5 mm on the default head; 0.02 on the 5 cm patch,
+    /// ≈ 1 mm). The drawn depth is this × `large.depth`.
     #[arg(long)]
     pub disp_scale: Option<f32>,
     /// Image size, WxH pixels.
@@ -65,14 +64,14 @@ pub struct RenderArgs {
     /// Camera distance, mesh units.
     #[arg(long)]
     pub distance: Option<f32>,
-    /// Vertical field of view, degrees.
-    #[arg(long, default_value_t = 30.0)]
-    pub fov: f32,
+    /// Vertical field of view, degrees (default: the project's `view.fov_deg`).
+    #[arg(long)]
+    pub fov: Option<f32>,
     /// Young and old side by side with their ages printed: T0,T1.
     #[arg(
         long,
         value_delimiter = ',',
-        conflicts_with = "ages",
+        conflicts_with_all = ["ages", "age", "age_years"],
         value_name = "T0,T1"
     )]
     pub compare: Vec<f32>,
@@ -103,162 +102,50 @@ pub enum PomArg {
     Displacement,
 }
 
-impl From<PomArg> for PomMode {
+impl From<PomArg> for agesim_core::project::PomMode {
     fn from(p: PomArg) -> Self {
+        use agesim_core::project::PomMode as P;
         match p {
-            PomArg::Linear => PomMode::Linear,
-            PomArg::Binary => PomMode::Binary,
-            PomArg::Combined => PomMode::Combined,
-            PomArg::Normal => PomMode::NormalOnly,
-            PomArg::Displacement => PomMode::Displacement,
+            PomArg::Linear => P::Linear,
+            PomArg::Binary => P::Binary,
+            PomArg::Combined => P::Combined,
+            PomArg::Normal => P::Normal,
+            PomArg::Displacement => P::Displacement,
         }
     }
 }
 
-/// Everything on the CPU the renderer needs: the engine's [`Scene`] of the project (mesh,
-/// large wrinkles at an age, micro-relief and fine tiles, hair), baked at `map_px`.
-pub struct SceneInputs {
-    scene: Scene,
-    map_px: u32,
-    hair: bool,
-    /// The skin patch's own creases (its UV square is 5 cm of skin, not a face).
-    patch_large: Option<HeightMap>,
-}
-
-impl SceneInputs {
-    /// The scene of `project` with the command line's mesh and hair settings. The
-    /// micro-relief tile is repeated over the surface, so it is baked tileable.
-    pub fn gather(
-        project: &Project,
-        mesh: Option<&Path>,
-        patch: bool,
-        metres_per_unit: f32,
-        map_px: u32,
-        density: f32,
-    ) -> anyhow::Result<Self> {
-        let mut p = project.clone();
-        p.tile = true;
-        if let Some(path) = mesh {
-            p.mesh.path = Some(path.to_owned());
-            p.mesh.metres_per_unit = metres_per_unit;
-        } else if patch {
-            p.mesh.builtin = BuiltinMesh::SkinPatch;
-        }
-        p.hair.enabled = density > 0.0 && !patch;
-        if p.hair.enabled {
-            p.hair.density_per_cm2 = density;
-        }
-        Ok(Self {
-            scene: Scene::new(p)?,
-            map_px,
-            hair: density > 0.0 && !patch,
-            patch_large: if patch {
-                Some(patch_wrinkles(map_px)?)
-            } else {
-                None
-            },
-        })
+/// The project with the command line's mesh, hair and view flags applied.
+fn project_of(args: &RenderArgs) -> anyhow::Result<Project> {
+    let mut p = match &args.project {
+        Some(path) => Project::load(path)?,
+        None => Project::default(),
+    };
+    if let Some(path) = &args.mesh {
+        p.mesh.path = Some(path.clone());
+        p.mesh.metres_per_unit = args.metres_per_unit;
+    } else if args.patch {
+        p.mesh.builtin = BuiltinMesh::SkinPatch;
+        // The patch shows its own creases (its UV square is 5 cm of skin, not a face).
+        p.large.enabled = false;
     }
-
-    pub fn mesh(&self) -> &Mesh {
-        self.scene.mesh()
+    let density = if args.no_hair { 0.0 } else { args.hair_density };
+    p.hair.enabled = density > 0.0 && !args.patch;
+    if p.hair.enabled {
+        p.hair.density_per_cm2 = density;
     }
-
-    /// Replaces the wrinkle files' contents (the editor's fibre edits).
-    pub fn set_wrinkles(&mut self, wrinkles: Vec<agesim_core::scene::WrinkleSource>) {
-        self.scene.set_wrinkles(wrinkles);
+    let v = &mut p.view;
+    if let Some(pom) = args.pom {
+        v.pom = pom.into();
     }
-
-    pub fn project(&self) -> &Project {
-        self.scene.project()
-    }
-
-    /// Bakes at age `t`, uploads what changed (everything, the first time), and fills
-    /// `params`' age-dependent fields from the engine's age model.
-    pub fn upload_age(
-        &mut self,
-        renderer: &mut Renderer,
-        t: f32,
-        params: &mut FrameParams,
-    ) -> anyhow::Result<()> {
-        let request = BakeRequest {
-            large_size_px: self.map_px,
-            micro_size_px: self.map_px,
-            t,
-            fine: true,
-            hair: self.hair,
-            packed: false,
-            one_off: true,
-            micro_normals: false,
-        };
-        let first = self.scene.large().is_none() && self.scene.micro().is_none();
-        let changed = self.scene.bake(&request, &CancelToken::never())?;
-        let project = self.scene.project().clone();
-        if first {
-            renderer.upload_mesh(self.scene.mesh(), project.mesh.metres_per_unit)?;
-        }
-        if first || changed.large {
-            match (&self.patch_large, self.scene.large()) {
-                (Some(patch), _) => {
-                    // The patch's creases follow the layer's default age curve.
-                    let f = project.age.factors(t, &[None]).large[0];
-                    let data = patch.data().iter().map(|h| h * f).collect();
-                    renderer.upload_large_wrinkles(&HeightMap::from_vec(
-                        patch.width_px(),
-                        patch.height_px(),
-                        data,
-                    )?)?;
-                }
-                (None, Some(large)) => {
-                    let depth = project.large.depth;
-                    let inv = if depth > 0.0 { 1.0 / depth } else { 0.0 };
-                    let data = large.height.data().iter().map(|h| h * inv).collect();
-                    renderer.upload_large_wrinkles(&HeightMap::from_vec(
-                        large.height.width_px(),
-                        large.height.height_px(),
-                        data,
-                    )?)?;
-                }
-                (None, None) => {}
-            }
-        }
-        if (first || changed.micro)
-            && let Some(micro) = self.scene.micro()
-        {
-            renderer.upload_tile(
-                TileLayer::Micro,
-                &micro.height,
-                project.map_size_mm * 1e-3,
-                project.normal.strength,
-            )?;
-        }
-        if (first || changed.fine)
-            && let Some(fine) = self.scene.fine()
-        {
-            renderer.upload_tile(
-                TileLayer::Fine,
-                fine,
-                project.fine.size_mm * 1e-3,
-                project.fine.strength,
-            )?;
-        }
-        if (first || changed.hair)
-            && let Some(hair) = self.scene.hair()
-        {
-            renderer.upload_hair(hair);
-        }
-        let p = crate::frame::frame_params(&project, self.scene.factors(), params.camera);
-        params.age = p.age;
-        params.skin.fine_blend = p.skin.fine_blend;
-        params.skin.paleness = p.skin.paleness;
-        params.skin.albedo = p.skin.albedo;
-        params.skin.micro_relief = p.skin.micro_relief;
-        params.hair = HairShading {
-            enabled: params.hair.enabled,
-            ..p.hair
-        };
-        Ok(())
-    }
+    v.linear_steps = args.linear.unwrap_or(v.linear_steps);
+    v.binary_steps = args.binary.unwrap_or(v.binary_steps);
+    v.disp_scale = args
+        .disp_scale
+        .unwrap_or(if args.patch { 0.02 } else { v.disp_scale });
+    v.fov_deg = args.fov.unwrap_or(v.fov_deg);
+    v.show_hair = !args.no_hair;
+    Ok(p)
 }
 
 /// Horizontal creases with a rounded valley profile over the patch, heights in [0, 1].
@@ -277,8 +164,33 @@ fn patch_wrinkles(size_px: u32) -> anyhow::Result<HeightMap> {
     Ok(HeightMap::from_vec(size_px, size_px, data)?)
 }
 
+/// The command's scene on a renderer: the patch's creases follow the layer's default age
+/// curve, the head's wrinkles the scene's.
+struct Shown {
+    view: HeadlessView,
+    patch: Option<HeightMap>,
+    camera: agesim_render::Camera,
+}
+
+impl Shown {
+    /// Bakes and uploads age `t` and returns its frame.
+    fn at(&mut self, renderer: &mut Renderer, t: f32) -> anyhow::Result<FrameParams> {
+        self.view.bake_and_upload(renderer, t)?;
+        if let Some(patch) = &self.patch {
+            let f = self.view.project().age.factors(t, &[None]).large[0];
+            let data = patch.data().iter().map(|h| h * f).collect();
+            renderer.upload_large_wrinkles(&HeightMap::from_vec(
+                patch.width_px(),
+                patch.height_px(),
+                data,
+            )?)?;
+        }
+        Ok(self.view.frame_params(t, self.camera))
+    }
+}
+
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
-    for &t in args.ages.iter().chain(&args.compare).chain(&args.age) {
+    for &t in args.ages.iter().chain(&args.compare) {
         if !(0.0..=1.0).contains(&t) {
             bail!("age t = {t} is outside [0, 1]");
         }
@@ -286,20 +198,37 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if !args.compare.is_empty() && args.compare.len() != 2 {
         bail!("--compare takes two ages, T0,T1");
     }
-    let project = match &args.project {
-        Some(path) => Project::load(path)?,
-        None => Project::default(),
-    };
+    let project = project_of(args)?;
+    let single_t = args.age.t(&project)?;
     let start = Instant::now();
-    let density = if args.no_hair { 0.0 } else { args.hair_density };
-    let mut inputs = SceneInputs::gather(
-        &project,
-        args.mesh.as_deref(),
-        args.patch,
-        args.metres_per_unit,
-        args.map_size,
-        density,
-    )?;
+    let scene = Scene::new(project.clone())?;
+    let bounds = scene.mesh().bounds();
+    let mut camera = view::camera(&project, bounds.centre());
+    if args.patch || args.mesh.is_some() {
+        // Framed: the whole mesh in view, face on (the patch lies in the z = 0 plane
+        // facing +z, so `--pitch 70` grazes it).
+        camera.distance = bounds.size().length() * 1.6;
+        camera.yaw_rad = 0.0;
+        camera.pitch_rad = 0.0;
+    }
+    if let Some(y) = args.yaw {
+        camera.yaw_rad = y.to_radians();
+    }
+    if let Some(p) = args.pitch {
+        camera.pitch_rad = p.to_radians();
+    }
+    if let Some(d) = args.distance {
+        camera.distance = d;
+    }
+    let mut shown = Shown {
+        view: HeadlessView::new(scene, args.map_size, project.hair.enabled),
+        patch: if args.patch {
+            Some(patch_wrinkles(args.map_size)?)
+        } else {
+            None
+        },
+        camera,
+    };
     let gather_ms = start.elapsed().as_secs_f64() * 1e3;
 
     let gpu = Gpu::new()?;
@@ -308,52 +237,22 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let mut renderer = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT)?;
     let setup_ms = start.elapsed().as_secs_f64() * 1e3;
 
-    let mut params = FrameParams::default();
-    params.skin.pom_mode = args.pom.into();
-    params.skin.linear_steps = args.linear;
-    params.skin.binary_steps = args.binary;
-    params.skin.disp_scale = args
-        .disp_scale
-        .unwrap_or(if args.patch { 0.02 } else { 0.005 });
-    params.hair.enabled = !args.no_hair;
-    let bounds = inputs.mesh().bounds();
-    if args.patch || args.mesh.is_some() {
-        params.camera.target = bounds.centre();
-        params.camera.distance = bounds.size().length() * 1.6;
-        // Face on: the patch lies in the z = 0 plane facing +z, so `--pitch 70` grazes it.
-        params.camera.yaw_rad = 0.0;
-        params.camera.pitch_rad = 0.0;
-    }
-    if let Some(y) = args.yaw {
-        params.camera.yaw_rad = y.to_radians();
-    }
-    if let Some(p) = args.pitch {
-        params.camera.pitch_rad = p.to_radians();
-    }
-    if let Some(d) = args.distance {
-        params.camera.distance = d;
-    }
-    params.camera.fov_y_rad = args.fov.to_radians();
-
     if args.bench {
-        return bench(&mut inputs, &mut renderer, params, &gpu);
+        return bench(&mut shown, &mut renderer, &gpu);
     }
     let Some(out) = &args.out else {
         bail!("--out is required");
     };
+    let mapping = project.age.mapping();
 
-    if !args.compare.is_empty() {
-        let &[t0, t1] = args.compare.as_slice() else {
-            bail!("--compare takes two ages, T0,T1");
-        };
+    if let &[t0, t1] = args.compare.as_slice() {
         let mut images = Vec::new();
         for t in [t0, t1] {
-            inputs.upload_age(&mut renderer, t, &mut params)?;
+            let params = shown.at(&mut renderer, t)?;
             let img = renderer.render_to_image(&params, args.size)?;
-            let label = format!("T={t:.2} {:.0}Y", inputs.project().age.mapping().years(t));
-            images.push((label, img));
+            images.push((format!("T={t:.2} {:.0}Y", mapping.years(t)), img));
         }
-        save(&side_by_side(images), out)?;
+        save(&view::side_by_side(images), out)?;
         println!(
             "{} (t = {t0} | t = {t1}) in {gather_ms:.0} ms + render",
             out.display()
@@ -361,20 +260,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         return Ok(());
     }
 
-    let ages: Vec<f32> = if !args.ages.is_empty() {
-        args.ages.clone()
-    } else if let Some(y) = args.age_years {
-        vec![project.age.mapping().t(y)]
+    let ages = if args.ages.is_empty() {
+        vec![single_t]
     } else {
-        vec![args.age.unwrap_or(0.5)]
+        args.ages.clone()
     };
     for (i, &t) in ages.iter().enumerate() {
-        inputs.upload_age(&mut renderer, t, &mut params)?;
+        let params = shown.at(&mut renderer, t)?;
         let start = Instant::now();
         let img = renderer.render_to_image(&params, args.size)?;
         let render_ms = start.elapsed().as_secs_f64() * 1e3;
         let path = if ages.len() > 1 {
-            crate::export::numbered(out, i)
+            view::numbered(out, i)
         } else {
             out.clone()
         };
@@ -383,7 +280,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             "{}: t = {t:.2} ({:.0} years), {} hairs, {} {}+{}, inputs {gather_ms:.0} ms, \
              renderer + uploads {setup_ms:.0} ms, frame {render_ms:.0} ms",
             path.display(),
-            inputs.project().age.mapping().years(t),
+            mapping.years(t),
             renderer.hair_count(t) * u32::from(params.hair.enabled),
             params.skin.pom_mode.name(),
             params.skin.linear_steps,
@@ -391,17 +288,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
-}
-
-/// Images of one size side by side, each labelled in its top-left corner.
-pub fn side_by_side(images: Vec<(String, image::RgbaImage)>) -> image::RgbaImage {
-    let (w, h) = images.first().map_or((1, 1), |(_, i)| i.dimensions());
-    let mut side = image::RgbaImage::new(w * images.len().max(1) as u32, h);
-    for (i, (label, mut img)) in images.into_iter().enumerate() {
-        crate::cli::font::draw_text(&mut img, 8, 8, 3, &label, [255, 255, 255, 255]);
-        image::imageops::replace(&mut side, &img, i as i64 * i64::from(w), 0);
-    }
-    side
 }
 
 fn save(img: &image::RgbaImage, path: &Path) -> anyhow::Result<()> {
@@ -412,7 +298,7 @@ fn save(img: &image::RgbaImage, path: &Path) -> anyhow::Result<()> {
         .with_context(|| format!("cannot write {}", path.display()))
 }
 
-/// [T] fig. 8.5 as a table: frame time (encode + submit + wait, readback excluded) at
+/// The thesis's fig. 8.5 as a table: frame time (encode + submit + wait, readback excluded) at
 /// 1280×720 for each mode and iteration count, then the hair pass against the number of
 /// hairs drawn. Prints the fastest of the runs (robust to other work on a shared
 /// machine) and the median.
@@ -420,15 +306,10 @@ fn save(img: &image::RgbaImage, path: &Path) -> anyhow::Result<()> {
 /// A *new view* frame moves the camera a little each run, so the mesh is rasterised into
 /// the stored surface and shaded (what orbiting costs); an *age step* keeps the view and
 /// changes the age, so only the shading pass and the hair run (what scrubbing costs).
-fn bench(
-    inputs: &mut SceneInputs,
-    renderer: &mut Renderer,
-    mut params: FrameParams,
-    gpu: &Gpu,
-) -> anyhow::Result<()> {
+fn bench(shown: &mut Shown, renderer: &mut Renderer, gpu: &Gpu) -> anyhow::Result<()> {
     const SIZE: (u32, u32) = (1280, 720);
     const RUNS: usize = 7;
-    inputs.upload_age(renderer, 0.75, &mut params)?;
+    let params = shown.at(renderer, 0.75)?;
     let hairs = renderer.hair_count(0.75);
     const HAIR_AGES: [f32; 4] = [0.0, 0.5, 0.75, 1.0];
     let hair_counts = HAIR_AGES.map(|t| renderer.hair_count(t));

@@ -8,8 +8,19 @@ use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, WrinkleSource};
 use serde_json::Value;
 
-mod commands;
-pub use commands::Pending;
+mod compare;
+mod document;
+mod inputs;
+mod inspector;
+mod menus;
+mod presets;
+mod scripted;
+mod shortcuts;
+mod status;
+mod windows;
+
+pub use document::Pending;
+pub use shortcuts::SHORTCUTS;
 
 use super::export_ui::{ExportRun, ExportSettings};
 use super::fields_ui;
@@ -108,7 +119,8 @@ pub struct EditorApp {
     project: Project,
     /// The last project the worker accepted: restored when an edit is refused.
     last_good: Project,
-    defaults: Value,
+    /// `Project::default()`, what the layer panel marks changes against.
+    defaults: Project,
     /// The wrinkle files as edited here (`None` until the first fibre edit).
     wrinkles: Option<Vec<WrinkleSource>>,
     worker: Worker,
@@ -222,7 +234,7 @@ impl EditorApp {
             .or_else(|| eframe::storage_dir("agesim"));
         let mut app = Self {
             last_good: project.clone(),
-            defaults: Project::default().to_value(),
+            defaults: Project::default(),
             project,
             wrinkles: None,
             worker,
@@ -325,6 +337,9 @@ impl EditorApp {
             large_size_px: large,
             micro_size_px: micro,
             t: self.project.age.t,
+            // The renderer repeats the micro-relief over the head: no seams where tiles
+            // meet. The document's own `tile` is what map exports use.
+            tileable: true,
             fine: true,
             hair: true,
             // The packing is only a picture for the map view (the renderer reads the
@@ -346,26 +361,17 @@ impl EditorApp {
         });
     }
 
-    /// Applies one field edit to the document (validated like a project file).
+    /// Applies one field edit to the document, checked as a project file checks it
+    /// ([`Project::set_field`]: that field's type and range, then the rules between
+    /// fields).
     fn apply(&mut self, path: &str, value: Value, dragging: bool) {
-        let mut doc = self.project.to_value();
-        let mut node = &mut doc;
-        for key in path.split('.') {
-            match node.get_mut(key) {
-                Some(n) => node = n,
-                None => return,
-            }
-        }
-        *node = value;
-        match Project::from_value(doc, path) {
-            Ok(p) => {
-                if p == self.project {
-                    return;
-                }
+        let mut p = self.project.clone();
+        match p.set_field(path, value) {
+            Ok(()) if p == self.project => {}
+            Ok(()) => {
                 self.record(path, path, dragging);
                 self.project = p;
-                let what = path.to_owned();
-                self.submit(dragging, &what);
+                self.submit(dragging, path);
             }
             Err(e) => self.error(e.to_string()),
         }
@@ -462,350 +468,6 @@ impl EditorApp {
         self.textures.push((kind, t.clone(), stamp));
         Some(t)
     }
-
-    fn menu_ui(&mut self, ui: &mut egui::Ui) {
-        egui::MenuBar::new().ui(ui, |ui| {
-            ui.menu_button("File", |ui| self.file_menu(ui));
-            ui.menu_button("Edit", |ui| self.edit_menu(ui));
-            ui.menu_button("View", |ui| {
-                for kind in MapKind::ALL {
-                    ui.radio_value(&mut self.persisted.map_view.kind, kind, kind.name());
-                }
-                ui.separator();
-                ui.checkbox(&mut self.persisted.map_view.show_fibres, "show fibres");
-                ui.checkbox(&mut self.persisted.map_view.show_layout, "show UV layout");
-                if ui.button("Reset map view").clicked() {
-                    self.persisted.map_view.zoom = 1.0;
-                    self.persisted.map_view.offset = [0.0, 0.0];
-                }
-                if ui.button("Frame the head").clicked()
-                    && let Some(v) = &mut self.viewport
-                {
-                    v.reset(&mut self.project);
-                }
-                ui.separator();
-                for (layout, name) in [
-                    (Layout::Both, "Head and map"),
-                    (Layout::Head, "Head only"),
-                    (Layout::Map, "Map only"),
-                ] {
-                    ui.radio_value(&mut self.persisted.layout, layout, name);
-                }
-            });
-            ui.menu_button("Presets", |ui| self.presets_menu(ui));
-            ui.menu_button("Help", |ui| self.help_menu(ui));
-        });
-    }
-
-    fn status_ui(&mut self, ui: &mut egui::Ui, frame_ms: f32) {
-        ui.horizontal_wrapped(|ui| {
-            ui.label(format!("adapter: {}", self.adapter));
-            ui.separator();
-            ui.label(format!("frame {frame_ms:.1} ms"));
-            ui.separator();
-            if self.worker.busy(self.reported) {
-                // Not egui's spinner: it repaints every frame, and on a CPU adapter each
-                // frame takes cores from the bake. Four frames a second show it is alive.
-                let dots = (self.now * 4.0) as usize % 4;
-                ui.label(format!("baking{:<3}", ".".repeat(dots)));
-                ui.ctx()
-                    .request_repaint_after(std::time::Duration::from_millis(250));
-            } else {
-                ui.label(format!(
-                    "last bake: {} in {:.0} ms",
-                    self.last_what, self.last_bake_ms
-                ));
-            }
-            ui.separator();
-            let t = self.project.age.t;
-            if let Some(h) = &self.snapshot.hair {
-                ui.label(format!("hairs: {} of {}", h.count(t), h.len()));
-            }
-            if let Some(v) = &self.viewport {
-                ui.label(format!("3D frame encode {:.1} ms", v.encode_ms));
-                if v.sparse_hair > 1 {
-                    ui.label(format!("(moving: 1 hair in {} drawn)", v.sparse_hair));
-                }
-            }
-            if let Some(l) = &self.snapshot.large {
-                if !std::ptr::eq(self.deepest.0.as_ptr(), std::sync::Arc::as_ptr(l)) {
-                    self.deepest = (std::sync::Arc::downgrade(l), l.height.min_max().1);
-                }
-                ui.label(format!("deepest large wrinkle: {:.2}", self.deepest.1));
-            }
-        });
-    }
-
-    /// Adds a fibre (3 wrinkles across the middle of the UV square) to the selected
-    /// fibre's file, or the first file, and selects it.
-    pub fn add_fibre(&mut self) {
-        let mut wrinkles = self.wrinkles().to_vec();
-        let fi = self.persisted.map_view.selected.map_or(0, |(f, _)| f);
-        let Ok(fibre) = agesim_core::muscle::Fibre::new([0.45, 0.5], [0.55, 0.5], 3) else {
-            return;
-        };
-        let Some(file) = wrinkles.get_mut(fi) else {
-            return;
-        };
-        file.file
-            .groups
-            .push(agesim_core::wrinkle_file::WrinkleGroup {
-                fibre,
-                age: None,
-                comments: vec![" added in the editor".into()],
-            });
-        self.persisted.map_view.selected = Some((fi, file.file.groups.len() - 1));
-        self.record("add fibre", "add fibre", false);
-        self.wrinkles = Some(wrinkles);
-        self.submit(false, "add fibre");
-    }
-
-    /// Deletes the selected fibre.
-    pub fn delete_fibre(&mut self) {
-        let Some((fi, gi)) = self.persisted.map_view.selected else {
-            return;
-        };
-        let mut wrinkles = self.wrinkles().to_vec();
-        if let Some(file) = wrinkles.get_mut(fi)
-            && gi < file.file.groups.len()
-        {
-            file.file.groups.remove(gi);
-            self.persisted.map_view.selected = None;
-            self.record("delete fibre", "delete fibre", false);
-            self.wrinkles = Some(wrinkles);
-            self.submit(false, "delete fibre");
-        }
-    }
-
-    fn inspector_ui(&mut self, ui: &mut egui::Ui) {
-        ui.horizontal(|ui| {
-            if ui.button("Add fibre").clicked() {
-                self.add_fibre();
-            }
-            let selected = self.persisted.map_view.selected.is_some();
-            if ui
-                .add_enabled(selected, egui::Button::new("Delete fibre"))
-                .clicked()
-                || (selected && ui.input(|i| i.key_pressed(egui::Key::Delete)))
-            {
-                self.delete_fibre();
-            }
-        });
-        let Some((fi, gi)) = self.persisted.map_view.selected else {
-            ui.label("Click a fibre's handle on the map to select it.");
-            return;
-        };
-        let mut wrinkles = self.wrinkles().to_vec();
-        if wrinkles
-            .get(fi)
-            .and_then(|w| w.file.groups.get(gi))
-            .is_none()
-        {
-            return;
-        }
-        ui.label(format!("{} — group {}", wrinkles[fi].name, gi + 1));
-        let group = &mut wrinkles[fi].file.groups[gi];
-        let f = group.fibre.clone();
-        let mut changed = None;
-        ui.label(format!(
-            "mA {:.3}; {:.3}   mB {:.3}; {:.3}",
-            f.ma()[0],
-            f.ma()[1],
-            f.mb()[0],
-            f.mb()[1]
-        ));
-        let mut n = f.n();
-        if ui
-            .add(egui::Slider::new(&mut n, 2..=40).text("n (wrinkles)"))
-            .changed()
-        {
-            changed = f.with_n(n).ok();
-        }
-        type Setter = fn(
-            agesim_core::muscle::Fibre,
-            f32,
-        ) -> Result<agesim_core::muscle::Fibre, agesim_core::Error>;
-        let rows: [(&str, f32, std::ops::RangeInclusive<f32>, Setter); 4] = [
-            (
-                "relWidth",
-                f.rel_width(),
-                0.01..=1.0,
-                agesim_core::muscle::Fibre::with_rel_width,
-            ),
-            (
-                "maxAngle",
-                f.max_angle(),
-                1.0..=2.0,
-                agesim_core::muscle::Fibre::with_max_angle,
-            ),
-            (
-                "omegaLow",
-                f.omega_low(),
-                0.0..=1.0,
-                agesim_core::muscle::Fibre::with_omega_low,
-            ),
-            (
-                "depth",
-                f.depth(),
-                0.0..=5.0,
-                agesim_core::muscle::Fibre::with_depth,
-            ),
-        ];
-        for (label, mut value, range, set) in rows {
-            if ui
-                .add(egui::Slider::new(&mut value, range).text(label))
-                .changed()
-            {
-                changed = set(f.clone(), value).ok();
-            }
-        }
-        let mut profile = f.profile();
-        egui::ComboBox::from_label("profile")
-            .selected_text(profile.name())
-            .show_ui(ui, |ui| {
-                for p in agesim_core::muscle::Profile::ALL {
-                    ui.selectable_value(&mut profile, p, p.name());
-                }
-            });
-        if profile != f.profile() {
-            changed = Some(f.clone().with_profile(profile));
-        }
-        let mut own = group.age.is_some();
-        let mut age_changed = false;
-        if ui.checkbox(&mut own, "own age curve").changed() {
-            group.age = own.then_some(self.project.age.large);
-            age_changed = true;
-        }
-        if let Some(curve) = &mut group.age {
-            age_changed |= ui
-                .add(
-                    egui::Slider::new(&mut curve.onset_years, 0.0..=100.0)
-                        .text("age onset (years)"),
-                )
-                .changed();
-            age_changed |= ui
-                .add(egui::Slider::new(&mut curve.full_years, 0.0..=120.0).text("age full (years)"))
-                .changed();
-            curve.full_years = curve.full_years.max(curve.onset_years);
-        }
-        if let Some(fibre) = changed {
-            group.fibre = fibre;
-            age_changed = true;
-        }
-        if age_changed {
-            let dragging = ui.ctx().egui_is_using_pointer();
-            self.record("fibre edit", &format!("fibre {fi}/{gi}"), dragging);
-            self.wrinkles = Some(wrinkles);
-            self.submit(dragging, "fibre");
-        }
-    }
-
-    /// The compare view: the right part of `rect` (from the divider on) shows the second
-    /// age, in the same camera; the divider drags.
-    fn compare_ui(
-        &mut self,
-        ui: &mut egui::Ui,
-        rs: &eframe::egui_wgpu::RenderState,
-        rect: egui::Rect,
-        pan: glam::Vec3,
-    ) {
-        let (Some(b), Some(snapshot_b)) = (&mut self.viewport_b, self.snapshot.compare.as_deref())
-        else {
-            return;
-        };
-        let mut project_b = self.project.clone();
-        project_b.age.t = project_b.age.mapping().t(self.persisted.compare_years);
-        b.set_pan(pan);
-        let x = rect.left() + rect.width() * self.persisted.divider;
-        if b.render(ui.ctx(), rs, snapshot_b, &project_b, rect) {
-            let right = egui::Rect::from_min_max(egui::pos2(x, rect.top()), rect.max);
-            b.show(&ui.painter().with_clip_rect(right), rect);
-        }
-        let handle = egui::Rect::from_center_size(
-            egui::pos2(x, rect.center().y),
-            egui::vec2(14.0, rect.height()),
-        );
-        let r = ui.interact(
-            handle,
-            ui.scope_id().with("compare divider"),
-            egui::Sense::drag(),
-        );
-        if r.dragged() {
-            self.persisted.divider =
-                ((x + r.drag_delta().x - rect.left()) / rect.width()).clamp(0.02, 0.98);
-        }
-        let colour = egui::Color32::from_rgb(255, 200, 60);
-        ui.painter().line_segment(
-            [egui::pos2(x, rect.top()), egui::pos2(x, rect.bottom())],
-            egui::Stroke::new(if r.hovered() || r.dragged() { 3.0 } else { 2.0 }, colour),
-        );
-        let years_a = self.project.age.mapping().years(self.project.age.t);
-        for (pos, align, text) in [
-            (
-                rect.left_bottom() + egui::vec2(10.0, -10.0),
-                egui::Align2::LEFT_BOTTOM,
-                format!("{years_a:.0} years"),
-            ),
-            (
-                rect.right_bottom() + egui::vec2(-10.0, -10.0),
-                egui::Align2::RIGHT_BOTTOM,
-                format!("{:.0} years", self.persisted.compare_years),
-            ),
-        ] {
-            ui.painter()
-                .text(pos, align, text, egui::FontId::proportional(18.0), colour);
-        }
-    }
-
-    fn bench_step(&mut self, ctx: &egui::Context) {
-        let Some(bench) = &mut self.bench else {
-            return;
-        };
-        ctx.request_repaint();
-        let hairs = self
-            .viewport
-            .as_ref()
-            .map_or((0, 1), |v| (v.hairs_drawn, v.sparse_hair));
-        let idle = !self.worker.busy(self.reported);
-        let years = self.project.age.mapping().years(self.project.age.t);
-        match bench.frame(idle, self.reported, self.worker.latest, hairs, years) {
-            super::bench_ui::Action::None => {}
-            super::bench_ui::Action::BigBake => self.submit_sized((4096, 4096), "4096² bake"),
-            super::bench_ui::Action::SetAge(t) => self.set_age(t, true),
-            super::bench_ui::Action::Play => self.persisted.playback.playing = true,
-            super::bench_ui::Action::PlayHeadOnly => {
-                self.persisted.layout = Layout::Head;
-                self.persisted.playback.playing = true;
-            }
-            super::bench_ui::Action::Stop => self.persisted.playback.playing = false,
-            super::bench_ui::Action::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
-        }
-    }
-
-    fn maybe_screenshot(&mut self, ctx: &egui::Context) {
-        let Some(path) = self.options.screenshot.clone() else {
-            return;
-        };
-        if self.snapshot.large.is_some() && self.idle() {
-            self.frames_with_maps += 1;
-        }
-        ctx.request_repaint();
-        if self.frames_with_maps >= self.options.frames.max(1) && !self.screenshot_requested {
-            self.screenshot_requested = true;
-            let ctx2 = ctx.clone();
-            ctx.request_screenshot(move |image| {
-                let [w, h] = image.size;
-                let bytes: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
-                let result = image::RgbaImage::from_raw(w as u32, h as u32, bytes)
-                    .map(|img| img.save(&path));
-                match result {
-                    Some(Ok(())) => println!("screenshot {w}×{h} → {}", path.display()),
-                    _ => eprintln!("error: could not write the screenshot {}", path.display()),
-                }
-                ctx2.send_viewport_cmd(egui::ViewportCommand::Close);
-            });
-        }
-    }
 }
 
 /// A panel frame without its fill: the window is cleared to the panel colour instead
@@ -872,11 +534,11 @@ impl eframe::App for EditorApp {
         if let Some((path, years, dragging)) = timeline_edit.curve {
             self.apply(path, Value::from(years), dragging);
         }
-        let mut doc = self.project.to_value();
         // Edited fibres: the panel lists the files being edited, not "(built-in)".
-        if let (Some(w), Some(large)) = (&self.wrinkles, doc.get_mut("large")) {
-            large["wrinkles"] = w.iter().map(|w| Value::from(w.name.clone())).collect();
-        }
+        let edited: Option<Vec<&str>> = self
+            .wrinkles
+            .as_ref()
+            .map(|w| w.iter().map(|w| w.name.as_str()).collect());
         let edits = egui::Panel::left("layers")
             .frame(side)
             .resizable(true)
@@ -884,7 +546,9 @@ impl eframe::App for EditorApp {
             .show(ui, |ui| {
                 ui.heading("Layers");
                 egui::ScrollArea::vertical()
-                    .show(ui, |ui| fields_ui::layers_ui(ui, &doc, &self.defaults))
+                    .show(ui, |ui| {
+                        fields_ui::layers_ui(ui, &self.project, &self.defaults, edited.as_deref())
+                    })
                     .inner
             })
             .inner;

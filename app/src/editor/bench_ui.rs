@@ -1,5 +1,5 @@
 //! `agesim --bench-ui`: a scripted run of the real editor window that measures what the
-//! artist feels (issue 12 §6), printed as a table:
+//! artist feels, printed as a table:
 //! 1. the UI's frame interval while a 4096² bake runs on the worker;
 //! 2. the time from an age-slider change (as a drag: the view in its moving state) until
 //!    the frame that shows its bake (preview) has been drawn and presented;

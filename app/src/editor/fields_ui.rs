@@ -3,6 +3,7 @@
 //! there, not from a second copy here. Double-click a widget to reset it to its default;
 //! a `•` marks values changed from the default.
 
+use agesim_core::project::Project;
 use agesim_core::project::fields::{FIELDS, Field, Kind, SECTIONS};
 use serde_json::Value;
 
@@ -23,11 +24,6 @@ pub enum Pick {
     Replace,
     /// Add… : one more file (the wrinkle files).
     Add,
-}
-
-/// The value at a dotted path of a JSON document.
-pub fn get<'v>(doc: &'v Value, path: &str) -> Option<&'v Value> {
-    path.split('.').try_fold(doc, |node, key| node.get(key))
 }
 
 /// Sections shown as layers, with an on/off switch where the section has `enabled`.
@@ -64,8 +60,19 @@ fn tooltip(field: &Field, default: &Value) -> String {
     )
 }
 
-/// The whole layer panel. Returns the edits of this frame.
-pub fn layers_ui(ui: &mut egui::Ui, doc: &Value, defaults: &Value) -> Vec<Edit> {
+/// The whole layer panel for `project` (changes marked against `defaults`; `wrinkles`:
+/// the names of the wrinkle files being edited, shown instead of the project's paths).
+/// Each field is read on its own ([`Project::field`]). Returns the edits of this frame.
+pub fn layers_ui(
+    ui: &mut egui::Ui,
+    project: &Project,
+    defaults: &Project,
+    wrinkles: Option<&[&str]>,
+) -> Vec<Edit> {
+    let value = |path: &str| match (path, wrinkles) {
+        ("large.wrinkles", Some(names)) => Value::from(names.to_vec()),
+        _ => project.field(path).unwrap_or(Value::Null),
+    };
     let mut edits = Vec::new();
     for section in LAYER_SECTIONS {
         let about = SECTIONS
@@ -86,10 +93,10 @@ pub fn layers_ui(ui: &mut egui::Ui, doc: &Value, defaults: &Value) -> Vec<Edit> 
             })
             .collect();
         let enabled_path = format!("{section}.enabled");
-        let enabled = get(doc, &enabled_path).and_then(Value::as_bool);
+        let enabled = project.field(&enabled_path).and_then(|v| v.as_bool());
         let changed_count = fields
             .iter()
-            .filter(|f| get(doc, f.path) != get(defaults, f.path))
+            .filter(|f| value(f.path) != defaults.field(f.path).unwrap_or(Value::Null))
             .count();
         let header = if changed_count > 0 {
             format!("{title}  • {changed_count}")
@@ -121,9 +128,8 @@ pub fn layers_ui(ui: &mut egui::Ui, doc: &Value, defaults: &Value) -> Vec<Edit> 
                         .striped(true)
                         .show(ui, |ui| {
                             for field in fields.iter().filter(|f| !f.path.ends_with(".enabled")) {
-                                let value = get(doc, field.path).cloned().unwrap_or(Value::Null);
-                                let default =
-                                    get(defaults, field.path).cloned().unwrap_or(Value::Null);
+                                let value = value(field.path);
+                                let default = defaults.field(field.path).unwrap_or(Value::Null);
                                 if let Some(edit) = field_ui(ui, field, &value, &default) {
                                     edits.push(edit);
                                 }

@@ -287,7 +287,7 @@ pub fn map_view_ui(
     edit
 }
 
-/// The outline of a fibre's influence area: points within W·L of the segment (SPEC §1's
+/// The outline of a fibre's influence area: points within W·L of the segment (docs/models.md §2's
 /// At(d) > 0), a capsule around mA–mB.
 fn draw_influence(painter: &egui::Painter, uv: UvRect, f: &Fibre, colour: Color32) {
     let (a, b) = (f.ma(), f.mb());

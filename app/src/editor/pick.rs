@@ -118,7 +118,7 @@ mod head_tests {
         let eye = c + Vec3::new(0.2, 0.05, 0.56);
         let hit = ray_pick(&head, eye, (c - eye).normalize());
         let hit = hit.unwrap();
-        // The front of the face, in the middle of the UV layout (SPEC §0 v up).
+        // The front of the face, in the middle of the UV layout (docs/models.md §1 v up).
         assert!(hit.position.z > c.z, "{hit:?}");
         assert!((0.3..0.7).contains(&hit.uv.x), "{hit:?}");
         let back = uv_to_surface(&head, hit.uv).unwrap();

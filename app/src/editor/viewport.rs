@@ -10,33 +10,19 @@
 use std::sync::Arc;
 
 use agesim_core::project::Project;
-use agesim_render::{Renderer, TileLayer, Upload};
+use agesim_render::Renderer;
 use eframe::egui_wgpu;
 use egui::{Rect, Sense};
 use glam::Vec3;
 
 use super::worker::Snapshot;
-use crate::frame;
+use crate::view::{self, Uploaded};
 
 /// The 3D view's colour target: 8-bit with the sRGB encoding done by the skin and hair
 /// shaders, copied as it is into egui's (non-sRGB) frame. An sRGB format would make the
 /// CPU rasteriser decode four texels per shown pixel: drawing the view's image cost
 /// ≈ 29 ms of every frame on llvmpipe at 1280×800.
 const VIEW_FORMAT: eframe::wgpu::TextureFormat = eframe::wgpu::TextureFormat::Rgba8Unorm;
-
-/// The identity of an uploaded map: the address of its shared allocation.
-fn stamp<T>(a: &Option<Arc<T>>) -> usize {
-    a.as_ref().map_or(0, |a| Arc::as_ptr(a) as usize)
-}
-
-#[derive(Default, PartialEq, Eq, Clone, Copy)]
-struct Uploaded {
-    mesh: usize,
-    large: usize,
-    micro: usize,
-    fine: usize,
-    hair: usize,
-}
 
 pub struct Viewport {
     /// Resolution scale of the next frames (1 = full; lower while the age plays or the
@@ -89,58 +75,17 @@ impl Viewport {
 
     /// Uploads what the snapshot brought that the GPU does not have yet.
     fn upload(&mut self, snapshot: &Snapshot, project: &Project) {
-        let mut result = Ok(());
-        if stamp(&snapshot.mesh) != self.uploaded.mesh
-            && let Some(mesh) = &snapshot.mesh
+        if let Some(mesh) = &snapshot.layers.mesh
+            && self.mesh.as_ref().is_none_or(|m| !Arc::ptr_eq(m, mesh))
         {
             self.centre = mesh.bounds().centre();
             self.mesh = Some(mesh.clone());
-            result = result.and(
-                self.renderer
-                    .upload_mesh(mesh, project.mesh.metres_per_unit),
-            );
-            self.uploaded.mesh = stamp(&snapshot.mesh);
         }
-        // The layers come converted from the worker: an upload here is a copy.
-        if stamp(&snapshot.gpu_large) != self.uploaded.large {
-            result = result.and(match &snapshot.gpu_large {
-                Some(large) => self.renderer.upload_prepared(&Upload::LargeWrinkles(large)),
-                // The layer is off: a flat surface (height 1 = no depth), not the last map.
-                None => agesim_core::HeightMap::from_vec(1, 1, vec![1.0])
-                    .map_err(agesim_render::RenderError::from)
-                    .and_then(|flat| self.renderer.upload_large_wrinkles(&flat)),
-            });
-            self.uploaded.large = stamp(&snapshot.gpu_large);
-        }
-        if stamp(&snapshot.gpu_micro) != self.uploaded.micro
-            && let Some(micro) = &snapshot.gpu_micro
+        let mpu = project.mesh.metres_per_unit;
+        if let Err(e) = self
+            .uploaded
+            .upload(&mut self.renderer, &snapshot.layers, mpu)
         {
-            result = result.and(self.renderer.upload_prepared(&Upload::Tile {
-                layer: TileLayer::Micro,
-                tile: micro,
-                size_m: project.map_size_mm / 1000.0,
-                strength: project.normal.strength,
-            }));
-            self.uploaded.micro = stamp(&snapshot.gpu_micro);
-        }
-        if stamp(&snapshot.gpu_fine) != self.uploaded.fine
-            && let Some(fine) = &snapshot.gpu_fine
-        {
-            result = result.and(self.renderer.upload_prepared(&Upload::Tile {
-                layer: TileLayer::Fine,
-                tile: fine,
-                size_m: project.fine.size_mm / 1000.0,
-                strength: project.fine.strength,
-            }));
-            self.uploaded.fine = stamp(&snapshot.gpu_fine);
-        }
-        if stamp(&snapshot.hair) != self.uploaded.hair
-            && let Some(hair) = &snapshot.hair
-        {
-            self.renderer.upload_hair(hair);
-            self.uploaded.hair = stamp(&snapshot.hair);
-        }
-        if let Err(e) = result {
             self.error = Some(e.to_string());
         }
     }
@@ -207,8 +152,7 @@ impl Viewport {
 
     /// The view's clip-from-world matrix for `rect` (as the renderer uses it).
     fn clip_from_world(&self, project: &Project, rect: Rect) -> glam::Mat4 {
-        let mut camera = frame::camera(project, self.centre + self.pan);
-        camera.distance = camera.distance.max(1e-3);
+        let camera = view::camera(project, self.centre + self.pan);
         camera.clip_from_world(rect.width() / rect.height().max(1.0))
     }
 
@@ -246,15 +190,13 @@ impl Viewport {
         rect: Rect,
     ) -> bool {
         self.upload(snapshot, project);
-        let Some(factors) = snapshot.factors.as_ref() else {
+        if snapshot.layers.mesh.is_none() {
             return self.shown.is_some();
-        };
-        // The age shown is the document's; the maps are the last baked ones.
-        let mut factors = factors.clone();
-        factors.t = project.age.t;
-        let mut camera = frame::camera(project, self.centre + self.pan);
-        camera.distance = camera.distance.max(1e-3);
-        let mut params = frame::frame_params(project, &factors, camera);
+        }
+        // The age shown is the document's (every age-dependent number follows it at
+        // once); the maps are the last baked ones.
+        let camera = view::camera(project, self.centre + self.pan);
+        let mut params = view::frame_params(project, project.age.t, camera);
         // While the view moves or the age plays (drawn at a lower resolution), one hair in
         // SPARSE_HAIR_STRIDE: the still frame that follows draws them all.
         params.hair.sparse = self.scale < 1.0;

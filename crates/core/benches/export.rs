@@ -1,4 +1,4 @@
-//! Writing a 4096² bake's three maps (issue 10 §5): `export::stage_maps` (our EXR writer
+//! Writing a 4096² bake's three maps: `export::stage_maps` (our EXR writer
 //! with RLE lines coded on all cores, PNGs through `png` with Paeth filtering and rows
 //! streamed, the normal map computed band by band as it is encoded, the three at once)
 //! against the simple baseline measured in the same run: the generic encoders one file

@@ -1,4 +1,4 @@
-//! Hair aging (SPEC §6): the 4096² transition texture against SPEC's naive iterative
+//! Hair aging (docs/models.md §9): the 4096² transition texture against docs/models.md's naive iterative
 //! dilation, and the generation of 1,000,000 hair instances against the same generation on
 //! one thread. Run with `cargo bench -p agesim-core --bench hair`
 //! (`HAIR_BENCH_SKIP_NAIVE_4096=1` skips the 5-minute naive run at 4096²).

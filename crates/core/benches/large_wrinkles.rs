@@ -1,4 +1,4 @@
-//! Large-wrinkle bake: 20 fibres at 4096² (SPEC §1), against the simple baseline of every
+//! Large-wrinkle bake: 20 fibres at 4096² (docs/models.md §2), against the simple baseline of every
 //! pixel evaluated against every fibre on one thread, measured in the same run.
 //!
 //! `cargo bench -p agesim-core --bench large_wrinkles`

@@ -1,4 +1,4 @@
-//! The engine's preview path (issue 9 §5): a `Scene` at 1024² with the default head's
+//! The engine's preview path: a `Scene` at 1024² with the default head's
 //! wrinkles and the default micro-relief, timing each kind of change against a full
 //! re-bake (a fresh scene) measured in the same run; cancelling a 4096² bake; and [P]'s
 //! workload at 4096² through the scene against `MicroRelief` directly (today's path).
@@ -146,7 +146,7 @@ fn main() {
         let token = CancelToken::new();
         let canceller = token.clone();
         let handle = std::thread::spawn(move || {
-            let r = s.bake(&BakeRequest::maps(4096, 0.5), &token);
+            let r = s.bake(&BakeRequest::maps(4096, 0.5, false), &token);
             (r.is_err(), Instant::now())
         });
         std::thread::sleep(std::time::Duration::from_millis(delay_ms));
@@ -192,7 +192,8 @@ fn main() {
             .map(|_| {
                 let mut s = scene_base.clone();
                 let t = Instant::now();
-                s.bake(&BakeRequest::maps(4096, 1.0), &never).unwrap();
+                s.bake(&BakeRequest::maps(4096, 1.0, false), &never)
+                    .unwrap();
                 ms(t)
             })
             .collect(),

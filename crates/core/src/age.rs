@@ -1,4 +1,4 @@
-//! The age model (`docs/models.md` "Age"; SPEC §0 "Age", §1, §5, §6): one age value
+//! The age model (`docs/models.md` "Age"; docs/models.md §1 "Age", §1, §5, §6): one age value
 //! drives every layer.
 //!
 //! The models see t ∈ [0, 1] (0 = the young state, 1 = the old state, [T]); people see
@@ -24,7 +24,7 @@ pub const DEFAULT_OLD_YEARS: f32 = 80.0;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum CurveShape {
-    /// 3x² − 2x³ (SPEC §1 S(x)): starts and ends gently, as visible wrinkles do.
+    /// 3x² − 2x³ (docs/models.md §2 S(x)): starts and ends gently, as visible wrinkles do.
     #[default]
     Smoothstep,
     /// x: [T] §5.2's blend of the fine wrinkles is linear in t.

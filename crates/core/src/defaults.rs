@@ -3,7 +3,7 @@
 //! path in the repository.
 
 /// The default wrinkle description files of the default head: (repository path, contents).
-/// `forehead.wrk` contains [T]'s own example (SPEC §2), which is also kept unchanged as
+/// `forehead.wrk` contains [T]'s own example (docs/models.md §3), which is also kept unchanged as
 /// `assets/wrinkles/thesis-forehead.wrk` (not in this list, so it is not counted twice).
 pub const WRINKLE_FILES: &[(&str, &str)] = &[
     (

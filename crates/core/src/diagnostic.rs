@@ -20,7 +20,7 @@ pub struct Diagnostic {
     pub found: String,
 }
 
-/// The kinds of wrinkle-file errors (SPEC §2).
+/// The kinds of wrinkle-file errors (docs/models.md §3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DiagnosticKind {
     /// A `key=value` line before the first `!`.

@@ -1,4 +1,4 @@
-//! Writing maps to disk (SPEC §4): 16-bit grey PNG and 32-bit float OpenEXR heights,
+//! Writing maps to disk (docs/models.md §5): 16-bit grey PNG and 32-bit float OpenEXR heights,
 //! 8-bit RGB PNG normals.
 //!
 //! Every file is written to a temporary name in the target's directory, flushed to disk

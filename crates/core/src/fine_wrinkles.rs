@@ -1,4 +1,4 @@
-//! The tileable fine-wrinkle height map (SPEC §5 "Fine wrinkles", [T §5.2]): a texture
+//! The tileable fine-wrinkle height map (docs/models.md §10 "Fine wrinkles", [T §5.2]): a texture
 //! repeated over the head and applied as a normal map, blended in with age.
 //!
 //! Skin's fine lines form a crossing, rhombic network with two dominant directions. The
@@ -6,7 +6,7 @@
 //! across it (depth tapered toward its ends, [P eq. 2]'s profile), their directions drawn
 //! around two axes `±crossing_deg/2` from a main direction. Creases wrap around the
 //! square, so the map tiles: opposite edges are continuous. Overlaps take the deepest
-//! crease plus a fraction of the others (a cheap stand-in for SPEC §3's log-smoothing
+//! crease plus a fraction of the others (a cheap stand-in for docs/models.md §4's log-smoothing
 //! that keeps crossings from doubling in depth). Heights are ≤ 0 (into the skin), the
 //! deepest normalised to −1.
 
@@ -27,7 +27,7 @@ pub struct FineWrinkleSettings {
     pub crossing_deg: f32,
     /// Random spread of each crease's direction around its family axis, degrees ≥ 0.
     pub spread_deg: f32,
-    /// Random seed (SPEC §0).
+    /// Random seed (docs/models.md §1).
     pub seed: u64,
 }
 

@@ -1,4 +1,4 @@
-//! Hair instances, the count table and graying (SPEC §6 "Hair instances", "Graying";
+//! Hair instances, the count table and graying (docs/models.md §9 "Hair instances", "Graying";
 //! [T §6.1, §6.2, §7.3]).
 //!
 //! Hairs are scattered over a triangle mesh in proportion to triangle area, where the
@@ -8,7 +8,7 @@
 //! of them: the renderer uploads [`HairInstances::as_bytes`] once as an instance buffer and
 //! draws `count(t)` instances in one instanced draw call.
 //!
-//! Determinism (SPEC §0): triangle `i` draws its hairs from `Rng::for_stream(seed, i)`, the
+//! Determinism (docs/models.md §1): triangle `i` draws its hairs from `Rng::for_stream(seed, i)`, the
 //! triangles are generated in parallel and concatenated in triangle order, then sorted by a
 //! stable sort on `a_k`: the bytes are the same on any number of threads.
 
@@ -25,7 +25,7 @@ pub const DEFAULT_DENSITY_PER_CM2: f32 = 200.0;
 /// Default largest angle between a hair's direction and the surface normal, radians (≈ 10°).
 pub const DEFAULT_MAX_DEVIATION_RAD: f32 = 0.175;
 /// Default range of the graying onset, as a fraction of the hair's disappearance age:
-/// `t_k = a_k · U[min, max)` (**Choice**: SPEC §6 only says "random, below a_k"). Hair
+/// `t_k = a_k · U[min, max)` (**Choice**: docs/models.md §9 only says "random, below a_k"). Hair
 /// that stays (a_k = 1) starts graying between t = 0.2 and t = 0.9; receding hair starts
 /// proportionally earlier and is partly gray when it goes.
 pub const DEFAULT_GRAYING_ONSET_MIN: f32 = 0.2;
@@ -35,7 +35,7 @@ pub const DEFAULT_GRAYING_ONSET_MAX: f32 = 0.9;
 /// notes about 20 million instances fit in instance data on current hardware.
 pub const MAX_INSTANCES: u64 = 64 << 20;
 
-/// Parameters of hair placement (SPEC §6 "Hair instances").
+/// Parameters of hair placement (docs/models.md §9 "Hair instances").
 #[derive(Clone, Debug, PartialEq)]
 pub struct HairParams {
     density_per_cm2: f32,
@@ -153,7 +153,7 @@ pub struct SurfaceRef<'a> {
 
 impl<'a> SurfaceRef<'a> {
     /// Positions (mesh units), per-vertex normals (any length; re-normalised), UVs
-    /// (SPEC §0, v up) and a triangle list. `normals` and `uvs` must have one entry per
+    /// (docs/models.md §1, v up) and a triangle list. `normals` and `uvs` must have one entry per
     /// position; `indices.len()` must be a multiple of 3, every index < `positions.len()`.
     pub fn new(
         positions: &'a [Vec3],
@@ -222,7 +222,7 @@ impl<'a> From<&'a crate::mesh::Mesh> for SurfaceRef<'a> {
 ///     direction_oct: u32,       // offset 16, Snorm16x2, octahedral unit vector
 ///                               //            (storage buffer: unpack2x16snorm)
 ///     graying_onset: f32,       // offset 20, Float32,   t_k ∈ [0, a_k)
-///     uv: u32,                  // offset 24, Unorm16x2, SPEC §0 UV (unpack2x16unorm)
+///     uv: u32,                  // offset 24, Unorm16x2, docs/models.md §1 UV (unpack2x16unorm)
 ///     random: f32,              // offset 28, Float32,   the spare: uniform [0, 1) per hair
 /// }
 /// ```
@@ -292,7 +292,7 @@ pub struct HairInstances {
 }
 
 impl HairInstances {
-    /// Scatters hairs over `surface` (SPEC §6 "Hair instances"): per triangle,
+    /// Scatters hairs over `surface` (docs/models.md §9 "Hair instances"): per triangle,
     /// `density · area` hairs on average (area in cm² through `params.metres_per_unit`;
     /// the fractional part is rounded up with that probability, so the total is unbiased),
     /// at uniform random barycentric coordinates; a candidate is kept only where the
@@ -413,7 +413,7 @@ impl HairInstances {
         &self.levels
     }
 
-    /// count(t): the number of hairs present at age `t`, i.e. with a_k ≥ t (SPEC §6). The
+    /// count(t): the number of hairs present at age `t`, i.e. with a_k ≥ t (docs/models.md §9). The
     /// first `count(t)` instances are exactly those. Non-increasing in t; `t` outside
     /// [0,1] is clamped, NaN counts as 0. O(log levels).
     pub fn count(&self, t: f32) -> usize {
@@ -528,7 +528,7 @@ fn count_levels(sorted: &[HairInstance]) -> Vec<AgeLevel> {
     levels
 }
 
-/// How the gray fraction rises after the onset (SPEC §6 "Graying").
+/// How the gray fraction rises after the onset (docs/models.md §9 "Graying").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum GrayingRamp {
@@ -540,7 +540,7 @@ pub enum GrayingRamp {
 }
 
 /// y_k(t) = max((t − t_k)/(1 − t_k), 0), clamped to 1, optionally smoothstepped
-/// (SPEC §6 "Graying", [T §6.2]). `t` is clamped to [0,1] (NaN → 0); an onset t_k ≥ 1
+/// (docs/models.md §9 "Graying", [T §6.2]). `t` is clamped to [0,1] (NaN → 0); an onset t_k ≥ 1
 /// never grays (y = 0), an onset ≤ 0 is used as is.
 pub fn gray_fraction(t: f32, onset: f32, ramp: GrayingRamp) -> f32 {
     let t = clamp_age(t);
@@ -554,7 +554,7 @@ pub fn gray_fraction(t: f32, onset: f32, ramp: GrayingRamp) -> f32 {
     }
 }
 
-/// C_k(t) = (1 − y)·C_base + y·C_gray (SPEC §6), linear RGB; `y` is clamped to [0,1].
+/// C_k(t) = (1 − y)·C_base + y·C_gray (docs/models.md §9), linear RGB; `y` is clamped to [0,1].
 pub fn hair_colour(base: Vec3, gray: Vec3, y: f32) -> Vec3 {
     let y = y.clamp(0.0, 1.0);
     base * (1.0 - y) + gray * y

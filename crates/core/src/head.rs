@@ -25,7 +25,7 @@
 //!     v ≈ 0.20–0.26, chin front ≈ 0.30, lips ≈ 0.37–0.43, base of the nose ≈ 0.47, nose
 //!     tip ≈ 0.50, eyes ≈ 0.555 (centres at u ≈ 0.446 / 0.554), brows ≈ 0.60, front
 //!     hairline ≈ 0.78;
-//!   - forehead: u ∈ [0.40, 0.60], v ∈ [0.61, 0.77] (the example fibres of SPEC §2,
+//!   - forehead: u ∈ [0.40, 0.60], v ∈ [0.61, 0.77] (the example fibres of docs/models.md §3,
 //!     u 0.42–0.56, v 0.64–0.73, lie on it);
 //!   - ears: around u ≈ 0.25 and 0.75, v ≈ 0.47–0.60;
 //!   - scalp: v > 0.78 at the front, down to v ≈ 0.31 at the nape (u = 0 ≡ 1); exactly
@@ -82,10 +82,10 @@ pub fn shipped_default_head() -> Result<Mesh, Error> {
 /// A flat square of skin, [`SKIN_PATCH_SIZE_M`] wide, in the XY plane facing +Z and
 /// centred on the origin, UVs covering [0,1]² (u along +X, v along +Y), finely
 /// subdivided ([`SKIN_PATCH_QUADS`]² quads) for close-ups of micro-relief and for
-/// displacement as geometry (SPEC §5).
+/// displacement as geometry (docs/models.md §10).
 ///
 /// Its tangent frame is exact: UVs are an affine map of the plane, so every vertex has
-/// tangent +X, bitangent +Y, w = +1 (SPEC §4), which is what MikkTSpace computes there
+/// tangent +X, bitangent +Y, w = +1 (docs/models.md §5), which is what MikkTSpace computes there
 /// (tested) at a tenth of a percent of the cost. [`MeshReport::tangent_source`] says
 /// [`TangentSource::Analytic`]. A few ms: fine at start-up.
 pub fn skin_patch() -> Mesh {

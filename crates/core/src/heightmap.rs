@@ -1,4 +1,4 @@
-//! A square or rectangular grid of `f32` heights in UV space (SPEC §0).
+//! A square or rectangular grid of `f32` heights in UV space (docs/models.md §1).
 //!
 //! Row 0 is the top of the image; pixel (x, y) has its centre at
 //! u = (x + 0.5)/W, v = 1 − (y + 0.5)/H. Heights are signed height units:
@@ -179,13 +179,13 @@ fn advise_huge_pages(ptr: *mut u8, len: usize) {
     let _ = ptr;
 }
 
-/// Centre of pixel `x` of `width_px` in u (SPEC §0).
+/// Centre of pixel `x` of `width_px` in u (docs/models.md §1).
 #[inline]
 pub fn pixel_to_u(x: u32, width_px: u32) -> f32 {
     (x as f32 + 0.5) / width_px as f32
 }
 
-/// Centre of pixel row `y` of `height_px` in v (SPEC §0: row 0 at the top, v up).
+/// Centre of pixel row `y` of `height_px` in v (docs/models.md §1: row 0 at the top, v up).
 #[inline]
 pub fn pixel_to_v(y: u32, height_px: u32) -> f32 {
     1.0 - (y as f32 + 0.5) / height_px as f32

@@ -1,11 +1,12 @@
 //! agesim-core: the models of agesim, pure CPU (no GPU, no UI).
 //!
-//! Every model follows `SPEC.md` (kept in the project's shared docs); each module cites
-//! the section it implements. Conventions (SPEC §0): UV with v up, pixel centres at
+//! Every model follows `docs/models.md` (kept in the project's shared docs); each module cites
+//! the section it implements. Conventions (docs/models.md §1): UV with v up, pixel centres at
 //! ((x + 0.5)/W, 1 − (y + 0.5)/H), heights in signed height units, age t ∈ [0,1].
 
 pub mod age;
 pub mod cancel;
+pub mod compose;
 pub mod defaults;
 pub mod diagnostic;
 pub mod error;

@@ -1,7 +1,7 @@
-//! Grey-scale masks in UV space (SPEC §1 "Mask", §6 hair masks).
+//! Grey-scale masks in UV space (docs/models.md §2 "Mask", §6 hair masks).
 //!
 //! A mask is any image, any size, read as luminance in [0,1] and sampled bilinearly in UV
-//! (SPEC §0 conventions: v up, row 0 at the top), clamped at the borders.
+//! (docs/models.md §1 conventions: v up, row 0 at the top), clamped at the borders.
 
 use std::path::Path;
 

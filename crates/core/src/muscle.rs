@@ -1,4 +1,4 @@
-//! Large wrinkles: the muscle-fibre model (SPEC §1, [T] §5.1).
+//! Large wrinkles: the muscle-fibre model (docs/models.md §2, [T] §5.1).
 //!
 //! A wrinkle group ("fibre") is a segment mA → mB in UV space. Wrinkles run across it,
 //! `n` of them along its length, fading out over a capsule of half-width `W·L` around it.
@@ -14,18 +14,18 @@ use crate::error::Error;
 use crate::heightmap::{HeightMap, pixel_to_u, pixel_to_v};
 use crate::mask::Mask;
 
-/// Default relative half-width `W` of the influence area (SPEC §1).
+/// Default relative half-width `W` of the influence area (docs/models.md §2).
 pub const DEFAULT_REL_WIDTH: f32 = 0.5;
-/// Default end-angle limit αmax, in units of π/2 (SPEC §1, **Choice** 1.5).
+/// Default end-angle limit αmax, in units of π/2 (docs/models.md §2, **Choice** 1.5).
 pub const DEFAULT_MAX_ANGLE: f32 = 1.5;
-/// Default relative frequency at the edge of the influence area (SPEC §1).
+/// Default relative frequency at the edge of the influence area (docs/models.md §2).
 pub const DEFAULT_OMEGA_LOW: f32 = 0.5;
 /// Default per-fibre amplitude `A` (an agesim extension; [T] has A = 1).
 pub const DEFAULT_DEPTH: f32 = 1.0;
-/// Default crest-flattening exponent γ (SPEC §1 "Blending").
+/// Default crest-flattening exponent γ (docs/models.md §2 "Blending").
 pub const DEFAULT_GAMMA: f32 = 0.4;
 
-/// Smallest allowed relative width (SPEC §1: W ≥ 1e-6).
+/// Smallest allowed relative width (docs/models.md §2: W ≥ 1e-6).
 pub const MIN_REL_WIDTH: f32 = 1e-6;
 /// Largest wrinkle count per fibre we accept (beyond it a fibre is noise, not wrinkles).
 pub const MAX_WRINKLE_COUNT: u32 = 1000;
@@ -34,7 +34,7 @@ pub const DEPTH_RANGE: (f32, f32) = (0.0, 100.0);
 /// Valid range of γ. γ < 1 flattens crests, γ > 1 sharpens them.
 pub const GAMMA_RANGE: (f32, f32) = (0.01, 10.0);
 
-/// The cross-section of the wrinkles along a fibre (SPEC §1 "Alternative cross-section
+/// The cross-section of the wrinkles along a fibre (docs/models.md §2 "Alternative cross-section
 /// profiles"). Every profile is a function of the phase x = n·ω(d)·t with period 1, equal
 /// to 0 at integer x (between wrinkles) and 1 at half-integer x (the crest).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -115,7 +115,7 @@ pub fn relative_frequency(at: f32, omega_low: f32) -> f32 {
     omega_low + (1.0 - omega_low) * smoothstep(at)
 }
 
-/// The end-angle attenuation Aα (SPEC §1). `alpha` is the angle, in radians, between the
+/// The end-angle attenuation Aα (docs/models.md §2). `alpha` is the angle, in radians, between the
 /// direction pointing back into the fibre and the vector from the end to the point
 /// (π/2 ≤ α ≤ π beyond an end); `max_angle` is αmax in units of π/2, in [1, 2].
 /// With αmax = 1 nothing passes the ends (Aα = 0 for every α > π/2).
@@ -170,7 +170,7 @@ pub fn check_point(p: [f32; 2]) -> Result<[f32; 2], RangeError> {
     }
 }
 
-/// Validates the wrinkle count: an integer in 2..=[`MAX_WRINKLE_COUNT`] (SPEC §1: n > 1).
+/// Validates the wrinkle count: an integer in 2..=[`MAX_WRINKLE_COUNT`] (docs/models.md §2: n > 1).
 pub fn check_count(n: i64) -> Result<u32, RangeError> {
     if (2..=MAX_WRINKLE_COUNT as i64).contains(&n) {
         Ok(n as u32)
@@ -202,7 +202,7 @@ pub fn check_depth(a: f32) -> Result<f32, RangeError> {
 }
 
 impl Fibre {
-    /// A fibre from `ma` to `mb` with `n` wrinkles and the SPEC §1 defaults.
+    /// A fibre from `ma` to `mb` with `n` wrinkles and the docs/models.md §2 defaults.
     /// Fails when a point is not finite, `n` is outside 2..=1000 or `ma == mb`.
     pub fn new(ma: [f32; 2], mb: [f32; 2], n: u32) -> Result<Self, Error> {
         let invalid = |what: &str, value: String, e: RangeError| Error::InvalidValue {
@@ -324,7 +324,7 @@ impl Fibre {
         ]
     }
 
-    /// The wrinkle height h(t,d)·Aα of SPEC §1 at UV point (u, v), in [0, A]; exactly 0
+    /// The wrinkle height h(t,d)·Aα of docs/models.md §2 at UV point (u, v), in [0, A]; exactly 0
     /// outside the region where At(d)·Aα > 0.
     #[inline]
     pub fn height_at(&self, u: f32, v: f32) -> f32 {
@@ -369,7 +369,7 @@ fn range_err(what: &str, value: f32, e: RangeError) -> Error {
     }
 }
 
-/// Settings of the large-wrinkle layer (SPEC §1 "Blending" and "Mask").
+/// Settings of the large-wrinkle layer (docs/models.md §2 "Blending" and "Mask").
 #[derive(Clone, Debug)]
 pub struct LargeWrinkleSettings<'a> {
     /// Crest-flattening exponent γ, in [0.01, 10]; default 0.4.
@@ -404,7 +404,7 @@ pub(crate) fn pixel_bounds(fibre: &Fibre, width_px: u32, height_px: u32) -> Opti
     Some([x0 as u32, y0 as u32, x1 as u32, y1 as u32])
 }
 
-/// Σ_i h_i(p) over `fibres` into a zeroed map (SPEC §1 "Rasterising"), before
+/// Σ_i h_i(p) over `fibres` into a zeroed map (docs/models.md §2 "Rasterising"), before
 /// normalisation. Each fibre is evaluated only over its bounding rectangle, where it covers
 /// the whole region with At·Aα > 0 (and adds exact zeros elsewhere in the rectangle, so the
 /// sums equal those of [T]'s seed fill). Rows are processed in parallel; within a pixel the
@@ -431,7 +431,7 @@ pub fn accumulate(fibres: &[Fibre], map: &mut HeightMap) {
         });
 }
 
-/// Applies H := (H/h_max)^γ and the optional mask in place (SPEC §1 "Blending", "Mask"),
+/// Applies H := (H/h_max)^γ and the optional mask in place (docs/models.md §2 "Blending", "Mask"),
 /// with h_max the map's own maximum. A map whose maximum is ≤ 0 (no fibre covers it) stays
 /// all zeros.
 pub fn finish(map: &mut HeightMap, settings: &LargeWrinkleSettings<'_>) -> Result<(), Error> {
@@ -700,7 +700,7 @@ mod tests {
         assert!(horizontal(3).with_omega_low(-0.1).is_err());
     }
 
-    /// The formula of SPEC §1 written out independently of `height_at`, in f64.
+    /// The formula of docs/models.md §2 written out independently of `height_at`, in f64.
     fn reference_height(f: &Fibre, u: f64, v: f64) -> f64 {
         let (ma, mb) = (f.ma(), f.mb());
         let (ax, ay, bx, by) = (ma[0] as f64, ma[1] as f64, mb[0] as f64, mb[1] as f64);
@@ -772,7 +772,7 @@ mod tests {
         assert!(nonzero > 3000, "the fibre covers only {nonzero} pixels");
     }
 
-    /// The two forehead fibres of [T]'s example file (SPEC §2).
+    /// The two forehead fibres of [T]'s example file (docs/models.md §3).
     fn thesis_forehead() -> [Fibre; 2] {
         [
             ([0.423, 0.727], [0.439, 0.640]),
@@ -860,7 +860,7 @@ mod tests {
 
     #[test]
     fn resolution_independent_within_stated_rms() {
-        // SPEC §0: the same fibres at 1024² and at 4096² box-downsampled to 1024² agree.
+        // docs/models.md §1: the same fibres at 1024² and at 4096² box-downsampled to 1024² agree.
         // Stated tolerance: RMS difference < 0.005 of the [0,1] range (measured 0.0023; the
         // rest is the γ = 0.4 curve's steep foot, which box filtering averages differently).
         let [left, right] = thesis_forehead();

@@ -1,10 +1,10 @@
-//! Height → normal map (SPEC §4, [T] §7.1.1, [P] eqs. 12–13).
+//! Height → normal map (docs/models.md §5, [T] §7.1.1, [P] eqs. 12–13).
 //!
 //! The surface is (u, v, s·h): UV in [0,1], heights h in height units scaled by the
 //! strength s. Its normal is n = normalize(−s·∂h/∂u, −s·∂h/∂v, 1), with the derivatives
 //! taken by central differences inside and one-sided differences at the borders (wrapped
 //! when the map tiles). Derivatives are per UV unit, not per texel, so the same height
-//! field gives the same normals at any resolution (SPEC §0).
+//! field gives the same normals at any resolution (docs/models.md §1).
 //!
 //! n.y points toward +v (up in the image): that is the OpenGL convention ("green up"),
 //! the default; DirectX flips the green channel on export.
@@ -206,7 +206,7 @@ impl RowRule {
     }
 }
 
-/// Encodes one row of the 8-bit normal map (SPEC §4) from the height rows `row`, `above`
+/// Encodes one row of the 8-bit normal map (docs/models.md §5) from the height rows `row`, `above`
 /// (toward +v) and `below`: the same IEEE operations as [`normals`] + [`encode_unorm8`], the
 /// interior in chunks of 16 pixels that the compiler vectorises. `dst` holds 3·w bytes.
 #[inline(always)]

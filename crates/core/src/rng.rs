@@ -1,4 +1,4 @@
-//! The seeded, portable random numbers of agesim (SPEC §0 "Determinism").
+//! The seeded, portable random numbers of agesim (docs/models.md §1 "Determinism").
 //!
 //! SplitMix64: tiny, fast, identical on every platform. Streams are derived from
 //! `(seed, stream)` by hashing, so parallel code can give every item its own generator

@@ -5,7 +5,7 @@
 //! so the same source is vectorised 16 or 8 lanes wide, and runs it as is (SSE2 baseline)
 //! otherwise. No path uses fused multiply-add (Rust never contracts `a * b + c` on its own,
 //! and the kernels never call `mul_add`), so every path does the same IEEE operations and
-//! the output bytes do not depend on the CPU (SPEC §0 "Determinism"; tested per kernel).
+//! the output bytes do not depend on the CPU (docs/models.md §1 "Determinism"; tested per kernel).
 
 /// An instruction-set level the kernels can be compiled for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

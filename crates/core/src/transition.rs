@@ -1,4 +1,4 @@
-//! The hair transition texture (SPEC §6 "Transition texture", [T §6.1]).
+//! The hair transition texture (docs/models.md §9 "Transition texture", [T §6.1]).
 //!
 //! Two masks in UV space give the *outer* region (hair at age t = 0) and the *inner* region
 //! (hair that remains at t = 1). The inner region is grown outward one generation at a time
@@ -17,25 +17,25 @@
 //! | neither region | — | `0.0` — never has hair |
 //!
 //! R is the largest generation assigned (including the unreachable rule below), so
-//! `r/(R + 1)` is SPEC §6's generation normalised to (0, 1) and `a = 1 − r/(R + 1)` runs
+//! `r/(R + 1)` is docs/models.md §9's generation normalised to (0, 1) and `a = 1 − r/(R + 1)` runs
 //! from `R/(R + 1)` (next to the inner region, goes last) down to `1/(R + 1)` (outer-most,
 //! goes first). Ages are linear in r: the hairline recedes at a constant number of pixels
 //! per unit of age.
 //!
-//! **Choice** (SPEC §6 does not say): outer pixels that growth can never reach — islands of
+//! **Choice** (docs/models.md §9 does not say): outer pixels that growth can never reach — islands of
 //! outer hair with no inner hair connected to them through the outer region (for example a
 //! UV island of the scalp that the inner mask does not touch) — get `r = R_reach + 1`, one
 //! generation beyond the farthest reached pixel. They are outer-most hair in the sense of
-//! SPEC §6 ("outer-most pixels lose their hair first"), so they disappear first, all at
+//! docs/models.md §9 ("outer-most pixels lose their hair first"), so they disappear first, all at
 //! once. With an empty inner mask every outer pixel is such an island: R = 1, a = 0.5.
 //!
 //! **Choice**: a mask pixel belongs to its region when the mask, bilinearly resampled to
-//! the working size (SPEC §0 pixel centres), is ≥ 0.5 — the region boundary is where the
+//! the working size (docs/models.md §1 pixel centres), is ≥ 0.5 — the region boundary is where the
 //! interpolated grey crosses mid-grey, whatever the mask's own size.
 //!
 //! # Algorithms
 //!
-//! SPEC §6 defines r by iterative whole-image dilation, O(generations × pixels); it is kept
+//! docs/models.md §9 defines r by iterative whole-image dilation, O(generations × pixels); it is kept
 //! as [`generations_by_dilation`], the reference for the tests and the benchmark.
 //!
 //! [`DistanceMetric::Chebyshev`] computes the same numbers in O(pixels) with a multi-source
@@ -62,7 +62,7 @@
 //!
 //! # Limits
 //!
-//! Growth happens in UV pixels, as SPEC §6 says, so it inherits the UV layout's stretch:
+//! Growth happens in UV pixels, as docs/models.md §9 says, so it inherits the UV layout's stretch:
 //! where the layout squeezes the surface (near a pole, e.g. the crown row of the default
 //! head) a generation covers less skin than elsewhere. Growth does not wrap around UV
 //! seams: a front stops at u = 0/1 even where the mesh continues across the seam. Ages are
@@ -77,14 +77,14 @@ use crate::mask::Mask;
 /// Mask value at or above which a pixel belongs to its region (see the module's Choice).
 pub const REGION_THRESHOLD: f32 = 0.5;
 
-/// The distance in which hair fronts advance (SPEC §6: "Chebyshev for the 8-neighbourhood,
+/// The distance in which hair fronts advance (docs/models.md §9: "Chebyshev for the 8-neighbourhood,
 /// a Euclidean one gives rounder fronts").
 #[derive(
     Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
 )]
 #[serde(rename_all = "lowercase")]
 pub enum DistanceMetric {
-    /// 8-neighbourhood growth, exactly the generations of SPEC §6 (square fronts).
+    /// 8-neighbourhood growth, exactly the generations of docs/models.md §9 (square fronts).
     #[default]
     Chebyshev,
     /// Geodesic 5-7-11 chamfer distance, within 2.02 % of Euclidean (round fronts).
@@ -136,7 +136,7 @@ pub struct HairRegions {
 }
 
 impl HairRegions {
-    /// Resamples both masks (any sizes, SPEC §0 pixel centres, bilinear) to
+    /// Resamples both masks (any sizes, docs/models.md §1 pixel centres, bilinear) to
     /// `width_px × height_px` and thresholds them at [`REGION_THRESHOLD`].
     /// Fails when the size is 0 or above [`crate::heightmap::MAX_SIZE_PX`].
     pub fn from_masks(
@@ -282,7 +282,7 @@ pub const NO_GENERATION: u32 = u32::MAX;
 /// Geodesic distance from the inner region through the outer region, per pixel, in the
 /// metric's integer units ([`DistanceMetric::units_per_px`] per axis step): 0 on the inner
 /// region, ≥ 1 on reached outer pixels, [`NO_GENERATION`] on outer pixels growth cannot
-/// reach and on pixels outside both regions. For Chebyshev these are SPEC §6's generation
+/// reach and on pixels outside both regions. For Chebyshev these are docs/models.md §9's generation
 /// numbers r. O(pixels).
 pub fn geodesic_distances(
     regions: &HairRegions,
@@ -426,7 +426,7 @@ fn chamfer_5_7_11(regions: &HairRegions) -> Result<Vec<u32>, Error> {
     Ok(unpad(&dist, pw, 2, w, h))
 }
 
-/// SPEC §6's reference algorithm, literally: grow the inner region one generation at a
+/// docs/models.md §9's reference algorithm, literally: grow the inner region one generation at a
 /// time by whole-image 8-neighbourhood dilation, only into outer pixels, until nothing
 /// changes. Same output convention as [`geodesic_distances`] with Chebyshev.
 /// O(generations × pixels): use it to check the fast path, not in production.
@@ -469,7 +469,7 @@ pub fn generations_by_dilation(regions: &HairRegions) -> Vec<u32> {
     }
 }
 
-/// The transition texture: per pixel the disappearance age `a` of SPEC §6 (see the
+/// The transition texture: per pixel the disappearance age `a` of docs/models.md §9 (see the
 /// module's table), row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TransitionTexture {
@@ -593,7 +593,7 @@ impl TransitionTexture {
         self.age_at_pixel(x as u32, y as u32)
     }
 
-    /// Whether there is hair at (u, v) at age `t` (SPEC §6 threshold, see [`hair_present`]).
+    /// Whether there is hair at (u, v) at age `t` (docs/models.md §9 threshold, see [`hair_present`]).
     pub fn hair_present(&self, u: f32, v: f32, t: f32) -> bool {
         hair_present(self.age_at_uv(u, v), t)
     }
@@ -629,7 +629,7 @@ impl TransitionTexture {
     }
 }
 
-/// SPEC §6's threshold: hair with disappearance age `age` is present at age `t` when
+/// docs/models.md §9's threshold: hair with disappearance age `age` is present at age `t` when
 /// `age > 0` (there is hair at all) and `age ≥ t`. So at t = 0 all hair of the outer ∪
 /// inner region is present, the outer-most (smallest age) goes first, and the inner region
 /// (age 1) stays at t = 1. `t` outside [0,1] is clamped; NaN counts as 0.

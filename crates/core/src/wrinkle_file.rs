@@ -1,4 +1,4 @@
-//! The wrinkle description file (SPEC §2, [T] App. A.3): parser, diagnostics and writer.
+//! The wrinkle description file (docs/models.md §3, [T] App. A.3): parser, diagnostics and writer.
 //!
 //! ```text
 //! # comment to end of line
@@ -9,9 +9,9 @@
 //! ```
 //!
 //! Keys are case-insensitive; spaces are allowed around every token; CRLF line ends are
-//! accepted. `ma`, `mb` and `n` are required, the others take SPEC §1's defaults.
+//! accepted. `ma`, `mb` and `n` are required, the others take docs/models.md §2's defaults.
 //! agesim extensions (optional, so [T]'s files load unchanged):
-//! - `profile` — `abs_sin` (default), `sin`, `gauss` or `parabola` (SPEC §1 profiles);
+//! - `profile` — `abs_sin` (default), `sin`, `gauss` or `parabola` (docs/models.md §2 profiles);
 //! - `depth` — the fibre's relative amplitude A in [0, 100], default 1;
 //! - `ageOnset`, `ageFull` — the fibre's age curve (`docs/models.md` "Age"): the age in
 //!   years at which its wrinkles start to show and at which they reach full depth, both in

@@ -1,5 +1,5 @@
 //! f32 → IEEE binary16 for `R16Float` textures (filterable on every WebGPU adapter, unlike
-//! `R32Float`; twice the precision of the 8-bit alpha of SPEC §4's packing, which would
+//! `R32Float`; twice the precision of the 8-bit alpha of docs/models.md §5's packing, which would
 //! terrace POM at grazing angles).
 
 /// Rounds to nearest even; overflow to ±infinity, NaN stays NaN, subnormals kept.

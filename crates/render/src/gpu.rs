@@ -48,3 +48,34 @@ impl Gpu {
         )
     }
 }
+
+/// The one skip rule of the GPU and window tests: in CI (`CI=true`) a missing adapter,
+/// driver or display is a failure; elsewhere the test prints why and passes.
+pub mod ci {
+    /// Whether this run is CI's (`CI=true`), where nothing may be skipped.
+    pub fn required() -> bool {
+        std::env::var("CI").is_ok_and(|v| v == "true")
+    }
+
+    /// Panics with `reason` in CI; elsewhere prints that `test` is skipped and why.
+    pub fn skip_or_fail(test: &str, reason: &str) {
+        if required() {
+            panic!("{test}: {reason} (required in CI, CI=true)");
+        }
+        eprintln!("{test}: skipped, {reason}");
+    }
+
+    /// The headless GPU, or `None` after [`skip_or_fail`].
+    pub fn gpu_or_skip(test: &str) -> Option<super::Gpu> {
+        match super::Gpu::new() {
+            Ok(gpu) => Some(gpu),
+            Err(e) => {
+                skip_or_fail(
+                    test,
+                    &format!("no GPU adapter: {e} (install mesa-vulkan-drivers)"),
+                );
+                None
+            }
+        }
+    }
+}

@@ -1,4 +1,4 @@
-//! The hair instance buffer's layout: `agesim_core::hair::HairInstance` (32 bytes, SPEC
+//! The hair instance buffer's layout: `agesim_core::hair::HairInstance` (32 bytes, docs/models.md
 //! §6) read directly as per-instance vertex attributes, so uploads are one memcpy.
 
 use agesim_core::hair::AgeLevel;

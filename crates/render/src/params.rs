@@ -5,11 +5,11 @@
 use glam::{Mat4, Vec3};
 
 /// Physical side of the fine-wrinkle tile on the skin, metres. [T] gives only repeat
-/// counts; 4 cm puts the default tile's creases (≈ 0.12 of the tile, SPEC §5) at ≈ 5 mm,
+/// counts; 4 cm puts the default tile's creases (≈ 0.12 of the tile, docs/models.md §10) at ≈ 5 mm,
 /// the length of crow's-feet and forehead fine lines.
 pub const DEFAULT_FINE_TILE_SIZE_M: f32 = 0.04;
 
-/// How the large wrinkles are drawn (SPEC §5).
+/// How the large wrinkles are drawn (docs/models.md §10).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PomMode {
     /// L linear steps, the first one below the surface.
@@ -57,7 +57,7 @@ impl PomMode {
     }
 }
 
-/// Orbit camera around `target` (SPEC §0 axes: +Y up, the face toward +Z).
+/// Orbit camera around `target` (docs/models.md §1 axes: +Y up, the face toward +Z).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
     /// Rotation around +Y, radians; 0 looks at the face from +Z, positive turns toward +X.
@@ -138,7 +138,7 @@ impl Default for Light {
     }
 }
 
-/// Skin parameters of a frame (SPEC §5).
+/// Skin parameters of a frame (docs/models.md §10).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SkinParams {
     /// How the large wrinkles are drawn.
@@ -151,14 +151,16 @@ pub struct SkinParams {
     /// intensity). Also the slope scale of the large-wrinkle normals, so the lit relief
     /// matches the marched one. ≥ 0.
     pub disp_scale: f32,
-    /// Fine-wrinkle normal blend in [0, 1] (the age model's curve; SPEC §5).
+    /// Fine-wrinkle normal blend in [0, 1] (the age model's curve; docs/models.md §8).
     pub fine_blend: f32,
-    /// Paleness in [0, 1] (older skin is paler, [T] §3.1.1).
-    pub paleness: f32,
-    /// Skin albedo, linear RGB in [0, 1].
+    /// Skin albedo, linear RGB in [0, 1], paling with age already applied by the caller.
     pub albedo: Vec3,
     /// Draw the micro-relief layer.
     pub micro_relief: bool,
+    /// Where the micro-relief tile lies on the skin (its side, its normal strength).
+    pub micro_tile: TilePlacement,
+    /// Where the fine-wrinkle tile lies on the skin.
+    pub fine_tile: TilePlacement,
     /// Wrap lighting per channel in [0, 1] (red scatters farthest under the skin, so its
     /// terminator wraps widest; GPU Gems 1 ch. 16).
     pub wrap: Vec3,
@@ -176,17 +178,35 @@ impl Default for SkinParams {
             binary_steps: 4,
             disp_scale: 0.005,
             fine_blend: 0.5,
-            paleness: 0.0,
             albedo: Vec3::new(0.50, 0.30, 0.22),
             wrap: Vec3::new(0.45, 0.22, 0.15),
             roughness: 0.42,
             f0: 0.028,
             micro_relief: true,
+            micro_tile: TilePlacement {
+                size_m: 0.05,
+                strength: 0.002,
+            },
+            fine_tile: TilePlacement {
+                size_m: DEFAULT_FINE_TILE_SIZE_M,
+                strength: 0.0015,
+            },
         }
     }
 }
 
-/// Graying ramp of SPEC §6.
+/// A repeated tile's physical side and normal strength: the tile repeats a whole number
+/// of times across the mesh's UV square so that one tile covers about `size_m` of skin
+/// ([`agesim_core::mesh::SurfaceScale::repeats`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TilePlacement {
+    /// The tile's side on the skin, metres, > 0.
+    pub size_m: f32,
+    /// The normal strength s of docs/models.md §4 (tile UV units per height unit), ≥ 0.
+    pub strength: f32,
+}
+
+/// Graying ramp of docs/models.md §9.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum GrayingRampParam {
     /// y_k as is.
@@ -196,7 +216,7 @@ pub enum GrayingRampParam {
     Smoothstep,
 }
 
-/// Hair parameters of a frame (SPEC §6).
+/// Hair parameters of a frame (docs/models.md §9).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HairShading {
     /// Draw the hair pass at all.
@@ -258,6 +278,10 @@ pub enum FrameOutput {
     /// For tests and tools, on an `Rgba32Float` target: (u, v) where POM hit the height
     /// field, then (u, v) where the view ray met the polygon, unshaded.
     PomHit,
+    /// For tests and tools, on an `Rgba32Float` target: the composed tangent-space normal
+    /// (large and fine wrinkles, micro-relief) in xyz, unshaded; w = 1. What
+    /// `agesim_core::compose` computes on the CPU for the exported normal map.
+    TangentNormal,
 }
 
 /// Everything per frame in one struct.
@@ -267,7 +291,7 @@ pub struct FrameParams {
     pub light: Light,
     pub skin: SkinParams,
     pub hair: HairShading,
-    /// Age t in [0, 1] (SPEC §0): which hairs are drawn (count(t)) and how gray they are.
+    /// Age t in [0, 1] (docs/models.md §1): which hairs are drawn (count(t)) and how gray they are.
     pub age: f32,
     /// Background colour, linear RGB.
     pub background: Vec3,

@@ -1,10 +1,11 @@
-//! The GPU side of [`FrameParams`]: `struct Frame` of `shaders/skin.wgsl` and
-//! `shaders/hair.wgsl`. Every member is a 16-byte vector so no implicit WGSL padding
-//! exists to get wrong; `tests/uniforms.rs` checks the size naga computes.
+//! The GPU side of [`FrameParams`]: `struct Frame` of `shaders/frame.wgsl` (shared by the
+//! skin and hair shaders). Every member is a 16-byte vector so no implicit WGSL padding
+//! exists to get wrong; `tests/shaders.rs` compares [`FrameUniform::MEMBERS`] (every
+//! member's name and offset) with the layout naga computes.
 
 use crate::params::{FrameOutput, FrameParams, GrayingRampParam};
 
-/// `struct Frame` of the shaders (see the field comments there). 352 bytes.
+/// `struct Frame` of `shaders/frame.wgsl` (see the member comments there). 352 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniform {
@@ -24,6 +25,35 @@ pub struct FrameUniform {
     pub hair_misc: [f32; 4],
     pub skin_wrap: [f32; 4],
     pub skin_spec: [f32; 4],
+}
+
+macro_rules! members {
+    ($($name:ident),* $(,)?) => {
+        &[$((stringify!($name), std::mem::offset_of!(FrameUniform, $name))),*]
+    };
+}
+
+impl FrameUniform {
+    /// Every member as (name, byte offset), in declaration order: what the WGSL struct
+    /// must match member for member.
+    pub const MEMBERS: &'static [(&'static str, usize)] = members!(
+        clip_from_world,
+        world_from_clip,
+        camera_pos,
+        light_dir,
+        light_colour,
+        skin_albedo,
+        pom,
+        disp,
+        tiling,
+        layers,
+        hair_base,
+        hair_gray,
+        hair_k,
+        hair_misc,
+        skin_wrap,
+        skin_spec,
+    );
 }
 
 /// What the renderer knows beyond the frame parameters.
@@ -66,7 +96,7 @@ impl FrameUniform {
             camera_pos: [eye.x, eye.y, eye.z, if ctx.encode_srgb { 1.0 } else { 0.0 }],
             light_dir: v3(l, non_negative(p.light.intensity)),
             light_colour: v3(p.light.colour, non_negative(p.light.ambient)),
-            skin_albedo: v3(s.albedo, unit(s.paleness)),
+            skin_albedo: v3(s.albedo, 0.0),
             pom: [
                 s.pom_mode.shader_code(),
                 s.linear_steps.clamp(1, 256),
@@ -102,10 +132,10 @@ impl FrameUniform {
             hair_misc: [
                 w as f32,
                 unit(hr.droop),
-                if p.output == FrameOutput::PomHit {
-                    1.0
-                } else {
-                    0.0
+                match p.output {
+                    FrameOutput::Shaded => 0.0,
+                    FrameOutput::PomHit => 1.0,
+                    FrameOutput::TangentNormal => 2.0,
                 },
                 0.0,
             ],
@@ -143,7 +173,6 @@ mod tests {
             age: f32::NAN,
             ..Default::default()
         };
-        p.skin.paleness = f32::NAN;
         p.skin.fine_blend = f32::NAN;
         p.skin.disp_scale = f32::NAN;
         p.hair.droop = f32::NAN;

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 use agesim_core::fine_wrinkles::{self, DEFAULT_FINE_WRINKLES};
 use agesim_core::{HeightMap, head};
-use agesim_render::{FrameParams, PomMode, Renderer, TileLayer};
+use agesim_render::{FrameParams, PomMode, Renderer, TileLayer, TilePlacement};
 use glam::Vec3;
 
 mod common;
@@ -86,8 +86,7 @@ fn skin_patch_matches_golden() {
     r.upload_mesh(&head::skin_patch(), 1.0).unwrap();
     r.upload_large_wrinkles(&creases(128)).unwrap();
     let fine = fine_wrinkles::generate(128, &DEFAULT_FINE_WRINKLES).unwrap();
-    r.upload_tile(TileLayer::Fine, &fine, 0.025, 0.0015)
-        .unwrap();
+    r.upload_tile(TileLayer::Fine, &fine).unwrap();
     for (name, mode) in [
         ("patch-combined", PomMode::Combined),
         ("patch-normal", PomMode::NormalOnly),
@@ -96,6 +95,10 @@ fn skin_patch_matches_golden() {
         p.skin.pom_mode = mode;
         p.skin.disp_scale = 0.02;
         p.skin.fine_blend = 1.0;
+        p.skin.fine_tile = TilePlacement {
+            size_m: 0.025,
+            strength: 0.0015,
+        };
         p.hair.enabled = false;
         p.camera.target = Vec3::ZERO;
         p.camera.yaw_rad = 0.0;

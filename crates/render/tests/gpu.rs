@@ -358,7 +358,7 @@ fn the_stored_surface_is_reused_only_while_it_is_valid() {
     young.age = 0.1;
     let mut old = young;
     old.age = 0.9;
-    old.skin.paleness = 0.8;
+    old.skin.albedo *= 1.2;
     old.skin.fine_blend = 1.0;
     old.wireframe = true;
     let deeper = creases(256, 25.0);

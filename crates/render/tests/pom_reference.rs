@@ -1,4 +1,4 @@
-//! POM against an exact reference (issue 11 §5): the flat skin patch with a known height
+//! POM against an exact reference: the flat skin patch with a known height
 //! field, seen at a grazing angle; for every pixel the UV where the GPU's POM stopped is
 //! compared with the first intersection of the same ray with the same (bilinearly
 //! filtered) height field, found on the CPU by a fine march and bisection.
@@ -44,7 +44,7 @@ impl Field {
     }
 
     /// Bilinear filtering like the surface sampler: u repeats, v clamps; texel (x, y) is
-    /// centred at u = (x + 0.5)/W, v = 1 − (y + 0.5)/H (SPEC §0).
+    /// centred at u = (x + 0.5)/W, v = 1 − (y + 0.5)/H (docs/models.md §1).
     fn sample(&self, uv: Vec2) -> f32 {
         let n = MAP_PX as i64;
         let x = uv.x * MAP_PX as f32 - 0.5;

@@ -1,5 +1,6 @@
-//! Every `shaders/*.wgsl` parses and validates with naga (all failures reported at once),
-//! and the Rust uniform struct has the size naga computes for `struct Frame` in each.
+//! Every shader module parses and validates with naga (all failures reported at once),
+//! every `shaders/*.wgsl` is embedded, and the Rust uniform struct matches `struct Frame`
+//! member for member: names, offsets and size from naga's layout.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use agesim_render::{FrameUniform, shaders};
@@ -17,9 +18,16 @@ fn parse_and_validate(name: &str, source: &str) -> Result<naga::Module, String> 
 }
 
 #[test]
-fn every_shader_file_validates() {
+fn every_shader_validates_and_every_file_is_embedded() {
+    let mut failures: Vec<String> = shaders::MODULES
+        .iter()
+        .filter_map(|(name, source)| parse_and_validate(name, source).err())
+        .collect();
+    // frame.wgsl alone too: its errors then name its own lines.
+    if let Err(e) = parse_and_validate("frame.wgsl", shaders::FRAME_WGSL) {
+        failures.push(e);
+    }
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders");
-    let mut failures = Vec::new();
     let mut seen = 0;
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
@@ -27,41 +35,64 @@ fn every_shader_file_validates() {
             seen += 1;
             let source = std::fs::read_to_string(&path).unwrap();
             let name = path.file_name().unwrap().to_string_lossy().into_owned();
-            if let Err(e) = parse_and_validate(&name, &source) {
-                failures.push(e);
-            }
             // The file on disk is what the crate embeds.
             assert!(
-                shaders::ALL.iter().any(|(n, s)| *n == name && *s == source),
-                "{name} is not listed in agesim_render::shaders::ALL"
+                shaders::FILES
+                    .iter()
+                    .any(|(n, s)| *n == name && *s == source),
+                "{name} is not listed in agesim_render::shaders::FILES"
             );
         }
     }
     assert_eq!(
         seen,
-        shaders::ALL.len(),
-        "shaders/ and shaders::ALL disagree"
+        shaders::FILES.len(),
+        "shaders/ and shaders::FILES disagree"
     );
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
+/// `struct Frame` as naga lays it out in `module`: (member name, offset), and the size.
+fn frame_layout(name: &str, module: &naga::Module) -> (Vec<(String, usize)>, usize) {
+    let (handle, ty) = module
+        .types
+        .iter()
+        .find(|(_, ty)| ty.name.as_deref() == Some("Frame"))
+        .unwrap_or_else(|| panic!("{name} has no struct Frame"));
+    let naga::TypeInner::Struct { members, .. } = &ty.inner else {
+        panic!("{name}: Frame is not a struct");
+    };
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).unwrap();
+    let members = members
+        .iter()
+        .map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize))
+        .collect();
+    (members, layouter[handle].size as usize)
+}
+
 #[test]
-fn frame_uniform_matches_wgsl() {
-    // The shaders of the frame (the blit reads no uniform).
-    for (name, source) in shaders::ALL.iter().filter(|(n, _)| *n != "blit.wgsl") {
+fn frame_uniform_matches_wgsl_member_for_member() {
+    let rust: Vec<(String, usize)> = FrameUniform::MEMBERS
+        .iter()
+        .map(|&(n, o)| (n.to_owned(), o))
+        .collect();
+    // The shaders that read the frame (the blit reads no uniform).
+    for (name, source) in shaders::MODULES.iter().filter(|(n, _)| *n != "blit") {
         let module = parse_and_validate(name, source).unwrap();
-        let (handle, _) = module
-            .types
-            .iter()
-            .find(|(_, ty)| ty.name.as_deref() == Some("Frame"))
-            .unwrap_or_else(|| panic!("{name} has no struct Frame"));
-        let mut layouter = naga::proc::Layouter::default();
-        layouter.update(module.to_ctx()).unwrap();
-        assert_eq!(
-            layouter[handle].size as usize,
-            std::mem::size_of::<FrameUniform>(),
-            "struct Frame in {name} vs FrameUniform"
-        );
+        let (members, size) = frame_layout(name, &module);
+        assert_eq!(members, rust, "struct Frame in {name} vs FrameUniform");
+        assert_eq!(size, std::mem::size_of::<FrameUniform>(), "size in {name}");
     }
     assert_eq!(std::mem::size_of::<FrameUniform>(), 352);
+}
+
+#[test]
+fn frame_is_written_once() {
+    for (name, text) in shaders::FILES.iter().filter(|(n, _)| *n != "frame.wgsl") {
+        assert!(
+            !text.contains("struct Frame"),
+            "{name} declares its own struct Frame"
+        );
+    }
 }

@@ -6,7 +6,7 @@
 //! file has no scene) is merged into one mesh, with the node's world transform applied to
 //! positions, normals (inverse transpose) and tangents; a mirroring transform (negative
 //! determinant) flips the triangle winding so faces stay outward. Texture coordinates
-//! set 0 are read and v is flipped to v-up (SPEC §0). Points and lines are skipped and
+//! set 0 are read and v is flipped to v-up (docs/models.md §1). Points and lines are skipped and
 //! counted. Images and materials are not read, so a missing texture file is no error.
 //!
 //! Attribute formats: POSITION, NORMAL and TANGENT must be float; TEXCOORD_0 may be
@@ -323,7 +323,7 @@ impl Loader<'_> {
                     .read_tex_coords(0)
                     .ok_or_else(|| missing("TEXCOORD_0"))?
                     .into_f32()
-                    // glTF's v points down; ours up (SPEC §0).
+                    // glTF's v points down; ours up (docs/models.md §1).
                     .map(|[u, v]| Vec2::new(u, 1.0 - v))
                     .collect(),
             ),

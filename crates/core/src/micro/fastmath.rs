@@ -1,7 +1,7 @@
 //! Branch-free `exp` and `ln` in plain f32 arithmetic for the micro-relief hot loops.
 //!
 //! Why not `f32::exp`/`f32::ln`: those call the platform's libm, which neither vectorises
-//! nor promises the same last bit on every machine (SPEC §0 "Determinism" asks for
+//! nor promises the same last bit on every machine (docs/models.md §1 "Determinism" asks for
 //! byte-identical maps everywhere). These use only `+ − × ÷`, integer bit tricks and
 //! comparisons, so the autovectoriser turns them into SIMD code and every instruction set
 //! (SSE2 baseline or AVX2) computes the same IEEE results. No fused multiply-add is used.

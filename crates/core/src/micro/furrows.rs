@@ -1,14 +1,14 @@
-//! Furrows between pores, SPEC §3 "Wrinkles between pores" [P §3.3, eq. 16].
+//! Furrows between pores, docs/models.md §4 "Wrinkles between pores" [P §3.3, eq. 16].
 //!
-//! **Choice** (after SPEC's prototype notes and Weiss et al. 2023): every pore is linked to
+//! **Choice** (after docs/models.md's prototype notes and Weiss et al. 2023): every pore is linked to
 //! its `links_per_pore` nearest neighbours (the union of these k-nearest-neighbour links is
 //! a Delaunay-like mesh of polygonal cells, the micro-relief of real skin). A link's depth
 //! depends on its direction: links along the preferred direction θ are primary lines of
 //! full depth, links across it secondary, weighted by 1 − strength·sin²(angle − θ).
 //! Across a furrow, at distance x from its axis, eq. 16: s(x) = −A·(1 − x²/ω²) for |x| < ω.
-//! **Choice** (SPEC §3 asks to taper toward the ends): tapering the *depth* to 0 at both ends
+//! **Choice** (docs/models.md §4 asks to taper toward the ends): tapering the *depth* to 0 at both ends
 //! made every furrow an isolated dash between two pores, with a light gap at each pore
-//! (SPEC §3's "tubes"), even when the taper stopped at the pore rim (tried: the pore is
+//! (docs/models.md §4's "tubes"), even when the taper stopped at the pore rim (tried: the pore is
 //! shallower than the furrows meeting in it, so the gap stays). So the depth stays full to
 //! the ends, x is the distance to the *segment* (round caps, so the furrows meeting at a pore
 //! join smoothly through it), and what tapers is the *width*: from ω in the middle down to

@@ -1,4 +1,4 @@
-//! Skin micro-relief, SPEC §3 [P]: pores, furrows between pores, fractal noise, and their
+//! Skin micro-relief, docs/models.md §4 [P]: pores, furrows between pores, fractal noise, and their
 //! log-smoothed overlaps, baked into a [`HeightMap`](crate::HeightMap).
 //!
 //! - [`pores`]: placement (blue noise / uniform) and the profiles of eqs. 15, 3, 11;

@@ -1,4 +1,4 @@
-//! Fractal gradient noise (fBm) of SPEC §3 "Noise" [P §3.4, eq. 17], periodic when tiling.
+//! Fractal gradient noise (fBm) of docs/models.md §4 "Noise" [P §3.4, eq. 17], periodic when tiling.
 //!
 //! fBm(p) = Σ_k w_k · noise(c_k · p + o_k) / Σ_k w_k with w_k = g^k (g = `roughness`), the
 //! last octave weighted by the fractional part of `details`, c_k = c_0 · lacunarity^k lattice
@@ -24,7 +24,7 @@
 
 use crate::simd::{Chunk, LANES, resize_chunks};
 
-/// Parameters of one fBm (SPEC §3 "Noise"); validated by `project::NoiseSection`.
+/// Parameters of one fBm (docs/models.md §4 "Noise"); validated by `project::NoiseSection`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FbmParams {
     /// Octaves; fractional values blend in the last octave; 0 = no noise. Range 0–12.
@@ -75,7 +75,7 @@ struct Octave {
     hash_seed: u32,
 }
 
-/// An fBm over a map of `size_mm` × `size_mm`, in UV (SPEC §0), fixed by its seed.
+/// An fBm over a map of `size_mm` × `size_mm`, in UV (docs/models.md §1), fixed by its seed.
 #[derive(Clone, Debug)]
 pub struct FbmField {
     octaves: Vec<Octave>,

@@ -1,4 +1,4 @@
-//! Overlapping features, SPEC §3 "Overlaps" [P §3.5, eq. 18], generalised to all features
+//! Overlapping features, docs/models.md §4 "Overlaps" [P §3.5, eq. 18], generalised to all features
 //! at once as a log-mean-exp of depth magnitudes:
 //!
 //!   m = (1/β) · ln( 1 + (1/N) · Σ_i (exp(β·m_i) − 1) ),   β > 0, N ≥ 1,
@@ -10,7 +10,7 @@
 
 use super::fastmath;
 
-/// SPEC's β·m must stay below this so exp(β·m) is finite in f32 (the project refuses
+/// docs/models.md's β·m must stay below this so exp(β·m) is finite in f32 (the project refuses
 /// settings where β × the deepest feature exceeds it).
 pub const MAX_BETA_TIMES_DEPTH: f32 = 80.0;
 

@@ -1,7 +1,7 @@
-//! Pores of SPEC §3 "Pores" [P §3.2]: placement (blue noise or uniform) and profiles.
+//! Pores of docs/models.md §4 "Pores" [P §3.2]: placement (blue noise or uniform) and profiles.
 //!
 //! Positions are in millimetres on the map, (0,0) at its bottom-left corner (u right, v up,
-//! SPEC §0). A pore of radius R, depth dmax and falloff α has the height h(r) = −m(r) with
+//! docs/models.md §1). A pore of radius R, depth dmax and falloff α has the height h(r) = −m(r) with
 //!
 //! - [`PoreProfile::Gaussian`] (default, eq. 15): m = dmax·exp(−α r²/R²) for r ≤ R, 0
 //!   outside. With [`Rim::Smooth`] (default) it is multiplied by a window that is 1 up to
@@ -83,7 +83,7 @@ pub struct PoreShape {
 }
 
 impl PoreShape {
-    /// The height h(r) of `pore` at distance² `r2_mm2` from its centre (SPEC §3 eqs. 15, 3,
+    /// The height h(r) of `pore` at distance² `r2_mm2` from its centre (docs/models.md §4 eqs. 15, 3,
     /// 11): ≤ 0, 0 for r ≥ R.
     #[inline(always)]
     pub fn height(&self, pore: &Pore, r2_mm2: f32) -> f32 {
@@ -147,7 +147,7 @@ pub struct PorePlacement {
     pub min_spacing_mm: f32,
 }
 
-/// Scatters exactly `count` pores over a `size_mm`² map (SPEC §3 "Pores"). Distances wrap
+/// Scatters exactly `count` pores over a `size_mm`² map (docs/models.md §4 "Pores"). Distances wrap
 /// around the map when `tile` is set. Deterministic in `seed`.
 pub fn place_pores(
     count: usize,

@@ -1,4 +1,4 @@
-//! The project file, `*.agesim.json`: the whole document of an artist's session (issue 9).
+//! The project file, `*.agesim.json`: the whole document of an artist's session.
 //!
 //! `"version": 2`. Every field has a default, so partial files load; version-1 files load
 //! unchanged and are migrated in memory ([`migrate_v1`]). What each field means, its
@@ -16,6 +16,7 @@
 //! them absolute, and [`Project::to_value_relative_to`] writes them relative to the file
 //! being written, so a saved project (or `bake.json`'s embedded one) works from anywhere.
 
+mod access;
 pub mod fields;
 mod json;
 #[cfg(test)]
@@ -38,7 +39,7 @@ use crate::transition::DistanceMetric;
 pub const PROJECT_VERSION: u32 = 2;
 /// Default side of the skin patch, mm.
 pub const DEFAULT_MAP_SIZE_MM: f32 = 50.0;
-/// Default large-wrinkle crest flattening γ (SPEC §1).
+/// Default large-wrinkle crest flattening γ (docs/models.md §2).
 pub const DEFAULT_GAMMA: f32 = crate::muscle::DEFAULT_GAMMA;
 
 /// The whole project. See `docs/project-file.md` for every field.
@@ -91,7 +92,7 @@ pub enum BuiltinMesh {
     SkinPatch,
 }
 
-/// The fine-wrinkle tile (SPEC §5 "Fine wrinkles", [T] §5.2).
+/// The fine-wrinkle tile (docs/models.md §10 "Fine wrinkles", [T] §5.2).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct FineSection {
@@ -112,7 +113,7 @@ pub struct FineSection {
     pub seed: u64,
 }
 
-/// Hair recession and graying (SPEC §6).
+/// Hair recession and graying (docs/models.md §9).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct HairSection {
@@ -186,7 +187,7 @@ pub struct ViewSection {
     pub pom: PomMode,
     pub linear_steps: u32,
     pub binary_steps: u32,
-    /// POM depth of the full large-wrinkle height, in UV units (SPEC §5 dispScale).
+    /// POM depth of the full large-wrinkle height, in UV units (docs/models.md §10 dispScale).
     pub disp_scale: f32,
     pub light_yaw_deg: f32,
     pub light_pitch_deg: f32,
@@ -200,7 +201,7 @@ pub struct ViewSection {
     pub wireframe: bool,
 }
 
-/// How the large-wrinkle relief is drawn (SPEC §5).
+/// How the large-wrinkle relief is drawn (docs/models.md §10).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PomMode {
@@ -485,8 +486,20 @@ impl Project {
         if value.get("version").and_then(|v| v.as_u64()) == Some(1) {
             migrate_v1(&mut value);
         }
-        fields::check_types(&value, &mut problems);
-        if !problems.is_empty() {
+        let bad = fields::check_types(&value, &mut problems);
+        if !bad.is_empty() {
+            // The rest is checked too, with the fields at fault at their defaults, so one
+            // message lists every problem (type, range and between fields).
+            let defaults = Self::default().to_value();
+            for field in &bad {
+                if let Some(d) = json::get_path(&defaults, field.path) {
+                    let _ = json::set_path(&mut value, field.path, d.clone());
+                }
+            }
+            if let Ok(p) = serde_json::from_value::<Self>(value) {
+                let at_fault = |m: &String| bad.iter().any(|f| m.starts_with(f.path));
+                problems.extend(p.problems().into_iter().filter(|m| !at_fault(m)));
+            }
             return Err(err(problems));
         }
         let p: Self = serde_json::from_value(value).map_err(|e| err(vec![e.to_string()]))?;
@@ -617,7 +630,7 @@ impl Project {
                 ));
             }
         }
-        // exp(β·m) must stay finite (SPEC §3 "Overlaps"): β × the deepest possible feature.
+        // exp(β·m) must stay finite (docs/models.md §4 "Overlaps"): β × the deepest possible feature.
         let deepest = self.deepest_feature();
         if self.overlap.beta * deepest > crate::micro::overlap::MAX_BETA_TIMES_DEPTH {
             out.push(format!(
@@ -702,6 +715,15 @@ impl Project {
     /// This project's micro-relief (pores placed, furrows linked), ready to bake.
     pub fn micro_relief(&self) -> Result<crate::micro::MicroRelief, Error> {
         crate::micro::MicroRelief::new(&self.micro_settings()?)
+    }
+
+    /// Whether the project has any micro-relief layer: pores, furrows, or noise with at
+    /// least one octave and a strength. The one rule the scene (which bakes the tile), the
+    /// renderer's inputs and the exports follow.
+    pub fn micro_enabled(&self) -> bool {
+        self.pores.enabled
+            || self.furrows.enabled
+            || (self.noise.details > 0.0 && self.noise.strength > 0.0)
     }
 
     /// The largest depth magnitude any pore or furrow can reach, height units.
@@ -811,13 +833,13 @@ impl MeanSpread {
     }
 }
 
-/// Large wrinkles (SPEC §1–2), combined as `depth × (normalised height)`.
+/// Large wrinkles (docs/models.md §2–2), combined as `depth × (normalised height)`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LargeSection {
     /// Bake the large-wrinkle layer at all (the skin-patch presets turn it off).
     pub enabled: bool,
-    /// Wrinkle description files (SPEC §2); relative paths are relative to the project file.
+    /// Wrinkle description files (docs/models.md §3); relative paths are relative to the project file.
     pub wrinkles: Vec<PathBuf>,
     /// Optional grey mask image multiplying the large wrinkles.
     pub mask: Option<PathBuf>,
@@ -827,7 +849,7 @@ pub struct LargeSection {
     pub depth: f32,
 }
 
-/// Pores (SPEC §3 "Pores").
+/// Pores (docs/models.md §4 "Pores").
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PoreSection {
@@ -847,7 +869,7 @@ pub struct PoreSection {
     pub rim: Rim,
 }
 
-/// Furrows between pores (SPEC §3 "Wrinkles between pores").
+/// Furrows between pores (docs/models.md §4 "Wrinkles between pores").
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct FurrowSection {
@@ -869,7 +891,7 @@ pub struct FurrowSection {
     pub taper: f32,
 }
 
-/// fBm added to the heights (SPEC §3 "Noise", eq. 17).
+/// fBm added to the heights (docs/models.md §4 "Noise", eq. 17).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct NoiseSection {
@@ -885,7 +907,7 @@ pub struct NoiseSection {
     pub strength: f32,
 }
 
-/// Domain warp of pores and furrows (SPEC §3 Choice): the same fBm, own settings.
+/// Domain warp of pores and furrows (docs/models.md §4 Choice): the same fBm, own settings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WarpSection {
@@ -899,7 +921,7 @@ pub struct WarpSection {
     pub scale_mm: f32,
 }
 
-/// Log-smoothed overlaps (SPEC §3 "Overlaps", eq. 18).
+/// Log-smoothed overlaps (docs/models.md §4 "Overlaps", eq. 18).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct OverlapSection {
@@ -909,11 +931,11 @@ pub struct OverlapSection {
     pub n: f32,
 }
 
-/// Height → normal map settings (SPEC §4).
+/// Height → normal map settings (docs/models.md §5).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct NormalSection {
-    /// s of SPEC §4: UV units per height unit, 0–1000 (resolution independent; see
+    /// s of docs/models.md §5: UV units per height unit, 0–1000 (resolution independent; see
     /// `normal_map`). The micro-relief default 0.002 reads as moderate relief on a 50 mm map.
     pub strength: f32,
     /// `opengl` (green up, default) or `directx`.

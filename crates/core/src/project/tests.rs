@@ -179,3 +179,18 @@ fn saved_paths_are_relative_to_the_file_and_load_back_absolute() {
     let back = Project::load(&file).unwrap();
     assert_eq!(back.large.wrinkles, vec![sub.join("a.wrk")]);
 }
+
+/// A type error does not hide the other problems: each is listed with its path.
+#[test]
+fn type_errors_are_listed_with_range_and_consistency_errors() {
+    let text = r#"{"pores": {"count": -3}, "noise": {"details": 99},
+        "view": {"pom": "fast"}, "age": {"young_years": 70, "old_years": 30}}"#;
+    let e = Project::from_json_str(text, "p.json")
+        .unwrap_err()
+        .to_string();
+    for path in ["pores.count", "view.pom", "noise.details", "age.old_years"] {
+        assert!(e.contains(path), "{path} missing from:\n{e}");
+    }
+    // noise.details is both out of range and too fine a lattice: two problems.
+    assert!(e.contains("5 problems"), "{e}");
+}

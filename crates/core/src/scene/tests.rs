@@ -5,6 +5,7 @@ fn small(t: f32) -> BakeRequest {
         large_size_px: 96,
         micro_size_px: 64,
         t,
+        tileable: false,
         fine: false,
         hair: false,
         packed: true,
@@ -224,7 +225,11 @@ fn the_split_micro_tile_equals_the_fused_bake_byte_for_byte() {
             q.noise.strength = x;
             s.set_project(q.clone()).unwrap();
         }
-        s.bake(&small(t), &CancelToken::never()).unwrap();
+        let tiled = BakeRequest {
+            tileable: true,
+            ..small(t)
+        };
+        s.bake(&tiled, &CancelToken::never()).unwrap();
         let mut relief = q.micro_relief().unwrap();
         let f = s.factors();
         relief.set_age_scales(f.pore_radius_scale, f.furrow_depth_scale);
@@ -269,7 +274,7 @@ fn a_one_off_bake_equals_the_kept_layer_bake_byte_for_byte() {
 fn take_height_moves_what_export_maps_copies_and_the_scene_bakes_again() {
     let p = project();
     let never = CancelToken::never();
-    let request = BakeRequest::maps(64, 0.7);
+    let request = BakeRequest::maps(64, 0.7, false);
     let mut s = fresh(&p, &request);
     let (copied, rgb) = s.export_maps().unwrap();
     let taken = s.take_height().unwrap();
@@ -317,4 +322,34 @@ fn a_fork_shares_the_inputs_and_bakes_what_a_fresh_scene_bakes() {
     assert_eq!(bytes(&fork), bytes(&fresh(&p, &other)));
     // The parent keeps its own maps.
     assert_eq!(bytes(&parent), bytes(&fresh(&p, &request)));
+}
+
+/// The large map is kept normalised: a depth change re-bakes nothing, and the exported
+/// heights carry the new depth.
+#[test]
+fn a_depth_change_bakes_nothing_and_reaches_the_exported_heights() {
+    let mut p = project();
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
+    p.noise.strength = 0.0;
+    let request = BakeRequest {
+        packed: false,
+        micro_normals: false,
+        large_size_px: 64,
+        ..small(0.8)
+    };
+    let mut s = Scene::new(p.clone()).unwrap();
+    s.bake(&request, &CancelToken::never()).unwrap();
+    let normalised = s.large().unwrap().height.data().to_vec();
+    let (before, _) = s.export_maps().unwrap();
+    p.large.depth = 2.5;
+    s.set_project(p.clone()).unwrap();
+    let c = s.bake(&request, &CancelToken::never()).unwrap();
+    assert!(!c.any(), "a depth change re-baked {c:?}");
+    assert_eq!(s.large().unwrap().height.data(), normalised.as_slice());
+    let (after, _) = s.export_maps().unwrap();
+    for (a, b) in after.data().iter().zip(before.data()) {
+        assert_eq!(*a, *b * 2.5);
+    }
+    assert!(before.min_max().1 > 0.1, "the map has wrinkles");
 }

@@ -1,6 +1,6 @@
-//! The micro-relief baker (SPEC §3): pores + furrows, log-smoothed (eq. 18), plus fBm
+//! The micro-relief baker (docs/models.md §4): pores + furrows, log-smoothed (eq. 18), plus fBm
 //! (eq. 17), with pores and furrows evaluated in a domain-warped frame; optionally fused
-//! with the 8-bit normal map (SPEC §4).
+//! with the 8-bit normal map (docs/models.md §5).
 //!
 //! Design, for speed with exact determinism:
 //! - features are generated once, in millimetres ([`MicroRelief::new`]), independent of the
@@ -234,7 +234,7 @@ impl MicroRelief {
     }
 
     /// Bakes the `size_px`² height map and its 8-bit RGB normal map (row-major, 3 bytes per
-    /// pixel, RGB = n·0.5 + 0.5, SPEC §4) in one pass. The normal bytes equal
+    /// pixel, RGB = n·0.5 + 0.5, docs/models.md §5) in one pass. The normal bytes equal
     /// `normal_map::encode_rgb8(&height, normals)`; fusing saves reading the height map
     /// back from memory. `normals` is usually [`MicroRelief::normal_settings`].
     pub fn bake_with_normals(

@@ -14,7 +14,12 @@ use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Changed, LargeMap, MicroTile, Scene, WrinkleSource};
 use agesim_core::transition::TransitionTexture;
 use agesim_core::{Error, HeightMap, Mesh};
-use agesim_render::PreparedLayer;
+
+use crate::view::Layers;
+
+mod pictures;
+pub use pictures::{IMAGE_MAX_PX, MapImages};
+use pictures::{grey_image, rgb_image, uv_layout_image};
 
 /// One request: the whole document state and what to bake.
 #[derive(Clone, Debug)]
@@ -38,17 +43,13 @@ pub struct Snapshot {
     pub mesh: Option<Arc<Mesh>>,
     pub wrinkles: Vec<WrinkleSource>,
     pub factors: Option<AgeFactors>,
+    /// The large-wrinkle map (normalised: × `large.depth` for height units).
     pub large: Option<Arc<LargeMap>>,
-    /// The large-wrinkle layer normalised to [0, 1] (the map over its depth), what the
-    /// renderer marches: 1 = a crest at the polygon, 0 = `disp_scale` below.
-    pub large01: Option<Arc<HeightMap>>,
     pub micro: Option<Arc<MicroTile>>,
     pub fine: Option<Arc<HeightMap>>,
-    /// The three height layers converted for the GPU here (f16, tile mips), so the UI
-    /// thread's upload is a copy: the large wrinkles of `large01`, the micro and fine tiles.
-    pub gpu_large: Option<Arc<PreparedLayer>>,
-    pub gpu_micro: Option<Arc<PreparedLayer>>,
-    pub gpu_fine: Option<Arc<PreparedLayer>>,
+    /// The renderer's inputs, converted for the GPU here (f16, tile mips), so the UI
+    /// thread's upload is a copy.
+    pub layers: Layers,
     pub transition: Option<Arc<TransitionTexture>>,
     pub hair: Option<Arc<HairInstances>>,
     pub request: Option<BakeRequest>,
@@ -58,97 +59,6 @@ pub struct Snapshot {
     pub compare: Option<Box<Snapshot>>,
     /// Which mask `images.mask` shows.
     mask_stamp: usize,
-}
-
-/// Display pictures of the maps (at most [`IMAGE_MAX_PX`] on a side).
-#[derive(Clone, Debug, Default)]
-pub struct MapImages {
-    pub large_height: Option<Arc<egui::ColorImage>>,
-    pub large_normal: Option<Arc<egui::ColorImage>>,
-    pub micro_height: Option<Arc<egui::ColorImage>>,
-    pub micro_normal: Option<Arc<egui::ColorImage>>,
-    pub transition: Option<Arc<egui::ColorImage>>,
-    pub fine: Option<Arc<egui::ColorImage>>,
-    /// The mesh's UV layout (triangle edges), white lines on transparent, for the overlay.
-    pub uv_layout: Option<Arc<egui::ColorImage>>,
-    /// The large-wrinkle mask.
-    pub mask: Option<Arc<egui::ColorImage>>,
-}
-
-/// The triangle edges of `mesh` in UV space, drawn into a `size`² transparent picture (v up,
-/// row 0 at the top); made once per mesh on the worker.
-fn uv_layout_image(mesh: &agesim_core::Mesh, size: usize) -> Arc<egui::ColorImage> {
-    let mut pixels = vec![egui::Color32::TRANSPARENT; size * size];
-    let uv = mesh.uvs();
-    let to_px = |p: glam::Vec2| ((p.x * size as f32), ((1.0 - p.y) * size as f32));
-    let line = egui::Color32::from_rgba_unmultiplied(255, 255, 255, 40);
-    for [a, b, c] in mesh.triangles() {
-        for (i, j) in [(a, b), (b, c), (c, a)] {
-            let (x0, y0) = to_px(uv[i as usize]);
-            let (x1, y1) = to_px(uv[j as usize]);
-            let steps = (x1 - x0).abs().max((y1 - y0).abs()).ceil().max(1.0) as usize;
-            // UV seams jump across the layout: such edges are not drawn.
-            if steps > size / 4 {
-                continue;
-            }
-            for k in 0..=steps {
-                let t = k as f32 / steps as f32;
-                let (x, y) = (x0 + (x1 - x0) * t, y0 + (y1 - y0) * t);
-                if x >= 0.0 && y >= 0.0 && (x as usize) < size && (y as usize) < size {
-                    pixels[y as usize * size + x as usize] = line;
-                }
-            }
-        }
-    }
-    Arc::new(egui::ColorImage::new([size, size], pixels))
-}
-
-/// Side of the pictures of the 2D view; larger maps are shown subsampled.
-pub const IMAGE_MAX_PX: u32 = 1024;
-
-/// Grey picture of `values` (w × h), spanning their own range.
-fn grey_image(w: u32, h: u32, values: &[f32]) -> Arc<egui::ColorImage> {
-    let step = w
-        .div_ceil(IMAGE_MAX_PX)
-        .max(h.div_ceil(IMAGE_MAX_PX))
-        .max(1) as usize;
-    let (iw, ih) = (w as usize / step, h as usize / step);
-    let (lo, hi) = values
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
-            (a.min(v), b.max(v))
-        });
-    let inv = if hi > lo { 255.0 / (hi - lo) } else { 0.0 };
-    let mut pixels = Vec::with_capacity(iw * ih);
-    for y in 0..ih {
-        for x in 0..iw {
-            let v = values[y * step * w as usize + x * step];
-            let g = ((v - lo) * inv) as u8;
-            pixels.push(egui::Color32::from_gray(g));
-        }
-    }
-    Arc::new(egui::ColorImage::new([iw, ih], pixels))
-}
-
-/// RGB picture of interleaved bytes with `channels` per pixel (3 or 4; alpha ignored).
-fn rgb_image(w: u32, h: u32, bytes: &[u8], channels: usize) -> Arc<egui::ColorImage> {
-    let step = w
-        .div_ceil(IMAGE_MAX_PX)
-        .max(h.div_ceil(IMAGE_MAX_PX))
-        .max(1) as usize;
-    let (iw, ih) = (w as usize / step, h as usize / step);
-    let mut pixels = Vec::with_capacity(iw * ih);
-    for y in 0..ih {
-        for x in 0..iw {
-            let i = (y * step * w as usize + x * step) * channels;
-            pixels.push(egui::Color32::from_rgb(
-                bytes[i],
-                bytes[i + 1],
-                bytes[i + 2],
-            ));
-        }
-    }
-    Arc::new(egui::ColorImage::new([iw, ih], pixels))
 }
 
 /// The outcome of one job.
@@ -379,10 +289,7 @@ fn bake(
     cancel: &CancelToken,
 ) -> Result<Changed, Error> {
     let mut changed = Changed::default();
-    // The micro-relief is repeated over the head, so the editor always bakes it tileable
-    // (no seams where tiles meet); the document's own `tile` is what exports use.
-    let mut project = job.project.clone();
-    project.tile = true;
+    let project = job.project.clone();
     match scene {
         Some(s) => {
             if s.project() != &project {
@@ -437,21 +344,10 @@ fn bake(
         snapshot.mesh = Some(s.mesh().clone());
         snapshot.images.uv_layout = Some(uv_layout_image(s.mesh(), 1024));
     }
+    snapshot.layers.refresh(s, &merged, refresh_all);
     let images = &mut snapshot.images;
     if merged.large || snapshot.large.is_none() {
         snapshot.large = s.large().cloned().map(Arc::new);
-        let depth = s.project().large.depth;
-        snapshot.large01 = snapshot.large.as_ref().and_then(|l| {
-            let inv = if depth > 0.0 { 1.0 / depth } else { 0.0 };
-            let data = l.height.data().iter().map(|h| h * inv).collect();
-            HeightMap::from_vec(l.height.width_px(), l.height.height_px(), data)
-                .ok()
-                .map(Arc::new)
-        });
-        snapshot.gpu_large = snapshot
-            .large01
-            .as_deref()
-            .map(|h| Arc::new(PreparedLayer::large_wrinkles(h)));
         images.large_height = snapshot
             .large
             .as_ref()
@@ -464,10 +360,6 @@ fn bake(
     }
     if merged.micro || snapshot.micro.is_none() {
         snapshot.micro = s.micro().cloned().map(Arc::new);
-        snapshot.gpu_micro = snapshot
-            .micro
-            .as_ref()
-            .map(|m| Arc::new(PreparedLayer::tile(&m.height)));
         images.micro_height = snapshot
             .micro
             .as_ref()
@@ -480,10 +372,6 @@ fn bake(
     }
     if merged.fine || (snapshot.fine.is_none() && s.fine().is_some()) {
         snapshot.fine = s.fine().cloned();
-        snapshot.gpu_fine = snapshot
-            .fine
-            .as_deref()
-            .map(|f| Arc::new(PreparedLayer::tile(f)));
         images.fine = snapshot
             .fine
             .as_ref()

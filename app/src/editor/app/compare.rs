@@ -1,0 +1,62 @@
+//! The compare view: a second age right of a draggable divider, in the same camera.
+
+use super::EditorApp;
+
+impl EditorApp {
+    /// The compare view: the right part of `rect` (from the divider on) shows the second
+    /// age, in the same camera; the divider drags.
+    pub(super) fn compare_ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        rs: &eframe::egui_wgpu::RenderState,
+        rect: egui::Rect,
+        pan: glam::Vec3,
+    ) {
+        let (Some(b), Some(snapshot_b)) = (&mut self.viewport_b, self.snapshot.compare.as_deref())
+        else {
+            return;
+        };
+        let mut project_b = self.project.clone();
+        project_b.age.t = project_b.age.mapping().t(self.persisted.compare_years);
+        b.set_pan(pan);
+        let x = rect.left() + rect.width() * self.persisted.divider;
+        if b.render(ui.ctx(), rs, snapshot_b, &project_b, rect) {
+            let right = egui::Rect::from_min_max(egui::pos2(x, rect.top()), rect.max);
+            b.show(&ui.painter().with_clip_rect(right), rect);
+        }
+        let handle = egui::Rect::from_center_size(
+            egui::pos2(x, rect.center().y),
+            egui::vec2(14.0, rect.height()),
+        );
+        let r = ui.interact(
+            handle,
+            ui.scope_id().with("compare divider"),
+            egui::Sense::drag(),
+        );
+        if r.dragged() {
+            self.persisted.divider =
+                ((x + r.drag_delta().x - rect.left()) / rect.width()).clamp(0.02, 0.98);
+        }
+        let colour = egui::Color32::from_rgb(255, 200, 60);
+        ui.painter().line_segment(
+            [egui::pos2(x, rect.top()), egui::pos2(x, rect.bottom())],
+            egui::Stroke::new(if r.hovered() || r.dragged() { 3.0 } else { 2.0 }, colour),
+        );
+        let years_a = self.project.age.mapping().years(self.project.age.t);
+        for (pos, align, text) in [
+            (
+                rect.left_bottom() + egui::vec2(10.0, -10.0),
+                egui::Align2::LEFT_BOTTOM,
+                format!("{years_a:.0} years"),
+            ),
+            (
+                rect.right_bottom() + egui::vec2(-10.0, -10.0),
+                egui::Align2::RIGHT_BOTTOM,
+                format!("{:.0} years", self.persisted.compare_years),
+            ),
+        ] {
+            ui.painter()
+                .text(pos, align, text, egui::FontId::proportional(18.0), colour);
+        }
+    }
+}

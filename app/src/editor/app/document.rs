@@ -1,0 +1,186 @@
+//! The document's commands: its history (undo / redo, one step per drag), its file
+//! (new, open, save, save as, recent files), the unsaved-changes prompt and the messages.
+
+use std::path::{Path, PathBuf};
+
+use agesim_core::project::Project;
+
+use super::EditorApp;
+use crate::editor::files::{self, IoResult, Purpose};
+use crate::editor::history::Doc;
+
+/// Recent projects kept in the File menu.
+const RECENT: usize = 8;
+
+/// What waits for an answer to "save the changes?".
+#[derive(Clone, Debug, PartialEq)]
+pub enum Pending {
+    New,
+    Open,
+    OpenPath(PathBuf),
+    Quit,
+}
+
+impl Pending {
+    pub(super) fn verb(&self) -> &'static str {
+        match self {
+            Self::New => "starting a new project",
+            Self::Open | Self::OpenPath(_) => "opening another project",
+            Self::Quit => "quitting",
+        }
+    }
+}
+
+impl EditorApp {
+    pub(super) fn doc(&self) -> Doc {
+        Doc {
+            project: self.project.clone(),
+            wrinkles: self.wrinkles.clone(),
+            revision: self.revision,
+        }
+    }
+
+    /// Records the document before a change named `name` (one step per drag of `key`)
+    /// and gives the changed document a new revision.
+    pub(super) fn record(&mut self, name: &str, key: &str, dragging: bool) {
+        // Field paths read as words in the Edit menu: "large gamma", "hair density per cm2".
+        let name = name.replace(['.', '_'], " ");
+        let name = name.as_str();
+        let before = self.doc();
+        self.history.record(name, key, &before, dragging);
+        self.next_revision += 1;
+        self.revision = self.next_revision;
+    }
+
+    pub(super) fn restore(&mut self, doc: Doc, what: &str) {
+        self.project = doc.project;
+        self.wrinkles = doc.wrinkles;
+        self.revision = doc.revision;
+        self.submit(false, what);
+    }
+
+    pub fn undo(&mut self) {
+        if let Some((name, doc)) = self.history.undo(self.doc()) {
+            self.restore(doc, &format!("undo {name}"));
+            self.info(format!("Undid {name}"));
+        }
+    }
+
+    pub fn redo(&mut self) {
+        if let Some((name, doc)) = self.history.redo(self.doc()) {
+            self.restore(doc, &format!("redo {name}"));
+            self.info(format!("Redid {name}"));
+        }
+    }
+
+    /// Whether the document differs from the file it was opened from or saved to.
+    pub fn modified(&self) -> bool {
+        self.revision != self.saved_revision
+    }
+
+    /// The project file of the document, if it has one.
+    pub fn path(&self) -> Option<&Path> {
+        self.path.as_deref()
+    }
+
+    /// The window title: file name and a `*` when modified.
+    pub fn title(&self) -> String {
+        let name = self.path.as_ref().and_then(|p| p.file_name()).map_or_else(
+            || "untitled".to_owned(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        format!("{name}{} — agesim", if self.modified() { " *" } else { "" })
+    }
+
+    /// A new document: no undo across it, not modified.
+    pub(super) fn replace_document(&mut self, project: Project, path: Option<PathBuf>, what: &str) {
+        self.project = project;
+        self.wrinkles = None;
+        self.persisted.map_view.selected = None;
+        self.path = path;
+        self.history.clear();
+        self.next_revision += 1;
+        self.revision = self.next_revision;
+        self.saved_revision = self.revision;
+        self.submit(false, what);
+    }
+
+    pub(super) fn info(&mut self, text: impl Into<String>) {
+        let now = self.now;
+        self.notices.post(text, false, now);
+    }
+
+    pub(super) fn error(&mut self, text: impl Into<String>) {
+        let now = self.now;
+        self.notices.post(text, true, now);
+    }
+
+    /// The error toasts still open, for tests.
+    pub fn open_errors(&self) -> Vec<String> {
+        self.notices.open_errors().map(|n| n.text.clone()).collect()
+    }
+
+    /// Runs `action` now, or asks first when the document has unsaved changes.
+    pub fn guard(&mut self, action: Pending) {
+        if self.modified() {
+            self.prompt = Some(action);
+        } else {
+            self.run_pending(action);
+        }
+    }
+
+    pub(super) fn run_pending(&mut self, action: Pending) {
+        match action {
+            Pending::New => self.replace_document(Project::default(), None, "new project"),
+            Pending::Open => self.ask(Purpose::OpenProject, None),
+            Pending::OpenPath(path) => {
+                self.io.spawn(move || files::load_project(path));
+            }
+            Pending::Quit => {
+                self.quit_confirmed = true;
+                self.ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        }
+    }
+
+    /// Opens a dialog (one at a time) on its own thread.
+    pub(super) fn ask(&mut self, purpose: Purpose, file_name: Option<String>) {
+        if self.io.busy() {
+            self.info("A file dialog or file task is still open");
+            return;
+        }
+        self.io.ask(&self.dialogs, purpose, file_name);
+    }
+
+    /// Saves to the document's file, or asks where when it has none.
+    pub fn save(&mut self) {
+        match self.path.clone() {
+            Some(path) => self.save_to(path),
+            None => self.save_as(),
+        }
+    }
+
+    pub fn save_as(&mut self) {
+        let name = self.path.as_ref().and_then(|p| p.file_name()).map_or_else(
+            || "head.agesim.json".to_owned(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        self.ask(Purpose::SaveProject, Some(name));
+    }
+
+    pub(super) fn save_to(&mut self, path: PathBuf) {
+        let (project, wrinkles) = (self.project.clone(), self.wrinkles.clone());
+        self.saving_revision = Some(self.revision);
+        self.io.spawn(move || IoResult::ProjectSaved {
+            result: files::save_project(&path, &project, wrinkles.as_deref()),
+            path,
+        });
+    }
+
+    pub(super) fn remember_recent(&mut self, path: &Path) {
+        let recent = &mut self.persisted.recent;
+        recent.retain(|p| p != path);
+        recent.insert(0, path.to_owned());
+        recent.truncate(RECENT);
+    }
+}

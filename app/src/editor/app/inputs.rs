@@ -1,0 +1,209 @@
+//! The inputs a project names, changed from the editor: importing a mesh, loading masks
+//! and wrinkle files (by dialog, by a path field's button, by drag-and-drop), and the
+//! results of the file threads.
+
+use std::path::PathBuf;
+
+use agesim_core::scene::WrinkleSource;
+use serde_json::Value;
+
+use super::{EditorApp, Pending};
+use crate::editor::fields_ui::Pick;
+use crate::editor::files::{self, FileKind, IoResult, Purpose};
+
+impl EditorApp {
+    /// The head mesh from `path` (OBJ, glTF, GLB); the worker loads it, and an error
+    /// puts the previous mesh back.
+    pub fn import_mesh(&mut self, path: PathBuf) {
+        self.record("import mesh", "import mesh", false);
+        self.project.mesh.path = Some(path.clone());
+        self.submit(false, &format!("import {}", path.display()));
+    }
+
+    /// A grey-scale image into a project path field.
+    pub(super) fn load_image(&mut self, field: &'static str, path: PathBuf) {
+        self.apply(field, Value::from(path.display().to_string()), false);
+    }
+
+    /// A parsed wrinkle file replaces the current ones (or is added to them).
+    pub(super) fn wrinkles_loaded(
+        &mut self,
+        path: PathBuf,
+        add: bool,
+        file: agesim_core::wrinkle_file::WrinkleFile,
+    ) {
+        let fibres = file.groups.len();
+        self.record(
+            if add {
+                "add wrinkle file"
+            } else {
+                "load wrinkle file"
+            },
+            "wrinkle file",
+            false,
+        );
+        let source = WrinkleSource {
+            name: path.display().to_string(),
+            path: Some(path.clone()),
+            file,
+        };
+        if add {
+            let mut all = self.wrinkles().to_vec();
+            all.push(source);
+            if !self.project.large.wrinkles.is_empty() {
+                self.project.large.wrinkles.push(path.clone());
+            }
+            // With the built-in files the list stays empty (they have no path), so the
+            // edited set carries them and the new one.
+            self.wrinkles = Some(all);
+        } else {
+            self.project.large.wrinkles = vec![path.clone()];
+            self.wrinkles = Some(vec![source]);
+        }
+        self.project.large.enabled = true;
+        self.persisted.map_view.selected = None;
+        self.submit(false, "wrinkle file");
+        self.info(format!("Loaded {} ({fibres} fibres)", path.display()));
+    }
+
+    /// Applies what the file threads brought back.
+    pub(super) fn poll_io(&mut self) {
+        for result in self.io.poll() {
+            match result {
+                // A cancelled dialog also cancels what was to follow it (the Save of the
+                // unsaved-changes prompt: no New, Open or Quit after a save that did not
+                // happen).
+                IoResult::Cancelled => self.after_save = None,
+                IoResult::Picked(purpose, path) => match purpose {
+                    Purpose::SaveProject => self.save_to(path),
+                    Purpose::ImportMesh => self.import_mesh(path),
+                    Purpose::Image(field) => self.load_image(field, path),
+                    Purpose::ExportFolder => self.persisted.export.folder = Some(path),
+                    Purpose::SaveWrinkles(i) => {
+                        let Some(source) = self.wrinkles().get(i).cloned() else {
+                            continue;
+                        };
+                        self.io.spawn(move || IoResult::Saved {
+                            what: "wrinkle file".into(),
+                            result: agesim_core::wrinkle_file::save(&source.file, &path)
+                                .map(|()| path)
+                                .map_err(|e| e.to_string()),
+                        });
+                    }
+                    Purpose::OpenProject | Purpose::LoadWrinkles { .. } => {}
+                },
+                IoResult::ProjectLoaded { path, result } => match result {
+                    Ok(project) => {
+                        self.remember_recent(&path);
+                        self.info(format!("Opened {}", path.display()));
+                        self.replace_document(project, Some(path), "open project");
+                    }
+                    Err(e) => self.error(format!("Could not open the project: {e}")),
+                },
+                IoResult::WrinklesLoaded { path, add, result } => match result {
+                    Ok(file) => self.wrinkles_loaded(path, add, file),
+                    Err(e) => self.error(format!(
+                        "The wrinkle file was not loaded; the fibres are unchanged.\n{e}"
+                    )),
+                },
+                IoResult::ProjectSaved { path, result } => match result {
+                    Ok((project, wrinkles)) => {
+                        // The saved document may point at wrinkle files written beside it.
+                        let unchanged = self.saving_revision == Some(self.revision);
+                        if unchanged {
+                            self.project.large.wrinkles = project.large.wrinkles;
+                            self.project.large.mask = project.large.mask;
+                            if wrinkles.is_some() {
+                                self.wrinkles = wrinkles;
+                            }
+                            self.saved_revision = self.revision;
+                        }
+                        self.path = Some(path.clone());
+                        self.remember_recent(&path);
+                        self.info(format!("Saved {}", path.display()));
+                        if let Some(next) = self.after_save.take() {
+                            self.run_pending(next);
+                        }
+                    }
+                    Err(e) => {
+                        self.after_save = None;
+                        self.error(format!("The project was not saved: {e}"));
+                    }
+                },
+                IoResult::Saved { what, result } => match result {
+                    Ok(path) => self.info(format!("Saved the {what} {}", path.display())),
+                    Err(e) => self.error(format!("The {what} was not saved: {e}")),
+                },
+                IoResult::UserPresets(list) => self.user_presets = list,
+                IoResult::PresetSaved { path, result } => match result {
+                    Ok(()) => {
+                        self.info(format!("Saved the preset {}", path.display()));
+                        self.refresh_user_presets();
+                    }
+                    Err(e) => self.error(format!("The preset was not saved: {e}")),
+                },
+                IoResult::PresetLoaded { name, result } => match result {
+                    Ok(preset) => self.apply_preset(&name, &preset, true),
+                    Err(e) => self.error(format!("The preset {name} was not loaded: {e}")),
+                },
+            }
+        }
+    }
+
+    /// Files dropped on the window, by their kind.
+    pub(super) fn handle_drops(&mut self, ctx: &egui::Context) {
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().to_owned())
+                .filter(|p| !p.as_os_str().is_empty())
+                .collect()
+        });
+        for path in dropped {
+            match files::kind_of(&path) {
+                Some(FileKind::Project) => self.guard(Pending::OpenPath(path)),
+                Some(FileKind::Mesh) => self.import_mesh(path),
+                Some(FileKind::Wrinkles) => {
+                    self.io.spawn(move || files::load_wrinkles(path, true));
+                }
+                Some(FileKind::Image) => {
+                    self.info(format!("{} is the large-wrinkle mask now", path.display()));
+                    self.load_image("large.mask", path);
+                }
+                None => self.error(format!(
+                    "{}: not a file the editor opens (projects *.json, meshes *.obj *.gltf *.glb, wrinkle files *.wrk, images)",
+                    path.display()
+                )),
+            }
+        }
+        let hovering = ctx.input(|i| !i.raw.hovered_files.is_empty());
+        if hovering {
+            let rect = ctx.content_rect();
+            let painter = ctx.layer_painter(egui::LayerId::new(
+                egui::Order::Foreground,
+                egui::Id::unique("drop"),
+            ));
+            painter.rect_filled(rect, 0.0, egui::Color32::from_black_alpha(160));
+            painter.text(
+                rect.center(),
+                egui::Align2::CENTER_CENTER,
+                "Drop: project, mesh, wrinkle file or mask",
+                egui::FontId::proportional(24.0),
+                egui::Color32::WHITE,
+            );
+        }
+    }
+
+    /// A path field's Load… / Add… button.
+    pub(super) fn pick_for_field(&mut self, field: &'static str, pick: Pick) {
+        let purpose = match field {
+            "mesh.path" => Purpose::ImportMesh,
+            "large.wrinkles" => Purpose::LoadWrinkles {
+                add: pick == Pick::Add,
+            },
+            other => Purpose::Image(other),
+        };
+        self.ask(purpose, None);
+    }
+}

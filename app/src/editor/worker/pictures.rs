@@ -1,0 +1,95 @@
+//! The maps as egui pictures for the 2D view, made on the worker thread (the UI thread
+//! only uploads them), each remade only when its map changed.
+
+use std::sync::Arc;
+
+/// Display pictures of the maps (at most [`IMAGE_MAX_PX`] on a side).
+#[derive(Clone, Debug, Default)]
+pub struct MapImages {
+    pub large_height: Option<Arc<egui::ColorImage>>,
+    pub large_normal: Option<Arc<egui::ColorImage>>,
+    pub micro_height: Option<Arc<egui::ColorImage>>,
+    pub micro_normal: Option<Arc<egui::ColorImage>>,
+    pub transition: Option<Arc<egui::ColorImage>>,
+    pub fine: Option<Arc<egui::ColorImage>>,
+    /// The mesh's UV layout (triangle edges), white lines on transparent, for the overlay.
+    pub uv_layout: Option<Arc<egui::ColorImage>>,
+    /// The large-wrinkle mask.
+    pub mask: Option<Arc<egui::ColorImage>>,
+}
+
+/// The triangle edges of `mesh` in UV space, drawn into a `size`² transparent picture (v up,
+/// row 0 at the top); made once per mesh on the worker.
+pub(super) fn uv_layout_image(mesh: &agesim_core::Mesh, size: usize) -> Arc<egui::ColorImage> {
+    let mut pixels = vec![egui::Color32::TRANSPARENT; size * size];
+    let uv = mesh.uvs();
+    let to_px = |p: glam::Vec2| ((p.x * size as f32), ((1.0 - p.y) * size as f32));
+    let line = egui::Color32::from_rgba_unmultiplied(255, 255, 255, 40);
+    for [a, b, c] in mesh.triangles() {
+        for (i, j) in [(a, b), (b, c), (c, a)] {
+            let (x0, y0) = to_px(uv[i as usize]);
+            let (x1, y1) = to_px(uv[j as usize]);
+            let steps = (x1 - x0).abs().max((y1 - y0).abs()).ceil().max(1.0) as usize;
+            // UV seams jump across the layout: such edges are not drawn.
+            if steps > size / 4 {
+                continue;
+            }
+            for k in 0..=steps {
+                let t = k as f32 / steps as f32;
+                let (x, y) = (x0 + (x1 - x0) * t, y0 + (y1 - y0) * t);
+                if x >= 0.0 && y >= 0.0 && (x as usize) < size && (y as usize) < size {
+                    pixels[y as usize * size + x as usize] = line;
+                }
+            }
+        }
+    }
+    Arc::new(egui::ColorImage::new([size, size], pixels))
+}
+
+/// Side of the pictures of the 2D view; larger maps are shown subsampled.
+pub const IMAGE_MAX_PX: u32 = 1024;
+
+/// Grey picture of `values` (w × h), spanning their own range.
+pub(super) fn grey_image(w: u32, h: u32, values: &[f32]) -> Arc<egui::ColorImage> {
+    let step = w
+        .div_ceil(IMAGE_MAX_PX)
+        .max(h.div_ceil(IMAGE_MAX_PX))
+        .max(1) as usize;
+    let (iw, ih) = (w as usize / step, h as usize / step);
+    let (lo, hi) = values
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let inv = if hi > lo { 255.0 / (hi - lo) } else { 0.0 };
+    let mut pixels = Vec::with_capacity(iw * ih);
+    for y in 0..ih {
+        for x in 0..iw {
+            let v = values[y * step * w as usize + x * step];
+            let g = ((v - lo) * inv) as u8;
+            pixels.push(egui::Color32::from_gray(g));
+        }
+    }
+    Arc::new(egui::ColorImage::new([iw, ih], pixels))
+}
+
+/// RGB picture of interleaved bytes with `channels` per pixel (3 or 4; alpha ignored).
+pub(super) fn rgb_image(w: u32, h: u32, bytes: &[u8], channels: usize) -> Arc<egui::ColorImage> {
+    let step = w
+        .div_ceil(IMAGE_MAX_PX)
+        .max(h.div_ceil(IMAGE_MAX_PX))
+        .max(1) as usize;
+    let (iw, ih) = (w as usize / step, h as usize / step);
+    let mut pixels = Vec::with_capacity(iw * ih);
+    for y in 0..ih {
+        for x in 0..iw {
+            let i = (y * step * w as usize + x * step) * channels;
+            pixels.push(egui::Color32::from_rgb(
+                bytes[i],
+                bytes[i + 1],
+                bytes[i + 2],
+            ));
+        }
+    }
+    Arc::new(egui::ColorImage::new([iw, ih], pixels))
+}

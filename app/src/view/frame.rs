@@ -1,0 +1,179 @@
+//! The renderer's per-frame numbers from a project at an age: the camera, the light, the
+//! skin (relief mode, depth, fine blend, paling, tiles) and the hair.
+
+use agesim_core::hair::GrayingRamp;
+use agesim_core::project::{Colour, PomMode as ProjectPom, Project};
+use agesim_render::{
+    Camera, FrameParams, GrayingRampParam, HairShading, Light, PomMode, SkinParams, TilePlacement,
+};
+use glam::Vec3;
+
+fn linear(c: Colour) -> Vec3 {
+    Vec3::from(c.linear())
+}
+
+/// The renderer's relief mode of the project's `view.pom`.
+pub fn pom_mode(p: ProjectPom) -> PomMode {
+    match p {
+        ProjectPom::Linear => PomMode::Linear,
+        ProjectPom::Binary => PomMode::Binary,
+        ProjectPom::Combined => PomMode::Combined,
+        ProjectPom::Normal => PomMode::NormalOnly,
+        ProjectPom::Displacement => PomMode::Displacement,
+    }
+}
+
+/// The camera of the project's `view` section, around `target` (the head's centre).
+pub fn camera(project: &Project, target: Vec3) -> Camera {
+    let v = &project.view;
+    Camera {
+        yaw_rad: v.camera_yaw_deg.to_radians(),
+        pitch_rad: v.camera_pitch_deg.to_radians(),
+        distance: (v.camera_distance_m / project.mesh.metres_per_unit.max(1e-9)).max(1e-3),
+        target,
+        fov_y_rad: v.fov_deg.to_radians(),
+    }
+}
+
+/// Wrap lighting per channel: `wrap` scaled so 0.35 wraps the subsurface colour's
+/// strongest channel by 0.45, the others in proportion to the colour (sRGB values; the
+/// default #ff7d55 gives 0.45, 0.22, 0.15).
+pub fn wrap_rgb(wrap: f32, subsurface: Colour) -> Vec3 {
+    let c = Vec3::from(subsurface.0.map(f32::from)) / 255.0;
+    let c = c / c.max_element().max(1e-6);
+    (c * wrap * (0.45 / 0.35)).clamp(Vec3::ZERO, Vec3::ONE)
+}
+
+/// The relief depth of a normalised large-wrinkle height of 1, UV units: `view.disp_scale`
+/// (the depth the renderer gives the layer) × `large.depth` (the layer's own depth; the
+/// baked map is normalised, so this is where the depth slider acts).
+pub fn relief_depth(project: &Project) -> f32 {
+    project.view.disp_scale * project.large.depth
+}
+
+/// Where the micro-relief tile and the fine-wrinkle tile lie on the skin.
+pub fn tile_placements(project: &Project) -> (TilePlacement, TilePlacement) {
+    (
+        TilePlacement {
+            size_m: project.map_size_mm * 1e-3,
+            strength: project.normal.strength,
+        },
+        TilePlacement {
+            size_m: project.fine.size_mm * 1e-3,
+            strength: project.fine.strength,
+        },
+    )
+}
+
+/// The fine-wrinkle blend at age `t`: the `age.fine` curve, 0 when the layer is off.
+pub fn fine_blend(project: &Project, t: f32) -> f32 {
+    if project.fine.enabled {
+        project.age.factors(t, &[]).fine_blend
+    } else {
+        0.0
+    }
+}
+
+/// Everything a frame of `project` at age `t` needs, seen through `camera`. Every
+/// age-dependent number comes from the project's age curves at `t` itself (not from the
+/// last bake's factors), so the fine blend, the paling and the hair follow the age
+/// slider at once while the maps catch up.
+pub fn frame_params(project: &Project, t: f32, camera: Camera) -> FrameParams {
+    let v = &project.view;
+    let (ly, lp) = (v.light_yaw_deg.to_radians(), v.light_pitch_deg.to_radians());
+    let h = &project.hair;
+    let s = &project.skin;
+    let factors = project.age.factors(t, &[]);
+    // Paling (docs/models.md "Age"): the albedo moves toward the pale tone by amount × curve.
+    let pale = s.pale_amount * factors.paleness;
+    let albedo = linear(s.albedo).lerp(linear(s.pale_albedo), pale);
+    let (micro_tile, fine_tile) = tile_placements(project);
+    FrameParams {
+        camera,
+        light: Light {
+            direction: Vec3::new(lp.cos() * ly.sin(), lp.sin(), lp.cos() * ly.cos()),
+            ..Light::default()
+        },
+        skin: SkinParams {
+            pom_mode: pom_mode(v.pom),
+            linear_steps: v.linear_steps,
+            binary_steps: v.binary_steps,
+            disp_scale: relief_depth(project),
+            fine_blend: fine_blend(project, t),
+            albedo,
+            micro_relief: project.micro_enabled(),
+            micro_tile,
+            fine_tile,
+            wrap: wrap_rgb(s.wrap, s.subsurface_colour),
+            roughness: s.roughness,
+            // The Fresnel reflectance of a dielectric, 0.08·specular (skin: 0.35 → 0.028).
+            f0: 0.08 * s.specular,
+        },
+        hair: HairShading {
+            enabled: h.enabled && v.show_hair,
+            k_diff: h.k_diff,
+            k_spec: h.k_spec,
+            shininess: h.shininess,
+            k_amb: h.k_amb,
+            base_colour: linear(h.base_colour),
+            gray_colour: linear(h.gray_colour),
+            ramp: match h.graying_ramp {
+                GrayingRamp::Linear => GrayingRampParam::Linear,
+                GrayingRamp::Smoothstep => GrayingRampParam::Smoothstep,
+            },
+            length: h.length_mm / 1000.0 / project.mesh.metres_per_unit.max(1e-9),
+            ..HairShading::default()
+        },
+        age: factors.t,
+        wireframe: v.wireframe,
+        ..FrameParams::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn params(project: &Project, t: f32) -> FrameParams {
+        frame_params(project, t, Camera::default())
+    }
+
+    /// Noise with no octave bakes no tile (the scene's rule), so the renderer must not
+    /// turn the layer on either: it would show the last tile baked before.
+    #[test]
+    fn micro_relief_is_off_when_only_noise_without_octaves_is_left() {
+        let mut p = Project::default();
+        p.pores.enabled = false;
+        p.furrows.enabled = false;
+        p.noise.details = 0.0;
+        p.noise.strength = 0.5;
+        assert!(!p.micro_enabled());
+        assert!(!params(&p, 0.5).skin.micro_relief);
+        p.noise.details = 2.0;
+        assert!(params(&p, 0.5).skin.micro_relief);
+    }
+
+    /// The depth slider acts on the relief the renderer draws, with no bake.
+    #[test]
+    fn the_large_depth_scales_the_drawn_relief() {
+        let mut p = Project::default();
+        let base = params(&p, 0.5).skin.disp_scale;
+        p.large.depth = 2.5;
+        assert_eq!(params(&p, 0.5).skin.disp_scale, base * 2.5);
+        p.large.depth = 0.0;
+        assert_eq!(params(&p, 0.5).skin.disp_scale, 0.0);
+    }
+
+    /// The fine blend, the paling and the age follow `t` itself.
+    #[test]
+    fn fine_blend_and_paling_follow_the_age() {
+        let mut p = Project::default();
+        p.skin.pale_amount = 1.0;
+        let (young, old) = (params(&p, 0.1), params(&p, 0.9));
+        assert!(old.skin.fine_blend > young.skin.fine_blend, "{old:?}");
+        assert_ne!(old.skin.albedo, young.skin.albedo);
+        assert_eq!(old.age, 0.9);
+        p.fine.enabled = false;
+        assert_eq!(params(&p, 0.9).skin.fine_blend, 0.0);
+    }
+}

@@ -1,0 +1,116 @@
+//! The renderer's inputs of one bake ([`Layers`]), prepared off the drawing thread, and
+//! what a renderer holds of them ([`Uploaded`]): a layer is uploaded when it is not the
+//! allocation the renderer was given last.
+
+use std::sync::Arc;
+
+use agesim_core::hair::HairInstances;
+use agesim_core::scene::{Changed, Scene};
+use agesim_core::{HeightMap, Mesh};
+use agesim_render::{PreparedLayer, RenderError, Renderer, TileLayer, Upload};
+
+/// Every uploaded input of the renderer, each shared: a layer that a bake did not change
+/// is the same allocation as before, so its address says whether to upload it again.
+#[derive(Clone, Debug, Default)]
+pub struct Layers {
+    pub mesh: Option<Arc<Mesh>>,
+    /// The large-wrinkle map, normalised (a full-depth wrinkle spans 1), as f16;
+    /// `None` when the layer is off (the renderer then draws flat skin).
+    pub large: Option<Arc<PreparedLayer>>,
+    /// The micro-relief tile and the fine-wrinkle tile, as f16 with mip levels.
+    pub micro: Option<Arc<PreparedLayer>>,
+    pub fine: Option<Arc<PreparedLayer>>,
+    pub hair: Option<Arc<HairInstances>>,
+}
+
+impl Layers {
+    /// Takes from `scene` what its last bake changed (everything when `all`: these layers
+    /// were filled from another scene).
+    pub fn refresh(&mut self, scene: &Scene, changed: &Changed, all: bool) {
+        if all || changed.mesh || self.mesh.is_none() {
+            self.mesh = Some(scene.mesh().clone());
+        }
+        if all || changed.large || (self.large.is_none() && scene.large().is_some()) {
+            self.large = scene
+                .large()
+                .map(|l| Arc::new(PreparedLayer::large_wrinkles(&l.height)));
+        }
+        if all || changed.micro || (self.micro.is_none() && scene.micro().is_some()) {
+            self.micro = scene
+                .micro()
+                .map(|m| Arc::new(PreparedLayer::tile(&m.height)));
+        }
+        if all || changed.fine || (self.fine.is_none() && scene.fine().is_some()) {
+            self.fine = scene.fine().map(|f| Arc::new(PreparedLayer::tile(f)));
+        }
+        self.hair = scene.hair().cloned();
+    }
+}
+
+/// The identity of a shared layer: the address of its allocation (0: none).
+fn stamp<T>(a: &Option<Arc<T>>) -> usize {
+    a.as_ref().map_or(0, |a| Arc::as_ptr(a) as usize)
+}
+
+/// What one renderer was last given, by identity: compare two to know whether a frame
+/// drawn since shows the current layers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Uploaded {
+    /// The mesh and the metres per unit it was uploaded with (its bits).
+    mesh: (usize, u32),
+    large: usize,
+    micro: usize,
+    fine: usize,
+    hair: usize,
+}
+
+impl Uploaded {
+    /// Uploads to `renderer` every layer of `layers` it does not hold yet (`metres_per_unit`:
+    /// the project's `mesh.metres_per_unit`). A layer whose upload failed is not tried
+    /// again until it changes; the first error is returned.
+    pub fn upload(
+        &mut self,
+        renderer: &mut Renderer,
+        layers: &Layers,
+        metres_per_unit: f32,
+    ) -> Result<(), RenderError> {
+        let mut result = Ok(());
+        let mesh = (stamp(&layers.mesh), metres_per_unit.to_bits());
+        if mesh != self.mesh
+            && let Some(m) = &layers.mesh
+        {
+            result = result.and(renderer.upload_mesh(m, metres_per_unit));
+            self.mesh = mesh;
+        }
+        if stamp(&layers.large) != self.large {
+            result = result.and(match &layers.large {
+                Some(large) => renderer.upload_prepared(&Upload::LargeWrinkles(large)),
+                // The layer is off: flat skin (height 1 = the polygon), not the last map.
+                None => HeightMap::from_vec(1, 1, vec![1.0])
+                    .map_err(RenderError::from)
+                    .and_then(|flat| renderer.upload_large_wrinkles(&flat)),
+            });
+            self.large = stamp(&layers.large);
+        }
+        // A tile that is off stays uploaded: the frame turns its layer off
+        // (`SkinParams::micro_relief`, a zero fine blend).
+        for (layer, tile, kept) in [
+            (TileLayer::Micro, &layers.micro, &mut self.micro),
+            (TileLayer::Fine, &layers.fine, &mut self.fine),
+        ] {
+            if stamp(tile) != *kept
+                && let Some(t) = tile
+            {
+                result = result.and(renderer.upload_prepared(&Upload::Tile { layer, tile: t }));
+                *kept = stamp(tile);
+            }
+        }
+        if stamp(&layers.hair) != self.hair
+            && let Some(h) = &layers.hair
+        {
+            renderer.upload_hair(h);
+            self.hair = stamp(&layers.hair);
+        }
+        result
+    }
+}

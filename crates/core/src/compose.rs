@@ -1,0 +1,282 @@
+//! The head's tangent-space normal map at one age, composed from the layers the way the
+//! renderer's skin pass composes them (docs/models.md "Rendering"), without parallax: the
+//! exported GLB's `normalTexture`.
+//!
+//! - Large wrinkles: the normal of the normalised heights by central differences, with
+//!   the relief depth `disp_scale` (docs/models.md §5).
+//! - Fine wrinkles: the tile's normal in the large wrinkles' frame, blended in by the age.
+//! - Micro-relief: the tile's normal on top by reoriented normal mapping.
+//!
+//! The tiles repeat a whole number of times across the UV square (as in the renderer)
+//! and are box-filtered to about one texel per output pixel first (the GPU's mip level).
+//! A GPU test (`crates/render/tests/compose.rs`) compares this with the skin pass.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::Error;
+use crate::cancel::CancelToken;
+use crate::heightmap::{self, HeightMap};
+use crate::normal_map::encode_unorm8;
+
+/// A height tile repeated over the UV square.
+#[derive(Clone, Copy, Debug)]
+pub struct RepeatedTile<'a> {
+    pub heights: &'a HeightMap,
+    /// Whole repeats across the UV square, along u and v
+    /// ([`crate::mesh::SurfaceScale::repeats`]).
+    pub repeats: [f32; 2],
+    /// UV units of the tile per height unit (docs/models.md §5's s).
+    pub strength: f32,
+}
+
+/// What the composition reads: every layer optional.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Layers<'a> {
+    /// The large-wrinkle map, normalised (a full-depth wrinkle spans 1).
+    pub large: Option<&'a HeightMap>,
+    /// The relief depth of a normalised height of 1, UV units (`view.disp_scale` ×
+    /// `large.depth`).
+    pub disp_scale: f32,
+    pub fine: Option<RepeatedTile<'a>>,
+    /// The fine-wrinkle blend in [0, 1] (0: no fine wrinkles).
+    pub fine_blend: f32,
+    pub micro: Option<RepeatedTile<'a>>,
+}
+
+/// The composed tangent-space normal map, `size_px`² over the UV square, OpenGL
+/// convention (green = +v), RGB8, row 0 at the top (v = 1).
+pub fn normal_map(
+    layers: &Layers<'_>,
+    size_px: u32,
+    cancel: &CancelToken,
+) -> Result<Vec<u8>, Error> {
+    heightmap::check_size(size_px, size_px)?;
+    let n = size_px as usize;
+    let large = layers.large.map(|l| (l.data(), l.width_px() as usize));
+    let disp = layers.disp_scale;
+    let fine_blend = layers.fine_blend.clamp(0.0, 1.0);
+    let micro = layers.micro.map(|t| Placed::new(&t, size_px)).transpose()?;
+    let fine = match layers.fine {
+        Some(t) if fine_blend > 0.0 => Some(Placed::new(&t, size_px)?),
+        _ => None,
+    };
+    let mut rgb = vec![0u8; n * n * 3];
+    rgb.par_chunks_mut(n * 3)
+        .enumerate()
+        .try_for_each(|(y, row)| -> Result<(), Error> {
+            if y % 64 == 0 {
+                cancel.check()?;
+            }
+            for (x, px) in row.chunks_exact_mut(3).enumerate() {
+                let n_large = match large {
+                    Some((h, side)) => large_normal(h, side, x * side / n, y * side / n, disp),
+                    None => Vec3::Z,
+                };
+                let mut n_ts = n_large;
+                if let Some(f) = &fine {
+                    let nf = f.tile.normal(f.columns[x], f.rows[y]);
+                    n_ts = n_large.lerp(in_frame(n_large, nf), fine_blend).normalize();
+                }
+                if let Some(m) = &micro {
+                    n_ts = rnm(n_ts, m.tile.normal(m.columns[x], m.rows[y]));
+                }
+                for (c, value) in px.iter_mut().zip(n_ts.to_array()) {
+                    *c = encode_unorm8(value);
+                }
+            }
+            Ok(())
+        })?;
+    Ok(rgb)
+}
+
+/// The large-wrinkle normal at texel (x, y) of a `side`² map (row 0 = top, v up): central
+/// differences, the neighbours clamped at the border.
+fn large_normal(h: &[f32], side: usize, x: usize, y: usize, disp: f32) -> Vec3 {
+    let row = |y: usize| &h[y * side..(y + 1) * side];
+    let (left, right) = (x.saturating_sub(1), (x + 1).min(side - 1));
+    let (up, down) = (y.saturating_sub(1), (y + 1).min(side - 1));
+    let here = row(y);
+    let du = (here[right] - here[left]) * 0.5 * side as f32;
+    let dv = (row(up)[x] - row(down)[x]) * 0.5 * side as f32;
+    Vec3::new(-disp * du, -disp * dv, 1.0).normalize()
+}
+
+/// A fine-wrinkle normal expressed in the large wrinkles' tangent frame.
+fn in_frame(n_large: Vec3, detail: Vec3) -> Vec3 {
+    let t = Vec3::new(n_large.z, 0.0, -n_large.x).normalize();
+    let b = Vec3::new(0.0, n_large.z, -n_large.y).normalize();
+    (t * detail.x + b * detail.y + n_large * detail.z).normalize()
+}
+
+/// Reoriented normal mapping (Barré-Brisebois & Hill 2012), as in `shaders/skin.wgsl`.
+fn rnm(base: Vec3, detail: Vec3) -> Vec3 {
+    let t = base + Vec3::Z;
+    let u = detail * Vec3::new(-1.0, -1.0, 1.0);
+    (t * t.dot(u) / t.z - u).normalize()
+}
+
+/// A tile with its column and row taps on the output map.
+struct Placed {
+    tile: Tile,
+    columns: Vec<(usize, usize, f32)>,
+    rows: Vec<(usize, usize, f32)>,
+}
+
+impl Placed {
+    fn new(t: &RepeatedTile<'_>, size_px: u32) -> Result<Self, Error> {
+        let map = t.heights;
+        // Texels of the tile per output pixel; box-filter down to about one.
+        let per_px = map.width_px() as f32 * t.repeats[0].max(t.repeats[1]) / size_px as f32;
+        let side = map.width_px().min(map.height_px());
+        let factor = (1..=(per_px.floor() as u32).clamp(1, side))
+            .rev()
+            .find(|f| map.width_px().is_multiple_of(*f) && map.height_px().is_multiple_of(*f))
+            .unwrap_or(1);
+        let filtered;
+        let map = if factor > 1 {
+            filtered = map.downsample_box(factor)?;
+            &filtered
+        } else {
+            map
+        };
+        let tile = Tile::new(map, t.repeats, t.strength);
+        Ok(Self {
+            columns: tile.taps(size_px, false),
+            rows: tile.taps(size_px, true),
+            tile,
+        })
+    }
+}
+
+/// A height tile's tangent-space normals (docs/models.md §5, central differences on the
+/// wrapped tile), made once per texel, then interpolated per output pixel.
+struct Tile {
+    normals: Vec<Vec3>,
+    width: usize,
+    height: usize,
+    repeats: [f32; 2],
+}
+
+impl Tile {
+    fn new(map: &HeightMap, repeats: [f32; 2], strength: f32) -> Self {
+        let (w, h) = (map.width_px() as usize, map.height_px() as usize);
+        let d = map.data();
+        let mut normals = Vec::with_capacity(w * h);
+        for y in 0..h {
+            let (up, down) = ((y + h - 1) % h, (y + 1) % h);
+            for x in 0..w {
+                let (left, right) = ((x + w - 1) % w, (x + 1) % w);
+                // Row 0 is the top (v up): +v is the row above.
+                let du = (d[y * w + right] - d[y * w + left]) * 0.5 * w as f32;
+                let dv = (d[up * w + x] - d[down * w + x]) * 0.5 * h as f32;
+                normals.push(Vec3::new(-strength * du, -strength * dv, 1.0).normalize());
+            }
+        }
+        Self {
+            normals,
+            width: w,
+            height: h,
+            repeats,
+        }
+    }
+
+    /// Where each output column (or row) of a `size_px` map falls on the repeated tile:
+    /// (texel, next texel, weight of the next), wrapping. Made once per map, so the
+    /// per-pixel work is four loads and two lerps.
+    fn taps(&self, size_px: u32, along_v: bool) -> Vec<(usize, usize, f32)> {
+        let (side, repeats) = if along_v {
+            (self.height, self.repeats[1])
+        } else {
+            (self.width, self.repeats[0])
+        };
+        (0..size_px)
+            .map(|i| {
+                let t = if along_v {
+                    // Row 0 is the top (v up).
+                    1.0 - (heightmap::pixel_to_v(i, size_px) * repeats).fract()
+                } else {
+                    (heightmap::pixel_to_u(i, size_px) * repeats).fract()
+                };
+                let t = t * side as f32 - 0.5;
+                let t0 = t.floor();
+                let i0 = if t0 < 0.0 {
+                    side - 1
+                } else {
+                    (t0 as usize).min(side - 1)
+                };
+                (i0, if i0 + 1 == side { 0 } else { i0 + 1 }, t - t0)
+            })
+            .collect()
+    }
+
+    /// The normal between the four texels of a column tap and a row tap.
+    #[inline]
+    fn normal(&self, (x0, x1, fx): (usize, usize, f32), (y0, y1, fy): (usize, usize, f32)) -> Vec3 {
+        let (w, n) = (self.width, &self.normals);
+        let top = n[y0 * w + x0].lerp(n[y0 * w + x1], fx);
+        let bottom = n[y1 * w + x0].lerp(n[y1 * w + x1], fx);
+        top.lerp(bottom, fy).normalize()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn decode(rgb: &[u8], i: usize) -> Vec3 {
+        Vec3::new(
+            rgb[i * 3] as f32 / 255.0 * 2.0 - 1.0,
+            rgb[i * 3 + 1] as f32 / 255.0 * 2.0 - 1.0,
+            rgb[i * 3 + 2] as f32 / 255.0 * 2.0 - 1.0,
+        )
+    }
+
+    #[test]
+    fn no_layer_is_flat() {
+        let rgb = normal_map(&Layers::default(), 8, &CancelToken::never()).unwrap();
+        assert!(
+            rgb.chunks(3).all(|p| p == [128, 128, 255]),
+            "{:?}",
+            &rgb[..6]
+        );
+    }
+
+    #[test]
+    fn a_ramp_in_u_tilts_the_normal_against_u() {
+        // Heights rising with u: the normal leans toward −u, by disp × slope.
+        let side = 16;
+        let data = (0..side * side)
+            .map(|i| (i % side) as f32 / side as f32)
+            .collect();
+        let ramp = HeightMap::from_vec(side as u32, side as u32, data).unwrap();
+        let layers = Layers {
+            large: Some(&ramp),
+            disp_scale: 0.5,
+            ..Layers::default()
+        };
+        let rgb = normal_map(&layers, 16, &CancelToken::never()).unwrap();
+        let n = decode(&rgb, 8 * 16 + 8);
+        // Slope 1 per UV unit × 0.5: n ∝ (−0.5, 0, 1).
+        let expected = Vec3::new(-0.5, 0.0, 1.0).normalize();
+        assert!((n - expected).length() < 0.02, "{n} vs {expected}");
+    }
+
+    #[test]
+    fn a_flat_fine_tile_or_zero_blend_changes_nothing() {
+        let flat = HeightMap::zeros(8, 8).unwrap();
+        let tile = RepeatedTile {
+            heights: &flat,
+            repeats: [3.0, 3.0],
+            strength: 0.01,
+        };
+        let layers = Layers {
+            fine: Some(tile),
+            fine_blend: 1.0,
+            micro: Some(tile),
+            ..Layers::default()
+        };
+        let rgb = normal_map(&layers, 8, &CancelToken::never()).unwrap();
+        assert!(rgb.chunks(3).all(|p| p == [128, 128, 255]));
+    }
+}

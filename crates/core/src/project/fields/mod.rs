@@ -1,0 +1,403 @@
+//! The one table of project fields: JSON path, unit, range, meaning. It drives the type and
+//! range checks of [`super::Project`], `--set`, the generated `docs/project-file.md`
+//! ([`markdown`]) and the editor's sliders and tooltips. Defaults are not repeated here:
+//! they are read from `Project::default()` ([`Field::default_value`]), so there is one copy.
+
+mod table;
+
+pub use table::{FIELDS, SECTIONS};
+
+use serde_json::Value;
+
+use super::json::{get_path, type_name};
+
+/// What a field holds, with its valid range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Kind {
+    /// A number in `min..=max`.
+    Float {
+        min: f32,
+        max: f32,
+    },
+    /// An integer in `min..=max`.
+    Int {
+        min: u64,
+        max: u64,
+    },
+    /// A number in `min..=max`, or `null` (off / automatic).
+    OptFloat {
+        min: f32,
+        max: f32,
+    },
+    /// An integer in `min..=max`, or `null`.
+    OptInt {
+        min: u64,
+        max: u64,
+    },
+    Bool,
+    /// One of these names.
+    Choice(&'static [&'static str]),
+    /// A file path, or `null` for the built-in default.
+    Path,
+    /// A list of file paths.
+    Paths,
+    /// An sRGB colour `"#rrggbb"`.
+    Colour,
+}
+
+/// One field of the project file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Field {
+    /// The JSON path, e.g. `pores.radius_mm.mean`.
+    pub path: &'static str,
+    /// Unit, or `""` for none.
+    pub unit: &'static str,
+    pub kind: Kind,
+    /// One line: what it does.
+    pub doc: &'static str,
+}
+
+/// The field at `path`, or an error naming the closest fields.
+pub fn find(path: &str) -> Result<&'static Field, String> {
+    if let Some(field) = FIELDS.iter().find(|f| f.path == path) {
+        return Ok(field);
+    }
+    let shown = crate::limits::shorten(path, 80);
+    let prefix = format!("{path}.");
+    let below: Vec<&str> = FIELDS
+        .iter()
+        .filter(|f| f.path.starts_with(&prefix))
+        .map(|f| f.path)
+        .collect();
+    if !below.is_empty() {
+        return Err(format!(
+            "`{shown}` is a group of fields: set one of {}",
+            below.join(", ")
+        ));
+    }
+    let section = path.split('.').next().unwrap_or("");
+    let near: Vec<&str> = FIELDS
+        .iter()
+        .filter(|f| f.path.split('.').next() == Some(section))
+        .map(|f| f.path)
+        .collect();
+    Err(if near.is_empty() {
+        format!("unknown field `{shown}`; see docs/project-file.md")
+    } else {
+        format!(
+            "unknown field `{shown}`; expected one of: {}",
+            near.join(", ")
+        )
+    })
+}
+
+impl Field {
+    /// The default value, from `Project::default()`.
+    pub fn default_value(&self) -> Value {
+        let d = super::Project::default().to_value();
+        get_path(&d, self.path).cloned().unwrap_or(Value::Null)
+    }
+
+    /// The range for messages and docs.
+    pub fn range_text(&self) -> String {
+        match self.kind {
+            Kind::Float { min, max } => format!("{min}..={max}"),
+            Kind::Int { min, max } if max == u64::MAX => format!("an integer ≥ {min}"),
+            Kind::Int { min, max } => format!("an integer in {min}..={max}"),
+            Kind::OptFloat { min, max } => format!("{min}..={max} or null"),
+            Kind::OptInt { min, max } => format!("an integer in {min}..={max} or null"),
+            Kind::Bool => "true or false".into(),
+            Kind::Choice(names) => format!("one of {}", names.join(", ")),
+            Kind::Path => "a path or null".into(),
+            Kind::Paths => "a list of paths".into(),
+            Kind::Colour => "\"#rrggbb\"".into(),
+        }
+    }
+
+    /// What a JSON value of this field must look like (its type, not its range).
+    fn type_text(&self) -> &'static str {
+        match self.kind {
+            Kind::Float { .. } => "a number",
+            Kind::Int { .. } => "an integer",
+            Kind::OptFloat { .. } => "a number or null",
+            Kind::OptInt { .. } => "an integer or null",
+            Kind::Bool => "true or false",
+            Kind::Choice(_) => "a name",
+            Kind::Path => "a path (string) or null",
+            Kind::Paths => "a list of paths",
+            Kind::Colour => "a colour \"#rrggbb\"",
+        }
+    }
+
+    fn type_ok(&self, v: &Value) -> bool {
+        match self.kind {
+            Kind::Float { .. } => v.is_number(),
+            Kind::Int { .. } => v.is_u64(),
+            Kind::OptFloat { .. } => v.is_number() || v.is_null(),
+            Kind::OptInt { .. } => v.is_u64() || v.is_null(),
+            Kind::Bool => v.is_boolean(),
+            Kind::Choice(_) | Kind::Colour => v.is_string(),
+            Kind::Path => v.is_string() || v.is_null(),
+            Kind::Paths => v.as_array().is_some_and(|a| a.iter().all(Value::is_string)),
+        }
+    }
+
+    /// The range problem of a well-typed value, if any.
+    fn range_problem(&self, v: &Value) -> Option<String> {
+        let ok = match self.kind {
+            Kind::Float { min, max } | Kind::OptFloat { min, max } => match v.as_f64() {
+                None => true,
+                Some(x) => x >= min as f64 && x <= max as f64,
+            },
+            Kind::Int { min, max } | Kind::OptInt { min, max } => match v.as_u64() {
+                None => v.is_null(),
+                Some(x) => x >= min && x <= max,
+            },
+            Kind::Choice(names) => v.as_str().is_some_and(|s| names.contains(&s)),
+            Kind::Colour => v.as_str().and_then(super::Colour::parse).is_some(),
+            Kind::Bool | Kind::Path | Kind::Paths => true,
+        };
+        (!ok).then(|| {
+            format!(
+                "{} = {} is out of range: expected {}",
+                self.path,
+                quote(v),
+                self.range_text()
+            )
+        })
+    }
+
+    /// Checks one value of this field: its type, then its range. The message names the
+    /// field (`pores.count: expected an integer, found number -3`).
+    pub fn check(&self, v: &Value) -> Result<(), String> {
+        if !self.type_ok(v) {
+            return Err(format!(
+                "{}: expected {}, found {} {}",
+                self.path,
+                self.type_text(),
+                type_name(v),
+                quote(v)
+            ));
+        }
+        match self.range_problem(v) {
+            Some(p) => Err(p),
+            None => Ok(()),
+        }
+    }
+
+    /// Reads a value typed on the command line as this field's type.
+    pub fn parse_text(&self, text: &str) -> Result<Value, String> {
+        // A JSON string literal (`"a b.wrk"`) stands for its contents.
+        let decoded = serde_json::from_str::<String>(text.trim()).ok();
+        let t = decoded.as_deref().unwrap_or(text.trim());
+        let bad = || {
+            format!(
+                "{}: expected {} ({}), found `{}`",
+                self.path,
+                self.type_text(),
+                self.range_text(),
+                crate::limits::shorten(t, 60)
+            )
+        };
+        let number = || {
+            t.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .and_then(serde_json::Number::from_f64)
+                .map(Value::Number)
+        };
+        let value = match self.kind {
+            Kind::Float { .. } => number(),
+            Kind::OptFloat { .. } if t == "null" => Some(Value::Null),
+            Kind::OptFloat { .. } => number(),
+            Kind::Int { .. } => t.parse::<u64>().ok().map(Value::from),
+            Kind::OptInt { .. } if t == "null" => Some(Value::Null),
+            Kind::OptInt { .. } => t.parse::<u64>().ok().map(Value::from),
+            Kind::Bool => t.parse::<bool>().ok().map(Value::Bool),
+            Kind::Choice(_) | Kind::Colour => Some(Value::String(t.to_owned())),
+            Kind::Path if t == "null" => Some(Value::Null),
+            Kind::Path => Some(Value::String(t.to_owned())),
+            Kind::Paths => serde_json::from_str::<Vec<String>>(t)
+                .ok()
+                .or_else(|| Some(t.split(',').map(|s| s.trim().to_owned()).collect()))
+                .map(|v| v.into_iter().map(Value::String).collect()),
+        };
+        let value = value.ok_or_else(bad)?;
+        match self.range_problem(&value) {
+            Some(p) => Err(p),
+            None => Ok(value),
+        }
+    }
+}
+
+/// A value quoted for a message, cut to a readable length.
+fn quote(v: &Value) -> String {
+    crate::limits::shorten(&v.to_string(), 60)
+}
+
+/// Type errors of every field present in `doc` (a parsed, shape-checked document), and
+/// bad names and colours (which the typed parse would report without their path).
+/// Returns the fields at fault.
+pub(crate) fn check_types(doc: &Value, out: &mut Vec<String>) -> Vec<&'static Field> {
+    let mut bad = Vec::new();
+    for field in FIELDS.iter() {
+        let Some(v) = get_path(doc, field.path) else {
+            continue;
+        };
+        if !field.type_ok(v) {
+            out.push(format!(
+                "{}: expected {}, found {} {}",
+                field.path,
+                field.type_text(),
+                type_name(v),
+                quote(v)
+            ));
+            bad.push(field);
+        } else if matches!(field.kind, Kind::Choice(_) | Kind::Colour)
+            && let Some(p) = field.range_problem(v)
+        {
+            out.push(p);
+            bad.push(field);
+        }
+    }
+    bad
+}
+
+/// Range errors of every field of a whole project document.
+pub(crate) fn check_ranges(doc: &Value, out: &mut Vec<String>) {
+    for field in FIELDS.iter().filter(|f| f.path != "version") {
+        if let Some(v) = get_path(doc, field.path)
+            && let Some(p) = field.range_problem(v)
+        {
+            out.push(p);
+        }
+    }
+}
+
+/// A default value as the docs show it.
+fn default_text(v: &Value) -> String {
+    match v {
+        Value::Null => "null".into(),
+        Value::String(s) => format!("`{s}`"),
+        Value::Array(a) if a.is_empty() => "[]".into(),
+        other => other.to_string(),
+    }
+}
+
+/// The docs page `docs/project-file.md`, generated from [`FIELDS`].
+pub fn markdown() -> String {
+    use std::fmt::Write as _;
+    let mut out = String::from(include_str!("../project-file-intro.md"));
+    for (section, about) in SECTIONS {
+        let title = if section.is_empty() {
+            "top level"
+        } else {
+            section
+        };
+        let _ = write!(out, "\n## `{title}`\n\n{about}\n\n");
+        out.push_str("| field | unit | range | default | meaning |\n|---|---|---|---|---|\n");
+        for field in FIELDS.iter().filter(|f| match f.path.split_once('.') {
+            Some((s, _)) => s == *section,
+            None => section.is_empty(),
+        }) {
+            let _ = writeln!(
+                out,
+                "| `{}` | {} | {} | {} | {} |",
+                field.path,
+                if field.unit.is_empty() {
+                    "—"
+                } else {
+                    field.unit
+                },
+                field.range_text(),
+                default_text(&field.default_value()),
+                field.doc
+            );
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every leaf of the default project, by path.
+    fn leaves(v: &Value, at: &str, out: &mut Vec<String>) {
+        match v {
+            Value::Object(m) => {
+                for (k, c) in m {
+                    leaves(c, &super::super::json::join(at, k), out);
+                }
+            }
+            _ => out.push(at.to_owned()),
+        }
+    }
+
+    #[test]
+    fn the_table_covers_every_field_of_the_project_exactly_once() {
+        let mut paths = Vec::new();
+        leaves(&super::super::Project::default().to_value(), "", &mut paths);
+        let table: Vec<&str> = FIELDS.iter().map(|f| f.path).collect();
+        for p in &paths {
+            assert_eq!(
+                table.iter().filter(|t| *t == p).count(),
+                1,
+                "{p} must be in the table once"
+            );
+        }
+        assert_eq!(
+            paths.len(),
+            table.len(),
+            "table has fields the project lacks"
+        );
+    }
+
+    #[test]
+    fn every_default_is_valid_for_its_own_field() {
+        for field in FIELDS.iter() {
+            let v = field.default_value();
+            assert!(field.type_ok(&v), "{}: {v}", field.path);
+            assert_eq!(field.range_problem(&v), None, "{}", field.path);
+        }
+    }
+
+    #[test]
+    fn every_choice_name_deserialises() {
+        for field in FIELDS.iter() {
+            if let Kind::Choice(names) = field.kind {
+                for name in names {
+                    let p = super::super::Project::default()
+                        .set(field.path, name)
+                        .unwrap_or_else(|e| panic!("{}={name}: {e}", field.path));
+                    assert_eq!(
+                        get_path(&p.to_value(), field.path),
+                        Some(&Value::String(name.to_string()))
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_docs_page_is_generated_from_the_table_and_up_to_date() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/project-file.md");
+        let want = markdown();
+        if std::env::var_os("UPDATE_DOCS").is_some() {
+            std::fs::write(&path, &want).unwrap();
+        }
+        let have = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(
+            have == want,
+            "docs/project-file.md is stale: run `UPDATE_DOCS=1 cargo test -p agesim-core the_docs_page` and commit it"
+        );
+        for field in FIELDS.iter() {
+            assert!(
+                want.contains(&format!("`{}`", field.path)),
+                "{}",
+                field.path
+            );
+        }
+    }
+}

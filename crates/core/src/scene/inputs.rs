@@ -1,0 +1,217 @@
+//! The inputs of a scene: the mesh, wrinkle files, masks and fine-wrinkle tile it loads
+//! from files (or the built-in defaults), and the loaders.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use super::WrinkleSource;
+use crate::error::Error;
+use crate::heightmap::HeightMap;
+use crate::mask::Mask;
+use crate::mesh::Mesh;
+use crate::project::{BuiltinMesh, Project};
+use crate::wrinkle_file::{self, ParseErrors, WrinkleFile};
+
+/// Everything loaded from files (or the built-in defaults), kept until a path changes.
+#[derive(Clone, Debug)]
+pub(super) struct Inputs {
+    mesh_key: (Option<PathBuf>, BuiltinMesh),
+    pub(super) mesh: Arc<Mesh>,
+    pub(super) wrinkles_key: Vec<PathBuf>,
+    pub(super) wrinkles: Vec<WrinkleSource>,
+    /// Whether `wrinkles` came from [`Scene::set_wrinkles`](super::Scene::set_wrinkles)
+    /// rather than the files.
+    pub(super) wrinkles_edited: bool,
+    large_mask_key: (Option<PathBuf>, bool),
+    pub(super) large_mask: Option<Arc<Mask>>,
+    hair_masks_key: (Option<PathBuf>, Option<PathBuf>),
+    pub(super) hair_masks: Option<Arc<(Mask, Mask)>>,
+    fine_tile_key: Option<PathBuf>,
+    pub(super) fine_tile: Option<Arc<HeightMap>>,
+    /// Bumped whenever any input above changes (fibre edits included).
+    pub(super) generation: u64,
+}
+
+impl Inputs {
+    pub(super) fn generation_of_fine(&self) -> u64 {
+        self.fine_tile.as_ref().map_or(0, |t| Arc::as_ptr(t) as u64)
+    }
+
+    /// Loads what `project` names, reusing `previous`'s inputs whose key is unchanged.
+    /// Every failing input is reported (wrinkle files with all their diagnostics).
+    pub(super) fn load(project: &Project, previous: Option<&Inputs>) -> Result<Self, Error> {
+        let mesh_key = (project.mesh.path.clone(), project.mesh.builtin);
+        let wrinkles_key = project.large.wrinkles.clone();
+        let large_mask_key = (
+            project.large.mask.clone(),
+            project.large.wrinkles.is_empty(),
+        );
+        let hair_masks_key = (
+            project.hair.outer_mask.clone(),
+            project.hair.inner_mask.clone(),
+        );
+        let fine_tile_key = project.fine.tile.clone();
+        // The inputs are independent: decoded at once on the pool (the mesh and the
+        // masks are most of a bake's start-up). Errors are reported in this fixed order.
+        let load_mesh_part = || match previous.filter(|p| p.mesh_key == mesh_key) {
+            Some(p) => Ok(p.mesh.clone()),
+            None => load_mesh(project).map(Arc::new),
+        };
+        let load_wrinkles_part = || match previous.filter(|p| p.wrinkles_key == wrinkles_key) {
+            Some(p) => Ok((p.wrinkles.clone(), p.wrinkles_edited)),
+            None => load_wrinkles(&wrinkles_key).map(|w| (w, false)),
+        };
+        let load_large_mask_part = || match previous.filter(|p| p.large_mask_key == large_mask_key)
+        {
+            Some(p) => Ok(p.large_mask.clone()),
+            None => load_large_mask(&large_mask_key).map(|m| m.map(Arc::new)),
+        };
+        let load_hair_part = || match previous.filter(|p| p.hair_masks_key == hair_masks_key) {
+            Some(p) => (Ok(p.hair_masks.clone()), Ok(())),
+            None => {
+                let (outer, inner) = rayon::join(
+                    || {
+                        load_mask_or(
+                            hair_masks_key.0.as_deref(),
+                            crate::defaults::HAIR_OUTER_MASK,
+                        )
+                    },
+                    || {
+                        load_mask_or(
+                            hair_masks_key.1.as_deref(),
+                            crate::defaults::HAIR_INNER_MASK,
+                        )
+                    },
+                );
+                match (outer, inner) {
+                    (Ok(o), Ok(i)) => (Ok(Some(Arc::new((o, i)))), Ok(())),
+                    (o, i) => (o.map(|_| None), i.map(|_| ())),
+                }
+            }
+        };
+        let load_fine_part = || match previous.filter(|p| p.fine_tile_key == fine_tile_key) {
+            Some(p) => Ok(p.fine_tile.clone()),
+            None => match &fine_tile_key {
+                None => Ok(None),
+                Some(path) => Mask::load(path)
+                    .and_then(|m| {
+                        HeightMap::from_vec(m.width_px(), m.height_px(), m.values().to_vec())
+                    })
+                    .map(|h| Some(Arc::new(h))),
+            },
+        };
+        let (mesh, ((wrinkles, large_mask), ((hair_masks, inner_error), fine_tile))) =
+            rayon::join(load_mesh_part, || {
+                rayon::join(
+                    || rayon::join(load_wrinkles_part, load_large_mask_part),
+                    || rayon::join(load_hair_part, load_fine_part),
+                )
+            });
+        let mut errors: Vec<Error> = Vec::new();
+        let mut ok = |r: Result<(), Error>| errors.extend(r.err());
+        let mesh = mesh.map_err(|e| ok(Err(e))).ok();
+        let (wrinkles, wrinkles_edited) = match wrinkles {
+            Ok((w, edited)) => (Some(w), edited),
+            Err(e) => {
+                ok(Err(e));
+                (None, false)
+            }
+        };
+        let large_mask = large_mask.map_err(|e| ok(Err(e))).ok();
+        let hair_masks = hair_masks.map_err(|e| ok(Err(e))).ok();
+        ok(inner_error);
+        let fine_tile = fine_tile.map_err(|e| ok(Err(e))).ok();
+        match (mesh, wrinkles, large_mask, hair_masks, fine_tile) {
+            (Some(mesh), Some(wrinkles), Some(large_mask), Some(hair_masks), Some(fine_tile))
+                if errors.is_empty() =>
+            {
+                let generation = previous.map_or(0, |p| p.generation)
+                    + u64::from(previous.is_none_or(|p| p.wrinkles != wrinkles));
+                Ok(Self {
+                    mesh_key,
+                    mesh,
+                    wrinkles_key,
+                    wrinkles,
+                    wrinkles_edited,
+                    large_mask_key,
+                    large_mask,
+                    hair_masks_key,
+                    hair_masks,
+                    fine_tile_key,
+                    fine_tile,
+                    generation,
+                })
+            }
+            _ if errors.len() == 1 => Err(errors.remove(0)),
+            _ => Err(Error::Inputs(
+                errors.iter().map(ToString::to_string).collect(),
+            )),
+        }
+    }
+}
+
+fn load_mesh(project: &Project) -> Result<Mesh, Error> {
+    match (&project.mesh.path, project.mesh.builtin) {
+        (Some(path), _) => Mesh::load(path),
+        (None, BuiltinMesh::Head) => Ok(crate::head::default_head()),
+        (None, BuiltinMesh::SkinPatch) => Ok(crate::head::skin_patch()),
+    }
+}
+
+/// The wrinkle files at `paths` (the built-in defaults when empty), every diagnostic of
+/// every file reported together.
+pub fn load_wrinkles(paths: &[PathBuf]) -> Result<Vec<WrinkleSource>, Error> {
+    let mut loaded = Vec::new();
+    let mut diagnostics = Vec::new();
+    let mut push = |name: String,
+                    path: Option<PathBuf>,
+                    result: Result<WrinkleFile, ParseErrors>| {
+        match result {
+            Ok(file) => loaded.push(WrinkleSource { name, path, file }),
+            Err(errors) => diagnostics.extend(errors.0),
+        }
+    };
+    if paths.is_empty() {
+        for (name, text) in crate::defaults::WRINKLE_FILES {
+            push(
+                name.to_string(),
+                None,
+                wrinkle_file::parse(text, Path::new(name)),
+            );
+        }
+    } else {
+        for path in paths {
+            let bytes = crate::limits::read_file(path, crate::limits::MAX_TEXT_FILE_BYTES)?;
+            push(
+                path.display().to_string(),
+                Some(path.clone()),
+                wrinkle_file::parse_bytes(&bytes, path),
+            );
+        }
+    }
+    if diagnostics.is_empty() {
+        Ok(loaded)
+    } else {
+        Err(Error::WrinkleFile(ParseErrors(diagnostics)))
+    }
+}
+
+/// The large-wrinkle mask: the named one, or the default head's when the default wrinkle
+/// files are used, or none.
+fn load_large_mask(key: &(Option<PathBuf>, bool)) -> Result<Option<Mask>, Error> {
+    match key {
+        (Some(path), _) => Mask::load(path).map(Some),
+        (None, true) => {
+            let (name, bytes) = crate::defaults::WRINKLE_MASK;
+            Mask::decode(bytes, Path::new(name)).map(Some)
+        }
+        (None, false) => Ok(None),
+    }
+}
+
+fn load_mask_or(path: Option<&Path>, default: (&str, &[u8])) -> Result<Mask, Error> {
+    match path {
+        Some(p) => Mask::load(p),
+        None => Mask::decode(default.1, Path::new(default.0)),
+    }
+}

@@ -1,0 +1,168 @@
+//! The large-wrinkle stage of a scene: the fibre stamps, the map at an age and its
+//! packing, each kept with the key it was made from.
+
+use std::sync::Arc;
+
+use super::{BakeRequest, Changed, LargeMap, scaled};
+use crate::age::AgeFactors;
+use crate::cancel::CancelToken;
+use crate::error::Error;
+use crate::heightmap::HeightMap;
+use crate::large_layer::LargeLayer;
+use crate::mask::Mask;
+use crate::muscle::{Fibre, MaskValues};
+use crate::normal_map::{self, NormalSettings};
+use crate::project::Project;
+
+/// The keys each kept output was made from (see the module table).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(super) struct LargeKey {
+    layer_fibres: Vec<Fibre>,
+    size: u32,
+    factors: Vec<f32>,
+    gamma: f32,
+    /// The depth and normal settings of the packing (only when packed: the map itself is
+    /// normalised).
+    packed_depth: Option<f32>,
+    mask_generation: u64,
+    normal: Option<NormalSettings>,
+    packed: bool,
+}
+
+/// The large-wrinkle stage: fibre stamps, the map at an age, its packing.
+#[derive(Clone, Debug, Default)]
+pub(super) struct LargeStage {
+    layer: LargeLayer,
+    pub(super) key: Option<LargeKey>,
+    pub(super) map: Option<LargeMap>,
+    /// The previous map's buffer, baked into next (no allocation, no page faults).
+    spare: Option<HeightMap>,
+    /// The mask sampled at the map's pixel centres: (mask generation, size, values).
+    mask_samples: Option<(u64, u32, Arc<Vec<f32>>)>,
+}
+
+/// The large-wrinkle mask and the generation that identifies it.
+#[derive(Clone, Copy)]
+pub(super) struct LargeMask<'a> {
+    pub(super) mask: Option<&'a Mask>,
+    pub(super) generation: u64,
+}
+
+impl LargeStage {
+    /// Drops the map (the layer is off).
+    pub(super) fn clear(&mut self) -> Changed {
+        self.key = None;
+        Changed {
+            large: self.map.take().is_some(),
+            ..Changed::default()
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn bake(
+        &mut self,
+        p: &Project,
+        fibres: &[Fibre],
+        factors: &AgeFactors,
+        large_mask: LargeMask<'_>,
+        request: &BakeRequest,
+        normal: &NormalSettings,
+        cancel: &CancelToken,
+    ) -> Result<Changed, Error> {
+        let mut changed = Changed::default();
+        let size = request.large_size_px;
+        if !request.one_off {
+            changed.large_stamps = self.layer.update(fibres, size, size, cancel)? > 0;
+        }
+        let key = LargeKey {
+            layer_fibres: fibres.to_vec(),
+            size,
+            factors: factors.large.clone(),
+            gamma: p.large.gamma,
+            packed_depth: request.packed.then_some(p.large.depth),
+            mask_generation: large_mask.generation,
+            normal: request.packed.then_some(*normal),
+            packed: request.packed,
+        };
+        if self.key.as_ref() == Some(&key) && self.map.is_some() {
+            return Ok(changed);
+        }
+        // A one-off bake samples the mask from its taps (no map-sized buffer kept); the
+        // editor's bakes keep the samples for the next change.
+        let columns = match (request.one_off, large_mask.mask) {
+            (true, Some(m)) => crate::muscle::mask_columns(m, size),
+            _ => Vec::new(),
+        };
+        let mask_samples = match (large_mask.mask, &self.mask_samples) {
+            (None, _) => None,
+            _ if request.one_off => None,
+            (Some(_), Some((g, s, v))) if *g == large_mask.generation && *s == size => {
+                Some(v.clone())
+            }
+            (Some(mask), _) => {
+                let v = Arc::new(crate::muscle::sample_mask(mask, size, size));
+                self.mask_samples = Some((large_mask.generation, size, v.clone()));
+                Some(v)
+            }
+        };
+        let mask = match (&mask_samples, large_mask.mask) {
+            (Some(v), _) => MaskValues::Values(v),
+            (None, Some(m)) if request.one_off => MaskValues::Taps(m, &columns),
+            _ => MaskValues::None,
+        };
+        // The spare buffer, not the kept map: that stays whole if this bake is cancelled.
+        let mut height = match self.spare.take() {
+            Some(h) if h.width_px() == size && h.height_px() == size => h,
+            _ => HeightMap::zeros(size, size)?,
+        };
+        let gamma = p.large.gamma;
+        let baked = if request.one_off {
+            // One pass, no stamps (`large_layer::bake_direct`: the same bytes).
+            crate::large_layer::bake_direct(
+                fibres,
+                &factors.large,
+                gamma,
+                mask,
+                &mut height,
+                cancel,
+            )
+        } else {
+            self.layer
+                .combine_with(&factors.large, gamma, mask, &mut height, cancel)
+        };
+        if let Err(e) = baked {
+            self.spare = Some(height);
+            return Err(e);
+        }
+        self.keep(height, p.large.depth, request, normal, key, cancel)?;
+        changed.large = true;
+        Ok(changed)
+    }
+
+    /// Packs a finished (normalised) map if asked, scaled by the depth, and keeps it.
+    fn keep(
+        &mut self,
+        height: HeightMap,
+        depth: f32,
+        request: &BakeRequest,
+        normal: &NormalSettings,
+        key: LargeKey,
+        cancel: &CancelToken,
+    ) -> Result<(), Error> {
+        let packed_range = (0.0, depth.max(f32::MIN_POSITIVE));
+        let packed_rgba = if request.packed {
+            normal_map::pack_rgba8(&scaled(&height, depth)?, normal, packed_range)?
+        } else {
+            Vec::new()
+        };
+        cancel.check()?;
+        let previous = self.map.replace(LargeMap {
+            height,
+            packed_rgba,
+            packed_range,
+        });
+        self.spare = previous.map(|l| l.height);
+        self.key = Some(key);
+        Ok(())
+    }
+}

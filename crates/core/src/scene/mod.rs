@@ -1,0 +1,674 @@
+//! One pipeline from a project to everything the editor, the renderer and the command line
+//! show or write: a [`Scene`] loads a project's inputs once and bakes, at a size
+//! and an age, into buffers it keeps.
+//!
+//! **Incremental.** Every stage remembers the inputs it was made from and is redone only
+//! when they change; [`Scene::bake`] returns which outputs changed ([`Changed`]):
+//!
+//! | stage | redone when |
+//! |---|---|
+//! | inputs (mesh, wrinkle files, masks, tile image) | their path changes ([`Scene::set_project`]) |
+//! | large-wrinkle fibre stamps ([`LargeLayer`](crate::large_layer::LargeLayer)) | a fibre changes: only that fibre is rasterised |
+//! | large-wrinkle map at age t | the stamps, an age factor, γ, mask (and, for its RGBA packing, depth and normal strength) |
+//! | micro-relief features (pores, furrows) | seed, map size, tiling, `pores`, `furrows` |
+//! | micro-relief tile at age t | the features, noise, warp, overlap, normal, its age scales |
+//! | fine-wrinkle tile | the `fine` section |
+//! | transition texture | the hair masks, metric, size |
+//! | hair instances | the mesh, the transition texture, density, seed, graying range |
+//!
+//! An age change only re-weights the large-wrinkle stamps and re-scales the micro-relief
+//! features (their positions stay): no feature is regenerated. The large-wrinkle map is
+//! kept normalised: its depth (`large.depth`) is applied where it is shown (the exported
+//! heights, the renderer's relief depth), so a depth change bakes nothing.
+//!
+//! **Cancellable.** Every stage checks a [`CancelToken`] often (per row band); a cancelled
+//! bake returns [`Error::Cancelled`] and the kept outputs are those of the last complete
+//! bake of each stage (stages bake into scratch buffers and swap on success).
+//!
+//! **Deterministic.** Each stage is deterministic on any thread count, so the incremental
+//! result equals a fresh scene's bake byte for byte (tested).
+
+mod inputs;
+mod large;
+mod micro;
+
+pub use inputs::load_wrinkles;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use crate::age::{AgeCurve, AgeFactors};
+use crate::cancel::CancelToken;
+use crate::error::Error;
+use crate::fine_wrinkles::{self, FineWrinkleSettings};
+use crate::hair::{HairInstances, HairParams, SurfaceRef};
+use crate::heightmap::HeightMap;
+use crate::mask::Mask;
+use crate::mesh::Mesh;
+use crate::micro::MicroRelief;
+use crate::muscle::Fibre;
+use crate::normal_map::{self, NormalSettings};
+use crate::project::Project;
+use crate::transition::TransitionTexture;
+use crate::wrinkle_file::WrinkleFile;
+
+use inputs::Inputs;
+use large::{LargeMask, LargeStage};
+use micro::MicroStage;
+
+/// A wrinkle description file as the scene holds it: where it came from and its groups.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WrinkleSource {
+    /// The path, or the repository path of a built-in default file.
+    pub name: String,
+    /// `None` for the built-in default files.
+    pub path: Option<PathBuf>,
+    pub file: WrinkleFile,
+}
+
+/// What to bake. Sizes are square map sides in pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BakeRequest {
+    /// Side of the large-wrinkle map (head UV).
+    pub large_size_px: u32,
+    /// Side of the micro-relief tile (the skin patch of `map_size_mm`).
+    pub micro_size_px: u32,
+    /// The age t ∈ [0, 1].
+    pub t: f32,
+    /// Bake the micro-relief tile periodic (noise and features wrap around its edges) and
+    /// its normals with wrapped differences: whatever repeats the tile over a surface (the
+    /// renderer, the GLB's normal map) asks for it; `agesim bake` and map exports follow
+    /// the project's `tile`.
+    pub tileable: bool,
+    /// Also make the fine-wrinkle tile.
+    pub fine: bool,
+    /// Also make the transition texture and the hair instances.
+    pub hair: bool,
+    /// Also make the docs/models.md §5 RGBA8 packing of the large-wrinkle map (for the renderer).
+    pub packed: bool,
+    /// A one-off bake (`agesim bake`, exports): the large-wrinkle map is made in one pass
+    /// without keeping per-fibre stamps or the sampled mask for later edits — the same
+    /// bytes with less memory touched. A later bake of the same scene still works; it
+    /// rasterises the stamps then.
+    pub one_off: bool,
+    /// Also make the micro-relief tile's 8-bit normal map (`MicroTile::normal_rgb`), for
+    /// showing it: the renderer and the exports make their normals from the heights.
+    /// Without it the editor's tiles (up to 1024²) leave `normal_rgb` empty; larger tiles
+    /// always have it.
+    pub micro_normals: bool,
+}
+
+impl BakeRequest {
+    /// Everything the renderer shows, at preview sizes. The renderer reads the heights,
+    /// so no RGBA packing (ask for it only to show it).
+    pub fn preview(t: f32) -> Self {
+        Self {
+            large_size_px: 1024,
+            micro_size_px: 1024,
+            t,
+            tileable: true,
+            fine: true,
+            hair: true,
+            packed: false,
+            one_off: false,
+            micro_normals: false,
+        }
+    }
+
+    /// The maps of `agesim bake`: one size, no hair, no packing, one-off; the micro-relief
+    /// periodic when `tileable` (the project's `tile`).
+    pub fn maps(size_px: u32, t: f32, tileable: bool) -> Self {
+        Self {
+            large_size_px: size_px,
+            micro_size_px: size_px,
+            t,
+            tileable,
+            fine: false,
+            hair: false,
+            packed: false,
+            one_off: true,
+            // The exports make their normal map from the summed heights.
+            micro_normals: false,
+        }
+    }
+}
+
+/// Which outputs a [`Scene::bake`] (or a setter) changed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Changed {
+    pub mesh: bool,
+    /// Large-wrinkle stamps (fibres rasterised).
+    pub large_stamps: bool,
+    /// The large-wrinkle map (and its packing).
+    pub large: bool,
+    /// Micro-relief features regenerated (pores placed, furrows linked).
+    pub micro_features: bool,
+    /// The micro-relief tile.
+    pub micro: bool,
+    pub fine: bool,
+    pub transition: bool,
+    pub hair: bool,
+}
+
+impl Changed {
+    /// Whether anything changed.
+    pub fn any(&self) -> bool {
+        *self != Self::default()
+    }
+
+    fn merge(&mut self, o: Changed) {
+        self.mesh |= o.mesh;
+        self.large_stamps |= o.large_stamps;
+        self.large |= o.large;
+        self.micro_features |= o.micro_features;
+        self.micro |= o.micro;
+        self.fine |= o.fine;
+        self.transition |= o.transition;
+        self.hair |= o.hair;
+    }
+}
+
+/// The large-wrinkle map at an age: the normalised layer (multiply by the project's
+/// `large.depth` for height units: [`LargeMap::scaled`]) and, when asked for, the RGBA8
+/// packing of docs/models.md §4 of the scaled heights, mapped from [0, depth] to [0, 1].
+#[derive(Clone, Debug)]
+pub struct LargeMap {
+    /// The normalised heights (a wrinkle of full depth spans 1).
+    pub height: HeightMap,
+    pub packed_rgba: Vec<u8>,
+    /// The height range `packed_rgba`'s alpha spans.
+    pub packed_range: (f32, f32),
+}
+
+/// The micro-relief tile at an age: heights and their RGB8 normal map (docs/models.md §5).
+#[derive(Clone, Debug)]
+pub struct MicroTile {
+    pub height: HeightMap,
+    /// The tile's 8-bit normal map; empty unless asked for (`BakeRequest::micro_normals`).
+    pub normal_rgb: Vec<u8>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct HairKey {
+    mesh_generation: u64,
+    transition_generation: u64,
+    density: f32,
+    metres_per_unit: f32,
+    seed: u64,
+    deviation_deg: f32,
+    onset_t: (f32, f32),
+}
+
+/// A project, its loaded inputs and everything baked from them. See the module docs.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    project: Project,
+    inputs: Inputs,
+    mesh_generation: u64,
+    mask_generation: u64,
+    factors: AgeFactors,
+    /// The last request's `tileable` (before any bake: the project's `tile`).
+    tileable: bool,
+    large: LargeStage,
+    micro: MicroStage,
+    fine_key: Option<(FineWrinkleSettingsKey, u64)>,
+    fine: Option<Arc<HeightMap>>,
+    transition_key: Option<(u64, String, Option<u32>)>,
+    transition_generation: u64,
+    transition: Option<Arc<TransitionTexture>>,
+    hair_key: Option<HairKey>,
+    hair: Option<Arc<HairInstances>>,
+}
+
+type FineWrinkleSettingsKey = (Option<PathBuf>, u32, u32, f32, f32, f32, f32, u64);
+
+impl Scene {
+    /// Loads every input of `project` (files it names, or the built-in defaults). Nothing
+    /// is baked yet; call [`Scene::bake`].
+    pub fn new(project: Project) -> Result<Self, Error> {
+        project.validate().map_err(|message| Error::Project {
+            source_name: "project".into(),
+            message,
+        })?;
+        let inputs = Inputs::load(&project, None)?;
+        let factors = project.age.factors(project.age.t, &[]);
+        Ok(Self {
+            tileable: project.tile,
+            project,
+            inputs,
+            mesh_generation: 1,
+            mask_generation: 1,
+            factors,
+            large: LargeStage::default(),
+            micro: MicroStage::default(),
+            fine_key: None,
+            fine: None,
+            transition_key: None,
+            transition_generation: 0,
+            transition: None,
+            hair_key: None,
+            hair: None,
+        })
+    }
+
+    /// A scene of the same project and inputs, sharing this one's reference-counted
+    /// outputs (fine tile, transition texture, hair: kept while their keys hold) but none
+    /// of its large-wrinkle and micro-relief buffers. For baking the same document at
+    /// another size (the editor's previews beside its full-resolution bakes) without
+    /// copying maps that the other size would replace anyway.
+    pub fn fork(&self) -> Self {
+        Self {
+            project: self.project.clone(),
+            inputs: self.inputs.clone(),
+            mesh_generation: self.mesh_generation,
+            mask_generation: self.mask_generation,
+            factors: self.factors.clone(),
+            tileable: self.tileable,
+            large: LargeStage::default(),
+            micro: MicroStage::default(),
+            fine_key: self.fine_key.clone(),
+            fine: self.fine.clone(),
+            transition_key: self.transition_key.clone(),
+            transition_generation: self.transition_generation,
+            transition: self.transition.clone(),
+            hair_key: self.hair_key.clone(),
+            hair: self.hair.clone(),
+        }
+    }
+
+    pub fn project(&self) -> &Project {
+        &self.project
+    }
+
+    /// Replaces the project. Inputs whose paths changed are loaded again (all errors of
+    /// all inputs are reported together); on error the scene is unchanged.
+    pub fn set_project(&mut self, project: Project) -> Result<Changed, Error> {
+        project.validate().map_err(|message| Error::Project {
+            source_name: "project".into(),
+            message,
+        })?;
+        let inputs = Inputs::load(&project, Some(&self.inputs))?;
+        let mut changed = Changed::default();
+        if !Arc::ptr_eq(&inputs.mesh, &self.inputs.mesh) {
+            self.mesh_generation += 1;
+            changed.mesh = true;
+        }
+        let same_mask = match (&inputs.large_mask, &self.inputs.large_mask) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (None, None) => true,
+            _ => false,
+        };
+        if !same_mask {
+            self.mask_generation += 1;
+        }
+        self.inputs = inputs;
+        self.project = project;
+        Ok(changed)
+    }
+
+    /// The wrinkle files the large-wrinkle layer is made of.
+    pub fn wrinkles(&self) -> &[WrinkleSource] {
+        &self.inputs.wrinkles
+    }
+
+    /// Replaces the wrinkle files' contents (the editor's fibre edits); the next bake
+    /// re-rasterises only the fibres that differ.
+    pub fn set_wrinkles(&mut self, wrinkles: Vec<WrinkleSource>) {
+        if wrinkles != self.inputs.wrinkles {
+            self.inputs.wrinkles = wrinkles;
+            self.inputs.generation += 1;
+            self.inputs.wrinkles_edited = true;
+        }
+    }
+
+    /// Goes back to the wrinkle files the project names, as they are on disk (or the
+    /// built-in ones), after [`Scene::set_wrinkles`]; nothing is read when there was no
+    /// edit.
+    pub fn reset_wrinkles(&mut self) -> Result<(), Error> {
+        if self.inputs.wrinkles_edited {
+            let files = load_wrinkles(&self.inputs.wrinkles_key)?;
+            self.set_wrinkles(files);
+            self.inputs.wrinkles_edited = false;
+        }
+        Ok(())
+    }
+
+    /// Every fibre with its own age curve (`None` = the layer default), in order.
+    pub fn fibres(&self) -> (Vec<Fibre>, Vec<Option<AgeCurve>>) {
+        self.inputs
+            .wrinkles
+            .iter()
+            .flat_map(|w| w.file.groups.iter())
+            .map(|g| (g.fibre.clone(), g.age))
+            .unzip()
+    }
+
+    pub fn mesh(&self) -> &Arc<Mesh> {
+        &self.inputs.mesh
+    }
+
+    /// The large-wrinkle mask in use (the project's, or the default head's with its
+    /// default wrinkle files), if any.
+    pub fn large_mask(&self) -> Option<&Arc<Mask>> {
+        self.inputs.large_mask.as_ref()
+    }
+
+    /// The age factors of the last bake.
+    pub fn factors(&self) -> &AgeFactors {
+        &self.factors
+    }
+
+    /// The large-wrinkle map of the last bake (`None` before the first, or when the layer
+    /// is disabled).
+    pub fn large(&self) -> Option<&LargeMap> {
+        self.large.map.as_ref()
+    }
+
+    /// The micro-relief tile of the last bake.
+    pub fn micro(&self) -> Option<&MicroTile> {
+        self.micro.tile.as_ref()
+    }
+
+    /// The micro-relief features (pores, furrows) of the last bake.
+    pub fn relief(&self) -> Option<&MicroRelief> {
+        self.micro.relief.as_ref()
+    }
+
+    /// The fine-wrinkle tile of the last bake that asked for it.
+    pub fn fine(&self) -> Option<&Arc<HeightMap>> {
+        self.fine.as_ref()
+    }
+
+    pub fn transition(&self) -> Option<&Arc<TransitionTexture>> {
+        self.transition.as_ref()
+    }
+
+    /// The hair instances, sorted by disappearance age; draw the first `count(t)`.
+    pub fn hair(&self) -> Option<&Arc<HairInstances>> {
+        self.hair.as_ref()
+    }
+
+    /// Whether the project bakes any micro-relief at all ([`Project::micro_enabled`]).
+    pub fn micro_enabled(&self) -> bool {
+        self.project.micro_enabled()
+    }
+
+    /// The project's normal-map settings, wrapped at the edges when the last bake was
+    /// tileable ([`BakeRequest::tileable`]).
+    pub fn normal_settings(&self) -> NormalSettings {
+        NormalSettings {
+            strength: self.project.normal.strength,
+            convention: self.project.normal.convention,
+            tiling: self.tileable,
+        }
+    }
+
+    /// Bakes what `request` asks for at its age, redoing only what changed since the last
+    /// bake. On error (or cancellation) every kept output stays as it was.
+    pub fn bake(&mut self, request: &BakeRequest, cancel: &CancelToken) -> Result<Changed, Error> {
+        crate::heightmap::check_size(request.large_size_px, request.micro_size_px)?;
+        let (fibres, curves) = self.fibres();
+        self.factors = self.project.age.factors(request.t, &curves);
+        self.tileable = request.tileable;
+        let mut changed = Changed::default();
+        let normal = self.normal_settings();
+        let micro_enabled = self.micro_enabled();
+        let (large, micro) = (&mut self.large, &mut self.micro);
+        let (project, inputs, factors) = (&self.project, &self.inputs, &self.factors);
+        // The micro-relief follows the request's tiling, not the document's `tile`.
+        let tiled;
+        let micro_project = if project.tile == request.tileable {
+            project
+        } else {
+            tiled = Project {
+                tile: request.tileable,
+                ..project.clone()
+            };
+            &tiled
+        };
+        let mask_generation = self.mask_generation;
+        // The two layers are independent: bake them side by side (each is itself
+        // parallel; together they keep both cores busy through each one's serial parts).
+        let (large_result, micro_result) = rayon::join(
+            || {
+                if project.large.enabled {
+                    let mask = LargeMask {
+                        mask: inputs.large_mask.as_deref(),
+                        generation: mask_generation,
+                    };
+                    large.bake(project, &fibres, factors, mask, request, &normal, cancel)
+                } else {
+                    Ok(large.clear())
+                }
+            },
+            || {
+                if micro_enabled {
+                    micro.bake(micro_project, factors, request, &normal, cancel)
+                } else {
+                    Ok(micro.clear())
+                }
+            },
+        );
+        changed.merge(large_result?);
+        changed.merge(micro_result?);
+        if request.fine && self.project.fine.enabled {
+            changed.merge(self.bake_fine(cancel)?);
+        }
+        if request.hair && self.project.hair.enabled {
+            changed.merge(self.bake_hair(cancel)?);
+        }
+        Ok(changed)
+    }
+
+    fn bake_fine(&mut self, cancel: &CancelToken) -> Result<Changed, Error> {
+        let f = &self.project.fine;
+        let key: FineWrinkleSettingsKey = (
+            f.tile.clone(),
+            f.size_px,
+            f.creases,
+            f.length,
+            f.width,
+            f.crossing_deg,
+            f.spread_deg,
+            f.seed,
+        );
+        let key = (key, self.inputs.generation_of_fine());
+        if self.fine_key.as_ref() == Some(&key) && self.fine.is_some() {
+            return Ok(Changed::default());
+        }
+        cancel.check()?;
+        let tile = match &self.inputs.fine_tile {
+            Some(image) => image.clone(),
+            None => Arc::new(fine_wrinkles::generate(
+                f.size_px,
+                &FineWrinkleSettings {
+                    crease_count: f.creases,
+                    length_tile: f.length,
+                    width_tile: f.width,
+                    crossing_deg: f.crossing_deg,
+                    spread_deg: f.spread_deg,
+                    seed: f.seed,
+                },
+            )?),
+        };
+        self.fine = Some(tile);
+        self.fine_key = Some(key);
+        Ok(Changed {
+            fine: true,
+            ..Changed::default()
+        })
+    }
+
+    fn bake_hair(&mut self, cancel: &CancelToken) -> Result<Changed, Error> {
+        let mut changed = Changed::default();
+        let h = &self.project.hair;
+        let Some(masks) = self.inputs.hair_masks.clone() else {
+            return Ok(changed);
+        };
+        let masks_id = Arc::as_ptr(&masks) as u64;
+        let tkey = (masks_id, format!("{:?}", h.metric), h.transition_size_px);
+        if self.transition_key.as_ref() != Some(&tkey) || self.transition.is_none() {
+            cancel.check()?;
+            let (outer, inner) = &*masks;
+            // An all-black outer mask means no hair at age 0; it is almost surely the
+            // wrong file, and would leave only the inner region's hair: say so.
+            if outer
+                .values()
+                .iter()
+                .all(|&v| v < crate::transition::REGION_THRESHOLD)
+            {
+                return Err(Error::InvalidValue {
+                    what: format!(
+                        "outer hair mask {}",
+                        h.outer_mask
+                            .as_ref()
+                            .map_or("(built-in)".into(), |p| p.display().to_string())
+                    ),
+                    value: "empty (no pixel at or above 50 % grey)".into(),
+                    expected: "white where hair grows at age 0".into(),
+                });
+            }
+            let size = h.transition_size_px.unwrap_or_else(|| {
+                outer
+                    .width_px()
+                    .max(outer.height_px())
+                    .max(inner.width_px())
+                    .max(inner.height_px())
+            });
+            let t = TransitionTexture::from_masks(outer, inner, size, size, h.metric)?;
+            self.transition = Some(Arc::new(t));
+            self.transition_key = Some(tkey);
+            self.transition_generation += 1;
+            changed.transition = true;
+        }
+        let key = HairKey {
+            mesh_generation: self.mesh_generation,
+            transition_generation: self.transition_generation,
+            density: h.density_per_cm2,
+            metres_per_unit: self.project.mesh.metres_per_unit,
+            seed: h.seed,
+            deviation_deg: h.max_deviation_deg,
+            onset_t: self.project.graying_onset_t(),
+        };
+        if self.hair_key.as_ref() == Some(&key) && self.hair.is_some() {
+            return Ok(changed);
+        }
+        cancel.check()?;
+        let Some(transition) = &self.transition else {
+            return Ok(changed);
+        };
+        let params = HairParams::new(h.density_per_cm2, self.project.mesh.metres_per_unit)?
+            .with_seed(h.seed)
+            .with_max_deviation_rad(h.max_deviation_deg.to_radians())?
+            .with_graying_onset_range(key.onset_t.0, key.onset_t.1)?;
+        let mesh = &self.inputs.mesh;
+        let surface =
+            SurfaceRef::new(mesh.positions(), mesh.normals(), mesh.uvs(), mesh.indices())?;
+        let hair = HairInstances::generate(&surface, transition, &params)?;
+        self.hair = Some(Arc::new(hair));
+        self.hair_key = Some(key);
+        changed.hair = true;
+        Ok(changed)
+    }
+
+    /// The height and normal maps `agesim bake` writes: the micro-relief and the
+    /// large-wrinkle map added pixel by pixel (both baked at the same size; a layer that is
+    /// off adds nothing), and the RGB8 normal map of the sum.
+    pub fn export_maps(&self) -> Result<(HeightMap, Vec<u8>), Error> {
+        self.export_size()?;
+        let depth = self.project.large.depth;
+        let height = match (&self.micro.tile, &self.large.map) {
+            (Some(m), large) => {
+                let mut height = m.height.clone();
+                if let Some(l) = large {
+                    add_into(&mut height, &l.height, depth);
+                }
+                height
+            }
+            (None, Some(l)) => l.scaled(depth)?,
+            (None, None) => return Err(no_layer()),
+        };
+        let rgb = normal_map::encode_rgb8(&height, &self.normal_settings())?;
+        Ok((height, rgb))
+    }
+
+    /// The exported height map of a one-off bake (`agesim bake`, exports; the normal map
+    /// is then streamed from it, [`crate::export::stage_normal_png`]): the kept maps are
+    /// moved out, not copied (at 4096² a copy is 64 MB of fresh memory). The scene forgets
+    /// them; a later bake makes them again. The same heights as [`Scene::export_maps`].
+    pub fn take_height(&mut self) -> Result<HeightMap, Error> {
+        self.export_size()?;
+        self.micro.key = None;
+        self.large.key = None;
+        let micro = self.micro.tile.take().map(|m| m.height);
+        let large = self.large.map.take().map(|l| l.height);
+        let depth = self.project.large.depth;
+        match (micro, large) {
+            (Some(mut height), large) => {
+                if let Some(large) = large {
+                    add_into(&mut height, &large, depth);
+                }
+                Ok(height)
+            }
+            (None, Some(mut large)) => {
+                for h in large.data_mut() {
+                    *h *= depth;
+                }
+                Ok(large)
+            }
+            (None, None) => Err(no_layer()),
+        }
+    }
+
+    /// The side of the exported maps: the tile's or the large map's (they must agree).
+    fn export_size(&self) -> Result<u32, Error> {
+        let size = match (&self.micro.tile, &self.large.map) {
+            (Some(m), _) => m.height.width_px(),
+            (None, Some(l)) => l.height.width_px(),
+            (None, None) => return Err(no_layer()),
+        };
+        if let Some(large) = &self.large.map
+            && large.height.width_px() != size
+        {
+            return Err(Error::InvalidValue {
+                what: "export size".into(),
+                value: format!("{} and {size}", large.height.width_px()),
+                expected: "the large-wrinkle and micro-relief maps baked at one size".into(),
+            });
+        }
+        Ok(size)
+    }
+}
+
+/// h += l × depth, pixel by pixel.
+fn add_into(height: &mut HeightMap, large: &HeightMap, depth: f32) {
+    for (h, l) in height.data_mut().iter_mut().zip(large.data()) {
+        *h += l * depth;
+    }
+}
+
+/// `map` × `depth`: a normalised large-wrinkle map in height units.
+fn scaled(map: &HeightMap, depth: f32) -> Result<HeightMap, Error> {
+    let data = map.data().iter().map(|h| h * depth).collect();
+    HeightMap::from_vec(map.width_px(), map.height_px(), data)
+}
+
+impl LargeMap {
+    /// The heights in height units: the normalised map × `depth` (the project's
+    /// `large.depth`).
+    pub fn scaled(&self, depth: f32) -> Result<HeightMap, Error> {
+        scaled(&self.height, depth)
+    }
+}
+
+/// The error of an export with no layer baked.
+fn no_layer() -> Error {
+    Error::InvalidValue {
+        what: "bake".into(),
+        value: "no layer".into(),
+        expected: "at least one enabled layer (large wrinkles, pores, furrows or noise)".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,328 @@
+//! The uploaded inputs: height layers converted for the GPU, the mesh and its wireframe
+//! edges, the hair instances, and the skin bind group over them.
+
+use agesim_core::hair::HairInstances;
+use agesim_core::mesh::SurfaceScale;
+use agesim_core::{HeightMap, Mesh};
+use wgpu::util::DeviceExt as _;
+
+use crate::RenderError;
+use crate::f16::to_f16_bytes;
+use crate::mesh::MeshData;
+
+use super::{GpuMesh, Hair, Renderer, TileLayer, Upload};
+
+/// A height or mask texture (the view keeps its texture alive).
+pub(super) struct Layer {
+    view: wgpu::TextureView,
+}
+
+/// The unique edges of a triangle list as a line list (each edge once).
+fn edge_indices(indices: &[u32]) -> Vec<u32> {
+    let mut edges: Vec<(u32, u32)> = indices
+        .chunks_exact(3)
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    edges.into_iter().flat_map(|(a, b)| [a, b]).collect()
+}
+
+impl Renderer {
+    /// Uploads the head (positions, normals, UVs, tangents with sign; docs/models.md §1, §4) —
+    /// its once-subdivided copy for [`PomMode::Displacement`] follows on the first frame
+    /// in that mode — and measures its UV density so the tiles appear at their physical
+    /// size. `metres_per_unit` is the mesh's unit length
+    /// (1 for the default head), > 0.
+    ///
+    /// [`PomMode::Displacement`]: crate::PomMode::Displacement
+    pub fn upload_mesh(&mut self, mesh: &Mesh, metres_per_unit: f32) -> Result<(), RenderError> {
+        if !(metres_per_unit.is_finite() && metres_per_unit > 0.0) {
+            return Err(RenderError::OutOfRange {
+                what: "metres per unit",
+                value: metres_per_unit,
+                range: "(0, ∞)",
+            });
+        }
+        if mesh.indices().is_empty() || mesh.tangents().len() != mesh.vertex_count() {
+            return Err(RenderError::InvalidMesh(format!(
+                "{} triangles, {} vertices, {} tangents",
+                mesh.triangle_count(),
+                mesh.vertex_count(),
+                mesh.tangents().len()
+            )));
+        }
+        let scale = SurfaceScale::measure(mesh.positions(), mesh.uvs(), mesh.indices())
+            .ok_or_else(|| RenderError::InvalidMesh("every triangle has degenerate UVs".into()))?;
+        let data = MeshData::from_mesh(mesh);
+        self.mesh = Some(self.create_mesh("agesim mesh", &data));
+        let edges = edge_indices(mesh.indices());
+        self.wire_edges = Some((
+            self.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("agesim mesh edges"),
+                    contents: bytemuck::cast_slice(&edges),
+                    usage: wgpu::BufferUsages::INDEX,
+                }),
+            edges.len() as u32,
+        ));
+        self.displaced_mesh = None;
+        self.mesh_to_subdivide = Some(data);
+        self.surface_generation += 1;
+        self.surface_scale = scale;
+        self.metres_per_unit = metres_per_unit;
+        Ok(())
+    }
+
+    /// The uploaded mesh's measured UV density (mesh units per UV unit).
+    pub fn surface_scale(&self) -> SurfaceScale {
+        self.surface_scale
+    }
+
+    pub(super) fn create_mesh(&self, label: &str, data: &MeshData) -> GpuMesh {
+        let vertices = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label} vertices")),
+                contents: bytemuck::cast_slice(&data.vertices),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+        let indices = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{label} indices")),
+                contents: bytemuck::cast_slice(&data.indices),
+                usage: wgpu::BufferUsages::INDEX,
+            });
+        GpuMesh {
+            vertices,
+            indices,
+            index_count: data.indices.len() as u32,
+        }
+    }
+
+    /// Uploads the large-wrinkle heights over the mesh UV (docs/models.md §2, §5), normalised to
+    /// [0, 1] (values outside are clamped): 1 = the polygon's surface (wrinkle crest),
+    /// 0 = `disp_scale` below it. Stored as f16 heights only; the normals are derived in
+    /// the shader with the frame's `disp_scale`, so the lit relief always matches the
+    /// marched and the displaced one, at any age scaling of the heights.
+    pub fn upload_large_wrinkles(&mut self, heights01: &HeightMap) -> Result<(), RenderError> {
+        self.upload_prepared(&Upload::LargeWrinkles(&PreparedLayer::large_wrinkles(
+            heights01,
+        )))
+    }
+
+    /// Uploads a layer prepared on another thread (the editor's worker converts to f16
+    /// and builds mips there, so the drawing thread only copies bytes).
+    pub fn upload_prepared(&mut self, upload: &Upload<'_>) -> Result<(), RenderError> {
+        match *upload {
+            Upload::LargeWrinkles(layer) => {
+                self.large = self.create_layer("agesim large-wrinkle heights", layer)?;
+                self.large_generation += 1;
+            }
+            Upload::Tile { layer, tile } => match layer {
+                TileLayer::Micro => {
+                    self.micro = self.create_layer("agesim micro-relief tile", tile)?;
+                }
+                TileLayer::Fine => {
+                    self.fine = self.create_layer("agesim fine-wrinkle tile", tile)?;
+                }
+            },
+        }
+        self.skin_bind_group = None;
+        Ok(())
+    }
+
+    /// Uploads a tileable height tile: the skin micro-relief or the fine wrinkles. Its
+    /// size on the skin and its normal strength are the frame's
+    /// ([`crate::SkinParams::micro_tile`], [`crate::SkinParams::fine_tile`]).
+    pub fn upload_tile(
+        &mut self,
+        layer: TileLayer,
+        heights: &HeightMap,
+    ) -> Result<(), RenderError> {
+        self.upload_prepared(&Upload::Tile {
+            layer,
+            tile: &PreparedLayer::tile(heights),
+        })
+    }
+
+    /// Uploads the hair instances (docs/models.md §9: sorted by a_k, 32 bytes each) and keeps
+    /// their count table, so a frame draws the first count(t) in one instanced call.
+    pub fn upload_hair(&mut self, hairs: &HairInstances) {
+        if hairs.is_empty() {
+            self.hair = None;
+            return;
+        }
+        let instances = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("agesim hair instances"),
+                contents: hairs.as_bytes(),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+        self.hair = Some(Hair {
+            instances,
+            levels: hairs.levels().to_vec(),
+        });
+    }
+
+    fn create_layer(&self, label: &str, layer: &PreparedLayer) -> Result<Layer, RenderError> {
+        let max = self.device.limits().max_texture_dimension_2d;
+        let (w, h) = layer.size_px();
+        if w == 0 || h == 0 || w > max || h > max {
+            return Err(RenderError::InvalidSize {
+                what: "texture",
+                width: w,
+                height: h,
+                max,
+            });
+        }
+        Ok(create_r16f(&self.device, &self.queue, label, layer))
+    }
+
+    pub(super) fn skin_bind_group(&mut self) -> wgpu::BindGroup {
+        if let Some(bg) = &self.skin_bind_group {
+            return bg.clone();
+        }
+        let bg = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("agesim skin bind group"),
+            layout: &self.skin_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.frame_buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&self.large.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&self.micro.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&self.fine.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::Sampler(&self.surface_sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::Sampler(&self.tile_sampler),
+                },
+            ],
+        });
+        self.skin_bind_group = Some(bg.clone());
+        bg
+    }
+}
+
+/// A 1-channel f16 texture (filterable everywhere) holding `data` (w·h values), with
+/// `mips`, its box-filtered mip chain (halving while both sides are even):
+/// `textureSampleGrad` then averages micro-relief and fine wrinkles smaller than a pixel
+/// instead of aliasing them into speckle. The large-wrinkle map has no mips: POM marches
+/// the exact height field (`tests/pom_reference.rs`), and at ≈ 1 texel per pixel on a
+/// whole-head view it does not alias much.
+/// A height layer converted for the GPU: f16 texels and, for tiles, the box-filtered mip
+/// chain. Made on any thread ([`PreparedLayer::large_wrinkles`], [`PreparedLayer::tile`]),
+/// so the thread that draws only copies bytes ([`Renderer::upload_prepared`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedLayer {
+    width: u32,
+    height: u32,
+    levels: u32,
+    bytes: Vec<u8>,
+}
+
+impl PreparedLayer {
+    /// The large-wrinkle heights, clamped to [0, 1] (see
+    /// [`Renderer::upload_large_wrinkles`]), one level.
+    pub fn large_wrinkles(heights01: &HeightMap) -> Self {
+        let data: Vec<f32> = heights01.data().iter().map(|h| h.clamp(0.0, 1.0)).collect();
+        prepare_r16f((heights01.width_px(), heights01.height_px()), &data, false)
+    }
+
+    /// A tileable height tile with its mip chain (see [`Renderer::upload_tile`]).
+    pub fn tile(heights: &HeightMap) -> Self {
+        prepare_r16f(
+            (heights.width_px(), heights.height_px()),
+            heights.data(),
+            true,
+        )
+    }
+
+    /// (width, height) of level 0, texels.
+    pub fn size_px(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+}
+
+/// f16 bytes of `data` and, with `mips`, of its 2×2 box-filtered levels down to an odd
+/// side.
+pub(super) fn prepare_r16f((width, height): (u32, u32), data: &[f32], mips: bool) -> PreparedLayer {
+    let mut bytes = to_f16_bytes(data);
+    let mut levels = 1;
+    let (mut w, mut h) = (width as usize, height as usize);
+    let mut level: Vec<f32> = data.to_vec();
+    while mips && w % 2 == 0 && h % 2 == 0 && w > 1 && h > 1 {
+        let (nw, nh) = (w / 2, h / 2);
+        let mut next = Vec::with_capacity(nw * nh);
+        for y in 0..nh {
+            for x in 0..nw {
+                let at = |xx: usize, yy: usize| level[yy * w + xx];
+                next.push(
+                    0.25 * (at(2 * x, 2 * y)
+                        + at(2 * x + 1, 2 * y)
+                        + at(2 * x, 2 * y + 1)
+                        + at(2 * x + 1, 2 * y + 1)),
+                );
+            }
+        }
+        bytes.extend(to_f16_bytes(&next));
+        level = next;
+        (w, h) = (nw, nh);
+        levels += 1;
+    }
+    PreparedLayer {
+        width,
+        height,
+        levels,
+        bytes,
+    }
+}
+
+pub(super) fn create_r16f(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    layer: &PreparedLayer,
+) -> Layer {
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: layer.width,
+                height: layer.height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: layer.levels,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R16Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &layer.bytes,
+    );
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some(label),
+        ..Default::default()
+    });
+    Layer { view }
+}

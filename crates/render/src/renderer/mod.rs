@@ -1,0 +1,480 @@
+//! The long-lived renderer: pipelines, layouts and samplers made once; assets uploaded
+//! on request; per frame a skin shading pass and one instanced hair pass into its own
+//! colour + depth targets (the editor shows the colour target through a paint callback).
+//!
+//! The skin is drawn in two steps. The *surface pass* rasterises the mesh into a small
+//! G-buffer: per pixel the UV, its derivatives, the geometric frame and the depth
+//! (`fs_surface` in skin.wgsl). The *shading pass* runs the skin shader once per covered
+//! pixel from it (`fs_shade`), the eye direction coming from the pixel's view ray; a depth
+//! pass (`fs_depth`) restores the skin's depth for the hair and the wireframe. The surface pass runs only when what it stores
+//! changes (the camera, the size, the mesh, displacement): an age step or a re-baked map
+//! is one full-screen pass, whatever the mesh's triangle count. On a CPU rasteriser the
+//! head's 128k triangles cost more than shading the pixels they cover.
+
+mod layers;
+mod pipelines;
+mod readback;
+mod targets;
+
+use agesim_core::hair::AgeLevel;
+use agesim_core::mesh::SurfaceScale;
+
+use crate::RenderError;
+use crate::hair::{SEGMENTS, SPARSE_SEGMENTS, count_at, vertices_per_hair};
+use crate::mesh::{MeshData, subdivide};
+use crate::params::{FrameParams, PomMode};
+use crate::uniforms::{FrameContext, FrameUniform};
+
+pub use layers::PreparedLayer;
+
+use layers::{Layer, create_r16f, prepare_r16f};
+use pipelines::Pipelines;
+use targets::Targets;
+
+/// The colour format of headless renders ([`Renderer::render_to_image`]): 8-bit sRGB,
+/// so the hardware encodes and blending would happen in linear light.
+pub const COLOUR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The depth target's format.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Which tile an upload replaces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TileLayer {
+    /// Skin micro-relief ([P], docs/models.md §4).
+    Micro,
+    /// Fine wrinkles ([T] §5.2, docs/models.md §10).
+    Fine,
+}
+
+/// A prepared layer and where it goes ([`Renderer::upload_prepared`]).
+#[derive(Clone, Copy, Debug)]
+pub enum Upload<'a> {
+    /// The large-wrinkle heights ([`PreparedLayer::large_wrinkles`]).
+    LargeWrinkles(&'a PreparedLayer),
+    /// A tile ([`PreparedLayer::tile`]); where it lies on the skin is the frame's
+    /// ([`crate::SkinParams::micro_tile`], [`crate::SkinParams::fine_tile`]).
+    Tile {
+        layer: TileLayer,
+        tile: &'a PreparedLayer,
+    },
+}
+
+struct GpuMesh {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+}
+
+/// What the stored surface depends on: the camera, the targets and the mesh (a
+/// generation bumped when either is replaced), and when displacing, the depth and the
+/// large-wrinkle map that move the vertices.
+#[derive(Clone, Copy, PartialEq)]
+struct SurfaceKey {
+    clip_from_world: [[f32; 4]; 4],
+    camera_pos: [f32; 4],
+    generation: u64,
+    /// (displacement depth, large-map generation) in displacement mode.
+    displacement: Option<(f32, u64)>,
+}
+
+struct Hair {
+    instances: wgpu::Buffer,
+    levels: Vec<AgeLevel>,
+}
+
+/// The renderer. Create once per device; see the crate docs for the call order.
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    colour_format: wgpu::TextureFormat,
+    wire_pipeline: wgpu::RenderPipeline,
+    /// The uploaded mesh's edges (line list), for the wireframe overlay.
+    wire_edges: Option<(wgpu::Buffer, u32)>,
+    frame_buffer: wgpu::Buffer,
+    skin_layout: wgpu::BindGroupLayout,
+    /// Rasterises the mesh into the surface targets (`fs_surface`).
+    surface_pipeline: wgpu::RenderPipeline,
+    surface_layout: wgpu::BindGroupLayout,
+    /// Shades the stored surface in one full-screen triangle (`fs_shade`).
+    shade_pipeline: wgpu::RenderPipeline,
+    /// Writes the stored surface's depth into the depth target (`fs_depth`).
+    depth_pipeline: wgpu::RenderPipeline,
+    /// What the surface targets hold (None: nothing yet, or stale).
+    surface_key: Option<SurfaceKey>,
+    /// Bumped when the targets or the mesh are replaced (see [`SurfaceKey`]).
+    surface_generation: u64,
+    /// Bumped on every large-wrinkle upload (displacement moves the surface with it).
+    large_generation: u64,
+    /// Surface passes run so far ([`Renderer::surface_passes`]).
+    surface_passes: u64,
+    hair_pipeline: wgpu::RenderPipeline,
+    /// The hair pipeline reading every `sparse_hair_stride`-th instance (None where the
+    /// device allows no wider stride than one instance).
+    sparse_hair_pipeline: Option<wgpu::RenderPipeline>,
+    /// [`SPARSE_HAIR_STRIDE`], or less where the device's vertex stride limit is lower.
+    ///
+    /// [`SPARSE_HAIR_STRIDE`]: crate::SPARSE_HAIR_STRIDE
+    sparse_hair_stride: u32,
+    hair_bind_group: wgpu::BindGroup,
+    surface_sampler: wgpu::Sampler,
+    tile_sampler: wgpu::Sampler,
+    large: Layer,
+    micro: Layer,
+    fine: Layer,
+    /// Rebuilt lazily when a texture is replaced.
+    skin_bind_group: Option<wgpu::BindGroup>,
+    mesh: Option<GpuMesh>,
+    /// The subdivided copy, made on the first displacement frame (4× the triangles:
+    /// editors that never use the mode never pay for it).
+    displaced_mesh: Option<GpuMesh>,
+    /// The uploaded mesh kept on the CPU until it is subdivided.
+    mesh_to_subdivide: Option<MeshData>,
+    surface_scale: SurfaceScale,
+    metres_per_unit: f32,
+    hair: Option<Hair>,
+    targets: Option<Targets>,
+    /// Bumped whenever the targets are recreated (see [`Renderer::target_generation`]).
+    target_generation: u64,
+}
+
+impl Renderer {
+    /// Builds pipelines, layouts, samplers and placeholder layers (flat heights, full
+    /// mask) for targets of `colour_format`. An sRGB format gets linear output encoded
+    /// by the hardware; `Rgba8Unorm`/`Bgra8Unorm` get sRGB-encoded values from the
+    /// shader; float formats get linear values.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        colour_format: wgpu::TextureFormat,
+    ) -> Result<Self, RenderError> {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("agesim frame uniform"),
+            size: std::mem::size_of::<FrameUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let Pipelines {
+            skin_layout,
+            surface_pipeline,
+            surface_layout,
+            shade_pipeline,
+            depth_pipeline,
+            wire_pipeline,
+            hair_pipeline,
+            sparse_hair_pipeline,
+            sparse_hair_stride,
+            hair_bind_group,
+            surface_sampler,
+            tile_sampler,
+        } = Pipelines::build(device, colour_format, &frame_buffer);
+
+        let flat = |label: &str, value: f32| {
+            create_r16f(device, queue, label, &prepare_r16f((1, 1), &[value], false))
+        };
+        let large = flat("agesim large-wrinkle heights (placeholder)", 1.0);
+        let micro = flat("agesim micro-relief tile (placeholder)", 0.0);
+        let fine = flat("agesim fine-wrinkle tile (placeholder)", 0.0);
+
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(RenderError::Gpu(err.to_string()));
+        }
+        Ok(Self {
+            device: device.clone(),
+            queue: queue.clone(),
+            colour_format,
+            frame_buffer,
+            skin_layout,
+            surface_pipeline,
+            surface_layout,
+            shade_pipeline,
+            depth_pipeline,
+            surface_key: None,
+            surface_generation: 0,
+            large_generation: 0,
+            surface_passes: 0,
+            hair_pipeline,
+            sparse_hair_pipeline,
+            sparse_hair_stride,
+            wire_pipeline,
+            wire_edges: None,
+            hair_bind_group,
+            surface_sampler,
+            tile_sampler,
+            large,
+            micro,
+            fine,
+            skin_bind_group: None,
+            mesh: None,
+            displaced_mesh: None,
+            mesh_to_subdivide: None,
+            surface_scale: SurfaceScale {
+                units_per_u: 1.0,
+                units_per_v: 1.0,
+            },
+            metres_per_unit: 1.0,
+            hair: None,
+            targets: None,
+            target_generation: 0,
+        })
+    }
+
+    /// The colour format the pipelines were built for.
+    pub fn colour_format(&self) -> wgpu::TextureFormat {
+        self.colour_format
+    }
+
+    /// One hair in how many a sparse frame draws (`HairShading::sparse`); 1 where the
+    /// device cannot draw sparse frames.
+    pub fn sparse_hair_stride(&self) -> u32 {
+        self.sparse_hair_stride
+    }
+
+    /// count(t): the hairs drawn at age `t` (0 without hair).
+    pub fn hair_count(&self, t: f32) -> u32 {
+        self.hair.as_ref().map_or(0, |h| count_at(&h.levels, t))
+    }
+
+    /// Records one frame at `size_px` into the renderer's own targets: the skin pass,
+    /// then (if enabled and uploaded) the hair pass with count(`params.age`) instances
+    /// in one draw. Writes the frame uniform through the queue, so submit `encoder`
+    /// after this call, and encode one view per submission (a second `encode` before the
+    /// submit would overwrite the first's uniform). The stored surface counts as drawn
+    /// once recorded: an encoder dropped without being submitted leaves it stale until
+    /// the view, the size or the mesh change. Draws only the background until a mesh is
+    /// uploaded.
+    pub fn encode(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        params: &FrameParams,
+        size_px: (u32, u32),
+    ) -> Result<(), RenderError> {
+        self.ensure_targets(size_px)?;
+        if params.skin.pom_mode == PomMode::Displacement
+            && let Some(data) = self.mesh_to_subdivide.take()
+        {
+            self.displaced_mesh =
+                Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
+            self.surface_generation += 1;
+        }
+        let (micro, fine) = (params.skin.micro_tile, params.skin.fine_tile);
+        for (what, value, ok) in [
+            ("tile size (m)", micro.size_m, micro.size_m > 0.0),
+            ("tile size (m)", fine.size_m, fine.size_m > 0.0),
+            (
+                "tile normal strength",
+                micro.strength,
+                micro.strength >= 0.0,
+            ),
+            ("tile normal strength", fine.strength, fine.strength >= 0.0),
+        ] {
+            if !(value.is_finite() && ok) {
+                let range = if what.starts_with("tile size") {
+                    "(0, ∞)"
+                } else {
+                    "[0, ∞)"
+                };
+                return Err(RenderError::OutOfRange { what, value, range });
+            }
+        }
+        let ctx = FrameContext {
+            size_px,
+            encode_srgb: self.encodes_srgb(),
+            micro_repeats: self
+                .surface_scale
+                .repeats(self.metres_per_unit, micro.size_m),
+            fine_repeats: self
+                .surface_scale
+                .repeats(self.metres_per_unit, fine.size_m),
+            micro_strength: micro.strength,
+            fine_strength: fine.strength,
+            mesh_units_per_uv: 0.5
+                * (self.surface_scale.units_per_u + self.surface_scale.units_per_v),
+        };
+        let uniform = FrameUniform::new(params, &ctx);
+        self.queue
+            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&uniform));
+        let skin_bind_group = self.skin_bind_group();
+        let Some(targets) = &self.targets else {
+            return Ok(());
+        };
+        let bg = params.background;
+        let encode = self.encodes_srgb();
+        let to_target = |c: f32| {
+            if !encode {
+                f64::from(c)
+            } else {
+                f64::from(if c <= 0.003_130_8 {
+                    c * 12.92
+                } else {
+                    1.055 * c.powf(1.0 / 2.4) - 0.055
+                })
+            }
+        };
+        let mesh = if params.skin.pom_mode == PomMode::Displacement {
+            self.displaced_mesh.as_ref()
+        } else {
+            self.mesh.as_ref()
+        };
+        let key = SurfaceKey {
+            clip_from_world: uniform.clip_from_world,
+            camera_pos: uniform.camera_pos,
+            generation: self.surface_generation,
+            displacement: (params.skin.pom_mode == PomMode::Displacement)
+                .then_some((uniform.disp[1], self.large_generation)),
+        };
+        if self.surface_key != Some(key) {
+            // The surface pass: the mesh into the G-buffer. The first target's alpha (the
+            // depth) is cleared to 2: the background.
+            let clear = |a: f64| wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color {
+                    a,
+                    ..wgpu::Color::TRANSPARENT
+                }),
+                store: wgpu::StoreOp::Store,
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("agesim surface pass"),
+                color_attachments: &[0, 1, 2].map(|k| {
+                    Some(wgpu::RenderPassColorAttachment {
+                        view: &targets.surface_views[k],
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: clear(if k == 0 { 2.0 } else { 0.0 }),
+                    })
+                }),
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.surface_depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            if let Some(mesh) = mesh {
+                pass.set_pipeline(&self.surface_pipeline);
+                pass.set_bind_group(0, &skin_bind_group, &[]);
+                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+            }
+            drop(pass);
+            self.surface_key = Some(key);
+            self.surface_passes += 1;
+        }
+        {
+            // The shading pass: the background, then the skin from the stored surface.
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("agesim skin shading pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &targets.colour_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color {
+                            r: to_target(bg.x),
+                            g: to_target(bg.y),
+                            b: to_target(bg.z),
+                            a: 1.0,
+                        }),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.shade_pipeline);
+            pass.set_bind_group(0, &skin_bind_group, &[]);
+            pass.set_bind_group(1, &targets.surface_bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        let wire = params.wireframe && params.skin.pom_mode != PomMode::Displacement;
+        let hair = self.hair.as_ref().and_then(|hair| {
+            let count = count_at(&hair.levels, params.age);
+            if !params.hair.enabled || count == 0 {
+                return None;
+            }
+            // Sparse: instances 0, S, 2S, … of the first `count` (the last one read,
+            // (⌈count/S⌉ − 1)·S, is below count).
+            Some(match &self.sparse_hair_pipeline {
+                Some(sparse) if params.hair.sparse => (
+                    hair,
+                    sparse,
+                    count.div_ceil(self.sparse_hair_stride),
+                    SPARSE_SEGMENTS,
+                ),
+                _ => (hair, &self.hair_pipeline, count, SEGMENTS),
+            })
+        });
+        if !wire && hair.is_none() {
+            return Ok(());
+        }
+        // The hair and the wireframe are tested against the skin's depth and write their
+        // own: the skin's depth is restored from the stored surface into the depth target
+        // (a draw, not a depth-texture copy, which OpenGL backends cannot do).
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("agesim skin depth pass"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.depth_pipeline);
+            pass.set_bind_group(0, &skin_bind_group, &[]);
+            pass.set_bind_group(1, &targets.surface_bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("agesim hair and wireframe pass"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &targets.colour_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if wire && let (Some(mesh), Some((edges, count))) = (&self.mesh, &self.wire_edges) {
+            pass.set_pipeline(&self.wire_pipeline);
+            pass.set_bind_group(0, &skin_bind_group, &[]);
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_index_buffer(edges.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..*count, 0, 0..1);
+        }
+        if let Some((hair, pipeline, drawn, segments)) = hair {
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &self.hair_bind_group, &[]);
+            pass.set_vertex_buffer(0, hair.instances.slice(..));
+            pass.draw(0..vertices_per_hair(segments), 0..drawn);
+        }
+        Ok(())
+    }
+}

@@ -22,15 +22,16 @@ mod windows;
 pub use document::Pending;
 pub use shortcuts::SHORTCUTS;
 
+use super::document::Document;
 use super::export_ui::{ExportRun, ExportSettings};
 use super::fields_ui;
 use super::files::{Dialogs, Io, NativeDialogs};
-use super::history::History;
 use super::map_view::{self, MapKind, MapViewState};
 use super::notices::Notices;
+use super::session::Session;
 use super::timeline::{self, Playback};
 use super::viewport::Viewport;
-use super::worker::{Job, Outcome, Snapshot, Worker};
+use super::worker::{Job, Outcome, Snapshot};
 
 /// Map sides while a slider or fibre is being dragged (and while the age plays).
 pub const PREVIEW_PX: u32 = 512;
@@ -116,31 +117,16 @@ struct Windows {
 }
 
 pub struct EditorApp {
-    project: Project,
-    /// The last project the worker accepted: restored when an edit is refused.
-    last_good: Project,
+    /// The project, its edited wrinkle files, its history and revisions.
+    doc: Document,
+    /// The bake worker and its last snapshot.
+    session: Session,
     /// `Project::default()`, what the layer panel marks changes against.
     defaults: Project,
-    /// The wrinkle files as edited here (`None` until the first fibre edit).
-    wrinkles: Option<Vec<WrinkleSource>>,
-    worker: Worker,
-    snapshot: Snapshot,
-    reported: u64,
-    last_bake_ms: f64,
-    last_what: String,
     notices: Notices,
     /// egui's clock, seconds (for the toasts).
     now: f64,
     ctx: egui::Context,
-    history: History,
-    /// The document's revision, the newest handed out, the saved one and the one being
-    /// saved (see [`History`]).
-    revision: u64,
-    next_revision: u64,
-    saved_revision: u64,
-    saving_revision: Option<u64>,
-    /// The project file of the document.
-    path: Option<PathBuf>,
     dialogs: Arc<dyn Dialogs>,
     io: Io,
     /// The unsaved-changes prompt, and what runs after a save it asked for.
@@ -161,7 +147,6 @@ pub struct EditorApp {
     persisted: Persisted,
     adapter: String,
     viewport: Option<Viewport>,
-    viewport_b: Option<Viewport>,
     /// eframe's wgpu state (device, queue, egui's renderer), kept from creation so the
     /// view also draws where the frame does not expose it (egui_kittest).
     render_state: Option<eframe::egui_wgpu::RenderState>,
@@ -173,8 +158,6 @@ pub struct EditorApp {
     /// per map, not once per frame). Weak: the old map's data is freed as usual, but its
     /// address is not reused while this refers to it.
     deepest: (std::sync::Weak<agesim_core::scene::LargeMap>, f32),
-    /// An age change waits for the worker (see [`EditorApp::set_age`]).
-    age_pending: bool,
     last_hover_uv: Option<[f32; 2]>,
 }
 
@@ -206,10 +189,6 @@ impl EditorApp {
             .wgpu_render_state
             .as_ref()
             .and_then(|rs| Viewport::new(rs).ok());
-        let viewport_b = cc
-            .wgpu_render_state
-            .as_ref()
-            .and_then(|rs| Viewport::new(rs).ok());
         let mut project = project;
         if let Some(y) = options.age_years {
             project.age.t = project.age.mapping().t(y);
@@ -221,7 +200,7 @@ impl EditorApp {
             persisted.layout = Layout::Head;
         }
         let ctx = cc.egui_ctx.clone();
-        let worker = Worker::spawn(move || ctx.request_repaint());
+        let session = Session::new(move || ctx.request_repaint());
         let ctx = cc.egui_ctx.clone();
         let io = Io::new(move || ctx.request_repaint());
         let dialogs = options
@@ -233,24 +212,12 @@ impl EditorApp {
             .clone()
             .or_else(|| eframe::storage_dir("agesim"));
         let mut app = Self {
-            last_good: project.clone(),
+            doc: Document::new(project, path),
+            session,
             defaults: Project::default(),
-            project,
-            wrinkles: None,
-            worker,
-            snapshot: Snapshot::default(),
-            reported: 0,
-            last_bake_ms: 0.0,
-            last_what: String::new(),
             notices: Notices::default(),
             now: 0.0,
             ctx: cc.egui_ctx.clone(),
-            history: History::default(),
-            revision: 0,
-            next_revision: 0,
-            saved_revision: 0,
-            saving_revision: None,
-            path,
             dialogs,
             io,
             prompt: None,
@@ -268,14 +235,12 @@ impl EditorApp {
             persisted,
             adapter,
             viewport,
-            viewport_b,
             render_state: cc.wgpu_render_state.clone(),
             options,
             frames_with_maps: 0,
             screenshot_requested: false,
             bench: None,
             deepest: (std::sync::Weak::new(), 0.0),
-            age_pending: false,
             last_hover_uv: None,
         };
         if app.options.bench_ui {
@@ -286,7 +251,7 @@ impl EditorApp {
         if let Some(e) = error {
             app.error(format!("Could not open the project: {e}"));
         }
-        if let Some(p) = &app.path {
+        if let Some(p) = &app.doc.path {
             let p = p.clone();
             app.persisted.recent.retain(|r| r != &p);
             app.persisted.recent.insert(0, p);
@@ -299,22 +264,25 @@ impl EditorApp {
 
     /// The current document, for tests.
     pub fn project(&self) -> &Project {
-        &self.project
+        &self.doc.project
     }
 
     /// The last finished bake, for tests.
     pub fn snapshot(&self) -> &Snapshot {
-        &self.snapshot
+        &self.session.snapshot
     }
 
     /// Whether the newest request has been baked.
     pub fn idle(&self) -> bool {
-        !self.worker.busy(self.reported)
+        !self.session.busy()
     }
 
     /// The fibres as currently edited.
     pub fn wrinkles(&self) -> &[WrinkleSource] {
-        self.wrinkles.as_deref().unwrap_or(&self.snapshot.wrinkles)
+        self.doc
+            .wrinkles
+            .as_deref()
+            .unwrap_or(&self.session.snapshot.wrinkles)
     }
 
     pub fn map_view_mut(&mut self) -> &mut MapViewState {
@@ -336,7 +304,7 @@ impl EditorApp {
         let request = BakeRequest {
             large_size_px: large,
             micro_size_px: micro,
-            t: self.project.age.t,
+            t: self.doc.project.age.t,
             // The renderer repeats the micro-relief over the head: no seams where tiles
             // meet. The document's own `tile` is what map exports use.
             tileable: true,
@@ -348,16 +316,19 @@ impl EditorApp {
             one_off: false,
             micro_normals: self.persisted.map_view.kind == MapKind::MicroNormal,
         };
-        self.worker.submit(Job {
+        self.session.worker.submit(Job {
             id: 0,
-            project: self.project.clone(),
-            wrinkles: self.wrinkles.clone(),
+            project: self.doc.project.clone(),
+            wrinkles: self.doc.wrinkles.clone(),
             request,
             what: what.to_owned(),
-            compare_t: self
-                .persisted
-                .compare
-                .then(|| self.project.age.mapping().t(self.persisted.compare_years)),
+            compare_t: self.persisted.compare.then(|| {
+                self.doc
+                    .project
+                    .age
+                    .mapping()
+                    .t(self.persisted.compare_years)
+            }),
         });
     }
 
@@ -365,12 +336,12 @@ impl EditorApp {
     /// ([`Project::set_field`]: that field's type and range, then the rules between
     /// fields).
     fn apply(&mut self, path: &str, value: Value, dragging: bool) {
-        let mut p = self.project.clone();
+        let mut p = self.doc.project.clone();
         match p.set_field(path, value) {
-            Ok(()) if p == self.project => {}
+            Ok(()) if p == self.doc.project => {}
             Ok(()) => {
                 self.record(path, path, dragging);
-                self.project = p;
+                self.doc.project = p;
                 self.submit(dragging, path);
             }
             Err(e) => self.error(e.to_string()),
@@ -379,52 +350,52 @@ impl EditorApp {
 
     /// Sets the age t and bakes (a preview while it is still moving).
     pub fn set_age(&mut self, t: f32, moving: bool) {
-        self.project.age.t = t.clamp(0.0, 1.0);
+        self.doc.project.age.t = t.clamp(0.0, 1.0);
         // While the age moves, bake only when the worker is free: the view shows the
         // newest age at once (hair, fine wrinkles, paling are uniforms) and the maps
         // follow, instead of a bake per frame competing with drawing for the cores.
-        if moving && self.worker.busy(self.reported) {
-            self.age_pending = true;
+        if moving && self.session.busy() {
+            self.session.age_pending = true;
             return;
         }
-        self.age_pending = false;
-        let years = self.project.age.mapping().years(self.project.age.t);
+        self.session.age_pending = false;
+        let years = self.doc.project.age.mapping().years(self.doc.project.age.t);
         self.submit(moving, &format!("age {years:.0} years"));
     }
 
     fn poll_worker(&mut self) {
-        for report in self.worker.poll() {
-            self.reported = self.reported.max(report.id);
-            self.last_bake_ms = report.ms;
-            self.last_what = report.what;
+        for report in self.session.worker.poll() {
+            self.session.reported = self.session.reported.max(report.id);
+            self.session.last_bake_ms = report.ms;
+            self.session.last_what = report.what;
             match report.outcome {
                 Outcome::Done { snapshot, .. } => {
                     if let Some(p) = &snapshot.project {
-                        self.last_good = p.clone();
+                        self.doc.last_good = p.clone();
                     }
-                    self.snapshot = *snapshot;
+                    self.session.snapshot = *snapshot;
                 }
                 Outcome::Failed(message) => {
                     // Keep the previous state whole: the document goes back to what baked.
                     self.error(format!("{message}\n(the previous state is kept)"));
-                    self.project = self.last_good.clone();
+                    self.doc.project = self.doc.last_good.clone();
                     // The refused change leaves no undo step and no modified mark.
-                    let good = &self.last_good;
-                    if let Some(doc) = self.history.discard_last_if(|d| &d.project == good) {
-                        self.revision = doc.revision;
-                        self.wrinkles = doc.wrinkles;
+                    let good = &self.doc.last_good;
+                    if let Some(doc) = self.doc.history.discard_last_if(|d| &d.project == good) {
+                        self.doc.revision = doc.revision;
+                        self.doc.wrinkles = doc.wrinkles;
                     }
                 }
             }
         }
-        if self.age_pending && !self.worker.busy(self.reported) {
-            self.set_age(self.project.age.t, true);
+        if self.session.age_pending && !self.session.busy() {
+            self.set_age(self.doc.project.age.t, true);
         }
     }
 
     /// The UV layout overlay's texture, made once per mesh.
     fn layout_texture(&mut self, ctx: &egui::Context) -> Option<egui::TextureHandle> {
-        let image = self.snapshot.images.uv_layout.clone()?;
+        let image = self.session.snapshot.images.uv_layout.clone()?;
         let stamp = Arc::as_ptr(&image) as usize;
         match &mut self.layout_texture {
             Some((t, s)) if *s == stamp => Some(t.clone()),
@@ -442,7 +413,7 @@ impl EditorApp {
 
     /// The texture of `kind`, remade when the snapshot's picture changed.
     fn texture(&mut self, ctx: &egui::Context, kind: MapKind) -> Option<egui::TextureHandle> {
-        let images = &self.snapshot.images;
+        let images = &self.session.snapshot.images;
         let image = match kind {
             MapKind::LargeHeight => images.large_height.clone(),
             MapKind::LargeNormal => images.large_normal.clone(),
@@ -521,12 +492,12 @@ impl eframe::App for EditorApp {
             .frame(side)
             .resizable(false)
             .show(ui, |ui| {
-                timeline::timeline_ui(ui, &self.project, &mut self.persisted.playback)
+                timeline::timeline_ui(ui, &self.doc.project, &mut self.persisted.playback)
             })
             .inner;
         if let Some((t, moving)) = timeline_edit.t {
             // A scrub is an edit (one step per drag); playback is not.
-            if !self.persisted.playback.playing && t != self.project.age.t {
+            if !self.persisted.playback.playing && t != self.doc.project.age.t {
                 self.record("age", "age", moving);
             }
             self.set_age(t, moving);
@@ -536,6 +507,7 @@ impl eframe::App for EditorApp {
         }
         // Edited fibres: the panel lists the files being edited, not "(built-in)".
         let edited: Option<Vec<&str>> = self
+            .doc
             .wrinkles
             .as_ref()
             .map(|w| w.iter().map(|w| w.name.as_str()).collect());
@@ -547,7 +519,12 @@ impl eframe::App for EditorApp {
                 ui.heading("Layers");
                 egui::ScrollArea::vertical()
                     .show(ui, |ui| {
-                        fields_ui::layers_ui(ui, &self.project, &self.defaults, edited.as_deref())
+                        fields_ui::layers_ui(
+                            ui,
+                            &self.doc.project,
+                            &self.defaults,
+                            edited.as_deref(),
+                        )
                     })
                     .inner
             })
@@ -580,10 +557,7 @@ impl eframe::App for EditorApp {
         let moving = self.persisted.playback.playing
             || ui.input(|i| i.pointer.any_down())
             || self.bench.as_ref().is_some_and(|b| b.dragging());
-        for v in [&mut self.viewport, &mut self.viewport_b]
-            .into_iter()
-            .flatten()
-        {
+        if let Some(v) = &mut self.viewport {
             v.scale = if moving { 1.0 / 3.0 } else { 1.0 };
         }
         let mut compare_changed = false;
@@ -618,7 +592,7 @@ impl eframe::App for EditorApp {
                     if ui.button("frame head").clicked()
                         && let Some(v) = &mut self.viewport
                     {
-                        v.reset(&mut self.project);
+                        v.reset(&mut self.doc.project);
                     }
                 });
                 ui.label(
@@ -643,10 +617,9 @@ impl eframe::App for EditorApp {
                 };
                 if let (Some(r), Some(viewport), Some(rs)) = (head_rect, &mut self.viewport, &render_state) {
                     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
-                    let rect = viewport.ui(&mut child, rs, &self.snapshot, &mut self.project);
+                    let rect = viewport.ui(&mut child, rs, &self.session.snapshot, &mut self.doc.project);
                     if self.persisted.compare {
-                        let pan = viewport.pan();
-                        self.compare_ui(&mut child, rs, rect, pan);
+                        self.compare_ui(&mut child, rs, rect);
                     }
                 }
                 let mut edit = None;
@@ -676,7 +649,7 @@ impl eframe::App for EditorApp {
             let hover = self.persisted.map_view.hover_uv;
             if hover != self.last_hover_uv {
                 self.last_hover_uv = hover;
-                v.marker = match (hover, &self.snapshot.mesh) {
+                v.marker = match (hover, &self.session.snapshot.mesh) {
                     (Some(uv), Some(mesh)) => {
                         super::pick::uv_to_surface(mesh, glam::Vec2::from(uv)).map(|p| p.position)
                     }
@@ -696,7 +669,7 @@ impl eframe::App for EditorApp {
                     &format!("fibre {}/{}", e.file, e.group),
                     e.dragging,
                 );
-                self.wrinkles = Some(w);
+                self.doc.wrinkles = Some(w);
                 self.submit(e.dragging, "fibre");
             }
         }

@@ -4,6 +4,7 @@
 
 mod app;
 mod bench_ui;
+mod document;
 pub mod export_ui;
 pub mod fields_ui;
 pub mod files;
@@ -11,6 +12,7 @@ pub mod history;
 pub mod map_view;
 mod notices;
 pub mod pick;
+mod session;
 pub mod timeline;
 pub mod viewport;
 pub mod worker;

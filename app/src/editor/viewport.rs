@@ -10,7 +10,7 @@
 use std::sync::Arc;
 
 use agesim_core::project::Project;
-use agesim_render::Renderer;
+use agesim_render::{FrameParams, Renderer, ViewId};
 use eframe::egui_wgpu;
 use egui::{Rect, Sense};
 use glam::Vec3;
@@ -24,6 +24,32 @@ use crate::view::{self, Uploaded};
 /// ≈ 29 ms of every frame on llvmpipe at 1280×800.
 const VIEW_FORMAT: eframe::wgpu::TextureFormat = eframe::wgpu::TextureFormat::Rgba8Unorm;
 
+/// The panes of [`Viewport::panes`].
+const MAIN: usize = 0;
+const COMPARE: usize = 1;
+
+/// One of the renderer's views as shown: what it was given, the key of its last frame
+/// and the blit's bind group for its current colour target.
+struct Pane {
+    view: ViewId,
+    /// The compare pane tracks only its own layers (the large-wrinkle map, the
+    /// micro-relief tile); the main pane also the shared mesh, fine tile and hair.
+    uploaded: Uploaded,
+    last: Option<(FrameParams, [u32; 2], Uploaded, Uploaded)>,
+    shown: Option<(u64, eframe::wgpu::BindGroup)>,
+}
+
+impl Pane {
+    fn new(view: ViewId) -> Self {
+        Self {
+            view,
+            uploaded: Uploaded::default(),
+            last: None,
+            shown: None,
+        }
+    }
+}
+
 pub struct Viewport {
     /// Resolution scale of the next frames (1 = full; lower while the age plays or the
     /// view is dragged, so the view keeps up on slow adapters; the image is upscaled).
@@ -32,12 +58,13 @@ pub struct Viewport {
     /// Shows the colour target in egui's pass, with its bind group for the current
     /// target (remade when the renderer recreates its targets).
     blit: Arc<agesim_render::Blit>,
-    shown: Option<(u64, eframe::wgpu::BindGroup)>,
-    uploaded: Uploaded,
+    /// The renderer's views as shown: [`MAIN`] the document's age, [`COMPARE`] (made
+    /// on the first compare frame) the compare age, with its own targets and
+    /// age-dependent layers on the same renderer.
+    panes: Vec<Pane>,
     /// The head's centre, the orbit's target (mesh units).
     centre: Vec3,
     pan: Vec3,
-    last: Option<(agesim_render::FrameParams, [u32; 2], Uploaded)>,
     /// Time to encode and submit the last frame, ms.
     pub encode_ms: f64,
     /// The hairs of the last frame's age (count(t)).
@@ -58,11 +85,9 @@ impl Viewport {
             scale: 1.0,
             renderer: Renderer::new(&rs.device, &rs.queue, VIEW_FORMAT)?,
             blit: Arc::new(agesim_render::Blit::new(&rs.device, rs.target_format)),
-            shown: None,
-            uploaded: Uploaded::default(),
+            panes: vec![Pane::new(ViewId::MAIN)],
             centre: Vec3::ZERO,
             pan: Vec3::ZERO,
-            last: None,
             encode_ms: 0.0,
             hairs_drawn: 0,
             sparse_hair: 1,
@@ -73,19 +98,24 @@ impl Viewport {
         })
     }
 
-    /// Uploads what the snapshot brought that the GPU does not have yet.
-    fn upload(&mut self, snapshot: &Snapshot, project: &Project) {
-        if let Some(mesh) = &snapshot.layers.mesh
-            && self.mesh.as_ref().is_none_or(|m| !Arc::ptr_eq(m, mesh))
-        {
-            self.centre = mesh.bounds().centre();
-            self.mesh = Some(mesh.clone());
-        }
-        let mpu = project.mesh.metres_per_unit;
-        if let Err(e) = self
-            .uploaded
-            .upload(&mut self.renderer, &snapshot.layers, mpu)
-        {
+    /// Uploads what the snapshot brought that pane `i`'s view does not have yet.
+    fn upload(&mut self, i: usize, snapshot: &Snapshot, project: &Project) {
+        let pane = &mut self.panes[i];
+        let result = if i == MAIN {
+            if let Some(mesh) = &snapshot.layers.mesh
+                && self.mesh.as_ref().is_none_or(|m| !Arc::ptr_eq(m, mesh))
+            {
+                self.centre = mesh.bounds().centre();
+                self.mesh = Some(mesh.clone());
+            }
+            let mpu = project.mesh.metres_per_unit;
+            pane.uploaded
+                .upload(&mut self.renderer, &snapshot.layers, mpu)
+        } else {
+            pane.uploaded
+                .upload_age_layers(&mut self.renderer, pane.view, &snapshot.layers)
+        };
+        if let Err(e) = result {
             self.error = Some(e.to_string());
         }
     }
@@ -156,19 +186,19 @@ impl Viewport {
         camera.clip_from_world(rect.width() / rect.height().max(1.0))
     }
 
-    /// The orbit's pan offset (mesh units), to keep a second view in step.
-    pub fn pan(&self) -> Vec3 {
-        self.pan
-    }
-
-    pub fn set_pan(&mut self, pan: Vec3) {
-        self.pan = pan;
-    }
-
-    /// Shows the latest frame over `rect`, through `painter`'s clip rectangle (the compare
-    /// view shows the part right of its divider).
+    /// Shows the latest frame over `rect`, through `painter`'s clip rectangle.
     pub fn show(&self, painter: &egui::Painter, rect: Rect) {
-        if let Some((_, bind_group)) = &self.shown {
+        self.show_pane(MAIN, painter, rect);
+    }
+
+    /// Shows the compare age's latest frame over `rect`, through `painter`'s clip
+    /// rectangle (the part right of the divider).
+    pub fn show_compare(&self, painter: &egui::Painter, rect: Rect) {
+        self.show_pane(COMPARE, painter, rect);
+    }
+
+    fn show_pane(&self, i: usize, painter: &egui::Painter, rect: Rect) {
+        if let Some((_, bind_group)) = self.panes.get(i).and_then(|p| p.shown.as_ref()) {
             painter.add(egui_wgpu::Callback::new_paint_callback(
                 rect,
                 ShowFrame {
@@ -189,9 +219,39 @@ impl Viewport {
         project: &Project,
         rect: Rect,
     ) -> bool {
-        self.upload(snapshot, project);
+        self.render_pane(MAIN, ctx, rs, snapshot, project, rect)
+    }
+
+    /// [`Viewport::render`] of the compare age (`snapshot`: the compare scene's, `project`:
+    /// the document at the compare age), into a second view of the same renderer: the
+    /// mesh, the hair and the fine tile are not uploaded twice.
+    pub fn render_compare(
+        &mut self,
+        ctx: &egui::Context,
+        rs: &egui_wgpu::RenderState,
+        snapshot: &Snapshot,
+        project: &Project,
+        rect: Rect,
+    ) -> bool {
+        if self.panes.len() <= COMPARE {
+            let view = self.renderer.add_view();
+            self.panes.push(Pane::new(view));
+        }
+        self.render_pane(COMPARE, ctx, rs, snapshot, project, rect)
+    }
+
+    fn render_pane(
+        &mut self,
+        i: usize,
+        ctx: &egui::Context,
+        rs: &egui_wgpu::RenderState,
+        snapshot: &Snapshot,
+        project: &Project,
+        rect: Rect,
+    ) -> bool {
+        self.upload(i, snapshot, project);
         if snapshot.layers.mesh.is_none() {
-            return self.shown.is_some();
+            return self.panes[i].shown.is_some();
         }
         // The age shown is the document's (every age-dependent number follows it at
         // once); the maps are the last baked ones.
@@ -210,26 +270,37 @@ impl Viewport {
             pixels(rect.left(), rect.right()).clamp(16, 4096),
             pixels(rect.top(), rect.bottom()).clamp(16, 4096),
         ];
-        let key = (params, size, self.uploaded);
-        if self.last.as_ref() != Some(&key) {
-            let start = std::time::Instant::now();
-            let mut encoder =
-                rs.device
-                    .create_command_encoder(&eframe::wgpu::CommandEncoderDescriptor {
-                        label: Some("agesim editor 3D view"),
-                    });
-            match self
-                .renderer
-                .encode(&mut encoder, &params, (size[0], size[1]))
-            {
-                Ok(()) => {
-                    rs.queue.submit([encoder.finish()]);
-                    let generation = self.renderer.target_generation();
-                    if self.shown.as_ref().is_none_or(|(g, _)| *g != generation)
-                        && let Some(view) = self.renderer.colour_view()
-                    {
-                        self.shown = Some((generation, self.blit.bind(&rs.device, view)));
-                    }
+        // The shared layers are the main pane's: a change there redraws both.
+        let key = (
+            params,
+            size,
+            self.panes[MAIN].uploaded,
+            self.panes[i].uploaded,
+        );
+        if self.panes[i].last.as_ref() == Some(&key) {
+            return self.panes[i].shown.is_some();
+        }
+        let start = std::time::Instant::now();
+        let mut encoder =
+            rs.device
+                .create_command_encoder(&eframe::wgpu::CommandEncoderDescriptor {
+                    label: Some("agesim editor 3D view"),
+                });
+        let view = self.panes[i].view;
+        match self
+            .renderer
+            .encode_view(view, &mut encoder, &params, (size[0], size[1]))
+        {
+            Ok(()) => {
+                rs.queue.submit([encoder.finish()]);
+                let generation = self.renderer.target_generation_of(view);
+                let pane = &mut self.panes[i];
+                if pane.shown.as_ref().is_none_or(|(g, _)| *g != generation)
+                    && let Some(colour) = self.renderer.colour_view_of(view)
+                {
+                    pane.shown = Some((generation, self.blit.bind(&rs.device, colour)));
+                }
+                if i == MAIN {
                     self.hairs_drawn = if params.hair.enabled {
                         self.renderer.hair_count(params.age)
                     } else {
@@ -242,12 +313,14 @@ impl Viewport {
                     };
                     self.error = None;
                 }
-                Err(e) => self.error = Some(e.to_string()),
             }
-            self.encode_ms = start.elapsed().as_secs_f64() * 1e3;
-            self.last = Some(key);
+            Err(e) => self.error = Some(e.to_string()),
         }
-        self.shown.is_some()
+        if i == MAIN {
+            self.encode_ms = start.elapsed().as_secs_f64() * 1e3;
+        }
+        self.panes[i].last = Some(key);
+        self.panes[i].shown.is_some()
     }
 
     fn interact(&mut self, ui: &egui::Ui, response: &egui::Response, project: &mut Project) {

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use agesim_core::hair::HairInstances;
 use agesim_core::scene::{Changed, Scene};
 use agesim_core::{HeightMap, Mesh};
-use agesim_render::{PreparedLayer, RenderError, Renderer, TileLayer, Upload};
+use agesim_render::{PreparedLayer, RenderError, Renderer, TileLayer, Upload, ViewId};
 
 /// Every uploaded input of the renderer, each shared: a layer that a bake did not change
 /// is the same allocation as before, so its address says whether to upload it again.
@@ -82,34 +82,59 @@ impl Uploaded {
             result = result.and(renderer.upload_mesh(m, metres_per_unit));
             self.mesh = mesh;
         }
-        if stamp(&layers.large) != self.large {
-            result = result.and(match &layers.large {
-                Some(large) => renderer.upload_prepared(&Upload::LargeWrinkles(large)),
-                // The layer is off: flat skin (height 1 = the polygon), not the last map.
-                None => HeightMap::from_vec(1, 1, vec![1.0])
-                    .map_err(RenderError::from)
-                    .and_then(|flat| renderer.upload_large_wrinkles(&flat)),
-            });
-            self.large = stamp(&layers.large);
-        }
-        // A tile that is off stays uploaded: the frame turns its layer off
-        // (`SkinParams::micro_relief`, a zero fine blend).
-        for (layer, tile, kept) in [
-            (TileLayer::Micro, &layers.micro, &mut self.micro),
-            (TileLayer::Fine, &layers.fine, &mut self.fine),
-        ] {
-            if stamp(tile) != *kept
-                && let Some(t) = tile
-            {
-                result = result.and(renderer.upload_prepared(&Upload::Tile { layer, tile: t }));
-                *kept = stamp(tile);
-            }
+        result = result.and(self.upload_age_layers(renderer, ViewId::MAIN, layers));
+        if stamp(&layers.fine) != self.fine
+            && let Some(fine) = &layers.fine
+        {
+            let tile = Upload::Tile {
+                layer: TileLayer::Fine,
+                tile: fine,
+            };
+            result = result.and(renderer.upload_prepared(&tile));
+            self.fine = stamp(&layers.fine);
         }
         if stamp(&layers.hair) != self.hair
             && let Some(h) = &layers.hair
         {
             renderer.upload_hair(h);
             self.hair = stamp(&layers.hair);
+        }
+        result
+    }
+
+    /// Uploads the layers that differ between two ages (the large-wrinkle map, the
+    /// micro-relief tile) to `view` of `renderer`: a second view (the compare age) shares
+    /// the mesh, the fine tile and the hair of the first.
+    pub fn upload_age_layers(
+        &mut self,
+        renderer: &mut Renderer,
+        view: ViewId,
+        layers: &Layers,
+    ) -> Result<(), RenderError> {
+        let mut result = Ok(());
+        if stamp(&layers.large) != self.large {
+            result = result.and(match &layers.large {
+                Some(large) => renderer.upload_prepared_to(view, &Upload::LargeWrinkles(large)),
+                // The layer is off: flat skin (height 1 = the polygon), not the last map.
+                None => {
+                    let flat =
+                        PreparedLayer::large_wrinkles(&HeightMap::from_vec(1, 1, vec![1.0])?);
+                    renderer.upload_prepared_to(view, &Upload::LargeWrinkles(&flat))
+                }
+            });
+            self.large = stamp(&layers.large);
+        }
+        // A micro tile that is off stays uploaded: the frame turns the layer off
+        // (`SkinParams::micro_relief`).
+        if stamp(&layers.micro) != self.micro
+            && let Some(micro) = &layers.micro
+        {
+            let tile = Upload::Tile {
+                layer: TileLayer::Micro,
+                tile: micro,
+            };
+            result = result.and(renderer.upload_prepared_to(view, &tile));
+            self.micro = stamp(&layers.micro);
         }
         result
     }

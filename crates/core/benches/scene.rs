@@ -91,6 +91,22 @@ fn main() {
             .collect(),
     );
 
+    // The large-wrinkle depth slider: the map is kept normalised, so nothing re-bakes
+    // (the renderer scales the relief).
+    let depth = median(
+        (0..runs)
+            .map(|i| {
+                let mut p = scene.project().clone();
+                p.large.depth = 1.0 + 0.1 * i as f32;
+                let t = Instant::now();
+                scene.set_project(p).unwrap();
+                let c = scene.bake(&preview(0.5), &never).unwrap();
+                assert!(!c.any(), "{c:?}");
+                ms(t)
+            })
+            .collect(),
+    );
+
     // The age scrubbed: large map re-weighted, micro tile re-scaled.
     let age = median(
         (0..runs)
@@ -133,6 +149,7 @@ fn main() {
     println!("|---|---|---|---|");
     for (name, v) in [
         ("noise only", noise),
+        ("large-wrinkle depth (set_project + bake)", depth),
         ("one fibre", one_fibre),
         ("age", age),
     ] {

@@ -32,5 +32,7 @@ pub use params::{
     Camera, DEFAULT_FINE_TILE_SIZE_M, FrameOutput, FrameParams, GrayingRampParam, HairShading,
     Light, PomMode, SPARSE_HAIR_STRIDE, SkinParams, TilePlacement,
 };
-pub use renderer::{COLOUR_FORMAT, DEPTH_FORMAT, PreparedLayer, Renderer, TileLayer, Upload};
+pub use renderer::{
+    COLOUR_FORMAT, DEPTH_FORMAT, PreparedLayer, Renderer, TileLayer, Upload, ViewId,
+};
 pub use uniforms::FrameUniform;

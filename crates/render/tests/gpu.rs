@@ -9,7 +9,9 @@
 use agesim_core::hair::{HairInstances, HairParams, SurfaceRef};
 use agesim_core::transition::{DistanceMetric, TransitionTexture};
 use agesim_core::{HeightMap, Mask, Mesh, defaults, head};
-use agesim_render::{FrameParams, Gpu, HairShading, PomMode, Renderer};
+use agesim_render::{
+    FrameParams, Gpu, HairShading, PomMode, PreparedLayer, Renderer, Upload, ViewId,
+};
 use glam::Vec3;
 
 mod common;
@@ -538,4 +540,48 @@ fn the_blit_copies_texel_for_texel_into_the_viewport() {
     assert_eq!(px(10, 10), [0, 0, 0, 255]);
     assert_eq!(px(32, 0)[1], 0, "the top row first");
     assert!(px(63, 47)[1] >= 5 * 46, "the bottom row last");
+}
+
+/// A second view of one renderer (the editor's compare view) draws its own large-wrinkle
+/// map with the shared mesh and hair: each view shows what a renderer of its own with
+/// the same inputs shows, and uploading to one leaves the other as it was.
+#[test]
+fn a_second_view_draws_its_own_layers_with_the_shared_mesh() {
+    let Some(gpu) = gpu_or_skip("a_second_view_draws_its_own_layers_with_the_shared_mesh") else {
+        return;
+    };
+    let mesh = head::default_head();
+    let size = (96, 96);
+    let mut p = FrameParams::default();
+    p.hair.enabled = false;
+    let (shallow, deep) = (creases(256, 5.0), creases(256, 25.0));
+    let alone = |large: &HeightMap| {
+        let mut r = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT).unwrap();
+        r.upload_mesh(&mesh, 1.0).unwrap();
+        r.upload_large_wrinkles(large).unwrap();
+        r.render_to_image(&p, size).unwrap()
+    };
+    let mut r = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT).unwrap();
+    r.upload_mesh(&mesh, 1.0).unwrap();
+    r.upload_large_wrinkles(&shallow).unwrap();
+    let main_before = r.render_to_image(&p, size).unwrap();
+    let b = r.add_view();
+    assert_ne!(b, ViewId::MAIN);
+    let deep_layer = PreparedLayer::large_wrinkles(&deep);
+    r.upload_prepared_to(b, &Upload::LargeWrinkles(&deep_layer))
+        .unwrap();
+    let second = r.render_view_to_image(b, &p, size).unwrap();
+    let main_after = r.render_to_image(&p, size).unwrap();
+    assert_eq!(second.as_raw(), alone(&deep).as_raw(), "the second view");
+    assert_eq!(
+        main_after.as_raw(),
+        main_before.as_raw(),
+        "the main view kept"
+    );
+    assert_eq!(
+        main_after.as_raw(),
+        alone(&shallow).as_raw(),
+        "the main view"
+    );
+    assert_ne!(second.as_raw(), main_after.as_raw());
 }

@@ -4,25 +4,25 @@ use super::EditorApp;
 
 impl EditorApp {
     /// The compare view: the right part of `rect` (from the divider on) shows the second
-    /// age, in the same camera; the divider drags.
+    /// age, in the same camera, drawn by the 3D view's renderer into a second set of
+    /// targets; the divider drags.
     pub(super) fn compare_ui(
         &mut self,
         ui: &mut egui::Ui,
         rs: &eframe::egui_wgpu::RenderState,
         rect: egui::Rect,
-        pan: glam::Vec3,
     ) {
-        let (Some(b), Some(snapshot_b)) = (&mut self.viewport_b, self.snapshot.compare.as_deref())
+        let (Some(v), Some(snapshot_b)) =
+            (&mut self.viewport, self.session.snapshot.compare.as_deref())
         else {
             return;
         };
-        let mut project_b = self.project.clone();
+        let mut project_b = self.doc.project.clone();
         project_b.age.t = project_b.age.mapping().t(self.persisted.compare_years);
-        b.set_pan(pan);
         let x = rect.left() + rect.width() * self.persisted.divider;
-        if b.render(ui.ctx(), rs, snapshot_b, &project_b, rect) {
+        if v.render_compare(ui.ctx(), rs, snapshot_b, &project_b, rect) {
             let right = egui::Rect::from_min_max(egui::pos2(x, rect.top()), rect.max);
-            b.show(&ui.painter().with_clip_rect(right), rect);
+            v.show_compare(&ui.painter().with_clip_rect(right), rect);
         }
         let handle = egui::Rect::from_center_size(
             egui::pos2(x, rect.center().y),
@@ -42,7 +42,7 @@ impl EditorApp {
             [egui::pos2(x, rect.top()), egui::pos2(x, rect.bottom())],
             egui::Stroke::new(if r.hovered() || r.dragged() { 3.0 } else { 2.0 }, colour),
         );
-        let years_a = self.project.age.mapping().years(self.project.age.t);
+        let years_a = self.doc.project.age.mapping().years(self.doc.project.age.t);
         for (pos, align, text) in [
             (
                 rect.left_bottom() + egui::vec2(10.0, -10.0),

@@ -34,9 +34,9 @@ impl Pending {
 impl EditorApp {
     pub(super) fn doc(&self) -> Doc {
         Doc {
-            project: self.project.clone(),
-            wrinkles: self.wrinkles.clone(),
-            revision: self.revision,
+            project: self.doc.project.clone(),
+            wrinkles: self.doc.wrinkles.clone(),
+            revision: self.doc.revision,
         }
     }
 
@@ -47,27 +47,27 @@ impl EditorApp {
         let name = name.replace(['.', '_'], " ");
         let name = name.as_str();
         let before = self.doc();
-        self.history.record(name, key, &before, dragging);
-        self.next_revision += 1;
-        self.revision = self.next_revision;
+        self.doc.history.record(name, key, &before, dragging);
+        self.doc.next_revision += 1;
+        self.doc.revision = self.doc.next_revision;
     }
 
     pub(super) fn restore(&mut self, doc: Doc, what: &str) {
-        self.project = doc.project;
-        self.wrinkles = doc.wrinkles;
-        self.revision = doc.revision;
+        self.doc.project = doc.project;
+        self.doc.wrinkles = doc.wrinkles;
+        self.doc.revision = doc.revision;
         self.submit(false, what);
     }
 
     pub fn undo(&mut self) {
-        if let Some((name, doc)) = self.history.undo(self.doc()) {
+        if let Some((name, doc)) = self.doc.history.undo(self.doc()) {
             self.restore(doc, &format!("undo {name}"));
             self.info(format!("Undid {name}"));
         }
     }
 
     pub fn redo(&mut self) {
-        if let Some((name, doc)) = self.history.redo(self.doc()) {
+        if let Some((name, doc)) = self.doc.history.redo(self.doc()) {
             self.restore(doc, &format!("redo {name}"));
             self.info(format!("Redid {name}"));
         }
@@ -75,33 +75,38 @@ impl EditorApp {
 
     /// Whether the document differs from the file it was opened from or saved to.
     pub fn modified(&self) -> bool {
-        self.revision != self.saved_revision
+        self.doc.revision != self.doc.saved_revision
     }
 
     /// The project file of the document, if it has one.
     pub fn path(&self) -> Option<&Path> {
-        self.path.as_deref()
+        self.doc.path.as_deref()
     }
 
     /// The window title: file name and a `*` when modified.
     pub fn title(&self) -> String {
-        let name = self.path.as_ref().and_then(|p| p.file_name()).map_or_else(
-            || "untitled".to_owned(),
-            |n| n.to_string_lossy().into_owned(),
-        );
+        let name = self
+            .doc
+            .path
+            .as_ref()
+            .and_then(|p| p.file_name())
+            .map_or_else(
+                || "untitled".to_owned(),
+                |n| n.to_string_lossy().into_owned(),
+            );
         format!("{name}{} — agesim", if self.modified() { " *" } else { "" })
     }
 
     /// A new document: no undo across it, not modified.
     pub(super) fn replace_document(&mut self, project: Project, path: Option<PathBuf>, what: &str) {
-        self.project = project;
-        self.wrinkles = None;
+        self.doc.project = project;
+        self.doc.wrinkles = None;
         self.persisted.map_view.selected = None;
-        self.path = path;
-        self.history.clear();
-        self.next_revision += 1;
-        self.revision = self.next_revision;
-        self.saved_revision = self.revision;
+        self.doc.path = path;
+        self.doc.history.clear();
+        self.doc.next_revision += 1;
+        self.doc.revision = self.doc.next_revision;
+        self.doc.saved_revision = self.doc.revision;
         self.submit(false, what);
     }
 
@@ -154,23 +159,28 @@ impl EditorApp {
 
     /// Saves to the document's file, or asks where when it has none.
     pub fn save(&mut self) {
-        match self.path.clone() {
+        match self.doc.path.clone() {
             Some(path) => self.save_to(path),
             None => self.save_as(),
         }
     }
 
     pub fn save_as(&mut self) {
-        let name = self.path.as_ref().and_then(|p| p.file_name()).map_or_else(
-            || "head.agesim.json".to_owned(),
-            |n| n.to_string_lossy().into_owned(),
-        );
+        let name = self
+            .doc
+            .path
+            .as_ref()
+            .and_then(|p| p.file_name())
+            .map_or_else(
+                || "head.agesim.json".to_owned(),
+                |n| n.to_string_lossy().into_owned(),
+            );
         self.ask(Purpose::SaveProject, Some(name));
     }
 
     pub(super) fn save_to(&mut self, path: PathBuf) {
-        let (project, wrinkles) = (self.project.clone(), self.wrinkles.clone());
-        self.saving_revision = Some(self.revision);
+        let (project, wrinkles) = (self.doc.project.clone(), self.doc.wrinkles.clone());
+        self.doc.saving_revision = Some(self.doc.revision);
         self.io.spawn(move || IoResult::ProjectSaved {
             result: files::save_project(&path, &project, wrinkles.as_deref()),
             path,

@@ -16,7 +16,7 @@ impl EditorApp {
     /// puts the previous mesh back.
     pub fn import_mesh(&mut self, path: PathBuf) {
         self.record("import mesh", "import mesh", false);
-        self.project.mesh.path = Some(path.clone());
+        self.doc.project.mesh.path = Some(path.clone());
         self.submit(false, &format!("import {}", path.display()));
     }
 
@@ -50,17 +50,17 @@ impl EditorApp {
         if add {
             let mut all = self.wrinkles().to_vec();
             all.push(source);
-            if !self.project.large.wrinkles.is_empty() {
-                self.project.large.wrinkles.push(path.clone());
+            if !self.doc.project.large.wrinkles.is_empty() {
+                self.doc.project.large.wrinkles.push(path.clone());
             }
             // With the built-in files the list stays empty (they have no path), so the
             // edited set carries them and the new one.
-            self.wrinkles = Some(all);
+            self.doc.wrinkles = Some(all);
         } else {
-            self.project.large.wrinkles = vec![path.clone()];
-            self.wrinkles = Some(vec![source]);
+            self.doc.project.large.wrinkles = vec![path.clone()];
+            self.doc.wrinkles = Some(vec![source]);
         }
-        self.project.large.enabled = true;
+        self.doc.project.large.enabled = true;
         self.persisted.map_view.selected = None;
         self.submit(false, "wrinkle file");
         self.info(format!("Loaded {} ({fibres} fibres)", path.display()));
@@ -109,16 +109,16 @@ impl EditorApp {
                 IoResult::ProjectSaved { path, result } => match result {
                     Ok((project, wrinkles)) => {
                         // The saved document may point at wrinkle files written beside it.
-                        let unchanged = self.saving_revision == Some(self.revision);
+                        let unchanged = self.doc.saving_revision == Some(self.doc.revision);
                         if unchanged {
-                            self.project.large.wrinkles = project.large.wrinkles;
-                            self.project.large.mask = project.large.mask;
+                            self.doc.project.large.wrinkles = project.large.wrinkles;
+                            self.doc.project.large.mask = project.large.mask;
                             if wrinkles.is_some() {
-                                self.wrinkles = wrinkles;
+                                self.doc.wrinkles = wrinkles;
                             }
-                            self.saved_revision = self.revision;
+                            self.doc.saved_revision = self.doc.revision;
                         }
-                        self.path = Some(path.clone());
+                        self.doc.path = Some(path.clone());
                         self.remember_recent(&path);
                         self.info(format!("Saved {}", path.display()));
                         if let Some(next) = self.after_save.take() {

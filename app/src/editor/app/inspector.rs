@@ -23,7 +23,7 @@ impl EditorApp {
             });
         self.persisted.map_view.selected = Some((fi, file.file.groups.len() - 1));
         self.record("add fibre", "add fibre", false);
-        self.wrinkles = Some(wrinkles);
+        self.doc.wrinkles = Some(wrinkles);
         self.submit(false, "add fibre");
     }
 
@@ -39,7 +39,7 @@ impl EditorApp {
             file.file.groups.remove(gi);
             self.persisted.map_view.selected = None;
             self.record("delete fibre", "delete fibre", false);
-            self.wrinkles = Some(wrinkles);
+            self.doc.wrinkles = Some(wrinkles);
             self.submit(false, "delete fibre");
         }
     }
@@ -140,7 +140,7 @@ impl EditorApp {
         let mut own = group.age.is_some();
         let mut age_changed = false;
         if ui.checkbox(&mut own, "own age curve").changed() {
-            group.age = own.then_some(self.project.age.large);
+            group.age = own.then_some(self.doc.project.age.large);
             age_changed = true;
         }
         if let Some(curve) = &mut group.age {
@@ -162,7 +162,7 @@ impl EditorApp {
         if age_changed {
             let dragging = ui.ctx().egui_is_using_pointer();
             self.record("fibre edit", &format!("fibre {fi}/{gi}"), dragging);
-            self.wrinkles = Some(wrinkles);
+            self.doc.wrinkles = Some(wrinkles);
             self.submit(dragging, "fibre");
         }
     }

@@ -85,7 +85,7 @@ impl EditorApp {
     }
 
     pub(super) fn edit_menu(&mut self, ui: &mut egui::Ui) {
-        let undo = self.history.undo_name().map(|n| format!("Undo {n}"));
+        let undo = self.doc.history.undo_name().map(|n| format!("Undo {n}"));
         if ui
             .add_enabled(
                 undo.is_some(),
@@ -95,7 +95,7 @@ impl EditorApp {
         {
             self.undo();
         }
-        let redo = self.history.redo_name().map(|n| format!("Redo {n}"));
+        let redo = self.doc.history.redo_name().map(|n| format!("Redo {n}"));
         if ui
             .add_enabled(
                 redo.is_some(),
@@ -153,7 +153,7 @@ impl EditorApp {
                 if ui.button("Frame the head").clicked()
                     && let Some(v) = &mut self.viewport
                 {
-                    v.reset(&mut self.project);
+                    v.reset(&mut self.doc.project);
                 }
                 ui.separator();
                 for (layout, name) in [

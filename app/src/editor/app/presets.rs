@@ -36,7 +36,7 @@ impl EditorApp {
     /// presets, the fine wrinkles and skin shading). Mesh, wrinkles, hair and age stay.
     pub(super) fn apply_preset(&mut self, name: &str, preset: &Project, with_skin: bool) {
         self.record(&format!("preset {name}"), "preset", false);
-        let p = &mut self.project;
+        let p = &mut self.doc.project;
         p.pores = preset.pores.clone();
         p.furrows = preset.furrows.clone();
         p.noise = preset.noise.clone();
@@ -77,7 +77,7 @@ impl EditorApp {
             ));
             return;
         }
-        let project = self.project.clone();
+        let project = self.doc.project.clone();
         let path = dir.join(format!("{name}.agesim.json"));
         self.io.spawn(move || {
             let result = std::fs::create_dir_all(&dir)

@@ -12,9 +12,15 @@ impl EditorApp {
             .viewport
             .as_ref()
             .map_or((0, 1), |v| (v.hairs_drawn, v.sparse_hair));
-        let idle = !self.worker.busy(self.reported);
-        let years = self.project.age.mapping().years(self.project.age.t);
-        match bench.frame(idle, self.reported, self.worker.latest, hairs, years) {
+        let idle = !self.session.busy();
+        let years = self.doc.project.age.mapping().years(self.doc.project.age.t);
+        match bench.frame(
+            idle,
+            self.session.reported,
+            self.session.worker.latest,
+            hairs,
+            years,
+        ) {
             crate::editor::bench_ui::Action::None => {}
             crate::editor::bench_ui::Action::BigBake => {
                 self.submit_sized((4096, 4096), "4096² bake")
@@ -36,7 +42,7 @@ impl EditorApp {
         let Some(path) = self.options.screenshot.clone() else {
             return;
         };
-        if self.snapshot.large.is_some() && self.idle() {
+        if self.session.snapshot.large.is_some() && self.idle() {
             self.frames_with_maps += 1;
         }
         ctx.request_repaint();

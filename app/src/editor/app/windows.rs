@@ -11,7 +11,7 @@ impl EditorApp {
     pub(super) fn start_export(&mut self) {
         let s = &self.persisted.export;
         let years = if s.at_current_age {
-            self.project.age.mapping().years(self.project.age.t)
+            self.doc.project.age.mapping().years(self.doc.project.age.t)
         } else {
             s.years
         };
@@ -19,8 +19,8 @@ impl EditorApp {
             Ok(request) => {
                 let ctx = self.ctx.clone();
                 self.export_run = Some(ExportRun::start(
-                    self.project.clone(),
-                    self.wrinkles.clone(),
+                    self.doc.project.clone(),
+                    self.doc.wrinkles.clone(),
                     request,
                     move || ctx.request_repaint(),
                 ));
@@ -73,10 +73,15 @@ impl EditorApp {
         if let Some(action) = self.prompt.clone() {
             let modal = egui::Modal::new(egui::Id::unique("unsaved")).show(ctx, |ui| {
                 ui.heading("Unsaved changes");
-                let name = self.path.as_ref().and_then(|p| p.file_name()).map_or_else(
-                    || "the untitled project".to_owned(),
-                    |n| n.to_string_lossy().into_owned(),
-                );
+                let name = self
+                    .doc
+                    .path
+                    .as_ref()
+                    .and_then(|p| p.file_name())
+                    .map_or_else(
+                        || "the untitled project".to_owned(),
+                        |n| n.to_string_lossy().into_owned(),
+                    );
                 ui.label(format!(
                     "Save the changes to {name} before {}?",
                     action.verb()
@@ -102,7 +107,7 @@ impl EditorApp {
             }
         }
         let mut open = self.windows.export;
-        let years = self.project.age.mapping().years(self.project.age.t);
+        let years = self.doc.project.age.mapping().years(self.doc.project.age.t);
         let running = self.export_run.as_ref().map(ExportRun::progress);
         let mut action = ExportAction::None;
         egui::Window::new("Export")

@@ -10,7 +10,7 @@ use crate::RenderError;
 use crate::f16::to_f16_bytes;
 use crate::mesh::MeshData;
 
-use super::{GpuMesh, Hair, Renderer, TileLayer, Upload};
+use super::{GpuMesh, Hair, Renderer, TileLayer, Upload, ViewId};
 
 /// A height or mask texture (the view keeps its texture alive).
 pub(super) struct Layer {
@@ -69,7 +69,7 @@ impl Renderer {
         ));
         self.displaced_mesh = None;
         self.mesh_to_subdivide = Some(data);
-        self.surface_generation += 1;
+        self.mesh_generation += 1;
         self.surface_scale = scale;
         self.metres_per_unit = metres_per_unit;
         Ok(())
@@ -114,23 +114,43 @@ impl Renderer {
     }
 
     /// Uploads a layer prepared on another thread (the editor's worker converts to f16
-    /// and builds mips there, so the drawing thread only copies bytes).
+    /// and builds mips there, so the drawing thread only copies bytes) to
+    /// [`ViewId::MAIN`] ([`Renderer::upload_prepared_to`]).
     pub fn upload_prepared(&mut self, upload: &Upload<'_>) -> Result<(), RenderError> {
+        self.upload_prepared_to(ViewId::MAIN, upload)
+    }
+
+    /// Uploads a prepared layer for `view`: the large-wrinkle map and the micro-relief
+    /// tile are the view's own; the fine-wrinkle tile is shared by every view.
+    pub fn upload_prepared_to(
+        &mut self,
+        view: ViewId,
+        upload: &Upload<'_>,
+    ) -> Result<(), RenderError> {
+        let vi = self.view_index(view)?;
         match *upload {
             Upload::LargeWrinkles(layer) => {
-                self.large = self.create_layer("agesim large-wrinkle heights", layer)?;
-                self.large_generation += 1;
+                let large = self.create_layer("agesim large-wrinkle heights", layer)?;
+                let v = &mut self.views[vi];
+                v.large = large;
+                v.large_generation += 1;
+                v.skin_bind_group = None;
             }
             Upload::Tile { layer, tile } => match layer {
                 TileLayer::Micro => {
-                    self.micro = self.create_layer("agesim micro-relief tile", tile)?;
+                    let micro = self.create_layer("agesim micro-relief tile", tile)?;
+                    let v = &mut self.views[vi];
+                    v.micro = micro;
+                    v.skin_bind_group = None;
                 }
                 TileLayer::Fine => {
                     self.fine = self.create_layer("agesim fine-wrinkle tile", tile)?;
+                    for v in &mut self.views {
+                        v.skin_bind_group = None;
+                    }
                 }
             },
         }
-        self.skin_bind_group = None;
         Ok(())
     }
 
@@ -182,8 +202,11 @@ impl Renderer {
         Ok(create_r16f(&self.device, &self.queue, label, layer))
     }
 
-    pub(super) fn skin_bind_group(&mut self) -> wgpu::BindGroup {
-        if let Some(bg) = &self.skin_bind_group {
+    /// The skin passes' group 0 of view `vi`: its frame uniform and layers, the shared
+    /// fine tile and the samplers.
+    pub(super) fn skin_bind_group(&mut self, vi: usize) -> wgpu::BindGroup {
+        let v = &self.views[vi];
+        if let Some(bg) = &v.skin_bind_group {
             return bg.clone();
         }
         let bg = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -192,15 +215,15 @@ impl Renderer {
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
-                    resource: self.frame_buffer.as_entire_binding(),
+                    resource: v.frame_buffer.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&self.large.view),
+                    resource: wgpu::BindingResource::TextureView(&v.large.view),
                 },
                 wgpu::BindGroupEntry {
                     binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&self.micro.view),
+                    resource: wgpu::BindingResource::TextureView(&v.micro.view),
                 },
                 wgpu::BindGroupEntry {
                     binding: 3,
@@ -216,7 +239,7 @@ impl Renderer {
                 },
             ],
         });
-        self.skin_bind_group = Some(bg.clone());
+        self.views[vi].skin_bind_group = Some(bg.clone());
         bg
     }
 }

@@ -15,6 +15,7 @@ mod layers;
 mod pipelines;
 mod readback;
 mod targets;
+mod views;
 
 use agesim_core::hair::AgeLevel;
 use agesim_core::mesh::SurfaceScale;
@@ -26,10 +27,11 @@ use crate::params::{FrameParams, PomMode};
 use crate::uniforms::{FrameContext, FrameUniform};
 
 pub use layers::PreparedLayer;
+pub use views::ViewId;
 
 use layers::{Layer, create_r16f, prepare_r16f};
 use pipelines::Pipelines;
-use targets::Targets;
+use views::View;
 
 /// The colour format of headless renders ([`Renderer::render_to_image`]): 8-bit sRGB,
 /// so the hardware encodes and blending would happen in linear light.
@@ -65,14 +67,15 @@ struct GpuMesh {
     index_count: u32,
 }
 
-/// What the stored surface depends on: the camera, the targets and the mesh (a
-/// generation bumped when either is replaced), and when displacing, the depth and the
+/// What the stored surface depends on: the camera, the mesh and the targets (the
+/// generations bumped when either is replaced), and when displacing, the depth and the
 /// large-wrinkle map that move the vertices.
 #[derive(Clone, Copy, PartialEq)]
 struct SurfaceKey {
     clip_from_world: [[f32; 4]; 4],
     camera_pos: [f32; 4],
-    generation: u64,
+    /// (mesh generation, the view's target generation).
+    generation: (u64, u64),
     /// (displacement depth, large-map generation) in displacement mode.
     displacement: Option<(f32, u64)>,
 }
@@ -90,8 +93,8 @@ pub struct Renderer {
     wire_pipeline: wgpu::RenderPipeline,
     /// The uploaded mesh's edges (line list), for the wireframe overlay.
     wire_edges: Option<(wgpu::Buffer, u32)>,
-    frame_buffer: wgpu::Buffer,
     skin_layout: wgpu::BindGroupLayout,
+    hair_layout: wgpu::BindGroupLayout,
     /// Rasterises the mesh into the surface targets (`fs_surface`).
     surface_pipeline: wgpu::RenderPipeline,
     surface_layout: wgpu::BindGroupLayout,
@@ -99,13 +102,9 @@ pub struct Renderer {
     shade_pipeline: wgpu::RenderPipeline,
     /// Writes the stored surface's depth into the depth target (`fs_depth`).
     depth_pipeline: wgpu::RenderPipeline,
-    /// What the surface targets hold (None: nothing yet, or stale).
-    surface_key: Option<SurfaceKey>,
-    /// Bumped when the targets or the mesh are replaced (see [`SurfaceKey`]).
-    surface_generation: u64,
-    /// Bumped on every large-wrinkle upload (displacement moves the surface with it).
-    large_generation: u64,
-    /// Surface passes run so far ([`Renderer::surface_passes`]).
+    /// Bumped when the mesh is replaced (see [`SurfaceKey`]).
+    mesh_generation: u64,
+    /// Surface passes run so far, every view ([`Renderer::surface_passes`]).
     surface_passes: u64,
     hair_pipeline: wgpu::RenderPipeline,
     /// The hair pipeline reading every `sparse_hair_stride`-th instance (None where the
@@ -115,14 +114,10 @@ pub struct Renderer {
     ///
     /// [`SPARSE_HAIR_STRIDE`]: crate::SPARSE_HAIR_STRIDE
     sparse_hair_stride: u32,
-    hair_bind_group: wgpu::BindGroup,
     surface_sampler: wgpu::Sampler,
     tile_sampler: wgpu::Sampler,
-    large: Layer,
-    micro: Layer,
+    /// The fine-wrinkle tile, shared by every view.
     fine: Layer,
-    /// Rebuilt lazily when a texture is replaced.
-    skin_bind_group: Option<wgpu::BindGroup>,
     mesh: Option<GpuMesh>,
     /// The subdivided copy, made on the first displacement frame (4× the triangles:
     /// editors that never use the mode never pay for it).
@@ -132,9 +127,8 @@ pub struct Renderer {
     surface_scale: SurfaceScale,
     metres_per_unit: f32,
     hair: Option<Hair>,
-    targets: Option<Targets>,
-    /// Bumped whenever the targets are recreated (see [`Renderer::target_generation`]).
-    target_generation: u64,
+    /// [`ViewId::MAIN`] and the views added since: targets and age-dependent layers.
+    views: Vec<View>,
 }
 
 impl Renderer {
@@ -148,12 +142,6 @@ impl Renderer {
         colour_format: wgpu::TextureFormat,
     ) -> Result<Self, RenderError> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("agesim frame uniform"),
-            size: std::mem::size_of::<FrameUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         let Pipelines {
             skin_layout,
             surface_pipeline,
@@ -164,17 +152,17 @@ impl Renderer {
             hair_pipeline,
             sparse_hair_pipeline,
             sparse_hair_stride,
-            hair_bind_group,
+            hair_layout,
             surface_sampler,
             tile_sampler,
-        } = Pipelines::build(device, colour_format, &frame_buffer);
-
-        let flat = |label: &str, value: f32| {
-            create_r16f(device, queue, label, &prepare_r16f((1, 1), &[value], false))
-        };
-        let large = flat("agesim large-wrinkle heights (placeholder)", 1.0);
-        let micro = flat("agesim micro-relief tile (placeholder)", 0.0);
-        let fine = flat("agesim fine-wrinkle tile (placeholder)", 0.0);
+        } = Pipelines::build(device, colour_format);
+        let fine = create_r16f(
+            device,
+            queue,
+            "agesim fine-wrinkle tile (placeholder)",
+            &prepare_r16f((1, 1), &[0.0], false),
+        );
+        let main = View::new(device, queue, &hair_layout);
 
         if let Some(err) = pollster::block_on(scope.pop()) {
             return Err(RenderError::Gpu(err.to_string()));
@@ -183,28 +171,22 @@ impl Renderer {
             device: device.clone(),
             queue: queue.clone(),
             colour_format,
-            frame_buffer,
             skin_layout,
+            hair_layout,
             surface_pipeline,
             surface_layout,
             shade_pipeline,
             depth_pipeline,
-            surface_key: None,
-            surface_generation: 0,
-            large_generation: 0,
+            mesh_generation: 0,
             surface_passes: 0,
             hair_pipeline,
             sparse_hair_pipeline,
             sparse_hair_stride,
             wire_pipeline,
             wire_edges: None,
-            hair_bind_group,
             surface_sampler,
             tile_sampler,
-            large,
-            micro,
             fine,
-            skin_bind_group: None,
             mesh: None,
             displaced_mesh: None,
             mesh_to_subdivide: None,
@@ -214,8 +196,7 @@ impl Renderer {
             },
             metres_per_unit: 1.0,
             hair: None,
-            targets: None,
-            target_generation: 0,
+            views: vec![main],
         })
     }
 
@@ -235,27 +216,39 @@ impl Renderer {
         self.hair.as_ref().map_or(0, |h| count_at(&h.levels, t))
     }
 
-    /// Records one frame at `size_px` into the renderer's own targets: the skin pass,
-    /// then (if enabled and uploaded) the hair pass with count(`params.age`) instances
-    /// in one draw. Writes the frame uniform through the queue, so submit `encoder`
-    /// after this call, and encode one view per submission (a second `encode` before the
-    /// submit would overwrite the first's uniform). The stored surface counts as drawn
-    /// once recorded: an encoder dropped without being submitted leaves it stale until
-    /// the view, the size or the mesh change. Draws only the background until a mesh is
-    /// uploaded.
+    /// [`Renderer::encode_view`] of [`ViewId::MAIN`].
     pub fn encode(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         params: &FrameParams,
         size_px: (u32, u32),
     ) -> Result<(), RenderError> {
-        self.ensure_targets(size_px)?;
+        self.encode_view(ViewId::MAIN, encoder, params, size_px)
+    }
+
+    /// Records one frame at `size_px` into `view`'s targets: the skin pass, then (if
+    /// enabled and uploaded) the hair pass with count(`params.age`) instances in one draw.
+    /// Writes the view's frame uniform through the queue, so submit `encoder` after this
+    /// call, and encode a view once per submission (a second `encode_view` of the same
+    /// view before the submit would overwrite the first's uniform; other views have
+    /// their own). The stored surface counts as drawn once recorded: an encoder dropped
+    /// without being submitted leaves it stale until the camera, the size or the mesh
+    /// change. Draws only the background until a mesh is uploaded.
+    pub fn encode_view(
+        &mut self,
+        view: ViewId,
+        encoder: &mut wgpu::CommandEncoder,
+        params: &FrameParams,
+        size_px: (u32, u32),
+    ) -> Result<(), RenderError> {
+        let vi = self.view_index(view)?;
+        self.ensure_targets(vi, size_px)?;
         if params.skin.pom_mode == PomMode::Displacement
             && let Some(data) = self.mesh_to_subdivide.take()
         {
             self.displaced_mesh =
                 Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
-            self.surface_generation += 1;
+            self.mesh_generation += 1;
         }
         let (micro, fine) = (params.skin.micro_tile, params.skin.fine_tile);
         for (what, value, ok) in [
@@ -292,10 +285,23 @@ impl Renderer {
                 * (self.surface_scale.units_per_u + self.surface_scale.units_per_v),
         };
         let uniform = FrameUniform::new(params, &ctx);
-        self.queue
-            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&uniform));
-        let skin_bind_group = self.skin_bind_group();
-        let Some(targets) = &self.targets else {
+        self.queue.write_buffer(
+            &self.views[vi].frame_buffer,
+            0,
+            bytemuck::bytes_of(&uniform),
+        );
+        let skin_bind_group = self.skin_bind_group(vi);
+        // The stored surface counts as drawn once recorded (see above).
+        let key = SurfaceKey {
+            clip_from_world: uniform.clip_from_world,
+            camera_pos: uniform.camera_pos,
+            generation: (self.mesh_generation, self.views[vi].target_generation),
+            displacement: (params.skin.pom_mode == PomMode::Displacement)
+                .then_some((uniform.disp[1], self.views[vi].large_generation)),
+        };
+        let redraw_surface = self.views[vi].surface_key.replace(key) != Some(key);
+        let v = &self.views[vi];
+        let Some(targets) = &v.targets else {
             return Ok(());
         };
         let bg = params.background;
@@ -316,14 +322,8 @@ impl Renderer {
         } else {
             self.mesh.as_ref()
         };
-        let key = SurfaceKey {
-            clip_from_world: uniform.clip_from_world,
-            camera_pos: uniform.camera_pos,
-            generation: self.surface_generation,
-            displacement: (params.skin.pom_mode == PomMode::Displacement)
-                .then_some((uniform.disp[1], self.large_generation)),
-        };
-        if self.surface_key != Some(key) {
+        let hair_bind_group = &v.hair_bind_group;
+        if redraw_surface {
             // The surface pass: the mesh into the G-buffer. The first target's alpha (the
             // depth) is cleared to 2: the background.
             let clear = |a: f64| wgpu::Operations {
@@ -363,7 +363,6 @@ impl Renderer {
                 pass.draw_indexed(0..mesh.index_count, 0, 0..1);
             }
             drop(pass);
-            self.surface_key = Some(key);
             self.surface_passes += 1;
         }
         {
@@ -471,7 +470,7 @@ impl Renderer {
         }
         if let Some((hair, pipeline, drawn, segments)) = hair {
             pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &self.hair_bind_group, &[]);
+            pass.set_bind_group(0, hair_bind_group, &[]);
             pass.set_vertex_buffer(0, hair.instances.slice(..));
             pass.draw(0..vertices_per_hair(segments), 0..drawn);
         }

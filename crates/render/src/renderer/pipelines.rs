@@ -28,19 +28,16 @@ pub(super) struct Pipelines {
     pub(super) hair_pipeline: wgpu::RenderPipeline,
     pub(super) sparse_hair_pipeline: Option<wgpu::RenderPipeline>,
     pub(super) sparse_hair_stride: u32,
-    pub(super) hair_bind_group: wgpu::BindGroup,
+    /// The hair pass's group 0: the frame uniform alone (one bind group per view).
+    pub(super) hair_layout: wgpu::BindGroupLayout,
     pub(super) surface_sampler: wgpu::Sampler,
     pub(super) tile_sampler: wgpu::Sampler,
 }
 
 impl Pipelines {
     /// Builds the layouts, shader modules, pipelines and samplers for targets of
-    /// `colour_format`; the hair bind group binds `frame_buffer`, the frame uniform.
-    pub(super) fn build(
-        device: &wgpu::Device,
-        colour_format: wgpu::TextureFormat,
-        frame_buffer: &wgpu::Buffer,
-    ) -> Self {
+    /// `colour_format`.
+    pub(super) fn build(device: &wgpu::Device, colour_format: wgpu::TextureFormat) -> Self {
         // A 2D float texture: the height maps (filtered, both stages) or the stored
         // surface (read texel by texel in the shading pass).
         let float_texture_entry =
@@ -86,14 +83,6 @@ impl Pipelines {
         let hair_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("agesim hair bind group layout"),
             entries: &[uniform_entry],
-        });
-        let hair_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("agesim hair bind group"),
-            layout: &hair_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: frame_buffer.as_entire_binding(),
-            }],
         });
 
         let depth_stencil = wgpu::DepthStencilState {
@@ -322,7 +311,7 @@ impl Pipelines {
             hair_pipeline,
             sparse_hair_pipeline,
             sparse_hair_stride,
-            hair_bind_group,
+            hair_layout,
             surface_sampler,
             tile_sampler,
         }

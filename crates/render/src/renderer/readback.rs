@@ -4,7 +4,7 @@
 use crate::RenderError;
 use crate::params::FrameParams;
 
-use super::Renderer;
+use super::{Renderer, ViewId};
 
 impl Renderer {
     /// Renders one frame offscreen and reads it back: the copy's rows are
@@ -15,7 +15,17 @@ impl Renderer {
         params: &FrameParams,
         size_px: (u32, u32),
     ) -> Result<image::RgbaImage, RenderError> {
-        let (mut pixels, bytes_per_pixel) = self.render_and_read(params, size_px)?;
+        self.render_view_to_image(ViewId::MAIN, params, size_px)
+    }
+
+    /// [`Renderer::render_to_image`] of `view`.
+    pub fn render_view_to_image(
+        &mut self,
+        view: ViewId,
+        params: &FrameParams,
+        size_px: (u32, u32),
+    ) -> Result<image::RgbaImage, RenderError> {
+        let (mut pixels, bytes_per_pixel) = self.render_and_read(view, params, size_px)?;
         if bytes_per_pixel != 4 {
             return Err(RenderError::Readback(format!(
                 "render_to_image needs an 8-bit RGBA target, not {:?}",
@@ -42,7 +52,7 @@ impl Renderer {
         params: &FrameParams,
         size_px: (u32, u32),
     ) -> Result<Vec<[f32; 4]>, RenderError> {
-        let (bytes, bytes_per_pixel) = self.render_and_read(params, size_px)?;
+        let (bytes, bytes_per_pixel) = self.render_and_read(ViewId::MAIN, params, size_px)?;
         if bytes_per_pixel != 16 {
             return Err(RenderError::Readback(format!(
                 "render_to_f32 needs an Rgba32Float target, not {:?}",
@@ -65,6 +75,7 @@ impl Renderer {
     /// and returns the unpadded bytes with the bytes per pixel.
     fn render_and_read(
         &mut self,
+        view: ViewId,
         params: &FrameParams,
         size_px: (u32, u32),
     ) -> Result<(Vec<u8>, u32), RenderError> {
@@ -74,7 +85,7 @@ impl Renderer {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("agesim render_to_image"),
             });
-        self.encode(&mut encoder, params, size_px)?;
+        self.encode_view(view, &mut encoder, params, size_px)?;
         let (w, h) = size_px;
         let bytes_per_pixel = self.colour_format.block_copy_size(None).ok_or_else(|| {
             RenderError::Readback(format!(
@@ -91,7 +102,7 @@ impl Renderer {
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
-        let Some(targets) = &self.targets else {
+        let Some(targets) = &self.views[self.view_index(view)?].targets else {
             return Err(RenderError::Readback("no render target".into()));
         };
         encoder.copy_texture_to_buffer(

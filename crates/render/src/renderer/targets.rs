@@ -4,7 +4,7 @@
 use crate::RenderError;
 
 use super::pipelines::SURFACE_FORMATS;
-use super::{DEPTH_FORMAT, Renderer};
+use super::{DEPTH_FORMAT, Renderer, ViewId};
 
 pub(super) struct Targets {
     pub(super) size_px: (u32, u32),
@@ -22,8 +22,12 @@ pub(super) struct Targets {
 }
 
 impl Renderer {
-    /// Makes sure the colour + depth targets are `size_px`, recreating them if needed.
-    pub(super) fn ensure_targets(&mut self, size_px: (u32, u32)) -> Result<(), RenderError> {
+    /// Makes sure view `vi`'s targets are `size_px`, recreating them if needed.
+    pub(super) fn ensure_targets(
+        &mut self,
+        vi: usize,
+        size_px: (u32, u32),
+    ) -> Result<(), RenderError> {
         let max = self.device.limits().max_texture_dimension_2d;
         let (w, h) = size_px;
         if w == 0 || h == 0 || w > max || h > max {
@@ -34,7 +38,11 @@ impl Renderer {
                 max,
             });
         }
-        if self.targets.as_ref().is_some_and(|t| t.size_px == size_px) {
+        if self.views[vi]
+            .targets
+            .as_ref()
+            .is_some_and(|t| t.size_px == size_px)
+        {
             return Ok(());
         }
         let extent = wgpu::Extent3d {
@@ -91,9 +99,9 @@ impl Renderer {
         let surface_depth = texture("agesim surface depth", DEPTH_FORMAT, attachment);
         let depth = texture("agesim depth target", DEPTH_FORMAT, attachment);
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
-        self.target_generation += 1;
-        self.surface_generation += 1;
-        self.targets = Some(Targets {
+        let v = &mut self.views[vi];
+        v.target_generation += 1;
+        v.targets = Some(Targets {
             size_px,
             colour_view: view(&colour),
             colour,
@@ -116,10 +124,16 @@ impl Renderer {
     }
 
     /// Changes whenever [`Renderer::encode`] recreated the targets (first frame, new
-    /// size): a view registered elsewhere (egui's `register_native_texture`) must then be
-    /// registered again.
+    /// size): a view registered elsewhere (a bind group of the colour view) must then be
+    /// made again. [`ViewId::MAIN`]'s; [`Renderer::target_generation_of`] for another.
     pub fn target_generation(&self) -> u64 {
-        self.target_generation
+        self.target_generation_of(ViewId::MAIN)
+    }
+
+    /// [`Renderer::target_generation`] of `view` (0 for an id of another renderer).
+    pub fn target_generation_of(&self, view: ViewId) -> u64 {
+        self.view_index(view)
+            .map_or(0, |vi| self.views[vi].target_generation)
     }
 
     /// How many frames rasterised the mesh (the surface pass) so far; the others shaded
@@ -130,12 +144,18 @@ impl Renderer {
 
     /// The colour target of the last [`Renderer::encode`] (None before the first).
     pub fn colour_texture(&self) -> Option<&wgpu::Texture> {
-        self.targets.as_ref().map(|t| &t.colour)
+        self.views[0].targets.as_ref().map(|t| &t.colour)
     }
 
-    /// A view of the colour target, for compositing (e.g. egui's
-    /// `register_native_texture` or a full-screen blit in a paint callback).
+    /// A view of [`ViewId::MAIN`]'s colour target, for compositing (e.g. a full-screen
+    /// blit in a paint callback).
     pub fn colour_view(&self) -> Option<&wgpu::TextureView> {
-        self.targets.as_ref().map(|t| &t.colour_view)
+        self.colour_view_of(ViewId::MAIN)
+    }
+
+    /// [`Renderer::colour_view`] of `view`.
+    pub fn colour_view_of(&self, view: ViewId) -> Option<&wgpu::TextureView> {
+        let vi = self.view_index(view).ok()?;
+        self.views[vi].targets.as_ref().map(|t| &t.colour_view)
     }
 }

@@ -1,0 +1,43 @@
+//! The document an artist edits: the project, the wrinkle files as edited, the undo
+//! history and the revisions that say whether it is saved.
+
+use std::path::PathBuf;
+
+use agesim_core::project::Project;
+use agesim_core::scene::WrinkleSource;
+
+use super::history::History;
+
+pub(super) struct Document {
+    pub(super) project: Project,
+    /// The last project the worker accepted: restored when an edit is refused.
+    pub(super) last_good: Project,
+    /// The wrinkle files as edited here (`None` until the first fibre edit).
+    pub(super) wrinkles: Option<Vec<WrinkleSource>>,
+    pub(super) history: History,
+    /// The document's revision, the newest handed out, the saved one and the one being
+    /// saved (see [`History`]).
+    pub(super) revision: u64,
+    pub(super) next_revision: u64,
+    pub(super) saved_revision: u64,
+    pub(super) saving_revision: Option<u64>,
+    /// The project file of the document.
+    pub(super) path: Option<PathBuf>,
+}
+
+impl Document {
+    /// `project`, unmodified, from `path` (`None`: not saved yet).
+    pub(super) fn new(project: Project, path: Option<PathBuf>) -> Self {
+        Self {
+            last_good: project.clone(),
+            project,
+            wrinkles: None,
+            history: History::default(),
+            revision: 0,
+            next_revision: 0,
+            saved_revision: 0,
+            saving_revision: None,
+            path,
+        }
+    }
+}

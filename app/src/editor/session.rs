@@ -1,0 +1,35 @@
+//! The bake session of the document: the worker that turns every edit into maps, the
+//! last snapshot it sent back, and what the status line says of it.
+
+use super::worker::{Snapshot, Worker};
+
+pub(super) struct Session {
+    pub(super) worker: Worker,
+    /// The last finished bake.
+    pub(super) snapshot: Snapshot,
+    /// The newest job that reported.
+    pub(super) reported: u64,
+    pub(super) last_bake_ms: f64,
+    pub(super) last_what: String,
+    /// An age change waits for the worker (see [`super::EditorApp::set_age`]).
+    pub(super) age_pending: bool,
+}
+
+impl Session {
+    /// Starts the worker; `wake` asks the UI for a repaint when a bake reports.
+    pub(super) fn new(wake: impl Fn() + Send + 'static) -> Self {
+        Self {
+            worker: Worker::spawn(wake),
+            snapshot: Snapshot::default(),
+            reported: 0,
+            last_bake_ms: 0.0,
+            last_what: String::new(),
+            age_pending: false,
+        }
+    }
+
+    /// Whether the newest request has not been baked yet.
+    pub(super) fn busy(&self) -> bool {
+        self.worker.busy(self.reported)
+    }
+}

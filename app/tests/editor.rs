@@ -229,3 +229,36 @@ fn the_normal_pictures_are_baked_only_while_shown() {
         }
     }
 }
+
+/// The 3D view draws the age slider's age at once: its fine-wrinkle blend and paling are
+/// those of the new age in the very frame the slider moved, while the maps are still
+/// the last bake's (the view used to take them from that bake's factors, a step behind).
+#[test]
+fn the_view_follows_the_age_slider_before_the_maps_do() {
+    if !std::path::Path::new("/usr/share/vulkan/icd.d").exists() {
+        return agesim_render::ci::skip_or_fail(
+            "the_view_follows_the_age_slider_before_the_maps_do",
+            "no Vulkan driver on this machine",
+        );
+    }
+    let mut h = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .wgpu()
+        .build_eframe(|cc| EditorApp::new(cc, EditorOptions::default()));
+    settle(&mut h);
+    let at_50 = h.state().view_frame().expect("a 3D view frame");
+    h.get_by_role_and_label(Role::Slider, "age (years)")
+        .set_value_accesskit(78.0);
+    h.run_steps(1);
+    let project = h.state().project().clone();
+    let f = h.state().view_frame().unwrap();
+    assert_eq!(f.age, project.age.t);
+    let expected = agesim::view::fine_blend(&project, project.age.t);
+    assert!(
+        expected > at_50.skin.fine_blend,
+        "the curve rises from 50 to 78"
+    );
+    assert_eq!(f.skin.fine_blend, expected);
+    let whole = agesim::view::frame_params(&project, project.age.t, f.camera);
+    assert_eq!(f.skin.albedo, whole.skin.albedo, "paling at 78");
+}

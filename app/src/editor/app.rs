@@ -267,6 +267,11 @@ impl EditorApp {
         &self.doc.project
     }
 
+    /// The numbers of the 3D view's last frame (`None` without a GPU), for tests.
+    pub fn view_frame(&self) -> Option<agesim_render::FrameParams> {
+        self.viewport.as_ref()?.last_frame().copied()
+    }
+
     /// The last finished bake, for tests.
     pub fn snapshot(&self) -> &Snapshot {
         &self.session.snapshot

@@ -186,6 +186,11 @@ impl Viewport {
         camera.clip_from_world(rect.width() / rect.height().max(1.0))
     }
 
+    /// The numbers of the main view's last frame (for tests and diagnostics).
+    pub fn last_frame(&self) -> Option<&FrameParams> {
+        self.panes[MAIN].last.as_ref().map(|(params, ..)| params)
+    }
+
     /// Shows the latest frame over `rect`, through `painter`'s clip rectangle.
     pub fn show(&self, painter: &egui::Painter, rect: Rect) {
         self.show_pane(MAIN, painter, rect);

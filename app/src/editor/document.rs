@@ -26,6 +26,14 @@ pub(super) struct Document {
 }
 
 impl Document {
+    /// The project file's name, or `untitled` when it has none yet.
+    pub(super) fn file_name(&self, untitled: &str) -> String {
+        self.path
+            .as_ref()
+            .and_then(|p| p.file_name())
+            .map_or_else(|| untitled.to_owned(), |n| n.to_string_lossy().into_owned())
+    }
+
     /// `project`, unmodified, from `path` (`None`: not saved yet).
     pub(super) fn new(project: Project, path: Option<PathBuf>) -> Self {
         Self {

@@ -24,9 +24,16 @@ use crate::view::{self, Uploaded};
 /// ≈ 29 ms of every frame on llvmpipe at 1280×800.
 const VIEW_FORMAT: eframe::wgpu::TextureFormat = eframe::wgpu::TextureFormat::Rgba8Unorm;
 
+/// Which age a frame shows: the document's, or the compare view's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shown {
+    Document = 0,
+    Compare = 1,
+}
+
 /// The panes of [`Viewport::panes`].
-const MAIN: usize = 0;
-const COMPARE: usize = 1;
+const MAIN: usize = Shown::Document as usize;
+const COMPARE: usize = Shown::Compare as usize;
 
 /// One of the renderer's views as shown: what it was given, the key of its last frame
 /// and the blit's bind group for its current colour target.
@@ -150,8 +157,8 @@ impl Viewport {
             let (origin, dir) = super::pick::view_ray(clip, ndc);
             self.picked = super::pick::ray_pick(mesh, origin, dir);
         }
-        if self.render(ui.ctx(), rs, snapshot, project, rect) {
-            self.show(ui.painter(), rect);
+        if self.render(Shown::Document, ui.ctx(), rs, snapshot, project, rect) {
+            self.show(Shown::Document, ui.painter(), rect);
         }
         if let Some(p) = self.marker {
             let clip = self.clip_from_world(project, rect);
@@ -191,19 +198,10 @@ impl Viewport {
         self.panes[MAIN].last.as_ref().map(|(params, ..)| params)
     }
 
-    /// Shows the latest frame over `rect`, through `painter`'s clip rectangle.
-    pub fn show(&self, painter: &egui::Painter, rect: Rect) {
-        self.show_pane(MAIN, painter, rect);
-    }
-
-    /// Shows the compare age's latest frame over `rect`, through `painter`'s clip
-    /// rectangle (the part right of the divider).
-    pub fn show_compare(&self, painter: &egui::Painter, rect: Rect) {
-        self.show_pane(COMPARE, painter, rect);
-    }
-
-    fn show_pane(&self, i: usize, painter: &egui::Painter, rect: Rect) {
-        if let Some((_, bind_group)) = self.panes.get(i).and_then(|p| p.shown.as_ref()) {
+    /// Shows `age`'s latest frame over `rect`, through `painter`'s clip rectangle (the
+    /// compare age: the part right of the divider).
+    pub fn show(&self, age: Shown, painter: &egui::Painter, rect: Rect) {
+        if let Some((_, bind_group)) = self.panes.get(age as usize).and_then(|p| p.shown.as_ref()) {
             painter.add(egui_wgpu::Callback::new_paint_callback(
                 rect,
                 ShowFrame {
@@ -215,45 +213,24 @@ impl Viewport {
     }
 
     /// Uploads what changed and, when anything it shows changed, encodes a frame of
-    /// `rect`'s size; returns whether there is a frame to show.
+    /// `age` of `rect`'s size; returns whether there is a frame to show. `snapshot` and
+    /// `project` are that age's: for [`Shown::Compare`] the compare scene's snapshot and
+    /// the document at the compare age, drawn into a second view of the same renderer
+    /// (the mesh, the hair and the fine tile are not uploaded twice).
     pub fn render(
         &mut self,
+        age: Shown,
         ctx: &egui::Context,
         rs: &egui_wgpu::RenderState,
         snapshot: &Snapshot,
         project: &Project,
         rect: Rect,
     ) -> bool {
-        self.render_pane(MAIN, ctx, rs, snapshot, project, rect)
-    }
-
-    /// [`Viewport::render`] of the compare age (`snapshot`: the compare scene's, `project`:
-    /// the document at the compare age), into a second view of the same renderer: the
-    /// mesh, the hair and the fine tile are not uploaded twice.
-    pub fn render_compare(
-        &mut self,
-        ctx: &egui::Context,
-        rs: &egui_wgpu::RenderState,
-        snapshot: &Snapshot,
-        project: &Project,
-        rect: Rect,
-    ) -> bool {
-        if self.panes.len() <= COMPARE {
+        if age == Shown::Compare && self.panes.len() <= COMPARE {
             let view = self.renderer.add_view();
             self.panes.push(Pane::new(view));
         }
-        self.render_pane(COMPARE, ctx, rs, snapshot, project, rect)
-    }
-
-    fn render_pane(
-        &mut self,
-        i: usize,
-        ctx: &egui::Context,
-        rs: &egui_wgpu::RenderState,
-        snapshot: &Snapshot,
-        project: &Project,
-        rect: Rect,
-    ) -> bool {
+        let i = age as usize;
         self.upload(i, snapshot, project);
         if snapshot.layers.mesh.is_none() {
             return self.panes[i].shown.is_some();

@@ -88,38 +88,20 @@ mod tests {
     use super::*;
     use agesim_core::mesh::SurfaceScale;
 
-    fn quad() -> (Vec<Vec3>, Vec<Vec2>, Vec<u32>) {
-        // 0.2 × 0.1 units, UV 0..1 both ways.
-        let p = vec![
-            Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(0.2, 0.0, 0.0),
-            Vec3::new(0.2, 0.1, 0.0),
-            Vec3::new(0.0, 0.1, 0.0),
-        ];
-        let uv = vec![
-            Vec2::new(0.0, 0.0),
-            Vec2::new(1.0, 0.0),
-            Vec2::new(1.0, 1.0),
-            Vec2::new(0.0, 1.0),
-        ];
-        (p, uv, vec![0, 1, 2, 0, 2, 3])
-    }
-
     #[test]
     fn subdivision_shares_edges() {
-        let (p, uv, idx) = quad();
+        // A 0.2 × 0.1 quad, UV 0..1 both ways: two triangles.
+        let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
         let data = MeshData {
-            vertices: p
-                .iter()
-                .zip(&uv)
-                .map(|(p, uv)| Vertex {
-                    position: p.to_array(),
+            vertices: corners
+                .map(|[u, v]| Vertex {
+                    position: [0.2 * u, 0.1 * v, 0.0],
                     normal: [0.0, 0.0, 1.0],
-                    uv: uv.to_array(),
+                    uv: [u, v],
                     tangent: [1.0, 0.0, 0.0, 1.0],
                 })
-                .collect(),
-            indices: idx,
+                .to_vec(),
+            indices: vec![0, 1, 2, 0, 2, 3],
         };
         let sub = subdivide(&data);
         // 5 edges (4 sides + the diagonal) → 5 new vertices; 2 → 8 triangles.

@@ -1,6 +1,7 @@
 //! The compare view: a second age right of a draggable divider, in the same camera.
 
 use super::EditorApp;
+use crate::editor::viewport::Shown;
 
 impl EditorApp {
     /// The compare view: the right part of `rect` (from the divider on) shows the second
@@ -20,9 +21,9 @@ impl EditorApp {
         let mut project_b = self.doc.project.clone();
         project_b.age.t = project_b.age.mapping().t(self.persisted.compare_years);
         let x = rect.left() + rect.width() * self.persisted.divider;
-        if v.render_compare(ui.ctx(), rs, snapshot_b, &project_b, rect) {
+        if v.render(Shown::Compare, ui.ctx(), rs, snapshot_b, &project_b, rect) {
             let right = egui::Rect::from_min_max(egui::pos2(x, rect.top()), rect.max);
-            v.show_compare(&ui.painter().with_clip_rect(right), rect);
+            v.show(Shown::Compare, &ui.painter().with_clip_rect(right), rect);
         }
         let handle = egui::Rect::from_center_size(
             egui::pos2(x, rect.center().y),

@@ -85,15 +85,7 @@ impl EditorApp {
 
     /// The window title: file name and a `*` when modified.
     pub fn title(&self) -> String {
-        let name = self
-            .doc
-            .path
-            .as_ref()
-            .and_then(|p| p.file_name())
-            .map_or_else(
-                || "untitled".to_owned(),
-                |n| n.to_string_lossy().into_owned(),
-            );
+        let name = self.doc.file_name("untitled");
         format!("{name}{} — agesim", if self.modified() { " *" } else { "" })
     }
 
@@ -166,15 +158,7 @@ impl EditorApp {
     }
 
     pub fn save_as(&mut self) {
-        let name = self
-            .doc
-            .path
-            .as_ref()
-            .and_then(|p| p.file_name())
-            .map_or_else(
-                || "head.agesim.json".to_owned(),
-                |n| n.to_string_lossy().into_owned(),
-            );
+        let name = self.doc.file_name("head.agesim.json");
         self.ask(Purpose::SaveProject, Some(name));
     }
 

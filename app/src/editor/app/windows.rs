@@ -73,15 +73,7 @@ impl EditorApp {
         if let Some(action) = self.prompt.clone() {
             let modal = egui::Modal::new(egui::Id::unique("unsaved")).show(ctx, |ui| {
                 ui.heading("Unsaved changes");
-                let name = self
-                    .doc
-                    .path
-                    .as_ref()
-                    .and_then(|p| p.file_name())
-                    .map_or_else(
-                        || "the untitled project".to_owned(),
-                        |n| n.to_string_lossy().into_owned(),
-                    );
+                let name = self.doc.file_name("the untitled project");
                 ui.label(format!(
                     "Save the changes to {name} before {}?",
                     action.verb()

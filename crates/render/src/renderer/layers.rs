@@ -211,7 +211,7 @@ impl Renderer {
         }
         let bg = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("agesim skin bind group"),
-            layout: &self.skin_layout,
+            layout: &self.pipelines.skin_layout,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
@@ -231,11 +231,11 @@ impl Renderer {
                 },
                 wgpu::BindGroupEntry {
                     binding: 4,
-                    resource: wgpu::BindingResource::Sampler(&self.surface_sampler),
+                    resource: wgpu::BindingResource::Sampler(&self.pipelines.surface_sampler),
                 },
                 wgpu::BindGroupEntry {
                     binding: 5,
-                    resource: wgpu::BindingResource::Sampler(&self.tile_sampler),
+                    resource: wgpu::BindingResource::Sampler(&self.pipelines.tile_sampler),
                 },
             ],
         });

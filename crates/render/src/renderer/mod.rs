@@ -90,32 +90,14 @@ pub struct Renderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
     colour_format: wgpu::TextureFormat,
-    wire_pipeline: wgpu::RenderPipeline,
+    /// Layouts, pipelines and samplers, made once.
+    pipelines: Pipelines,
     /// The uploaded mesh's edges (line list), for the wireframe overlay.
     wire_edges: Option<(wgpu::Buffer, u32)>,
-    skin_layout: wgpu::BindGroupLayout,
-    hair_layout: wgpu::BindGroupLayout,
-    /// Rasterises the mesh into the surface targets (`fs_surface`).
-    surface_pipeline: wgpu::RenderPipeline,
-    surface_layout: wgpu::BindGroupLayout,
-    /// Shades the stored surface in one full-screen triangle (`fs_shade`).
-    shade_pipeline: wgpu::RenderPipeline,
-    /// Writes the stored surface's depth into the depth target (`fs_depth`).
-    depth_pipeline: wgpu::RenderPipeline,
     /// Bumped when the mesh is replaced (see [`SurfaceKey`]).
     mesh_generation: u64,
     /// Surface passes run so far, every view ([`Renderer::surface_passes`]).
     surface_passes: u64,
-    hair_pipeline: wgpu::RenderPipeline,
-    /// The hair pipeline reading every `sparse_hair_stride`-th instance (None where the
-    /// device allows no wider stride than one instance).
-    sparse_hair_pipeline: Option<wgpu::RenderPipeline>,
-    /// [`SPARSE_HAIR_STRIDE`], or less where the device's vertex stride limit is lower.
-    ///
-    /// [`SPARSE_HAIR_STRIDE`]: crate::SPARSE_HAIR_STRIDE
-    sparse_hair_stride: u32,
-    surface_sampler: wgpu::Sampler,
-    tile_sampler: wgpu::Sampler,
     /// The fine-wrinkle tile, shared by every view.
     fine: Layer,
     mesh: Option<GpuMesh>,
@@ -142,27 +124,14 @@ impl Renderer {
         colour_format: wgpu::TextureFormat,
     ) -> Result<Self, RenderError> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let Pipelines {
-            skin_layout,
-            surface_pipeline,
-            surface_layout,
-            shade_pipeline,
-            depth_pipeline,
-            wire_pipeline,
-            hair_pipeline,
-            sparse_hair_pipeline,
-            sparse_hair_stride,
-            hair_layout,
-            surface_sampler,
-            tile_sampler,
-        } = Pipelines::build(device, colour_format);
+        let pipelines = Pipelines::build(device, colour_format);
         let fine = create_r16f(
             device,
             queue,
             "agesim fine-wrinkle tile (placeholder)",
             &prepare_r16f((1, 1), &[0.0], false),
         );
-        let main = View::new(device, queue, &hair_layout);
+        let main = View::new(device, queue, &pipelines.hair_layout);
 
         if let Some(err) = pollster::block_on(scope.pop()) {
             return Err(RenderError::Gpu(err.to_string()));
@@ -171,21 +140,10 @@ impl Renderer {
             device: device.clone(),
             queue: queue.clone(),
             colour_format,
-            skin_layout,
-            hair_layout,
-            surface_pipeline,
-            surface_layout,
-            shade_pipeline,
-            depth_pipeline,
+            pipelines,
             mesh_generation: 0,
             surface_passes: 0,
-            hair_pipeline,
-            sparse_hair_pipeline,
-            sparse_hair_stride,
-            wire_pipeline,
             wire_edges: None,
-            surface_sampler,
-            tile_sampler,
             fine,
             mesh: None,
             displaced_mesh: None,
@@ -208,7 +166,7 @@ impl Renderer {
     /// One hair in how many a sparse frame draws (`HairShading::sparse`); 1 where the
     /// device cannot draw sparse frames.
     pub fn sparse_hair_stride(&self) -> u32 {
-        self.sparse_hair_stride
+        self.pipelines.sparse_hair_stride
     }
 
     /// count(t): the hairs drawn at age `t` (0 without hair).
@@ -356,7 +314,7 @@ impl Renderer {
                 multiview_mask: None,
             });
             if let Some(mesh) = mesh {
-                pass.set_pipeline(&self.surface_pipeline);
+                pass.set_pipeline(&self.pipelines.surface_pipeline);
                 pass.set_bind_group(0, &skin_bind_group, &[]);
                 pass.set_vertex_buffer(0, mesh.vertices.slice(..));
                 pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
@@ -388,7 +346,7 @@ impl Renderer {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.shade_pipeline);
+            pass.set_pipeline(&self.pipelines.shade_pipeline);
             pass.set_bind_group(0, &skin_bind_group, &[]);
             pass.set_bind_group(1, &targets.surface_bind_group, &[]);
             pass.draw(0..3, 0..1);
@@ -401,14 +359,14 @@ impl Renderer {
             }
             // Sparse: instances 0, S, 2S, … of the first `count` (the last one read,
             // (⌈count/S⌉ − 1)·S, is below count).
-            Some(match &self.sparse_hair_pipeline {
+            Some(match &self.pipelines.sparse_hair_pipeline {
                 Some(sparse) if params.hair.sparse => (
                     hair,
                     sparse,
-                    count.div_ceil(self.sparse_hair_stride),
+                    count.div_ceil(self.pipelines.sparse_hair_stride),
                     SPARSE_SEGMENTS,
                 ),
-                _ => (hair, &self.hair_pipeline, count, SEGMENTS),
+                _ => (hair, &self.pipelines.hair_pipeline, count, SEGMENTS),
             })
         });
         if !wire && hair.is_none() {
@@ -433,7 +391,7 @@ impl Renderer {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.depth_pipeline);
+            pass.set_pipeline(&self.pipelines.depth_pipeline);
             pass.set_bind_group(0, &skin_bind_group, &[]);
             pass.set_bind_group(1, &targets.surface_bind_group, &[]);
             pass.draw(0..3, 0..1);
@@ -462,7 +420,7 @@ impl Renderer {
             multiview_mask: None,
         });
         if wire && let (Some(mesh), Some((edges, count))) = (&self.mesh, &self.wire_edges) {
-            pass.set_pipeline(&self.wire_pipeline);
+            pass.set_pipeline(&self.pipelines.wire_pipeline);
             pass.set_bind_group(0, &skin_bind_group, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_index_buffer(edges.slice(..), wgpu::IndexFormat::Uint32);

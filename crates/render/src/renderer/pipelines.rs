@@ -19,14 +19,24 @@ pub(super) const SURFACE_FORMATS: [wgpu::TextureFormat; 3] = [
 
 /// What [`Pipelines::build`] makes (the renderer keeps each as a field of the same name).
 pub(super) struct Pipelines {
+    /// The skin passes' group 0: the frame uniform, the height layers, the samplers.
     pub(super) skin_layout: wgpu::BindGroupLayout,
+    /// Rasterises the mesh into the surface targets (`fs_surface`).
     pub(super) surface_pipeline: wgpu::RenderPipeline,
+    /// The shading pass's group 1: the stored surface.
     pub(super) surface_layout: wgpu::BindGroupLayout,
+    /// Shades the stored surface in one full-screen triangle (`fs_shade`).
     pub(super) shade_pipeline: wgpu::RenderPipeline,
+    /// Writes the stored surface's depth into the depth target (`fs_depth`).
     pub(super) depth_pipeline: wgpu::RenderPipeline,
     pub(super) wire_pipeline: wgpu::RenderPipeline,
     pub(super) hair_pipeline: wgpu::RenderPipeline,
+    /// The hair pipeline reading every `sparse_hair_stride`-th instance (None where the
+    /// device allows no wider stride than one instance).
     pub(super) sparse_hair_pipeline: Option<wgpu::RenderPipeline>,
+    /// [`SPARSE_HAIR_STRIDE`], or less where the device's vertex stride limit is lower.
+    ///
+    /// [`SPARSE_HAIR_STRIDE`]: crate::SPARSE_HAIR_STRIDE
     pub(super) sparse_hair_stride: u32,
     /// The hair pass's group 0: the frame uniform alone (one bind group per view).
     pub(super) hair_layout: wgpu::BindGroupLayout,

@@ -90,7 +90,7 @@ impl Renderer {
         });
         let surface_bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("agesim stored surface bind group"),
-            layout: &self.surface_layout,
+            layout: &self.pipelines.surface_layout,
             entries: &[0, 1, 2].map(|i| wgpu::BindGroupEntry {
                 binding: i,
                 resource: wgpu::BindingResource::TextureView(&surface_views[i as usize]),

@@ -80,8 +80,11 @@ impl Renderer {
     /// (flat until uploaded with [`Renderer::upload_prepared_to`]); the mesh, the hair,
     /// the fine-wrinkle tile and the pipelines are the renderer's.
     pub fn add_view(&mut self) -> ViewId {
-        self.views
-            .push(View::new(&self.device, &self.queue, &self.hair_layout));
+        self.views.push(View::new(
+            &self.device,
+            &self.queue,
+            &self.pipelines.hair_layout,
+        ));
         ViewId(self.views.len() - 1)
     }
 

@@ -67,7 +67,7 @@ impl fmt::Display for Diagnostic {
         if self.found.is_empty() {
             Ok(())
         } else {
-            write!(f, ", found `{}`", crate::limits::shorten(&self.found, 80))
+            write!(f, ", found `{}`", shorten(&self.found, 80))
         }
     }
 }
@@ -89,3 +89,11 @@ impl fmt::Display for ParseErrors {
 }
 
 impl std::error::Error for ParseErrors {}
+/// `text` cut to at most `max_chars` characters, with `…` where it was cut, so that a
+/// 10 MB token in an input does not become 10 MB of error message.
+pub fn shorten(text: &str, max_chars: usize) -> String {
+    match text.char_indices().nth(max_chars) {
+        None => text.to_owned(),
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+    }
+}

@@ -36,14 +36,8 @@ pub fn read_file(path: &Path, limit: u64) -> Result<Vec<u8>, Error> {
     Ok(bytes)
 }
 
-/// `text` cut to at most `max_chars` characters, with `…` where it was cut, so that a
-/// 10 MB token in an input does not become 10 MB of error message.
-pub fn shorten(text: &str, max_chars: usize) -> String {
-    match text.char_indices().nth(max_chars) {
-        None => text.to_owned(),
-        Some((cut, _)) => format!("{}…", &text[..cut]),
-    }
-}
+/// Long inputs cut for messages (it lives with the diagnostics, which every error uses).
+pub use crate::diagnostic::shorten;
 
 #[cfg(test)]
 mod tests {

@@ -1,4 +1,5 @@
 use super::*;
+use crate::micro::pores::Placement;
 
 #[test]
 fn empty_and_partial_files_load_with_defaults() {

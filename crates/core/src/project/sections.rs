@@ -1,0 +1,561 @@
+//! The sections of the project file, one struct each, with their defaults (what each
+//! field means, its unit and range: `fields::FIELDS` and `docs/project-file.md`).
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize};
+
+use super::DEFAULT_GAMMA;
+use crate::age::{AgeCurve, AgeFactors, AgeMapping, CurveShape};
+use crate::hair::GrayingRamp;
+use crate::micro::pores::{Placement, PoreProfile, Rim};
+use crate::normal_map::Convention;
+use crate::transition::DistanceMetric;
+
+/// The head the maps are made for.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MeshSection {
+    /// A mesh file (OBJ, glTF, GLB); `null` = the built-in mesh of `builtin`.
+    pub path: Option<PathBuf>,
+    /// The built-in mesh used when `path` is null.
+    pub builtin: BuiltinMesh,
+    /// Metres per mesh unit (1 for the built-in meshes and glTF; often 0.01 for OBJ in cm).
+    pub metres_per_unit: f32,
+}
+
+/// The meshes that ship inside agesim.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BuiltinMesh {
+    /// The default head (`assets/meshes/default-head.glb`).
+    #[default]
+    Head,
+    /// The flat 5 cm skin patch.
+    SkinPatch,
+}
+
+/// The fine-wrinkle tile (docs/models.md §10 "Fine wrinkles", [T] §5.2).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FineSection {
+    pub enabled: bool,
+    /// A tileable grey height image; `null` = generated from the parameters below.
+    pub tile: Option<PathBuf>,
+    /// Side of one tile on the skin, mm.
+    pub size_mm: f32,
+    /// Normal-map strength of the tile (UV of the tile per height unit).
+    pub strength: f32,
+    /// Resolution of the generated tile, px.
+    pub size_px: u32,
+    pub creases: u32,
+    pub length: f32,
+    pub width: f32,
+    pub crossing_deg: f32,
+    pub spread_deg: f32,
+    pub seed: u64,
+}
+
+/// Hair recession and graying (docs/models.md §9).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct HairSection {
+    pub enabled: bool,
+    /// Grey mask of the hair at t = 0; `null` = the default head's.
+    pub outer_mask: Option<PathBuf>,
+    /// Grey mask of the hair that remains at t = 1; `null` = the default head's.
+    pub inner_mask: Option<PathBuf>,
+    pub density_per_cm2: f32,
+    pub metric: DistanceMetric,
+    /// Transition-texture side, px; `null` = the masks' size.
+    pub transition_size_px: Option<u32>,
+    pub seed: u64,
+    pub max_deviation_deg: f32,
+    pub length_mm: f32,
+    pub base_colour: Colour,
+    pub gray_colour: Colour,
+    pub graying_onset_min_years: f32,
+    pub graying_onset_max_years: f32,
+    pub graying_ramp: GrayingRamp,
+    pub k_diff: f32,
+    pub k_spec: f32,
+    pub shininess: f32,
+    pub k_amb: f32,
+}
+
+/// Skin shading and paling with age ([T] §3.1.1).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SkinSection {
+    pub albedo: Colour,
+    /// The tone the albedo pales toward with age.
+    pub pale_albedo: Colour,
+    /// How far toward `pale_albedo` the skin goes at full paling, 0–1.
+    pub pale_amount: f32,
+    pub subsurface_colour: Colour,
+    /// Wrap-lighting amount (cheap subsurface scattering), 0–1.
+    pub wrap: f32,
+    pub roughness: f32,
+    pub specular: f32,
+}
+
+/// The age: the current value, the years it stands for, and the curves of every layer.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AgeSection {
+    /// The current age t ∈ [0, 1].
+    pub t: f32,
+    pub young_years: f32,
+    pub old_years: f32,
+    /// Large-wrinkle depth of fibres whose wrinkle file gives no `ageOnset`/`ageFull`.
+    pub large: AgeCurve,
+    /// Fine-wrinkle blend.
+    pub fine: AgeCurve,
+    /// Pore widening.
+    pub pores: AgeCurve,
+    /// Pore radius at the young end, relative to the project's radius.
+    pub pores_young_scale: f32,
+    /// Furrow deepening.
+    pub furrows: AgeCurve,
+    /// Furrow depth at the young end, relative to the project's depth.
+    pub furrows_young_scale: f32,
+    /// Skin paling.
+    pub pale: AgeCurve,
+}
+
+/// How the head is shown (the renderer's settings, saved with the project).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ViewSection {
+    pub pom: PomMode,
+    pub linear_steps: u32,
+    pub binary_steps: u32,
+    /// POM depth of the full large-wrinkle height, in UV units (docs/models.md §10 dispScale).
+    pub disp_scale: f32,
+    pub light_yaw_deg: f32,
+    pub light_pitch_deg: f32,
+    pub camera_yaw_deg: f32,
+    pub camera_pitch_deg: f32,
+    /// Camera distance from the head's centre, m.
+    pub camera_distance_m: f32,
+    pub fov_deg: f32,
+    pub show_hair: bool,
+    /// Draw the mesh's triangle edges over the skin.
+    pub wireframe: bool,
+}
+
+/// How the large-wrinkle relief is drawn (docs/models.md §10).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PomMode {
+    /// Linear search only.
+    Linear,
+    /// Binary search only.
+    Binary,
+    /// Linear then binary ([T]'s POM).
+    #[default]
+    Combined,
+    /// No parallax: the normal map only.
+    Normal,
+    /// A subdivided mesh displaced along its normals ([P] eq. 14).
+    Displacement,
+}
+
+/// An sRGB colour written `"#rrggbb"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Colour(pub [u8; 3]);
+
+impl Colour {
+    /// Parses `#rrggbb`.
+    pub fn parse(s: &str) -> Option<Self> {
+        let hex = s.strip_prefix('#')?;
+        if hex.len() != 6 || !hex.is_ascii() {
+            return None;
+        }
+        let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
+        Some(Self([byte(0)?, byte(2)?, byte(4)?]))
+    }
+
+    /// The colour in linear light, each channel in [0, 1] (the sRGB transfer undone).
+    pub fn linear(self) -> [f32; 3] {
+        self.0.map(|c| {
+            let c = c as f32 / 255.0;
+            if c <= 0.04045 {
+                c / 12.92
+            } else {
+                ((c + 0.055) / 1.055).powf(2.4)
+            }
+        })
+    }
+}
+
+impl std::fmt::Display for Colour {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let [r, g, b] = self.0;
+        write!(f, "#{r:02x}{g:02x}{b:02x}")
+    }
+}
+
+impl Serialize for Colour {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.to_string())
+    }
+}
+
+impl<'de> Deserialize<'de> for Colour {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let s = String::deserialize(d)?;
+        Colour::parse(&s)
+            .ok_or_else(|| serde::de::Error::custom(format!("expected \"#rrggbb\", found {s:?}")))
+    }
+}
+
+impl Default for MeshSection {
+    fn default() -> Self {
+        Self {
+            path: None,
+            builtin: BuiltinMesh::Head,
+            metres_per_unit: 1.0,
+        }
+    }
+}
+
+impl Default for FineSection {
+    fn default() -> Self {
+        let d = crate::fine_wrinkles::DEFAULT_FINE_WRINKLES;
+        Self {
+            enabled: true,
+            tile: None,
+            size_mm: 20.0,
+            strength: 0.004,
+            size_px: 1024,
+            creases: d.crease_count,
+            length: d.length_tile,
+            width: d.width_tile,
+            crossing_deg: d.crossing_deg,
+            spread_deg: d.spread_deg,
+            seed: d.seed,
+        }
+    }
+}
+
+impl Default for HairSection {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            outer_mask: None,
+            inner_mask: None,
+            density_per_cm2: crate::hair::DEFAULT_DENSITY_PER_CM2,
+            metric: DistanceMetric::default(),
+            transition_size_px: None,
+            seed: 0,
+            max_deviation_deg: crate::hair::DEFAULT_MAX_DEVIATION_RAD.to_degrees(),
+            length_mm: 30.0,
+            base_colour: Colour([0x5a, 0x3d, 0x28]),
+            gray_colour: Colour([0xd9, 0xd6, 0xcf]),
+            graying_onset_min_years: 30.0,
+            graying_onset_max_years: 65.0,
+            graying_ramp: GrayingRamp::default(),
+            k_diff: 0.7,
+            k_spec: 0.35,
+            shininess: 40.0,
+            k_amb: 0.05,
+        }
+    }
+}
+
+impl Default for SkinSection {
+    fn default() -> Self {
+        Self {
+            albedo: Colour([0xd8, 0xa0, 0x86]),
+            // Duller and a little sallower rather than lighter: de Rigal et al. 2010
+            // measured faces darkening and yellowing with age (docs/models.md "Age").
+            pale_albedo: Colour([0xd9, 0xb8, 0xa4]),
+            pale_amount: 0.4,
+            // With `wrap` 0.35: red wraps 0.45, green 0.22, blue 0.15 (docs/models.md
+            // "Rendering"): red light scatters farthest under the skin.
+            subsurface_colour: Colour([0xff, 0x7d, 0x55]),
+            wrap: 0.35,
+            // GGX roughness and F0 = 0.08 · specular = 0.028, d'Eon & Luebke's skin fit.
+            roughness: 0.42,
+            specular: 0.35,
+        }
+    }
+}
+
+impl Default for AgeSection {
+    fn default() -> Self {
+        Self {
+            t: 0.5,
+            young_years: crate::age::DEFAULT_YOUNG_YEARS,
+            old_years: crate::age::DEFAULT_OLD_YEARS,
+            large: AgeCurve::new(30.0, 65.0, CurveShape::Smoothstep),
+            fine: AgeCurve::new(20.0, 80.0, CurveShape::Linear),
+            pores: AgeCurve::new(25.0, 50.0, CurveShape::Smoothstep),
+            pores_young_scale: 0.8,
+            furrows: AgeCurve::new(25.0, 70.0, CurveShape::Smoothstep),
+            furrows_young_scale: 0.5,
+            pale: AgeCurve::new(40.0, 80.0, CurveShape::Linear),
+        }
+    }
+}
+
+impl Default for ViewSection {
+    fn default() -> Self {
+        Self {
+            pom: PomMode::Combined,
+            linear_steps: 8,
+            binary_steps: 4,
+            disp_scale: 0.005,
+            light_yaw_deg: 35.0,
+            light_pitch_deg: 30.0,
+            camera_yaw_deg: 20.0,
+            camera_pitch_deg: 5.0,
+            camera_distance_m: 0.6,
+            fov_deg: 30.0,
+            show_hair: true,
+            wireframe: false,
+        }
+    }
+}
+
+impl AgeSection {
+    /// The age mapping of this section.
+    pub fn mapping(&self) -> AgeMapping {
+        AgeMapping {
+            young_years: self.young_years,
+            old_years: self.old_years,
+        }
+    }
+
+    /// The factors of every layer at age `t` (clamped to [0, 1]). `fibre_curves` holds each
+    /// large-wrinkle fibre's own curve, or `None` for the layer default `large`.
+    pub fn factors(&self, t: f32, fibre_curves: &[Option<AgeCurve>]) -> AgeFactors {
+        let t = t.clamp(0.0, 1.0);
+        let years = self.mapping().years(t);
+        AgeFactors {
+            t,
+            years,
+            large: fibre_curves
+                .iter()
+                .map(|c| c.unwrap_or(self.large).factor(years))
+                .collect(),
+            fine_blend: self.fine.factor(years),
+            pore_radius_scale: crate::age::scale(self.pores_young_scale, self.pores.factor(years)),
+            furrow_depth_scale: crate::age::scale(
+                self.furrows_young_scale,
+                self.furrows.factor(years),
+            ),
+            paleness: self.pale.factor(years),
+        }
+    }
+}
+
+/// A value drawn uniformly in `mean ± spread` per feature.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeanSpread {
+    pub mean: f32,
+    #[serde(default)]
+    pub spread: f32,
+}
+
+impl MeanSpread {
+    pub const fn new(mean: f32, spread: f32) -> Self {
+        Self { mean, spread }
+    }
+    pub(super) fn pair(&self) -> (f32, f32) {
+        (self.mean, self.spread)
+    }
+}
+
+/// Large wrinkles (docs/models.md §2–3), combined as `depth × (normalised height)`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LargeSection {
+    /// Bake the large-wrinkle layer at all (the skin-patch presets turn it off).
+    pub enabled: bool,
+    /// Wrinkle description files (docs/models.md §3); relative paths are relative to the project file.
+    pub wrinkles: Vec<PathBuf>,
+    /// Optional grey mask image multiplying the large wrinkles.
+    pub mask: Option<PathBuf>,
+    /// Crest flattening γ, 0.01–10 (`muscle::GAMMA_RANGE`).
+    pub gamma: f32,
+    /// Height units of a normalised wrinkle height of 1; 0–10.
+    pub depth: f32,
+}
+
+/// Pores (docs/models.md §4 "Pores").
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PoreSection {
+    pub enabled: bool,
+    /// Exact number of pores, 0–200000 (ignored when `density_per_cm2` is set).
+    pub count: u32,
+    /// Pores per cm² of skin; when set, count = round(density × area).
+    pub density_per_cm2: Option<f32>,
+    pub placement: Placement,
+    /// R, mm: mean 0–1, spread 0–1.
+    pub radius_mm: MeanSpread,
+    /// dmax, height units: mean 0–4 (Table 1 slider 0–2; [P] fig. 15 uses 3), spread 0–4.
+    pub depth: MeanSpread,
+    /// α: mean −1.5–1.5 (negative = goose skin), spread 0–1.5.
+    pub falloff: MeanSpread,
+    pub profile: PoreProfile,
+    pub rim: Rim,
+}
+
+/// Furrows between pores (docs/models.md §4 "Wrinkles between pores").
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FurrowSection {
+    pub enabled: bool,
+    /// Links from each pore to its nearest neighbours, 1–8.
+    pub links_per_pore: u32,
+    /// Keep at most this many links (a seeded random subset); `null` = all.
+    pub max_count: Option<u32>,
+    /// A, height units: mean 0–2.5, spread 0–2.5.
+    pub depth: MeanSpread,
+    /// ω (half-width), mm: mean 0–1.5, spread 0–1.5.
+    pub width_mm: MeanSpread,
+    /// Preferred direction θ, degrees counter-clockwise from +u, −360–360.
+    pub direction_deg: f32,
+    /// 0–1: how much shallower links across θ are than links along it.
+    pub direction_strength: f32,
+    /// Fraction of the length over which each end narrows to half width (the depth stays
+    /// full, so furrows join at pores), 0.01–0.5.
+    pub taper: f32,
+}
+
+/// fBm added to the heights (docs/models.md §4 "Noise", eq. 17).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct NoiseSection {
+    /// Octaves 0–12, fractional allowed; 0 = no noise.
+    pub details: f32,
+    /// Amplitude gain per octave, 0–1.
+    pub roughness: f32,
+    /// Frequency factor per octave, 0.1–4.
+    pub lacunarity: f32,
+    /// First-octave lattice cell, mm, 0.01–1000.
+    pub scale_mm: f32,
+    /// λ, height units, 0–10.
+    pub strength: f32,
+}
+
+/// Domain warp of pores and furrows (docs/models.md §4 Choice): the same fBm, own settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WarpSection {
+    /// Largest displacement per axis, mm, 0–10; 0 = no warp.
+    pub strength_mm: f32,
+    /// Octaves 0–6.
+    pub details: f32,
+    pub roughness: f32,
+    pub lacunarity: f32,
+    /// First-octave lattice cell, mm, 0.01–1000.
+    pub scale_mm: f32,
+}
+
+/// Log-smoothed overlaps (docs/models.md §4 "Overlaps", eq. 18).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OverlapSection {
+    /// β, per height unit, 0.01–40; larger = sharper (the deepest wins).
+    pub beta: f32,
+    /// N ≥ 1, 1–100: smoothing.
+    pub n: f32,
+}
+
+/// Height → normal map settings (docs/models.md §5).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct NormalSection {
+    /// s of docs/models.md §5: UV units per height unit, 0–1000 (resolution independent; see
+    /// `normal_map`). The micro-relief default 0.002 reads as moderate relief on a 50 mm map.
+    pub strength: f32,
+    /// `opengl` (green up, default) or `directx`.
+    pub convention: Convention,
+}
+
+impl Default for LargeSection {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            wrinkles: Vec::new(),
+            mask: None,
+            gamma: DEFAULT_GAMMA,
+            depth: 1.0,
+        }
+    }
+}
+
+impl Default for PoreSection {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            count: 1500,
+            density_per_cm2: None,
+            placement: Placement::BlueNoise,
+            radius_mm: MeanSpread::new(0.3, 0.08),
+            depth: MeanSpread::new(1.0, 0.3),
+            falloff: MeanSpread::new(1.0, 0.2),
+            profile: PoreProfile::Gaussian,
+            rim: Rim::Smooth,
+        }
+    }
+}
+
+impl Default for FurrowSection {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            links_per_pore: 4,
+            max_count: None,
+            depth: MeanSpread::new(0.6, 0.15),
+            width_mm: MeanSpread::new(0.3, 0.05),
+            direction_deg: 30.0,
+            direction_strength: 0.5,
+            taper: 0.3,
+        }
+    }
+}
+
+impl Default for NoiseSection {
+    fn default() -> Self {
+        Self {
+            details: 5.0,
+            roughness: 0.5,
+            lacunarity: 2.0,
+            scale_mm: 4.0,
+            strength: 0.3,
+        }
+    }
+}
+
+impl Default for WarpSection {
+    fn default() -> Self {
+        Self {
+            strength_mm: 0.25,
+            details: 2.0,
+            roughness: 0.5,
+            lacunarity: 2.0,
+            scale_mm: 3.0,
+        }
+    }
+}
+
+impl Default for OverlapSection {
+    fn default() -> Self {
+        Self { beta: 4.0, n: 1.0 }
+    }
+}
+
+impl Default for NormalSection {
+    fn default() -> Self {
+        Self {
+            strength: crate::normal_map::DEFAULT_STRENGTH,
+            convention: Convention::OpenGl,
+        }
+    }
+}

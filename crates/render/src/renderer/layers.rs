@@ -244,12 +244,6 @@ impl Renderer {
     }
 }
 
-/// A 1-channel f16 texture (filterable everywhere) holding `data` (w·h values), with
-/// `mips`, its box-filtered mip chain (halving while both sides are even):
-/// `textureSampleGrad` then averages micro-relief and fine wrinkles smaller than a pixel
-/// instead of aliasing them into speckle. The large-wrinkle map has no mips: POM marches
-/// the exact height field (`tests/pom_reference.rs`), and at ≈ 1 texel per pixel on a
-/// whole-head view it does not alias much.
 /// A height layer converted for the GPU: f16 texels and, for tiles, the box-filtered mip
 /// chain. Made on any thread ([`PreparedLayer::large_wrinkles`], [`PreparedLayer::tile`]),
 /// so the thread that draws only copies bytes ([`Renderer::upload_prepared`]).
@@ -318,6 +312,12 @@ pub(super) fn prepare_r16f((width, height): (u32, u32), data: &[f32], mips: bool
     }
 }
 
+/// A 1-channel f16 texture (filterable everywhere) holding a prepared layer, with its mip
+/// chain when it has one (halving while both sides are even): `textureSampleGrad` then
+/// averages micro-relief and fine wrinkles smaller than a pixel instead of aliasing them
+/// into speckle. The large-wrinkle map has no mips: POM marches the exact height field
+/// (`tests/pom_reference.rs`), and at ≈ 1 texel per pixel on a whole-head view it does not
+/// alias much.
 pub(super) fn create_r16f(
     device: &wgpu::Device,
     queue: &wgpu::Queue,

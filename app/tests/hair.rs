@@ -86,7 +86,8 @@ fn custom_mesh_and_masks_of_different_sizes() {
         .unwrap();
     let out = dir.path().join("out");
     #[rustfmt::skip]
-    ok(&["hair", "--mesh", mesh.to_str().unwrap(), "--outer", outer.to_str().unwrap(),
+    ok(&["hair", "--mesh", mesh.to_str().unwrap(), "--metres-per-unit", "1",
+        "--outer", outer.to_str().unwrap(),
         "--inner", inner.to_str().unwrap(), "--density", "50", "--metric", "euclidean",
         "--out", out.to_str().unwrap()]);
     let report = read_json(&out);
@@ -114,7 +115,8 @@ fn same_seed_same_files_other_seed_other_hairs() {
     let run = |name: &str, seed: &str| {
         let out = dir.path().join(name);
         #[rustfmt::skip]
-        ok(&["hair", "--mesh", mesh.to_str().unwrap(), "--density", "30", "--seed", seed,
+        ok(&["hair", "--mesh", mesh.to_str().unwrap(), "--metres-per-unit", "1",
+            "--density", "30", "--seed", seed,
             "--size", "256", "--out", out.to_str().unwrap()]);
         (
             std::fs::read(out.join("transition.png")).unwrap(),
@@ -171,4 +173,65 @@ fn an_empty_outer_mask_is_an_error_naming_it() {
         !o.status.success() && e.contains("black.png") && e.contains("empty"),
         "{e}"
     );
+}
+
+/// The default head written as OBJ, its positions × `scale` (100: centimetres).
+fn default_head_obj(scale: f32) -> String {
+    use std::fmt::Write as _;
+    let mesh = agesim_core::head::default_head();
+    let mut s = String::new();
+    for p in mesh.positions() {
+        let p = *p * scale;
+        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
+    }
+    for uv in mesh.uvs() {
+        let _ = writeln!(s, "vt {} {}", uv.x, uv.y);
+    }
+    for [a, b, c] in mesh.triangles() {
+        let (a, b, c) = (a + 1, b + 1, c + 1);
+        let _ = writeln!(s, "f {a}/{a} {b}/{b} {c}/{c}");
+    }
+    s
+}
+
+/// A head in centimetres or millimetres is measured, not taken for metres: the same
+/// hairs as the head in metres (it used to ask for billions of hairs and fail).
+#[test]
+fn a_head_in_centimetres_or_millimetres_gets_the_hair_of_the_head_in_metres() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, scale: f32| {
+        let mesh = dir.path().join(format!("{name}.obj"));
+        std::fs::write(&mesh, default_head_obj(scale)).unwrap();
+        let out = dir.path().join(name);
+        let o = ok(&[
+            "hair",
+            "--mesh",
+            mesh.to_str().unwrap(),
+            "--density",
+            "5",
+            "--size",
+            "256",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+        let report = read_json(&out);
+        (
+            report["metres_per_unit"].as_f64().unwrap(),
+            report["instances"].as_u64().unwrap(),
+            stdout,
+        )
+    };
+    let (m, hairs_m, _) = run("m", 1.0);
+    let (cm, hairs_cm, said) = run("cm", 100.0);
+    let (mm, hairs_mm, _) = run("mm", 1000.0);
+    assert_eq!((m, cm as f32, mm as f32), (1.0, 0.01, 0.001));
+    assert!(
+        said.contains("metres per unit: 0.01 (centimetres"),
+        "{said}"
+    );
+    for hairs in [hairs_cm, hairs_mm] {
+        let ratio = hairs as f64 / hairs_m as f64;
+        assert!((0.98..1.02).contains(&ratio), "{hairs} vs {hairs_m}");
+    }
 }

@@ -4,7 +4,7 @@
 
 mod cli;
 
-use cli::stdout;
+use cli::{agesim, stdout};
 
 use std::process::{Command, Output};
 
@@ -137,4 +137,46 @@ fn fails_with_the_reason() {
     let out = mesh_info(&[stl.to_str().unwrap()]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("unsupported mesh format"));
+}
+
+/// `mesh-info` says how long a unit is and how it decided: from the size, or from the
+/// outer eye corners of a landmark file.
+#[test]
+fn mesh_info_prints_the_units_and_how_they_were_decided() {
+    let out = agesim(&["mesh-info"]);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        text.contains("metres per unit: 1 (metres: from the size"),
+        "{text}"
+    );
+    assert!(
+        text.contains("axes:      up +Y, forward +Z (assumed"),
+        "{text}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let landmarks = dir.path().join("l.json");
+    std::fs::write(
+        &landmarks,
+        r#"{"landmarks": {"exocanthion_r": [-4.7, 0, 0], "exocanthion_l": [4.7, 0, 0],
+            "pogonion": [0, -8, 1], "glabella": [0, 3, 1], "pronasale": [0, -2, 4]}}"#,
+    )
+    .unwrap();
+    let out = agesim(&["mesh-info", "--landmarks", landmarks.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        text.contains("metres per unit: 0.01 (centimetres: outer eye corners 9.4000 units apart"),
+        "{text}"
+    );
+    assert!(
+        text.contains("up +Y, forward +Z (from the landmarks)"),
+        "{text}"
+    );
+    // A bad landmark file is refused with its name and the point at fault.
+    std::fs::write(&landmarks, r#"{"landmarks": {"nose": [0, 0, 0]}}"#).unwrap();
+    let out = agesim(&["mesh-info", "--landmarks", landmarks.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(
+        !out.status.success() && err.contains("l.json") && err.contains("`nose`"),
+        "{err}"
+    );
 }

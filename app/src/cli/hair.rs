@@ -20,12 +20,9 @@ const REPORT_AGES: [f32; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 
 #[derive(Debug, clap::Args)]
 pub struct HairArgs {
-    /// Head mesh (OBJ, glTF or GLB). Default: the built-in default head (metres).
-    #[arg(long)]
-    pub mesh: Option<PathBuf>,
-    /// Length of one mesh unit in metres (0.01 for a mesh in centimetres).
-    #[arg(long, default_value_t = 1.0)]
-    pub metres_per_unit: f32,
+    /// The head: its mesh, units and landmarks.
+    #[command(flatten)]
+    pub head: super::MeshArgs,
     /// Outer hair mask (hair at age 0), any grey image. Default: the default head's.
     #[arg(long)]
     pub outer: Option<PathBuf>,
@@ -58,8 +55,7 @@ pub struct HairArgs {
 /// The project of `args`: the hair settings from the flags, every other layer off.
 fn project(args: &HairArgs) -> anyhow::Result<Project> {
     let mut p = Project::default();
-    p.mesh.path = args.mesh.clone();
-    p.mesh.metres_per_unit = args.metres_per_unit;
+    p.mesh.path = args.head.mesh.clone();
     p.hair.outer_mask = args.outer.clone();
     p.hair.inner_mask = args.inner.clone();
     p.hair.density_per_cm2 = args.density;
@@ -81,7 +77,8 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let start = Instant::now();
     let mut scene = Scene::new(project(args)?)?;
-    let mesh_name = match &args.mesh {
+    args.head.apply_units(&mut scene)?;
+    let mesh_name = match &args.head.mesh {
         Some(path) => path.display().to_string(),
         None => "default head".to_owned(),
     };
@@ -116,7 +113,7 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
     let mut report = serde_json::json!({
         "mesh": mesh_name,
         "triangles": surface_triangles,
-        "metres_per_unit": args.metres_per_unit,
+        "metres_per_unit": scene.project().mesh.metres_per_unit,
         "outer": mask_name(args.outer.as_deref(), defaults::HAIR_OUTER_MASK),
         "inner": mask_name(args.inner.as_deref(), defaults::HAIR_INNER_MASK),
         "size_px": size,

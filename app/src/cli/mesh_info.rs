@@ -3,7 +3,8 @@
 use std::path::PathBuf;
 
 use agesim_core::Mesh;
-use agesim_core::mesh::TangentSource;
+use agesim_core::landmarks::Landmarks;
+use agesim_core::mesh::{TangentSource, units};
 
 /// Print vertex/triangle counts, bounding box and size, which attributes the file had and
 /// what was generated or dropped. Without FILE (or with --default-head): the default head.
@@ -14,6 +15,9 @@ pub struct MeshInfoArgs {
     /// Report the built-in default head (the default when no FILE is given).
     #[arg(long, conflicts_with = "file")]
     pub default_head: bool,
+    /// The head's landmark file: its outer eye corners set the units, its face the axes.
+    #[arg(long, value_name = "FILE")]
+    pub landmarks: Option<PathBuf>,
 }
 
 pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
@@ -24,8 +28,32 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
             agesim_core::head::default_head(),
         ),
     };
+    let landmarks = match &args.landmarks {
+        Some(path) => Some(Landmarks::load(path)?),
+        None => None,
+    };
     print!("{}", describe(&name, &mesh));
+    print!("{}", describe_units(&mesh, landmarks.as_ref()));
     Ok(())
+}
+
+/// The detected units and axes, as `mesh-info` prints them.
+pub fn describe_units(mesh: &Mesh, landmarks: Option<&Landmarks>) -> String {
+    let u = units::detect(&mesh.bounds(), landmarks);
+    let axes = match landmarks.and_then(units::detect_axes) {
+        Some(a) => format!(
+            "up {}, forward {} (from the landmarks)",
+            a.up.name(),
+            a.forward.name()
+        ),
+        None => {
+            "up +Y, forward +Z (assumed: no landmarks of the chin, brow, eyes and nose)".to_owned()
+        }
+    };
+    format!(
+        "metres per unit: {} ({})\naxes:      {axes}\n",
+        u.metres_per_unit, u.how
+    )
 }
 
 /// The report printed by `mesh-info`, one fact per line.

@@ -108,6 +108,50 @@ impl AgeArgs {
     }
 }
 
+/// The head flags of `hair` and `render`: the mesh, its units and its landmarks.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct MeshArgs {
+    /// Head mesh (OBJ, glTF, GLB). Default: the built-in default head (metres).
+    #[arg(long, value_name = "FILE")]
+    pub mesh: Option<std::path::PathBuf>,
+    /// Length of one mesh unit in metres (0.01 for a mesh in centimetres). Default: for
+    /// --mesh, detected from --landmarks or from the head's size (`agesim mesh-info`
+    /// says how); otherwise the project's.
+    #[arg(long, value_name = "M")]
+    pub metres_per_unit: Option<f32>,
+    /// The head's landmark file (`{"landmarks": {"exocanthion_r": [x, y, z], …}}`, in the
+    /// mesh file's units): its outer eye corners set the units.
+    #[arg(long, value_name = "FILE")]
+    pub landmarks: Option<std::path::PathBuf>,
+}
+
+impl MeshArgs {
+    /// Gives `scene` its metres per unit: the flag's, else for a --mesh the detected one
+    /// (printed with how it was decided); a project's own mesh keeps the project's.
+    pub fn apply_units(&self, scene: &mut agesim_core::scene::Scene) -> anyhow::Result<()> {
+        let mpu = match (self.metres_per_unit, &self.mesh) {
+            (Some(m), _) => m,
+            (None, Some(_)) => {
+                let landmarks = match &self.landmarks {
+                    Some(path) => Some(agesim_core::landmarks::Landmarks::load(path)?),
+                    None => None,
+                };
+                let units =
+                    agesim_core::mesh::units::detect(&scene.mesh().bounds(), landmarks.as_ref());
+                println!("metres per unit: {} ({})", units.metres_per_unit, units.how);
+                units.metres_per_unit
+            }
+            (None, None) => return Ok(()),
+        };
+        if mpu != scene.project().mesh.metres_per_unit {
+            let mut p = scene.project().clone();
+            p.mesh.metres_per_unit = mpu;
+            scene.set_project(p)?;
+        }
+        Ok(())
+    }
+}
+
 /// The project a command starts from: `--project FILE`, else `--preset NAME`, else the
 /// default project.
 pub(crate) fn load_project_or_preset(

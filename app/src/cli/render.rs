@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use agesim_core::HeightMap;
 use agesim_core::hair::DEFAULT_DENSITY_PER_CM2;
-use agesim_core::project::{BuiltinMesh, Project};
+use agesim_core::project::{BuiltinMesh, Project, ViewSection};
 use agesim_core::scene::Scene;
 use agesim_render::{FrameParams, Gpu, PomMode, Renderer};
 use anyhow::{Context as _, bail};
@@ -23,12 +23,9 @@ pub struct RenderArgs {
     /// Project file (`*.agesim.json`): wrinkles, mask, micro-relief. Default: the default project.
     #[arg(long, value_name = "FILE")]
     pub project: Option<PathBuf>,
-    /// Head mesh (OBJ, glTF, GLB). Default: the built-in default head (metres).
-    #[arg(long, value_name = "FILE")]
-    pub mesh: Option<PathBuf>,
-    /// Length of one mesh unit in metres (0.01 for a mesh in centimetres).
-    #[arg(long, default_value_t = 1.0)]
-    pub metres_per_unit: f32,
+    /// The head: its mesh, units and landmarks.
+    #[command(flatten)]
+    pub head: super::MeshArgs,
     /// Draw the 5 cm skin patch instead of the head (close-ups of the relief).
     #[arg(long, conflicts_with = "mesh")]
     pub patch: bool,
@@ -121,9 +118,8 @@ fn project_of(args: &RenderArgs) -> anyhow::Result<Project> {
         Some(path) => Project::load(path)?,
         None => Project::default(),
     };
-    if let Some(path) = &args.mesh {
+    if let Some(path) = &args.head.mesh {
         p.mesh.path = Some(path.clone());
-        p.mesh.metres_per_unit = args.metres_per_unit;
     } else if args.patch {
         p.mesh.builtin = BuiltinMesh::SkinPatch;
         // The patch shows its own creases (its UV square is 5 cm of skin, not a face).
@@ -201,15 +197,24 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let project = project_of(args)?;
     let single_t = args.age.t(&project)?;
     let start = Instant::now();
-    let scene = Scene::new(project.clone())?;
+    let mut scene = Scene::new(project)?;
+    args.head.apply_units(&mut scene)?;
+    let project = scene.project().clone();
     let bounds = scene.mesh().bounds();
     let mut camera = view::camera(&project, bounds.centre());
-    if args.patch || args.mesh.is_some() {
+    let framed = bounds.size().length() * 1.6;
+    if args.patch || args.head.mesh.is_some() {
         // Framed: the whole mesh in view, face on (the patch lies in the z = 0 plane
         // facing +z, so `--pitch 70` grazes it).
-        camera.distance = bounds.size().length() * 1.6;
+        camera.distance = framed;
         camera.yaw_rad = 0.0;
         camera.pitch_rad = 0.0;
+    } else if project.mesh.path.is_some()
+        && project.view.camera_distance_m == ViewSection::default().camera_distance_m
+    {
+        // A project's own head at the default camera distance (set for the built-in
+        // head, in metres): framed at its own size and units, from the project's angle.
+        camera.distance = framed;
     }
     if let Some(y) = args.yaw {
         camera.yaw_rad = y.to_radians();

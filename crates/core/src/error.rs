@@ -49,6 +49,11 @@ pub enum Error {
         source_name: String,
         message: String,
     },
+    /// A landmark file is malformed or names an unknown point; the message names the
+    /// point at fault.
+    #[error("{}: {message}", path.display())]
+    Landmarks { path: PathBuf, message: String },
+
     /// A mesh file has an extension agesim cannot load.
     #[error("{}: unsupported mesh format \"{extension}\": expected .obj, .gltf or .glb", path.display())]
     UnsupportedMeshFormat { path: PathBuf, extension: String },

@@ -15,6 +15,7 @@ pub mod fine_wrinkles;
 pub mod hair;
 pub mod head;
 pub mod heightmap;
+pub mod landmarks;
 pub mod large_layer;
 pub mod limits;
 pub mod mask;

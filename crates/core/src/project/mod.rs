@@ -20,6 +20,11 @@ mod access;
 pub mod fields;
 mod json;
 mod sections;
+
+/// A strict JSON parse (a repeated key is an error), for the other JSON inputs.
+pub(crate) fn parse_strict_json(text: &str) -> Result<serde_json::Value, String> {
+    json::parse_strict(text)
+}
 #[cfg(test)]
 mod tests;
 

@@ -356,3 +356,48 @@ fn a_wrinkle_file_dropped_on_the_window_is_added_and_undo_removes_it() {
     settle(&mut h);
     assert_eq!(fibre_count(&h), fibres);
 }
+
+/// A head in centimetres dropped on the window is measured: its metres per unit become
+/// 0.01 before anything is baked (taken for metres it asked for billions of hairs and was
+/// refused), the status line says so, and undo takes the import and the units back.
+#[test]
+fn a_head_in_centimetres_imported_is_measured_and_undo_takes_it_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    let mut h = scripted(&dialogs, dir.path());
+    let hairs_m = h.state().snapshot().hair.as_ref().unwrap().len();
+    let mesh = dir.path().join("head-cm.obj");
+    {
+        use std::fmt::Write as _;
+        let head = agesim_core::head::default_head();
+        let mut s = String::new();
+        for p in head.positions() {
+            let p = *p * 100.0;
+            let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
+        }
+        for uv in head.uvs() {
+            let _ = writeln!(s, "vt {} {}", uv.x, uv.y);
+        }
+        for [a, b, c] in head.triangles() {
+            let (a, b, c) = (a + 1, b + 1, c + 1);
+            let _ = writeln!(s, "f {a}/{a} {b}/{b} {c}/{c}");
+        }
+        std::fs::write(&mesh, s).unwrap();
+    }
+    h.input_mut()
+        .dropped_files
+        .push(Arc::new(Dropped(mesh.clone())));
+    wait_for(&mut h, "the imported head", |app| {
+        app.project().mesh.path.as_deref() == Some(mesh.as_path())
+            && app.idle()
+            && app.project().mesh.metres_per_unit == 0.01
+    });
+    settle(&mut h);
+    let hairs_cm = h.state().snapshot().hair.as_ref().unwrap().len();
+    let ratio = hairs_cm as f64 / hairs_m as f64;
+    assert!((0.98..1.02).contains(&ratio), "{hairs_cm} vs {hairs_m}");
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut h);
+    assert_eq!(h.state().project().mesh.path, None);
+    assert_eq!(h.state().project().mesh.metres_per_unit, 1.0);
+}

@@ -23,6 +23,7 @@ fn bake(worker: &mut Worker, project: &Project, size_px: u32, t: f32) -> Snapsho
         request,
         what: format!("{size_px}²"),
         compare_t: None,
+        detect_units: false,
     });
     let start = Instant::now();
     loop {

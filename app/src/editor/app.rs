@@ -327,6 +327,7 @@ impl EditorApp {
             wrinkles: self.doc.wrinkles.clone(),
             request,
             what: what.to_owned(),
+            detect_units: self.session.measure_mesh,
             compare_t: self.persisted.compare.then(|| {
                 self.doc
                     .project
@@ -379,6 +380,15 @@ impl EditorApp {
                         self.doc.last_good = p.clone();
                     }
                     self.session.snapshot = *snapshot;
+                    if let Some(u) = report.units {
+                        // The imported head's units, measured: part of the import's step.
+                        self.session.measure_mesh = false;
+                        self.doc.project.mesh.metres_per_unit = u.metres_per_unit;
+                        self.info(format!(
+                            "metres per unit: {} ({}); change it in the layer panel's mesh section",
+                            u.metres_per_unit, u.how
+                        ));
+                    }
                 }
                 Outcome::Failed(message) => {
                     // Keep the previous state whole: the document goes back to what baked.

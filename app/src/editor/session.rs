@@ -13,6 +13,8 @@ pub(super) struct Session {
     pub(super) last_what: String,
     /// An age change waits for the worker (see [`super::EditorApp::set_age`]).
     pub(super) age_pending: bool,
+    /// A head was imported: the bakes measure its units until one reports them.
+    pub(super) measure_mesh: bool,
 }
 
 impl Session {
@@ -25,6 +27,7 @@ impl Session {
             last_bake_ms: 0.0,
             last_what: String::new(),
             age_pending: false,
+            measure_mesh: false,
         }
     }
 

@@ -17,6 +17,8 @@ impl EditorApp {
     pub fn import_mesh(&mut self, path: PathBuf) {
         self.record("import mesh", "import mesh", false);
         self.doc.project.mesh.path = Some(path.clone());
+        // Its units are measured by the bake (centimetres, millimetres, …).
+        self.session.measure_mesh = true;
         self.submit(false, &format!("import {}", path.display()));
     }
 

@@ -10,6 +10,7 @@ use std::time::Instant;
 use agesim_core::age::AgeFactors;
 use agesim_core::cancel::CancelToken;
 use agesim_core::hair::HairInstances;
+use agesim_core::mesh::units::Units;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Changed, LargeMap, MicroTile, Scene, WrinkleSource};
 use agesim_core::transition::TransitionTexture;
@@ -33,6 +34,9 @@ pub struct Job {
     pub what: String,
     /// Also bake this second age, for the compare view.
     pub compare_t: Option<f32>,
+    /// Measure the mesh's units before baking (a head just imported): the project's
+    /// `mesh.metres_per_unit` becomes the detected one ([`Report::units`]).
+    pub detect_units: bool,
 }
 
 /// What the UI shows of a finished bake. Each map is shared, not copied, between bakes
@@ -80,6 +84,8 @@ pub struct Report {
     pub what: String,
     pub ms: f64,
     pub outcome: Outcome,
+    /// The units the job measured ([`Job::detect_units`]), now the snapshot project's.
+    pub units: Option<agesim_core::mesh::units::Units>,
 }
 
 /// The UI side of the worker.
@@ -231,6 +237,11 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         install(&job, &mut || {
             outcome = bake(scene, &mut snapshot, &job, switched, &cancel)
         });
+        let units = match &mut outcome {
+            Ok((_, units)) => units.take(),
+            Err(_) => None,
+        };
+        let mut outcome = outcome.map(|(changed, _)| changed);
         if outcome.is_ok() {
             snapshot_full = Some(full);
         }
@@ -239,6 +250,11 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             let mut job_b = job.clone();
             job_b.request.t = t;
             job_b.wrinkles = scene.as_ref().map(|s| s.wrinkles().to_vec());
+            // The units, if measured, are the first scene's.
+            if let Some(s) = scene.as_ref() {
+                job_b.project.mesh.metres_per_unit = s.project().mesh.metres_per_unit;
+            }
+            job_b.detect_units = false;
             if scene_b.is_none() {
                 scene_b = scene.as_ref().map(Scene::fork);
             }
@@ -246,7 +262,7 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             install(&job_b, &mut || {
                 result_b = bake(&mut scene_b, &mut snapshot_b, &job_b, false, &cancel)
             });
-            match result_b {
+            match result_b.map(|(changed, _)| changed) {
                 Ok(_) => snapshot.compare = Some(Box::new(snapshot_b.clone())),
                 Err(e) => outcome = Err(e),
             }
@@ -266,6 +282,7 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             what: job.what,
             ms: start.elapsed().as_secs_f64() * 1e3,
             outcome,
+            units,
         };
         if reports.send(report).is_err() {
             return;
@@ -287,7 +304,7 @@ fn bake(
     job: &Job,
     refresh_all: bool,
     cancel: &CancelToken,
-) -> Result<Changed, Error> {
+) -> Result<(Changed, Option<Units>), Error> {
     let mut changed = Changed::default();
     let project = job.project.clone();
     match scene {
@@ -304,6 +321,18 @@ fn bake(
     let Some(s) = scene.as_mut() else {
         return Err(Error::Cancelled);
     };
+    // A head just imported: its units measured before anything is baked at the wrong
+    // scale (a head in centimetres taken for metres asks for billions of hairs).
+    let mut units = None;
+    if job.detect_units {
+        let u = agesim_core::mesh::units::detect(&s.mesh().bounds(), None);
+        if u.metres_per_unit != s.project().mesh.metres_per_unit {
+            let mut p = s.project().clone();
+            p.mesh.metres_per_unit = u.metres_per_unit;
+            changed.merge(s.set_project(p)?);
+        }
+        units = Some(u);
+    }
     match &job.wrinkles {
         Some(w) => s.set_wrinkles(w.clone()),
         // The document has no edited fibres (a new or opened project, an undo to before
@@ -387,7 +416,7 @@ fn bake(
     snapshot.hair = s.hair().cloned();
     snapshot.factors = Some(s.factors().clone());
     snapshot.wrinkles = s.wrinkles().to_vec();
-    snapshot.project = Some(job.project.clone());
+    snapshot.project = Some(s.project().clone());
     snapshot.request = Some(job.request);
-    Ok(merged)
+    Ok((merged, units))
 }

@@ -156,7 +156,8 @@ impl Changed {
         *self != Self::default()
     }
 
-    fn merge(&mut self, o: Changed) {
+    /// Adds what `o` changed.
+    pub fn merge(&mut self, o: Changed) {
         self.mesh |= o.mesh;
         self.large_stamps |= o.large_stamps;
         self.large |= o.large;

@@ -401,3 +401,29 @@ fn a_head_in_centimetres_imported_is_measured_and_undo_takes_it_back() {
     assert_eq!(h.state().project().mesh.path, None);
     assert_eq!(h.state().project().mesh.metres_per_unit, 1.0);
 }
+
+/// Where no native dialog can open (no XDG portal, no zenity: this machine under Xvfb),
+/// File › Import head mesh… opens agesim's own file browser, says once why, and the
+/// file typed there is imported.
+#[test]
+fn without_a_native_dialog_the_own_file_browser_imports_a_head() {
+    let dir = tempfile::tempdir().unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::unavailable());
+    let mut h = scripted(&dialogs, dir.path());
+    let head = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/meshes/default-head.glb");
+    menu(&mut h, "File", "Import head mesh");
+    assert!(dialogs.asked().is_empty(), "no native dialog was tried");
+    // The browser's window: type the head's path and open it.
+    h.get_by_role_and_label(Role::TextInput, "file name")
+        .click();
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::TextInput, "file name")
+        .type_text(head.to_str().unwrap());
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Button, "Open").click();
+    wait_for(&mut h, "the imported head", |app| {
+        app.project().mesh.path.as_deref() == Some(head.as_path()) && app.idle()
+    });
+    settle(&mut h);
+    assert!(h.state().snapshot().hair.is_some());
+}

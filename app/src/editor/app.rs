@@ -134,6 +134,10 @@ pub struct EditorApp {
     after_save: Option<Pending>,
     quit_confirmed: bool,
     export_run: Option<ExportRun>,
+    /// agesim's own file browser, open where no native dialog can.
+    browser: Option<super::file_browser::FileBrowser>,
+    /// Whether the status said once why the native dialog is not used.
+    told_no_native_dialog: bool,
     windows: Windows,
     config_dir: Option<PathBuf>,
     user_presets: Vec<PathBuf>,
@@ -224,6 +228,8 @@ impl EditorApp {
             after_save: None,
             quit_confirmed: false,
             export_run: None,
+            browser: None,
+            told_no_native_dialog: false,
             windows: Windows::default(),
             config_dir,
             user_presets: Vec::new(),
@@ -689,6 +695,7 @@ impl eframe::App for EditorApp {
             }
         }
         self.windows_ui(&ctx);
+        self.browser_ui(&ctx);
         self.notices.toasts_ui(&ctx, 150.0);
         self.maybe_screenshot(&ctx);
         self.bench_step(&ctx);

@@ -98,6 +98,12 @@ pub struct DialogRequest {
 /// Called on a thread of its own, never on the UI thread.
 pub trait Dialogs: Send + Sync + std::fmt::Debug {
     fn pick(&self, request: &DialogRequest) -> Option<PathBuf>;
+
+    /// Whether a dialog can open at all; `Err` says what would make it possible (the
+    /// editor then shows its own file browser).
+    fn available(&self) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// The platform's dialogs through `rfd` (the XDG portal on Linux, zenity without one).
@@ -105,6 +111,28 @@ pub trait Dialogs: Send + Sync + std::fmt::Debug {
 pub struct NativeDialogs;
 
 impl Dialogs for NativeDialogs {
+    /// On Linux rfd needs the XDG desktop portal (over the D-Bus session bus) or
+    /// zenity; without either its dialogs return at once, as if cancelled.
+    fn available(&self) -> Result<(), String> {
+        if !cfg!(target_os = "linux") {
+            return Ok(());
+        }
+        let bus = std::env::var_os("DBUS_SESSION_BUS_ADDRESS").is_some_and(|v| !v.is_empty());
+        let zenity = std::env::var_os("PATH").is_some_and(|paths| {
+            std::env::split_paths(&paths).any(|dir| dir.join("zenity").is_file())
+        });
+        if bus || zenity {
+            Ok(())
+        } else {
+            Err(
+                "no native file dialog here (no D-Bus session for the XDG desktop portal, no \
+                 zenity): install xdg-desktop-portal-gtk or zenity to get it; meanwhile \
+                 agesim's own file browser opens"
+                    .into(),
+            )
+        }
+    }
+
     fn pick(&self, r: &DialogRequest) -> Option<PathBuf> {
         let mut d = rfd::FileDialog::new().set_title(&r.title);
         for (name, ext) in &r.filters {
@@ -127,9 +155,19 @@ impl Dialogs for NativeDialogs {
 pub struct ScriptedDialogs {
     answers: Mutex<VecDeque<Option<PathBuf>>>,
     asked: Mutex<Vec<String>>,
+    /// Behave as a desktop without any native dialog ([`Dialogs::available`]).
+    unavailable: bool,
 }
 
 impl ScriptedDialogs {
+    /// Dialogs of a desktop that has none: the editor must use its own file browser.
+    pub fn unavailable() -> Self {
+        Self {
+            unavailable: true,
+            ..Self::default()
+        }
+    }
+
     pub fn answer(&self, path: Option<PathBuf>) {
         lock(&self.answers).push_back(path);
     }
@@ -144,6 +182,14 @@ impl Dialogs for ScriptedDialogs {
     fn pick(&self, request: &DialogRequest) -> Option<PathBuf> {
         lock(&self.asked).push(request.title.clone());
         lock(&self.answers).pop_front().flatten()
+    }
+
+    fn available(&self) -> Result<(), String> {
+        if self.unavailable {
+            Err("no native file dialog (scripted)".into())
+        } else {
+            Ok(())
+        }
     }
 }
 
@@ -229,22 +275,32 @@ impl Io {
     /// UI applies directly (a project, a wrinkle file).
     pub fn ask(&mut self, dialogs: &Arc<dyn Dialogs>, purpose: Purpose, file_name: Option<String>) {
         let dialogs = dialogs.clone();
-        self.spawn(move || {
-            let Some(path) = dialogs.pick(&purpose.request(file_name)) else {
-                return IoResult::Cancelled;
-            };
-            match purpose {
-                Purpose::OpenProject => load_project(path),
-                Purpose::LoadWrinkles { add } => load_wrinkles(path, add),
-                other => IoResult::Picked(other, path),
-            }
+        self.spawn(move || match dialogs.pick(&purpose.request(file_name)) {
+            Some(path) => after_pick(purpose, path),
+            None => IoResult::Cancelled,
         });
+    }
+
+    /// What [`Io::ask`] does once a path is picked, for a path picked elsewhere (the
+    /// editor's own file browser).
+    pub fn picked(&mut self, purpose: Purpose, path: PathBuf) {
+        self.spawn(move || after_pick(purpose, path));
     }
 
     pub fn poll(&mut self) -> Vec<IoResult> {
         let results: Vec<IoResult> = self.rx.try_iter().collect();
         self.pending = self.pending.saturating_sub(results.len());
         results
+    }
+}
+
+/// A picked path: the files the UI applies directly are loaded here (a project, a wrinkle
+/// file); the others go back as they are.
+fn after_pick(purpose: Purpose, path: PathBuf) -> IoResult {
+    match purpose {
+        Purpose::OpenProject => load_project(path),
+        Purpose::LoadWrinkles { add } => load_wrinkles(path, add),
+        other => IoResult::Picked(other, path),
     }
 }
 

@@ -7,6 +7,7 @@ mod bench_ui;
 mod document;
 pub mod export_ui;
 pub mod fields_ui;
+mod file_browser;
 pub mod files;
 pub mod history;
 pub mod map_view;

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use agesim_core::project::Project;
 
 use super::EditorApp;
+use crate::editor::file_browser::{FileBrowser, Outcome as BrowserOutcome};
 use crate::editor::files::{self, IoResult, Purpose};
 use crate::editor::history::Doc;
 
@@ -142,11 +143,43 @@ impl EditorApp {
 
     /// Opens a dialog (one at a time) on its own thread.
     pub(super) fn ask(&mut self, purpose: Purpose, file_name: Option<String>) {
-        if self.io.busy() {
+        if self.io.busy() || self.browser.is_some() {
             self.info("A file dialog or file task is still open");
             return;
         }
+        if let Err(why) = self.dialogs.available() {
+            if !self.told_no_native_dialog {
+                self.told_no_native_dialog = true;
+                self.info(why);
+            }
+            let start = self
+                .doc
+                .path
+                .as_ref()
+                .and_then(|p| p.parent())
+                .map(Path::to_owned)
+                .or_else(|| std::env::current_dir().ok())
+                .unwrap_or_default();
+            self.browser = Some(FileBrowser::new(purpose, file_name, start));
+            return;
+        }
         self.io.ask(&self.dialogs, purpose, file_name);
+    }
+
+    /// agesim's own file browser, while one is open.
+    pub(super) fn browser_ui(&mut self, ctx: &egui::Context) {
+        let Some(browser) = &mut self.browser else {
+            return;
+        };
+        match browser.ui(ctx) {
+            BrowserOutcome::Open => {}
+            BrowserOutcome::Cancelled => self.browser = None,
+            BrowserOutcome::Picked(path) => {
+                let purpose = browser.purpose.clone();
+                self.browser = None;
+                self.io.picked(purpose, path);
+            }
+        }
     }
 
     /// Saves to the document's file, or asks where when it has none.

@@ -1,5 +1,6 @@
 //! Random and mutated inputs to every parser of user files: the wrinkle-file parser, the
-//! project loader and the mesh loaders (OBJ, glTF/GLB) and `Mesh::build`. Each must return
+//! project loader, the landmark files, and the mesh loaders (OBJ, glTF/GLB) and
+//! `Mesh::build`. Each must return
 //! `Ok` or an error, never panic. Not part of the default `cargo test` (they are
 //! `#[ignore]`d); the dedicated run, 100,000 cases per target by default:
 //!
@@ -11,7 +12,8 @@
 
 use std::path::Path;
 
-use agesim_core::mesh::{Mesh, gltf, obj};
+use agesim_core::landmarks::Landmarks;
+use agesim_core::mesh::{Mesh, gltf, obj, units};
 use agesim_core::project::Project;
 use agesim_core::wrinkle_file;
 use proptest::prelude::*;
@@ -32,6 +34,10 @@ fn config() -> ProptestConfig {
 const WRK: &str = include_str!("../../../assets/wrinkles/forehead.wrk");
 /// A valid project to mutate.
 const PROJECT: &str = include_str!("../../../assets/presets/rough.agesim.json");
+/// A valid landmark file to mutate.
+const LANDMARKS: &str = r#"{"landmarks": {"exocanthion_r": [-4.7, 0, 0],
+    "exocanthion_l": [4.7, 0, 0], "pogonion": [0, -8, 1], "glabella": [0, 3, 1],
+    "pronasale": [0, -2, 4]}}"#;
 /// A small valid OBJ to mutate.
 const OBJ: &str =
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n";
@@ -98,6 +104,25 @@ proptest! {
 
     #[test]
     #[ignore]
+    fn landmark_files_never_panic(
+        text in prop_oneof![
+            ".{0,200}",
+            mutated(LANDMARKS.as_bytes()).prop_map(|b| String::from_utf8_lossy(&b).into_owned()),
+            token_soup(&["{", "}", "[", "]", ",", ":", "\"landmarks\"", "\"pronasale\"",
+                "\"exocanthion_r\"", "\"exocanthion_l\"", "\"pogonion\"", "\"nose\"", "1",
+                "-1", "1e39", "0", "null", "\"x\""]),
+        ]
+    ) {
+        if let Ok(l) = Landmarks::from_json_str(&text) {
+            // What loads writes back the same, and gives units and axes or none.
+            prop_assert_eq!(&Landmarks::from_json_str(&l.to_json_pretty()).unwrap(), &l);
+            let _ = units::detect(&agesim_core::head::default_head().bounds(), Some(&l));
+            let _ = units::detect_axes(&l);
+        }
+    }
+
+    #[test]
+    #[ignore]
     fn meshes_never_panic(
         bytes in prop_oneof![
             prop::collection::vec(any::<u8>(), 0..400),
@@ -126,6 +151,12 @@ fn a_few_fuzz_cases_run_in_the_default_test_run_too() {
     runner
         .run(&mutated(WRK.as_bytes()), |b| {
             let _ = wrinkle_file::parse_bytes(&b, Path::new("fuzz.wrk"));
+            Ok(())
+        })
+        .unwrap();
+    runner
+        .run(&mutated(LANDMARKS.as_bytes()), |b| {
+            let _ = Landmarks::from_json_str(&String::from_utf8_lossy(&b));
             Ok(())
         })
         .unwrap();

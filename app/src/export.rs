@@ -314,7 +314,8 @@ fn export_glb(
     .context("encoding the normal map")?;
     cancel.check()?;
     let project = scene.project();
-    let params = view::frame_params(project, t, view::camera(project, Vec3::ZERO));
+    let mpu = scene.metres_per_unit();
+    let params = view::frame_params(project, mpu, t, view::camera(project, mpu, Vec3::ZERO));
     let depth = project.large.depth;
     let height = match scene.large() {
         Some(l) => l.scaled(depth)?,
@@ -363,8 +364,8 @@ pub fn head_normal_map(
     let mesh = scene.mesh();
     let scale = SurfaceScale::measure(mesh.positions(), mesh.uvs(), mesh.indices())
         .context("the mesh's UVs are degenerate: no normal map can be laid on it")?;
-    let mpu = project.mesh.metres_per_unit;
-    let skin = view::frame_params(project, t, view::camera(project, Vec3::ZERO)).skin;
+    let mpu = scene.metres_per_unit();
+    let skin = view::frame_params(project, mpu, t, view::camera(project, mpu, Vec3::ZERO)).skin;
     let tile = |heights, placement: agesim_render::TilePlacement| compose::RepeatedTile {
         heights,
         repeats: scale.repeats(mpu, placement.size_m.max(1e-6)),
@@ -399,7 +400,7 @@ fn export_renders(
     let mut shown = view::HeadlessView::new(scene, 1024, project.hair.enabled);
     let gpu = Gpu::new()?;
     let mut renderer = Renderer::new(&gpu.device, &gpu.queue, agesim_render::COLOUR_FORMAT)?;
-    let camera = view::camera(project, centre);
+    let camera = view::camera(project, shown.scene().metres_per_unit(), centre);
     let mapping = project.age.mapping();
     // (years, where) for every picture; the comparison's two halves have no file.
     let mut jobs: Vec<(f32, Option<PathBuf>)> = Vec::new();

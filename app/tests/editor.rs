@@ -259,6 +259,6 @@ fn the_view_follows_the_age_slider_before_the_maps_do() {
         "the curve rises from 50 to 78"
     );
     assert_eq!(f.skin.fine_blend, expected);
-    let whole = agesim::view::frame_params(&project, project.age.t, f.camera);
+    let whole = agesim::view::frame_params(&project, 1.0, project.age.t, f.camera);
     assert_eq!(f.skin.albedo, whole.skin.albedo, "paling at 78");
 }

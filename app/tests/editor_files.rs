@@ -357,9 +357,9 @@ fn a_wrinkle_file_dropped_on_the_window_is_added_and_undo_removes_it() {
     assert_eq!(fibre_count(&h), fibres);
 }
 
-/// A head in centimetres dropped on the window is measured: its metres per unit become
-/// 0.01 before anything is baked (taken for metres it asked for billions of hairs and was
-/// refused), the status line says so, and undo takes the import and the units back.
+/// A head in centimetres dropped on the window is measured: its metres per unit are 0.01
+/// (`mesh.metres_per_unit` = null, measured; taken for metres it asked for billions of
+/// hairs and was refused), it gets the metres head's hair, and undo takes it back.
 #[test]
 fn a_head_in_centimetres_imported_is_measured_and_undo_takes_it_back() {
     let dir = tempfile::tempdir().unwrap();
@@ -390,8 +390,9 @@ fn a_head_in_centimetres_imported_is_measured_and_undo_takes_it_back() {
     wait_for(&mut h, "the imported head", |app| {
         app.project().mesh.path.as_deref() == Some(mesh.as_path())
             && app.idle()
-            && app.project().mesh.metres_per_unit == 0.01
+            && app.snapshot().layers.metres_per_unit == 0.01
     });
+    assert_eq!(h.state().project().mesh.metres_per_unit, None);
     settle(&mut h);
     let hairs_cm = h.state().snapshot().hair.as_ref().unwrap().len();
     let ratio = hairs_cm as f64 / hairs_m as f64;
@@ -399,7 +400,7 @@ fn a_head_in_centimetres_imported_is_measured_and_undo_takes_it_back() {
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(&mut h);
     assert_eq!(h.state().project().mesh.path, None);
-    assert_eq!(h.state().project().mesh.metres_per_unit, 1.0);
+    assert_eq!(h.state().snapshot().layers.metres_per_unit, 1.0);
 }
 
 /// Where no native dialog can open (no XDG portal, no zenity: this machine under Xvfb),

@@ -113,7 +113,7 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
     let mut report = serde_json::json!({
         "mesh": mesh_name,
         "triangles": surface_triangles,
-        "metres_per_unit": scene.project().mesh.metres_per_unit,
+        "metres_per_unit": scene.metres_per_unit(),
         "outer": mask_name(args.outer.as_deref(), defaults::HAIR_OUTER_MASK),
         "inner": mask_name(args.inner.as_deref(), defaults::HAIR_INNER_MASK),
         "size_px": size,

@@ -126,27 +126,35 @@ pub struct MeshArgs {
 }
 
 impl MeshArgs {
-    /// Gives `scene` its metres per unit: the flag's, else for a --mesh the detected one
-    /// (printed with how it was decided); a project's own mesh keeps the project's.
+    /// Gives `scene` its metres per unit: the flag's, else the landmarks' for a --mesh;
+    /// otherwise the scene's own (the project's, or measured from the mesh's size). Says
+    /// how it was decided when the mesh is measured.
     pub fn apply_units(&self, scene: &mut agesim_core::scene::Scene) -> anyhow::Result<()> {
-        let mpu = match (self.metres_per_unit, &self.mesh) {
-            (Some(m), _) => m,
-            (None, Some(_)) => {
-                let landmarks = match &self.landmarks {
-                    Some(path) => Some(agesim_core::landmarks::Landmarks::load(path)?),
-                    None => None,
-                };
+        let set = match (self.metres_per_unit, &self.landmarks) {
+            (Some(m), _) => Some(m),
+            (None, Some(path)) if self.mesh.is_some() => {
+                let landmarks = agesim_core::landmarks::Landmarks::load(path)?;
                 let units =
-                    agesim_core::mesh::units::detect(&scene.mesh().bounds(), landmarks.as_ref());
+                    agesim_core::mesh::units::detect(&scene.mesh().bounds(), Some(&landmarks));
                 println!("metres per unit: {} ({})", units.metres_per_unit, units.how);
-                units.metres_per_unit
+                Some(units.metres_per_unit)
             }
-            (None, None) => return Ok(()),
+            _ => None,
         };
-        if mpu != scene.project().mesh.metres_per_unit {
-            let mut p = scene.project().clone();
-            p.mesh.metres_per_unit = mpu;
-            scene.set_project(p)?;
+        match set {
+            Some(m) if Some(m) != scene.project().mesh.metres_per_unit => {
+                let mut p = scene.project().clone();
+                p.mesh.metres_per_unit = Some(m);
+                scene.set_project(p)?;
+            }
+            Some(_) => {}
+            None if scene.project().mesh.metres_per_unit.is_none()
+                && scene.project().mesh.path.is_some() =>
+            {
+                let units = scene.units();
+                println!("metres per unit: {} ({})", units.metres_per_unit, units.how);
+            }
+            None => {}
         }
         Ok(())
     }

@@ -201,7 +201,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     args.head.apply_units(&mut scene)?;
     let project = scene.project().clone();
     let bounds = scene.mesh().bounds();
-    let mut camera = view::camera(&project, bounds.centre());
+    let mut camera = view::camera(&project, scene.metres_per_unit(), bounds.centre());
     let framed = bounds.size().length() * 1.6;
     if args.patch || args.head.mesh.is_some() {
         // Framed: the whole mesh in view, face on (the patch lies in the z = 0 plane

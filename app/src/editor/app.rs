@@ -387,11 +387,9 @@ impl EditorApp {
                     }
                     self.session.snapshot = *snapshot;
                     if let Some(u) = report.units {
-                        // The imported head's units, measured: part of the import's step.
                         self.session.measure_mesh = false;
-                        self.doc.project.mesh.metres_per_unit = u.metres_per_unit;
                         self.info(format!(
-                            "metres per unit: {} ({}); change it in the layer panel's mesh section",
+                            "metres per unit: {} ({}); set it in the layer panel's mesh section",
                             u.metres_per_unit, u.how
                         ));
                     }

@@ -13,7 +13,7 @@ pub(super) struct Session {
     pub(super) last_what: String,
     /// An age change waits for the worker (see [`super::EditorApp::set_age`]).
     pub(super) age_pending: bool,
-    /// A head was imported: the bakes measure its units until one reports them.
+    /// A head was imported: the bakes say how its units were decided until one has.
     pub(super) measure_mesh: bool,
 }
 

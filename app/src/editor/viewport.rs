@@ -71,6 +71,8 @@ pub struct Viewport {
     panes: Vec<Pane>,
     /// The head's centre, the orbit's target (mesh units).
     centre: Vec3,
+    /// How long one unit of the shown mesh is, metres (the main view's snapshot's).
+    metres_per_unit: f32,
     pan: Vec3,
     /// Time to encode and submit the last frame, ms.
     pub encode_ms: f64,
@@ -94,6 +96,7 @@ impl Viewport {
             blit: Arc::new(agesim_render::Blit::new(&rs.device, rs.target_format)),
             panes: vec![Pane::new(ViewId::MAIN)],
             centre: Vec3::ZERO,
+            metres_per_unit: 1.0,
             pan: Vec3::ZERO,
             encode_ms: 0.0,
             hairs_drawn: 0,
@@ -106,7 +109,7 @@ impl Viewport {
     }
 
     /// Uploads what the snapshot brought that pane `i`'s view does not have yet.
-    fn upload(&mut self, i: usize, snapshot: &Snapshot, project: &Project) {
+    fn upload(&mut self, i: usize, snapshot: &Snapshot) {
         let pane = &mut self.panes[i];
         let result = if i == MAIN {
             if let Some(mesh) = &snapshot.layers.mesh
@@ -115,9 +118,8 @@ impl Viewport {
                 self.centre = mesh.bounds().centre();
                 self.mesh = Some(mesh.clone());
             }
-            let mpu = project.mesh.metres_per_unit;
-            pane.uploaded
-                .upload(&mut self.renderer, &snapshot.layers, mpu)
+            self.metres_per_unit = snapshot.layers.metres_per_unit;
+            pane.uploaded.upload(&mut self.renderer, &snapshot.layers)
         } else {
             pane.uploaded
                 .upload_age_layers(&mut self.renderer, pane.view, &snapshot.layers)
@@ -189,7 +191,7 @@ impl Viewport {
 
     /// The view's clip-from-world matrix for `rect` (as the renderer uses it).
     fn clip_from_world(&self, project: &Project, rect: Rect) -> glam::Mat4 {
-        let camera = view::camera(project, self.centre + self.pan);
+        let camera = view::camera(project, self.metres_per_unit, self.centre + self.pan);
         camera.clip_from_world(rect.width() / rect.height().max(1.0))
     }
 
@@ -231,14 +233,15 @@ impl Viewport {
             self.panes.push(Pane::new(view));
         }
         let i = age as usize;
-        self.upload(i, snapshot, project);
+        self.upload(i, snapshot);
         if snapshot.layers.mesh.is_none() {
             return self.panes[i].shown.is_some();
         }
         // The age shown is the document's (every age-dependent number follows it at
         // once); the maps are the last baked ones.
-        let camera = view::camera(project, self.centre + self.pan);
-        let mut params = view::frame_params(project, project.age.t, camera);
+        let mpu = snapshot.layers.metres_per_unit;
+        let camera = view::camera(project, mpu, self.centre + self.pan);
+        let mut params = view::frame_params(project, mpu, project.age.t, camera);
         // While the view moves or the age plays (drawn at a lower resolution), one hair in
         // SPARSE_HAIR_STRIDE: the still frame that follows draws them all.
         params.hair.sparse = self.scale < 1.0;
@@ -332,7 +335,7 @@ impl Viewport {
                 pitch.cos(),
                 -pitch.sin() * yaw.cos(),
             );
-            let scale = v.camera_distance_m / project.mesh.metres_per_unit.max(1e-9) * 0.0015;
+            let scale = v.camera_distance_m / self.metres_per_unit.max(1e-9) * 0.0015;
             self.pan += (-right * d.x + up * d.y) * scale;
         }
         if response.hovered() {

@@ -23,13 +23,14 @@ pub fn pom_mode(p: ProjectPom) -> PomMode {
     }
 }
 
-/// The camera of the project's `view` section, around `target` (the head's centre).
-pub fn camera(project: &Project, target: Vec3) -> Camera {
+/// The camera of the project's `view` section, around `target` (the head's centre), for a
+/// mesh of `metres_per_unit` ([`agesim_core::scene::Scene::metres_per_unit`]).
+pub fn camera(project: &Project, metres_per_unit: f32, target: Vec3) -> Camera {
     let v = &project.view;
     Camera {
         yaw_rad: v.camera_yaw_deg.to_radians(),
         pitch_rad: v.camera_pitch_deg.to_radians(),
-        distance: (v.camera_distance_m / project.mesh.metres_per_unit.max(1e-9)).max(1e-3),
+        distance: (v.camera_distance_m / metres_per_unit.max(1e-9)).max(1e-3),
         target,
         fov_y_rad: v.fov_deg.to_radians(),
     }
@@ -74,11 +75,17 @@ pub fn fine_blend(project: &Project, t: f32) -> f32 {
     }
 }
 
-/// Everything a frame of `project` at age `t` needs, seen through `camera`. Every
+/// Everything a frame of `project` (its mesh `metres_per_unit`) at age `t` needs, seen
+/// through `camera`. Every
 /// age-dependent number comes from the project's age curves at `t` itself (not from the
 /// last bake's factors), so the fine blend, the paling and the hair follow the age
 /// slider at once while the maps catch up.
-pub fn frame_params(project: &Project, t: f32, camera: Camera) -> FrameParams {
+pub fn frame_params(
+    project: &Project,
+    metres_per_unit: f32,
+    t: f32,
+    camera: Camera,
+) -> FrameParams {
     let v = &project.view;
     let (ly, lp) = (v.light_yaw_deg.to_radians(), v.light_pitch_deg.to_radians());
     let h = &project.hair;
@@ -121,7 +128,7 @@ pub fn frame_params(project: &Project, t: f32, camera: Camera) -> FrameParams {
                 GrayingRamp::Linear => GrayingRampParam::Linear,
                 GrayingRamp::Smoothstep => GrayingRampParam::Smoothstep,
             },
-            length: h.length_mm / 1000.0 / project.mesh.metres_per_unit.max(1e-9),
+            length: h.length_mm / 1000.0 / metres_per_unit.max(1e-9),
             ..HairShading::default()
         },
         age: factors.t,
@@ -135,7 +142,7 @@ mod tests {
     use super::*;
 
     fn params(project: &Project, t: f32) -> FrameParams {
-        frame_params(project, t, Camera::default())
+        frame_params(project, 1.0, t, Camera::default())
     }
 
     /// Noise with no octave bakes no tile (the scene's rule), so the renderer must not

@@ -53,13 +53,17 @@ impl HeadlessView {
         self.request.t = t;
         let changed = self.scene.bake(&self.request, &CancelToken::never())?;
         self.layers.refresh(&self.scene, &changed, false);
-        let mpu = self.scene.project().mesh.metres_per_unit;
-        self.uploaded.upload(renderer, &self.layers, mpu)?;
+        self.uploaded.upload(renderer, &self.layers)?;
         Ok(())
     }
 
     /// The frame of the project at age `t` through `camera` ([`super::frame_params`]).
     pub fn frame_params(&self, t: f32, camera: agesim_render::Camera) -> FrameParams {
-        super::frame_params(self.scene.project(), t, camera)
+        super::frame_params(
+            self.scene.project(),
+            self.scene.metres_per_unit(),
+            t,
+            camera,
+        )
     }
 }

@@ -21,6 +21,8 @@ pub struct Layers {
     pub micro: Option<Arc<PreparedLayer>>,
     pub fine: Option<Arc<PreparedLayer>>,
     pub hair: Option<Arc<HairInstances>>,
+    /// How long a mesh unit is, metres ([`Scene::metres_per_unit`]).
+    pub metres_per_unit: f32,
 }
 
 impl Layers {
@@ -44,6 +46,7 @@ impl Layers {
             self.fine = scene.fine().map(|f| Arc::new(PreparedLayer::tile(f)));
         }
         self.hair = scene.hair().cloned();
+        self.metres_per_unit = scene.metres_per_unit();
     }
 }
 
@@ -65,15 +68,10 @@ pub struct Uploaded {
 }
 
 impl Uploaded {
-    /// Uploads to `renderer` every layer of `layers` it does not hold yet (`metres_per_unit`:
-    /// the project's `mesh.metres_per_unit`). A layer whose upload failed is not tried
-    /// again until it changes; the first error is returned.
-    pub fn upload(
-        &mut self,
-        renderer: &mut Renderer,
-        layers: &Layers,
-        metres_per_unit: f32,
-    ) -> Result<(), RenderError> {
+    /// Uploads to `renderer` every layer of `layers` it does not hold yet. A layer whose
+    /// upload failed is not tried again until it changes; the first error is returned.
+    pub fn upload(&mut self, renderer: &mut Renderer, layers: &Layers) -> Result<(), RenderError> {
+        let metres_per_unit = layers.metres_per_unit;
         let mut result = Ok(());
         let mesh = (stamp(&layers.mesh), metres_per_unit.to_bits());
         if mesh != self.mesh

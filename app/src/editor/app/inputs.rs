@@ -17,7 +17,9 @@ impl EditorApp {
     pub fn import_mesh(&mut self, path: PathBuf) {
         self.record("import mesh", "import mesh", false);
         self.doc.project.mesh.path = Some(path.clone());
-        // Its units are measured by the bake (centimetres, millimetres, …).
+        // Its units are measured from the mesh (centimetres, millimetres, …); the bake
+        // says how.
+        self.doc.project.mesh.metres_per_unit = None;
         self.session.measure_mesh = true;
         self.submit(false, &format!("import {}", path.display()));
     }

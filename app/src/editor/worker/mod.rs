@@ -34,8 +34,7 @@ pub struct Job {
     pub what: String,
     /// Also bake this second age, for the compare view.
     pub compare_t: Option<f32>,
-    /// Measure the mesh's units before baking (a head just imported): the project's
-    /// `mesh.metres_per_unit` becomes the detected one ([`Report::units`]).
+    /// Report how the mesh's units were decided ([`Report::units`]; a head just imported).
     pub detect_units: bool,
 }
 
@@ -84,7 +83,7 @@ pub struct Report {
     pub what: String,
     pub ms: f64,
     pub outcome: Outcome,
-    /// The units the job measured ([`Job::detect_units`]), now the snapshot project's.
+    /// How the mesh's units were decided, when the job asked ([`Job::detect_units`]).
     pub units: Option<agesim_core::mesh::units::Units>,
 }
 
@@ -250,10 +249,6 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             let mut job_b = job.clone();
             job_b.request.t = t;
             job_b.wrinkles = scene.as_ref().map(|s| s.wrinkles().to_vec());
-            // The units, if measured, are the first scene's.
-            if let Some(s) = scene.as_ref() {
-                job_b.project.mesh.metres_per_unit = s.project().mesh.metres_per_unit;
-            }
             job_b.detect_units = false;
             if scene_b.is_none() {
                 scene_b = scene.as_ref().map(Scene::fork);
@@ -321,18 +316,8 @@ fn bake(
     let Some(s) = scene.as_mut() else {
         return Err(Error::Cancelled);
     };
-    // A head just imported: its units measured before anything is baked at the wrong
-    // scale (a head in centimetres taken for metres asks for billions of hairs).
-    let mut units = None;
-    if job.detect_units {
-        let u = agesim_core::mesh::units::detect(&s.mesh().bounds(), None);
-        if u.metres_per_unit != s.project().mesh.metres_per_unit {
-            let mut p = s.project().clone();
-            p.mesh.metres_per_unit = u.metres_per_unit;
-            changed.merge(s.set_project(p)?);
-        }
-        units = Some(u);
-    }
+    // A head just imported: how its units were decided, for the status line.
+    let units = job.detect_units.then(|| s.units());
     match &job.wrinkles {
         Some(w) => s.set_wrinkles(w.clone()),
         // The document has no edited fibres (a new or opened project, an undo to before

@@ -20,8 +20,9 @@ pub struct MeshSection {
     pub path: Option<PathBuf>,
     /// The built-in mesh used when `path` is null.
     pub builtin: BuiltinMesh,
-    /// Metres per mesh unit (1 for the built-in meshes and glTF; often 0.01 for OBJ in cm).
-    pub metres_per_unit: f32,
+    /// Metres per mesh unit; `null` = measured from the mesh ([`crate::scene::Scene::units`]:
+    /// 1 for the built-in meshes, a mesh file's from its size).
+    pub metres_per_unit: Option<f32>,
 }
 
 /// The meshes that ship inside agesim.
@@ -215,7 +216,7 @@ impl Default for MeshSection {
         Self {
             path: None,
             builtin: BuiltinMesh::Head,
-            metres_per_unit: 1.0,
+            metres_per_unit: None,
         }
     }
 }

@@ -45,6 +45,7 @@ use crate::hair::{HairInstances, HairParams, SurfaceRef};
 use crate::heightmap::HeightMap;
 use crate::mask::Mask;
 use crate::mesh::Mesh;
+use crate::mesh::units::Units;
 use crate::micro::MicroRelief;
 use crate::muscle::Fibre;
 use crate::normal_map::{self, NormalSettings};
@@ -389,6 +390,28 @@ impl Scene {
         self.hair.as_ref()
     }
 
+    /// How long one unit of the mesh is: the project's `mesh.metres_per_unit`, else 1 for
+    /// the built-in meshes, else measured from the mesh file's size
+    /// ([`crate::mesh::units::detect`]).
+    pub fn units(&self) -> Units {
+        match (self.project.mesh.metres_per_unit, &self.project.mesh.path) {
+            (Some(m), _) => Units {
+                metres_per_unit: m,
+                how: "set in the project (mesh.metres_per_unit)".into(),
+            },
+            (None, None) => Units {
+                metres_per_unit: 1.0,
+                how: "metres: a built-in mesh".into(),
+            },
+            (None, Some(_)) => crate::mesh::units::detect(&self.inputs.mesh.bounds(), None),
+        }
+    }
+
+    /// [`Scene::units`]' metres per unit.
+    pub fn metres_per_unit(&self) -> f32 {
+        self.units().metres_per_unit
+    }
+
     /// Whether the project bakes any micro-relief at all ([`Project::micro_enabled`]).
     pub fn micro_enabled(&self) -> bool {
         self.project.micro_enabled()
@@ -546,7 +569,7 @@ impl Scene {
             mesh_generation: self.mesh_generation,
             transition_generation: self.transition_generation,
             density: h.density_per_cm2,
-            metres_per_unit: self.project.mesh.metres_per_unit,
+            metres_per_unit: self.metres_per_unit(),
             seed: h.seed,
             deviation_deg: h.max_deviation_deg,
             onset_t: self.project.graying_onset_t(),
@@ -558,7 +581,7 @@ impl Scene {
         let Some(transition) = &self.transition else {
             return Ok(changed);
         };
-        let params = HairParams::new(h.density_per_cm2, self.project.mesh.metres_per_unit)?
+        let params = HairParams::new(h.density_per_cm2, self.metres_per_unit())?
             .with_seed(h.seed)
             .with_max_deviation_rad(h.max_deviation_deg.to_radians())?
             .with_graying_onset_range(key.onset_t.0, key.onset_t.1)?;

@@ -160,13 +160,15 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             Kind::Choice(&["head", "skin-patch"]),
             "built-in mesh used when mesh.path is null",
         ),
-        f(
-            "mesh.metres_per_unit",
-            "m",
-            1e-5,
-            1000.0,
-            "metres per mesh unit (1 for glTF and the built-in meshes)",
-        ),
+        Field {
+            path: "mesh.metres_per_unit",
+            unit: "m",
+            kind: Kind::OptFloat {
+                min: 1e-5,
+                max: 1000.0,
+            },
+            doc: "metres per mesh unit; null = measured: 1 for the built-in meshes, a mesh file's from its size (m, dm, cm, mm or inch when close; `agesim mesh-info` says how)",
+        },
         k(
             "large.enabled",
             Kind::Bool,

@@ -108,7 +108,16 @@ pub fn describe(name: &str, mesh: &Mesh) -> String {
     let _ = writeln!(s, "tangents:  {tangents}");
     let _ = writeln!(s, "parts:     {}", mesh.parts().len());
     for part in mesh.parts().iter().take(20) {
-        let _ = writeln!(s, "  - {} ({} triangles)", part.name, part.triangle_count);
+        let skin = if part.is_skin() {
+            ""
+        } else {
+            ", not skin: no hair"
+        };
+        let _ = writeln!(
+            s,
+            "  - {} ({} triangles{skin})",
+            part.name, part.triangle_count
+        );
     }
     if mesh.parts().len() > 20 {
         let _ = writeln!(s, "  … {} more", mesh.parts().len() - 20);

@@ -176,7 +176,13 @@ fn field_ui(
     let response = match field.kind {
         Kind::Float { min, max } | Kind::OptFloat { min, max } => {
             let is_null = value.is_null();
-            let mut x = value.as_f64().unwrap_or(min as f64);
+            // Off (`null`): the value the switch turns on with — the default when it has
+            // one, else 1 where the range allows (not the range's minimum: 0.00001 m per
+            // unit would shrink a head to a speck).
+            let mut x = value
+                .as_f64()
+                .or(default.as_f64())
+                .unwrap_or_else(|| 1f64.clamp(f64::from(min), f64::from(max)));
             let r = ui
                 .horizontal(|ui| {
                     if matches!(field.kind, Kind::OptFloat { .. }) {

@@ -73,6 +73,20 @@ pub struct MeshPart {
     pub triangle_count: u32,
 }
 
+impl MeshPart {
+    /// Whether the part is skin, by its name: not an eye (`eye`, `cornea`, `iris`,
+    /// `pupil`), teeth, tongue, lashes or brows (hair cards), as head exports name them
+    /// (MakeHuman's `eye_l`, Character Creator's `CC_Base_Eye`, `Teeth`, `Tongue`).
+    pub fn is_skin(&self) -> bool {
+        let name = self.name.to_lowercase();
+        ![
+            "eye", "cornea", "iris", "pupil", "teeth", "tooth", "tongue", "lash", "brow",
+        ]
+        .iter()
+        .any(|w| name.contains(w))
+    }
+}
+
 /// How the tangents of a mesh were obtained.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TangentSource {
@@ -501,6 +515,28 @@ impl Mesh {
         self.bounds
     }
 
+    /// The parts that are skin: all but those named as eyes, teeth, tongue, lashes or
+    /// brows ([`MeshPart::is_skin`]); hair grows on these only.
+    pub fn skin_parts(&self) -> impl Iterator<Item = &MeshPart> {
+        self.parts.iter().filter(|p| p.is_skin())
+    }
+
+    /// The triangle indices of the skin parts ([`Mesh::skin_parts`]); all of them when
+    /// every part is skin (no copy then).
+    pub fn skin_indices(&self) -> std::borrow::Cow<'_, [u32]> {
+        if self.parts.iter().all(MeshPart::is_skin) {
+            return std::borrow::Cow::Borrowed(&self.indices);
+        }
+        let mut out = Vec::new();
+        for p in self.skin_parts() {
+            let (a, n) = (p.first_triangle as usize * 3, p.triangle_count as usize * 3);
+            if let Some(tris) = self.indices.get(a..a + n) {
+                out.extend_from_slice(tris);
+            }
+        }
+        std::borrow::Cow::Owned(out)
+    }
+
     /// Where each run of triangles came from, in order.
     pub fn parts(&self) -> &[MeshPart] {
         &self.parts
@@ -716,6 +752,48 @@ mod tests {
             indices: vec![0, 1, 2, 0, 2, 3],
             ..RawMesh::default()
         }
+    }
+
+    /// Eyes that come with a head (MakeHuman's `eye_l`) are not skin: no hair on them.
+    #[test]
+    fn eyes_teeth_and_lashes_are_left_out_of_the_skin() {
+        let mut raw = quad(true);
+        raw.positions.extend([
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(2.0, 1.0, 0.0),
+        ]);
+        raw.uvs
+            .as_mut()
+            .unwrap()
+            .extend([Vec2::ZERO, Vec2::X, Vec2::Y]);
+        raw.indices.extend([4, 5, 6]);
+        let part = |name: &str, first, count| MeshPart {
+            name: name.into(),
+            first_triangle: first,
+            triangle_count: count,
+        };
+        raw.parts = vec![
+            part("object \"head\"", 0, 2),
+            part("object \"eye_l\"", 2, 1),
+        ];
+        let m = Mesh::build(raw, "head with an eye").unwrap();
+        let names: Vec<&str> = m.skin_parts().map(|p| p.name.as_str()).collect();
+        assert_eq!(names, ["object \"head\""]);
+        assert_eq!(m.skin_indices().len(), 6);
+        assert!(
+            !MeshPart {
+                name: "CC_Base_Teeth".into(),
+                ..part("", 0, 0)
+            }
+            .is_skin()
+        );
+        // A head of one part keeps every triangle, uncopied.
+        let whole = Mesh::build(quad(true), "quad").unwrap();
+        assert!(matches!(
+            whole.skin_indices(),
+            std::borrow::Cow::Borrowed(_)
+        ));
     }
 
     #[test]

@@ -586,8 +586,9 @@ impl Scene {
             .with_max_deviation_rad(h.max_deviation_deg.to_radians())?
             .with_graying_onset_range(key.onset_t.0, key.onset_t.1)?;
         let mesh = &self.inputs.mesh;
-        let surface =
-            SurfaceRef::new(mesh.positions(), mesh.normals(), mesh.uvs(), mesh.indices())?;
+        // Hair grows on the skin, not on eyes, teeth or lashes that come with the head.
+        let skin = mesh.skin_indices();
+        let surface = SurfaceRef::new(mesh.positions(), mesh.normals(), mesh.uvs(), &skin)?;
         let hair = HairInstances::generate(&surface, transition, &params)?;
         self.hair = Some(Arc::new(hair));
         self.hair_key = Some(key);

@@ -1,6 +1,6 @@
-// Hair pass (docs/models.md §9). `Frame` and its binding come from frame.wgsl.
-//: one instanced draw, one hair per instance, the first count(t)
-// instances of the a_k-sorted buffer; graying C_k(t) and Kajiya–Kay shading here.
+// Hair pass (docs/models.md §9): one instanced draw, one hair per instance, the first
+// count(t) instances of the a_k-sorted buffer; graying C_k(t) and Kajiya–Kay shading here.
+// `Frame` and its binding come from frame.wgsl.
 // Each hair is a camera-facing ribbon of SEGMENTS quads (a triangle strip): lavapipe and
 // most GPUs draw lines one pixel wide at most, too thin to read at editor zoom levels,
 // while a ribbon keeps a chosen pixel width and can taper toward the tip.

@@ -130,6 +130,9 @@ impl MeshArgs {
     /// otherwise the scene's own (the project's, or measured from the mesh's size). Says
     /// how it was decided when the mesh is measured.
     pub fn apply_units(&self, scene: &mut agesim_core::scene::Scene) -> anyhow::Result<()> {
+        if self.landmarks.is_some() && self.mesh.is_none() {
+            anyhow::bail!("--landmarks describes a --mesh: give the mesh too");
+        }
         let set = match (self.metres_per_unit, &self.landmarks) {
             (Some(m), _) => Some(m),
             (None, Some(path)) if self.mesh.is_some() => {

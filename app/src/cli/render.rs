@@ -120,6 +120,8 @@ fn project_of(args: &RenderArgs) -> anyhow::Result<Project> {
     };
     if let Some(path) = &args.head.mesh {
         p.mesh.path = Some(path.clone());
+        // Its own units, not the project's head's (measured unless a flag sets them).
+        p.mesh.metres_per_unit = None;
     } else if args.patch {
         p.mesh.builtin = BuiltinMesh::SkinPatch;
         // The patch shows its own creases (its UV square is 5 cm of skin, not a face).

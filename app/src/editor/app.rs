@@ -395,6 +395,7 @@ impl EditorApp {
                     }
                 }
                 Outcome::Failed(message) => {
+                    self.session.measure_mesh = false;
                     // Keep the previous state whole: the document goes back to what baked.
                     self.error(format!("{message}\n(the previous state is kept)"));
                     self.doc.project = self.doc.last_good.clone();
@@ -543,6 +544,7 @@ impl eframe::App for EditorApp {
                             &self.doc.project,
                             &self.defaults,
                             edited.as_deref(),
+                            self.session.snapshot.layers.metres_per_unit,
                         )
                     })
                     .inner

@@ -61,13 +61,16 @@ fn tooltip(field: &Field, default: &Value) -> String {
 }
 
 /// The whole layer panel for `project` (changes marked against `defaults`; `wrinkles`:
-/// the names of the wrinkle files being edited, shown instead of the project's paths).
-/// Each field is read on its own ([`Project::field`]). Returns the edits of this frame.
+/// the names of the wrinkle files being edited, shown instead of the project's paths;
+/// `metres_per_unit`: the mesh's measured units, what `mesh.metres_per_unit` shows and
+/// switches on with while it is `null`). Each field is read on its own
+/// ([`Project::field`]). Returns the edits of this frame.
 pub fn layers_ui(
     ui: &mut egui::Ui,
     project: &Project,
     defaults: &Project,
     wrinkles: Option<&[&str]>,
+    metres_per_unit: f32,
 ) -> Vec<Edit> {
     let value = |path: &str| match (path, wrinkles) {
         ("large.wrinkles", Some(names)) => Value::from(names.to_vec()),
@@ -130,7 +133,10 @@ pub fn layers_ui(
                             for field in fields.iter().filter(|f| !f.path.ends_with(".enabled")) {
                                 let value = value(field.path);
                                 let default = defaults.field(field.path).unwrap_or(Value::Null);
-                                if let Some(edit) = field_ui(ui, field, &value, &default) {
+                                let measured = (field.path == "mesh.metres_per_unit")
+                                    .then_some(f64::from(metres_per_unit));
+                                if let Some(edit) = field_ui(ui, field, &value, &default, measured)
+                                {
                                     edits.push(edit);
                                 }
                                 ui.end_row();
@@ -160,6 +166,7 @@ fn field_ui(
     field: &'static Field,
     value: &Value,
     default: &Value,
+    measured: Option<f64>,
 ) -> Option<Edit> {
     let tip = tooltip(field, default);
     let label_id = ui
@@ -176,11 +183,12 @@ fn field_ui(
     let response = match field.kind {
         Kind::Float { min, max } | Kind::OptFloat { min, max } => {
             let is_null = value.is_null();
-            // Off (`null`): the value the switch turns on with — the default when it has
-            // one, else 1 where the range allows (not the range's minimum: 0.00001 m per
-            // unit would shrink a head to a speck).
+            // Off (`null`): the value shown and switched on with — the measured one where
+            // there is one (the mesh's units), else the default, else 1 where the range
+            // allows (not the range's minimum: 0.00001 m per unit shrinks a head to a speck).
             let mut x = value
                 .as_f64()
+                .or(measured)
                 .or(default.as_f64())
                 .unwrap_or_else(|| 1f64.clamp(f64::from(min), f64::from(max)));
             let r = ui

@@ -24,6 +24,18 @@ pub struct FileBrowser {
     entries: Vec<Entry>,
     name: String,
     error: Option<String>,
+    /// A save onto this existing file was asked once: the next Save replaces it.
+    confirm_replace: Option<PathBuf>,
+}
+
+/// What the typed name leads to.
+#[derive(Debug, PartialEq)]
+enum Choice {
+    Pick(PathBuf),
+    /// A folder: go into it.
+    Enter(PathBuf),
+    /// Not yet (the message says why).
+    Refused(String),
 }
 
 /// How a frame of the browser ended.
@@ -35,7 +47,8 @@ pub enum Outcome {
 }
 
 impl FileBrowser {
-    /// A browser for `purpose`, starting in `dir`.
+    /// A browser for `purpose`, starting in `dir` (else the current folder, else the
+    /// home folder, else the root: the first of them that can be read).
     pub fn new(purpose: Purpose, file_name: Option<String>, dir: PathBuf) -> Self {
         let request = purpose.request(file_name.clone());
         let mut b = Self {
@@ -45,13 +58,24 @@ impl FileBrowser {
             entries: Vec::new(),
             name: file_name.unwrap_or_default(),
             error: None,
+            confirm_replace: None,
         };
-        b.enter(dir);
+        let candidates = [
+            Some(dir),
+            std::env::current_dir().ok(),
+            std::env::var_os("HOME").map(PathBuf::from),
+            Some(PathBuf::from("/")),
+        ];
+        for dir in candidates.into_iter().flatten() {
+            if !dir.as_os_str().is_empty() && b.enter(dir) {
+                break;
+            }
+        }
         b
     }
 
-    /// Lists `dir` (kept only if it can be read).
-    fn enter(&mut self, dir: PathBuf) {
+    /// Lists `dir` (kept only if it can be read); whether it could.
+    fn enter(&mut self, dir: PathBuf) -> bool {
         let dir = std::path::absolute(&dir).unwrap_or(dir);
         match std::fs::read_dir(&dir) {
             Ok(read) => {
@@ -68,8 +92,13 @@ impl FileBrowser {
                 self.entries = entries;
                 self.dir = dir;
                 self.error = None;
+                self.confirm_replace = None;
+                true
             }
-            Err(e) => self.error = Some(format!("{}: {e}", dir.display())),
+            Err(e) => {
+                self.error = Some(format!("{}: {e}", dir.display()));
+                false
+            }
         }
     }
 
@@ -88,8 +117,8 @@ impl FileBrowser {
                 .any(|e| lower.ends_with(&format!(".{e}")))
     }
 
-    /// The path the typed name stands for, checked for the mode.
-    fn chosen(&self) -> Result<PathBuf, String> {
+    /// What the typed name (relative to the folder, or absolute) leads to in this mode.
+    fn chosen(&self) -> Choice {
         let typed = self.name.trim();
         let path = if typed.is_empty() {
             self.dir.clone()
@@ -97,13 +126,22 @@ impl FileBrowser {
             self.dir.join(typed)
         };
         match self.request.mode {
-            Mode::Open if path.is_file() => Ok(path),
-            Mode::Open => Err(format!("{} is not a file", path.display())),
-            Mode::Save if typed.is_empty() => Err("type a file name".into()),
-            Mode::Save if path.parent().is_some_and(Path::is_dir) => Ok(path),
-            Mode::Save => Err(format!("{}: no such folder", path.display())),
-            Mode::Folder if path.is_dir() => Ok(path),
-            Mode::Folder => Err(format!("{} is not a folder", path.display())),
+            Mode::Folder if path.is_dir() => Choice::Pick(path),
+            Mode::Folder => Choice::Refused(format!("{} is not a folder", path.display())),
+            _ if !typed.is_empty() && path.is_dir() => Choice::Enter(path),
+            Mode::Open if path.is_file() => Choice::Pick(path),
+            Mode::Open => Choice::Refused(format!("{} is not a file", path.display())),
+            Mode::Save if typed.is_empty() => Choice::Refused("type a file name".into()),
+            Mode::Save if !path.parent().is_some_and(Path::is_dir) => {
+                Choice::Refused(format!("{}: no such folder", path.display()))
+            }
+            Mode::Save if path.exists() && self.confirm_replace.as_ref() != Some(&path) => {
+                Choice::Refused(format!(
+                    "{} exists: Save again to replace it",
+                    path.display()
+                ))
+            }
+            Mode::Save => Choice::Pick(path),
         }
     }
 
@@ -137,16 +175,17 @@ impl FileBrowser {
                             } else {
                                 format!("{}/", e.name)
                             };
-                            let r = ui.selectable_label(e.is_file && self.name == e.name, label);
+                            // A click selects, a double-click opens (a folder: goes in).
+                            let r = ui.selectable_label(self.name == e.name, label);
                             if r.clicked() {
+                                self.name = e.name.clone();
+                            }
+                            if r.double_clicked() {
                                 if e.is_file {
-                                    self.name = e.name.clone();
+                                    outcome = Outcome::Picked(self.dir.join(&e.name));
                                 } else {
                                     enter = Some(self.dir.join(&e.name));
                                 }
-                            }
-                            if r.double_clicked() && e.is_file {
-                                outcome = Outcome::Picked(self.dir.join(&e.name));
                             }
                         }
                         if self.entries.is_empty() {
@@ -178,8 +217,19 @@ impl FileBrowser {
                     };
                     if ui.button(verb).clicked() {
                         match self.chosen() {
-                            Ok(path) => outcome = Outcome::Picked(path),
-                            Err(e) => self.error = Some(e),
+                            Choice::Pick(path) => outcome = Outcome::Picked(path),
+                            Choice::Enter(dir) => {
+                                enter = Some(dir);
+                                self.name.clear();
+                            }
+                            Choice::Refused(e) => {
+                                // Refused once for an existing file: Save again replaces it.
+                                let path = self.dir.join(self.name.trim());
+                                if self.request.mode == Mode::Save && path.is_file() {
+                                    self.confirm_replace = Some(path);
+                                }
+                                self.error = Some(e);
+                            }
                         }
                     }
                     if ui.button("Cancel").clicked() {
@@ -216,8 +266,28 @@ mod tests {
         assert_eq!(names, ["heads", "a.obj", "b.GLB"]);
         let mut b = b;
         b.name = "a.obj".into();
-        assert_eq!(b.chosen().unwrap(), dir.path().join("a.obj"));
+        assert_eq!(b.chosen(), Choice::Pick(dir.path().join("a.obj")));
+        b.name = "heads".into();
+        assert_eq!(b.chosen(), Choice::Enter(dir.path().join("heads")));
         b.name = "missing.obj".into();
-        assert!(b.chosen().unwrap_err().contains("missing.obj"));
+        assert!(matches!(b.chosen(), Choice::Refused(e) if e.contains("missing.obj")));
+    }
+
+    #[test]
+    fn saving_over_a_file_asks_first_and_an_unreadable_start_falls_back() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("p.agesim.json"), "{}").unwrap();
+        let mut b = FileBrowser::new(Purpose::SaveProject, None, dir.path().to_owned());
+        b.name = "p.agesim.json".into();
+        assert!(matches!(b.chosen(), Choice::Refused(e) if e.contains("Save again")));
+        b.confirm_replace = Some(dir.path().join("p.agesim.json"));
+        assert_eq!(b.chosen(), Choice::Pick(dir.path().join("p.agesim.json")));
+        b.name = "new.agesim.json".into();
+        assert_eq!(b.chosen(), Choice::Pick(dir.path().join("new.agesim.json")));
+        // An empty or missing start folder: the current folder instead, never nothing.
+        let b = FileBrowser::new(Purpose::ImportMesh, None, PathBuf::new());
+        assert!(!b.dir.as_os_str().is_empty());
+        let b = FileBrowser::new(Purpose::ImportMesh, None, dir.path().join("gone"));
+        assert!(b.dir.is_dir());
     }
 }

@@ -11,7 +11,7 @@ use agesim_render::{PreparedLayer, RenderError, Renderer, TileLayer, Upload, Vie
 
 /// Every uploaded input of the renderer, each shared: a layer that a bake did not change
 /// is the same allocation as before, so its address says whether to upload it again.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Layers {
     pub mesh: Option<Arc<Mesh>>,
     /// The large-wrinkle map, normalised (a full-depth wrinkle spans 1), as f16;
@@ -23,6 +23,20 @@ pub struct Layers {
     pub hair: Option<Arc<HairInstances>>,
     /// How long a mesh unit is, metres ([`Scene::metres_per_unit`]).
     pub metres_per_unit: f32,
+}
+
+impl Default for Layers {
+    /// No layer yet, in metres.
+    fn default() -> Self {
+        Self {
+            mesh: None,
+            large: None,
+            micro: None,
+            fine: None,
+            hair: None,
+            metres_per_unit: 1.0,
+        }
+    }
 }
 
 impl Layers {

@@ -52,6 +52,15 @@ pub fn normal_map(
     cancel: &CancelToken,
 ) -> Result<Vec<u8>, Error> {
     heightmap::check_size(size_px, size_px)?;
+    if let Some(l) = layers.large
+        && l.width_px() != l.height_px()
+    {
+        return Err(Error::InvalidValue {
+            what: "large-wrinkle map".into(),
+            value: format!("{}×{}", l.width_px(), l.height_px()),
+            expected: "a square map over the UV square".into(),
+        });
+    }
     let n = size_px as usize;
     let large = layers.large.map(|l| (l.data(), l.width_px() as usize));
     let disp = layers.disp_scale;

@@ -157,6 +157,7 @@ impl EditorApp {
                 .path
                 .as_ref()
                 .and_then(|p| p.parent())
+                .filter(|p| !p.as_os_str().is_empty())
                 .map(Path::to_owned)
                 .or_else(|| std::env::current_dir().ok())
                 .unwrap_or_default();

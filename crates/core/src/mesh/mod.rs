@@ -522,9 +522,10 @@ impl Mesh {
     }
 
     /// The triangle indices of the skin parts ([`Mesh::skin_parts`]); all of them when
-    /// every part is skin (no copy then).
+    /// every part is skin (no copy then), or when none is (a one-part head named
+    /// `head_eyebrows` is still a head).
     pub fn skin_indices(&self) -> std::borrow::Cow<'_, [u32]> {
-        if self.parts.iter().all(MeshPart::is_skin) {
+        if self.parts.iter().all(MeshPart::is_skin) || !self.parts.iter().any(MeshPart::is_skin) {
             return std::borrow::Cow::Borrowed(&self.indices);
         }
         let mut out = Vec::new();

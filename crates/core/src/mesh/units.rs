@@ -55,7 +55,9 @@ pub fn detect(bounds: &Aabb, landmarks: Option<&Landmarks>) -> Units {
         "from the size: {size:.4} units across ≈ a {:.0} cm head; no landmarks",
         HEAD_SIZE_M * 100.0
     );
-    snap(HEAD_SIZE_M / size, 1.35, &basis)
+    // Up to the midpoint between centimetres and inches (√2.54 ≈ 1.59): a face mask
+    // (20 cm) or a bust (45 cm) still snaps to its unit.
+    snap(HEAD_SIZE_M / size, 1.59, &basis)
 }
 
 /// `estimate` snapped to the nearest common unit (in ratio) when within `tolerance`.

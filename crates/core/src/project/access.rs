@@ -187,18 +187,15 @@ impl Project {
         };
         let field = fields::find(path).map_err(err)?;
         field.check(&value).map_err(err)?;
+        let before = self.clone();
         let slot = slot_mut(self, path).ok_or_else(|| err(format!("`{path}` cannot be set")))?;
-        let old = slot.get();
         slot.set(value).map_err(|e| err(format!("{path}: {e}")))?;
         let mut problems = Vec::new();
         self.check_consistency(&mut problems);
         if problems.is_empty() {
             return Ok(());
         }
-        if let Some(slot) = slot_mut(self, path) {
-            // The old value came out of this slot: it goes back in.
-            let _ = slot.set(old);
-        }
+        *self = before;
         Err(err(problems.join("; ")))
     }
 }

@@ -85,7 +85,8 @@ pub struct BakeRequest {
     pub fine: bool,
     /// Also make the transition texture and the hair instances.
     pub hair: bool,
-    /// Also make the docs/models.md §5 RGBA8 packing of the large-wrinkle map (for the renderer).
+    /// Also make the docs/models.md §5 RGBA8 packing of the large-wrinkle map (a picture
+    /// for the map view: the renderer reads the heights).
     pub packed: bool,
     /// A one-off bake (`agesim bake`, exports): the large-wrinkle map is made in one pass
     /// without keeping per-fibre stamps or the sampled mask for later edits — the same
@@ -433,9 +434,11 @@ impl Scene {
         crate::heightmap::check_size(request.large_size_px, request.micro_size_px)?;
         let (fibres, curves) = self.fibres();
         self.factors = self.project.age.factors(request.t, &curves);
-        self.tileable = request.tileable;
         let mut changed = Changed::default();
-        let normal = self.normal_settings();
+        let normal = NormalSettings {
+            tiling: request.tileable,
+            ..self.normal_settings()
+        };
         let micro_enabled = self.micro_enabled();
         let (large, micro) = (&mut self.large, &mut self.micro);
         let (project, inputs, factors) = (&self.project, &self.inputs, &self.factors);
@@ -475,6 +478,8 @@ impl Scene {
         );
         changed.merge(large_result?);
         changed.merge(micro_result?);
+        // The kept maps are now this request's (a failed bake keeps the last one's).
+        self.tileable = request.tileable;
         if request.fine && self.project.fine.enabled {
             changed.merge(self.bake_fine(cancel)?);
         }

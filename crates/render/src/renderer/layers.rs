@@ -12,7 +12,7 @@ use crate::mesh::MeshData;
 
 use super::{GpuMesh, Hair, Renderer, TileLayer, Upload, ViewId};
 
-/// A height or mask texture (the view keeps its texture alive).
+/// A height texture (the view keeps its texture alive).
 pub(super) struct Layer {
     view: wgpu::TextureView,
 }

@@ -114,8 +114,8 @@ pub struct Renderer {
 }
 
 impl Renderer {
-    /// Builds pipelines, layouts, samplers and placeholder layers (flat heights, full
-    /// mask) for targets of `colour_format`. An sRGB format gets linear output encoded
+    /// Builds pipelines, layouts, samplers and placeholder layers (flat heights) for
+    /// targets of `colour_format`. An sRGB format gets linear output encoded
     /// by the hardware; `Rgba8Unorm`/`Bgra8Unorm` get sRGB-encoded values from the
     /// shader; float formats get linear values.
     pub fn new(

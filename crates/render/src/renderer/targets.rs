@@ -142,7 +142,7 @@ impl Renderer {
         self.surface_passes
     }
 
-    /// The colour target of the last [`Renderer::encode`] (None before the first).
+    /// [`ViewId::MAIN`]'s colour target (None before its first frame).
     pub fn colour_texture(&self) -> Option<&wgpu::Texture> {
         self.views[0].targets.as_ref().map(|t| &t.colour)
     }

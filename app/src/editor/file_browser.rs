@@ -185,6 +185,10 @@ impl FileBrowser {
                                     outcome = Outcome::Picked(self.dir.join(&e.name));
                                 } else {
                                     enter = Some(self.dir.join(&e.name));
+                                    // The folder's name was selected by the first click.
+                                    if self.name == e.name {
+                                        self.name.clear();
+                                    }
                                 }
                             }
                         }

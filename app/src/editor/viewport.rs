@@ -73,6 +73,10 @@ pub struct Viewport {
     centre: Vec3,
     /// How long one unit of the shown mesh is, metres (the main view's snapshot's).
     metres_per_unit: f32,
+    /// The view's last size, points (for framing).
+    aspect: (f32, f32),
+    /// A new mesh arrived: frame it on the next frame (a head of the artist's own).
+    frame_pending: bool,
     pan: Vec3,
     /// Time to encode and submit the last frame, ms.
     pub encode_ms: f64,
@@ -97,6 +101,8 @@ impl Viewport {
             panes: vec![Pane::new(ViewId::MAIN)],
             centre: Vec3::ZERO,
             metres_per_unit: 1.0,
+            aspect: (1.0, 1.0),
+            frame_pending: false,
             pan: Vec3::ZERO,
             encode_ms: 0.0,
             hairs_drawn: 0,
@@ -117,6 +123,7 @@ impl Viewport {
             {
                 self.centre = mesh.bounds().centre();
                 self.mesh = Some(mesh.clone());
+                self.frame_pending = true;
             }
             self.metres_per_unit = snapshot.layers.metres_per_unit;
             pane.uploaded.upload(&mut self.renderer, &snapshot.layers)
@@ -136,6 +143,18 @@ impl Viewport {
         project.view.camera_pitch_deg = d.camera_pitch_deg;
         project.view.camera_distance_m = d.camera_distance_m;
         self.pan = Vec3::ZERO;
+        // The default distance is the built-in head's: a head of its own is framed at its
+        // own size (in the view's last shape).
+        if project.mesh.path.is_some()
+            && let Some(mesh) = &self.mesh
+        {
+            let (w, h) = self.aspect;
+            project.view.camera_distance_m = framing_distance(
+                mesh.bounds().size().length() * 0.5,
+                project.view.fov_deg,
+                w / h,
+            ) * self.metres_per_unit;
+        }
     }
 
     /// Draws the view into the rest of `ui`; mouse input edits `project.view`.
@@ -147,6 +166,11 @@ impl Viewport {
         project: &mut Project,
     ) -> Rect {
         let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
+        self.aspect = (rect.width().max(1.0), rect.height().max(1.0));
+        if std::mem::take(&mut self.frame_pending) && project.mesh.path.is_some() {
+            // A head of the artist's own just arrived: framed, as "frame head" would.
+            self.reset(project);
+        }
         self.interact(ui, &response, project);
         if response.clicked()
             && let (Some(pos), Some(mesh)) = (response.interact_pointer_pos(), &self.mesh)
@@ -349,6 +373,15 @@ impl Viewport {
             self.reset(project);
         }
     }
+}
+
+/// The camera distance (mesh units) at which a sphere of `radius` around the orbit's
+/// target fills a view of vertical field of view `fov_deg` and `aspect` (width / height),
+/// with a margin: the smaller of the two half-angles decides.
+fn framing_distance(radius: f32, fov_deg: f32, aspect: f32) -> f32 {
+    let half_v = (fov_deg.to_radians() * 0.5).clamp(0.01, 1.5);
+    let half_h = (half_v.tan() * aspect).atan();
+    1.1 * radius / half_v.min(half_h).sin().max(1e-3)
 }
 
 /// The paint callback that blits the view's frame into egui's render pass.

@@ -40,6 +40,10 @@ pub struct BakeArgs {
     #[arg(long, value_name = "MASK.png")]
     pub mask: Option<PathBuf>,
 
+    /// The head's landmark file (`mesh.landmarks`, in the mesh file's units).
+    #[arg(long, value_name = "L.json")]
+    pub landmarks: Option<PathBuf>,
+
     /// Side of the square maps in pixels, 1..=16384.
     #[arg(long, default_value_t = 2048, value_name = "N",
           value_parser = clap::value_parser!(u32).range(1..=16384))]
@@ -158,6 +162,13 @@ fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
             "large.mask",
             json!(mask).to_string(),
             format!("--mask {}", mask.display()),
+        ));
+    }
+    if let Some(l) = &args.landmarks {
+        edits.push((
+            "mesh.landmarks",
+            json!(l).to_string(),
+            format!("--landmarks {}", l.display()),
         ));
     }
     if let Some(g) = args.gamma {

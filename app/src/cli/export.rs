@@ -21,6 +21,10 @@ pub struct ExportArgs {
     /// The age of the export.
     #[command(flatten)]
     pub age: super::AgeArgs,
+    /// The head's landmark file (`mesh.landmarks`, in the mesh file's units): its outer eye
+    /// corners set the units when the project does not.
+    #[arg(long, value_name = "L.json")]
+    pub landmarks: Option<PathBuf>,
     /// Side of the maps and of the GLB's textures, px (1..=16384; beyond 8192 only as far
     /// as memory allows).
     #[arg(long, default_value_t = 2048, value_name = "N")]
@@ -75,7 +79,11 @@ pub struct ExportArgs {
 
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let start = Instant::now();
-    let project = super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
+    let mut project =
+        super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
+    if let Some(l) = &args.landmarks {
+        project.mesh.landmarks = Some(l.clone());
+    }
     let years = project.age.mapping().years(args.age.t(&project)?);
     let compare = match (&args.compare, args.compare_years.as_slice()) {
         (None, _) => None,

@@ -55,7 +55,7 @@ pub struct HairArgs {
 /// The project of `args`: the hair settings from the flags, every other layer off.
 fn project(args: &HairArgs) -> anyhow::Result<Project> {
     let mut p = Project::default();
-    p.mesh.path = args.head.mesh.clone();
+    args.head.apply_to(&mut p)?;
     p.hair.outer_mask = args.outer.clone();
     p.hair.inner_mask = args.inner.clone();
     p.hair.density_per_cm2 = args.density;
@@ -77,7 +77,7 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let start = Instant::now();
     let mut scene = Scene::new(project(args)?)?;
-    args.head.apply_units(&mut scene)?;
+    super::MeshArgs::report_units(&scene);
     let mesh_name = match &args.head.mesh {
         Some(path) => path.display().to_string(),
         None => "default head".to_owned(),

@@ -126,40 +126,30 @@ pub struct MeshArgs {
 }
 
 impl MeshArgs {
-    /// Gives `scene` its metres per unit: the flag's, else the landmarks' for a --mesh;
-    /// otherwise the scene's own (the project's, or measured from the mesh's size). Says
-    /// how it was decided when the mesh is measured.
-    pub fn apply_units(&self, scene: &mut agesim_core::scene::Scene) -> anyhow::Result<()> {
+    /// Puts the flags into `p`: a --mesh with its own units (measured unless
+    /// --metres-per-unit is given) and its --landmarks.
+    pub fn apply_to(&self, p: &mut agesim_core::project::Project) -> anyhow::Result<()> {
         if self.landmarks.is_some() && self.mesh.is_none() {
             anyhow::bail!("--landmarks describes a --mesh: give the mesh too");
         }
-        let set = match (self.metres_per_unit, &self.landmarks) {
-            (Some(m), _) => Some(m),
-            (None, Some(path)) if self.mesh.is_some() => {
-                let landmarks = agesim_core::landmarks::Landmarks::load(path)?;
-                let units =
-                    agesim_core::mesh::units::detect(&scene.mesh().bounds(), Some(&landmarks));
-                println!("metres per unit: {} ({})", units.metres_per_unit, units.how);
-                Some(units.metres_per_unit)
-            }
-            _ => None,
-        };
-        match set {
-            Some(m) if Some(m) != scene.project().mesh.metres_per_unit => {
-                let mut p = scene.project().clone();
-                p.mesh.metres_per_unit = Some(m);
-                scene.set_project(p)?;
-            }
-            Some(_) => {}
-            None if scene.project().mesh.metres_per_unit.is_none()
-                && scene.project().mesh.path.is_some() =>
-            {
-                let units = scene.units();
-                println!("metres per unit: {} ({})", units.metres_per_unit, units.how);
-            }
-            None => {}
+        if let Some(path) = &self.mesh {
+            p.mesh.path = Some(path.clone());
+            p.mesh.metres_per_unit = None;
+            p.mesh.landmarks = self.landmarks.clone();
+        }
+        if let Some(m) = self.metres_per_unit {
+            p.mesh.metres_per_unit = Some(m);
         }
         Ok(())
+    }
+
+    /// Says how the mesh's units were decided when they were measured.
+    pub fn report_units(scene: &agesim_core::scene::Scene) {
+        let p = scene.project();
+        if p.mesh.metres_per_unit.is_none() && p.mesh.path.is_some() {
+            let units = scene.units();
+            println!("metres per unit: {} ({})", units.metres_per_unit, units.how);
+        }
     }
 }
 

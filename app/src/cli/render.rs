@@ -118,11 +118,8 @@ fn project_of(args: &RenderArgs) -> anyhow::Result<Project> {
         Some(path) => Project::load(path)?,
         None => Project::default(),
     };
-    if let Some(path) = &args.head.mesh {
-        p.mesh.path = Some(path.clone());
-        // Its own units, not the project's head's (measured unless a flag sets them).
-        p.mesh.metres_per_unit = None;
-    } else if args.patch {
+    args.head.apply_to(&mut p)?;
+    if args.patch && args.head.mesh.is_none() {
         p.mesh.builtin = BuiltinMesh::SkinPatch;
         // The patch shows its own creases (its UV square is 5 cm of skin, not a face).
         p.large.enabled = false;
@@ -199,8 +196,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let project = project_of(args)?;
     let single_t = args.age.t(&project)?;
     let start = Instant::now();
-    let mut scene = Scene::new(project)?;
-    args.head.apply_units(&mut scene)?;
+    let scene = Scene::new(project)?;
+    super::MeshArgs::report_units(&scene);
     let project = scene.project().clone();
     let bounds = scene.mesh().bounds();
     let mut camera = view::camera(&project, scene.metres_per_unit(), bounds.centre());

@@ -59,6 +59,7 @@ slots! {
     "mesh.path" => mesh.path;
     "mesh.builtin" => mesh.builtin;
     "mesh.metres_per_unit" => mesh.metres_per_unit;
+    "mesh.landmarks" => mesh.landmarks;
     "large.enabled" => large.enabled;
     "large.wrinkles" => large.wrinkles;
     "large.mask" => large.mask;

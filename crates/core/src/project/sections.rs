@@ -21,8 +21,11 @@ pub struct MeshSection {
     /// The built-in mesh used when `path` is null.
     pub builtin: BuiltinMesh,
     /// Metres per mesh unit; `null` = measured from the mesh ([`crate::scene::Scene::units`]:
-    /// 1 for the built-in meshes, a mesh file's from its size).
+    /// 1 for the built-in meshes, a mesh file's from its landmarks or its size).
     pub metres_per_unit: Option<f32>,
+    /// The head's landmark file ([`crate::landmarks`], in the mesh file's units); `null` =
+    /// none.
+    pub landmarks: Option<PathBuf>,
 }
 
 /// The meshes that ship inside agesim.
@@ -217,6 +220,7 @@ impl Default for MeshSection {
             path: None,
             builtin: BuiltinMesh::Head,
             metres_per_unit: None,
+            landmarks: None,
         }
     }
 }

@@ -7,6 +7,7 @@ use std::sync::Arc;
 use super::WrinkleSource;
 use crate::error::Error;
 use crate::heightmap::HeightMap;
+use crate::landmarks::Landmarks;
 use crate::mask::Mask;
 use crate::mesh::Mesh;
 use crate::project::{BuiltinMesh, Project};
@@ -28,6 +29,9 @@ pub(super) struct Inputs {
     pub(super) hair_masks: Option<Arc<(Mask, Mask)>>,
     fine_tile_key: Option<PathBuf>,
     pub(super) fine_tile: Option<Arc<HeightMap>>,
+    landmarks_key: Option<PathBuf>,
+    /// The head's landmarks (`mesh.landmarks`), when the project names a file.
+    pub(super) landmarks: Option<Arc<Landmarks>>,
     /// Bumped whenever any input above changes (fibre edits included).
     pub(super) generation: u64,
 }
@@ -121,6 +125,18 @@ impl Inputs {
         let hair_masks = hair_masks.map_err(|e| ok(Err(e))).ok();
         ok(inner_error);
         let fine_tile = fine_tile.map_err(|e| ok(Err(e))).ok();
+        // A small text file: read after the rest.
+        let landmarks_key = project.mesh.landmarks.clone();
+        let landmarks = match previous.filter(|p| p.landmarks_key == landmarks_key) {
+            Some(p) => p.landmarks.clone(),
+            None => match landmarks_key.as_deref().map(Landmarks::load).transpose() {
+                Ok(l) => l.map(Arc::new),
+                Err(e) => {
+                    errors.push(e);
+                    None
+                }
+            },
+        };
         match (mesh, wrinkles, large_mask, hair_masks, fine_tile) {
             (Some(mesh), Some(wrinkles), Some(large_mask), Some(hair_masks), Some(fine_tile))
                 if errors.is_empty() =>
@@ -139,6 +155,8 @@ impl Inputs {
                     hair_masks,
                     fine_tile_key,
                     fine_tile,
+                    landmarks_key,
+                    landmarks,
                     generation,
                 })
             }

@@ -43,6 +43,7 @@ use crate::error::Error;
 use crate::fine_wrinkles::{self, FineWrinkleSettings};
 use crate::hair::{HairInstances, HairParams, SurfaceRef};
 use crate::heightmap::HeightMap;
+use crate::landmarks::Landmarks;
 use crate::mask::Mask;
 use crate::mesh::Mesh;
 use crate::mesh::units::Units;
@@ -391,8 +392,13 @@ impl Scene {
         self.hair.as_ref()
     }
 
+    /// The head's landmarks, when the project names a landmark file (`mesh.landmarks`).
+    pub fn landmarks(&self) -> Option<&Landmarks> {
+        self.inputs.landmarks.as_deref()
+    }
+
     /// How long one unit of the mesh is: the project's `mesh.metres_per_unit`, else 1 for
-    /// the built-in meshes, else measured from the mesh file's size
+    /// the built-in meshes, else measured from the mesh file's landmarks or size
     /// ([`crate::mesh::units::detect`]).
     pub fn units(&self) -> Units {
         match (self.project.mesh.metres_per_unit, &self.project.mesh.path) {
@@ -404,7 +410,9 @@ impl Scene {
                 metres_per_unit: 1.0,
                 how: "metres: a built-in mesh".into(),
             },
-            (None, Some(_)) => crate::mesh::units::detect(&self.inputs.mesh.bounds(), None),
+            (None, Some(_)) => {
+                crate::mesh::units::detect(&self.inputs.mesh.bounds(), self.landmarks())
+            }
         }
     }
 

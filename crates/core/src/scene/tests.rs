@@ -353,3 +353,40 @@ fn a_depth_change_bakes_nothing_and_reaches_the_exported_heights() {
     }
     assert!(before.min_max().1 > 0.1, "the map has wrinkles");
 }
+
+/// A mesh file's units: measured from its landmark file when the project names one
+/// (`mesh.landmarks`), else from its size; the project's own value wins.
+#[test]
+fn the_units_come_from_the_landmarks_else_the_size_else_the_project() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("square.obj");
+    // 30 units across: a head in centimetres by its size.
+    std::fs::write(
+        &obj,
+        "v 0 0 0\nv 30 0 0\nv 30 30 0\nv 0 30 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+         f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n",
+    )
+    .unwrap();
+    let landmarks = dir.path().join("l.json");
+    std::fs::write(
+        &landmarks,
+        r#"{"landmarks": {"exocanthion_r": [0, 0, 0], "exocanthion_l": [0.95, 0, 0]}}"#,
+    )
+    .unwrap();
+    let mut p = Project::default();
+    p.mesh.path = Some(obj);
+    let s = Scene::new(p.clone()).unwrap();
+    assert_eq!(s.metres_per_unit(), 0.01, "{}", s.units().how);
+    p.mesh.landmarks = Some(landmarks.clone());
+    let s = Scene::new(p.clone()).unwrap();
+    let u = s.units();
+    assert_eq!(u.metres_per_unit, 0.1, "{}", u.how);
+    assert!(u.how.contains("eye corners"), "{}", u.how);
+    p.mesh.metres_per_unit = Some(0.02);
+    assert_eq!(Scene::new(p.clone()).unwrap().metres_per_unit(), 0.02);
+    // A broken landmark file is an input error naming it.
+    std::fs::write(&landmarks, "{").unwrap();
+    p.mesh.metres_per_unit = None;
+    let e = Scene::new(p).unwrap_err().to_string();
+    assert!(e.contains("l.json"), "{e}");
+}

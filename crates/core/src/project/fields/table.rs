@@ -167,8 +167,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
                 min: 1e-5,
                 max: 1000.0,
             },
-            doc: "metres per mesh unit; null = measured: 1 for the built-in meshes, a mesh file's from its size (m, dm, cm, mm or inch when close; `agesim mesh-info` says how)",
+            doc: "metres per mesh unit; null = measured: 1 for the built-in meshes, a mesh file's from its landmarks (outer eye corners ≈ 95 mm apart) or its size (m, dm, cm, mm or inch when close; `agesim mesh-info` says how)",
         },
+        k(
+            "mesh.landmarks",
+            Kind::Path,
+            "the head's landmark file ({\"landmarks\": {name: [x, y, z]}}, in the mesh file's units); null = none",
+        ),
         k(
             "large.enabled",
             Kind::Bool,

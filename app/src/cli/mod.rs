@@ -143,12 +143,21 @@ impl MeshArgs {
         Ok(())
     }
 
-    /// Says how the mesh's units were decided when they were measured.
+    /// Says how the mesh's units were decided when they were measured, and how it was
+    /// turned when its axes are not agesim's.
     pub fn report_units(scene: &agesim_core::scene::Scene) {
         let p = scene.project();
         if p.mesh.metres_per_unit.is_none() && p.mesh.path.is_some() {
             let units = scene.units();
             println!("metres per unit: {} ({})", units.metres_per_unit, units.how);
+        }
+        let axes = scene.axes();
+        if axes != agesim_core::mesh::units::Axes::STANDARD {
+            println!(
+                "axes: up {}, forward {} (turned to +Y up, +Z forward)",
+                axes.up.name(),
+                axes.forward.name()
+            );
         }
     }
 }

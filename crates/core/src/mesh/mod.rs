@@ -515,6 +515,26 @@ impl Mesh {
         self.bounds
     }
 
+    /// The mesh turned by the rotation `r` (positions, normals and tangents; UVs, parts
+    /// and the report as they are): a Z-up head made Y-up.
+    pub fn rotated(&self, r: glam::Mat3) -> Mesh {
+        let positions: Vec<Vec3> = self.positions.iter().map(|p| r * *p).collect();
+        Mesh {
+            bounds: bounds_of(&positions),
+            positions,
+            normals: self.normals.iter().map(|n| r * *n).collect(),
+            uvs: self.uvs.clone(),
+            tangents: self
+                .tangents
+                .iter()
+                .map(|t| (r * t.truncate()).extend(t.w))
+                .collect(),
+            indices: self.indices.clone(),
+            parts: self.parts.clone(),
+            report: self.report.clone(),
+        }
+    }
+
     /// The parts that are skin: all but those named as eyes, teeth, tongue, lashes or
     /// brows ([`MeshPart::is_skin`]); hair grows on these only.
     pub fn skin_parts(&self) -> impl Iterator<Item = &MeshPart> {

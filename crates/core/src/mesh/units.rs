@@ -140,6 +140,25 @@ pub struct Axes {
     pub forward: Axis,
 }
 
+impl Axes {
+    /// agesim's own: +Y up, the face toward +Z.
+    pub const STANDARD: Axes = Axes {
+        up: Axis::PosY,
+        forward: Axis::PosZ,
+    };
+
+    /// The rotation that takes the file's coordinates to agesim's (up → +Y, forward →
+    /// +Z); `None` when the two axes are not perpendicular.
+    pub fn to_standard(self) -> Option<glam::Mat3> {
+        let (u, f) = (self.up.vector(), self.forward.vector());
+        if u.dot(f) != 0.0 {
+            return None;
+        }
+        // Rows: the file's right (up × forward, as +X = +Y × +Z), up, forward.
+        Some(glam::Mat3::from_cols(u.cross(f), u, f).transpose())
+    }
+}
+
 /// The head's up and forward axes from its landmarks: up from the chin (`pogonion`) to
 /// the brow (`glabella`, else `nasion`, else `vertex`), forward from the eyes' midpoint
 /// to the nose tip (`pronasale`); `None` when those points are missing.
@@ -211,6 +230,27 @@ mod tests {
         assert_eq!((axes.up, axes.forward), (Axis::PosZ, Axis::NegY));
         l = Landmarks::default();
         assert!(detect_axes(&l).is_none());
+    }
+
+    #[test]
+    fn the_rotation_to_standard_takes_up_and_forward_home() {
+        assert_eq!(Axes::STANDARD.to_standard(), Some(glam::Mat3::IDENTITY));
+        let z_up = Axes {
+            up: Axis::PosZ,
+            forward: Axis::NegY,
+        };
+        let r = z_up.to_standard().unwrap();
+        assert!((r * Vec3::Z - Vec3::Y).length() < 1e-6);
+        assert!((r * Vec3::NEG_Y - Vec3::Z).length() < 1e-6);
+        assert!(
+            (r.determinant() - 1.0).abs() < 1e-6,
+            "a rotation, not a mirror"
+        );
+        let bad = Axes {
+            up: Axis::PosY,
+            forward: Axis::NegY,
+        };
+        assert!(bad.to_standard().is_none());
     }
 
     #[test]

@@ -60,6 +60,8 @@ slots! {
     "mesh.builtin" => mesh.builtin;
     "mesh.metres_per_unit" => mesh.metres_per_unit;
     "mesh.landmarks" => mesh.landmarks;
+    "mesh.up" => mesh.up;
+    "mesh.forward" => mesh.forward;
     "large.enabled" => large.enabled;
     "large.wrinkles" => large.wrinkles;
     "large.mask" => large.mask;

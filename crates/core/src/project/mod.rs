@@ -326,6 +326,15 @@ impl Project {
                 ));
             }
         }
+        if let (Some(up), Some(forward)) = (self.mesh.up.axis(), self.mesh.forward.axis())
+            && up.vector().dot(forward.vector()) != 0.0
+        {
+            out.push(format!(
+                "mesh.forward = {} is not perpendicular to mesh.up = {}",
+                forward.name().to_lowercase(),
+                up.name().to_lowercase()
+            ));
+        }
         let h = &self.hair;
         if h.graying_onset_max_years < h.graying_onset_min_years {
             out.push(format!(

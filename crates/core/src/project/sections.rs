@@ -26,6 +26,48 @@ pub struct MeshSection {
     /// The head's landmark file ([`crate::landmarks`], in the mesh file's units); `null` =
     /// none.
     pub landmarks: Option<PathBuf>,
+    /// The mesh file's up axis; `auto` = from the landmarks, else +Y.
+    pub up: AxisChoice,
+    /// The mesh file's forward axis (where the face looks); `auto` = from the landmarks,
+    /// else +Z.
+    pub forward: AxisChoice,
+}
+
+/// A mesh file's axis as the project names it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum AxisChoice {
+    /// From the landmarks, else agesim's own (+Y up, +Z forward).
+    #[default]
+    #[serde(rename = "auto")]
+    Auto,
+    #[serde(rename = "+x")]
+    PosX,
+    #[serde(rename = "-x")]
+    NegX,
+    #[serde(rename = "+y")]
+    PosY,
+    #[serde(rename = "-y")]
+    NegY,
+    #[serde(rename = "+z")]
+    PosZ,
+    #[serde(rename = "-z")]
+    NegZ,
+}
+
+impl AxisChoice {
+    /// The axis named, `None` for `auto`.
+    pub fn axis(self) -> Option<crate::mesh::units::Axis> {
+        use crate::mesh::units::Axis;
+        match self {
+            Self::Auto => None,
+            Self::PosX => Some(Axis::PosX),
+            Self::NegX => Some(Axis::NegX),
+            Self::PosY => Some(Axis::PosY),
+            Self::NegY => Some(Axis::NegY),
+            Self::PosZ => Some(Axis::PosZ),
+            Self::NegZ => Some(Axis::NegZ),
+        }
+    }
 }
 
 /// The meshes that ship inside agesim.
@@ -221,6 +263,8 @@ impl Default for MeshSection {
             builtin: BuiltinMesh::Head,
             metres_per_unit: None,
             landmarks: None,
+            up: AxisChoice::Auto,
+            forward: AxisChoice::Auto,
         }
     }
 }

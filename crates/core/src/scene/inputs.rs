@@ -10,6 +10,7 @@ use crate::heightmap::HeightMap;
 use crate::landmarks::Landmarks;
 use crate::mask::Mask;
 use crate::mesh::Mesh;
+use crate::mesh::units::Axes;
 use crate::project::{BuiltinMesh, Project};
 use crate::wrinkle_file::{self, ParseErrors, WrinkleFile};
 
@@ -17,7 +18,12 @@ use crate::wrinkle_file::{self, ParseErrors, WrinkleFile};
 #[derive(Clone, Debug)]
 pub(super) struct Inputs {
     mesh_key: (Option<PathBuf>, BuiltinMesh),
+    /// The mesh as its file has it, and turned to agesim's axes (`mesh`; the same
+    /// allocation when no turn is needed).
+    raw_mesh: Arc<Mesh>,
     pub(super) mesh: Arc<Mesh>,
+    /// The mesh file's axes (`mesh.up`, `mesh.forward`, else from the landmarks).
+    pub(super) axes: Axes,
     pub(super) wrinkles_key: Vec<PathBuf>,
     pub(super) wrinkles: Vec<WrinkleSource>,
     /// Whether `wrinkles` came from [`Scene::set_wrinkles`](super::Scene::set_wrinkles)
@@ -58,7 +64,7 @@ impl Inputs {
         // The inputs are independent: decoded at once on the pool (the mesh and the
         // masks are most of a bake's start-up). Errors are reported in this fixed order.
         let load_mesh_part = || match previous.filter(|p| p.mesh_key == mesh_key) {
-            Some(p) => Ok(p.mesh.clone()),
+            Some(p) => Ok(p.raw_mesh.clone()),
             None => load_mesh(project).map(Arc::new),
         };
         let load_wrinkles_part = || match previous.filter(|p| p.wrinkles_key == wrinkles_key) {
@@ -138,14 +144,30 @@ impl Inputs {
             },
         };
         match (mesh, wrinkles, large_mask, hair_masks, fine_tile) {
-            (Some(mesh), Some(wrinkles), Some(large_mask), Some(hair_masks), Some(fine_tile))
-                if errors.is_empty() =>
-            {
+            (
+                Some(raw_mesh),
+                Some(wrinkles),
+                Some(large_mask),
+                Some(hair_masks),
+                Some(fine_tile),
+            ) if errors.is_empty() => {
+                let axes = axes_of(project, landmarks.as_deref());
+                let mesh = match previous {
+                    Some(p) if Arc::ptr_eq(&p.raw_mesh, &raw_mesh) && p.axes == axes => {
+                        p.mesh.clone()
+                    }
+                    _ => match axes.to_standard() {
+                        Some(r) if axes != Axes::STANDARD => Arc::new(raw_mesh.rotated(r)),
+                        _ => raw_mesh.clone(),
+                    },
+                };
                 let generation = previous.map_or(0, |p| p.generation)
                     + u64::from(previous.is_none_or(|p| p.wrinkles != wrinkles));
                 Ok(Self {
                     mesh_key,
+                    raw_mesh,
                     mesh,
+                    axes,
                     wrinkles_key,
                     wrinkles,
                     wrinkles_edited,
@@ -165,6 +187,23 @@ impl Inputs {
                 errors.iter().map(ToString::to_string).collect(),
             )),
         }
+    }
+}
+
+/// A mesh file's axes: the project's where it names them, else the landmarks', else
+/// agesim's own. The built-in meshes are agesim's own.
+fn axes_of(project: &Project, landmarks: Option<&Landmarks>) -> Axes {
+    if project.mesh.path.is_none() {
+        return Axes::STANDARD;
+    }
+    let detected = landmarks.and_then(crate::mesh::units::detect_axes);
+    Axes {
+        up: (project.mesh.up.axis())
+            .or(detected.map(|a| a.up))
+            .unwrap_or(Axes::STANDARD.up),
+        forward: (project.mesh.forward.axis())
+            .or(detected.map(|a| a.forward))
+            .unwrap_or(Axes::STANDARD.forward),
     }
 }
 

@@ -392,6 +392,12 @@ impl Scene {
         self.hair.as_ref()
     }
 
+    /// The mesh file's up and forward axes; the scene's mesh is turned to agesim's
+    /// (+Y up, +Z forward).
+    pub fn axes(&self) -> crate::mesh::units::Axes {
+        self.inputs.axes
+    }
+
     /// The head's landmarks, when the project names a landmark file (`mesh.landmarks`).
     pub fn landmarks(&self) -> Option<&Landmarks> {
         self.inputs.landmarks.as_deref()

@@ -390,3 +390,65 @@ fn the_units_come_from_the_landmarks_else_the_size_else_the_project() {
     let e = Scene::new(p).unwrap_err().to_string();
     assert!(e.contains("l.json"), "{e}");
 }
+
+/// A head in centimetres lying Z-up, its face toward −Y (as some tools export): its
+/// landmarks give its units and its axes, and the scene turns it Y-up, face toward +Z —
+/// the built-in head's box, ×100, and the same hair.
+#[test]
+fn a_z_up_head_in_centimetres_is_measured_and_turned_by_its_landmarks() {
+    use glam::{Mat3, Vec3};
+    let dir = tempfile::tempdir().unwrap();
+    let head = crate::head::default_head();
+    // Y-up, +Z forward → Z-up, −Y forward: (x, y, z) → (x, −z, y).
+    let to_z_up = Mat3::from_cols(Vec3::X, Vec3::Z, Vec3::NEG_Y);
+    let file = |p: Vec3| to_z_up * (p * 100.0);
+    let mut obj = String::new();
+    for p in head.positions() {
+        let q = file(*p);
+        obj += &format!("v {} {} {}\n", q.x, q.y, q.z);
+    }
+    for uv in head.uvs() {
+        obj += &format!("vt {} {}\n", uv.x, uv.y);
+    }
+    for [a, b, c] in head.triangles() {
+        let (a, b, c) = (a + 1, b + 1, c + 1);
+        obj += &format!("f {a}/{a} {b}/{b} {c}/{c}\n");
+    }
+    std::fs::write(dir.path().join("head.obj"), obj).unwrap();
+    // Landmarks of the built-in head (metres, Y-up), written in the file's coordinates.
+    let mut marks = crate::landmarks::Landmarks::default();
+    for (name, p) in [
+        ("pogonion", Vec3::new(0.0, -0.10, 0.09)),
+        ("glabella", Vec3::new(0.0, 0.05, 0.10)),
+        ("exocanthion_r", Vec3::new(-0.047, 0.02, 0.07)),
+        ("exocanthion_l", Vec3::new(0.047, 0.02, 0.07)),
+        ("pronasale", Vec3::new(0.0, -0.02, 0.12)),
+    ] {
+        marks.set(name, file(p)).unwrap();
+    }
+    std::fs::write(dir.path().join("l.json"), marks.to_json_pretty()).unwrap();
+    let mut p = Project::default();
+    p.mesh.path = Some(dir.path().join("head.obj"));
+    p.mesh.landmarks = Some(dir.path().join("l.json"));
+    let mut s = Scene::new(p).unwrap();
+    assert_eq!(s.metres_per_unit(), 0.01, "{}", s.units().how);
+    let axes = s.axes();
+    assert_eq!(
+        (axes.up, axes.forward),
+        (
+            crate::mesh::units::Axis::PosZ,
+            crate::mesh::units::Axis::NegY
+        )
+    );
+    let (b, want) = (s.mesh().bounds(), head.bounds());
+    assert!((b.min - want.min * 100.0).length() < 1e-2, "{b:?}");
+    assert!((b.max - want.max * 100.0).length() < 1e-2, "{b:?}");
+    // The same hair as the built-in head (hair grows along the turned normals).
+    let mut request = small(0.5);
+    request.hair = true;
+    s.bake(&request, &CancelToken::never()).unwrap();
+    let mut reference = Scene::new(Project::default()).unwrap();
+    reference.bake(&request, &CancelToken::never()).unwrap();
+    let (n, m) = (s.hair().unwrap().len(), reference.hair().unwrap().len());
+    assert!((n as f64 / m as f64 - 1.0).abs() < 0.02, "{n} vs {m}");
+}

@@ -34,6 +34,7 @@ const HU: &str = "height units";
 const YEARS: &str = "years";
 const MAX_SEED: u64 = u64::MAX;
 const CURVE_SHAPES: &[&str] = &["smoothstep", "linear"];
+const AXES: &[&str] = &["auto", "+x", "-x", "+y", "-y", "+z", "-z"];
 
 macro_rules! curve {
     ($name:literal, $what:literal) => {
@@ -173,6 +174,16 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             "mesh.landmarks",
             Kind::Path,
             "the head's landmark file ({\"landmarks\": {name: [x, y, z]}}, in the mesh file's units); null = none",
+        ),
+        k(
+            "mesh.up",
+            Kind::Choice(AXES),
+            "the mesh file's up axis; auto = from the landmarks (chin to brow), else +y",
+        ),
+        k(
+            "mesh.forward",
+            Kind::Choice(AXES),
+            "the mesh file's forward axis, where the face looks; auto = from the landmarks (eyes to nose tip), else +z",
         ),
         k(
             "large.enabled",

@@ -367,23 +367,8 @@ fn a_head_in_centimetres_imported_is_measured_and_undo_takes_it_back() {
     let mut h = scripted(&dialogs, dir.path());
     let hairs_m = h.state().snapshot().hair.as_ref().unwrap().len();
     let mesh = dir.path().join("head-cm.obj");
-    {
-        use std::fmt::Write as _;
-        let head = agesim_core::head::default_head();
-        let mut s = String::new();
-        for p in head.positions() {
-            let p = *p * 100.0;
-            let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
-        }
-        for uv in head.uvs() {
-            let _ = writeln!(s, "vt {} {}", uv.x, uv.y);
-        }
-        for [a, b, c] in head.triangles() {
-            let (a, b, c) = (a + 1, b + 1, c + 1);
-            let _ = writeln!(s, "f {a}/{a} {b}/{b} {c}/{c}");
-        }
-        std::fs::write(&mesh, s).unwrap();
-    }
+    let head = agesim_core::head::default_head();
+    std::fs::write(&mesh, agesim_core::mesh::obj::to_obj(&head, |p| p * 100.0)).unwrap();
     h.input_mut()
         .dropped_files
         .push(Arc::new(Dropped(mesh.clone())));

@@ -177,21 +177,7 @@ fn an_empty_outer_mask_is_an_error_naming_it() {
 
 /// The default head written as OBJ, its positions × `scale` (100: centimetres).
 fn default_head_obj(scale: f32) -> String {
-    use std::fmt::Write as _;
-    let mesh = agesim_core::head::default_head();
-    let mut s = String::new();
-    for p in mesh.positions() {
-        let p = *p * scale;
-        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
-    }
-    for uv in mesh.uvs() {
-        let _ = writeln!(s, "vt {} {}", uv.x, uv.y);
-    }
-    for [a, b, c] in mesh.triangles() {
-        let (a, b, c) = (a + 1, b + 1, c + 1);
-        let _ = writeln!(s, "f {a}/{a} {b}/{b} {c}/{c}");
-    }
-    s
+    agesim_core::mesh::obj::to_obj(&agesim_core::head::default_head(), |p| p * scale)
 }
 
 /// A head in centimetres or millimetres is measured, not taken for metres: the same

@@ -94,6 +94,26 @@ fn merge(models: &[tobj::Model]) -> RawMesh {
     raw
 }
 
+/// `mesh` as OBJ text: its positions (each through `place`, e.g. to change units or
+/// axes), its UVs and its triangles, one object. Normals and tangents are left for the
+/// reader to make. For heads of other units and axes in tests and tools.
+pub fn to_obj(mesh: &super::Mesh, place: impl Fn(Vec3) -> Vec3) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    for p in mesh.positions() {
+        let q = place(*p);
+        let _ = writeln!(s, "v {} {} {}", q.x, q.y, q.z);
+    }
+    for uv in mesh.uvs() {
+        let _ = writeln!(s, "vt {} {}", uv.x, uv.y);
+    }
+    for [a, b, c] in mesh.triangles() {
+        let (a, b, c) = (a + 1, b + 1, c + 1);
+        let _ = writeln!(s, "f {a}/{a} {b}/{b} {c}/{c}");
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -402,18 +402,7 @@ fn a_z_up_head_in_centimetres_is_measured_and_turned_by_its_landmarks() {
     // Y-up, +Z forward → Z-up, −Y forward: (x, y, z) → (x, −z, y).
     let to_z_up = Mat3::from_cols(Vec3::X, Vec3::Z, Vec3::NEG_Y);
     let file = |p: Vec3| to_z_up * (p * 100.0);
-    let mut obj = String::new();
-    for p in head.positions() {
-        let q = file(*p);
-        obj += &format!("v {} {} {}\n", q.x, q.y, q.z);
-    }
-    for uv in head.uvs() {
-        obj += &format!("vt {} {}\n", uv.x, uv.y);
-    }
-    for [a, b, c] in head.triangles() {
-        let (a, b, c) = (a + 1, b + 1, c + 1);
-        obj += &format!("f {a}/{a} {b}/{b} {c}/{c}\n");
-    }
+    let obj = crate::mesh::obj::to_obj(&head, file);
     std::fs::write(dir.path().join("head.obj"), obj).unwrap();
     // Landmarks of the built-in head (metres, Y-up), written in the file's coordinates.
     let mut marks = crate::landmarks::Landmarks::default();

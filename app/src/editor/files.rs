@@ -355,6 +355,9 @@ pub fn save_project(
         .or_else(|| stem.strip_suffix(".json"))
         .unwrap_or(&stem)
         .to_owned();
+    // One set: the wrinkle files, the mask and the project are staged, then put in place
+    // all or none (a failure or a kill leaves the previous set whole).
+    let set = agesim_core::export::OutputSet::new();
     let mut saved = None;
     if let Some(wrinkles) = wrinkles {
         let builtin = project.large.wrinkles.is_empty();
@@ -374,7 +377,11 @@ pub fn save_project(
             }
             used.push(name.clone());
             let target = dir.join(format!("{stem}-{name}.wrk"));
-            wrinkle_file::save(&w.file, &target).map_err(|e| e.to_string())?;
+            let text = wrinkle_file::write(&w.file);
+            set.stage(&target, |out| {
+                std::io::Write::write_all(out, text.as_bytes())
+            })
+            .map_err(|e| e.to_string())?;
             paths.push(target.clone());
             out.push(WrinkleSource {
                 name: target.display().to_string(),
@@ -385,14 +392,17 @@ pub fn save_project(
         if builtin && project.large.mask.is_none() {
             let (_, bytes) = defaults::WRINKLE_MASK;
             let target = dir.join(format!("{stem}-wrinkle-mask.png"));
-            agesim_core::export::write_atomically(&target, |w| std::io::Write::write_all(w, bytes))
+            set.stage(&target, |w| std::io::Write::write_all(w, bytes))
                 .map_err(|e| e.to_string())?;
             project.large.mask = Some(target);
         }
         project.large.wrinkles = paths;
         saved = Some(out);
     }
-    project.save(path).map_err(|e| e.to_string())?;
+    let text = project.file_text(path);
+    set.stage(path, |w| std::io::Write::write_all(w, text.as_bytes()))
+        .map_err(|e| e.to_string())?;
+    set.commit().map_err(|e| e.to_string())?;
     Ok((project, saved))
 }
 
@@ -431,5 +441,50 @@ mod tests {
         assert_eq!(saved.unwrap().len(), 2);
         // The built-in mask went beside it (the files were the built-in set's stand-ins).
         assert!(project.large.mask.unwrap().is_file());
+    }
+
+    /// A save is one set: when the project file cannot be put in place (here a folder
+    /// stands where it goes), the wrinkle files and the mask beside it are not written
+    /// either, and the files of an earlier save stay as they were.
+    #[test]
+    fn a_save_that_fails_writes_none_of_its_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let source = WrinkleSource {
+            name: "forehead.wrk".into(),
+            path: None,
+            file: wrinkle_file::parse("!\nma=0.3;0.5\nmb=0.35;0.6\nn=3\n", Path::new("f.wrk"))
+                .unwrap(),
+        };
+        let good = dir.path().join("p.agesim.json");
+        save_project(
+            &good,
+            &Project::default(),
+            Some(std::slice::from_ref(&source)),
+        )
+        .unwrap();
+        let before: Vec<(PathBuf, Vec<u8>)> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| {
+                let p = e.unwrap().path();
+                let bytes = std::fs::read(&p).unwrap();
+                (p, bytes)
+            })
+            .collect();
+        // The same names, a changed fibre, and a folder where the project file goes.
+        let bad = dir.path().join("q.agesim.json");
+        std::fs::create_dir(&bad).unwrap();
+        let e = save_project(&bad, &Project::default(), Some(&[source])).unwrap_err();
+        assert!(e.contains("q.agesim.json"), "{e}");
+        for (p, bytes) in &before {
+            assert_eq!(&std::fs::read(p).unwrap(), bytes, "{}", p.display());
+        }
+        let names: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert!(
+            !names.iter().any(|n| n.starts_with("q-")),
+            "files of the failed save: {names:?}"
+        );
     }
 }

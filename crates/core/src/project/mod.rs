@@ -125,10 +125,15 @@ impl Project {
 
     /// Writes the project to `path` (atomically), its paths relative to `path`'s folder.
     pub fn save(&self, path: &Path) -> Result<(), Error> {
-        let dir = path.parent().unwrap_or(Path::new(""));
-        let value = self.to_value_relative_to(dir);
-        let text = serde_json::to_string_pretty(&value).unwrap_or_default();
+        let text = self.file_text(path);
         crate::export::write_atomically(path, |w| std::io::Write::write_all(w, text.as_bytes()))
+    }
+
+    /// The text of the project file at `path`: pretty JSON, its paths relative to
+    /// `path`'s folder (what [`Project::save`] writes; for a set of files saved together).
+    pub fn file_text(&self, path: &Path) -> String {
+        let dir = path.parent().unwrap_or(Path::new(""));
+        serde_json::to_string_pretty(&self.to_value_relative_to(dir)).unwrap_or_default()
     }
 
     /// Validates a JSON value (version 1 or 2) and turns it into a project. Reports every

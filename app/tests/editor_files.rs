@@ -413,3 +413,58 @@ fn without_a_native_dialog_the_own_file_browser_imports_a_head() {
     settle(&mut h);
     assert!(h.state().snapshot().hair.is_some());
 }
+
+/// A wrinkle file edited in a text editor while the project is open is read again: the
+/// new fibres show (one undo step), a broken file keeps the fibres and says where it is
+/// broken, and fixing it clears the error.
+#[test]
+fn a_wrinkle_file_changed_on_disk_is_reloaded() {
+    let dir = tempfile::tempdir().unwrap();
+    let wrk = dir.path().join("f.wrk");
+    let group = |u: f32| format!("!\nma={u};0.5\nmb={};0.6\nn=3\n", u + 0.05);
+    std::fs::write(&wrk, group(0.3)).unwrap();
+    let project = dir.path().join("p.agesim.json");
+    let mut p = agesim_core::project::Project::default();
+    p.large.wrinkles = vec![wrk.clone()];
+    p.save(&project).unwrap();
+    let mut h = harness_with(EditorOptions {
+        project: Some(project),
+        ..EditorOptions::default()
+    });
+    settle(&mut h);
+    assert_eq!(fibre_count(&h), 1);
+    // A second group, as an artist would add it in a text editor.
+    std::fs::write(&wrk, group(0.3) + &group(0.6)).unwrap();
+    wait_for(&mut h, "the reload", |app| {
+        app.wrinkles()
+            .iter()
+            .map(|w| w.file.groups.len())
+            .sum::<usize>()
+            == 2
+            && app.idle()
+    });
+    settle(&mut h);
+    assert_eq!(fibre_count(&h), 2);
+    // Broken: the two fibres stay, the error names the file and the line.
+    std::fs::write(&wrk, "!\nma=0.3;0.5\nmb=0.35;0.6\nn=1\n").unwrap();
+    wait_for(&mut h, "the error", |app| {
+        app.open_errors().iter().any(|e| e.contains("f.wrk:4:"))
+    });
+    assert_eq!(fibre_count(&h), 2);
+    // Fixed: read again, the error gone.
+    std::fs::write(&wrk, group(0.4)).unwrap();
+    wait_for(&mut h, "the fixed file", |app| {
+        app.open_errors().is_empty()
+            && app
+                .wrinkles()
+                .iter()
+                .map(|w| w.file.groups.len())
+                .sum::<usize>()
+                == 1
+    });
+    // Undo goes back to before the fix: the two fibres.
+    settle(&mut h);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut h);
+    assert_eq!(fibre_count(&h), 2);
+}

@@ -134,6 +134,8 @@ pub struct EditorApp {
     after_save: Option<Pending>,
     quit_confirmed: bool,
     export_run: Option<ExportRun>,
+    /// The document's wrinkle files, watched for changes on disk.
+    watcher: super::watch::Watcher,
     /// agesim's own file browser, open where no native dialog can.
     browser: Option<super::file_browser::FileBrowser>,
     /// Whether the status said once why the native dialog is not used.
@@ -207,6 +209,8 @@ impl EditorApp {
         let session = Session::new(move || ctx.request_repaint());
         let ctx = cc.egui_ctx.clone();
         let io = Io::new(move || ctx.request_repaint());
+        let ctx = cc.egui_ctx.clone();
+        let watcher = super::watch::Watcher::new(move || ctx.request_repaint());
         let dialogs = options
             .dialogs
             .clone()
@@ -230,6 +234,7 @@ impl EditorApp {
             export_run: None,
             browser: None,
             told_no_native_dialog: false,
+            watcher,
             windows: Windows::default(),
             config_dir,
             user_presets: Vec::new(),
@@ -479,6 +484,7 @@ impl eframe::App for EditorApp {
         self.now = ctx.input(|i| i.time);
         self.poll_worker();
         self.poll_io();
+        self.watch_files();
         self.poll_export();
         self.intercept_close(&ctx);
         if self.prompt.is_none() {

@@ -213,6 +213,11 @@ pub enum IoResult {
         add: bool,
         result: Result<WrinkleFile, String>,
     },
+    /// A wrinkle file of the document changed on disk and was read again.
+    WrinklesReloaded {
+        path: PathBuf,
+        result: Result<WrinkleFile, String>,
+    },
     /// A project was saved; `project` is what the file now says (its wrinkle files may
     /// have been written beside it), `wrinkles` the edited files with their new paths.
     ProjectSaved {

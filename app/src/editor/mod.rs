@@ -16,6 +16,7 @@ pub mod pick;
 mod session;
 pub mod timeline;
 pub mod viewport;
+mod watch;
 pub mod worker;
 
 pub use app::{EditorApp, EditorOptions, Pending};

@@ -38,6 +38,18 @@ impl Notices {
         }
     }
 
+    /// Takes down the error toasts that mention `what` (a file that was fixed); they stay
+    /// in the log.
+    pub fn close_errors_about(&mut self, what: &str) {
+        for n in self
+            .log
+            .iter_mut()
+            .filter(|n| n.error && n.text.contains(what))
+        {
+            n.toast = false;
+        }
+    }
+
     /// The errors still shown as toasts.
     pub fn open_errors(&self) -> impl Iterator<Item = &Notice> {
         self.log.iter().filter(|n| n.toast && n.error)

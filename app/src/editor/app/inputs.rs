@@ -70,6 +70,53 @@ impl EditorApp {
         self.info(format!("Loaded {} ({fibres} fibres)", path.display()));
     }
 
+    /// Watches the document's wrinkle files; one that changed on disk is read again on a
+    /// file thread ([`IoResult::WrinklesReloaded`]).
+    pub(super) fn watch_files(&mut self) {
+        let paths: Vec<PathBuf> = self
+            .wrinkles()
+            .iter()
+            .filter_map(|w| w.path.clone())
+            .collect();
+        self.watcher.set(&paths);
+        for path in self.watcher.poll() {
+            self.io.spawn(move || IoResult::WrinklesReloaded {
+                result: agesim_core::wrinkle_file::load(&path).map_err(|e| e.to_string()),
+                path,
+            });
+        }
+    }
+
+    /// A wrinkle file read again after a change on disk: its fibres replace the old ones
+    /// (one undo step); unchanged content (our own save) changes nothing.
+    pub(super) fn wrinkles_reloaded(
+        &mut self,
+        path: PathBuf,
+        file: agesim_core::wrinkle_file::WrinkleFile,
+    ) {
+        let name = path.display().to_string();
+        self.notices.close_errors_about(&name);
+        let mut all = self.wrinkles().to_vec();
+        let mut changed = false;
+        for w in all
+            .iter_mut()
+            .filter(|w| w.path.as_deref() == Some(path.as_path()))
+        {
+            if w.file != file {
+                w.file = file.clone();
+                changed = true;
+            }
+        }
+        if !changed {
+            return;
+        }
+        self.record("reload wrinkle file", "reload wrinkle file", false);
+        self.doc.wrinkles = Some(all);
+        self.persisted.map_view.selected = None;
+        self.submit(false, "reload");
+        self.info(format!("Reloaded {name} ({} fibres)", file.groups.len()));
+    }
+
     /// Applies what the file threads brought back.
     pub(super) fn poll_io(&mut self) {
         for result in self.io.poll() {
@@ -103,6 +150,12 @@ impl EditorApp {
                         self.replace_document(project, Some(path), "open project");
                     }
                     Err(e) => self.error(format!("Could not open the project: {e}")),
+                },
+                IoResult::WrinklesReloaded { path, result } => match result {
+                    Ok(file) => self.wrinkles_reloaded(path, file),
+                    Err(e) => self.error(format!(
+                        "{e}\n(the fibres as they were are kept; the file is read again when it changes)"
+                    )),
                 },
                 IoResult::WrinklesLoaded { path, add, result } => match result {
                     Ok(file) => self.wrinkles_loaded(path, add, file),

@@ -468,3 +468,53 @@ fn a_wrinkle_file_changed_on_disk_is_reloaded() {
     settle(&mut h);
     assert_eq!(fibre_count(&h), 2);
 }
+
+/// An input image changed on disk (here the large-wrinkle mask) is read again by the next
+/// bake; one that no longer loads keeps the previous one and says why; a good one again
+/// clears that.
+#[test]
+fn a_mask_changed_on_disk_is_reloaded() {
+    let dir = tempfile::tempdir().unwrap();
+    let mask = dir.path().join("mask.png");
+    let grey = |v: u8| image::GrayImage::from_pixel(64, 64, image::Luma([v]));
+    grey(255).save(&mask).unwrap();
+    let project = dir.path().join("p.agesim.json");
+    let mut p = agesim_core::project::Project::default();
+    p.large.mask = Some(mask.clone());
+    p.save(&project).unwrap();
+    let mut h = harness_with(EditorOptions {
+        project: Some(project),
+        ..EditorOptions::default()
+    });
+    settle(&mut h);
+    let deepest = |h: &Harness<'static, EditorApp>| large_map(h).into_iter().fold(0.0, f32::max);
+    assert!(deepest(&h) > 0.1);
+    // Black: no large wrinkles anywhere.
+    grey(0).save(&mask).unwrap();
+    wait_for(&mut h, "the black mask", |app| {
+        app.idle()
+            && app
+                .snapshot()
+                .large
+                .as_ref()
+                .is_some_and(|l| l.height.min_max().1 == 0.0)
+    });
+    // Not an image: the black one stays, the message names the file.
+    std::fs::write(&mask, b"not a png").unwrap();
+    wait_for(&mut h, "the error", |app| {
+        app.open_errors().iter().any(|e| e.contains("mask.png"))
+    });
+    settle(&mut h);
+    assert_eq!(deepest(&h), 0.0);
+    // White again: the wrinkles are back and the error is closed.
+    grey(255).save(&mask).unwrap();
+    wait_for(&mut h, "the white mask", |app| {
+        app.idle()
+            && app.open_errors().is_empty()
+            && app
+                .snapshot()
+                .large
+                .as_ref()
+                .is_some_and(|l| l.height.min_max().1 > 0.1)
+    });
+}

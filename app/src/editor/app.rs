@@ -339,6 +339,7 @@ impl EditorApp {
             request,
             what: what.to_owned(),
             detect_units: self.session.measure_mesh,
+            reload: self.session.reload.clone(),
             compare_t: self.persisted.compare.then(|| {
                 self.doc
                     .project
@@ -391,6 +392,16 @@ impl EditorApp {
                         self.doc.last_good = p.clone();
                     }
                     self.session.snapshot = *snapshot;
+                    if !self.session.reload.is_empty() {
+                        let names: Vec<String> = std::mem::take(&mut self.session.reload)
+                            .iter()
+                            .map(|p| p.display().to_string())
+                            .collect();
+                        for name in &names {
+                            self.notices.close_errors_about(name);
+                        }
+                        self.info(format!("Reloaded {}", names.join(", ")));
+                    }
                     if let Some(u) = report.units {
                         self.session.measure_mesh = false;
                         self.info(format!(
@@ -401,6 +412,9 @@ impl EditorApp {
                 }
                 Outcome::Failed(message) => {
                     self.session.measure_mesh = false;
+                    // A changed file that does not load: the previous input stays; the
+                    // file is read again when it changes.
+                    self.session.reload.clear();
                     // Keep the previous state whole: the document goes back to what baked.
                     self.error(format!("{message}\n(the previous state is kept)"));
                     self.doc.project = self.doc.last_good.clone();

@@ -15,6 +15,8 @@ pub(super) struct Session {
     pub(super) age_pending: bool,
     /// A head was imported: the bakes say how its units were decided until one has.
     pub(super) measure_mesh: bool,
+    /// Input files changed on disk: the bakes read them again until one has.
+    pub(super) reload: Vec<std::path::PathBuf>,
 }
 
 impl Session {
@@ -28,6 +30,7 @@ impl Session {
             last_what: String::new(),
             age_pending: false,
             measure_mesh: false,
+            reload: Vec::new(),
         }
     }
 

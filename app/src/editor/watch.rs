@@ -1,9 +1,8 @@
 //! Files the document names, watched for changes on disk: a thread looks at their size and
 //! modification time a few times a second and reports a file once it has changed and then
-//! stayed the same for one look (a file being written is read once it is complete). A
-//! file is also reported once when it starts being watched (it may have changed since it
-//! was read; the reader compares contents). No file is read here, only looked at; the UI
-//! thread never waits on it.
+//! stayed the same for one look (a file being written is read once it is complete). Its
+//! state when it starts being watched is the baseline (one `stat` on the UI thread, when
+//! the list changes). No file is read here, only looked at.
 
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -24,21 +23,22 @@ fn stamp(path: &PathBuf) -> Stamp {
 
 /// The watching thread's handle.
 pub struct Watcher {
-    paths: Arc<Mutex<Vec<PathBuf>>>,
+    /// The watched files with their state when they were added.
+    paths: Arc<Mutex<Vec<(PathBuf, Stamp)>>>,
     changed: Receiver<PathBuf>,
 }
 
 impl Watcher {
     /// Starts the thread; `wake` asks the UI for a repaint when a file changed.
     pub fn new(wake: impl Fn() + Send + 'static) -> Self {
-        let paths: Arc<Mutex<Vec<PathBuf>>> = Arc::default();
+        let paths: Arc<Mutex<Vec<(PathBuf, Stamp)>>> = Arc::default();
         let (tx, changed) = channel();
         let watched = Arc::downgrade(&paths);
         std::thread::Builder::new()
             .name("agesim-watch".into())
             .spawn(move || {
-                // Per path: (what was reported, none yet: `None`; what the last look saw).
-                let mut seen: HashMap<PathBuf, (Option<Stamp>, Stamp)> = HashMap::new();
+                // Per path: (what was reported or the baseline, what the last look saw).
+                let mut seen: HashMap<PathBuf, (Stamp, Stamp)> = HashMap::new();
                 loop {
                     std::thread::sleep(PERIOD);
                     // The editor is gone: so is the thread.
@@ -47,17 +47,17 @@ impl Watcher {
                     };
                     let list = paths.lock().map(|p| p.clone()).unwrap_or_default();
                     drop(paths);
-                    seen.retain(|p, _| list.contains(p));
-                    for path in list {
+                    seen.retain(|p, _| list.iter().any(|(q, _)| q == p));
+                    for (path, baseline) in list {
                         let now = stamp(&path);
                         match seen.get_mut(&path) {
                             None => {
-                                seen.insert(path, (None, now));
+                                seen.insert(path, (baseline, now));
                             }
                             Some((reported, last)) => {
                                 // Changed since the report, and the same as a look ago.
-                                if *reported != Some(now) && now == *last && now.is_some() {
-                                    *reported = Some(now);
+                                if *reported != now && now == *last && now.is_some() {
+                                    *reported = now;
                                     if tx.send(path.clone()).is_err() {
                                         return;
                                     }
@@ -73,12 +73,20 @@ impl Watcher {
         Self { paths, changed }
     }
 
-    /// Watches exactly `paths` from now on (a path already watched keeps its state).
+    /// Watches exactly `paths` from now on (a path already watched keeps its state; a new
+    /// one's state now is its baseline).
     pub fn set(&self, paths: &[PathBuf]) {
         if let Ok(mut p) = self.paths.lock()
-            && *p != paths
+            && (p.len() != paths.len() || p.iter().zip(paths).any(|((a, _), b)| a != b))
         {
-            *p = paths.to_vec();
+            let old = std::mem::take(&mut *p);
+            *p = paths
+                .iter()
+                .map(|path| match old.iter().find(|(q, _)| q == path) {
+                    Some(kept) => kept.clone(),
+                    None => (path.clone(), stamp(path)),
+                })
+                .collect();
         }
     }
 

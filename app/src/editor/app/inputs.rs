@@ -70,20 +70,41 @@ impl EditorApp {
         self.info(format!("Loaded {} ({fibres} fibres)", path.display()));
     }
 
-    /// Watches the document's wrinkle files; one that changed on disk is read again on a
-    /// file thread ([`IoResult::WrinklesReloaded`]).
+    /// Watches the files the document names. A wrinkle file that changed on disk is read
+    /// again on a file thread ([`IoResult::WrinklesReloaded`]); another input (the mesh,
+    /// a mask, the tile, the landmarks) is read again by the next bake.
     pub(super) fn watch_files(&mut self) {
-        let paths: Vec<PathBuf> = self
+        let wrinkles: Vec<PathBuf> = self
             .wrinkles()
             .iter()
             .filter_map(|w| w.path.clone())
             .collect();
+        let p = &self.doc.project;
+        let inputs = [
+            &p.mesh.path,
+            &p.mesh.landmarks,
+            &p.large.mask,
+            &p.hair.outer_mask,
+            &p.hair.inner_mask,
+            &p.fine.tile,
+        ];
+        let mut paths = wrinkles.clone();
+        paths.extend(inputs.into_iter().flatten().cloned());
         self.watcher.set(&paths);
+        let mut rebake = false;
         for path in self.watcher.poll() {
-            self.io.spawn(move || IoResult::WrinklesReloaded {
-                result: agesim_core::wrinkle_file::load(&path).map_err(|e| e.to_string()),
-                path,
-            });
+            if wrinkles.contains(&path) {
+                self.io.spawn(move || IoResult::WrinklesReloaded {
+                    result: agesim_core::wrinkle_file::load(&path).map_err(|e| e.to_string()),
+                    path,
+                });
+            } else if !self.session.reload.contains(&path) {
+                self.session.reload.push(path);
+                rebake = true;
+            }
+        }
+        if rebake {
+            self.submit(false, "reload");
         }
     }
 

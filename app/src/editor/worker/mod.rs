@@ -36,6 +36,8 @@ pub struct Job {
     pub compare_t: Option<f32>,
     /// Report how the mesh's units were decided ([`Report::units`]; a head just imported).
     pub detect_units: bool,
+    /// Input files changed on disk (mesh, masks, tile, landmarks): read them again.
+    pub reload: Vec<std::path::PathBuf>,
 }
 
 /// What the UI shows of a finished bake. Each map is shared, not copied, between bakes
@@ -316,6 +318,9 @@ fn bake(
     let Some(s) = scene.as_mut() else {
         return Err(Error::Cancelled);
     };
+    if !job.reload.is_empty() {
+        changed.merge(s.reload_inputs(&job.reload)?);
+    }
     // A head just imported: how its units were decided, for the status line.
     let units = job.detect_units.then(|| s.units());
     match &job.wrinkles {

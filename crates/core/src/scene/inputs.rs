@@ -43,6 +43,28 @@ pub(super) struct Inputs {
 }
 
 impl Inputs {
+    /// Marks every input loaded from one of `paths` as not loaded, so the next
+    /// [`Inputs::load`] with these as `previous` reads it again.
+    pub(super) fn forget(&mut self, paths: &[PathBuf]) {
+        let stale = || Some(PathBuf::from("\0 changed on disk"));
+        let hit = |p: &Option<PathBuf>| p.as_ref().is_some_and(|p| paths.contains(p));
+        if hit(&self.mesh_key.0) {
+            self.mesh_key.0 = stale();
+        }
+        if hit(&self.large_mask_key.0) {
+            self.large_mask_key.0 = stale();
+        }
+        if hit(&self.hair_masks_key.0) || hit(&self.hair_masks_key.1) {
+            self.hair_masks_key = (stale(), stale());
+        }
+        if hit(&self.fine_tile_key) {
+            self.fine_tile_key = stale();
+        }
+        if hit(&self.landmarks_key) {
+            self.landmarks_key = stale();
+        }
+    }
+
     pub(super) fn generation_of_fine(&self) -> u64 {
         self.fine_tile.as_ref().map_or(0, |t| Arc::as_ptr(t) as u64)
     }

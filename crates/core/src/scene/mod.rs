@@ -292,6 +292,21 @@ impl Scene {
             message,
         })?;
         let inputs = Inputs::load(&project, Some(&self.inputs))?;
+        Ok(self.adopt(inputs, project))
+    }
+
+    /// Reads again the inputs loaded from any of `paths` (the mesh, the masks, the
+    /// fine-wrinkle tile, the landmarks; files changed on disk); on error the scene is
+    /// unchanged. Wrinkle files are the caller's ([`Scene::set_wrinkles`]).
+    pub fn reload_inputs(&mut self, paths: &[PathBuf]) -> Result<Changed, Error> {
+        let mut stale = self.inputs.clone();
+        stale.forget(paths);
+        let inputs = Inputs::load(&self.project, Some(&stale))?;
+        Ok(self.adopt(inputs, self.project.clone()))
+    }
+
+    /// Takes `inputs` and `project`, saying what changed for the stages.
+    fn adopt(&mut self, inputs: Inputs, project: Project) -> Changed {
         let mut changed = Changed::default();
         if !Arc::ptr_eq(&inputs.mesh, &self.inputs.mesh) {
             self.mesh_generation += 1;
@@ -307,7 +322,7 @@ impl Scene {
         }
         self.inputs = inputs;
         self.project = project;
-        Ok(changed)
+        changed
     }
 
     /// The wrinkle files the large-wrinkle layer is made of.

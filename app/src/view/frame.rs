@@ -68,11 +68,9 @@ pub fn tile_placements(project: &Project) -> (TilePlacement, TilePlacement) {
 
 /// The fine-wrinkle blend at age `t`: the `age.fine` curve, 0 when the layer is off.
 pub fn fine_blend(project: &Project, t: f32) -> f32 {
-    if project.fine.enabled {
-        project.age.factors(t, &[]).fine_blend
-    } else {
-        0.0
-    }
+    frame_params(project, 1.0, t, Camera::default())
+        .skin
+        .fine_blend
 }
 
 /// Everything a frame of `project` (its mesh `metres_per_unit`) at age `t` needs, seen
@@ -106,7 +104,11 @@ pub fn frame_params(
             linear_steps: v.linear_steps,
             binary_steps: v.binary_steps,
             disp_scale: relief_depth(project),
-            fine_blend: fine_blend(project, t),
+            fine_blend: if project.fine.enabled {
+                factors.fine_blend
+            } else {
+                0.0
+            },
             albedo,
             micro_relief: project.micro_enabled(),
             micro_tile,

@@ -54,6 +54,11 @@ pub enum Error {
     #[error("{}: {message}", path.display())]
     Landmarks { path: PathBuf, message: String },
 
+    /// The template could not be fitted to a head (too few landmarks, landmarks off the
+    /// head); the message says which and what to do.
+    #[error("fitting the template to the head: {message}")]
+    Fit { message: String },
+
     /// A mesh file has an extension agesim cannot load.
     #[error("{}: unsupported mesh format \"{extension}\": expected .obj, .gltf or .glb", path.display())]
     UnsupportedMeshFormat { path: PathBuf, extension: String },

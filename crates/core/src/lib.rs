@@ -12,6 +12,7 @@ pub mod diagnostic;
 pub mod error;
 pub mod export;
 pub mod fine_wrinkles;
+pub mod fit;
 pub mod hair;
 pub mod head;
 pub mod heightmap;

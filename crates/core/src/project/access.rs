@@ -62,6 +62,7 @@ slots! {
     "mesh.landmarks" => mesh.landmarks;
     "mesh.up" => mesh.up;
     "mesh.forward" => mesh.forward;
+    "mesh.layout" => mesh.layout;
     "large.enabled" => large.enabled;
     "large.wrinkles" => large.wrinkles;
     "large.mask" => large.mask;

@@ -31,6 +31,22 @@ pub struct MeshSection {
     /// The mesh file's forward axis (where the face looks); `auto` = from the landmarks,
     /// else +Z.
     pub forward: AxisChoice,
+    /// Where the layers (fibres, masks, hair) are read: on the template fitted to the
+    /// head (`template`), or at the head's own UVs as if they were the template's
+    /// (`own-uvs`).
+    pub layout: Layout,
+}
+
+/// How a head's UVs relate to the layout the layers are authored in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Layout {
+    /// The template (the default head) fitted to the head by landmarks
+    /// ([`crate::fit`]); a built-in mesh is read at its own UVs.
+    #[default]
+    Template,
+    /// The head's own UVs, read as the template's layout.
+    OwnUvs,
 }
 
 /// A mesh file's axis as the project names it.
@@ -265,6 +281,7 @@ impl Default for MeshSection {
             landmarks: None,
             up: AxisChoice::Auto,
             forward: AxisChoice::Auto,
+            layout: Layout::Template,
         }
     }
 }

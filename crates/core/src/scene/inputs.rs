@@ -6,12 +6,13 @@ use std::sync::Arc;
 
 use super::WrinkleSource;
 use crate::error::Error;
+use crate::fit::Fit;
 use crate::heightmap::HeightMap;
 use crate::landmarks::Landmarks;
 use crate::mask::Mask;
 use crate::mesh::Mesh;
 use crate::mesh::units::Axes;
-use crate::project::{BuiltinMesh, Project};
+use crate::project::{BuiltinMesh, Layout, Project};
 use crate::wrinkle_file::{self, ParseErrors, WrinkleFile};
 
 /// Everything loaded from files (or the built-in defaults), kept until a path changes.
@@ -38,6 +39,8 @@ pub(super) struct Inputs {
     landmarks_key: Option<PathBuf>,
     /// The head's landmarks (`mesh.landmarks`), when the project names a file.
     pub(super) landmarks: Option<Arc<Landmarks>>,
+    /// How the mesh reads the layers (the template's fit).
+    pub(super) layout: Arc<HeadLayout>,
     /// Bumped whenever any input above changes (fibre edits included).
     pub(super) generation: u64,
 }
@@ -183,6 +186,16 @@ impl Inputs {
                         _ => raw_mesh.clone(),
                     },
                 };
+                let layout = match previous {
+                    Some(p)
+                        if Arc::ptr_eq(&p.mesh, &mesh)
+                            && opt_ptr_eq(&p.landmarks, &landmarks)
+                            && p.layout.choice == project.mesh.layout =>
+                    {
+                        p.layout.clone()
+                    }
+                    _ => Arc::new(HeadLayout::of(project, &mesh, axes, landmarks.as_deref())?),
+                };
                 let generation = previous.map_or(0, |p| p.generation)
                     + u64::from(previous.is_none_or(|p| p.wrinkles != wrinkles));
                 Ok(Self {
@@ -201,6 +214,7 @@ impl Inputs {
                     fine_tile,
                     landmarks_key,
                     landmarks,
+                    layout,
                     generation,
                 })
             }
@@ -208,6 +222,124 @@ impl Inputs {
             _ => Err(Error::Inputs(
                 errors.iter().map(ToString::to_string).collect(),
             )),
+        }
+    }
+}
+
+fn opt_ptr_eq<T>(a: &Option<Arc<T>>, b: &Option<Arc<T>>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+        (None, None) => true,
+        _ => false,
+    }
+}
+
+/// How a scene's mesh reads the layers authored on the template (`mesh.layout`).
+#[derive(Clone, Debug)]
+pub struct HeadLayout {
+    /// The project's choice.
+    pub choice: Layout,
+    /// The template fitted to the head; `None` = the layers are read at the head's own
+    /// UVs (a built-in mesh, `own-uvs`, or no landmarks found).
+    pub fit: Option<Arc<Fit>>,
+    /// The landmarks the fit used, in the scene's coordinates (+Y up, +Z forward): the
+    /// project's file's, or found ([`crate::fit::auto`]).
+    pub landmarks: Option<Arc<Landmarks>>,
+    /// Whether `landmarks` were found automatically (not read from a file).
+    pub found: bool,
+    /// How it was decided, for reports.
+    pub how: String,
+}
+
+/// The largest median distance (template mm) between the template aligned by the
+/// automatic search and the head for its landmarks to be used: beyond, the "head" is
+/// not one the template fits (a flat patch, a body).
+pub const AUTO_FIT_MAX_MEDIAN_MM: f32 = 6.0;
+
+impl HeadLayout {
+    fn own(choice: Layout, how: impl Into<String>) -> Self {
+        Self {
+            choice,
+            fit: None,
+            landmarks: None,
+            found: false,
+            how: how.into(),
+        }
+    }
+
+    /// Fits the template to `mesh` (already turned to agesim's axes by `axes`), from the
+    /// project's landmarks (file coordinates) or found ones. When the fit fails (too few
+    /// landmarks, found ones that do not fit) the layers are read at the head's own UVs,
+    /// and `how` says why.
+    fn of(
+        project: &Project,
+        mesh: &Arc<Mesh>,
+        axes: Axes,
+        file_landmarks: Option<&Landmarks>,
+    ) -> Result<Self, Error> {
+        let choice = project.mesh.layout;
+        if project.mesh.path.is_none() {
+            return Ok(Self::own(choice, "the built-in mesh's own UVs"));
+        }
+        if choice == Layout::OwnUvs {
+            return Ok(Self::own(
+                choice,
+                "the head's own UVs (mesh.layout = own-uvs)",
+            ));
+        }
+        let template = crate::fit::template();
+        let rotation = axes.to_standard().unwrap_or(glam::Mat3::IDENTITY);
+        if let Some(file) = file_landmarks {
+            let mut turned = Landmarks::default();
+            for name in crate::landmarks::NAMES {
+                if let Some(p) = file.get(name) {
+                    turned.set(name, rotation * p)?;
+                }
+            }
+            // A file too thin to fit (two eye corners for the units) still gives the
+            // units: the layers are then read at the head's own UVs, and the report says
+            // why.
+            return Ok(match crate::fit::fit(mesh, &turned, template) {
+                Ok(fit) => Self {
+                    choice,
+                    how: format!("the template fitted by the landmark file: {}", fit.report),
+                    fit: Some(Arc::new(fit)),
+                    landmarks: Some(Arc::new(turned)),
+                    found: false,
+                },
+                Err(e) => Self {
+                    landmarks: Some(Arc::new(turned)),
+                    ..Self::own(choice, format!("the head's own UVs: {e}"))
+                },
+            });
+        }
+        let guess = crate::mesh::units::detect(&mesh.bounds(), None).metres_per_unit;
+        let guess = project.mesh.metres_per_unit.unwrap_or(guess);
+        let found = match crate::fit::auto::landmarks(mesh, template, guess) {
+            Ok(f) => f,
+            Err(e) => return Ok(Self::own(choice, format!("the head's own UVs: {e}"))),
+        };
+        if found.median_distance_mm > AUTO_FIT_MAX_MEDIAN_MM {
+            return Ok(Self::own(
+                choice,
+                format!(
+                    "the head's own UVs: no head shape found (the template stays {:.1} mm from it, over {AUTO_FIT_MAX_MEDIAN_MM} mm); give landmarks (mesh.landmarks) to fit it",
+                    found.median_distance_mm
+                ),
+            ));
+        }
+        match crate::fit::fit(mesh, &found.landmarks, template) {
+            Ok(fit) => Ok(Self {
+                choice,
+                how: format!(
+                    "the template fitted by landmarks found automatically (template {:.1} mm from the head): {}",
+                    found.median_distance_mm, fit.report
+                ),
+                fit: Some(Arc::new(fit)),
+                landmarks: Some(Arc::new(found.landmarks)),
+                found: true,
+            }),
+            Err(e) => Ok(Self::own(choice, format!("the head's own UVs: {e}"))),
         }
     }
 }

@@ -7,6 +7,7 @@ use super::{BakeRequest, Changed, LargeMap, scaled};
 use crate::age::AgeFactors;
 use crate::cancel::CancelToken;
 use crate::error::Error;
+use crate::fit::Correspondence;
 use crate::heightmap::HeightMap;
 use crate::large_layer::LargeLayer;
 use crate::mask::Mask;
@@ -27,6 +28,8 @@ pub(super) struct LargeKey {
     mask_generation: u64,
     normal: Option<NormalSettings>,
     packed: bool,
+    /// The head layout's generation, when read through a correspondence.
+    layout: Option<(u64, u32)>,
 }
 
 /// The large-wrinkle stage: fibre stamps, the map at an age, its packing.
@@ -39,6 +42,14 @@ pub(super) struct LargeStage {
     spare: Option<HeightMap>,
     /// The mask sampled at the map's pixel centres: (mask generation, size, values).
     mask_samples: Option<(u64, u32, Arc<Vec<f32>>)>,
+}
+
+/// The correspondence a fitted head reads the template's map through, and the layout
+/// generation that identifies it.
+#[derive(Clone, Copy)]
+pub(super) struct HeadLayoutMap<'a> {
+    pub(super) correspondence: Option<&'a Correspondence>,
+    pub(super) generation: u64,
 }
 
 /// The large-wrinkle mask and the generation that identifies it.
@@ -65,6 +76,7 @@ impl LargeStage {
         fibres: &[Fibre],
         factors: &AgeFactors,
         large_mask: LargeMask<'_>,
+        layout: HeadLayoutMap<'_>,
         request: &BakeRequest,
         normal: &NormalSettings,
         cancel: &CancelToken,
@@ -83,6 +95,7 @@ impl LargeStage {
             mask_generation: large_mask.generation,
             normal: request.packed.then_some(*normal),
             packed: request.packed,
+            layout: layout.correspondence.map(|c| (layout.generation, c.size())),
         };
         if self.key.as_ref() == Some(&key) && self.map.is_some() {
             return Ok(changed);
@@ -134,15 +147,18 @@ impl LargeStage {
             self.spare = Some(height);
             return Err(e);
         }
-        self.keep(height, p.large.depth, request, normal, key, cancel)?;
+        self.keep(height, layout, p.large.depth, request, normal, key, cancel)?;
         changed.large = true;
         Ok(changed)
     }
 
-    /// Packs a finished (normalised) map if asked, scaled by the depth, and keeps it.
+    /// Packs a finished (normalised) map if asked, scaled by the depth, reads it into the
+    /// head's layout through the correspondence (a fitted head), and keeps it.
+    #[allow(clippy::too_many_arguments)]
     fn keep(
         &mut self,
         height: HeightMap,
+        layout: HeadLayoutMap<'_>,
         depth: f32,
         request: &BakeRequest,
         normal: &NormalSettings,
@@ -156,12 +172,24 @@ impl LargeStage {
             Vec::new()
         };
         cancel.check()?;
+        let (height, template) = match layout.correspondence {
+            Some(c) => {
+                let (w, h) = (height.width_px(), height.height_px());
+                let head =
+                    HeightMap::from_vec(c.size(), c.size(), c.resample(height.data(), w, h))?;
+                (head, Some(height))
+            }
+            None => (height, None),
+        };
+        cancel.check()?;
         let previous = self.map.replace(LargeMap {
             height,
+            template,
             packed_rgba,
             packed_range,
         });
-        self.spare = previous.map(|l| l.height);
+        // The buffer the next bake fills: the template-layout one when there is one.
+        self.spare = previous.map(|l| l.template.unwrap_or(l.height));
         self.key = Some(key);
         Ok(())
     }

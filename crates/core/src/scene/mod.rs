@@ -32,7 +32,7 @@ mod inputs;
 mod large;
 mod micro;
 
-pub use inputs::load_wrinkles;
+pub use inputs::{AUTO_FIT_MAX_MEDIAN_MM, HeadLayout, load_wrinkles};
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -41,6 +41,7 @@ use crate::age::{AgeCurve, AgeFactors};
 use crate::cancel::CancelToken;
 use crate::error::Error;
 use crate::fine_wrinkles::{self, FineWrinkleSettings};
+use crate::fit::Correspondence;
 use crate::hair::{HairInstances, HairParams, SurfaceRef};
 use crate::heightmap::HeightMap;
 use crate::landmarks::Landmarks;
@@ -177,8 +178,14 @@ impl Changed {
 /// packing of docs/models.md §4 of the scaled heights, mapped from [0, depth] to [0, 1].
 #[derive(Clone, Debug)]
 pub struct LargeMap {
-    /// The normalised heights (a wrinkle of full depth spans 1).
+    /// The normalised heights (a wrinkle of full depth spans 1), in the head's own UV
+    /// layout.
     pub height: HeightMap,
+    /// A fitted head's map in the template's layout, where the fibres are drawn (the map
+    /// view's chart); `None` when the head reads the layers at its own UVs (`height` is
+    /// then that chart).
+    pub template: Option<HeightMap>,
+    /// The packing, of the template's layout (the chart the fibres are edited on).
     pub packed_rgba: Vec<u8>,
     /// The height range `packed_rgba`'s alpha spans.
     pub packed_range: (f32, f32),
@@ -217,11 +224,16 @@ pub struct Scene {
     micro: MicroStage,
     fine_key: Option<(FineWrinkleSettingsKey, u64)>,
     fine: Option<Arc<HeightMap>>,
-    transition_key: Option<(u64, String, Option<u32>)>,
+    transition_key: Option<(u64, String, Option<u32>, u64)>,
     transition_generation: u64,
     transition: Option<Arc<TransitionTexture>>,
     hair_key: Option<HairKey>,
     hair: Option<Arc<HairInstances>>,
+    /// Bumped when the head's layout (its fit) changes.
+    layout_generation: u64,
+    /// The correspondence maps of the current layout, by size (the large map's and the
+    /// transition texture's).
+    correspondences: Vec<Arc<Correspondence>>,
 }
 
 type FineWrinkleSettingsKey = (Option<PathBuf>, u32, u32, f32, f32, f32, f32, u64);
@@ -252,6 +264,8 @@ impl Scene {
             transition: None,
             hair_key: None,
             hair: None,
+            layout_generation: 1,
+            correspondences: Vec::new(),
         })
     }
 
@@ -277,6 +291,8 @@ impl Scene {
             transition: self.transition.clone(),
             hair_key: self.hair_key.clone(),
             hair: self.hair.clone(),
+            layout_generation: self.layout_generation,
+            correspondences: self.correspondences.clone(),
         }
     }
 
@@ -319,6 +335,10 @@ impl Scene {
         };
         if !same_mask {
             self.mask_generation += 1;
+        }
+        if !Arc::ptr_eq(&inputs.layout, &self.inputs.layout) {
+            self.layout_generation += 1;
+            self.correspondences.clear();
         }
         self.inputs = inputs;
         self.project = project;
@@ -418,9 +438,36 @@ impl Scene {
         self.inputs.landmarks.as_deref()
     }
 
+    /// How the mesh reads the layers: the template fitted to it, or its own UVs, and why.
+    pub fn layout(&self) -> &HeadLayout {
+        &self.inputs.layout
+    }
+
+    /// The correspondence map of the head's fit at `size`² (made once per size and
+    /// layout), `None` when the head reads the layers at its own UVs.
+    pub fn correspondence(
+        &mut self,
+        size: u32,
+        cancel: &CancelToken,
+    ) -> Result<Option<Arc<Correspondence>>, Error> {
+        let Some(fit) = self.inputs.layout.fit.clone() else {
+            return Ok(None);
+        };
+        if let Some(c) = self.correspondences.iter().find(|c| c.size() == size) {
+            return Ok(Some(c.clone()));
+        }
+        let c = Arc::new(Correspondence::new(&self.inputs.mesh, &fit, size, cancel)?);
+        // The large map's and the transition texture's sizes: keep the last two.
+        if self.correspondences.len() >= 2 {
+            self.correspondences.remove(0);
+        }
+        self.correspondences.push(c.clone());
+        Ok(Some(c))
+    }
+
     /// How long one unit of the mesh is: the project's `mesh.metres_per_unit`, else 1 for
-    /// the built-in meshes, else measured from the mesh file's landmarks or size
-    /// ([`crate::mesh::units::detect`]).
+    /// the built-in meshes, else measured from the mesh file's landmarks (the project's
+    /// file, else those found for the fit) or its size ([`crate::mesh::units::detect`]).
     pub fn units(&self) -> Units {
         match (self.project.mesh.metres_per_unit, &self.project.mesh.path) {
             (Some(m), _) => Units {
@@ -431,9 +478,10 @@ impl Scene {
                 metres_per_unit: 1.0,
                 how: "metres: a built-in mesh".into(),
             },
-            (None, Some(_)) => {
-                crate::mesh::units::detect(&self.inputs.mesh.bounds(), self.landmarks())
-            }
+            (None, Some(_)) => crate::mesh::units::detect(
+                &self.inputs.mesh.bounds(),
+                self.landmarks().or(self.inputs.layout.landmarks.as_deref()),
+            ),
         }
     }
 
@@ -469,6 +517,12 @@ impl Scene {
             ..self.normal_settings()
         };
         let micro_enabled = self.micro_enabled();
+        let correspondence = if self.project.large.enabled {
+            self.correspondence(request.large_size_px, cancel)?
+        } else {
+            None
+        };
+        let layout_generation = self.layout_generation;
         let (large, micro) = (&mut self.large, &mut self.micro);
         let (project, inputs, factors) = (&self.project, &self.inputs, &self.factors);
         // The micro-relief follows the request's tiling, not the document's `tile`.
@@ -492,7 +546,13 @@ impl Scene {
                         mask: inputs.large_mask.as_deref(),
                         generation: mask_generation,
                     };
-                    large.bake(project, &fibres, factors, mask, request, &normal, cancel)
+                    let layout = large::HeadLayoutMap {
+                        correspondence: correspondence.as_deref(),
+                        generation: layout_generation,
+                    };
+                    large.bake(
+                        project, &fibres, factors, mask, layout, request, &normal, cancel,
+                    )
                 } else {
                     Ok(large.clear())
                 }
@@ -559,12 +619,17 @@ impl Scene {
 
     fn bake_hair(&mut self, cancel: &CancelToken) -> Result<Changed, Error> {
         let mut changed = Changed::default();
-        let h = &self.project.hair;
+        let h = &self.project.hair.clone();
         let Some(masks) = self.inputs.hair_masks.clone() else {
             return Ok(changed);
         };
         let masks_id = Arc::as_ptr(&masks) as u64;
-        let tkey = (masks_id, format!("{:?}", h.metric), h.transition_size_px);
+        let tkey = (
+            masks_id,
+            format!("{:?}", h.metric),
+            h.transition_size_px,
+            self.layout_generation,
+        );
         if self.transition_key.as_ref() != Some(&tkey) || self.transition.is_none() {
             cancel.check()?;
             let (outer, inner) = &*masks;
@@ -593,7 +658,18 @@ impl Scene {
                     .max(inner.width_px())
                     .max(inner.height_px())
             });
-            let t = TransitionTexture::from_masks(outer, inner, size, size, h.metric)?;
+            // A fitted head: the masks read through the correspondence, in its own layout.
+            let t = match self.correspondence(size, cancel)? {
+                Some(c) => {
+                    let through = |m: &Mask| {
+                        let values = c.resample(m.values(), m.width_px(), m.height_px());
+                        Mask::from_values(size, size, values)
+                    };
+                    let (o, i) = (through(outer)?, through(inner)?);
+                    TransitionTexture::from_masks(&o, &i, size, size, h.metric)?
+                }
+                None => TransitionTexture::from_masks(outer, inner, size, size, h.metric)?,
+            };
             self.transition = Some(Arc::new(t));
             self.transition_key = Some(tkey);
             self.transition_generation += 1;
@@ -729,5 +805,7 @@ fn no_layer() -> Error {
     }
 }
 
+#[cfg(test)]
+mod heads_tests;
 #[cfg(test)]
 mod tests;

@@ -404,16 +404,11 @@ fn a_z_up_head_in_centimetres_is_measured_and_turned_by_its_landmarks() {
     let file = |p: Vec3| to_z_up * (p * 100.0);
     let obj = crate::mesh::obj::to_obj(&head, file);
     std::fs::write(dir.path().join("head.obj"), obj).unwrap();
-    // Landmarks of the built-in head (metres, Y-up), written in the file's coordinates.
+    // The built-in head's landmarks (metres, Y-up), written in the file's coordinates.
     let mut marks = crate::landmarks::Landmarks::default();
-    for (name, p) in [
-        ("pogonion", Vec3::new(0.0, -0.10, 0.09)),
-        ("glabella", Vec3::new(0.0, 0.05, 0.10)),
-        ("exocanthion_r", Vec3::new(-0.047, 0.02, 0.07)),
-        ("exocanthion_l", Vec3::new(0.047, 0.02, 0.07)),
-        ("pronasale", Vec3::new(0.0, -0.02, 0.12)),
-    ] {
-        marks.set(name, file(p)).unwrap();
+    let template = &crate::fit::template().landmarks;
+    for name in crate::landmarks::NAMES {
+        marks.set(name, file(template.get(name).unwrap())).unwrap();
     }
     std::fs::write(dir.path().join("l.json"), marks.to_json_pretty()).unwrap();
     let mut p = Project::default();

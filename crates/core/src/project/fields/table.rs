@@ -186,6 +186,11 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             "the mesh file's forward axis, where the face looks; auto = from the landmarks (eyes to nose tip), else +z",
         ),
         k(
+            "mesh.layout",
+            Kind::Choice(&["template", "own-uvs"]),
+            "where a mesh file's layers are read: template = the default head fitted to it by its landmarks (mesh.landmarks, else found automatically), own-uvs = at its own UVs as if they were the default head's",
+        ),
+        k(
             "large.enabled",
             Kind::Bool,
             "bake the large-wrinkle layer (--layers overrides)",

@@ -1,0 +1,256 @@
+//! Landmarks found automatically: the template aligned to the head by a similarity,
+//! refined by iterative closest points, then each template landmark refined locally and
+//! carried onto the head's surface. No learned model: it needs the head upright and
+//! facing +Z (the scene's axes) and its size within 2× of what its units say.
+//!
+//! 1. Starts: the template's top on the head's top, its cranium's box centre on the
+//!    head's, at five scales around the one the units give (×0.5 … ×2).
+//! 2. Each start is refined by a trimmed similarity ICP: template points (the head above
+//!    the neck's cut) to their closest head points, the 20 % farthest pairs and pairs
+//!    whose normals disagree left out. The start with the smallest median distance wins.
+//! 3. The face alone (75 mm around the nose, facing forward) is aligned again from
+//!    there, so the features set the fit rather than the cranium's shape.
+//! 4. Each landmark: a patch of the template around it (25 mm) is moved onto the head by
+//!    the same ICP, translation only, from the face's alignment (the top of the head and
+//!    the ears from the whole head's).
+//! 5. The pairs are made mirror images about the face's midline (the aligned template's
+//!    x = 0 plane), the midline points put on it, and each is carried onto the head's
+//!    surface (closest point).
+
+use glam::Vec3;
+
+use super::Template;
+use super::bvh::Bvh;
+use super::similarity::Similarity;
+use crate::error::Error;
+use crate::landmarks::{Landmarks, NAMES};
+use crate::mesh::Mesh;
+
+/// Template points used by the global alignment (every k-th vertex above the neck).
+const SAMPLES: usize = 3000;
+/// Below this height (template metres) the template is neck, which heads cut anywhere.
+const NECK_CUT_Y_M: f32 = -0.11;
+/// Radius of the face region aligned after the whole head, template metres.
+const FACE_M: f32 = 0.075;
+/// Radius of the patch refined around each landmark, template metres.
+const PATCH_M: f32 = 0.025;
+
+/// What the automatic search found.
+#[derive(Clone, Debug)]
+pub struct Found {
+    pub landmarks: Landmarks,
+    /// The template's coordinates to the head's.
+    pub alignment: Similarity,
+    /// Median distance of the aligned template to the head, template mm.
+    pub median_distance_mm: f32,
+}
+
+/// Finds `template`'s landmarks on `head` (in the head mesh's coordinates, +Y up, face
+/// toward +Z), whose units are about `metres_per_unit`.
+pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Result<Found, Error> {
+    let fail = |message: String| Error::Fit { message };
+    let skin = head.skin_indices();
+    let bvh = Bvh::new(head.positions(), &skin);
+    let normals = triangle_normals(head.positions(), &skin);
+    if bvh.is_empty() {
+        return Err(fail(
+            "the head has no skin triangle to look for landmarks on".into(),
+        ));
+    }
+    if !(metres_per_unit > 0.0 && metres_per_unit.is_finite()) {
+        return Err(fail(format!(
+            "metres per unit {metres_per_unit} is not a size"
+        )));
+    }
+    let t_pos = template.mesh.positions();
+    let t_nrm = template.mesh.normals();
+    let above: Vec<usize> = (0..t_pos.len())
+        .filter(|&i| t_pos[i].y > NECK_CUT_Y_M)
+        .collect();
+    let step = (above.len() / SAMPLES).max(1);
+    let samples: Vec<(Vec3, Vec3)> = above
+        .iter()
+        .step_by(step)
+        .map(|&i| (t_pos[i], t_nrm[i]))
+        .collect();
+
+    let h_pos = head.positions();
+    let (h_top, t_top) = (top(h_pos), top(t_pos));
+    let mut best: Option<(f32, Similarity)> = None;
+    for factor in [0.5f32, 0.71, 1.0, 1.41, 2.0] {
+        let scale = 1.0 / (metres_per_unit * factor);
+        // The cranium: the 12 cm below the top, whose box centre is the skull's axis.
+        let t_centre = band_centre(t_pos, t_top, 0.12);
+        let h_centre = band_centre(h_pos, h_top, 0.12 * scale);
+        let (Some(t_centre), Some(h_centre)) = (t_centre, h_centre) else {
+            continue;
+        };
+        let start = Similarity {
+            scale,
+            rotation: glam::Quat::IDENTITY,
+            translation: Vec3::new(h_centre.x, h_top, h_centre.z)
+                - Vec3::new(t_centre.x, t_top, t_centre.z) * scale,
+        };
+        let (s, median) = icp(&samples, &bvh, &normals, start, 40, true);
+        let median_m = median / s.scale;
+        if median_m.is_finite() && best.as_ref().is_none_or(|b| median_m < b.0) {
+            best = Some((median_m, s));
+        }
+    }
+    let Some((median_m, alignment)) = best else {
+        return Err(fail(
+            "the template could not be aligned to the head (is it upright and facing +Z?)".into(),
+        ));
+    };
+    // The face alone, from the whole head's alignment: the features (brows, eyes, nose,
+    // mouth, chin) then set the fit, not the cranium's shape.
+    let face_centre = match (
+        template.landmarks.get("nasion"),
+        template.landmarks.get("subnasale"),
+    ) {
+        (Some(a), Some(b)) => (a + b) * 0.5,
+        _ => Vec3::new(0.0, -0.015, 0.1),
+    };
+    let face: Vec<(Vec3, Vec3)> = (0..t_pos.len())
+        .filter(|&i| t_pos[i].distance(face_centre) < FACE_M && t_nrm[i].z > 0.2)
+        .map(|i| (t_pos[i], t_nrm[i]))
+        .collect();
+    let head_alignment = alignment;
+    let alignment = if face.len() >= 100 {
+        icp(&face, &bvh, &normals, alignment, 40, true).0
+    } else {
+        alignment
+    };
+    let mut landmarks = Landmarks::default();
+    for name in NAMES {
+        let Some(l) = template.landmarks.get(name) else {
+            continue;
+        };
+        let patch: Vec<(Vec3, Vec3)> = (0..t_pos.len())
+            .filter(|&i| t_pos[i].distance(l) < PATCH_M)
+            .map(|i| (t_pos[i], t_nrm[i]))
+            .collect();
+        // The top of the head and the ears follow the cranium, the rest the face.
+        let start = if matches!(name, "vertex" | "tragion_r" | "tragion_l") {
+            head_alignment
+        } else {
+            alignment
+        };
+        let local = if patch.len() >= 8 {
+            icp(&patch, &bvh, &normals, start, 15, false).0
+        } else {
+            start
+        };
+        landmarks.set(name, local.apply(l))?;
+    }
+    // Faces are close to symmetric: the pairs are made mirror images about the face's
+    // midline plane (the template's x = 0 as aligned), the midline points put on it;
+    // this halves the scatter of each side's own refinement.
+    let origin = alignment.apply(Vec3::ZERO);
+    let normal = alignment.turn(Vec3::X).normalize_or(Vec3::X);
+    let mirror = |p: Vec3| p - normal * (2.0 * (p - origin).dot(normal));
+    let mut symmetric = Landmarks::default();
+    for name in NAMES {
+        let Some(p) = landmarks.get(name) else {
+            continue;
+        };
+        let q = if let Some(side) = name.strip_suffix("_r") {
+            let other = landmarks.get(&format!("{side}_l"));
+            other.map_or(p, |o| (p + mirror(o)) * 0.5)
+        } else if let Some(side) = name.strip_suffix("_l") {
+            let other = landmarks.get(&format!("{side}_r"));
+            other.map_or(p, |o| mirror((o + mirror(p)) * 0.5))
+        } else {
+            p - normal * (p - origin).dot(normal)
+        };
+        let on_head = bvh.closest(q, f32::INFINITY).map_or(q, |hit| hit.point);
+        symmetric.set(name, on_head)?;
+    }
+    let landmarks = symmetric;
+    Ok(Found {
+        landmarks,
+        alignment,
+        median_distance_mm: median_m * 1e3,
+    })
+}
+
+/// Trimmed ICP from `start`: a similarity (`similarity`), else a translation only.
+/// Returns the result and its median pair distance (head units).
+fn icp(
+    points: &[(Vec3, Vec3)],
+    bvh: &Bvh,
+    normals: &[Vec3],
+    start: Similarity,
+    iterations: usize,
+    similarity: bool,
+) -> (Similarity, f32) {
+    let mut s = start;
+    let mut median = f32::INFINITY;
+    for _ in 0..iterations {
+        let mut pairs: Vec<(Vec3, Vec3, f32)> = points
+            .iter()
+            .filter_map(|&(p, n)| {
+                let q = s.apply(p);
+                let hit = bvh.closest(q, f32::INFINITY)?;
+                let facing = normals
+                    .get(hit.triangle as usize)
+                    .is_none_or(|hn| hn.dot(s.turn(n)) > 0.3);
+                facing.then_some((p, hit.point, hit.distance))
+            })
+            .collect();
+        if pairs.len() < 8 {
+            break;
+        }
+        pairs.sort_by(|a, b| a.2.total_cmp(&b.2));
+        median = pairs[pairs.len() / 2].2;
+        pairs.truncate(pairs.len() * 4 / 5);
+        let (from, to): (Vec<Vec3>, Vec<Vec3>) = pairs.iter().map(|p| (p.0, p.1)).unzip();
+        let next = if similarity {
+            match Similarity::fit(&from, &to, &[]) {
+                Some(n) => n,
+                None => break,
+            }
+        } else {
+            let shift = from
+                .iter()
+                .zip(&to)
+                .map(|(a, b)| *b - s.apply(*a))
+                .sum::<Vec3>()
+                / from.len() as f32;
+            Similarity {
+                translation: s.translation + shift,
+                ..s
+            }
+        };
+        let moved = next.translation.distance(s.translation);
+        s = next;
+        if moved < 1e-6 * s.scale {
+            break;
+        }
+    }
+    (s, median)
+}
+
+fn top(points: &[Vec3]) -> f32 {
+    points.iter().fold(f32::NEG_INFINITY, |m, p| m.max(p.y))
+}
+
+/// The centre of the box of the points within `depth` below `top`.
+fn band_centre(points: &[Vec3], top: f32, depth: f32) -> Option<Vec3> {
+    let band: Vec<Vec3> = points
+        .iter()
+        .copied()
+        .filter(|p| p.y >= top - depth)
+        .collect();
+    crate::mesh::Aabb::from_points(&band).map(|b| b.centre())
+}
+
+fn triangle_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
+    indices
+        .chunks_exact(3)
+        .map(|t| {
+            let p = |k: usize| positions.get(t[k] as usize).copied().unwrap_or(Vec3::ZERO);
+            (p(1) - p(0)).cross(p(2) - p(0)).normalize_or_zero()
+        })
+        .collect()
+}

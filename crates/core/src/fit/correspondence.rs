@@ -1,0 +1,215 @@
+//! The correspondence map: for each texel of the head's UV layout, the template UV its
+//! layers are read at (see the module docs of [`crate::fit`]).
+
+use glam::Vec2;
+use rayon::prelude::*;
+
+use super::{Fit, unwrap_u};
+use crate::cancel::CancelToken;
+use crate::error::Error;
+use crate::mesh::Mesh;
+
+/// No template point: the layers are 0 there (no wrinkle, no hair).
+const NONE: [f32; 2] = [f32::NAN, f32::NAN];
+
+/// Per texel of a `size × size` map in the head's UV layout (rows from the top, v up:
+/// docs/models.md §1): the template UV, NaN where the head has no template point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Correspondence {
+    size: u32,
+    texels: Vec<[f32; 2]>,
+    /// Whether each texel is inside a UV island of the head's skin (before padding).
+    covered: Vec<bool>,
+}
+
+impl Correspondence {
+    /// Rasterises `fit` in `head`'s UV layout at `size`², then pads: every texel outside
+    /// the skin's UV islands takes the value of the nearest texel inside one.
+    pub fn new(head: &Mesh, fit: &Fit, size: u32, cancel: &CancelToken) -> Result<Self, Error> {
+        crate::heightmap::check_size(size, size)?;
+        let n = size as usize;
+        let mut texels = vec![NONE; n * n];
+        let mut covered = vec![false; n * n];
+        let uvs = head.uvs();
+        let s = size as f32;
+        let idx = head.skin_indices();
+        for (k, tri) in idx.chunks_exact(3).enumerate() {
+            if k % 4096 == 0 {
+                cancel.check()?;
+            }
+            let corner = |i: usize| tri[i] as usize;
+            let (Some(a), Some(b), Some(c)) =
+                (uvs.get(corner(0)), uvs.get(corner(1)), uvs.get(corner(2)))
+            else {
+                continue;
+            };
+            // Continuous pixel coordinates: texel (x, y) has its centre at (x + ½, y + ½).
+            let px = |uv: Vec2| Vec2::new(uv.x * s, (1.0 - uv.y) * s);
+            let (pa, pb, pc) = (px(*a), px(*b), px(*c));
+            let area = (pb - pa).perp_dot(pc - pa);
+            if area.abs() < 1e-12 || !area.is_finite() {
+                continue;
+            }
+            let t = |i: usize| fit.template_uv.get(corner(i)).copied().flatten();
+            let template = match (t(0), t(1), t(2)) {
+                (Some(x), Some(y), Some(z)) => Some(unwrap_u([x, y, z])),
+                _ => None,
+            };
+            let lo = pa.min(pb).min(pc).floor().max(Vec2::ZERO);
+            let hi = pa.max(pb).max(pc).ceil().min(Vec2::splat(s));
+            for y in lo.y as usize..hi.y as usize {
+                for x in lo.x as usize..hi.x as usize {
+                    let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                    let w0 = (pc - pb).perp_dot(p - pb) / area;
+                    let w1 = (pa - pc).perp_dot(p - pc) / area;
+                    let w2 = 1.0 - w0 - w1;
+                    const EDGE: f32 = -1e-6;
+                    if w0 < EDGE || w1 < EDGE || w2 < EDGE {
+                        continue;
+                    }
+                    let i = y * n + x;
+                    covered[i] = true;
+                    texels[i] = match template {
+                        Some((ta, tb, tc)) => {
+                            let uv = ta * w0 + tb * w1 + tc * w2;
+                            [uv.x.rem_euclid(1.0), uv.y]
+                        }
+                        None => NONE,
+                    };
+                }
+            }
+        }
+        cancel.check()?;
+        pad(&mut texels, &covered, n);
+        Ok(Self {
+            size,
+            texels,
+            covered,
+        })
+    }
+
+    pub fn size(&self) -> u32 {
+        self.size
+    }
+
+    /// The template UV of texel (x, y), `None` where the head has no template point.
+    pub fn get(&self, x: u32, y: u32) -> Option<Vec2> {
+        let t = self.texels[(y * self.size + x) as usize];
+        (!t[0].is_nan()).then(|| Vec2::new(t[0], t[1]))
+    }
+
+    /// Whether texel (x, y) is inside one of the head skin's UV islands.
+    pub fn covered(&self, x: u32, y: u32) -> bool {
+        self.covered[(y * self.size + x) as usize]
+    }
+
+    /// How many texels have a template point (padding included).
+    pub fn matched(&self) -> usize {
+        self.texels.iter().filter(|t| !t[0].is_nan()).count()
+    }
+
+    /// The values of a map in the template's UV layout (`width × height`, rows from the
+    /// top), read at each texel's template UV (bilinear, u wrapping, v clamped): the same
+    /// map in the head's layout, `0` where the head has no template point.
+    pub fn resample(&self, src: &[f32], width: u32, height: u32) -> Vec<f32> {
+        let n = self.size as usize;
+        let mut out = vec![0.0; n * n];
+        if width == 0 || height == 0 || src.len() < (width * height) as usize {
+            return out;
+        }
+        out.par_chunks_mut(n)
+            .zip(self.texels.par_chunks(n))
+            .for_each(|(row, texels)| {
+                for (o, t) in row.iter_mut().zip(texels) {
+                    if !t[0].is_nan() {
+                        *o = bilinear(src, width, height, t[0], t[1]);
+                    }
+                }
+            });
+        out
+    }
+}
+
+/// Bilinear sample at (u, v): u wraps, v is clamped (docs/models.md §1 pixel centres).
+fn bilinear(src: &[f32], width: u32, height: u32, u: f32, v: f32) -> f32 {
+    let (w, h) = (width as i64, height as i64);
+    let x = u * width as f32 - 0.5;
+    let y = (1.0 - v) * height as f32 - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let at = |xi: i64, yi: i64| {
+        let xi = xi.rem_euclid(w);
+        let yi = yi.clamp(0, h - 1);
+        src[(yi * w + xi) as usize]
+    };
+    let (x0, y0) = (x0 as i64, y0 as i64);
+    let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1, y0) * fx;
+    let bottom = at(x0, y0 + 1) * (1.0 - fx) + at(x0 + 1, y0 + 1) * fx;
+    top * (1.0 - fy) + bottom * fy
+}
+
+/// Fills every texel not `covered` with the value of its nearest covered texel (two
+/// chamfer passes propagating the nearest source, 8-neighbour: within a texel of the
+/// Euclidean nearest). Nothing covered: nothing changes.
+fn pad(texels: &mut [[f32; 2]], covered: &[bool], n: usize) {
+    if !covered.iter().any(|&c| c) {
+        return;
+    }
+    // The nearest covered texel found so far, as (x, y); u32::MAX = none yet.
+    let mut nearest: Vec<(u32, u32)> = (0..n * n)
+        .map(|i| {
+            if covered[i] {
+                ((i % n) as u32, (i / n) as u32)
+            } else {
+                (u32::MAX, u32::MAX)
+            }
+        })
+        .collect();
+    let d2 = |x: usize, y: usize, s: (u32, u32)| {
+        if s.0 == u32::MAX {
+            u64::MAX
+        } else {
+            let dx = x as i64 - s.0 as i64;
+            let dy = y as i64 - s.1 as i64;
+            (dx * dx + dy * dy) as u64
+        }
+    };
+    let relax = |x: usize, y: usize, offsets: &[(i64, i64)], nearest: &mut [(u32, u32)]| {
+        let i = y * n + x;
+        let mut best = nearest[i];
+        let mut best_d = d2(x, y, best);
+        for &(dx, dy) in offsets {
+            let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+            if nx < 0 || ny < 0 || nx >= n as i64 || ny >= n as i64 {
+                continue;
+            }
+            let s = nearest[ny as usize * n + nx as usize];
+            let d = d2(x, y, s);
+            if d < best_d {
+                best = s;
+                best_d = d;
+            }
+        }
+        nearest[i] = best;
+    };
+    const FORWARD: [(i64, i64); 4] = [(-1, 0), (-1, -1), (0, -1), (1, -1)];
+    const BACKWARD: [(i64, i64); 4] = [(1, 0), (1, 1), (0, 1), (-1, 1)];
+    for y in 0..n {
+        for x in 0..n {
+            relax(x, y, &FORWARD, &mut nearest);
+        }
+    }
+    for y in (0..n).rev() {
+        for x in (0..n).rev() {
+            relax(x, y, &BACKWARD, &mut nearest);
+        }
+    }
+    for i in 0..n * n {
+        if !covered[i] {
+            let (sx, sy) = nearest[i];
+            if sx != u32::MAX {
+                texels[i] = texels[sy as usize * n + sx as usize];
+            }
+        }
+    }
+}

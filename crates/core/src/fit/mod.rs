@@ -1,0 +1,226 @@
+//! Any head: the template head fitted to an artist's head, and the correspondence every
+//! layer is baked through (docs/models.md "Heads").
+//!
+//! The layout (wrinkle fibres, the wrinkle mask, the hair masks) is authored once on the
+//! **template**, the default head, in its UV layout. For another head:
+//!
+//! 1. **Landmarks** on the head: the project's file (`mesh.landmarks`), else found
+//!    automatically ([`auto::landmarks`]).
+//! 2. **Similarity** (Umeyama): the head's landmarks onto the template's, least squares.
+//! 3. **Thin-plate spline** from the similarity-aligned landmarks to the template's: the
+//!    smoothest warp that puts each of the head's landmarks on the template's.
+//! 4. **Closest point**: each warped vertex of the head's skin is projected onto the
+//!    template surface ([`bvh::Bvh`]); its template UV is the layout there. Beyond
+//!    [`MAX_DISTANCE_M`] (shoulders, a helmet, the inside of the mouth) it has none.
+//!
+//! The result, [`Fit`], holds a template UV for each head vertex. [`Correspondence`]
+//! rasterises it in the head's own UV layout at a map size: for each texel, the template
+//! UV the layers are read at (bilinear, the template's u wrapping at its back seam).
+//! Texels outside every UV island take their nearest island texel's (padding to the
+//! edges of the map), so filtering and mip levels never pull in background, and the
+//! heights on both sides of a UV seam, being one 3D point, agree.
+
+pub mod auto;
+pub mod bvh;
+mod correspondence;
+pub mod similarity;
+pub mod tps;
+
+use std::sync::{Arc, OnceLock};
+
+use glam::{Vec2, Vec3};
+
+pub use correspondence::Correspondence;
+
+use crate::error::Error;
+use crate::landmarks::Landmarks;
+use crate::mesh::Mesh;
+use bvh::Bvh;
+use similarity::Similarity;
+use tps::ThinPlate;
+
+/// The template's landmarks: `assets/meshes/default-head.landmarks.json`, in the default
+/// head's coordinates (metres, +Y up, face toward +Z).
+pub const TEMPLATE_LANDMARKS_JSON: &str =
+    include_str!("../../../../assets/meshes/default-head.landmarks.json");
+
+/// How far (template metres) a warped head point may be from the template surface and
+/// still take its layout.
+pub const MAX_DISTANCE_M: f32 = 0.02;
+
+/// The smoothing of the landmark warp, metres: hand-placed landmarks are 2–3 mm off.
+const TPS_LAMBDA_M: f32 = 0.002;
+
+/// Fewest landmarks the fit works from (the similarity needs three; the warp four).
+pub const MIN_LANDMARKS: usize = 5;
+
+/// The head every layout is authored on, with its landmarks and a tree for closest points.
+#[derive(Debug)]
+pub struct Template {
+    pub mesh: Arc<Mesh>,
+    pub landmarks: Landmarks,
+    pub(crate) bvh: Bvh,
+}
+
+impl Template {
+    /// Builds a template from a mesh in metres with its landmarks.
+    pub fn new(mesh: Arc<Mesh>, landmarks: Landmarks) -> Self {
+        let bvh = Bvh::new(mesh.positions(), &mesh.skin_indices());
+        Self {
+            mesh,
+            landmarks,
+            bvh,
+        }
+    }
+
+    /// The template UV at a closest-point hit.
+    fn uv_at(&self, hit: &bvh::Hit) -> Vec2 {
+        let t = hit.triangle as usize * 3;
+        let idx = self.mesh.skin_indices();
+        let uvs = self.mesh.uvs();
+        let uv = |k: usize| uvs[idx[t + k] as usize];
+        let (a, b, c) = (uv(0), uv(1), uv(2));
+        // The default head's u wraps at its back seam: unwrap before interpolating.
+        let (a, b, c) = unwrap_u([a, b, c]);
+        let p = a * hit.bary.x + b * hit.bary.y + c * hit.bary.z;
+        Vec2::new(p.x.rem_euclid(1.0), p.y)
+    }
+}
+
+/// The built-in template: the default head and its landmark file (built once).
+pub fn template() -> &'static Template {
+    static TEMPLATE: OnceLock<Template> = OnceLock::new();
+    TEMPLATE.get_or_init(|| {
+        // The built-in file is checked by the tests; an unreadable one leaves no landmark
+        // (every fit then says so) rather than a panic.
+        let landmarks = Landmarks::from_json_str(TEMPLATE_LANDMARKS_JSON).unwrap_or_default();
+        Template::new(Arc::new(crate::head::default_head()), landmarks)
+    })
+}
+
+/// The head's layout on the template: a template UV per head vertex.
+#[derive(Clone, Debug)]
+pub struct Fit {
+    /// Per vertex of the head: the template UV, `None` beyond [`MAX_DISTANCE_M`] or off
+    /// the skin.
+    pub template_uv: Vec<Option<Vec2>>,
+    /// The head's coordinates to the template's.
+    pub similarity: Similarity,
+    /// What the fit found, for reports.
+    pub report: FitReport,
+}
+
+/// What a fit used and how well it went.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitReport {
+    /// Landmarks both heads have.
+    pub landmarks_used: usize,
+    /// Mean distance of the similarity-aligned landmarks to the template's, template mm
+    /// (before the warp, which puts them on).
+    pub similarity_residual_mm: f32,
+    /// Skin vertices that found a template point.
+    pub matched_vertices: usize,
+    pub skin_vertices: usize,
+}
+
+impl std::fmt::Display for FitReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} landmarks, {:.1} mm apart after the similarity; {} of {} skin vertices on the template",
+            self.landmarks_used,
+            self.similarity_residual_mm,
+            self.matched_vertices,
+            self.skin_vertices
+        )
+    }
+}
+
+/// Fits `template` to `head`, whose `landmarks` are in the head mesh's coordinates (the
+/// scene's: turned to +Y up, +Z forward).
+pub fn fit(head: &Mesh, landmarks: &Landmarks, template: &Template) -> Result<Fit, Error> {
+    let (from, to): (Vec<Vec3>, Vec<Vec3>) = crate::landmarks::NAMES
+        .iter()
+        .filter_map(|n| Some((landmarks.get(n)?, template.landmarks.get(n)?)))
+        .unzip();
+    let fail = |message: String| Error::Fit { message };
+    if from.len() < MIN_LANDMARKS {
+        return Err(fail(format!(
+            "{} landmarks placed; the fit needs at least {MIN_LANDMARKS} (the eye corners, the nose tip, the mouth corners…)",
+            from.len()
+        )));
+    }
+    let similarity = Similarity::fit(&from, &to, &[])
+        .ok_or_else(|| fail("the landmarks are all at one point: place them on the face".into()))?;
+    let aligned: Vec<Vec3> = from.iter().map(|&p| similarity.apply(p)).collect();
+    let residual = aligned
+        .iter()
+        .zip(&to)
+        .map(|(a, b)| a.distance(*b))
+        .sum::<f32>()
+        / from.len() as f32;
+    // Landmarks on one plane (a face mask's five front points) leave the warp undefined:
+    // the similarity alone then carries the head.
+    let warp = ThinPlate::fit(&aligned, &to, TPS_LAMBDA_M);
+    let positions = head.positions();
+    let mut skin = vec![false; positions.len()];
+    for &i in head.skin_indices().iter() {
+        if let Some(s) = skin.get_mut(i as usize) {
+            *s = true;
+        }
+    }
+    let template_uv: Vec<Option<Vec2>> = {
+        use rayon::prelude::*;
+        positions
+            .par_iter()
+            .zip(skin.par_iter())
+            .map(|(&p, &is_skin)| {
+                if !is_skin {
+                    return None;
+                }
+                let q = similarity.apply(p);
+                let q = warp.as_ref().map_or(q, |w| w.apply(q));
+                let hit = template.bvh.closest(q, MAX_DISTANCE_M)?;
+                Some(template.uv_at(&hit))
+            })
+            .collect()
+    };
+    let report = FitReport {
+        landmarks_used: from.len(),
+        similarity_residual_mm: residual * 1e3,
+        matched_vertices: template_uv.iter().filter(|t| t.is_some()).count(),
+        skin_vertices: skin.iter().filter(|&&s| s).count(),
+    };
+    if report.matched_vertices == 0 {
+        return Err(fail(format!(
+            "no point of the head came within {} mm of the template ({report}): are the landmarks on this head?",
+            MAX_DISTANCE_M * 1e3
+        )));
+    }
+    Ok(Fit {
+        template_uv,
+        similarity,
+        report,
+    })
+}
+
+/// Three UVs with u unwrapped across the template's back seam (u = 0 ≡ 1): when they
+/// span more than half the chart, the small ones are taken one turn on.
+pub(crate) fn unwrap_u(uv: [Vec2; 3]) -> (Vec2, Vec2, Vec2) {
+    let (lo, hi) = uv
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), p| {
+            (l.min(p.x), h.max(p.x))
+        });
+    let fix = |p: Vec2| {
+        if hi - lo > 0.5 && p.x < 0.5 {
+            Vec2::new(p.x + 1.0, p.y)
+        } else {
+            p
+        }
+    };
+    (fix(uv[0]), fix(uv[1]), fix(uv[2]))
+}
+
+#[cfg(test)]
+mod tests;

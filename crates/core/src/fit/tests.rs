@@ -1,0 +1,55 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+use std::path::PathBuf;
+
+use super::*;
+
+/// A head of `assets/heads/` and its hand-placed landmarks.
+pub(crate) fn shipped_head(folder: &str, file: &str) -> (Mesh, Landmarks) {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/heads")
+        .join(folder);
+    let mesh = Mesh::load(&dir.join(file)).unwrap();
+    let landmarks = Landmarks::load(&dir.join("landmarks.json")).unwrap();
+    (mesh, landmarks)
+}
+
+#[test]
+fn the_template_landmarks_are_on_its_surface() {
+    let t = template();
+    assert_eq!(t.landmarks.len(), crate::landmarks::NAMES.len());
+    for n in crate::landmarks::NAMES {
+        let p = t.landmarks.get(n).unwrap();
+        let hit = t.bvh.closest(p, 1.0).unwrap();
+        assert!(hit.distance < 1e-3, "{n}: {} mm off", hit.distance * 1e3);
+    }
+    let d = t.landmarks.exocanthion_distance().unwrap();
+    assert!((0.09..0.10).contains(&d), "{d}");
+}
+
+#[test]
+fn automatic_landmarks_are_near_the_hand_placed_ones() {
+    for (folder, file) in [
+        ("lee-perry-smith", "LeePerrySmith.glb"),
+        ("makehuman", "mh_head.obj"),
+    ] {
+        let (mesh, hand) = shipped_head(folder, file);
+        let guess = crate::mesh::units::detect(&mesh.bounds(), None).metres_per_unit;
+        let found = auto::landmarks(&mesh, template(), guess).unwrap();
+        let eyes = hand.exocanthion_distance().unwrap();
+        let mut errors: Vec<(f32, &str)> = crate::landmarks::NAMES
+            .iter()
+            .filter_map(|n| Some((found.landmarks.get(n)?.distance(hand.get(n)?) / eyes, *n)))
+            .collect();
+        errors.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let median = errors[errors.len() / 2].0;
+        eprintln!(
+            "{folder}: median {median:.3} × eye distance, template {:.1} mm from the head; {errors:.3?}",
+            found.median_distance_mm
+        );
+        assert!(
+            median <= 0.15,
+            "{folder}: median error {median} × the eye corners' distance"
+        );
+        assert!(found.median_distance_mm < crate::scene::AUTO_FIT_MAX_MEDIAN_MM);
+    }
+}

@@ -314,8 +314,9 @@ fn export_glb(
     .context("encoding the normal map")?;
     cancel.check()?;
     let project = scene.project();
-    let mpu = scene.metres_per_unit();
-    let params = view::frame_params(project, mpu, t, view::camera(project, mpu, Vec3::ZERO));
+    let head = view::HeadScale::of(&scene);
+    let mpu = head.metres_per_unit;
+    let params = view::frame_params(project, head, t, view::camera(project, mpu, Vec3::ZERO));
     let depth = project.large.depth;
     let height = match scene.large() {
         Some(l) => l.scaled(depth)?,
@@ -364,8 +365,9 @@ pub fn head_normal_map(
     let mesh = scene.mesh();
     let scale = SurfaceScale::measure(mesh.positions(), mesh.uvs(), mesh.indices())
         .context("the mesh's UVs are degenerate: no normal map can be laid on it")?;
-    let mpu = scene.metres_per_unit();
-    let skin = view::frame_params(project, mpu, t, view::camera(project, mpu, Vec3::ZERO)).skin;
+    let head = view::HeadScale::of(scene);
+    let mpu = head.metres_per_unit;
+    let skin = view::frame_params(project, head, t, view::camera(project, mpu, Vec3::ZERO)).skin;
     let tile = |heights, placement: agesim_render::TilePlacement| compose::RepeatedTile {
         heights,
         repeats: scale.repeats(mpu, placement.size_m.max(1e-6)),

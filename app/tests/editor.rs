@@ -64,12 +64,13 @@ fn the_depth_slider_deepens_the_drawn_relief_without_a_bake() {
     let mut h = harness();
     settle(&mut h);
     let map_before = h.state().snapshot().large.clone().unwrap();
-    let relief_before = agesim::view::relief_depth(h.state().project());
+    let relief_before =
+        agesim::view::relief_depth(h.state().project(), agesim::view::HeadScale::METRES);
     h.get_by_role_and_label(Role::Slider, "depth")
         .set_value_accesskit(3.0);
     settle(&mut h);
     assert_eq!(h.state().project().large.depth, 3.0);
-    let relief = agesim::view::relief_depth(h.state().project());
+    let relief = agesim::view::relief_depth(h.state().project(), agesim::view::HeadScale::METRES);
     assert!(
         (relief / relief_before - 3.0).abs() < 1e-4,
         "{relief_before} → {relief}"
@@ -259,6 +260,11 @@ fn the_view_follows_the_age_slider_before_the_maps_do() {
         "the curve rises from 50 to 78"
     );
     assert_eq!(f.skin.fine_blend, expected);
-    let whole = agesim::view::frame_params(&project, 1.0, project.age.t, f.camera);
+    let whole = agesim::view::frame_params(
+        &project,
+        agesim::view::HeadScale::METRES,
+        project.age.t,
+        f.camera,
+    );
     assert_eq!(f.skin.albedo, whole.skin.albedo, "paling at 78");
 }

@@ -49,10 +49,15 @@ fn reports_the_default_head() {
             .output()
             .unwrap();
         let disk = stdout(&from_disk);
-        assert_eq!(
-            text.lines().skip(1).collect::<Vec<_>>(),
-            disk.lines().skip(1).collect::<Vec<_>>()
-        );
+        // The mesh's own lines (a file's units and layout are then measured, not given).
+        let mesh_lines = |t: &str| -> Vec<String> {
+            t.lines()
+                .skip(1)
+                .take_while(|l| !l.starts_with("metres per unit"))
+                .map(str::to_owned)
+                .collect()
+        };
+        assert_eq!(mesh_lines(&text), mesh_lines(&disk));
     }
 }
 
@@ -146,34 +151,64 @@ fn mesh_info_prints_the_units_and_how_they_were_decided() {
     let out = agesim(&["mesh-info"]);
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(
-        text.contains("metres per unit: 1 (metres: from the size"),
+        text.contains("metres per unit: 1 (metres: a built-in mesh)"),
         "{text}"
     );
-    assert!(
-        text.contains("axes:      up +Y, forward +Z (assumed"),
-        "{text}"
-    );
+    assert!(text.contains("axes:      up +Y, forward +Z"), "{text}");
+    // The default head in centimetres, with its own landmarks: the units from the eye
+    // corners, the axes from the face, the template fitted by the file.
     let dir = tempfile::tempdir().unwrap();
+    let head = agesim_core::head::default_head();
+    let obj = dir.path().join("head.obj");
+    std::fs::write(&obj, agesim_core::mesh::obj::to_obj(&head, |p| p * 100.0)).unwrap();
+    let mut marks = agesim_core::landmarks::Landmarks::default();
+    let template = &agesim_core::fit::template().landmarks;
+    for name in agesim_core::landmarks::NAMES {
+        marks
+            .set(name, template.get(name).unwrap() * 100.0)
+            .unwrap();
+    }
     let landmarks = dir.path().join("l.json");
-    std::fs::write(
-        &landmarks,
-        r#"{"landmarks": {"exocanthion_r": [-4.7, 0, 0], "exocanthion_l": [4.7, 0, 0],
-            "pogonion": [0, -8, 1], "glabella": [0, 3, 1], "pronasale": [0, -2, 4]}}"#,
-    )
-    .unwrap();
-    let out = agesim(&["mesh-info", "--landmarks", landmarks.to_str().unwrap()]);
+    std::fs::write(&landmarks, marks.to_json_pretty()).unwrap();
+    let file = obj.to_str().unwrap();
+    let out = agesim(&[
+        "mesh-info",
+        file,
+        "--landmarks",
+        landmarks.to_str().unwrap(),
+    ]);
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(
-        text.contains("metres per unit: 0.01 (centimetres: outer eye corners 9.4000 units apart"),
+        text.contains("metres per unit: 0.01 (centimetres: outer eye corners 9.7000 units apart"),
         "{text}"
     );
     assert!(
         text.contains("up +Y, forward +Z (from the landmarks)"),
         "{text}"
     );
+    assert!(
+        text.contains("layout:    the template fitted by the landmark file: 16 landmarks"),
+        "{text}"
+    );
+    // Without landmarks: found on the head, and the units from them.
+    let out = agesim(&["mesh-info", file]);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        text.contains("layout:    the template fitted by landmarks found automatically"),
+        "{text}"
+    );
+    assert!(
+        text.contains("metres per unit: 0.01 (centimetres: outer eye corners"),
+        "{text}"
+    );
     // A bad landmark file is refused with its name and the point at fault.
     std::fs::write(&landmarks, r#"{"landmarks": {"nose": [0, 0, 0]}}"#).unwrap();
-    let out = agesim(&["mesh-info", "--landmarks", landmarks.to_str().unwrap()]);
+    let out = agesim(&[
+        "mesh-info",
+        file,
+        "--landmarks",
+        landmarks.to_str().unwrap(),
+    ]);
     let err = String::from_utf8_lossy(&out.stderr).into_owned();
     assert!(
         !out.status.success() && err.contains("l.json") && err.contains("`nose`"),

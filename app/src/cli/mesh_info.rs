@@ -3,8 +3,9 @@
 use std::path::PathBuf;
 
 use agesim_core::Mesh;
-use agesim_core::landmarks::Landmarks;
 use agesim_core::mesh::{TangentSource, units};
+use agesim_core::project::Project;
+use agesim_core::scene::Scene;
 
 /// Print vertex/triangle counts, bounding box and size, which attributes the file had and
 /// what was generated or dropped. Without FILE (or with --default-head): the default head.
@@ -28,31 +29,48 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
             agesim_core::head::default_head(),
         ),
     };
-    let landmarks = match &args.landmarks {
-        Some(path) => Some(Landmarks::load(path)?),
-        None => None,
-    };
     print!("{}", describe(&name, &mesh));
-    print!("{}", describe_units(&mesh, landmarks.as_ref()));
+    match &args.file {
+        Some(path) if !args.default_head => {
+            // The scene decides the units, axes and layout as every command does.
+            let mut project = Project::default();
+            project.mesh.path = Some(path.clone());
+            project.mesh.metres_per_unit = None;
+            project.mesh.landmarks = args.landmarks.clone();
+            print!("{}", describe_head(&Scene::new(project)?));
+        }
+        _ => {
+            if args.landmarks.is_some() {
+                anyhow::bail!("--landmarks describes a FILE: give the mesh file too");
+            }
+            print!(
+                "metres per unit: 1 (metres: a built-in mesh)\naxes:      up +Y, forward +Z\nlayout:    the template itself (its own UVs)\n"
+            );
+        }
+    }
     Ok(())
 }
 
-/// The detected units and axes, as `mesh-info` prints them.
-pub fn describe_units(mesh: &Mesh, landmarks: Option<&Landmarks>) -> String {
-    let u = units::detect(&mesh.bounds(), landmarks);
-    let axes = match landmarks.and_then(units::detect_axes) {
-        Some(a) => format!(
-            "up {}, forward {} (from the landmarks)",
-            a.up.name(),
-            a.forward.name()
-        ),
-        None => {
-            "up +Y, forward +Z (assumed: no landmarks of the chin, brow, eyes and nose)".to_owned()
-        }
+/// The units, axes and layout a scene decided for its mesh file, as `mesh-info` prints
+/// them.
+pub fn describe_head(scene: &Scene) -> String {
+    let u = scene.units();
+    let a = scene.axes();
+    let how = if scene.project().mesh.up.axis().is_some()
+        || scene.project().mesh.forward.axis().is_some()
+    {
+        "set in the project"
+    } else if scene.landmarks().and_then(units::detect_axes).is_some() {
+        "from the landmarks"
+    } else {
+        "assumed: no landmarks of the chin, brow, eyes and nose"
     };
+    let axes = format!("up {}, forward {} ({how})", a.up.name(), a.forward.name());
     format!(
-        "metres per unit: {} ({})\naxes:      {axes}\n",
-        u.metres_per_unit, u.how
+        "metres per unit: {} ({})\naxes:      {axes}\nlayout:    {}\n",
+        u.metres_per_unit,
+        u.how,
+        scene.layout().how
     )
 }
 

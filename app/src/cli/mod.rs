@@ -4,6 +4,7 @@ pub mod bake;
 pub mod export;
 pub mod gen_assets;
 pub mod hair;
+pub mod landmarks;
 pub mod mesh_info;
 pub mod render;
 
@@ -50,6 +51,9 @@ pub enum Command {
     Hair(hair::HairArgs),
     /// Print what a head mesh (OBJ, glTF, GLB) contains: counts, size, attributes, repairs.
     MeshInfo(mesh_info::MeshInfoArgs),
+    /// Find a head's facial landmarks automatically and write them as a landmark file
+    /// (to check, correct and give back with --landmarks).
+    Landmarks(landmarks::LandmarksArgs),
     /// Export maps, renders and the aged head (GLB) at an age: what the editor's Export
     /// window writes, as one all-or-nothing set of files.
     Export(export::ExportArgs),
@@ -63,6 +67,7 @@ pub enum Command {
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Some(Command::MeshInfo(args)) => mesh_info::run(&args),
+        Some(Command::Landmarks(args)) => landmarks::run(&args),
         Some(Command::GenAssets(args)) => gen_assets::run(&args),
         Some(Command::Hair(args)) => hair::run(&args),
         // No subcommand: the editor.
@@ -150,6 +155,9 @@ impl MeshArgs {
         if p.mesh.metres_per_unit.is_none() && p.mesh.path.is_some() {
             let units = scene.units();
             println!("metres per unit: {} ({})", units.metres_per_unit, units.how);
+        }
+        if p.mesh.path.is_some() {
+            println!("layout: {}", scene.layout().how);
         }
         let axes = scene.axes();
         if axes != agesim_core::mesh::units::Axes::STANDARD {

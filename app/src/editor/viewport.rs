@@ -265,7 +265,8 @@ impl Viewport {
         // once); the maps are the last baked ones.
         let mpu = snapshot.layers.metres_per_unit;
         let camera = view::camera(project, mpu, self.centre + self.pan);
-        let mut params = view::frame_params(project, mpu, project.age.t, camera);
+        let head = snapshot.layers.head();
+        let mut params = view::frame_params(project, head, project.age.t, camera);
         // While the view moves or the age plays (drawn at a lower resolution), one hair in
         // SPARSE_HAIR_STRIDE: the still frame that follows draws them all.
         params.hair.sparse = self.scale < 1.0;

@@ -45,11 +45,39 @@ pub fn wrap_rgb(wrap: f32, subsurface: Colour) -> Vec3 {
     (c * wrap * (0.45 / 0.35)).clamp(Vec3::ZERO, Vec3::ONE)
 }
 
+/// What a frame needs to know of the head beyond the project: its unit length and how
+/// deep its UV units make the template's relief.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeadScale {
+    /// Metres per mesh unit ([`agesim_core::scene::Scene::metres_per_unit`]).
+    pub metres_per_unit: f32,
+    /// The head's UV depth of one template UV unit of relief
+    /// ([`agesim_core::scene::Scene::relief_scale`]; 1 for the template itself).
+    pub relief_scale: f32,
+}
+
+impl HeadScale {
+    /// A head in metres read at its own UVs (the built-in meshes).
+    pub const METRES: Self = Self {
+        metres_per_unit: 1.0,
+        relief_scale: 1.0,
+    };
+
+    /// The scene's head.
+    pub fn of(scene: &agesim_core::scene::Scene) -> Self {
+        Self {
+            metres_per_unit: scene.metres_per_unit(),
+            relief_scale: scene.relief_scale(),
+        }
+    }
+}
+
 /// The relief depth of a normalised large-wrinkle height of 1, UV units: `view.disp_scale`
-/// (the depth the renderer gives the layer) × `large.depth` (the layer's own depth; the
-/// baked map is normalised, so this is where the depth slider acts).
-pub fn relief_depth(project: &Project) -> f32 {
-    project.view.disp_scale * project.large.depth
+/// (the depth the renderer gives the layer, in the template's UV units) × `large.depth`
+/// (the layer's own depth; the baked map is normalised, so this is where the depth slider
+/// acts) × the head's `relief_scale` (the same millimetres in its own UV units).
+pub fn relief_depth(project: &Project, head: HeadScale) -> f32 {
+    project.view.disp_scale * project.large.depth * head.relief_scale
 }
 
 /// Where the micro-relief tile and the fine-wrinkle tile lie on the skin.
@@ -68,22 +96,18 @@ pub fn tile_placements(project: &Project) -> (TilePlacement, TilePlacement) {
 
 /// The fine-wrinkle blend at age `t`: the `age.fine` curve, 0 when the layer is off.
 pub fn fine_blend(project: &Project, t: f32) -> f32 {
-    frame_params(project, 1.0, t, Camera::default())
+    frame_params(project, HeadScale::METRES, t, Camera::default())
         .skin
         .fine_blend
 }
 
-/// Everything a frame of `project` (its mesh `metres_per_unit`) at age `t` needs, seen
+/// Everything a frame of `project` (its mesh's `head` scale) at age `t` needs, seen
 /// through `camera`. Every
 /// age-dependent number comes from the project's age curves at `t` itself (not from the
 /// last bake's factors), so the fine blend, the paling and the hair follow the age
 /// slider at once while the maps catch up.
-pub fn frame_params(
-    project: &Project,
-    metres_per_unit: f32,
-    t: f32,
-    camera: Camera,
-) -> FrameParams {
+pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) -> FrameParams {
+    let metres_per_unit = head.metres_per_unit;
     let v = &project.view;
     let (ly, lp) = (v.light_yaw_deg.to_radians(), v.light_pitch_deg.to_radians());
     let h = &project.hair;
@@ -103,7 +127,7 @@ pub fn frame_params(
             pom_mode: pom_mode(v.pom),
             linear_steps: v.linear_steps,
             binary_steps: v.binary_steps,
-            disp_scale: relief_depth(project),
+            disp_scale: relief_depth(project, head),
             fine_blend: if project.fine.enabled {
                 factors.fine_blend
             } else {
@@ -144,7 +168,7 @@ mod tests {
     use super::*;
 
     fn params(project: &Project, t: f32) -> FrameParams {
-        frame_params(project, 1.0, t, Camera::default())
+        frame_params(project, HeadScale::METRES, t, Camera::default())
     }
 
     /// Noise with no octave bakes no tile (the scene's rule), so the renderer must not

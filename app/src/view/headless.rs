@@ -59,11 +59,6 @@ impl HeadlessView {
 
     /// The frame of the project at age `t` through `camera` ([`super::frame_params`]).
     pub fn frame_params(&self, t: f32, camera: agesim_render::Camera) -> FrameParams {
-        super::frame_params(
-            self.scene.project(),
-            self.scene.metres_per_unit(),
-            t,
-            camera,
-        )
+        super::frame_params(self.scene.project(), self.layers.head(), t, camera)
     }
 }

@@ -4,6 +4,7 @@
 
 use std::sync::Arc;
 
+use super::HeadScale;
 use agesim_core::hair::HairInstances;
 use agesim_core::scene::{Changed, Scene};
 use agesim_core::{HeightMap, Mesh};
@@ -23,6 +24,8 @@ pub struct Layers {
     pub hair: Option<Arc<HairInstances>>,
     /// How long a mesh unit is, metres ([`Scene::metres_per_unit`]).
     pub metres_per_unit: f32,
+    /// The head's relief depth per template UV unit ([`Scene::relief_scale`]).
+    pub relief_scale: f32,
 }
 
 impl Default for Layers {
@@ -35,6 +38,7 @@ impl Default for Layers {
             fine: None,
             hair: None,
             metres_per_unit: 1.0,
+            relief_scale: 1.0,
         }
     }
 }
@@ -43,7 +47,8 @@ impl Layers {
     /// Takes from `scene` what its last bake changed (everything when `all`: these layers
     /// were filled from another scene).
     pub fn refresh(&mut self, scene: &Scene, changed: &Changed, all: bool) {
-        if all || changed.mesh || self.mesh.is_none() {
+        let new_mesh = all || changed.mesh || self.mesh.is_none();
+        if new_mesh {
             self.mesh = Some(scene.mesh().clone());
         }
         if all || changed.large || (self.large.is_none() && scene.large().is_some()) {
@@ -60,7 +65,20 @@ impl Layers {
             self.fine = scene.fine().map(|f| Arc::new(PreparedLayer::tile(f)));
         }
         self.hair = scene.hair().cloned();
-        self.metres_per_unit = scene.metres_per_unit();
+        let metres_per_unit = scene.metres_per_unit();
+        // Measured over the mesh: only when the mesh or its units change.
+        if new_mesh || metres_per_unit != self.metres_per_unit {
+            self.relief_scale = scene.relief_scale();
+        }
+        self.metres_per_unit = metres_per_unit;
+    }
+
+    /// The head's scale for [`super::frame_params`].
+    pub fn head(&self) -> HeadScale {
+        HeadScale {
+            metres_per_unit: self.metres_per_unit,
+            relief_scale: self.relief_scale,
+        }
     }
 }
 

@@ -13,7 +13,7 @@ mod layers;
 use std::path::{Path, PathBuf};
 
 pub use frame::{
-    camera, fine_blend, frame_params, pom_mode, relief_depth, tile_placements, wrap_rgb,
+    HeadScale, camera, fine_blend, frame_params, pom_mode, relief_depth, tile_placements, wrap_rgb,
 };
 pub use headless::HeadlessView;
 pub use layers::{Layers, Uploaded};

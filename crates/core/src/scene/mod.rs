@@ -485,6 +485,28 @@ impl Scene {
         }
     }
 
+    /// How deep, in the head's UV units, a relief one UV unit deep on the template is:
+    /// the template's metres per UV unit over the head's (both measured over their skin,
+    /// [`crate::mesh::SurfaceScale`]), so the wrinkles read through a fit are as deep in
+    /// millimetres as on the template whatever the head's UV layout; 1 when the head reads
+    /// the layers at its own UVs.
+    pub fn relief_scale(&self) -> f32 {
+        if self.inputs.layout.fit.is_none() {
+            return 1.0;
+        }
+        let metres_per_uv = |mesh: &Mesh, metres_per_unit: f32| {
+            crate::mesh::SurfaceScale::measure(mesh.positions(), mesh.uvs(), &mesh.skin_indices())
+                .map(|s| 0.5 * (s.units_per_u + s.units_per_v) * metres_per_unit)
+        };
+        match (
+            metres_per_uv(&crate::fit::template().mesh, 1.0),
+            metres_per_uv(&self.inputs.mesh, self.metres_per_unit()),
+        ) {
+            (Some(t), Some(h)) if h > 0.0 && (t / h).is_finite() => t / h,
+            _ => 1.0,
+        }
+    }
+
     /// [`Scene::units`]' metres per unit.
     pub fn metres_per_unit(&self) -> f32 {
         self.units().metres_per_unit

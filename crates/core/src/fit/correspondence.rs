@@ -9,6 +9,10 @@ use crate::cancel::CancelToken;
 use crate::error::Error;
 use crate::mesh::Mesh;
 
+/// How far (pixels) outside its triangle a texel still takes the triangle's extrapolated
+/// template UV.
+const GUARD_PX: f32 = 1.5;
+
 /// No template point: the layers are 0 there (no wrinkle, no hair).
 const NONE: [f32; 2] = [f32::NAN, f32::NAN];
 
@@ -23,13 +27,16 @@ pub struct Correspondence {
 }
 
 impl Correspondence {
-    /// Rasterises `fit` in `head`'s UV layout at `size`², then pads: every texel outside
-    /// the skin's UV islands takes the value of the nearest texel inside one.
+    /// Rasterises `fit` in `head`'s UV layout at `size`² (each triangle's template UVs
+    /// extrapolated [`GUARD_PX`] beyond its edges where no triangle covers), then pads:
+    /// every texel still unwritten takes the value of the nearest written one.
     pub fn new(head: &Mesh, fit: &Fit, size: u32, cancel: &CancelToken) -> Result<Self, Error> {
         crate::heightmap::check_size(size, size)?;
         let n = size as usize;
         let mut texels = vec![NONE; n * n];
         let mut covered = vec![false; n * n];
+        // How far outside the triangle that wrote each texel it lies (∞: none did).
+        let mut distance = vec![f32::INFINITY; n * n];
         let uvs = head.uvs();
         let s = size as f32;
         let idx = head.skin_indices();
@@ -55,20 +62,34 @@ impl Correspondence {
                 (Some(x), Some(y), Some(z)) => Some(unwrap_u([x, y, z])),
                 _ => None,
             };
-            let lo = pa.min(pb).min(pc).floor().max(Vec2::ZERO);
-            let hi = pa.max(pb).max(pc).ceil().min(Vec2::splat(s));
+            // The triangle and a guard band around it: texels just outside every island
+            // take the triangle's template UV extrapolated (the surface's continuation
+            // across a seam), so bilinear reads at an island's border mix no copied
+            // values.
+            let lo = (pa.min(pb).min(pc) - GUARD_PX).floor().max(Vec2::ZERO);
+            let hi = (pa.max(pb).max(pc) + GUARD_PX).ceil().min(Vec2::splat(s));
+            let edge_len = [(pc - pb).length(), (pa - pc).length(), (pb - pa).length()];
             for y in lo.y as usize..hi.y as usize {
                 for x in lo.x as usize..hi.x as usize {
                     let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
                     let w0 = (pc - pb).perp_dot(p - pb) / area;
                     let w1 = (pa - pc).perp_dot(p - pc) / area;
                     let w2 = 1.0 - w0 - w1;
-                    const EDGE: f32 = -1e-6;
-                    if w0 < EDGE || w1 < EDGE || w2 < EDGE {
+                    // Distance outside the triangle, pixels (0 inside).
+                    let outside = [w0, w1, w2]
+                        .iter()
+                        .zip(edge_len)
+                        .map(|(w, len)| (-w).max(0.0) * area.abs() / len.max(1e-12))
+                        .fold(0.0f32, f32::max);
+                    let i = y * n + x;
+                    if outside > GUARD_PX || outside >= distance[i] {
                         continue;
                     }
-                    let i = y * n + x;
-                    covered[i] = true;
+                    if outside > 0.0 && template.is_none() {
+                        continue;
+                    }
+                    distance[i] = outside;
+                    covered[i] |= outside == 0.0;
                     texels[i] = match template {
                         Some((ta, tb, tc)) => {
                             let uv = ta * w0 + tb * w1 + tc * w2;
@@ -80,7 +101,8 @@ impl Correspondence {
             }
         }
         cancel.check()?;
-        pad(&mut texels, &covered, n);
+        let filled: Vec<bool> = distance.iter().map(|d| d.is_finite()).collect();
+        pad(&mut texels, &filled, n);
         Ok(Self {
             size,
             texels,
@@ -148,10 +170,11 @@ fn bilinear(src: &[f32], width: u32, height: u32, u: f32, v: f32) -> f32 {
     top * (1.0 - fy) + bottom * fy
 }
 
-/// Fills every texel not `covered` with the value of its nearest covered texel (two
+/// Fills every texel not `filled` with the value of its nearest filled texel (two
 /// chamfer passes propagating the nearest source, 8-neighbour: within a texel of the
 /// Euclidean nearest). Nothing covered: nothing changes.
-fn pad(texels: &mut [[f32; 2]], covered: &[bool], n: usize) {
+fn pad(texels: &mut [[f32; 2]], filled: &[bool], n: usize) {
+    let covered = filled;
     if !covered.iter().any(|&c| c) {
         return;
     }

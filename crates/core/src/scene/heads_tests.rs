@@ -272,3 +272,186 @@ fn no_hair_grows_on_the_face_of_heads_that_are_not_the_template() {
         );
     }
 }
+
+/// The large-wrinkle map of a head file, baked at `size` at age 1 with the default
+/// wrinkle files, landmarks found automatically.
+fn default_map(path: &std::path::Path, size: u32) -> (Scene, Vec<f32>) {
+    let mut p = Project::default();
+    p.mesh.path = Some(path.to_owned());
+    p.mesh.metres_per_unit = None;
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
+    p.noise.strength = 0.0;
+    let mut scene = Scene::new(p).unwrap();
+    assert!(scene.layout().fit.is_some(), "{}", scene.layout().how);
+    scene
+        .bake(&BakeRequest::maps(size, 1.0, false), &CancelToken::never())
+        .unwrap();
+    let map = scene.large().unwrap().height.data().to_vec();
+    (scene, map)
+}
+
+/// The scan in metres, decimetres, centimetres and millimetres, and turned Z-up facing
+/// −Y: the same maps (the units and axes found from the head, the fit scale-free).
+#[test]
+fn copies_of_one_head_in_other_units_and_axes_give_the_same_maps() {
+    let dir = tempfile::tempdir().unwrap();
+    let scan = Mesh::load(&heads_dir().join("lee-perry-smith/LeePerrySmith.glb")).unwrap();
+    // The scan's own unit is ≈ 0.0518 m.
+    let unit = 0.0518;
+    let size = 256;
+    let to_z_up = glam::Mat3::from_cols(Vec3::X, Vec3::Z, Vec3::NEG_Y);
+    let copies: [(&str, f32, bool); 5] = [
+        ("m", unit, false),
+        ("dm", unit * 10.0, false),
+        ("cm", unit * 100.0, false),
+        ("mm", unit * 1000.0, false),
+        ("cm-z-up", unit * 100.0, true),
+    ];
+    let mut reference: Option<Vec<f32>> = None;
+    for (name, scale, z_up) in copies {
+        let path = dir.path().join(format!("scan-{name}.obj"));
+        let place = |p: Vec3| {
+            let p = p * scale;
+            if z_up { to_z_up * p } else { p }
+        };
+        std::fs::write(&path, crate::mesh::obj::to_obj(&scan, place)).unwrap();
+        if z_up {
+            // A Z-up head needs its axes said (no landmarks to find them from).
+            let mut p = Project::default();
+            p.mesh.path = Some(path.clone());
+            p.mesh.up = crate::project::AxisChoice::PosZ;
+            p.mesh.forward = crate::project::AxisChoice::NegY;
+            p.mesh.metres_per_unit = None;
+            p.pores.enabled = false;
+            p.furrows.enabled = false;
+            p.noise.strength = 0.0;
+            let mut scene = Scene::new(p).unwrap();
+            scene
+                .bake(&BakeRequest::maps(size, 1.0, false), &CancelToken::never())
+                .unwrap();
+            compare(
+                name,
+                &reference,
+                scene.large().unwrap().height.data(),
+                &scene,
+            );
+            continue;
+        }
+        let (scene, map) = default_map(&path, size);
+        let mpu = scene.metres_per_unit();
+        assert!(
+            (mpu * scale / unit - 1.0).abs() < 0.03,
+            "{name}: {mpu} m per unit ({})",
+            scene.units().how
+        );
+        compare(name, &reference, &map, &scene);
+        if reference.is_none() {
+            reference = Some(map);
+        }
+    }
+
+    fn compare(name: &str, reference: &Option<Vec<f32>>, map: &[f32], scene: &Scene) {
+        let Some(r) = reference else { return };
+        let peak = r.iter().fold(0.0f32, |m, h| m.max(h.abs()));
+        // Texels that differ by over a tenth of the peak: the fits agree to a fraction of
+        // a wrinkle's width.
+        let off = r
+            .iter()
+            .zip(map)
+            .filter(|(a, b)| (*a - *b).abs() > 0.1 * peak)
+            .count();
+        let wrinkled = r.iter().filter(|h| h.abs() > 0.1 * peak).count();
+        assert!(
+            off * 20 <= wrinkled,
+            "{name}: {off} of {wrinkled} wrinkled texels differ ({})",
+            scene.layout().how
+        );
+    }
+}
+
+/// Texels on both sides of a UV seam that are one 3D point get one height: the scan
+/// re-cut into islands (every triangle of the face's right half moved to its own island
+/// on the right of the chart), the heights compared across the cut.
+#[test]
+fn heights_agree_across_a_uv_seam() {
+    let scan = Mesh::load(&heads_dir().join("lee-perry-smith/LeePerrySmith.glb")).unwrap();
+    let size = 512u32;
+    // Re-UV: the chart shrunk into the left half of the square; the triangles of the
+    // subject's right (x < 0) moved by +0.5 in u into the right half: a seam down the
+    // middle of the face.
+    let mut positions = Vec::new();
+    let mut uvs = Vec::new();
+    let mut indices = Vec::new();
+    for [a, b, c] in scan.triangles() {
+        let corners = [a, b, c].map(|i| i as usize);
+        let right = corners.iter().all(|&i| scan.positions()[i].x < 0.0);
+        for i in corners {
+            indices.push(positions.len() as u32);
+            positions.push(scan.positions()[i]);
+            let uv = scan.uvs()[i];
+            uvs.push(Vec2::new(uv.x * 0.5 + if right { 0.5 } else { 0.0 }, uv.y));
+        }
+    }
+    let raw = crate::mesh::RawMesh {
+        positions,
+        uvs: Some(uvs),
+        indices,
+        ..Default::default()
+    };
+    let islands = Mesh::build(raw, "scan in islands").unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("islands.obj");
+    std::fs::write(&path, crate::mesh::obj::to_obj(&islands, |p| p)).unwrap();
+    let (_scene, map) = default_map(&path, size);
+    let peak = map.iter().fold(0.0f32, |m, h| m.max(h.abs()));
+    // The cut's edges: shared by a triangle moved to the right island and one kept.
+    let mut edges: std::collections::HashMap<(u32, u32), [bool; 2]> = Default::default();
+    for [a, b, c] in scan.triangles() {
+        let right = [a, b, c]
+            .iter()
+            .all(|&i| scan.positions()[i as usize].x < 0.0);
+        for (p, q) in [(a, b), (b, c), (c, a)] {
+            edges.entry((p.min(q), p.max(q))).or_default()[usize::from(right)] = true;
+        }
+    }
+    let sample = |uv: Vec2| {
+        let n = size as f32;
+        let (x, y) = (uv.x * n - 0.5, (1.0 - uv.y) * n - 0.5);
+        let (x0, y0) = (x.floor(), y.floor());
+        let at = |xi: f32, yi: f32| {
+            let (xi, yi) = (xi.clamp(0.0, n - 1.0), yi.clamp(0.0, n - 1.0));
+            map[yi as usize * size as usize + xi as usize]
+        };
+        let (fx, fy) = (x - x0, y - y0);
+        let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1.0, y0) * fx;
+        let bottom = at(x0, y0 + 1.0) * (1.0 - fx) + at(x0 + 1.0, y0 + 1.0) * fx;
+        top * (1.0 - fy) + bottom * fy
+    };
+    // Points along each seam edge, read in both islands.
+    let (mut pairs, mut worst, mut wrinkled) = (0, 0.0f32, 0);
+    for (&(a, b), sides) in &edges {
+        if sides != &[true, true] {
+            continue;
+        }
+        let (ua, ub) = (scan.uvs()[a as usize], scan.uvs()[b as usize]);
+        for s in [0.25f32, 0.5, 0.75] {
+            let uv = ua.lerp(ub, s);
+            let kept = sample(Vec2::new(uv.x * 0.5, uv.y));
+            let moved = sample(Vec2::new(uv.x * 0.5 + 0.5, uv.y));
+            pairs += 1;
+            worst = worst.max((kept - moved).abs());
+            wrinkled += usize::from(kept.abs().max(moved.abs()) > 0.05 * peak);
+        }
+    }
+    eprintln!(
+        "{pairs} points on the seam ({wrinkled} on a wrinkle), worst difference {worst} (peak {peak})"
+    );
+    assert!(pairs > 40, "only {pairs} points on the seam");
+    // The seam runs down the middle of the forehead, through its middle lines.
+    assert!(wrinkled >= 5, "only {wrinkled} seam points on a wrinkle");
+    assert!(
+        worst <= 0.1 * peak,
+        "heights across the seam differ by up to {worst} (peak {peak}, {pairs} pairs)"
+    );
+}

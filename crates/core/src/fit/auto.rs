@@ -76,24 +76,30 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
 
     let h_pos = head.positions();
     let (h_top, t_top) = (top(h_pos), top(t_pos));
+    // The starts are independent: side by side on the pool; the best is chosen in start
+    // order, so the result does not depend on the thread count.
+    use rayon::prelude::*;
+    let tried: Vec<Option<(f32, Similarity)>> = [0.5f32, 0.71, 1.0, 1.41, 2.0]
+        .par_iter()
+        .map(|&factor| {
+            let scale = 1.0 / (metres_per_unit * factor);
+            // The cranium: the 12 cm below the top, whose box centre is the skull's axis.
+            let t_centre = band_centre(t_pos, t_top, 0.12)?;
+            let h_centre = band_centre(h_pos, h_top, 0.12 * scale)?;
+            let start = Similarity {
+                scale,
+                rotation: glam::Quat::IDENTITY,
+                translation: Vec3::new(h_centre.x, h_top, h_centre.z)
+                    - Vec3::new(t_centre.x, t_top, t_centre.z) * scale,
+            };
+            let (s, median) = icp(&samples, &bvh, &normals, start, 40, true);
+            let median_m = median / s.scale;
+            median_m.is_finite().then_some((median_m, s))
+        })
+        .collect();
     let mut best: Option<(f32, Similarity)> = None;
-    for factor in [0.5f32, 0.71, 1.0, 1.41, 2.0] {
-        let scale = 1.0 / (metres_per_unit * factor);
-        // The cranium: the 12 cm below the top, whose box centre is the skull's axis.
-        let t_centre = band_centre(t_pos, t_top, 0.12);
-        let h_centre = band_centre(h_pos, h_top, 0.12 * scale);
-        let (Some(t_centre), Some(h_centre)) = (t_centre, h_centre) else {
-            continue;
-        };
-        let start = Similarity {
-            scale,
-            rotation: glam::Quat::IDENTITY,
-            translation: Vec3::new(h_centre.x, h_top, h_centre.z)
-                - Vec3::new(t_centre.x, t_top, t_centre.z) * scale,
-        };
-        let (s, median) = icp(&samples, &bvh, &normals, start, 40, true);
-        let median_m = median / s.scale;
-        if median_m.is_finite() && best.as_ref().is_none_or(|b| median_m < b.0) {
+    for (median_m, s) in tried.into_iter().flatten() {
+        if best.as_ref().is_none_or(|b| median_m < b.0) {
             best = Some((median_m, s));
         }
     }

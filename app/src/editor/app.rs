@@ -408,6 +408,9 @@ impl EditorApp {
                             "metres per unit: {} ({}); set it in the layer panel's mesh section",
                             u.metres_per_unit, u.how
                         ));
+                        // An imported head: say how its layers are placed.
+                        let how = self.session.snapshot.layout_how.clone();
+                        self.info(format!("layout: {how}"));
                     }
                 }
                 Outcome::Failed(message) => {
@@ -432,9 +435,18 @@ impl EditorApp {
         }
     }
 
-    /// The UV layout overlay's texture, made once per mesh.
-    fn layout_texture(&mut self, ctx: &egui::Context) -> Option<egui::TextureHandle> {
-        let image = self.session.snapshot.images.uv_layout.clone()?;
+    /// The UV layout overlay's texture of `kind`'s chart, made once per mesh.
+    fn layout_texture(
+        &mut self,
+        ctx: &egui::Context,
+        kind: MapKind,
+    ) -> Option<egui::TextureHandle> {
+        let snapshot = &self.session.snapshot;
+        let image = if kind.on_fibre_chart(snapshot.fitted) {
+            snapshot.images.uv_layout.clone()?
+        } else {
+            (snapshot.images.head_uv_layout.clone()).or(snapshot.images.uv_layout.clone())?
+        };
         let stamp = Arc::as_ptr(&image) as usize;
         match &mut self.layout_texture {
             Some((t, s)) if *s == stamp => Some(t.clone()),
@@ -461,6 +473,7 @@ impl EditorApp {
             MapKind::Transition => images.transition.clone(),
             MapKind::Fine => images.fine.clone(),
             MapKind::Mask => images.mask.clone(),
+            MapKind::LargeHead => images.large_head.clone().or(images.large_height.clone()),
         }?;
         let stamp = Arc::as_ptr(&image) as usize;
         if let Some((_, t, s)) = self.textures.iter_mut().find(|(k, _, _)| *k == kind) {
@@ -586,7 +599,8 @@ impl eframe::App for EditorApp {
             });
         let kind = self.persisted.map_view.kind;
         let texture = self.texture(&ctx, kind);
-        let layout_texture = self.layout_texture(&ctx);
+        let layout_texture = self.layout_texture(&ctx, kind);
+        let fitted = self.session.snapshot.fitted;
         let wrinkles = self.wrinkles().to_vec();
         let render_state = frame
             .wgpu_render_state()
@@ -666,7 +680,7 @@ impl eframe::App for EditorApp {
                 let mut edit = None;
                 if let Some(r) = map_rect {
                     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
-                    edit = map_view::map_view_ui(&mut child, &mut self.persisted.map_view, texture.as_ref(), layout_texture.as_ref(), &wrinkles);
+                    edit = map_view::map_view_ui(&mut child, &mut self.persisted.map_view, texture.as_ref(), layout_texture.as_ref(), &wrinkles, fitted);
                 }
                 ui.allocate_rect(avail, egui::Sense::hover());
                 edit

@@ -17,6 +17,9 @@ pub enum MapKind {
     Transition,
     Fine,
     Mask,
+    /// The large-wrinkle heights in the head's own UV layout (what the 3D view and the
+    /// exports use): for checking an imported head's output.
+    LargeHead,
 }
 
 impl MapKind {
@@ -26,9 +29,10 @@ impl MapKind {
         (self == Self::LargeNormal, self == Self::MicroNormal)
     }
 
-    pub const ALL: [MapKind; 7] = [
+    pub const ALL: [MapKind; 8] = [
         MapKind::LargeHeight,
         MapKind::LargeNormal,
+        MapKind::LargeHead,
         MapKind::MicroHeight,
         MapKind::MicroNormal,
         MapKind::Transition,
@@ -45,15 +49,28 @@ impl MapKind {
             MapKind::Transition => "hair transition",
             MapKind::Fine => "fine-wrinkle tile",
             MapKind::Mask => "large-wrinkle mask",
+            MapKind::LargeHead => "large wrinkles: the head's own UVs",
         }
     }
 
-    /// Whether the map is in the head's UV space (fibres are drawn over it).
-    pub fn is_head_uv(self) -> bool {
-        matches!(
+    /// Whether the map covers a head's UV square (not a repeated tile).
+    pub fn is_uv_map(self) -> bool {
+        !matches!(
             self,
-            MapKind::LargeHeight | MapKind::LargeNormal | MapKind::Transition | MapKind::Mask
+            MapKind::MicroHeight | MapKind::MicroNormal | MapKind::Fine
         )
+    }
+
+    /// Whether the map is on the chart the fibres are authored on (the template's; for a
+    /// head read at its own UVs every UV map is): fibres are drawn and edited over it.
+    /// A `fitted` head's own layout (its large map read through the fit, its hair
+    /// transition) is not.
+    pub fn on_fibre_chart(self, fitted: bool) -> bool {
+        match self {
+            MapKind::LargeHeight | MapKind::LargeNormal | MapKind::Mask => true,
+            MapKind::Transition | MapKind::LargeHead => !fitted,
+            MapKind::MicroHeight | MapKind::MicroNormal | MapKind::Fine => false,
+        }
     }
 }
 
@@ -136,6 +153,7 @@ pub fn map_view_ui(
     texture: Option<&egui::TextureHandle>,
     layout: Option<&egui::TextureHandle>,
     wrinkles: &[WrinkleSource],
+    fitted: bool,
 ) -> Option<FibreEdit> {
     let (rect, background) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
     let painter = ui.painter_at(rect);
@@ -192,7 +210,7 @@ pub fn map_view_ui(
         }
     }
     if state.show_layout
-        && state.kind.is_head_uv()
+        && state.kind.is_uv_map()
         && let Some(l) = layout
     {
         painter.image(
@@ -227,7 +245,7 @@ pub fn map_view_ui(
             colour,
         );
     }
-    if !(state.show_fibres && state.kind.is_head_uv()) {
+    if !(state.show_fibres && state.kind.on_fibre_chart(fitted)) {
         return None;
     }
     let mut edit = None;

@@ -64,6 +64,10 @@ pub struct Snapshot {
     pub compare: Option<Box<Snapshot>>,
     /// Which mask `images.mask` shows.
     mask_stamp: usize,
+    /// Whether the head reads the layers through the template's fit.
+    pub fitted: bool,
+    /// How the head's layout was decided (`Scene::layout`).
+    pub layout_how: String,
 }
 
 /// The outcome of one job.
@@ -359,18 +363,35 @@ fn bake(
             .large_mask()
             .map(|m| grey_image(m.width_px(), m.height_px(), m.values()));
     }
-    if merged.mesh || snapshot.mesh.is_none() {
+    let fitted = s.layout().fit.is_some();
+    if merged.mesh || snapshot.mesh.is_none() || fitted != snapshot.fitted {
         snapshot.mesh = Some(s.mesh().clone());
-        snapshot.images.uv_layout = Some(uv_layout_image(s.mesh(), 1024));
+        snapshot.fitted = fitted;
+        if fitted {
+            let template = &agesim_core::fit::template().mesh;
+            snapshot.images.uv_layout = Some(uv_layout_image(template, 1024));
+            snapshot.images.head_uv_layout = Some(uv_layout_image(s.mesh(), 1024));
+        } else {
+            snapshot.images.uv_layout = Some(uv_layout_image(s.mesh(), 1024));
+            snapshot.images.head_uv_layout = None;
+        }
     }
+    snapshot.layout_how = s.layout().how.clone();
     snapshot.layers.refresh(s, &merged, refresh_all);
     let images = &mut snapshot.images;
     if merged.large || snapshot.large.is_none() {
         snapshot.large = s.large().cloned().map(Arc::new);
+        let grey = |h: &HeightMap| grey_image(h.width_px(), h.height_px(), h.data());
+        // The fibres' chart: the template's map for a fitted head.
         images.large_height = snapshot
             .large
             .as_ref()
-            .map(|l| grey_image(l.height.width_px(), l.height.height_px(), l.height.data()));
+            .map(|l| grey(l.template.as_ref().unwrap_or(&l.height)));
+        images.large_head = snapshot
+            .large
+            .as_ref()
+            .filter(|l| l.template.is_some())
+            .map(|l| grey(&l.height));
         images.large_normal = snapshot
             .large
             .as_ref()

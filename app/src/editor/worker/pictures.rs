@@ -12,8 +12,13 @@ pub struct MapImages {
     pub micro_normal: Option<Arc<egui::ColorImage>>,
     pub transition: Option<Arc<egui::ColorImage>>,
     pub fine: Option<Arc<egui::ColorImage>>,
-    /// The mesh's UV layout (triangle edges), white lines on transparent, for the overlay.
+    /// The UV layout (triangle edges) of the chart the fibres are drawn on — the
+    /// template's for a fitted head, else the mesh's — white lines on transparent.
     pub uv_layout: Option<Arc<egui::ColorImage>>,
+    /// A fitted head's own UV layout (the overlay of its own maps).
+    pub head_uv_layout: Option<Arc<egui::ColorImage>>,
+    /// A fitted head's large-wrinkle heights in its own UV layout.
+    pub large_head: Option<Arc<egui::ColorImage>>,
     /// The large-wrinkle mask.
     pub mask: Option<Arc<egui::ColorImage>>,
 }

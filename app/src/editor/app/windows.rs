@@ -188,6 +188,12 @@ impl EditorApp {
                         ui.end_row();
                     }
                 });
+                ui.add_space(6.0);
+                ui.label("Test heads (assets/heads):");
+                ui.label(
+                    "Infinite, 3D Head Scan by Lee Perry-Smith, licensed under CC BY 3.0, based on a work at triplegangers.com.",
+                );
+                ui.label("The MakeHuman head: CC0 1.0.");
             });
         self.windows.about = open;
     }

@@ -13,7 +13,8 @@ struct Frame {
     light_dir: vec4<f32>,
     // rgb: light colour (linear); w: ambient intensity.
     light_colour: vec4<f32>,
-    // rgb: skin albedo (linear), paled for the age; w: unused.
+    // rgb: skin albedo (linear), paled for the age; w: how far the colour map pales
+    // toward skin_spec.yzw at this age (0–1).
     skin_albedo: vec4<f32>,
     // x: POM mode (0 linear, 1 binary, 2 combined, 3 normal only, 4 displacement);
     // y: linear steps L; z: binary steps B; w: graying ramp (0 linear, 1 smoothstep).
@@ -34,11 +35,13 @@ struct Frame {
     hair_k: vec4<f32>,
     // x: viewport width, px; y: hair droop (fraction of the length);
     // z: what the skin writes: 0 colour, 1 the POM hit (hit uv, polygon uv), 2 the
-    // composed tangent-space normal; w: unused.
+    // composed tangent-space normal; w: 1 when a colour map is bound (it replaces the
+    // skin albedo).
     hair_misc: vec4<f32>,
     // rgb: wrap lighting per channel in [0, 1]; w: specular roughness.
     skin_wrap: vec4<f32>,
-    // x: specular reflectance at normal incidence (F0); yzw: unused.
+    // x: specular reflectance at normal incidence (F0); yzw: the pale tone (linear) the
+    // colour map pales toward.
     skin_spec: vec4<f32>,
 }
 

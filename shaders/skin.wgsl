@@ -26,6 +26,9 @@ const MODE_DISPLACEMENT: u32 = 4u;
 @group(0) @binding(4) var surface_sampler: sampler;
 // Wraps both ways: the tiles repeat over the head.
 @group(0) @binding(5) var tile_sampler: sampler;
+// The head's base colour map (sRGB texture, read as linear) over the mesh UV, when
+// frame.hair_misc.w is 1; a white texel otherwise.
+@group(0) @binding(6) var colour_map: texture_2d<f32>;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -353,8 +356,13 @@ fn shade(s: Surface) -> vec4<f32> {
     }
     let n = normalize(t_geo * n_ts.x + b_geo * n_ts.y + n_geo * n_ts.z);
 
-    // The albedo arrives with the age's paling applied (docs/models.md "Age").
-    let albedo = frame.skin_albedo.rgb;
+    // The albedo arrives with the age's paling applied (docs/models.md "Age"); a head's
+    // own colour map pales the same way.
+    var albedo = frame.skin_albedo.rgb;
+    if frame.hair_misc.w > 0.5 {
+        let c = textureSampleGrad(colour_map, surface_sampler, uv, ddx, ddy).rgb;
+        albedo = mix(c, frame.skin_spec.yzw, clamp(frame.skin_albedo.w, 0.0, 1.0));
+    }
 
     let l = frame.light_dir.xyz;
     let light = frame.light_colour.rgb * frame.light_dir.w;

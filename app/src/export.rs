@@ -328,10 +328,29 @@ fn export_glb(
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let range = scene.large().map(|_| height.min_max());
+    // The head's own colour map, paled for the age as the view pales it; else the
+    // skin colour as a factor.
     let a = params.skin.albedo;
+    let (base_colour, base_colour_png) = match scene.colour_map() {
+        Some(map) => {
+            let aged = map.paled(params.skin.pale_albedo.to_array(), params.skin.pale);
+            let mut png = Vec::new();
+            out::encode_png(
+                &mut png,
+                aged.width_px,
+                aged.height_px,
+                out::PngPixels::Rgba8,
+                &aged.rgba,
+            )
+            .context("encoding the base colour map")?;
+            ([1.0; 4], Some(png))
+        }
+        None => ([a.x, a.y, a.z, 1.0], None),
+    };
     let material = GlbMaterial {
         name: format!("agesim skin, {years:.0} years"),
-        base_colour: [a.x, a.y, a.z, 1.0],
+        base_colour,
+        base_colour_png,
         roughness: 0.42,
         metallic: 0.0,
         normal_png: Some(png),

@@ -68,6 +68,51 @@ fn the_aged_head_glb_loads_back_with_its_material() {
     assert_eq!(json["extras"]["age_years"], 70.0);
 }
 
+/// A head with its own colour map exports it, paled for the age, as the material's
+/// `baseColorTexture` (the factor then white): the artist's texture work is kept.
+#[test]
+fn a_colour_map_is_exported_aged_as_the_base_colour_texture() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("colour.png");
+    image::RgbImage::from_pixel(16, 8, image::Rgb([150, 60, 40]))
+        .save(&map)
+        .unwrap();
+    let head = dir.path().join("head.glb");
+    std::fs::write(&head, agesim_core::head::DEFAULT_HEAD_GLB).unwrap();
+    let mut project = Project::default();
+    project.mesh.path = Some(head);
+    project.mesh.colour_map = Some(map);
+    let project_file = dir.path().join("p.agesim.json");
+    std::fs::write(&project_file, project.to_json_pretty()).unwrap();
+    let glb = dir.path().join("aged.glb");
+    let mut images_at = Vec::new();
+    for years in ["20", "80"] {
+        let o = agesim(&[
+            "export",
+            "--project",
+            project_file.to_str().unwrap(),
+            "--age-years",
+            years,
+            "--size",
+            "64",
+            "--glb",
+            glb.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (doc, _, images) = gltf::import(&glb).expect("the GLB imports");
+        let pbr = doc.materials().next().unwrap().pbr_metallic_roughness();
+        assert_eq!(pbr.base_color_factor(), [1.0; 4]);
+        let texture = pbr.base_color_texture().expect("a base colour texture");
+        let image = images[texture.texture().source().index()].clone();
+        assert_eq!((image.width, image.height), (16, 8));
+        images_at.push(image.pixels[..4].to_vec());
+    }
+    // Young: the map as it is; old: paler (toward the pale tone, every channel up).
+    assert_eq!(&images_at[0][..3], &[150, 60, 40]);
+    let (young, old) = (&images_at[0], &images_at[1]);
+    assert!((0..3).all(|c| old[c] > young[c]), "{young:?} → {old:?}");
+}
+
 #[test]
 fn maps_at_two_ages_differ_and_the_old_one_is_deeper() {
     let dir = tempfile::tempdir().unwrap();

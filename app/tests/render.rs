@@ -83,3 +83,67 @@ fn bad_arguments_are_rejected_before_rendering() {
         assert!(!std::path::Path::new("x.png").exists());
     }
 }
+
+/// A head's own colour map replaces the skin colour: the default head with a pure green
+/// map renders green where it was skin-coloured; a map that cannot be read is refused
+/// with its name.
+#[test]
+fn a_colour_map_colours_the_head() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("green.png");
+    image::RgbImage::from_pixel(8, 8, image::Rgb([20, 200, 40]))
+        .save(&map)
+        .unwrap();
+    // The default head written as a file, so it takes a --mesh's flags.
+    let head = dir.path().join("head.glb");
+    std::fs::write(&head, agesim_core::head::DEFAULT_HEAD_GLB).unwrap();
+    let mean = |args: &[&str]| -> Option<[f64; 3]> {
+        let out = dir.path().join("h.png");
+        let mut all = vec![
+            "render",
+            "--size",
+            "40x40",
+            "--no-hair",
+            "--map-size",
+            "64",
+            "--age",
+            "0",
+        ];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["--out", out.to_str().unwrap()]);
+        render(&all)?;
+        let img = image::open(&out).unwrap().to_rgb8();
+        // The middle of the frame: the face.
+        let mut sum = [0.0; 3];
+        for y in 15..25 {
+            for x in 15..25 {
+                let p = img.get_pixel(x, y);
+                for c in 0..3 {
+                    sum[c] += f64::from(p[c]) / 100.0;
+                }
+            }
+        }
+        Some(sum)
+    };
+    let mesh = head.to_str().unwrap();
+    let Some(plain) = mean(&["--mesh", mesh]) else {
+        return;
+    };
+    let green = mean(&["--mesh", mesh, "--colour-map", map.to_str().unwrap()]).unwrap();
+    assert!(plain[0] > plain[1], "skin is reddish: {plain:?}");
+    assert!(
+        green[1] > 1.5 * green[0],
+        "the map's green shows: {green:?}"
+    );
+    let out = agesim(&[
+        "render",
+        "--mesh",
+        mesh,
+        "--colour-map",
+        "/no/such.png",
+        "--out",
+        "x.png",
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/no/such.png"));
+}

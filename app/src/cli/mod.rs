@@ -128,6 +128,13 @@ pub struct MeshArgs {
     /// mesh file's units): its outer eye corners set the units.
     #[arg(long, value_name = "FILE")]
     pub landmarks: Option<std::path::PathBuf>,
+    /// The head's base colour map (any image) over its own UVs: shown and paled with age
+    /// instead of the skin colour.
+    #[arg(long, value_name = "FILE")]
+    pub colour_map: Option<std::path::PathBuf>,
+    /// Turn --colour-map upside down (a head whose UVs use the other v convention).
+    #[arg(long, requires = "colour_map")]
+    pub colour_map_flip_v: bool,
 }
 
 impl MeshArgs {
@@ -144,6 +151,10 @@ impl MeshArgs {
         }
         if let Some(m) = self.metres_per_unit {
             p.mesh.metres_per_unit = Some(m);
+        }
+        if let Some(c) = &self.colour_map {
+            p.mesh.colour_map = Some(c.clone());
+            p.mesh.colour_map_flip_v = self.colour_map_flip_v;
         }
         Ok(())
     }

@@ -134,6 +134,8 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
                 0.0
             },
             albedo,
+            pale_albedo: linear(s.pale_albedo),
+            pale,
             micro_relief: project.micro_enabled(),
             micro_tile,
             fine_tile,

@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use super::HeadScale;
 use agesim_core::hair::HairInstances;
+use agesim_core::mask::ColourMap;
 use agesim_core::scene::{Changed, Scene};
 use agesim_core::{HeightMap, Mesh};
 use agesim_render::{PreparedLayer, RenderError, Renderer, TileLayer, Upload, ViewId};
@@ -26,6 +27,8 @@ pub struct Layers {
     pub metres_per_unit: f32,
     /// The head's relief depth per template UV unit ([`Scene::relief_scale`]).
     pub relief_scale: f32,
+    /// The head's base colour map ([`Scene::colour_map`]).
+    pub colour: Option<Arc<ColourMap>>,
 }
 
 impl Default for Layers {
@@ -39,6 +42,7 @@ impl Default for Layers {
             hair: None,
             metres_per_unit: 1.0,
             relief_scale: 1.0,
+            colour: None,
         }
     }
 }
@@ -65,6 +69,7 @@ impl Layers {
             self.fine = scene.fine().map(|f| Arc::new(PreparedLayer::tile(f)));
         }
         self.hair = scene.hair().cloned();
+        self.colour = scene.colour_map().cloned();
         let metres_per_unit = scene.metres_per_unit();
         // Measured over the mesh: only when the mesh or its units change.
         if new_mesh || metres_per_unit != self.metres_per_unit {
@@ -97,6 +102,7 @@ pub struct Uploaded {
     micro: usize,
     fine: usize,
     hair: usize,
+    colour: usize,
 }
 
 impl Uploaded {
@@ -128,6 +134,14 @@ impl Uploaded {
         {
             renderer.upload_hair(h);
             self.hair = stamp(&layers.hair);
+        }
+        if stamp(&layers.colour) != self.colour {
+            let map = layers
+                .colour
+                .as_deref()
+                .map(|c| (c.width_px, c.height_px, c.rgba.as_slice()));
+            result = result.and(renderer.upload_colour_map(map));
+            self.colour = stamp(&layers.colour);
         }
         result
     }

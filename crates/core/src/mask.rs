@@ -7,6 +7,104 @@ use std::path::Path;
 
 use crate::error::Error;
 
+/// Decodes an image file in memory within the limits of [`crate::limits`]: the header is
+/// checked before any pixel is decoded, so a small file declaring 20000×20000 pixels is
+/// refused, not allocated. `path` names the file in errors.
+pub fn decode_image(bytes: &[u8], path: &Path) -> Result<image::DynamicImage, Error> {
+    let fail = |message: String| Error::Image {
+        path: path.to_owned(),
+        message,
+    };
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| fail(e.to_string()))?;
+    let (w, h) = reader.into_dimensions().map_err(|e| fail(e.to_string()))?;
+    let max = crate::limits::MAX_IMAGE_SIDE_PX;
+    if w > max || h > max {
+        return Err(fail(format!(
+            "the image declares {w}×{h} pixels, more than the limit of {max} on a side"
+        )));
+    }
+    reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| fail(e.to_string()))?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(max);
+    limits.max_image_height = Some(max);
+    limits.max_alloc = Some(crate::limits::MAX_IMAGE_DECODE_BYTES);
+    reader.limits(limits);
+    reader.decode().map_err(|e| fail(e.to_string()))
+}
+
+/// A head's base colour map: sRGB RGBA8, row 0 at the top (docs/models.md §1), over the
+/// head's own UVs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ColourMap {
+    pub width_px: u32,
+    pub height_px: u32,
+    /// sRGB-encoded RGBA, 4 bytes a texel.
+    pub rgba: Vec<u8>,
+}
+
+impl ColourMap {
+    /// Reads any image `image` decodes as the head's colour map; `flip_v` turns it upside
+    /// down (a head whose UVs use the other v convention than its picture).
+    pub fn load(path: &Path, flip_v: bool) -> Result<Self, Error> {
+        let bytes = crate::limits::read_file(path, crate::limits::MAX_IMAGE_FILE_BYTES)?;
+        let mut img = decode_image(&bytes, path)?.into_rgba8();
+        if flip_v {
+            image::imageops::flip_vertical_in_place(&mut img);
+        }
+        let (width_px, height_px) = img.dimensions();
+        Ok(Self {
+            width_px,
+            height_px,
+            rgba: img.into_raw(),
+        })
+    }
+
+    /// The map paled with age as the renderer pales it (docs/models.md "Age"): each
+    /// texel moved toward `tone` (linear RGB) by `amount` in linear light, re-encoded as
+    /// sRGB; alpha kept.
+    pub fn paled(&self, tone: [f32; 3], amount: f32) -> Self {
+        let amount = if amount.is_nan() {
+            0.0
+        } else {
+            amount.clamp(0.0, 1.0)
+        };
+        // The 256 sRGB codes in linear light, and back by a 4096-step table.
+        let to_linear: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
+        let to_srgb: Vec<u8> = (0..4096)
+            .map(|i| (linear_to_srgb(i as f32 / 4095.0) * 255.0).round() as u8)
+            .collect();
+        let mut rgba = self.rgba.clone();
+        for px in rgba.chunks_exact_mut(4) {
+            for c in 0..3 {
+                let l = to_linear[px[c] as usize];
+                let m = l + (tone[c].clamp(0.0, 1.0) - l) * amount;
+                px[c] = to_srgb[(m * 4095.0).round() as usize];
+            }
+        }
+        Self { rgba, ..*self }
+    }
+}
+
+fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn linear_to_srgb(l: f32) -> f32 {
+    if l <= 0.003_130_8 {
+        l * 12.92
+    } else {
+        1.055 * l.powf(1.0 / 2.4) - 0.055
+    }
+}
+
 /// A grey-scale image with values in [0,1], sampled in UV.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mask {
@@ -47,31 +145,7 @@ impl Mask {
     /// Decodes an image file already in memory, as [`Mask::load`] does; `path` only names
     /// it in errors (e.g. a mask built into the binary).
     pub fn decode(bytes: &[u8], path: &Path) -> Result<Self, Error> {
-        let fail = |message: String| Error::Image {
-            path: path.to_owned(),
-            message,
-        };
-        // The header is checked against the limits before any pixel is decoded: a small
-        // file declaring 20000×20000 pixels is refused, not allocated.
-        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|e| fail(e.to_string()))?;
-        let (w, h) = reader.into_dimensions().map_err(|e| fail(e.to_string()))?;
-        let max = crate::limits::MAX_IMAGE_SIDE_PX;
-        if w > max || h > max {
-            return Err(fail(format!(
-                "the image declares {w}×{h} pixels, more than the limit of {max} on a side"
-            )));
-        }
-        reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|e| fail(e.to_string()))?;
-        let mut limits = image::Limits::default();
-        limits.max_image_width = Some(max);
-        limits.max_image_height = Some(max);
-        limits.max_alloc = Some(crate::limits::MAX_IMAGE_DECODE_BYTES);
-        reader.limits(limits);
-        let img = reader.decode().map_err(|e| fail(e.to_string()))?;
+        let img = decode_image(bytes, path)?;
         let grey = img.into_luma16();
         let (w, h) = grey.dimensions();
         let values = grey

@@ -155,6 +155,11 @@ pub struct SkinParams {
     pub fine_blend: f32,
     /// Skin albedo, linear RGB in [0, 1], paling with age already applied by the caller.
     pub albedo: Vec3,
+    /// The tone a head's colour map pales toward with age (linear RGB).
+    pub pale_albedo: Vec3,
+    /// How far a head's colour map pales toward `pale_albedo` at this age, 0–1 (the
+    /// age's paling; `albedo` already has it).
+    pub pale: f32,
     /// Draw the micro-relief layer.
     pub micro_relief: bool,
     /// Where the micro-relief tile lies on the skin (its side, its normal strength).
@@ -179,6 +184,8 @@ impl Default for SkinParams {
             disp_scale: 0.005,
             fine_blend: 0.5,
             albedo: Vec3::new(0.50, 0.30, 0.22),
+            pale_albedo: Vec3::new(0.69, 0.48, 0.37),
+            pale: 0.0,
             wrap: Vec3::new(0.45, 0.22, 0.15),
             roughness: 0.42,
             f0: 0.028,

@@ -69,6 +69,8 @@ pub(crate) struct FrameContext {
     pub fine_strength: f32,
     /// Mesh units per UV unit (mean of u and v) of the uploaded mesh, for displacement.
     pub mesh_units_per_uv: f32,
+    /// A colour map is bound: it replaces the skin albedo.
+    pub colour_map: bool,
 }
 
 /// Clamps to [0, 1]; NaN (which `clamp` keeps) becomes 0, so no NaN reaches the GPU.
@@ -96,7 +98,7 @@ impl FrameUniform {
             camera_pos: [eye.x, eye.y, eye.z, if ctx.encode_srgb { 1.0 } else { 0.0 }],
             light_dir: v3(l, non_negative(p.light.intensity)),
             light_colour: v3(p.light.colour, non_negative(p.light.ambient)),
-            skin_albedo: v3(s.albedo, 0.0),
+            skin_albedo: v3(s.albedo, unit(s.pale)),
             pom: [
                 s.pom_mode.shader_code(),
                 s.linear_steps.clamp(1, 256),
@@ -137,7 +139,7 @@ impl FrameUniform {
                     FrameOutput::PomHit => 1.0,
                     FrameOutput::TangentNormal => 2.0,
                 },
-                0.0,
+                if ctx.colour_map { 1.0 } else { 0.0 },
             ],
             skin_wrap: [
                 unit(s.wrap.x),
@@ -145,7 +147,12 @@ impl FrameUniform {
                 unit(s.wrap.z),
                 s.roughness.clamp(0.05, 1.0),
             ],
-            skin_spec: [unit(s.f0), 0.0, 0.0, 0.0],
+            skin_spec: [
+                unit(s.f0),
+                unit(s.pale_albedo.x),
+                unit(s.pale_albedo.y),
+                unit(s.pale_albedo.z),
+            ],
         }
     }
 }
@@ -164,6 +171,7 @@ mod tests {
             micro_strength: 0.002,
             fine_strength: 0.0015,
             mesh_units_per_uv: 0.5,
+            colour_map: false,
         }
     }
 

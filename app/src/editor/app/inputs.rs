@@ -83,6 +83,7 @@ impl EditorApp {
         let inputs = [
             &p.mesh.path,
             &p.mesh.landmarks,
+            &p.mesh.colour_map,
             &p.large.mask,
             &p.hair.outer_mask,
             &p.hair.inner_mask,

@@ -64,6 +64,7 @@ impl EditorApp {
         }
         ui.menu_button("Load image", |ui| {
             for (field, text) in [
+                ("mesh.colour_map", "Head colour map…"),
                 ("large.mask", "Large-wrinkle mask…"),
                 ("fine.tile", "Fine-wrinkle tile…"),
                 ("hair.outer_mask", "Hair mask, young (outer)…"),

@@ -396,8 +396,11 @@ pub fn write_glb(mesh: &super::Mesh) -> Vec<u8> {
 #[derive(Clone, Debug)]
 pub struct GlbMaterial {
     pub name: String,
-    /// Linear RGBA (`baseColorFactor`).
+    /// Linear RGBA (`baseColorFactor`; multiplies `base_colour_png` when there is one).
     pub base_colour: [f32; 4],
+    /// The base colour as PNG bytes (sRGB, over the mesh's UVs), embedded in the binary
+    /// chunk as `baseColorTexture`.
+    pub base_colour_png: Option<Vec<u8>>,
     pub roughness: f32,
     pub metallic: f32,
     /// A tangent-space normal map as PNG bytes (OpenGL convention: green = +bitangent, as
@@ -514,18 +517,41 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
     let mut material_json = String::new();
     if let Some(m) = material {
         let mut normal = String::new();
-        let mut images = String::new();
-        if let Some(png) = &m.normal_png {
+        let mut colour = String::new();
+        let mut images = Vec::new();
+        for (png, name) in [
+            (&m.normal_png, "normal"),
+            (&m.base_colour_png, "base colour"),
+        ] {
+            let Some(png) = png else { continue };
             let view = push_view(&mut bin, &mut views, png, "");
-            normal = r#","normalTexture":{"index":0}"#.to_owned();
-            images = format!(
-                r#","images":[{{"bufferView":{view},"mimeType":"image/png","name":"normal"}}],"textures":[{{"source":0,"sampler":0}}],"samplers":[{{"magFilter":9729,"minFilter":9987,"wrapS":33071,"wrapT":33071}}]"#
-            );
+            let index = images.len();
+            images.push(format!(
+                r#"{{"bufferView":{view},"mimeType":"image/png","name":"{name}"}}"#
+            ));
+            let texture = format!(r#"{{"index":{index}}}"#);
+            if name == "normal" {
+                normal = format!(r#","normalTexture":{texture}"#);
+            } else {
+                colour = format!(r#","baseColorTexture":{texture}"#);
+            }
         }
+        let images = if images.is_empty() {
+            String::new()
+        } else {
+            let textures: Vec<String> = (0..images.len())
+                .map(|i| format!(r#"{{"source":{i},"sampler":0}}"#))
+                .collect();
+            format!(
+                r#","images":[{}],"textures":[{}],"samplers":[{{"magFilter":9729,"minFilter":9987,"wrapS":33071,"wrapT":33071}}]"#,
+                images.join(","),
+                textures.join(",")
+            )
+        };
         let f = |x: f32| if x.is_finite() { x } else { 0.0 };
         let [r, g, b, a] = m.base_colour.map(f);
         material_json = format!(
-            r#","materials":[{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}],"metallicFactor":{},"roughnessFactor":{}}}{normal}}}]{images}"#,
+            r#","materials":[{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}}}{normal}}}]{images}"#,
             json_string(&m.name),
             f(m.metallic),
             f(m.roughness),
@@ -888,6 +914,7 @@ mod tests {
         let material = GlbMaterial {
             name: "aged skin".into(),
             base_colour: [0.6, 0.4, 0.3, 1.0],
+            base_colour_png: None,
             roughness: 0.45,
             metallic: 0.0,
             normal_png: Some(png.clone()),

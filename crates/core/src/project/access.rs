@@ -63,6 +63,8 @@ slots! {
     "mesh.up" => mesh.up;
     "mesh.forward" => mesh.forward;
     "mesh.layout" => mesh.layout;
+    "mesh.colour_map" => mesh.colour_map;
+    "mesh.colour_map_flip_v" => mesh.colour_map_flip_v;
     "large.enabled" => large.enabled;
     "large.wrinkles" => large.wrinkles;
     "large.mask" => large.mask;

@@ -35,6 +35,12 @@ pub struct MeshSection {
     /// head (`template`), or at the head's own UVs as if they were the template's
     /// (`own-uvs`).
     pub layout: Layout,
+    /// The head's base colour map (any image; sRGB) over its own UVs; `null` = the
+    /// skin colour (`skin.albedo`).
+    pub colour_map: Option<PathBuf>,
+    /// Turn the colour map upside down (a head whose UVs use the other v convention
+    /// than its picture).
+    pub colour_map_flip_v: bool,
 }
 
 /// How a head's UVs relate to the layout the layers are authored in.
@@ -282,6 +288,8 @@ impl Default for MeshSection {
             up: AxisChoice::Auto,
             forward: AxisChoice::Auto,
             layout: Layout::Template,
+            colour_map: None,
+            colour_map_flip_v: false,
         }
     }
 }

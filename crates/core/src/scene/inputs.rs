@@ -9,7 +9,7 @@ use crate::error::Error;
 use crate::fit::Fit;
 use crate::heightmap::HeightMap;
 use crate::landmarks::Landmarks;
-use crate::mask::Mask;
+use crate::mask::{ColourMap, Mask};
 use crate::mesh::Mesh;
 use crate::mesh::units::Axes;
 use crate::project::{BuiltinMesh, Layout, Project};
@@ -39,6 +39,9 @@ pub(super) struct Inputs {
     landmarks_key: Option<PathBuf>,
     /// The head's landmarks (`mesh.landmarks`), when the project names a file.
     pub(super) landmarks: Option<Arc<Landmarks>>,
+    colour_map_key: (Option<PathBuf>, bool),
+    /// The head's base colour map (`mesh.colour_map`), when the project names one.
+    pub(super) colour_map: Option<Arc<ColourMap>>,
     /// How the mesh reads the layers (the template's fit).
     pub(super) layout: Arc<HeadLayout>,
     /// Bumped whenever any input above changes (fibre edits included).
@@ -65,6 +68,9 @@ impl Inputs {
         }
         if hit(&self.landmarks_key) {
             self.landmarks_key = stale();
+        }
+        if hit(&self.colour_map_key.0) {
+            self.colour_map_key.0 = stale();
         }
     }
 
@@ -168,6 +174,23 @@ impl Inputs {
                 }
             },
         };
+        let colour_map_key = (
+            project.mesh.colour_map.clone(),
+            project.mesh.colour_map_flip_v,
+        );
+        let colour_map = match previous.filter(|p| p.colour_map_key == colour_map_key) {
+            Some(p) => p.colour_map.clone(),
+            None => match &colour_map_key.0 {
+                None => None,
+                Some(path) => match ColourMap::load(path, colour_map_key.1) {
+                    Ok(c) => Some(Arc::new(c)),
+                    Err(e) => {
+                        errors.push(e);
+                        None
+                    }
+                },
+            },
+        };
         match (mesh, wrinkles, large_mask, hair_masks, fine_tile) {
             (
                 Some(raw_mesh),
@@ -214,6 +237,8 @@ impl Inputs {
                     fine_tile,
                     landmarks_key,
                     landmarks,
+                    colour_map_key,
+                    colour_map,
                     layout,
                     generation,
                 })

@@ -312,7 +312,7 @@ impl Scene {
     }
 
     /// Reads again the inputs loaded from any of `paths` (the mesh, the masks, the
-    /// fine-wrinkle tile, the landmarks; files changed on disk); on error the scene is
+    /// fine-wrinkle tile, the landmarks, the colour map; files changed on disk); on error the scene is
     /// unchanged. Wrinkle files are the caller's ([`Scene::set_wrinkles`]).
     pub fn reload_inputs(&mut self, paths: &[PathBuf]) -> Result<Changed, Error> {
         let mut stale = self.inputs.clone();
@@ -436,6 +436,11 @@ impl Scene {
     /// The head's landmarks, when the project names a landmark file (`mesh.landmarks`).
     pub fn landmarks(&self) -> Option<&Landmarks> {
         self.inputs.landmarks.as_deref()
+    }
+
+    /// The head's base colour map (`mesh.colour_map`), over its own UVs.
+    pub fn colour_map(&self) -> Option<&Arc<crate::mask::ColourMap>> {
+        self.inputs.colour_map.as_ref()
     }
 
     /// How the mesh reads the layers: the template fitted to it, or its own UVs, and why.

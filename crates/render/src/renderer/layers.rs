@@ -168,6 +168,28 @@ impl Renderer {
         })
     }
 
+    /// Uploads the head's base colour map (sRGB RGBA8, row 0 at the top, over the mesh's
+    /// UVs), shared by every view; `None` goes back to the skin colour
+    /// ([`crate::SkinParams::albedo`]). The map is paled with age like the skin colour.
+    pub fn upload_colour_map(&mut self, map: Option<(u32, u32, &[u8])>) -> Result<(), RenderError> {
+        let (w, h, rgba) = map.unwrap_or((1, 1, &[255; 4]));
+        let max = self.device.limits().max_texture_dimension_2d;
+        if w == 0 || h == 0 || w > max || h > max || rgba.len() != (w * h * 4) as usize {
+            return Err(RenderError::InvalidSize {
+                what: "colour map",
+                width: w,
+                height: h,
+                max,
+            });
+        }
+        self.colour = create_rgba8_srgb(&self.device, &self.queue, "agesim colour map", w, h, rgba);
+        self.has_colour_map = map.is_some();
+        for v in &mut self.views {
+            v.skin_bind_group = None;
+        }
+        Ok(())
+    }
+
     /// Uploads the hair instances (docs/models.md §9: sorted by a_k, 32 bytes each) and keeps
     /// their count table, so a frame draws the first count(t) in one instanced call.
     pub fn upload_hair(&mut self, hairs: &HairInstances) {
@@ -236,6 +258,10 @@ impl Renderer {
                 wgpu::BindGroupEntry {
                     binding: 5,
                     resource: wgpu::BindingResource::Sampler(&self.pipelines.tile_sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 6,
+                    resource: wgpu::BindingResource::TextureView(&self.colour.view),
                 },
             ],
         });
@@ -318,6 +344,41 @@ pub(super) fn prepare_r16f((width, height): (u32, u32), data: &[f32], mips: bool
 /// into speckle. The large-wrinkle map has no mips: POM marches the exact height field
 /// (`tests/pom_reference.rs`), and at ≈ 1 texel per pixel on a whole-head view it does not
 /// alias much.
+/// An sRGB RGBA8 texture of one level (the head's colour map).
+pub(super) fn create_rgba8_srgb(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    width: u32,
+    height: u32,
+    rgba: &[u8],
+) -> Layer {
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        rgba,
+    );
+    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some(label),
+        ..Default::default()
+    });
+    Layer { view }
+}
+
 pub(super) fn create_r16f(
     device: &wgpu::Device,
     queue: &wgpu::Queue,

@@ -29,7 +29,7 @@ use crate::uniforms::{FrameContext, FrameUniform};
 pub use layers::PreparedLayer;
 pub use views::ViewId;
 
-use layers::{Layer, create_r16f, prepare_r16f};
+use layers::{Layer, create_r16f, create_rgba8_srgb, prepare_r16f};
 use pipelines::Pipelines;
 use views::View;
 
@@ -100,6 +100,9 @@ pub struct Renderer {
     surface_passes: u64,
     /// The fine-wrinkle tile, shared by every view.
     fine: Layer,
+    /// The head's base colour map (sRGB RGBA8; a white texel when there is none).
+    colour: Layer,
+    has_colour_map: bool,
     mesh: Option<GpuMesh>,
     /// The subdivided copy, made on the first displacement frame (4× the triangles:
     /// editors that never use the mode never pay for it).
@@ -131,6 +134,7 @@ impl Renderer {
             "agesim fine-wrinkle tile (placeholder)",
             &prepare_r16f((1, 1), &[0.0], false),
         );
+        let colour = create_rgba8_srgb(device, queue, "agesim colour map (none)", 1, 1, &[255; 4]);
         let main = View::new(device, queue, &pipelines.hair_layout);
 
         if let Some(err) = pollster::block_on(scope.pop()) {
@@ -145,6 +149,8 @@ impl Renderer {
             surface_passes: 0,
             wire_edges: None,
             fine,
+            colour,
+            has_colour_map: false,
             mesh: None,
             displaced_mesh: None,
             mesh_to_subdivide: None,
@@ -241,6 +247,7 @@ impl Renderer {
             fine_strength: fine.strength,
             mesh_units_per_uv: 0.5
                 * (self.surface_scale.units_per_u + self.surface_scale.units_per_v),
+            colour_map: self.has_colour_map,
         };
         let uniform = FrameUniform::new(params, &ctx);
         self.queue.write_buffer(

@@ -88,6 +88,7 @@ impl Pipelines {
                 texture_entry(3),
                 sampler_entry(4),
                 sampler_entry(5),
+                texture_entry(6),
             ],
         });
         let hair_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

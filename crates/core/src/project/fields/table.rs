@@ -191,6 +191,16 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             "where a mesh file's layers are read: template = the default head fitted to it by its landmarks (mesh.landmarks, else found automatically), own-uvs = at its own UVs as if they were the default head's",
         ),
         k(
+            "mesh.colour_map",
+            Kind::Path,
+            "the head's base colour map (PNG, JPEG…, sRGB) over its own UVs: shown, paled with age and exported in the GLB; null = the skin colour (skin.albedo)",
+        ),
+        k(
+            "mesh.colour_map_flip_v",
+            Kind::Bool,
+            "turn the colour map upside down (for a head whose UVs use the other v convention than its picture)",
+        ),
+        k(
             "large.enabled",
             Kind::Bool,
             "bake the large-wrinkle layer (--layers overrides)",

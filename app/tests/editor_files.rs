@@ -518,3 +518,113 @@ fn a_mask_changed_on_disk_is_reloaded() {
                 .is_some_and(|l| l.height.min_max().1 > 0.1)
     });
 }
+
+/// The guided landmark mode on an imported head (the MakeHuman head, decimetres): its
+/// landmarks found automatically show as labelled dots; a dot dragged moves over the
+/// surface; a landmark picked in the list is placed by a click on the head; "Fit" writes
+/// the landmark file beside the mesh, the project names it and the template is fitted
+/// again from it.
+#[test]
+fn the_guided_landmark_mode_corrects_places_and_fits() {
+    if !Path::new("/usr/share/vulkan/icd.d").exists() {
+        return agesim_render::ci::skip_or_fail(
+            "the_guided_landmark_mode_corrects_places_and_fits",
+            "no Vulkan driver on this machine",
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let dialogs = Arc::new(ScriptedDialogs::default());
+    let config = dir.path().join("config");
+    // The 3D view needs the GPU device: a wgpu harness.
+    let mut h = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .wgpu()
+        .build_eframe(move |cc| {
+            EditorApp::new(
+                cc,
+                EditorOptions {
+                    dialogs: Some(dialogs.clone()),
+                    config_dir: Some(config.clone()),
+                    ..EditorOptions::default()
+                },
+            )
+        });
+    settle(&mut h);
+    let mesh = dir.path().join("mh_head.obj");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/heads/makehuman/mh_head.obj"),
+        &mesh,
+    )
+    .unwrap();
+    h.input_mut()
+        .dropped_files
+        .push(Arc::new(Dropped(mesh.clone())));
+    wait_for(&mut h, "the imported head", |app| {
+        app.project().mesh.path.as_deref() == Some(mesh.as_path()) && app.idle()
+    });
+    settle(&mut h);
+    assert!(h.state().snapshot().landmarks_found);
+    h.get_by_role_and_label(Role::Button, "landmarks").click();
+    h.run_steps(3);
+    assert!(h.state().landmark_mode().is_some(), "the mode is open");
+    let dots = h.state().landmark_dots();
+    assert_eq!(dots.len(), 16, "every landmark found is drawn: {dots:?}");
+    // Drag an outer eye corner's dot a little: it moves down, over the head.
+    let (_, at) = *dots.iter().find(|(n, _)| *n == "exocanthion_r").unwrap();
+    let before = h
+        .state()
+        .landmark_mode()
+        .unwrap()
+        .points
+        .get("exocanthion_r")
+        .unwrap();
+    drag(&mut h, at, at + egui::vec2(0.0, 12.0));
+    h.run_steps(2);
+    let mode = h.state().landmark_mode().unwrap();
+    let after = mode.points.get("exocanthion_r").unwrap();
+    assert!(mode.edited);
+    assert!(after.distance(before) > 0.01, "{before} → {after}");
+    assert!(after.y < before.y, "dragged down: {before} → {after}");
+    // Pick "vertex" in the list and click on the head: the top of the head moves there.
+    h.get_by_role_and_label(Role::Button, "vertex").click();
+    h.run_steps(2);
+    assert_eq!(h.state().landmark_mode().unwrap().selected, Some("vertex"));
+    let forehead = dots.iter().find(|(n, _)| *n == "glabella").unwrap().1;
+    // A press and release in place: a click.
+    let above = forehead + egui::vec2(0.0, -30.0);
+    h.hover_at(above);
+    h.run_steps(1);
+    h.drag_at(above);
+    h.run_steps(1);
+    h.drop_at(above);
+    h.run_steps(3);
+    let vertex = h
+        .state()
+        .landmark_mode()
+        .unwrap()
+        .points
+        .get("vertex")
+        .unwrap();
+    let glabella = h
+        .state()
+        .landmark_mode()
+        .unwrap()
+        .points
+        .get("glabella")
+        .unwrap();
+    assert!(vertex.y > glabella.y, "placed above the brows: {vertex}");
+    h.get_by_role_and_label(Role::Button, "Fit").click();
+    let written = dir.path().join("mh_head.landmarks.json");
+    wait_for(&mut h, "the fit from the file", |app| {
+        app.project().mesh.landmarks.as_deref() == Some(written.as_path()) && app.idle()
+    });
+    settle(&mut h);
+    let file = agesim_core::landmarks::Landmarks::load(&written).unwrap();
+    assert_eq!(file.len(), 16);
+    assert!(!h.state().snapshot().landmarks_found);
+    assert!(
+        h.state().snapshot().layout_how.contains("landmark file"),
+        "{}",
+        h.state().snapshot().layout_how
+    );
+}

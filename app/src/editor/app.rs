@@ -12,6 +12,7 @@ mod compare;
 mod document;
 mod inputs;
 mod inspector;
+pub mod landmarks;
 mod menus;
 mod presets;
 mod scripted;
@@ -150,6 +151,8 @@ pub struct EditorApp {
     baked_normal_picture: (bool, bool),
     textures: Vec<(MapKind, egui::TextureHandle, usize)>,
     layout_texture: Option<(egui::TextureHandle, usize)>,
+    /// The guided landmark mode, when open.
+    landmark_mode: Option<landmarks::LandmarkMode>,
     persisted: Persisted,
     adapter: String,
     viewport: Option<Viewport>,
@@ -243,6 +246,7 @@ impl EditorApp {
             baked_normal_picture: (false, false),
             textures: Vec::new(),
             layout_texture: None,
+            landmark_mode: None,
             persisted,
             adapter,
             viewport,
@@ -299,6 +303,19 @@ impl EditorApp {
             .wrinkles
             .as_deref()
             .unwrap_or(&self.session.snapshot.wrinkles)
+    }
+
+    /// The guided landmark mode's state, when open.
+    pub fn landmark_mode(&self) -> Option<&landmarks::LandmarkMode> {
+        self.landmark_mode.as_ref()
+    }
+
+    /// Where each landmark's dot was drawn on the 3D view last frame (for tests).
+    pub fn landmark_dots(&self) -> Vec<(&'static str, egui::Pos2)> {
+        self.viewport
+            .as_ref()
+            .map(|v| v.landmark_dots.clone())
+            .unwrap_or_default()
     }
 
     pub fn map_view_mut(&mut self) -> &mut MapViewState {
@@ -616,6 +633,7 @@ impl eframe::App for EditorApp {
             v.scale = if moving { 1.0 / 3.0 } else { 1.0 };
         }
         let mut compare_changed = false;
+        self.landmark_view_sync();
         let fibre_edit = egui::CentralPanel::default()
             .frame(bare(egui::Frame::central_panel(&style)))
             .show(ui, |ui| {
@@ -643,6 +661,14 @@ impl eframe::App for EditorApp {
                     );
                     if was != (self.persisted.compare, self.persisted.compare_years) {
                         compare_changed = true;
+                    }
+                    let mut landmarks_on = self.landmark_mode.is_some();
+                    if ui
+                        .toggle_value(&mut landmarks_on, "landmarks")
+                        .on_hover_text("show the head's landmarks: drag to correct, click to place, Fit")
+                        .clicked()
+                    {
+                        self.toggle_landmark_mode();
                     }
                     if ui.button("frame head").clicked()
                         && let Some(v) = &mut self.viewport

@@ -238,6 +238,8 @@ pub enum IoResult {
         name: String,
         result: Result<Project, String>,
     },
+    /// The landmark mode's file was written (its path), or why not.
+    LandmarksSaved { result: Result<PathBuf, String> },
 }
 
 /// The file threads' mailbox.

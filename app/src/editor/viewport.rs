@@ -89,8 +89,30 @@ pub struct Viewport {
     pub picked: Option<super::pick::SurfacePoint>,
     /// A surface point to mark on the head (the point under the pointer on the map).
     pub marker: Option<Vec3>,
+    /// The guided landmark mode's dots (set by the app each frame; `None`: mode off).
+    pub landmarks: Option<LandmarkOverlay>,
+    /// A landmark dragged or placed this frame: its name and new point (scene
+    /// coordinates, on the surface).
+    pub landmark_edit: Option<(&'static str, Vec3)>,
+    /// The landmark whose dot the pointer is dragging.
+    dragging_landmark: Option<&'static str>,
+    /// Where each landmark's dot was drawn last frame.
+    pub landmark_dots: Vec<(&'static str, egui::Pos2)>,
     mesh: Option<Arc<agesim_core::Mesh>>,
 }
+
+/// The landmarks drawn over the head in the guided landmark mode: labelled dots that can
+/// be dragged over the surface; a click elsewhere places `selected`.
+#[derive(Clone, Debug, Default)]
+pub struct LandmarkOverlay {
+    /// Placed points, scene coordinates.
+    pub points: Vec<(&'static str, Vec3)>,
+    /// The landmark a click on the head places (and whose dot is highlighted).
+    pub selected: Option<&'static str>,
+}
+
+/// How near (points) the pointer must be to a dot to drag it.
+const LANDMARK_GRAB_PT: f32 = 10.0;
 
 impl Viewport {
     pub fn new(rs: &egui_wgpu::RenderState) -> Result<Self, agesim_render::RenderError> {
@@ -110,6 +132,10 @@ impl Viewport {
             error: None,
             picked: None,
             marker: None,
+            landmarks: None,
+            landmark_edit: None,
+            dragging_landmark: None,
+            landmark_dots: Vec::new(),
             mesh: None,
         })
     }
@@ -171,34 +197,99 @@ impl Viewport {
             // A head of the artist's own just arrived: framed, as "frame head" would.
             self.reset(project);
         }
-        self.interact(ui, &response, project);
-        if response.clicked()
-            && let (Some(pos), Some(mesh)) = (response.interact_pointer_pos(), &self.mesh)
-        {
+        // The guided landmark mode: a drag that starts on a dot moves it over the surface
+        // (and does not orbit); a click places the selected landmark.
+        self.landmark_edit = None;
+        let clip = self.clip_from_world(project, rect);
+        if let Some(overlay) = &self.landmarks {
+            // The dot under the press, not under the pointer once the drag has begun.
+            if response.drag_started_by(egui::PointerButton::Primary)
+                && let Some(pos) = ui.input(|i| i.pointer.press_origin())
+            {
+                let near: Vec<(&'static str, f32)> = overlay
+                    .points
+                    .iter()
+                    .filter_map(|(name, p)| Some((*name, to_screen(clip, rect, *p)?)))
+                    .map(|(name, at)| (name, at.distance(pos)))
+                    .filter(|(_, d)| *d <= LANDMARK_GRAB_PT)
+                    .collect();
+                // Dots can overlap (the nose tip over the base of the nose): the one
+                // selected in the list wins, else the nearest.
+                self.dragging_landmark = near
+                    .iter()
+                    .find(|(name, _)| overlay.selected == Some(*name))
+                    .or_else(|| near.iter().min_by(|a, b| a.1.total_cmp(&b.1)))
+                    .map(|(name, _)| *name);
+            }
+        } else {
+            self.dragging_landmark = None;
+        }
+        let pick_at = |viewport: &Self, pos: egui::Pos2| {
+            let mesh = viewport.mesh.as_ref()?;
             let ndc = glam::Vec2::new(
                 2.0 * (pos.x - rect.left()) / rect.width() - 1.0,
                 1.0 - 2.0 * (pos.y - rect.top()) / rect.height(),
             );
-            let clip = self.clip_from_world(project, rect);
             let (origin, dir) = super::pick::view_ray(clip, ndc);
-            self.picked = super::pick::ray_pick(mesh, origin, dir);
+            super::pick::ray_pick(mesh, origin, dir)
+        };
+        if let Some(name) = self.dragging_landmark {
+            if let Some(pos) = response.interact_pointer_pos()
+                && let Some(hit) = pick_at(self, pos)
+            {
+                self.landmark_edit = Some((name, hit.position));
+            }
+            if !response.dragged() {
+                self.dragging_landmark = None;
+            }
+        } else {
+            self.interact(ui, &response, project);
+        }
+        if response.clicked()
+            && let Some(pos) = response.interact_pointer_pos()
+        {
+            self.picked = pick_at(self, pos);
+            if let (Some(overlay), Some(hit)) = (&self.landmarks, self.picked)
+                && let Some(name) = overlay.selected
+            {
+                self.landmark_edit = Some((name, hit.position));
+            }
         }
         if self.render(Shown::Document, ui.ctx(), rs, snapshot, project, rect) {
             self.show(Shown::Document, ui.painter(), rect);
         }
-        if let Some(p) = self.marker {
-            let clip = self.clip_from_world(project, rect);
-            let c = clip * p.extend(1.0);
-            if c.w > 0.0 {
-                let (x, y) = (c.x / c.w, c.y / c.w);
-                let at = egui::pos2(
-                    rect.left() + (x + 1.0) * 0.5 * rect.width(),
-                    rect.top() + (1.0 - y) * 0.5 * rect.height(),
+        // The camera as this frame drew it (the orbit above may have moved it).
+        let clip = self.clip_from_world(project, rect);
+        if let Some(at) = self.marker.and_then(|p| to_screen(clip, rect, p)) {
+            let colour = egui::Color32::from_rgb(255, 200, 60);
+            ui.painter()
+                .circle_stroke(at, 7.0, egui::Stroke::new(2.0, colour));
+            ui.painter().circle_filled(at, 2.0, colour);
+        }
+        self.landmark_dots.clear();
+        if let Some(overlay) = &self.landmarks {
+            let painter = ui.painter().with_clip_rect(rect);
+            for (name, p) in &overlay.points {
+                let Some(at) = to_screen(clip, rect, *p) else {
+                    continue;
+                };
+                self.landmark_dots.push((name, at));
+                let chosen =
+                    overlay.selected == Some(*name) || self.dragging_landmark == Some(*name);
+                let colour = if chosen {
+                    egui::Color32::from_rgb(255, 200, 60)
+                } else {
+                    egui::Color32::from_rgb(90, 200, 255)
+                };
+                painter.circle_filled(at, if chosen { 5.0 } else { 4.0 }, colour);
+                painter.circle_stroke(at, 6.0, egui::Stroke::new(1.0, egui::Color32::BLACK));
+                painter.text(
+                    at + egui::vec2(7.0, -7.0),
+                    egui::Align2::LEFT_BOTTOM,
+                    *name,
+                    egui::FontId::proportional(11.0),
+                    colour,
                 );
-                let colour = egui::Color32::from_rgb(255, 200, 60);
-                ui.painter()
-                    .circle_stroke(at, 7.0, egui::Stroke::new(2.0, colour));
-                ui.painter().circle_filled(at, 2.0, colour);
             }
         }
         if let Some(e) = &self.error {
@@ -211,6 +302,11 @@ impl Viewport {
             );
         }
         rect
+    }
+
+    /// Whether a landmark's dot is being dragged.
+    pub fn dragging_landmark(&self) -> bool {
+        self.dragging_landmark.is_some()
     }
 
     /// The view's clip-from-world matrix for `rect` (as the renderer uses it).
@@ -400,4 +496,15 @@ impl egui_wgpu::CallbackTrait for ShowFrame {
     ) {
         self.blit.draw(render_pass, &self.bind_group);
     }
+}
+
+/// Where `p` (scene coordinates) shows in `rect`, `None` behind the camera.
+fn to_screen(clip: glam::Mat4, rect: Rect, p: Vec3) -> Option<egui::Pos2> {
+    let c = clip * p.extend(1.0);
+    (c.w > 0.0).then(|| {
+        egui::pos2(
+            rect.left() + (c.x / c.w + 1.0) * 0.5 * rect.width(),
+            rect.top() + (1.0 - c.y / c.w) * 0.5 * rect.height(),
+        )
+    })
 }

@@ -214,6 +214,10 @@ impl EditorApp {
                     Err(e) => self.error(format!("The {what} was not saved: {e}")),
                 },
                 IoResult::UserPresets(list) => self.user_presets = list,
+                IoResult::LandmarksSaved { result } => match result {
+                    Ok(path) => self.landmarks_saved(path),
+                    Err(e) => self.error(format!("The landmarks were not saved: {e}")),
+                },
                 IoResult::PresetSaved { path, result } => match result {
                     Ok(()) => {
                         self.info(format!("Saved the preset {}", path.display()));

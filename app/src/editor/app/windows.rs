@@ -70,6 +70,7 @@ impl EditorApp {
 
     /// The unsaved-changes prompt, the Export, Help, Messages and About windows.
     pub(super) fn windows_ui(&mut self, ctx: &egui::Context) {
+        self.landmark_window(ctx);
         if let Some(action) = self.prompt.clone() {
             let modal = egui::Modal::new(egui::Id::unique("unsaved")).show(ctx, |ui| {
                 ui.heading("Unsaved changes");

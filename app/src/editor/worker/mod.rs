@@ -68,6 +68,12 @@ pub struct Snapshot {
     pub fitted: bool,
     /// How the head's layout was decided (`Scene::layout`).
     pub layout_how: String,
+    /// The landmarks the fit used (the project's file or found), scene coordinates.
+    pub landmarks: Option<Arc<agesim_core::landmarks::Landmarks>>,
+    /// Whether `landmarks` were found automatically.
+    pub landmarks_found: bool,
+    /// The scene's coordinates back to the mesh file's (landmark files are in the file's).
+    pub file_from_scene: glam::Mat3,
 }
 
 /// The outcome of one job.
@@ -377,6 +383,17 @@ fn bake(
         }
     }
     snapshot.layout_how = s.layout().how.clone();
+    snapshot.landmarks = match (&s.layout().landmarks, s.project().mesh.path.is_some()) {
+        (Some(l), _) => Some(l.clone()),
+        // The template shows its own.
+        (None, false) => Some(Arc::new(agesim_core::fit::template().landmarks.clone())),
+        (None, true) => None,
+    };
+    snapshot.landmarks_found = s.layout().found;
+    snapshot.file_from_scene = s
+        .axes()
+        .to_standard()
+        .map_or(glam::Mat3::IDENTITY, |r| r.transpose());
     snapshot.layers.refresh(s, &merged, refresh_all);
     let images = &mut snapshot.images;
     if merged.large || snapshot.large.is_none() {

@@ -35,8 +35,9 @@ struct Frame {
     hair_k: vec4<f32>,
     // x: viewport width, px; y: hair droop (fraction of the length);
     // z: what the skin writes: 0 colour, 1 the POM hit (hit uv, polygon uv), 2 the
-    // composed tangent-space normal; w: 1 when a colour map is bound (it replaces the
-    // skin albedo).
+    // composed tangent-space normal; w: bits, 1: a colour map is bound (it replaces the
+    // skin albedo), 2: a head normal map is bound (the layers are combined onto it),
+    // 4: its green points down.
     hair_misc: vec4<f32>,
     // rgb: wrap lighting per channel in [0, 1]; w: specular roughness.
     skin_wrap: vec4<f32>,

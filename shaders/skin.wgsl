@@ -29,6 +29,9 @@ const MODE_DISPLACEMENT: u32 = 4u;
 // The head's base colour map (sRGB texture, read as linear) over the mesh UV, when
 // frame.hair_misc.w is 1; a white texel otherwise.
 @group(0) @binding(6) var colour_map: texture_2d<f32>;
+// The head's own tangent-space normal map (linear) over the mesh UV, when bit 2 of
+// frame.hair_misc.w is set; a flat texel otherwise.
+@group(0) @binding(7) var head_normal_map: texture_2d<f32>;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -351,6 +354,15 @@ fn shade(s: Surface) -> vec4<f32> {
         let n_micro = height_normal(micro_map, tile_sampler, micro_uv0 + offset * frame.tiling.xy, frame.layers.x, ddx_micro, ddy_micro);
         n_ts = rnm(n_ts, n_micro);
     }
+    let head_maps = u32(frame.hair_misc.w);
+    if (head_maps & 2u) != 0u {
+        // The head's own relief is the base the layers lie on.
+        var n_head = textureSampleGrad(head_normal_map, surface_sampler, tex(uv), ddx, ddy).rgb * 2.0 - vec3<f32>(1.0);
+        if (head_maps & 4u) != 0u {
+            n_head.y = -n_head.y;
+        }
+        n_ts = rnm(normalize(n_head), n_ts);
+    }
     if frame.hair_misc.z > 1.5 {
         return vec4<f32>(n_ts, 1.0);
     }
@@ -359,8 +371,8 @@ fn shade(s: Surface) -> vec4<f32> {
     // The albedo arrives with the age's paling applied (docs/models.md "Age"); a head's
     // own colour map pales the same way.
     var albedo = frame.skin_albedo.rgb;
-    if frame.hair_misc.w > 0.5 {
-        let c = textureSampleGrad(colour_map, surface_sampler, uv, ddx, ddy).rgb;
+    if (head_maps & 1u) != 0u {
+        let c = textureSampleGrad(colour_map, surface_sampler, tex(uv), ddx, ddy).rgb;
         albedo = mix(c, frame.skin_spec.yzw, clamp(frame.skin_albedo.w, 0.0, 1.0));
     }
 

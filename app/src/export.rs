@@ -401,6 +401,9 @@ pub fn head_normal_map(
             .micro()
             .filter(|_| skin.micro_relief)
             .map(|m| tile(&m.height, skin.micro_tile)),
+        head_normal: scene
+            .normal_map()
+            .map(|m| (m.as_ref(), skin.head_normal_green_down)),
     };
     Ok(compose::normal_map(&layers, size_px, cancel)?)
 }

@@ -132,9 +132,14 @@ pub struct MeshArgs {
     /// instead of the skin colour.
     #[arg(long, value_name = "FILE")]
     pub colour_map: Option<std::path::PathBuf>,
-    /// Turn --colour-map upside down (a head whose UVs use the other v convention).
-    #[arg(long, requires = "colour_map")]
-    pub colour_map_flip_v: bool,
+    /// The head's tangent-space normal map (green up) over its own UVs: the wrinkles and
+    /// skin relief are combined onto it.
+    #[arg(long, value_name = "FILE")]
+    pub normal_map: Option<std::path::PathBuf>,
+    /// Turn --colour-map and --normal-map upside down (a head whose UVs use the other v
+    /// convention).
+    #[arg(long)]
+    pub maps_flip_v: bool,
 }
 
 impl MeshArgs {
@@ -154,7 +159,12 @@ impl MeshArgs {
         }
         if let Some(c) = &self.colour_map {
             p.mesh.colour_map = Some(c.clone());
-            p.mesh.colour_map_flip_v = self.colour_map_flip_v;
+        }
+        if let Some(n) = &self.normal_map {
+            p.mesh.normal_map = Some(n.clone());
+        }
+        if self.maps_flip_v {
+            p.mesh.maps_flip_v = true;
         }
         Ok(())
     }

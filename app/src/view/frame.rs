@@ -2,6 +2,7 @@
 //! skin (relief mode, depth, fine blend, paling, tiles) and the hair.
 
 use agesim_core::hair::GrayingRamp;
+use agesim_core::normal_map::Convention;
 use agesim_core::project::{Colour, PomMode as ProjectPom, Project};
 use agesim_render::{
     Camera, FrameParams, GrayingRampParam, HairShading, Light, PomMode, SkinParams, TilePlacement,
@@ -136,6 +137,7 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
             albedo,
             pale_albedo: linear(s.pale_albedo),
             pale,
+            head_normal_green_down: project.mesh.normal_map_convention == Convention::DirectX,
             micro_relief: project.micro_enabled(),
             micro_tile,
             fine_tile,

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use super::HeadScale;
 use agesim_core::hair::HairInstances;
-use agesim_core::mask::ColourMap;
+use agesim_core::mask::HeadImage;
 use agesim_core::scene::{Changed, Scene};
 use agesim_core::{HeightMap, Mesh};
 use agesim_render::{PreparedLayer, RenderError, Renderer, TileLayer, Upload, ViewId};
@@ -28,7 +28,9 @@ pub struct Layers {
     /// The head's relief depth per template UV unit ([`Scene::relief_scale`]).
     pub relief_scale: f32,
     /// The head's base colour map ([`Scene::colour_map`]).
-    pub colour: Option<Arc<ColourMap>>,
+    pub colour: Option<Arc<HeadImage>>,
+    /// The head's normal map ([`Scene::normal_map`]).
+    pub normal: Option<Arc<HeadImage>>,
 }
 
 impl Default for Layers {
@@ -43,6 +45,7 @@ impl Default for Layers {
             metres_per_unit: 1.0,
             relief_scale: 1.0,
             colour: None,
+            normal: None,
         }
     }
 }
@@ -70,6 +73,7 @@ impl Layers {
         }
         self.hair = scene.hair().cloned();
         self.colour = scene.colour_map().cloned();
+        self.normal = scene.normal_map().cloned();
         let metres_per_unit = scene.metres_per_unit();
         // Measured over the mesh: only when the mesh or its units change.
         if new_mesh || metres_per_unit != self.metres_per_unit {
@@ -103,6 +107,7 @@ pub struct Uploaded {
     fine: usize,
     hair: usize,
     colour: usize,
+    normal: usize,
 }
 
 impl Uploaded {
@@ -135,13 +140,17 @@ impl Uploaded {
             renderer.upload_hair(h);
             self.hair = stamp(&layers.hair);
         }
+        fn picture(p: &Option<Arc<HeadImage>>) -> Option<(u32, u32, &[u8])> {
+            p.as_deref()
+                .map(|c| (c.width_px, c.height_px, c.rgba.as_slice()))
+        }
         if stamp(&layers.colour) != self.colour {
-            let map = layers
-                .colour
-                .as_deref()
-                .map(|c| (c.width_px, c.height_px, c.rgba.as_slice()));
-            result = result.and(renderer.upload_colour_map(map));
+            result = result.and(renderer.upload_colour_map(picture(&layers.colour)));
             self.colour = stamp(&layers.colour);
+        }
+        if stamp(&layers.normal) != self.normal {
+            result = result.and(renderer.upload_normal_map(picture(&layers.normal)));
+            self.normal = stamp(&layers.normal);
         }
         result
     }

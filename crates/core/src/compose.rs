@@ -42,6 +42,9 @@ pub struct Layers<'a> {
     /// The fine-wrinkle blend in [0, 1] (0: no fine wrinkles).
     pub fine_blend: f32,
     pub micro: Option<RepeatedTile<'a>>,
+    /// The head's own tangent-space normal map (its green down when the flag is set):
+    /// the base every layer is combined onto by reoriented normal mapping.
+    pub head_normal: Option<(&'a crate::mask::HeadImage, bool)>,
 }
 
 /// The composed tangent-space normal map, `size_px`² over the UV square, OpenGL
@@ -89,6 +92,13 @@ pub fn normal_map(
                 }
                 if let Some(m) = &micro {
                     n_ts = rnm(n_ts, m.tile.normal(m.columns[x], m.rows[y]));
+                }
+                if let Some((head, green_down)) = layers.head_normal {
+                    let (u, v) = (
+                        (x as f32 + 0.5) / n as f32,
+                        1.0 - (y as f32 + 0.5) / n as f32,
+                    );
+                    n_ts = rnm(head.normal_at(u, v, green_down), n_ts);
                 }
                 for (c, value) in px.iter_mut().zip(n_ts.to_array()) {
                     *c = encode_unorm8(value);

@@ -36,19 +36,19 @@ pub fn decode_image(bytes: &[u8], path: &Path) -> Result<image::DynamicImage, Er
     reader.decode().map_err(|e| fail(e.to_string()))
 }
 
-/// A head's base colour map: sRGB RGBA8, row 0 at the top (docs/models.md §1), over the
-/// head's own UVs.
+/// An RGBA8 picture over a head's own UVs, row 0 at the top (docs/models.md §1): its
+/// base colour map (sRGB) or its tangent-space normal map (linear).
 #[derive(Clone, Debug, PartialEq)]
-pub struct ColourMap {
+pub struct HeadImage {
     pub width_px: u32,
     pub height_px: u32,
-    /// sRGB-encoded RGBA, 4 bytes a texel.
+    /// RGBA, 4 bytes a texel (sRGB-encoded for a colour map).
     pub rgba: Vec<u8>,
 }
 
-impl ColourMap {
-    /// Reads any image `image` decodes as the head's colour map; `flip_v` turns it upside
-    /// down (a head whose UVs use the other v convention than its picture).
+impl HeadImage {
+    /// Reads any image `image` decodes, as 8-bit RGBA; `flip_v` turns it upside down (a
+    /// head whose UVs use the other v convention than its picture).
     pub fn load(path: &Path, flip_v: bool) -> Result<Self, Error> {
         let bytes = crate::limits::read_file(path, crate::limits::MAX_IMAGE_FILE_BYTES)?;
         let mut img = decode_image(&bytes, path)?.into_rgba8();
@@ -61,6 +61,32 @@ impl ColourMap {
             height_px,
             rgba: img.into_raw(),
         })
+    }
+
+    /// The tangent-space normal at (u, v) (bilinear, u wrapping, v clamped) of a normal
+    /// map, OpenGL convention (green = +v) unless `green_down` (DirectX).
+    pub fn normal_at(&self, u: f32, v: f32, green_down: bool) -> glam::Vec3 {
+        let (w, h) = (self.width_px as i64, self.height_px as i64);
+        let x = u * w as f32 - 0.5;
+        let y = (1.0 - v) * h as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let at = |xi: i64, yi: i64| {
+            let i = ((yi.clamp(0, h - 1) * w + xi.rem_euclid(w)) * 4) as usize;
+            glam::Vec3::new(
+                f32::from(self.rgba[i]),
+                f32::from(self.rgba[i + 1]),
+                f32::from(self.rgba[i + 2]),
+            )
+        };
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let top = at(x0, y0).lerp(at(x0 + 1, y0), fx);
+        let bottom = at(x0, y0 + 1).lerp(at(x0 + 1, y0 + 1), fx);
+        let mut n = top.lerp(bottom, fy) / 255.0 * 2.0 - glam::Vec3::ONE;
+        if green_down {
+            n.y = -n.y;
+        }
+        n.normalize_or(glam::Vec3::Z)
     }
 
     /// The map paled with age as the renderer pales it (docs/models.md "Age"): each

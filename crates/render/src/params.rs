@@ -160,6 +160,8 @@ pub struct SkinParams {
     /// How far a head's colour map pales toward `pale_albedo` at this age, 0–1 (the
     /// age's paling; `albedo` already has it).
     pub pale: f32,
+    /// The head's normal map has its green pointing down (DirectX).
+    pub head_normal_green_down: bool,
     /// Draw the micro-relief layer.
     pub micro_relief: bool,
     /// Where the micro-relief tile lies on the skin (its side, its normal strength).
@@ -186,6 +188,7 @@ impl Default for SkinParams {
             albedo: Vec3::new(0.50, 0.30, 0.22),
             pale_albedo: Vec3::new(0.69, 0.48, 0.37),
             pale: 0.0,
+            head_normal_green_down: false,
             wrap: Vec3::new(0.45, 0.22, 0.15),
             roughness: 0.42,
             f0: 0.028,

@@ -71,6 +71,8 @@ pub(crate) struct FrameContext {
     pub mesh_units_per_uv: f32,
     /// A colour map is bound: it replaces the skin albedo.
     pub colour_map: bool,
+    /// A head normal map is bound: the layers are combined onto it.
+    pub normal_map: bool,
 }
 
 /// Clamps to [0, 1]; NaN (which `clamp` keeps) becomes 0, so no NaN reaches the GPU.
@@ -139,7 +141,10 @@ impl FrameUniform {
                     FrameOutput::PomHit => 1.0,
                     FrameOutput::TangentNormal => 2.0,
                 },
-                if ctx.colour_map { 1.0 } else { 0.0 },
+                // Bits: 1 colour map, 2 head normal map, 4 its green points down.
+                (u32::from(ctx.colour_map)
+                    | u32::from(ctx.normal_map) << 1
+                    | u32::from(s.head_normal_green_down) << 2) as f32,
             ],
             skin_wrap: [
                 unit(s.wrap.x),
@@ -172,6 +177,7 @@ mod tests {
             fine_strength: 0.0015,
             mesh_units_per_uv: 0.5,
             colour_map: false,
+            normal_map: false,
         }
     }
 

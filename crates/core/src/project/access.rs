@@ -64,7 +64,9 @@ slots! {
     "mesh.forward" => mesh.forward;
     "mesh.layout" => mesh.layout;
     "mesh.colour_map" => mesh.colour_map;
-    "mesh.colour_map_flip_v" => mesh.colour_map_flip_v;
+    "mesh.normal_map" => mesh.normal_map;
+    "mesh.normal_map_convention" => mesh.normal_map_convention;
+    "mesh.maps_flip_v" => mesh.maps_flip_v;
     "large.enabled" => large.enabled;
     "large.wrinkles" => large.wrinkles;
     "large.mask" => large.mask;

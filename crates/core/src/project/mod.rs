@@ -225,6 +225,7 @@ impl Project {
             .chain(self.mesh.path.as_mut())
             .chain(self.mesh.landmarks.as_mut())
             .chain(self.mesh.colour_map.as_mut())
+            .chain(self.mesh.normal_map.as_mut())
             .chain(self.fine.tile.as_mut())
             .chain(self.hair.outer_mask.as_mut())
             .chain(self.hair.inner_mask.as_mut());

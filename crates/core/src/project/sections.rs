@@ -38,9 +38,14 @@ pub struct MeshSection {
     /// The head's base colour map (any image; sRGB) over its own UVs; `null` = the
     /// skin colour (`skin.albedo`).
     pub colour_map: Option<PathBuf>,
-    /// Turn the colour map upside down (a head whose UVs use the other v convention
-    /// than its picture).
-    pub colour_map_flip_v: bool,
+    /// The head's tangent-space normal map over its own UVs; `null` = none. Our layers
+    /// are combined onto it (reoriented normal mapping) in the view and the exports.
+    pub normal_map: Option<PathBuf>,
+    /// The normal map's green channel: up (`opengl`, glTF's) or down (`directx`).
+    pub normal_map_convention: Convention,
+    /// Turn the colour and normal maps upside down (a head whose UVs use the other v
+    /// convention than its pictures).
+    pub maps_flip_v: bool,
 }
 
 /// How a head's UVs relate to the layout the layers are authored in.
@@ -289,7 +294,9 @@ impl Default for MeshSection {
             forward: AxisChoice::Auto,
             layout: Layout::Template,
             colour_map: None,
-            colour_map_flip_v: false,
+            normal_map: None,
+            normal_map_convention: Convention::OpenGl,
+            maps_flip_v: false,
         }
     }
 }

@@ -9,7 +9,7 @@ use crate::error::Error;
 use crate::fit::Fit;
 use crate::heightmap::HeightMap;
 use crate::landmarks::Landmarks;
-use crate::mask::{ColourMap, Mask};
+use crate::mask::{HeadImage, Mask};
 use crate::mesh::Mesh;
 use crate::mesh::units::Axes;
 use crate::project::{BuiltinMesh, Layout, Project};
@@ -41,7 +41,10 @@ pub(super) struct Inputs {
     pub(super) landmarks: Option<Arc<Landmarks>>,
     colour_map_key: (Option<PathBuf>, bool),
     /// The head's base colour map (`mesh.colour_map`), when the project names one.
-    pub(super) colour_map: Option<Arc<ColourMap>>,
+    pub(super) colour_map: Option<Arc<HeadImage>>,
+    normal_map_key: (Option<PathBuf>, bool),
+    /// The head's normal map (`mesh.normal_map`), when the project names one.
+    pub(super) normal_map: Option<Arc<HeadImage>>,
     /// How the mesh reads the layers (the template's fit).
     pub(super) layout: Arc<HeadLayout>,
     /// Bumped whenever any input above changes (fibre edits included).
@@ -71,6 +74,9 @@ impl Inputs {
         }
         if hit(&self.colour_map_key.0) {
             self.colour_map_key.0 = stale();
+        }
+        if hit(&self.normal_map_key.0) {
+            self.normal_map_key.0 = stale();
         }
     }
 
@@ -174,23 +180,32 @@ impl Inputs {
                 }
             },
         };
-        let colour_map_key = (
-            project.mesh.colour_map.clone(),
-            project.mesh.colour_map_flip_v,
+        // The head's pictures: small, read after the rest.
+        let mut load_picture =
+            |key: &(Option<PathBuf>, bool), kept: Option<Option<Arc<HeadImage>>>| {
+                kept.unwrap_or_else(|| {
+                    let path = key.0.as_ref()?;
+                    HeadImage::load(path, key.1)
+                        .map_err(|e| errors.push(e))
+                        .ok()
+                        .map(Arc::new)
+                })
+            };
+        let flip = project.mesh.maps_flip_v;
+        let colour_map_key = (project.mesh.colour_map.clone(), flip);
+        let colour_map = load_picture(
+            &colour_map_key,
+            previous
+                .filter(|p| p.colour_map_key == colour_map_key)
+                .map(|p| p.colour_map.clone()),
         );
-        let colour_map = match previous.filter(|p| p.colour_map_key == colour_map_key) {
-            Some(p) => p.colour_map.clone(),
-            None => match &colour_map_key.0 {
-                None => None,
-                Some(path) => match ColourMap::load(path, colour_map_key.1) {
-                    Ok(c) => Some(Arc::new(c)),
-                    Err(e) => {
-                        errors.push(e);
-                        None
-                    }
-                },
-            },
-        };
+        let normal_map_key = (project.mesh.normal_map.clone(), flip);
+        let normal_map = load_picture(
+            &normal_map_key,
+            previous
+                .filter(|p| p.normal_map_key == normal_map_key)
+                .map(|p| p.normal_map.clone()),
+        );
         match (mesh, wrinkles, large_mask, hair_masks, fine_tile) {
             (
                 Some(raw_mesh),
@@ -239,6 +254,8 @@ impl Inputs {
                     landmarks,
                     colour_map_key,
                     colour_map,
+                    normal_map_key,
+                    normal_map,
                     layout,
                     generation,
                 })

@@ -312,7 +312,7 @@ impl Scene {
     }
 
     /// Reads again the inputs loaded from any of `paths` (the mesh, the masks, the
-    /// fine-wrinkle tile, the landmarks, the colour map; files changed on disk); on error the scene is
+    /// fine-wrinkle tile, the landmarks, the colour and normal maps; files changed on disk); on error the scene is
     /// unchanged. Wrinkle files are the caller's ([`Scene::set_wrinkles`]).
     pub fn reload_inputs(&mut self, paths: &[PathBuf]) -> Result<Changed, Error> {
         let mut stale = self.inputs.clone();
@@ -439,8 +439,13 @@ impl Scene {
     }
 
     /// The head's base colour map (`mesh.colour_map`), over its own UVs.
-    pub fn colour_map(&self) -> Option<&Arc<crate::mask::ColourMap>> {
+    pub fn colour_map(&self) -> Option<&Arc<crate::mask::HeadImage>> {
         self.inputs.colour_map.as_ref()
+    }
+
+    /// The head's tangent-space normal map (`mesh.normal_map`), over its own UVs.
+    pub fn normal_map(&self) -> Option<&Arc<crate::mask::HeadImage>> {
+        self.inputs.normal_map.as_ref()
     }
 
     /// How the mesh reads the layers: the template fitted to it, or its own UVs, and why.

@@ -172,22 +172,51 @@ impl Renderer {
     /// UVs), shared by every view; `None` goes back to the skin colour
     /// ([`crate::SkinParams::albedo`]). The map is paled with age like the skin colour.
     pub fn upload_colour_map(&mut self, map: Option<(u32, u32, &[u8])>) -> Result<(), RenderError> {
-        let (w, h, rgba) = map.unwrap_or((1, 1, &[255; 4]));
+        self.colour = self.head_picture("colour map", map, [255; 4], true)?;
+        self.has_colour_map = map.is_some();
+        Ok(())
+    }
+
+    /// Uploads the head's tangent-space normal map (RGBA8, linear, row 0 at the top, over
+    /// the mesh's UVs; green up unless [`crate::SkinParams::head_normal_green_down`]),
+    /// shared by every view: the layers are combined onto it (reoriented normal
+    /// mapping). `None`: no head normal map.
+    pub fn upload_normal_map(&mut self, map: Option<(u32, u32, &[u8])>) -> Result<(), RenderError> {
+        self.head_normal = self.head_picture("normal map", map, FLAT_NORMAL, false)?;
+        self.has_normal_map = map.is_some();
+        Ok(())
+    }
+
+    /// A picture over the head's UVs as a texture (`none` for a missing one), checked;
+    /// every view's bind group is made again.
+    fn head_picture(
+        &mut self,
+        what: &'static str,
+        map: Option<(u32, u32, &[u8])>,
+        none: [u8; 4],
+        srgb: bool,
+    ) -> Result<Layer, RenderError> {
+        let (w, h, rgba) = map.unwrap_or((1, 1, &none));
         let max = self.device.limits().max_texture_dimension_2d;
         if w == 0 || h == 0 || w > max || h > max || rgba.len() != (w * h * 4) as usize {
             return Err(RenderError::InvalidSize {
-                what: "colour map",
+                what,
                 width: w,
                 height: h,
                 max,
             });
         }
-        self.colour = create_rgba8_srgb(&self.device, &self.queue, "agesim colour map", w, h, rgba);
-        self.has_colour_map = map.is_some();
         for v in &mut self.views {
             v.skin_bind_group = None;
         }
-        Ok(())
+        Ok(create_rgba8(
+            &self.device,
+            &self.queue,
+            what,
+            (w, h),
+            rgba,
+            srgb,
+        ))
     }
 
     /// Uploads the hair instances (docs/models.md §9: sorted by a_k, 32 bytes each) and keeps
@@ -262,6 +291,10 @@ impl Renderer {
                 wgpu::BindGroupEntry {
                     binding: 6,
                     resource: wgpu::BindingResource::TextureView(&self.colour.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 7,
+                    resource: wgpu::BindingResource::TextureView(&self.head_normal.view),
                 },
             ],
         });
@@ -344,14 +377,17 @@ pub(super) fn prepare_r16f((width, height): (u32, u32), data: &[f32], mips: bool
 /// into speckle. The large-wrinkle map has no mips: POM marches the exact height field
 /// (`tests/pom_reference.rs`), and at ≈ 1 texel per pixel on a whole-head view it does not
 /// alias much.
-/// An sRGB RGBA8 texture of one level (the head's colour map).
-pub(super) fn create_rgba8_srgb(
+/// A flat tangent-space normal, (0, 0, 1) encoded.
+pub(super) const FLAT_NORMAL: [u8; 4] = [128, 128, 255, 255];
+
+/// An RGBA8 texture of one level (a head's colour map, `srgb`, or normal map).
+pub(super) fn create_rgba8(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
     rgba: &[u8],
+    srgb: bool,
 ) -> Layer {
     let texture = device.create_texture_with_data(
         queue,
@@ -365,7 +401,11 @@ pub(super) fn create_rgba8_srgb(
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            format: if srgb {
+                wgpu::TextureFormat::Rgba8UnormSrgb
+            } else {
+                wgpu::TextureFormat::Rgba8Unorm
+            },
             usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         },

@@ -29,7 +29,7 @@ use crate::uniforms::{FrameContext, FrameUniform};
 pub use layers::PreparedLayer;
 pub use views::ViewId;
 
-use layers::{Layer, create_r16f, create_rgba8_srgb, prepare_r16f};
+use layers::{FLAT_NORMAL, Layer, create_r16f, create_rgba8, prepare_r16f};
 use pipelines::Pipelines;
 use views::View;
 
@@ -103,6 +103,9 @@ pub struct Renderer {
     /// The head's base colour map (sRGB RGBA8; a white texel when there is none).
     colour: Layer,
     has_colour_map: bool,
+    /// The head's tangent-space normal map (linear RGBA8; flat when there is none).
+    head_normal: Layer,
+    has_normal_map: bool,
     mesh: Option<GpuMesh>,
     /// The subdivided copy, made on the first displacement frame (4× the triangles:
     /// editors that never use the mode never pay for it).
@@ -134,7 +137,22 @@ impl Renderer {
             "agesim fine-wrinkle tile (placeholder)",
             &prepare_r16f((1, 1), &[0.0], false),
         );
-        let colour = create_rgba8_srgb(device, queue, "agesim colour map (none)", 1, 1, &[255; 4]);
+        let colour = create_rgba8(
+            device,
+            queue,
+            "agesim colour map (none)",
+            (1, 1),
+            &[255; 4],
+            true,
+        );
+        let head_normal = create_rgba8(
+            device,
+            queue,
+            "agesim head normal map (none)",
+            (1, 1),
+            &FLAT_NORMAL,
+            false,
+        );
         let main = View::new(device, queue, &pipelines.hair_layout);
 
         if let Some(err) = pollster::block_on(scope.pop()) {
@@ -151,6 +169,8 @@ impl Renderer {
             fine,
             colour,
             has_colour_map: false,
+            head_normal,
+            has_normal_map: false,
             mesh: None,
             displaced_mesh: None,
             mesh_to_subdivide: None,
@@ -248,6 +268,7 @@ impl Renderer {
             mesh_units_per_uv: 0.5
                 * (self.surface_scale.units_per_u + self.surface_scale.units_per_v),
             colour_map: self.has_colour_map,
+            normal_map: self.has_normal_map,
         };
         let uniform = FrameUniform::new(params, &ctx);
         self.queue.write_buffer(

@@ -89,6 +89,7 @@ impl Pipelines {
                 sampler_entry(4),
                 sampler_entry(5),
                 texture_entry(6),
+                texture_entry(7),
             ],
         });
         let hair_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

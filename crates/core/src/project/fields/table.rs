@@ -196,9 +196,19 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             "the head's base colour map (PNG, JPEG…, sRGB) over its own UVs: shown, paled with age and exported in the GLB; null = the skin colour (skin.albedo)",
         ),
         k(
-            "mesh.colour_map_flip_v",
+            "mesh.normal_map",
+            Kind::Path,
+            "the head's tangent-space normal map over its own UVs: the wrinkles and skin relief are combined onto it (reoriented normal mapping) in the view and the exports; null = none",
+        ),
+        k(
+            "mesh.normal_map_convention",
+            Kind::Choice(&["opengl", "directx"]),
+            "the head's normal map's green channel: up (OpenGL, glTF's) or down (DirectX)",
+        ),
+        k(
+            "mesh.maps_flip_v",
             Kind::Bool,
-            "turn the colour map upside down (for a head whose UVs use the other v convention than its picture)",
+            "turn the colour and normal maps upside down (for a head whose UVs use the other v convention than its pictures)",
         ),
         k(
             "large.enabled",

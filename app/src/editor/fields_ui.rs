@@ -274,6 +274,36 @@ fn field_ui(
             }
             Some(r)
         }
+        Kind::OptNames => {
+            // Typed as a comma-separated list; taken when the field loses focus.
+            let current = value.as_array().map_or(String::new(), |a| {
+                a.iter()
+                    .filter_map(Value::as_str)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            });
+            let id = ui.scope_id().with(("names field", field.path));
+            let mut text = ui
+                .data_mut(|d| d.get_temp::<String>(id))
+                .unwrap_or_else(|| current.clone());
+            let r = ui.add(
+                egui::TextEdit::singleline(&mut text)
+                    .hint_text("automatic")
+                    .desired_width(150.0),
+            );
+            if r.changed() {
+                ui.data_mut(|d| d.insert_temp(id, text.clone()));
+            }
+            if r.lost_focus() {
+                ui.data_mut(|d| d.remove::<String>(id));
+                if text.trim() != current
+                    && let Ok(v) = field.parse_text(&text)
+                {
+                    out = Some((v, false));
+                }
+            }
+            Some(r)
+        }
         Kind::Path | Kind::Paths => {
             let text = match value {
                 Value::Null => "(built-in)".to_owned(),

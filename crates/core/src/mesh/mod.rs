@@ -223,6 +223,9 @@ pub struct Mesh {
     bounds: Aabb,
     parts: Vec<MeshPart>,
     report: MeshReport,
+    /// Which parts are skin, when chosen by hand ([`Mesh::with_skin_parts`]); else by
+    /// their names ([`MeshPart::is_skin`]).
+    skin: Option<Vec<bool>>,
 }
 
 /// Triangles whose doubled UV area is below this are "degenerate in UV" (docs/models.md §5: no
@@ -430,6 +433,7 @@ impl Mesh {
                     bounds,
                     parts,
                     report,
+                    skin: None,
                 });
             }
         };
@@ -443,6 +447,7 @@ impl Mesh {
             bounds,
             parts,
             report,
+            skin: None,
         })
     }
 
@@ -463,6 +468,7 @@ impl Mesh {
                 triangle_count: 1,
             }],
             report: MeshReport::default(),
+            skin: None,
         }
     }
 
@@ -532,20 +538,63 @@ impl Mesh {
             indices: self.indices.clone(),
             parts: self.parts.clone(),
             report: self.report.clone(),
+            skin: self.skin.clone(),
         }
     }
 
-    /// The parts that are skin: all but those named as eyes, teeth, tongue, lashes or
-    /// brows ([`MeshPart::is_skin`]); hair grows on these only.
+    /// The parts that are skin: those chosen by hand ([`Mesh::with_skin_parts`]), else
+    /// all but those named as eyes, teeth, tongue, lashes or brows
+    /// ([`MeshPart::is_skin`]); the layers and the hair are on these only.
     pub fn skin_parts(&self) -> impl Iterator<Item = &MeshPart> {
-        self.parts.iter().filter(|p| p.is_skin())
+        self.parts
+            .iter()
+            .enumerate()
+            .filter(|(i, p)| self.part_is_skin(*i, p))
+            .map(|(_, p)| p)
+    }
+
+    /// Whether part `i` is skin ([`Mesh::skin_parts`]).
+    pub fn part_is_skin(&self, i: usize, part: &MeshPart) -> bool {
+        match &self.skin {
+            Some(chosen) => chosen.get(i).copied().unwrap_or(false),
+            None => part.is_skin(),
+        }
+    }
+
+    /// The mesh with its skin parts chosen by hand: the parts whose name contains one of
+    /// `names` (case-insensitive) are skin, the others not (`mesh.skin_parts`). Names
+    /// that match no part are returned, for the caller to report.
+    pub fn with_skin_parts(&self, names: &[String]) -> (Mesh, Vec<String>) {
+        let lower: Vec<String> = names.iter().map(|n| n.to_lowercase()).collect();
+        let matches = |p: &MeshPart, n: &str| p.name.to_lowercase().contains(n);
+        let skin = self
+            .parts
+            .iter()
+            .map(|p| lower.iter().any(|n| matches(p, n)))
+            .collect();
+        let unknown = names
+            .iter()
+            .zip(&lower)
+            .filter(|(_, n)| !self.parts.iter().any(|p| matches(p, n)))
+            .map(|(name, _)| name.clone())
+            .collect();
+        (
+            Mesh {
+                skin: Some(skin),
+                ..self.clone()
+            },
+            unknown,
+        )
     }
 
     /// The triangle indices of the skin parts ([`Mesh::skin_parts`]); all of them when
-    /// every part is skin (no copy then), or when none is (a one-part head named
+    /// every part is skin (no copy then), or when none is by name (a one-part head named
     /// `head_eyebrows` is still a head).
     pub fn skin_indices(&self) -> std::borrow::Cow<'_, [u32]> {
-        if self.parts.iter().all(MeshPart::is_skin) || !self.parts.iter().any(MeshPart::is_skin) {
+        let skin: Vec<bool> = (self.parts.iter().enumerate())
+            .map(|(i, p)| self.part_is_skin(i, p))
+            .collect();
+        if skin.iter().all(|&s| s) || (self.skin.is_none() && !skin.iter().any(|&s| s)) {
             return std::borrow::Cow::Borrowed(&self.indices);
         }
         let mut out = Vec::new();

@@ -66,6 +66,7 @@ slots! {
     "mesh.colour_map" => mesh.colour_map;
     "mesh.normal_map" => mesh.normal_map;
     "mesh.normal_map_convention" => mesh.normal_map_convention;
+    "mesh.skin_parts" => mesh.skin_parts;
     "mesh.maps_flip_v" => mesh.maps_flip_v;
     "large.enabled" => large.enabled;
     "large.wrinkles" => large.wrinkles;

@@ -43,6 +43,10 @@ pub struct MeshSection {
     pub normal_map: Option<PathBuf>,
     /// The normal map's green channel: up (`opengl`, glTF's) or down (`directx`).
     pub normal_map_convention: Convention,
+    /// The parts (objects, materials) that are skin, by name (a part is skin when its
+    /// name contains one of these, case-insensitive); `null` = by their names: all but
+    /// eyes, teeth, tongue, lashes and brows.
+    pub skin_parts: Option<Vec<String>>,
     /// Turn the colour and normal maps upside down (a head whose UVs use the other v
     /// convention than its pictures).
     pub maps_flip_v: bool,
@@ -296,6 +300,7 @@ impl Default for MeshSection {
             colour_map: None,
             normal_map: None,
             normal_map_convention: Convention::OpenGl,
+            skin_parts: None,
             maps_flip_v: false,
         }
     }

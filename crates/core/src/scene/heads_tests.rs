@@ -455,3 +455,24 @@ fn heights_agree_across_a_uv_seam() {
         "heights across the seam differ by up to {worst} (peak {peak}, {pairs} pairs)"
     );
 }
+
+/// `mesh.skin_parts` chooses the skin by hand: the MakeHuman head's eyes are left out by
+/// their names, taken in when named; a name that matches no part is an error naming it
+/// and the parts there are.
+#[test]
+fn the_skin_parts_can_be_chosen_by_hand() {
+    let mut p = project_for(&HEADS[2], true);
+    let by_name = Scene::new(p.clone()).unwrap();
+    let all = by_name.mesh().indices().len();
+    let skin = by_name.mesh().skin_indices().len();
+    assert!(skin < all, "the eyes are not skin by their names");
+    p.mesh.skin_parts = Some(vec!["head".into(), "EYE".into()]);
+    let chosen = Scene::new(p.clone()).unwrap();
+    assert_eq!(chosen.mesh().skin_indices().len(), all);
+    p.mesh.skin_parts = Some(vec!["head".into(), "torso".into()]);
+    let e = Scene::new(p).unwrap_err().to_string();
+    assert!(
+        e.contains("mesh.skin_parts") && e.contains("torso") && e.contains("eye_l"),
+        "{e}"
+    );
+}

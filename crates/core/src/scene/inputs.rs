@@ -25,6 +25,8 @@ pub(super) struct Inputs {
     pub(super) mesh: Arc<Mesh>,
     /// The mesh file's axes (`mesh.up`, `mesh.forward`, else from the landmarks).
     pub(super) axes: Axes,
+    /// The skin parts chosen by hand (`mesh.skin_parts`).
+    skin_parts: Option<Vec<String>>,
     pub(super) wrinkles_key: Vec<PathBuf>,
     pub(super) wrinkles: Vec<WrinkleSource>,
     /// Whether `wrinkles` came from [`Scene::set_wrinkles`](super::Scene::set_wrinkles)
@@ -215,14 +217,40 @@ impl Inputs {
                 Some(fine_tile),
             ) if errors.is_empty() => {
                 let axes = axes_of(project, landmarks.as_deref());
+                let skin_parts = project.mesh.skin_parts.clone();
                 let mesh = match previous {
-                    Some(p) if Arc::ptr_eq(&p.raw_mesh, &raw_mesh) && p.axes == axes => {
+                    Some(p)
+                        if Arc::ptr_eq(&p.raw_mesh, &raw_mesh)
+                            && p.axes == axes
+                            && p.skin_parts == skin_parts =>
+                    {
                         p.mesh.clone()
                     }
-                    _ => match axes.to_standard() {
-                        Some(r) if axes != Axes::STANDARD => Arc::new(raw_mesh.rotated(r)),
-                        _ => raw_mesh.clone(),
-                    },
+                    _ => {
+                        let turned = match axes.to_standard() {
+                            Some(r) if axes != Axes::STANDARD => Arc::new(raw_mesh.rotated(r)),
+                            _ => raw_mesh.clone(),
+                        };
+                        match &skin_parts {
+                            None => turned,
+                            Some(names) => {
+                                let (chosen, unknown) = turned.with_skin_parts(names);
+                                if !unknown.is_empty() {
+                                    let parts: Vec<&str> =
+                                        turned.parts().iter().map(|p| p.name.as_str()).collect();
+                                    return Err(Error::Project {
+                                        source_name: "project".into(),
+                                        message: format!(
+                                            "mesh.skin_parts: no part of the mesh is named like {} (its parts: {})",
+                                            unknown.join(", "),
+                                            parts.join("; ")
+                                        ),
+                                    });
+                                }
+                                Arc::new(chosen)
+                            }
+                        }
+                    }
                 };
                 let layout = match previous {
                     Some(p)
@@ -241,6 +269,7 @@ impl Inputs {
                     raw_mesh,
                     mesh,
                     axes,
+                    skin_parts,
                     wrinkles_key,
                     wrinkles,
                     wrinkles_edited,

@@ -43,6 +43,8 @@ pub enum Kind {
     Paths,
     /// An sRGB colour `"#rrggbb"`.
     Colour,
+    /// A list of names, or `null` (chosen automatically).
+    OptNames,
 }
 
 /// One field of the project file.
@@ -111,6 +113,7 @@ impl Field {
             Kind::Path => "a path or null".into(),
             Kind::Paths => "a list of paths".into(),
             Kind::Colour => "\"#rrggbb\"".into(),
+            Kind::OptNames => "a list of names or null".into(),
         }
     }
 
@@ -126,6 +129,7 @@ impl Field {
             Kind::Path => "a path (string) or null",
             Kind::Paths => "a list of paths",
             Kind::Colour => "a colour \"#rrggbb\"",
+            Kind::OptNames => "a list of names or null",
         }
     }
 
@@ -139,6 +143,9 @@ impl Field {
             Kind::Choice(_) | Kind::Colour => v.is_string(),
             Kind::Path => v.is_string() || v.is_null(),
             Kind::Paths => v.as_array().is_some_and(|a| a.iter().all(Value::is_string)),
+            Kind::OptNames => {
+                v.is_null() || v.as_array().is_some_and(|a| a.iter().all(Value::is_string))
+            }
         }
     }
 
@@ -155,7 +162,7 @@ impl Field {
             },
             Kind::Choice(names) => v.as_str().is_some_and(|s| names.contains(&s)),
             Kind::Colour => v.as_str().and_then(super::Colour::parse).is_some(),
-            Kind::Bool | Kind::Path | Kind::Paths => true,
+            Kind::Bool | Kind::Path | Kind::Paths | Kind::OptNames => true,
         };
         (!ok).then(|| {
             format!(
@@ -217,7 +224,8 @@ impl Field {
             Kind::Choice(_) | Kind::Colour => Some(Value::String(t.to_owned())),
             Kind::Path if t == "null" => Some(Value::Null),
             Kind::Path => Some(Value::String(t.to_owned())),
-            Kind::Paths => serde_json::from_str::<Vec<String>>(t)
+            Kind::OptNames if t == "null" || t.is_empty() => Some(Value::Null),
+            Kind::Paths | Kind::OptNames => serde_json::from_str::<Vec<String>>(t)
                 .ok()
                 .or_else(|| Some(t.split(',').map(|s| s.trim().to_owned()).collect()))
                 .map(|v| v.into_iter().map(Value::String).collect()),

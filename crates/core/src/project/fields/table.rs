@@ -206,6 +206,11 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             "the head's normal map's green channel: up (OpenGL, glTF's) or down (DirectX)",
         ),
         k(
+            "mesh.skin_parts",
+            Kind::OptNames,
+            "the parts (objects, materials) that are skin, by name: a part is skin when its name contains one of these; null = by their names (all but eyes, teeth, tongue, lashes, brows). Only skin gets wrinkles and hair",
+        ),
+        k(
             "mesh.maps_flip_v",
             Kind::Bool,
             "turn the colour and normal maps upside down (for a head whose UVs use the other v convention than its pictures)",

@@ -345,11 +345,15 @@ pub fn kind_of(path: &Path) -> Option<FileKind> {
 /// Saves `project` to `path`. Edited wrinkle files are written beside it as
 /// `STEM-NAME.wrk` (never over the files they were loaded from) and the project points
 /// at them; when those were the built-in files, the built-in mask that goes with them is
-/// written beside too, so the saved project bakes exactly what the editor shows.
+/// written beside too, so the saved project bakes exactly what the editor shows. The
+/// landmarks `found` automatically for its head (the mesh file's coordinates) are written
+/// beside it as `STEM-landmarks.json` and named by the project: reopening it fits from
+/// them, without searching again.
 pub fn save_project(
     path: &Path,
     project: &Project,
     wrinkles: Option<&[WrinkleSource]>,
+    found: Option<&agesim_core::landmarks::Landmarks>,
 ) -> Result<(Project, Option<Vec<WrinkleSource>>), String> {
     let mut project = project.clone();
     let dir = path.parent().unwrap_or(Path::new("")).to_owned();
@@ -406,6 +410,16 @@ pub fn save_project(
         project.large.wrinkles = paths;
         saved = Some(out);
     }
+    if let Some(found) = found
+        && project.mesh.path.is_some()
+        && project.mesh.landmarks.is_none()
+    {
+        let target = dir.join(format!("{stem}-landmarks.json"));
+        let text = found.to_json_pretty();
+        set.stage(&target, |w| std::io::Write::write_all(w, text.as_bytes()))
+            .map_err(|e| e.to_string())?;
+        project.mesh.landmarks = Some(target);
+    }
     let text = project.file_text(path);
     set.stage(path, |w| std::io::Write::write_all(w, text.as_bytes()))
         .map_err(|e| e.to_string())?;
@@ -438,7 +452,8 @@ mod tests {
             })
             .collect();
         let path = dir.path().join("p.agesim.json");
-        let (project, saved) = save_project(&path, &Project::default(), Some(&sources)).unwrap();
+        let (project, saved) =
+            save_project(&path, &Project::default(), Some(&sources), None).unwrap();
         let paths = &project.large.wrinkles;
         assert_eq!(paths.len(), 2);
         assert_ne!(paths[0], paths[1]);
@@ -448,6 +463,32 @@ mod tests {
         assert_eq!(saved.unwrap().len(), 2);
         // The built-in mask went beside it (the files were the built-in set's stand-ins).
         assert!(project.large.mask.unwrap().is_file());
+    }
+
+    /// Landmarks found automatically are saved beside a project with a head file and
+    /// named by it (reopening fits from them); a project that names landmarks keeps them.
+    #[test]
+    fn found_landmarks_are_saved_beside_the_project() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut found = agesim_core::landmarks::Landmarks::default();
+        found
+            .set("pronasale", glam::Vec3::new(0.0, 1.0, 2.0))
+            .unwrap();
+        let mut project = Project::default();
+        project.mesh.path = Some(dir.path().join("head.obj"));
+        let path = dir.path().join("p.agesim.json");
+        let (saved, _) = save_project(&path, &project, None, Some(&found)).unwrap();
+        let written = saved.mesh.landmarks.clone().unwrap();
+        assert_eq!(written, dir.path().join("p-landmarks.json"));
+        assert_eq!(
+            agesim_core::landmarks::Landmarks::load(&written).unwrap(),
+            found
+        );
+        assert_eq!(Project::load(&path).unwrap().mesh.landmarks, Some(written));
+        // Named landmarks are the artist's: not replaced.
+        project.mesh.landmarks = Some(dir.path().join("mine.json"));
+        let (saved, _) = save_project(&path, &project, None, Some(&found)).unwrap();
+        assert_eq!(saved.mesh.landmarks, Some(dir.path().join("mine.json")));
     }
 
     /// A save is one set: when the project file cannot be put in place (here a folder
@@ -467,6 +508,7 @@ mod tests {
             &good,
             &Project::default(),
             Some(std::slice::from_ref(&source)),
+            None,
         )
         .unwrap();
         let before: Vec<(PathBuf, Vec<u8>)> = std::fs::read_dir(dir.path())
@@ -480,7 +522,7 @@ mod tests {
         // The same names, a changed fibre, and a folder where the project file goes.
         let bad = dir.path().join("q.agesim.json");
         std::fs::create_dir(&bad).unwrap();
-        let e = save_project(&bad, &Project::default(), Some(&[source])).unwrap_err();
+        let e = save_project(&bad, &Project::default(), Some(&[source]), None).unwrap_err();
         assert!(e.contains("q.agesim.json"), "{e}");
         for (p, bytes) in &before {
             assert_eq!(&std::fs::read(p).unwrap(), bytes, "{}", p.display());

@@ -199,8 +199,24 @@ impl EditorApp {
     pub(super) fn save_to(&mut self, path: PathBuf) {
         let (project, wrinkles) = (self.doc.project.clone(), self.doc.wrinkles.clone());
         self.doc.saving_revision = Some(self.doc.revision);
+        // Landmarks found automatically are saved with the project (in the mesh file's
+        // coordinates), so reopening it does not search again.
+        let snapshot = &self.session.snapshot;
+        let found = snapshot
+            .landmarks
+            .as_deref()
+            .filter(|_| snapshot.landmarks_found && project.mesh.path.is_some())
+            .map(|l| {
+                let mut file = agesim_core::landmarks::Landmarks::default();
+                for name in agesim_core::landmarks::NAMES {
+                    if let Some(p) = l.get(name) {
+                        let _ = file.set(name, snapshot.file_from_scene * p);
+                    }
+                }
+                file
+            });
         self.io.spawn(move || IoResult::ProjectSaved {
-            result: files::save_project(&path, &project, wrinkles.as_deref()),
+            result: files::save_project(&path, &project, wrinkles.as_deref(), found.as_ref()),
             path,
         });
     }

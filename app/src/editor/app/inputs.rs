@@ -192,6 +192,7 @@ impl EditorApp {
                         if unchanged {
                             self.doc.project.large.wrinkles = project.large.wrinkles;
                             self.doc.project.large.mask = project.large.mask;
+                            self.doc.project.mesh.landmarks = project.mesh.landmarks;
                             if wrinkles.is_some() {
                                 self.doc.wrinkles = wrinkles;
                             }

@@ -363,7 +363,13 @@ fn export_glb(
             "height_meaning": "large-wrinkle height = lo + (hi - lo) * p / 65535 for a 16-bit value p, in the project's height units (large.depth = deepest)",
         }),
     };
-    let bytes = write_glb_with_material(scene.mesh(), Some(&material));
+    // glTF is in metres, +Y up, +Z forward: the scene's mesh is turned already; its
+    // units are made metres here (a head in centimetres or the scan's 0.052 m).
+    let mesh = match mpu {
+        1.0 => scene.mesh().clone(),
+        m => std::sync::Arc::new(scene.mesh().scaled(m)),
+    };
+    let bytes = write_glb_with_material(&mesh, Some(&material));
     progress(0.9, "writing the GLB");
     set.stage(&glb.path, |w| std::io::Write::write_all(w, &bytes))?;
     out::stage_height_png16(set, &glb.height_path(), &height)?;

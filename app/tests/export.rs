@@ -200,3 +200,46 @@ fn a_bad_request_or_a_cancel_leaves_the_old_files_and_no_temporary() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("80000"), "{}", stderr(&o));
 }
+
+/// The GLB is in metres whatever the head file's units: the default head written in
+/// centimetres comes back at its size in metres.
+#[test]
+fn the_glb_is_in_metres_for_a_head_in_centimetres() {
+    let dir = tempfile::tempdir().unwrap();
+    let head = agesim_core::head::default_head();
+    let obj = dir.path().join("head-cm.obj");
+    std::fs::write(&obj, agesim_core::mesh::obj::to_obj(&head, |p| p * 100.0)).unwrap();
+    let mut project = Project::default();
+    project.mesh.path = Some(obj);
+    let project_file = dir.path().join("p.agesim.json");
+    std::fs::write(&project_file, project.to_json_pretty()).unwrap();
+    let glb = dir.path().join("cm.glb");
+    let o = agesim(&[
+        "export",
+        "--project",
+        project_file.to_str().unwrap(),
+        "--size",
+        "64",
+        "--glb",
+        glb.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (doc, buffers, _) = gltf::import(&glb).unwrap();
+    let mut top = f32::NEG_INFINITY;
+    let mut bottom = f32::INFINITY;
+    for mesh in doc.meshes() {
+        for prim in mesh.primitives() {
+            let reader = prim.reader(|b| Some(&buffers[b.index()]));
+            for p in reader.read_positions().unwrap() {
+                top = top.max(p[1]);
+                bottom = bottom.min(p[1]);
+            }
+        }
+    }
+    let want = head.bounds().size().y;
+    assert!(
+        ((top - bottom) / want - 1.0).abs() < 0.01,
+        "{} m tall, want {want}",
+        top - bottom
+    );
+}

@@ -542,6 +542,17 @@ impl Mesh {
         }
     }
 
+    /// The mesh with its positions multiplied by `factor` (normals, tangents, UVs and
+    /// parts as they are): a head in centimetres written in metres.
+    pub fn scaled(&self, factor: f32) -> Mesh {
+        let positions: Vec<Vec3> = self.positions.iter().map(|p| *p * factor).collect();
+        Mesh {
+            bounds: bounds_of(&positions),
+            positions,
+            ..self.clone()
+        }
+    }
+
     /// The parts that are skin: those chosen by hand ([`Mesh::with_skin_parts`]), else
     /// all but those named as eyes, teeth, tongue, lashes or brows
     /// ([`MeshPart::is_skin`]); the layers and the hair are on these only.

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use agesim_core::Mesh;
-use agesim_core::mesh::{TangentSource, units};
+use agesim_core::mesh::TangentSource;
 use agesim_core::project::Project;
 use agesim_core::scene::Scene;
 
@@ -56,15 +56,7 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
 pub fn describe_head(scene: &Scene) -> String {
     let u = scene.units();
     let a = scene.axes();
-    let how = if scene.project().mesh.up.axis().is_some()
-        || scene.project().mesh.forward.axis().is_some()
-    {
-        "set in the project"
-    } else if scene.landmarks().and_then(units::detect_axes).is_some() {
-        "from the landmarks"
-    } else {
-        "assumed: no landmarks of the chin, brow, eyes and nose"
-    };
+    let how = scene.axes_how();
     let axes = format!("up {}, forward {} ({how})", a.up.name(), a.forward.name());
     format!(
         "metres per unit: {} ({})\naxes:      {axes}\nlayout:    {}\n",

@@ -28,6 +28,8 @@ use crate::mesh::Mesh;
 
 /// Template points used by the global alignment (every k-th vertex above the neck).
 const SAMPLES: usize = 3000;
+/// Template points of the coarse alignments that find a head's axes.
+const COARSE_SAMPLES: usize = 600;
 /// Below this height (template metres) the template is neck, which heads cut anywhere.
 const NECK_CUT_Y_M: f32 = -0.11;
 /// Radius of the face region aligned after the whole head, template metres.
@@ -74,35 +76,17 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
         .map(|&i| (t_pos[i], t_nrm[i]))
         .collect();
 
-    let h_pos = head.positions();
-    let (h_top, t_top) = (top(h_pos), top(t_pos));
-    // The starts are independent: side by side on the pool; the best is chosen in start
-    // order, so the result does not depend on the thread count.
-    use rayon::prelude::*;
-    let tried: Vec<Option<(f32, Similarity)>> = [0.5f32, 0.71, 1.0, 1.41, 2.0]
-        .par_iter()
-        .map(|&factor| {
-            let scale = 1.0 / (metres_per_unit * factor);
-            // The cranium: the 12 cm below the top, whose box centre is the skull's axis.
-            let t_centre = band_centre(t_pos, t_top, 0.12)?;
-            let h_centre = band_centre(h_pos, h_top, 0.12 * scale)?;
-            let start = Similarity {
-                scale,
-                rotation: glam::Quat::IDENTITY,
-                translation: Vec3::new(h_centre.x, h_top, h_centre.z)
-                    - Vec3::new(t_centre.x, t_top, t_centre.z) * scale,
-            };
-            let (s, median) = icp(&samples, &bvh, &normals, start, 40, true);
-            let median_m = median / s.scale;
-            median_m.is_finite().then_some((median_m, s))
-        })
-        .collect();
-    let mut best: Option<(f32, Similarity)> = None;
-    for (median_m, s) in tried.into_iter().flatten() {
-        if best.as_ref().is_none_or(|b| median_m < b.0) {
-            best = Some((median_m, s));
-        }
-    }
+    let best = global_search(
+        &samples,
+        t_pos,
+        &bvh,
+        &normals,
+        head.positions(),
+        glam::Mat3::IDENTITY,
+        metres_per_unit,
+        &[0.5, 0.71, 1.0, 1.41, 2.0],
+        40,
+    );
     let Some((median_m, alignment)) = best else {
         return Err(fail(
             "the template could not be aligned to the head (is it upright and facing +Z?)".into(),
@@ -178,6 +162,133 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
         alignment,
         median_distance_mm: median_m * 1e3,
     })
+}
+
+/// The best similarity-ICP alignment of the template `samples` onto the head (its tree
+/// and triangle normals in the file's coordinates) from starts at each scale `factor`
+/// around `metres_per_unit`: the template's top on the head's top and its cranium's box
+/// centre on the head's, seen in the frame `turn` takes the file's coordinates to
+/// (+Y up, +Z forward). Returns the median distance (template metres) and the template's
+/// coordinates to the head file's. Starts run side by side; the best is chosen in start
+/// order (the same on any thread count).
+#[allow(clippy::too_many_arguments)]
+fn global_search(
+    samples: &[(Vec3, Vec3)],
+    t_pos: &[Vec3],
+    bvh: &Bvh,
+    normals: &[Vec3],
+    h_pos: &[Vec3],
+    turn: glam::Mat3,
+    metres_per_unit: f32,
+    factors: &[f32],
+    iterations: usize,
+) -> Option<(f32, Similarity)> {
+    use rayon::prelude::*;
+    let turned: Vec<Vec3> = h_pos.iter().map(|p| turn * *p).collect();
+    let back = glam::Quat::from_mat3(&turn.transpose());
+    let (h_top, t_top) = (top(&turned), top(t_pos));
+    let tried: Vec<Option<(f32, Similarity)>> = factors
+        .par_iter()
+        .map(|&factor| {
+            let scale = 1.0 / (metres_per_unit * factor);
+            // The cranium: the 12 cm below the top, whose box centre is the skull's axis.
+            let t_centre = band_centre(t_pos, t_top, 0.12)?;
+            let h_centre = band_centre(&turned, h_top, 0.12 * scale)?;
+            let translation = Vec3::new(h_centre.x, h_top, h_centre.z)
+                - Vec3::new(t_centre.x, t_top, t_centre.z) * scale;
+            // In the file's frame: turned back.
+            let start = Similarity {
+                scale,
+                rotation: back,
+                translation: back * translation,
+            };
+            let (s, median) = icp(samples, bvh, normals, start, iterations, true);
+            let median_m = median / s.scale;
+            median_m.is_finite().then_some((median_m, s))
+        })
+        .collect();
+    let mut best: Option<(f32, Similarity)> = None;
+    for (median_m, s) in tried.into_iter().flatten() {
+        if best.as_ref().is_none_or(|b| median_m < b.0) {
+            best = Some((median_m, s));
+        }
+    }
+    best
+}
+
+/// The head file's up and forward axes found by aligning the template to it coarsely in
+/// each of the 24 axis-aligned orientations (Y-up or Z-up, facing ±Z or ±Y, …): the one
+/// the template fits best, with its median distance (template mm). agesim's own
+/// (+Y up, +Z forward) is tried first and kept when the template fits it within
+/// `good_mm`. `None` when the head has no skin.
+pub fn axes(
+    head: &Mesh,
+    template: &Template,
+    metres_per_unit: f32,
+    good_mm: f32,
+) -> Option<(crate::mesh::units::Axes, f32)> {
+    use crate::mesh::units::{Axes, Axis};
+    let skin = head.skin_indices();
+    let bvh = Bvh::new(head.positions(), &skin);
+    let normals = triangle_normals(head.positions(), &skin);
+    if bvh.is_empty() || !(metres_per_unit > 0.0 && metres_per_unit.is_finite()) {
+        return None;
+    }
+    let t_pos = template.mesh.positions();
+    let t_nrm = template.mesh.normals();
+    let above: Vec<usize> = (0..t_pos.len())
+        .filter(|&i| t_pos[i].y > NECK_CUT_Y_M)
+        .collect();
+    let step = (above.len() / COARSE_SAMPLES).max(1);
+    let samples: Vec<(Vec3, Vec3)> = above
+        .iter()
+        .step_by(step)
+        .map(|&i| (t_pos[i], t_nrm[i]))
+        .collect();
+    let all = [
+        Axis::PosX,
+        Axis::NegX,
+        Axis::PosY,
+        Axis::NegY,
+        Axis::PosZ,
+        Axis::NegZ,
+    ];
+    let mut candidates = vec![Axes::STANDARD];
+    for up in all {
+        for forward in all {
+            let a = Axes { up, forward };
+            if a != Axes::STANDARD && a.to_standard().is_some() {
+                candidates.push(a);
+            }
+        }
+    }
+    let mut best: Option<(Axes, f32)> = None;
+    for axes in candidates {
+        let Some(turn) = axes.to_standard() else {
+            continue;
+        };
+        let Some((median_m, _)) = global_search(
+            &samples,
+            t_pos,
+            &bvh,
+            &normals,
+            head.positions(),
+            turn,
+            metres_per_unit,
+            &[0.71, 1.0, 1.41],
+            12,
+        ) else {
+            continue;
+        };
+        let mm = median_m * 1e3;
+        if best.is_none_or(|b| mm < b.1) {
+            best = Some((axes, mm));
+        }
+        if axes == Axes::STANDARD && mm <= good_mm {
+            break;
+        }
+    }
+    best
 }
 
 /// Trimmed ICP from `start`: a similarity (`similarity`), else a translation only.

@@ -12,7 +12,7 @@ use crate::landmarks::Landmarks;
 use crate::mask::{HeadImage, Mask};
 use crate::mesh::Mesh;
 use crate::mesh::units::Axes;
-use crate::project::{BuiltinMesh, Layout, Project};
+use crate::project::{AxisChoice, BuiltinMesh, Layout, Project};
 use crate::wrinkle_file::{self, ParseErrors, WrinkleFile};
 
 /// Everything loaded from files (or the built-in defaults), kept until a path changes.
@@ -23,8 +23,11 @@ pub(super) struct Inputs {
     /// allocation when no turn is needed).
     raw_mesh: Arc<Mesh>,
     pub(super) mesh: Arc<Mesh>,
-    /// The mesh file's axes (`mesh.up`, `mesh.forward`, else from the landmarks).
+    /// The mesh file's axes (`mesh.up`, `mesh.forward`, else from the landmarks, else
+    /// found by fitting the template), how they were decided, and what decided them.
     pub(super) axes: Axes,
+    pub(super) axes_how: String,
+    axes_key: (AxisChoice, AxisChoice, Layout, Option<usize>),
     /// The skin parts chosen by hand (`mesh.skin_parts`).
     skin_parts: Option<Vec<String>>,
     pub(super) wrinkles_key: Vec<PathBuf>,
@@ -216,7 +219,20 @@ impl Inputs {
                 Some(hair_masks),
                 Some(fine_tile),
             ) if errors.is_empty() => {
-                let axes = axes_of(project, landmarks.as_deref());
+                let axes_key = (
+                    project.mesh.up,
+                    project.mesh.forward,
+                    project.mesh.layout,
+                    landmarks.as_ref().map(|l| Arc::as_ptr(l) as usize),
+                );
+                // Finding the axes by fitting is not free: kept while the mesh and what
+                // decides them are the same.
+                let (axes, axes_how) = match previous {
+                    Some(p) if Arc::ptr_eq(&p.raw_mesh, &raw_mesh) && p.axes_key == axes_key => {
+                        (p.axes, p.axes_how.clone())
+                    }
+                    _ => axes_of(project, landmarks.as_deref(), &raw_mesh),
+                };
                 let skin_parts = project.mesh.skin_parts.clone();
                 let mesh = match previous {
                     Some(p)
@@ -269,6 +285,8 @@ impl Inputs {
                     raw_mesh,
                     mesh,
                     axes,
+                    axes_how,
+                    axes_key,
                     skin_parts,
                     wrinkles_key,
                     wrinkles,
@@ -417,20 +435,48 @@ impl HeadLayout {
 
 /// A mesh file's axes: the project's where it names them, else the landmarks', else
 /// agesim's own. The built-in meshes are agesim's own.
-fn axes_of(project: &Project, landmarks: Option<&Landmarks>) -> Axes {
+fn axes_of(project: &Project, landmarks: Option<&Landmarks>, mesh: &Mesh) -> (Axes, String) {
     if project.mesh.path.is_none() {
-        return Axes::STANDARD;
+        return (Axes::STANDARD, "agesim's own: a built-in mesh".into());
     }
-    let detected = landmarks.and_then(crate::mesh::units::detect_axes);
-    Axes {
-        up: (project.mesh.up.axis())
-            .or(detected.map(|a| a.up))
-            .unwrap_or(Axes::STANDARD.up),
-        forward: (project.mesh.forward.axis())
-            .or(detected.map(|a| a.forward))
-            .unwrap_or(Axes::STANDARD.forward),
+    let (up, forward) = (project.mesh.up.axis(), project.mesh.forward.axis());
+    if let (Some(up), Some(forward)) = (up, forward) {
+        return (Axes { up, forward }, "set in the project".into());
     }
+    if let Some(detected) = landmarks.and_then(crate::mesh::units::detect_axes) {
+        let axes = Axes {
+            up: up.unwrap_or(detected.up),
+            forward: forward.unwrap_or(detected.forward),
+        };
+        return (axes, "from the landmarks".into());
+    }
+    // No landmarks to read them from: the orientation the template fits best.
+    if up.is_none() && forward.is_none() && project.mesh.layout == Layout::Template {
+        let guess = crate::mesh::units::detect(&mesh.bounds(), None).metres_per_unit;
+        let guess = project.mesh.metres_per_unit.unwrap_or(guess);
+        if let Some((axes, mm)) =
+            crate::fit::auto::axes(mesh, crate::fit::template(), guess, AXES_GOOD_MM)
+            && mm <= AUTO_FIT_MAX_MEDIAN_MM
+        {
+            return (
+                axes,
+                format!("found by fitting the template ({mm:.1} mm from the head)"),
+            );
+        }
+    }
+    let axes = Axes {
+        up: up.unwrap_or(Axes::STANDARD.up),
+        forward: forward.unwrap_or(Axes::STANDARD.forward),
+    };
+    (
+        axes,
+        "assumed: no landmarks of the chin, brow, eyes and nose, and no orientation the template fits".into(),
+    )
 }
+
+/// A head the template fits within this (median, mm) in agesim's own orientation is
+/// taken as upright and facing +Z without trying the other 23.
+const AXES_GOOD_MM: f32 = 5.0;
 
 fn load_mesh(project: &Project) -> Result<Mesh, Error> {
     match (&project.mesh.path, project.mesh.builtin) {

@@ -433,6 +433,12 @@ impl Scene {
         self.inputs.axes
     }
 
+    /// How [`Scene::axes`] were decided: set in the project, from the landmarks, found by
+    /// fitting the template, or assumed.
+    pub fn axes_how(&self) -> &str {
+        &self.inputs.axes_how
+    }
+
     /// The head's landmarks, when the project names a landmark file (`mesh.landmarks`).
     pub fn landmarks(&self) -> Option<&Landmarks> {
         self.inputs.landmarks.as_deref()

@@ -723,16 +723,32 @@ impl eframe::App for EditorApp {
         }
         // Head ↔ map: a click on the head marks its UV on the map; the pointer over the
         // map marks the surface point on the head.
+        // A fitted head's fibres are on the template's chart: its UVs go through the
+        // correspondence both ways (the head's own maps are in its own UVs).
+        let snapshot = &self.session.snapshot;
+        let through = snapshot
+            .correspondence
+            .as_ref()
+            .filter(|_| self.persisted.map_view.kind.on_fibre_chart(snapshot.fitted));
         if let Some(v) = &mut self.viewport {
             if let Some(p) = v.picked.take() {
-                self.persisted.map_view.marker_uv = Some([p.uv.x, p.uv.y]);
+                let uv = match through {
+                    Some(c) => c.template_uv_at(p.uv),
+                    None => Some(p.uv),
+                };
+                self.persisted.map_view.marker_uv = uv.map(|uv| [uv.x, uv.y]);
             }
             let hover = self.persisted.map_view.hover_uv;
             if hover != self.last_hover_uv {
                 self.last_hover_uv = hover;
-                v.marker = match (hover, &self.session.snapshot.mesh) {
+                let head_uv = hover.map(glam::Vec2::from).and_then(|uv| match through {
+                    // Every other texel of the map, within 2 % of the chart.
+                    Some(c) => c.head_uv_of(uv, 2, 0.02),
+                    None => Some(uv),
+                });
+                v.marker = match (head_uv, &snapshot.mesh) {
                     (Some(uv), Some(mesh)) => {
-                        super::pick::uv_to_surface(mesh, glam::Vec2::from(uv)).map(|p| p.position)
+                        super::pick::uv_to_surface(mesh, uv).map(|p| p.position)
                     }
                     _ => None,
                 };

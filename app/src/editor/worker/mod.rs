@@ -74,6 +74,9 @@ pub struct Snapshot {
     pub landmarks_found: bool,
     /// The scene's coordinates back to the mesh file's (landmark files are in the file's).
     pub file_from_scene: glam::Mat3,
+    /// A fitted head's correspondence (head UV → template UV) at the large map's size:
+    /// a click on the head marks its template UV on the fibres' chart.
+    pub correspondence: Option<Arc<agesim_core::fit::Correspondence>>,
 }
 
 /// The outcome of one job.
@@ -390,6 +393,13 @@ fn bake(
         (None, true) => None,
     };
     snapshot.landmarks_found = s.layout().found;
+    snapshot.correspondence = match s.large() {
+        Some(l) if fitted => s
+            .correspondence(l.height.width_px(), &CancelToken::never())
+            .ok()
+            .flatten(),
+        _ => None,
+    };
     snapshot.file_from_scene = s
         .axes()
         .to_standard()

@@ -125,6 +125,46 @@ impl Correspondence {
         self.covered[(y * self.size + x) as usize]
     }
 
+    /// The template UV at the head UV `uv` (its texel's), `None` where the head has none
+    /// or outside the map.
+    pub fn template_uv_at(&self, uv: Vec2) -> Option<Vec2> {
+        let n = self.size as f32;
+        let (x, y) = ((uv.x * n).floor(), ((1.0 - uv.y) * n).floor());
+        if !(0.0..n).contains(&x) || !(0.0..n).contains(&y) {
+            return None;
+        }
+        self.get(x as u32, y as u32)
+    }
+
+    /// The head UV (a texel centre inside an island) whose template UV is nearest
+    /// `template_uv` (u wrapping), searched every `stride` texels; `None` when no texel
+    /// is within `max_distance` (template UV units).
+    pub fn head_uv_of(&self, template_uv: Vec2, stride: u32, max_distance: f32) -> Option<Vec2> {
+        let n = self.size;
+        let stride = stride.max(1);
+        let mut best: Option<(f32, u32, u32)> = None;
+        for y in (0..n).step_by(stride as usize) {
+            for x in (0..n).step_by(stride as usize) {
+                if !self.covered(x, y) {
+                    continue;
+                }
+                let Some(t) = self.get(x, y) else { continue };
+                let du = (t.x - template_uv.x).abs();
+                let d = Vec2::new(du.min(1.0 - du), t.y - template_uv.y).length_squared();
+                if best.is_none_or(|b| d < b.0) {
+                    best = Some((d, x, y));
+                }
+            }
+        }
+        let (d, x, y) = best?;
+        (d <= max_distance * max_distance).then(|| {
+            Vec2::new(
+                (x as f32 + 0.5) / n as f32,
+                1.0 - (y as f32 + 0.5) / n as f32,
+            )
+        })
+    }
+
     /// How many texels have a template point (padding included).
     pub fn matched(&self) -> usize {
         self.texels.iter().filter(|t| !t[0].is_nan()).count()

@@ -53,3 +53,29 @@ fn automatic_landmarks_are_near_the_hand_placed_ones() {
         assert!(found.median_distance_mm < crate::scene::AUTO_FIT_MAX_MEDIAN_MM);
     }
 }
+
+/// The correspondence read both ways: a head texel's template UV, and back the head UV
+/// whose template UV is nearest, which reads (almost) the same template UV.
+#[test]
+fn the_correspondence_reads_both_ways() {
+    let (mesh, hand) = shipped_head("makehuman", "mh_head.obj");
+    let fit = fit(&mesh, &hand, template()).unwrap();
+    let c = Correspondence::new(&mesh, &fit, 256, &crate::cancel::CancelToken::never()).unwrap();
+    let mut checked = 0;
+    for y in (0..256).step_by(17) {
+        for x in (0..256).step_by(13) {
+            if !c.covered(x, y) {
+                continue;
+            }
+            let Some(t) = c.get(x, y) else { continue };
+            let head = c.head_uv_of(t, 1, 0.05).unwrap();
+            let back = c.template_uv_at(head).unwrap();
+            let du = (back.x - t.x).abs();
+            let d = glam::Vec2::new(du.min(1.0 - du), back.y - t.y).length();
+            assert!(d < 0.01, "texel ({x}, {y}): {t} → {head} → {back}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 20, "{checked}");
+    assert!(c.template_uv_at(glam::Vec2::new(1.5, 0.5)).is_none());
+}

@@ -58,8 +58,12 @@ pub fn describe_head(scene: &Scene) -> String {
     let a = scene.axes();
     let how = scene.axes_how();
     let axes = format!("up {}, forward {} ({how})", a.up.name(), a.forward.name());
+    let textures = match scene.file_textures() {
+        [] => "none named by its material".to_owned(),
+        named => named.join(", "),
+    };
     format!(
-        "metres per unit: {} ({})\naxes:      {axes}\nlayout:    {}\n",
+        "metres per unit: {} ({})\naxes:      {axes}\nlayout:    {}\ntextures:  {textures}\n",
         u.metres_per_unit,
         u.how,
         scene.layout().how

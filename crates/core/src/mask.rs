@@ -51,10 +51,19 @@ impl HeadImage {
     /// head whose UVs use the other v convention than its picture).
     pub fn load(path: &Path, flip_v: bool) -> Result<Self, Error> {
         let bytes = crate::limits::read_file(path, crate::limits::MAX_IMAGE_FILE_BYTES)?;
-        let mut img = decode_image(&bytes, path)?.into_rgba8();
+        let mut img = Self::decode(&bytes, path)?;
         if flip_v {
-            image::imageops::flip_vertical_in_place(&mut img);
+            let row = img.width_px as usize * 4;
+            let rows: Vec<&[u8]> = img.rgba.chunks_exact(row).rev().collect();
+            img.rgba = rows.concat();
         }
+        Ok(img)
+    }
+
+    /// Decodes an image file in memory (a picture embedded in a GLB); `path` names it in
+    /// errors.
+    pub fn decode(bytes: &[u8], path: &Path) -> Result<Self, Error> {
+        let img = decode_image(bytes, path)?.into_rgba8();
         let (width_px, height_px) = img.dimensions();
         Ok(Self {
             width_px,

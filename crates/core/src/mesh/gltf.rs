@@ -28,11 +28,11 @@ use crate::error::Error;
 
 /// Whether a buffer URI stays inside the glTF's folder: a `data:` URI, or a relative path
 /// (percent-encoding decoded) with no `..` component, no scheme, no root or drive.
-fn check_buffer_uri(uri: &str) -> Result<(), &'static str> {
+pub(crate) fn check_uri(uri: &str) -> Result<(), &'static str> {
     if uri.starts_with("data:") {
         return Ok(());
     }
-    let decoded = percent_decode(uri);
+    let decoded = decode_uri(uri);
     if decoded.contains(':') {
         return Err("names a scheme or a drive");
     }
@@ -46,7 +46,7 @@ fn check_buffer_uri(uri: &str) -> Result<(), &'static str> {
 }
 
 /// `%xx` escapes of a URI decoded (invalid escapes kept as they are).
-fn percent_decode(uri: &str) -> String {
+pub(crate) fn decode_uri(uri: &str) -> String {
     let bytes = uri.as_bytes();
     let mut out = Vec::with_capacity(bytes.len());
     let mut i = 0;
@@ -87,7 +87,7 @@ pub fn load_bytes(bytes: &[u8], path: &Path) -> Result<RawMesh, Error> {
     }
     for buffer in gltf.document.buffers() {
         if let ::gltf::buffer::Source::Uri(uri) = buffer.source() {
-            check_buffer_uri(uri).map_err(|why| {
+            check_uri(uri).map_err(|why| {
                 fail(format!(
                     "buffer {} has the URI \"{}\", which {why}: only data: URIs and files inside the glTF's own folder are read",
                     buffer.index(),
@@ -1057,7 +1057,7 @@ mod tests {
             ("file:///etc/passwd", false),
             ("C:\\x.bin", false),
         ] {
-            assert_eq!(check_buffer_uri(uri).is_ok(), ok, "{uri}");
+            assert_eq!(check_uri(uri).is_ok(), ok, "{uri}");
         }
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("escape.gltf");

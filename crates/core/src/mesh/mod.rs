@@ -22,6 +22,7 @@ pub mod obj;
 pub mod spherical_uv;
 mod surface_scale;
 pub mod tangents;
+pub mod textures;
 pub mod units;
 
 pub use surface_scale::SurfaceScale;

@@ -474,3 +474,85 @@ fn the_skin_parts_can_be_chosen_by_hand() {
         "{e}"
     );
 }
+
+/// A head file's own pictures are kept: a GLB whose material embeds a base colour and a
+/// normal map, and an OBJ whose material library names them, give the scene those maps
+/// without the project naming any; the project's own pictures win over them.
+#[test]
+fn a_head_files_own_textures_are_read_from_its_material() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = |rgb: [u8; 3]| {
+        let mut bytes = Vec::new();
+        image::RgbImage::from_pixel(4, 2, image::Rgb(rgb))
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+            .unwrap();
+        bytes
+    };
+    let (colour, normal) = (png([200, 120, 90]), png([140, 128, 250]));
+    let head = crate::head::default_head();
+    let material = crate::mesh::gltf::GlbMaterial {
+        name: "skin".into(),
+        base_colour: [1.0; 4],
+        base_colour_png: Some(colour.clone()),
+        roughness: 0.5,
+        metallic: 0.0,
+        normal_png: Some(normal.clone()),
+        extras: serde_json::Value::Null,
+    };
+    let glb = dir.path().join("textured.glb");
+    std::fs::write(
+        &glb,
+        crate::mesh::gltf::write_glb_with_material(&head, Some(&material)),
+    )
+    .unwrap();
+    // The OBJ: its mtllib names the pictures beside it.
+    let obj = dir.path().join("textured.obj");
+    let text = format!(
+        "mtllib textured.mtl\nusemtl skin\n{}",
+        crate::mesh::obj::to_obj(&head, |p| p)
+    );
+    std::fs::write(&obj, text).unwrap();
+    std::fs::write(
+        dir.path().join("textured.mtl"),
+        "newmtl skin\nKd 1 1 1\nmap_Kd -bm 1 colour.png\nnorm normal.png\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("colour.png"), &colour).unwrap();
+    std::fs::write(dir.path().join("normal.png"), &normal).unwrap();
+    for path in [glb, obj] {
+        let mut p = Project::default();
+        p.mesh.path = Some(path.clone());
+        p.mesh.layout = crate::project::Layout::OwnUvs;
+        let scene = Scene::new(p.clone()).unwrap();
+        let c = scene.colour_map().expect("the file's colour map");
+        assert_eq!((c.width_px, c.height_px), (4, 2));
+        assert_eq!(&c.rgba[..4], &[200, 120, 90, 255], "{}", path.display());
+        let n = scene.normal_map().expect("the file's normal map");
+        assert_eq!(&n.rgba[..3], &[140, 128, 250]);
+        assert_eq!(
+            scene.file_textures().len(),
+            2,
+            "{:?}",
+            scene.file_textures()
+        );
+        // The project's own picture wins.
+        p.mesh.colour_map = Some(dir.path().join("normal.png"));
+        let scene = Scene::new(p).unwrap();
+        assert_eq!(&scene.colour_map().unwrap().rgba[..3], &[140, 128, 250]);
+    }
+    // A material naming a picture outside the head's folder is refused, naming it.
+    let bad = dir.path().join("bad.obj");
+    std::fs::write(&bad, "mtllib bad.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    std::fs::write(
+        dir.path().join("bad.mtl"),
+        "newmtl m\nmap_Kd ../../etc/x.png\n",
+    )
+    .unwrap();
+    let mut p = Project::default();
+    p.mesh.path = Some(bad);
+    let e = Scene::new(p).unwrap_err().to_string();
+    assert!(e.contains("map_Kd") && e.contains("etc/x.png"), "{e}");
+}

@@ -47,6 +47,8 @@ pub(super) struct Inputs {
     colour_map_key: (Option<PathBuf>, bool),
     /// The head's base colour map (`mesh.colour_map`), when the project names one.
     pub(super) colour_map: Option<Arc<HeadImage>>,
+    /// The pictures the mesh file's own material names (read with the mesh).
+    pub(super) file_textures: Arc<crate::mesh::textures::MeshTextures>,
     normal_map_key: (Option<PathBuf>, bool),
     /// The head's normal map (`mesh.normal_map`), when the project names one.
     pub(super) normal_map: Option<Arc<HeadImage>>,
@@ -106,8 +108,15 @@ impl Inputs {
         // The inputs are independent: decoded at once on the pool (the mesh and the
         // masks are most of a bake's start-up). Errors are reported in this fixed order.
         let load_mesh_part = || match previous.filter(|p| p.mesh_key == mesh_key) {
-            Some(p) => Ok(p.raw_mesh.clone()),
-            None => load_mesh(project).map(Arc::new),
+            Some(p) => Ok((p.raw_mesh.clone(), p.file_textures.clone())),
+            None => {
+                let mesh = load_mesh(project).map(Arc::new)?;
+                let textures = match &project.mesh.path {
+                    Some(path) => crate::mesh::textures::load(path)?,
+                    None => Default::default(),
+                };
+                Ok((mesh, Arc::new(textures)))
+            }
         };
         let load_wrinkles_part = || match previous.filter(|p| p.wrinkles_key == wrinkles_key) {
             Some(p) => Ok((p.wrinkles.clone(), p.wrinkles_edited)),
@@ -161,7 +170,10 @@ impl Inputs {
             });
         let mut errors: Vec<Error> = Vec::new();
         let mut ok = |r: Result<(), Error>| errors.extend(r.err());
-        let mesh = mesh.map_err(|e| ok(Err(e))).ok();
+        let (mesh, file_textures) = match mesh.map_err(|e| ok(Err(e))).ok() {
+            Some((m, t)) => (Some(m), t),
+            None => (None, Arc::default()),
+        };
         let (wrinkles, wrinkles_edited) = match wrinkles {
             Ok((w, edited)) => (Some(w), edited),
             Err(e) => {
@@ -301,6 +313,7 @@ impl Inputs {
                     landmarks,
                     colour_map_key,
                     colour_map,
+                    file_textures,
                     normal_map_key,
                     normal_map,
                     layout,

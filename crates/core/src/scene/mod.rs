@@ -444,14 +444,28 @@ impl Scene {
         self.inputs.landmarks.as_deref()
     }
 
-    /// The head's base colour map (`mesh.colour_map`), over its own UVs.
+    /// The head's base colour map (`mesh.colour_map`, else the one the mesh file's
+    /// material names), over its own UVs.
     pub fn colour_map(&self) -> Option<&Arc<crate::mask::HeadImage>> {
-        self.inputs.colour_map.as_ref()
+        self.inputs
+            .colour_map
+            .as_ref()
+            .or(self.inputs.file_textures.colour.as_ref())
     }
 
-    /// The head's tangent-space normal map (`mesh.normal_map`), over its own UVs.
+    /// Where the mesh file's own pictures came from (its material's colour and normal
+    /// maps), for reports; empty when it names none.
+    pub fn file_textures(&self) -> &[String] {
+        &self.inputs.file_textures.sources
+    }
+
+    /// The head's tangent-space normal map (`mesh.normal_map`, else the one the mesh
+    /// file's material names), over its own UVs.
     pub fn normal_map(&self) -> Option<&Arc<crate::mask::HeadImage>> {
-        self.inputs.normal_map.as_ref()
+        self.inputs
+            .normal_map
+            .as_ref()
+            .or(self.inputs.file_textures.normal.as_ref())
     }
 
     /// How the mesh reads the layers: the template fitted to it, or its own UVs, and why.

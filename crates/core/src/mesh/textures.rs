@@ -1,0 +1,185 @@
+//! A head file's own pictures: the base colour and normal maps its material names (glTF
+//! `baseColorTexture` and `normalTexture`, embedded or beside the file; OBJ `map_Kd` and
+//! `norm` of its `mtllib`), so an imported head keeps its texture work without being
+//! told (docs/models.md §7a). Files are read only from the head's own folder, as its
+//! buffers are.
+
+use std::path::{Path, PathBuf};
+
+use crate::error::Error;
+use crate::mask::HeadImage;
+
+/// The pictures a head file's material names, decoded.
+#[derive(Clone, Debug, Default)]
+pub struct MeshTextures {
+    pub colour: Option<std::sync::Arc<HeadImage>>,
+    pub normal: Option<std::sync::Arc<HeadImage>>,
+    /// Where each came from, for reports.
+    pub sources: Vec<String>,
+}
+
+/// One picture a material names.
+enum Source {
+    Bytes(Vec<u8>, String),
+    File(PathBuf),
+}
+
+impl Source {
+    fn decode(self) -> Result<(HeadImage, String), Error> {
+        match self {
+            Source::Bytes(bytes, name) => {
+                let image = HeadImage::decode(&bytes, Path::new(&name))?;
+                Ok((image, name))
+            }
+            Source::File(path) => {
+                let image = HeadImage::load(&path, false)?;
+                Ok((image, path.display().to_string()))
+            }
+        }
+    }
+}
+
+/// The base colour and normal maps `path`'s material names (the material of the most
+/// triangles that has a base colour map, for glTF); none for other formats or none
+/// named. An unreadable picture is an error naming it.
+pub fn load(path: &Path) -> Result<MeshTextures, Error> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    let (colour, normal) = match ext.as_str() {
+        "gltf" | "glb" => gltf_sources(path)?,
+        "obj" => obj_sources(path)?,
+        _ => (None, None),
+    };
+    let mut out = MeshTextures::default();
+    if let Some(s) = colour {
+        let (image, name) = s.decode()?;
+        out.colour = Some(std::sync::Arc::new(image));
+        out.sources.push(format!("colour map {name}"));
+    }
+    if let Some(s) = normal {
+        let (image, name) = s.decode()?;
+        out.normal = Some(std::sync::Arc::new(image));
+        out.sources.push(format!("normal map {name}"));
+    }
+    Ok(out)
+}
+
+fn gltf_sources(path: &Path) -> Result<(Option<Source>, Option<Source>), Error> {
+    let fail = |message: String| Error::MeshFile {
+        path: path.to_owned(),
+        message,
+    };
+    let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES)?;
+    let gltf = ::gltf::Gltf::from_slice(&bytes)
+        .map_err(|e| fail(format!("not a valid glTF 2.0 file: {e}")))?;
+    // The material of the most triangles with a base colour map: the skin's.
+    let mut count = vec![0usize; gltf.document.materials().len()];
+    for mesh in gltf.document.meshes() {
+        for prim in mesh.primitives() {
+            if let (Some(i), Some(a)) = (prim.material().index(), prim.indices()) {
+                count[i] += a.count() / 3;
+            }
+        }
+    }
+    let Some(material) = gltf
+        .document
+        .materials()
+        .filter(|m| m.pbr_metallic_roughness().base_color_texture().is_some())
+        .max_by_key(|m| m.index().map_or(0, |i| count[i]))
+    else {
+        return Ok((None, None));
+    };
+    let dir = path.parent().unwrap_or(Path::new("")).to_owned();
+    let buffers = ::gltf::import_buffers(&gltf.document, Some(&dir), gltf.blob.clone())
+        .map_err(|e| fail(format!("cannot read its buffers: {e}")))?;
+    let source = |texture: ::gltf::Texture<'_>| -> Result<Source, Error> {
+        let image = texture.source();
+        match image.source() {
+            ::gltf::image::Source::View { view, .. } => {
+                let data = &buffers
+                    .get(view.buffer().index())
+                    .ok_or_else(|| fail(format!("image {} names no buffer", image.index())))?
+                    .0;
+                let bytes = data
+                    .get(view.offset()..view.offset() + view.length())
+                    .ok_or_else(|| {
+                        fail(format!("image {} lies outside its buffer", image.index()))
+                    })?;
+                Ok(Source::Bytes(
+                    bytes.to_vec(),
+                    format!("{} (image {})", path.display(), image.index()),
+                ))
+            }
+            ::gltf::image::Source::Uri { uri, .. } => {
+                if uri.starts_with("data:") {
+                    return Err(fail(format!(
+                        "image {}: data: URIs for images are not read; embed it in a GLB or put it beside the file",
+                        image.index()
+                    )));
+                }
+                super::gltf::check_uri(uri).map_err(|why| {
+                    fail(format!(
+                        "image {} has the URI \"{}\", which {why}",
+                        image.index(),
+                        crate::limits::shorten(uri, 80)
+                    ))
+                })?;
+                Ok(Source::File(dir.join(super::gltf::decode_uri(uri))))
+            }
+        }
+    };
+    let colour = material
+        .pbr_metallic_roughness()
+        .base_color_texture()
+        .map(|t| source(t.texture()))
+        .transpose()?;
+    let normal = material
+        .normal_texture()
+        .map(|t| source(t.texture()))
+        .transpose()?;
+    Ok((colour, normal))
+}
+
+/// The OBJ's `mtllib`, and in it the first `map_Kd` (colour) and `norm` (tangent normal
+/// map) — files of the OBJ's folder.
+fn obj_sources(path: &Path) -> Result<(Option<Source>, Option<Source>), Error> {
+    let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES)?;
+    let text = String::from_utf8_lossy(&bytes);
+    let dir = path.parent().unwrap_or(Path::new("")).to_owned();
+    let Some(mtl) = text
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("mtllib ").map(str::trim))
+    else {
+        return Ok((None, None));
+    };
+    let inside = |name: &str, what: &str, from: &Path| -> Result<PathBuf, Error> {
+        super::gltf::check_uri(name).map_err(|why| Error::MeshFile {
+            path: from.to_owned(),
+            message: format!("{what} \"{}\" {why}", crate::limits::shorten(name, 80)),
+        })?;
+        Ok(dir.join(name))
+    };
+    let mtl_path = inside(mtl, "mtllib", path)?;
+    // A missing material library is no error for the mesh: OBJ readers skip it.
+    let Ok(mtl_bytes) = crate::limits::read_file(&mtl_path, crate::limits::MAX_TEXT_FILE_BYTES)
+    else {
+        return Ok((None, None));
+    };
+    let mtl_text = String::from_utf8_lossy(&mtl_bytes);
+    // The file name is the statement's last word (options like `-bm 1` come before).
+    let map = |key: &str| {
+        mtl_text.lines().find_map(|l| {
+            let mut words = l.split_whitespace();
+            (words.next() == Some(key)).then(|| words.last().map(str::to_owned))?
+        })
+    };
+    let colour = map("map_Kd")
+        .map(|n| inside(&n, "map_Kd", &mtl_path).map(Source::File))
+        .transpose()?;
+    let normal = map("norm")
+        .map(|n| inside(&n, "norm", &mtl_path).map(Source::File))
+        .transpose()?;
+    Ok((colour, normal))
+}

@@ -41,6 +41,20 @@ pub struct Cli {
     /// visible, scrubbing), print its table and quit.
     #[arg(long)]
     pub bench_ui: bool,
+
+    /// Editor: write the unsaved session to the recovery folder at most every N seconds
+    /// (`$XDG_DATA_HOME/agesim/recovery/`); 0 turns autosave off.
+    #[arg(long, default_value_t = 60.0, value_name = "N")]
+    pub autosave_seconds: f64,
+
+    /// Editor: restore the session a crash left in the recovery folder without asking.
+    #[arg(long)]
+    pub recover: bool,
+
+    /// Editor: one edit made once the editor is up (`noise.strength=0.7`), as if by
+    /// hand: for scripted runs and tests.
+    #[arg(long, value_name = "FIELD=VALUE", hide = true)]
+    pub edit: Option<String>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -78,6 +92,9 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             age_years: cli.age_years,
             compare_years: cli.compare_years,
             bench_ui: cli.bench_ui,
+            autosave_seconds: cli.autosave_seconds.max(0.0),
+            recover: cli.recover,
+            edit: cli.edit,
             ..Default::default()
         }),
         Some(Command::Bake(args)) => bake::run(&args),

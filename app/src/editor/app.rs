@@ -8,6 +8,7 @@ use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, WrinkleSource};
 use serde_json::Value;
 
+mod autosave;
 mod compare;
 mod document;
 mod inputs;
@@ -105,6 +106,16 @@ pub struct EditorOptions {
     /// which a CPU rasteriser would shade at every pixel. Off under egui_kittest, which
     /// clears to transparent.
     pub cleared_to_panel_colour: bool,
+    /// Write the session to the recovery folder at most this often while there are
+    /// unsaved changes (seconds; 0: off).
+    pub autosave_seconds: f64,
+    /// Restore the session a crash left behind without asking.
+    pub recover: bool,
+    /// The recovery folder (default: the platform's data directory; tests set it).
+    pub data_dir: Option<PathBuf>,
+    /// One edit (`field=value`) made once the first maps are shown, as if by hand
+    /// (scripted runs: the recovery test).
+    pub edit: Option<String>,
 }
 
 /// Which windows are open.
@@ -153,6 +164,7 @@ pub struct EditorApp {
     layout_texture: Option<(egui::TextureHandle, usize)>,
     /// The guided landmark mode, when open.
     landmark_mode: Option<landmarks::LandmarkMode>,
+    autosave: autosave::Autosave,
     persisted: Persisted,
     adapter: String,
     viewport: Option<Viewport>,
@@ -247,6 +259,7 @@ impl EditorApp {
             textures: Vec::new(),
             layout_texture: None,
             landmark_mode: None,
+            autosave: autosave::Autosave::default(),
             persisted,
             adapter,
             viewport,
@@ -274,6 +287,7 @@ impl EditorApp {
         app.refresh_user_presets();
         app.baked_normal_picture = app.persisted.map_view.kind.normal_picture();
         app.submit(false, "open");
+        app.start_recovery();
         app
     }
 
@@ -530,6 +544,8 @@ impl eframe::App for EditorApp {
         self.poll_io();
         self.watch_files();
         self.poll_export();
+        self.scripted_edit();
+        self.autosave_tick();
         self.intercept_close(&ctx);
         if self.prompt.is_none() {
             self.shortcuts(&ctx);
@@ -775,6 +791,12 @@ impl eframe::App for EditorApp {
         self.notices.toasts_ui(&ctx, 150.0);
         self.maybe_screenshot(&ctx);
         self.bench_step(&ctx);
+    }
+
+    fn on_exit(&mut self) {
+        // A clean exit: nothing to recover.
+        self.autosave.in_flight = false;
+        self.clear_recovery();
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

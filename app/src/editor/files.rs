@@ -238,6 +238,11 @@ pub enum IoResult {
         name: String,
         result: Result<Project, String>,
     },
+    /// The session was written to the recovery folder (at this revision), or why not.
+    Autosaved {
+        revision: u64,
+        result: Result<(), String>,
+    },
     /// The landmark mode's file was written (its path), or why not.
     LandmarksSaved { result: Result<PathBuf, String> },
 }

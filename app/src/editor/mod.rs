@@ -13,6 +13,7 @@ pub mod history;
 pub mod map_view;
 mod notices;
 pub mod pick;
+pub mod recovery;
 mod session;
 pub mod timeline;
 pub mod viewport;

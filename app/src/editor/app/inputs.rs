@@ -197,6 +197,7 @@ impl EditorApp {
                                 self.doc.wrinkles = wrinkles;
                             }
                             self.doc.saved_revision = self.doc.revision;
+                            self.clear_recovery();
                         }
                         self.doc.path = Some(path.clone());
                         self.remember_recent(&path);
@@ -215,6 +216,7 @@ impl EditorApp {
                     Err(e) => self.error(format!("The {what} was not saved: {e}")),
                 },
                 IoResult::UserPresets(list) => self.user_presets = list,
+                IoResult::Autosaved { revision, result } => self.autosaved(revision, result),
                 IoResult::LandmarksSaved { result } => match result {
                     Ok(path) => self.landmarks_saved(path),
                     Err(e) => self.error(format!("The landmarks were not saved: {e}")),

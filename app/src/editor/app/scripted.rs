@@ -3,6 +3,32 @@
 use super::{EditorApp, Layout};
 
 impl EditorApp {
+    /// `--edit field=value`: applied once the first maps are shown, as the layer panel
+    /// would (one undo step, the document modified).
+    pub(super) fn scripted_edit(&mut self) {
+        if self.session.snapshot.large.is_none() || self.autosave.offer.is_some() {
+            return;
+        }
+        let Some(edit) = self.options.edit.take() else {
+            return;
+        };
+        let Some((path, text)) = edit.split_once('=') else {
+            self.error(format!("--edit {edit}: expected FIELD=VALUE"));
+            return;
+        };
+        let Some(field) = agesim_core::project::fields::FIELDS
+            .iter()
+            .find(|f| f.path == path.trim())
+        else {
+            self.error(format!("--edit {edit}: no field {path}"));
+            return;
+        };
+        match field.parse_text(text) {
+            Ok(value) => self.apply(field.path, value, false),
+            Err(e) => self.error(format!("--edit: {e}")),
+        }
+    }
+
     pub(super) fn bench_step(&mut self, ctx: &egui::Context) {
         let Some(bench) = &mut self.bench else {
             return;

@@ -70,6 +70,7 @@ impl EditorApp {
 
     /// The unsaved-changes prompt, the Export, Help, Messages and About windows.
     pub(super) fn windows_ui(&mut self, ctx: &egui::Context) {
+        self.recovery_window(ctx);
         self.landmark_window(ctx);
         if let Some(action) = self.prompt.clone() {
             let modal = egui::Modal::new(egui::Id::unique("unsaved")).show(ctx, |ui| {
@@ -201,7 +202,12 @@ impl EditorApp {
 
     /// Asks before the window closes with unsaved changes.
     pub(super) fn intercept_close(&mut self, ctx: &egui::Context) {
-        if ctx.input(|i| i.viewport().close_requested()) && self.modified() && !self.quit_confirmed
+        // A scripted run (screenshot, benchmark) closes itself: nobody to ask.
+        let scripted = self.options.screenshot.is_some() || self.options.bench_ui;
+        if ctx.input(|i| i.viewport().close_requested())
+            && self.modified()
+            && !self.quit_confirmed
+            && !scripted
         {
             ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
             self.prompt = Some(Pending::Quit);

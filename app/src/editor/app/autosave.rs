@@ -1,0 +1,157 @@
+//! Autosave and recovery in the editor (see `editor::recovery`): the session written on a
+//! file thread at most every `--autosave-seconds` while there are unsaved changes, the
+//! offer to restore a session left by a crash, and its removal on a clean exit or a save.
+
+use super::EditorApp;
+use crate::editor::files::IoResult;
+use crate::editor::recovery::{self, Left};
+
+/// Autosave's state.
+#[derive(Debug, Default)]
+pub struct Autosave {
+    /// The recovery folder (`None`: autosave off and nothing to recover).
+    pub folder: Option<std::path::PathBuf>,
+    /// egui time of the last write started.
+    pub last: f64,
+    pub in_flight: bool,
+    /// The revision the folder holds.
+    pub written: Option<u64>,
+    /// A session left by an editor that did not exit cleanly, offered back.
+    pub offer: Option<Left>,
+}
+
+impl EditorApp {
+    /// At start: finds a session left behind; `--recover` restores it at once, else it is
+    /// offered.
+    pub(super) fn start_recovery(&mut self) {
+        let folder = recovery::folder(self.options.data_dir.as_deref());
+        let wanted = self.options.autosave_seconds > 0.0 || self.options.recover;
+        self.autosave.folder = folder.filter(|_| wanted);
+        let Some(dir) = &self.autosave.folder else {
+            return;
+        };
+        if let Some(left) = recovery::left_behind(dir) {
+            if self.options.recover {
+                self.restore_session(left);
+            } else {
+                self.autosave.offer = Some(left);
+            }
+        } else if self.options.recover {
+            self.info("Nothing to recover");
+        }
+    }
+
+    /// Each frame: writes the session when it changed and the interval has passed.
+    pub(super) fn autosave_tick(&mut self) {
+        let Some(dir) = self.autosave.folder.clone() else {
+            return;
+        };
+        let every = self.options.autosave_seconds;
+        if every <= 0.0
+            || self.autosave.in_flight
+            || self.autosave.offer.is_some()
+            || !self.modified()
+            || self.autosave.written == Some(self.doc.revision)
+        {
+            return;
+        }
+        if self.now - self.autosave.last < every {
+            // Come back when it is due, even if nothing else draws a frame.
+            self.ctx
+                .request_repaint_after(std::time::Duration::from_secs_f64(
+                    every - (self.now - self.autosave.last),
+                ));
+            return;
+        }
+        self.autosave.last = self.now;
+        self.autosave.in_flight = true;
+        let (project, wrinkles) = (self.doc.project.clone(), self.doc.wrinkles.clone());
+        let original = self.doc.path.clone();
+        let revision = self.doc.revision;
+        self.io.spawn(move || IoResult::Autosaved {
+            revision,
+            result: recovery::write(&dir, &project, wrinkles.as_deref(), original.as_deref()),
+        });
+    }
+
+    /// The file thread wrote (or failed to write) the session.
+    pub(super) fn autosaved(&mut self, revision: u64, result: Result<(), String>) {
+        self.autosave.in_flight = false;
+        match result {
+            Ok(()) => self.autosave.written = Some(revision),
+            Err(e) => self.error(format!("Autosave failed: {e}")),
+        }
+        // A save that finished meanwhile leaves nothing to recover.
+        if !self.modified() {
+            self.clear_recovery();
+        }
+    }
+
+    /// No unsaved work any more (a save, a clean exit): the folder goes.
+    pub(super) fn clear_recovery(&mut self) {
+        if self.autosave.in_flight || self.autosave.offer.is_some() {
+            return;
+        }
+        if let Some(dir) = &self.autosave.folder {
+            recovery::clear(dir);
+            self.autosave.written = None;
+        }
+    }
+
+    /// Takes a left session as the document: marked modified, undo starts from it, a
+    /// save goes where the document was saved before.
+    pub(super) fn restore_session(&mut self, left: Left) {
+        match recovery::read(&left) {
+            Ok((project, wrinkles)) => {
+                self.replace_document(project, left.original.clone(), "recover");
+                self.doc.wrinkles = wrinkles;
+                self.doc.saved_revision = self.doc.revision.wrapping_sub(1);
+                self.submit(false, "recover");
+                self.info(format!(
+                    "Recovered the unsaved work of the last session{}",
+                    left.original
+                        .as_ref()
+                        .map_or(String::new(), |p| format!(" ({})", p.display()))
+                ));
+                println!("recovered {}", left.session.display());
+            }
+            Err(e) => self.error(format!("The last session could not be recovered: {e}")),
+        }
+    }
+
+    /// The offer to restore a session left by a crash.
+    pub(super) fn recovery_window(&mut self, ctx: &egui::Context) {
+        let Some(left) = self.autosave.offer.clone() else {
+            return;
+        };
+        let mut choice = None;
+        egui::Modal::new(egui::Id::unique("recover")).show(ctx, |ui| {
+            ui.heading("Recover unsaved work?");
+            ui.label("agesim did not exit cleanly last time. Its unsaved work was kept:");
+            ui.label(
+                egui::RichText::new(left.session.display().to_string())
+                    .monospace()
+                    .small(),
+            );
+            ui.horizontal(|ui| {
+                if ui.button("Restore").clicked() {
+                    choice = Some(true);
+                }
+                if ui.button("Discard").clicked() {
+                    choice = Some(false);
+                }
+            });
+        });
+        match choice {
+            Some(true) => {
+                self.autosave.offer = None;
+                self.restore_session(left);
+            }
+            Some(false) => {
+                self.autosave.offer = None;
+                self.clear_recovery();
+            }
+            None => {}
+        }
+    }
+}

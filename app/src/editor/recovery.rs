@@ -1,0 +1,146 @@
+//! Autosave and crash recovery: while a document has unsaved changes, the whole session
+//! (the project and its edited wrinkle files, as a normal project that also opens by hand)
+//! is written, all or nothing, to a recovery folder in the platform's data directory
+//! (`$XDG_DATA_HOME/agesim/recovery/`, else `~/.local/share/agesim/recovery/`). A clean
+//! exit or a save removes it; a folder left by an editor that is no longer running is
+//! offered back at the next start (`agesim --recover` restores it without asking).
+
+use std::path::{Path, PathBuf};
+
+use agesim_core::project::Project;
+use agesim_core::scene::WrinkleSource;
+
+/// The session's project file in the recovery folder.
+pub const SESSION_FILE: &str = "session.agesim.json";
+/// What the recovery folder remembers beside the project: the document's own path and
+/// the editor that wrote it.
+const INFO_FILE: &str = "recovery.json";
+
+/// The recovery folder: `override_dir` (tests), else `$XDG_DATA_HOME/agesim/recovery`,
+/// else `$HOME/.local/share/agesim/recovery`; `None` with neither variable set.
+pub fn folder(override_dir: Option<&Path>) -> Option<PathBuf> {
+    if let Some(d) = override_dir {
+        return Some(d.to_owned());
+    }
+    let data = std::env::var_os("XDG_DATA_HOME")
+        .filter(|v| !v.is_empty())
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".local/share")))?;
+    Some(data.join("agesim").join("recovery"))
+}
+
+/// A session left behind by an editor that did not exit cleanly.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Left {
+    /// The recovered project file (in the recovery folder).
+    pub session: PathBuf,
+    /// Where the document was saved before, if it was.
+    pub original: Option<PathBuf>,
+}
+
+/// The session in `dir` left by an editor that is no longer running, if any.
+pub fn left_behind(dir: &Path) -> Option<Left> {
+    let session = dir.join(SESSION_FILE);
+    if !session.is_file() {
+        return None;
+    }
+    let info: serde_json::Value = std::fs::read(dir.join(INFO_FILE))
+        .ok()
+        .and_then(|b| serde_json::from_slice(&b).ok())
+        .unwrap_or_default();
+    // A running editor's own autosave is not a crash's.
+    if let Some(pid) = info["pid"].as_u64()
+        && pid != u64::from(std::process::id())
+        && alive(pid)
+    {
+        return None;
+    }
+    Some(Left {
+        session,
+        original: info["original"].as_str().map(PathBuf::from),
+    })
+}
+
+/// Whether a process with this id runs (Linux: `/proc/<pid>`; elsewhere assumed not).
+fn alive(pid: u64) -> bool {
+    Path::new(&format!("/proc/{pid}")).exists()
+}
+
+/// Writes the session to `dir`: the recovery note, then the project and its edited
+/// wrinkle files as one all-or-nothing set (`files::save_project`).
+pub fn write(
+    dir: &Path,
+    project: &Project,
+    wrinkles: Option<&[WrinkleSource]>,
+    original: Option<&Path>,
+) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let info = serde_json::json!({
+        "pid": std::process::id(),
+        "original": original.map(|p| p.display().to_string()),
+    });
+    let set = agesim_core::export::OutputSet::new();
+    set.stage(&dir.join(INFO_FILE), |w| {
+        std::io::Write::write_all(w, info.to_string().as_bytes())
+    })
+    .and_then(|()| set.commit())
+    .map_err(|e| e.to_string())?;
+    super::files::save_project(&dir.join(SESSION_FILE), project, wrinkles, None).map(|_| ())
+}
+
+/// Removes the recovery folder (a clean exit, a save).
+pub fn clear(dir: &Path) {
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Reads a left session back: the project, and its wrinkle files as edited documents (so
+/// a save writes them beside the project, not pointing into the recovery folder, which
+/// goes away). The built-in mask the session carried for built-in wrinkles is the
+/// built-in one again.
+pub fn read(left: &Left) -> Result<(Project, Option<Vec<WrinkleSource>>), String> {
+    let mut project = Project::load(&left.session).map_err(|e| e.to_string())?;
+    let dir = left.session.parent().unwrap_or(Path::new(""));
+    if project
+        .large
+        .mask
+        .as_deref()
+        .is_some_and(|m| m.starts_with(dir))
+    {
+        project.large.mask = None;
+    }
+    let wrinkles = if project.large.wrinkles.iter().any(|w| w.starts_with(dir)) {
+        let sources = agesim_core::scene::load_wrinkles(&project.large.wrinkles)
+            .map_err(|e| e.to_string())?;
+        Some(sources)
+    } else {
+        None
+    };
+    Ok((project, wrinkles))
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    #[test]
+    fn a_session_is_written_found_read_and_cleared() {
+        let dir = tempfile::tempdir().unwrap();
+        let rec = dir.path().join("recovery");
+        assert!(left_behind(&rec).is_none());
+        let mut p = Project::default();
+        p.noise.strength = 0.77;
+        write(&rec, &p, None, Some(Path::new("/work/p.agesim.json"))).unwrap();
+        // This process wrote it and still runs: found (it is its own).
+        let left = left_behind(&rec).unwrap();
+        assert_eq!(left.original, Some(PathBuf::from("/work/p.agesim.json")));
+        let (back, wrinkles) = read(&left).unwrap();
+        assert_eq!(back.noise.strength, 0.77);
+        assert!(wrinkles.is_none());
+        clear(&rec);
+        assert!(left_behind(&rec).is_none());
+        if let Some(f) = folder(None) {
+            assert!(f.ends_with("agesim/recovery"), "{}", f.display());
+        }
+    }
+}

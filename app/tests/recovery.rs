@@ -104,6 +104,7 @@ fn a_killed_editor_leaves_its_work_and_recover_restores_it() {
     while !session_says(&rec, "0.625") {
         if let Ok(Some(status)) = editor.try_wait() {
             let _ = xvfb.kill();
+            let _ = xvfb.wait();
             let mut err = String::new();
             std::io::Read::read_to_string(&mut editor.stderr.take().unwrap(), &mut err).unwrap();
             if err.contains("could not be opened") {

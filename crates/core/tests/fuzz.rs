@@ -1,6 +1,8 @@
 //! Random and mutated inputs to every parser of user files: the wrinkle-file parser, the
-//! project loader, the landmark files, and the mesh loaders (OBJ, glTF/GLB) and
-//! `Mesh::build`. Each must return
+//! project loader, the landmark files, the mesh loaders (OBJ, glTF/GLB) and
+//! `Mesh::build` — a real GLB mutated in its JSON chunk and in its binary chunk, an OBJ
+//! with objects, groups, materials and polygons — and the image loaders of masks and
+//! head pictures (PNG, JPEG). Each must return
 //! `Ok` or an error, never panic. Not part of the default `cargo test` (they are
 //! `#[ignore]`d); the dedicated run, 100,000 cases per target by default:
 //!
@@ -41,6 +43,130 @@ const LANDMARKS: &str = r#"{"landmarks": {"exocanthion_r": [-4.7, 0, 0],
 /// A small valid OBJ to mutate.
 const OBJ: &str =
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n";
+
+/// An OBJ as tools write them: objects, groups, smoothing, materials, polygons, negative
+/// indices, a missing material library.
+const REAL_OBJ: &str = "# exported\nmtllib head.mtl\no Head\nv -1 0 0\nv 1 0 0\nv 1 2 0\nv -1 2 0\nv 0 3 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 1\nvn 0 0 1\ng skin\nusemtl Skin\ns 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\nf -2/-2/1 -3/-3/1 5/5/1\no eye_l\ng eye\nusemtl Eye\ns off\nf 1//1 2//1 5//1\nl 1 2\n";
+
+/// A real GLB: two parts with normals, UVs and indices, a material with an embedded PNG.
+fn real_glb() -> Vec<u8> {
+    use agesim_core::mesh::{MeshPart, RawMesh};
+    use glam::{Vec2, Vec3};
+    let n = 6u32;
+    let mut raw = RawMesh::default();
+    let mut uvs = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
+            raw.positions.push(Vec3::new(u, v, (u * 3.0).sin() * 0.2));
+            uvs.push(Vec2::new(u, v));
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            raw.indices
+                .extend_from_slice(&[a, a + 1, a + n + 2, a, a + n + 2, a + n + 1]);
+        }
+    }
+    raw.uvs = Some(uvs);
+    let half = (n * n) as u32;
+    raw.parts = vec![
+        MeshPart {
+            name: "skin".into(),
+            first_triangle: 0,
+            triangle_count: half,
+        },
+        MeshPart {
+            name: "eye".into(),
+            first_triangle: half,
+            triangle_count: half,
+        },
+    ];
+    let mesh = Mesh::build(raw, "fuzz base").unwrap();
+    let material = gltf::GlbMaterial {
+        name: "m".into(),
+        base_colour: [1.0; 4],
+        base_colour_png: Some(png()),
+        roughness: 0.5,
+        metallic: 0.0,
+        normal_png: None,
+        extras: serde_json::Value::Null,
+    };
+    gltf::write_glb_with_material(&mesh, Some(&material))
+}
+
+/// A small PNG and JPEG.
+fn png() -> Vec<u8> {
+    let img = image::RgbImage::from_fn(8, 6, |x, y| image::Rgb([x as u8 * 30, y as u8 * 40, 90]));
+    let mut out = Vec::new();
+    img.write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
+        .unwrap();
+    out
+}
+
+fn jpeg() -> Vec<u8> {
+    let img = image::RgbImage::from_fn(8, 6, |x, y| image::Rgb([x as u8 * 30, y as u8 * 40, 90]));
+    let mut out = Vec::new();
+    img.write_to(
+        &mut std::io::Cursor::new(&mut out),
+        image::ImageFormat::Jpeg,
+    )
+    .unwrap();
+    out
+}
+
+fn leak(v: Vec<u8>) -> &'static [u8] {
+    Box::leak(v.into_boxed_slice())
+}
+
+/// The GLB's chunks: (JSON, binary).
+fn chunks(glb: &[u8]) -> (Vec<u8>, Vec<u8>) {
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let json = glb[20..20 + json_len].to_vec();
+    let bin = glb[20 + json_len + 8..].to_vec();
+    (json, bin)
+}
+
+/// A GLB of these chunks, the lengths made right (the loader sees the mutation itself).
+fn assemble(json: &[u8], bin: &[u8]) -> Vec<u8> {
+    let pad = |v: &[u8], with: u8| {
+        let mut v = v.to_vec();
+        while v.len() % 4 != 0 {
+            v.push(with);
+        }
+        v
+    };
+    let (json, bin) = (pad(json, b' '), pad(bin, 0));
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    out
+}
+
+/// Loads a GLB's mesh and pictures the way a scene does, from a file (the pictures are
+/// read by path).
+fn load_glb(bytes: &[u8]) {
+    if let Ok(raw) = gltf::load_bytes(bytes, Path::new("fuzz.glb")) {
+        let _ = Mesh::build(raw, "fuzz.glb");
+    }
+    thread_local! {
+        static DIR: tempfile::TempDir = tempfile::tempdir().unwrap();
+    }
+    DIR.with(|d| {
+        let path = d.path().join("fuzz.glb");
+        std::fs::write(&path, bytes).unwrap();
+        let _ = agesim_core::mesh::textures::load(&path);
+    });
+}
 
 /// `base` with a few bytes replaced, inserted or removed at seeded positions.
 fn mutated(base: &'static [u8]) -> impl Strategy<Value = Vec<u8>> {
@@ -138,6 +264,39 @@ proptest! {
             let _ = Mesh::build(raw, "fuzz.gltf");
         }
     }
+
+    #[test]
+    #[ignore]
+    fn a_real_obj_mutated_never_panics(bytes in mutated(REAL_OBJ.as_bytes())) {
+        if let Ok(raw) = obj::load_bytes(&bytes, Path::new("fuzz.obj")) {
+            let _ = Mesh::build(raw, "fuzz.obj");
+        }
+    }
+
+    #[test]
+    #[ignore]
+    fn a_real_glb_mutated_in_its_json_never_panics(json in mutated(leak(chunks(&real_glb()).0))) {
+        load_glb(&assemble(&json, &chunks(&real_glb()).1));
+    }
+
+    #[test]
+    #[ignore]
+    fn a_real_glb_mutated_in_its_binary_never_panics(bin in mutated(leak(chunks(&real_glb()).1))) {
+        load_glb(&assemble(&chunks(&real_glb()).0, &bin));
+    }
+
+    #[test]
+    #[ignore]
+    fn images_never_panic(
+        bytes in prop_oneof![
+            mutated(leak(png())),
+            mutated(leak(jpeg())),
+            prop::collection::vec(any::<u8>(), 0..200),
+        ]
+    ) {
+        let _ = agesim_core::Mask::decode(&bytes, Path::new("fuzz.png"));
+        let _ = agesim_core::mask::HeadImage::decode(&bytes, Path::new("fuzz.png"));
+    }
 }
 
 #[test]
@@ -157,6 +316,19 @@ fn a_few_fuzz_cases_run_in_the_default_test_run_too() {
     runner
         .run(&mutated(LANDMARKS.as_bytes()), |b| {
             let _ = Landmarks::from_json_str(&String::from_utf8_lossy(&b));
+            Ok(())
+        })
+        .unwrap();
+    let (json, bin) = chunks(&real_glb());
+    runner
+        .run(&mutated(leak(json.clone())), |j| {
+            load_glb(&assemble(&j, &bin));
+            Ok(())
+        })
+        .unwrap();
+    runner
+        .run(&mutated(leak(bin.clone())), |b| {
+            load_glb(&assemble(&json, &b));
             Ok(())
         })
         .unwrap();

@@ -65,6 +65,21 @@ pub(crate) fn decode_uri(uri: &str) -> String {
     String::from_utf8_lossy(&out).into_owned()
 }
 
+/// Parses a glTF or GLB document. The `gltf` crate's validation indexes arrays with
+/// indices the file gives (gltf-json 1.4: a primitive whose POSITION names a missing
+/// accessor panics); a file must never crash agesim, so a panic in the reader is caught
+/// and reported as a malformed file.
+pub(crate) fn parse(bytes: &[u8]) -> Result<::gltf::Gltf, String> {
+    match std::panic::catch_unwind(|| ::gltf::Gltf::from_slice(bytes)) {
+        Ok(Ok(g)) => Ok(g),
+        Ok(Err(e)) => Err(format!("not a valid glTF 2.0 file: {e}")),
+        Err(_) => Err(
+            "not a valid glTF 2.0 file: it refers to parts it does not have (the glTF reader gave up on it)"
+                .into(),
+        ),
+    }
+}
+
 /// Reads `path` into a [`RawMesh`] (see the module docs).
 pub fn load(path: &Path) -> Result<RawMesh, Error> {
     let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES)?;
@@ -78,8 +93,7 @@ pub fn load_bytes(bytes: &[u8], path: &Path) -> Result<RawMesh, Error> {
         path: path.to_owned(),
         message,
     };
-    let gltf = ::gltf::Gltf::from_slice(bytes)
-        .map_err(|e| fail(format!("not a valid glTF 2.0 file: {e}")))?;
+    let gltf = parse(bytes).map_err(fail)?;
     for ext in gltf.document.extensions_required() {
         if ext != "KHR_mesh_quantization" {
             return Err(fail(format!("requires the unsupported extension {ext}")));

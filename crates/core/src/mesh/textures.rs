@@ -48,7 +48,17 @@ pub fn load(path: &Path) -> Result<MeshTextures, Error> {
         .map(|e| e.to_string_lossy().to_lowercase())
         .unwrap_or_default();
     let (colour, normal) = match ext.as_str() {
-        "gltf" | "glb" => gltf_sources(path)?,
+        // The `gltf` crate unwraps an image's fields the file may lack (a view without a
+        // MIME type, no URI): a malformed file is an error, never a crash.
+        "gltf" | "glb" => match std::panic::catch_unwind(|| gltf_sources(path)) {
+            Ok(found) => found?,
+            Err(_) => {
+                return Err(Error::MeshFile {
+                    path: path.to_owned(),
+                    message: "its material names an image the file does not describe fully (a buffer view without a MIME type, or no URI)".into(),
+                });
+            }
+        },
         "obj" => obj_sources(path)?,
         _ => (None, None),
     };
@@ -72,8 +82,7 @@ fn gltf_sources(path: &Path) -> Result<(Option<Source>, Option<Source>), Error> 
         message,
     };
     let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES)?;
-    let gltf = ::gltf::Gltf::from_slice(&bytes)
-        .map_err(|e| fail(format!("not a valid glTF 2.0 file: {e}")))?;
+    let gltf = super::gltf::parse(&bytes).map_err(fail)?;
     // The material of the most triangles with a base colour map: the skin's.
     let mut count = vec![0usize; gltf.document.materials().len()];
     for mesh in gltf.document.meshes() {

@@ -70,7 +70,7 @@ fn real_glb() -> Vec<u8> {
         }
     }
     raw.uvs = Some(uvs);
-    let half = (n * n) as u32;
+    let half = n * n;
     raw.parts = vec![
         MeshPart {
             name: "skin".into(),
@@ -132,7 +132,7 @@ fn chunks(glb: &[u8]) -> (Vec<u8>, Vec<u8>) {
 fn assemble(json: &[u8], bin: &[u8]) -> Vec<u8> {
     let pad = |v: &[u8], with: u8| {
         let mut v = v.to_vec();
-        while v.len() % 4 != 0 {
+        while !v.len().is_multiple_of(4) {
             v.push(with);
         }
         v

@@ -9,8 +9,6 @@
 //! UVs with no work per texel (the memory floor of the correspondence map).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::time::{Duration, Instant};
-
 use agesim_core::Mesh;
 use agesim_core::cancel::CancelToken;
 use agesim_core::fit::{self, Correspondence};
@@ -18,27 +16,8 @@ use agesim_core::landmarks::Landmarks;
 use agesim_core::mesh::RawMesh;
 use glam::{Vec2, Vec3};
 
-fn median(mut runs: Vec<Duration>) -> Duration {
-    runs.sort();
-    runs[runs.len() / 2]
-}
-
-fn time(n: usize, mut f: impl FnMut()) -> Duration {
-    f();
-    median(
-        (0..n)
-            .map(|_| {
-                let t = Instant::now();
-                f();
-                t.elapsed()
-            })
-            .collect(),
-    )
-}
-
-fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e3
-}
+mod common;
+use common::{ms, time};
 
 /// Every triangle into four (corners and edge midpoints, unshared).
 fn subdivided(m: &Mesh) -> Mesh {

@@ -7,33 +7,12 @@
 //! breakdown of the generation (shape, normals, MikkTSpace) is printed too.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::time::{Duration, Instant};
-
 use agesim::assets::head as generator;
 use agesim_core::Mesh;
 use agesim_core::head;
 
-fn median(mut runs: Vec<Duration>) -> Duration {
-    runs.sort();
-    runs[runs.len() / 2]
-}
-
-fn time(n: usize, mut f: impl FnMut()) -> Duration {
-    f(); // warm-up
-    median(
-        (0..n)
-            .map(|_| {
-                let t = Instant::now();
-                f();
-                t.elapsed()
-            })
-            .collect(),
-    )
-}
-
-fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e3
-}
+mod common;
+use common::{ms, time};
 
 fn main() {
     let threads = rayon::current_num_threads();

@@ -64,24 +64,13 @@ fn an_autosaved_edit_is_offered_back_after_a_crash() {
 /// recovery folder holds the edit, and `--recover` restores it.
 #[test]
 fn a_killed_editor_leaves_its_work_and_recover_restores_it() {
-    if Command::new("Xvfb")
-        .arg("-help")
-        .stderr(Stdio::null())
-        .status()
-        .is_err()
-    {
+    let Some(xvfb) = common::Xvfb::start(140) else {
         return agesim_render::ci::skip_or_fail(
             "a_killed_editor_leaves_its_work_and_recover_restores_it",
             "Xvfb is not installed",
         );
-    }
-    let display = format!(":{}", 140 + std::process::id() % 50);
-    let mut xvfb = Command::new("Xvfb")
-        .args([&display, "-screen", "0", "1280x800x24", "-nolisten", "tcp"])
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(Duration::from_millis(500));
+    };
+    let display = xvfb.display.clone();
     let dir = tempfile::tempdir().unwrap();
     let data = dir.path().join("data");
     let rec = data.join("agesim/recovery");
@@ -103,8 +92,6 @@ fn a_killed_editor_leaves_its_work_and_recover_restores_it() {
     let start = Instant::now();
     while !session_says(&rec, "0.625") {
         if let Ok(Some(status)) = editor.try_wait() {
-            let _ = xvfb.kill();
-            let _ = xvfb.wait();
             let mut err = String::new();
             std::io::Read::read_to_string(&mut editor.stderr.take().unwrap(), &mut err).unwrap();
             if err.contains("could not be opened") {
@@ -131,8 +118,7 @@ fn a_killed_editor_leaves_its_work_and_recover_restores_it() {
     ])
     .output()
     .unwrap();
-    let _ = xvfb.kill();
-    let _ = xvfb.wait();
+    drop(xvfb);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),

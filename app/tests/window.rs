@@ -6,8 +6,10 @@
 //! is a failure.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+mod common;
+
+use std::process::Command;
+use std::time::Instant;
 
 fn skip_or_fail(reason: &str) {
     agesim_render::ci::skip_or_fail("the_editor_window_starts_and_shows_the_maps", reason);
@@ -15,21 +17,10 @@ fn skip_or_fail(reason: &str) {
 
 #[test]
 fn the_editor_window_starts_and_shows_the_maps() {
-    if Command::new("Xvfb")
-        .arg("-help")
-        .stderr(Stdio::null())
-        .status()
-        .is_err()
-    {
+    let Some(xvfb) = common::Xvfb::start(90) else {
         return skip_or_fail("Xvfb is not installed");
-    }
-    let display = format!(":{}", 90 + std::process::id() % 50);
-    let mut xvfb = Command::new("Xvfb")
-        .args([&display, "-screen", "0", "1280x800x24", "-nolisten", "tcp"])
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(Duration::from_millis(500));
+    };
+    let display = xvfb.display.clone();
     let dir = tempfile::tempdir().unwrap();
     let shot = dir.path().join("editor.png");
     let start = Instant::now();
@@ -40,8 +31,7 @@ fn the_editor_window_starts_and_shows_the_maps() {
         .env_remove("WAYLAND_DISPLAY")
         .output()
         .unwrap();
-    let _ = xvfb.kill();
-    let _ = xvfb.wait();
+    drop(xvfb);
     let stderr = String::from_utf8_lossy(&out.stderr);
     if !out.status.success() && stderr.contains("could not be opened") {
         return skip_or_fail(&format!("no window could be opened: {stderr}"));

@@ -89,3 +89,40 @@ pub fn map_point(h: &mut Harness<'static, EditorApp>, uv: [f32; 2]) -> egui::Pos
         square.top() + (1.0 - uv[1]) * square.height(),
     )
 }
+
+/// A virtual X display for the real binary's window, stopped when dropped; `None` when
+/// Xvfb is not installed.
+pub struct Xvfb {
+    child: std::process::Child,
+    pub display: String,
+}
+
+impl Xvfb {
+    /// Starts one on a display number of this process's own (`base` + pid mod 50).
+    pub fn start(base: u32) -> Option<Self> {
+        use std::process::{Command, Stdio};
+        if Command::new("Xvfb")
+            .arg("-help")
+            .stderr(Stdio::null())
+            .status()
+            .is_err()
+        {
+            return None;
+        }
+        let display = format!(":{}", base + std::process::id() % 50);
+        let child = Command::new("Xvfb")
+            .args([&display, "-screen", "0", "1280x800x24", "-nolisten", "tcp"])
+            .stderr(Stdio::null())
+            .spawn()
+            .ok()?;
+        std::thread::sleep(Duration::from_millis(500));
+        Some(Self { child, display })
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}

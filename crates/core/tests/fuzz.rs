@@ -130,26 +130,7 @@ fn chunks(glb: &[u8]) -> (Vec<u8>, Vec<u8>) {
 
 /// A GLB of these chunks, the lengths made right (the loader sees the mutation itself).
 fn assemble(json: &[u8], bin: &[u8]) -> Vec<u8> {
-    let pad = |v: &[u8], with: u8| {
-        let mut v = v.to_vec();
-        while !v.len().is_multiple_of(4) {
-            v.push(with);
-        }
-        v
-    };
-    let (json, bin) = (pad(json, b' '), pad(bin, 0));
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
-    out
+    gltf::glb_container(json, bin)
 }
 
 /// Loads a GLB's mesh and pictures the way a scene does, from a file (the pictures are

@@ -66,15 +66,7 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
     }
     let t_pos = template.mesh.positions();
     let t_nrm = template.mesh.normals();
-    let above: Vec<usize> = (0..t_pos.len())
-        .filter(|&i| t_pos[i].y > NECK_CUT_Y_M)
-        .collect();
-    let step = (above.len() / SAMPLES).max(1);
-    let samples: Vec<(Vec3, Vec3)> = above
-        .iter()
-        .step_by(step)
-        .map(|&i| (t_pos[i], t_nrm[i]))
-        .collect();
+    let samples = template_samples(template, SAMPLES);
 
     let best = global_search(
         &samples,
@@ -235,24 +227,8 @@ pub fn axes(
         return None;
     }
     let t_pos = template.mesh.positions();
-    let t_nrm = template.mesh.normals();
-    let above: Vec<usize> = (0..t_pos.len())
-        .filter(|&i| t_pos[i].y > NECK_CUT_Y_M)
-        .collect();
-    let step = (above.len() / COARSE_SAMPLES).max(1);
-    let samples: Vec<(Vec3, Vec3)> = above
-        .iter()
-        .step_by(step)
-        .map(|&i| (t_pos[i], t_nrm[i]))
-        .collect();
-    let all = [
-        Axis::PosX,
-        Axis::NegX,
-        Axis::PosY,
-        Axis::NegY,
-        Axis::PosZ,
-        Axis::NegZ,
-    ];
+    let samples = template_samples(template, COARSE_SAMPLES);
+    let all = Axis::ALL;
     let mut candidates = vec![Axes::STANDARD];
     for up in all {
         for forward in all {
@@ -346,6 +322,21 @@ fn icp(
         }
     }
     (s, median)
+}
+
+/// About `count` template points (with their normals) above the neck's cut, evenly
+/// taken.
+fn template_samples(template: &Template, count: usize) -> Vec<(Vec3, Vec3)> {
+    let (t_pos, t_nrm) = (template.mesh.positions(), template.mesh.normals());
+    let above: Vec<usize> = (0..t_pos.len())
+        .filter(|&i| t_pos[i].y > NECK_CUT_Y_M)
+        .collect();
+    let step = (above.len() / count.max(1)).max(1);
+    above
+        .iter()
+        .step_by(step)
+        .map(|&i| (t_pos[i], t_nrm[i]))
+        .collect()
 }
 
 fn top(points: &[Vec3]) -> f32 {

@@ -38,7 +38,6 @@ impl Correspondence {
         // How far outside the triangle that wrote each texel it lies (∞: none did).
         let mut distance = vec![f32::INFINITY; n * n];
         let uvs = head.uvs();
-        let s = size as f32;
         let idx = head.skin_indices();
         for (k, tri) in idx.chunks_exact(3).enumerate() {
             if k % 4096 == 0 {
@@ -50,13 +49,6 @@ impl Correspondence {
             else {
                 continue;
             };
-            // Continuous pixel coordinates: texel (x, y) has its centre at (x + ½, y + ½).
-            let px = |uv: Vec2| Vec2::new(uv.x * s, (1.0 - uv.y) * s);
-            let (pa, pb, pc) = (px(*a), px(*b), px(*c));
-            let area = (pb - pa).perp_dot(pc - pa);
-            if area.abs() < 1e-12 || !area.is_finite() {
-                continue;
-            }
             let t = |i: usize| fit.template_uv.get(corner(i)).copied().flatten();
             let template = match (t(0), t(1), t(2)) {
                 (Some(x), Some(y), Some(z)) => Some(unwrap_u([x, y, z])),
@@ -66,39 +58,22 @@ impl Correspondence {
             // take the triangle's template UV extrapolated (the surface's continuation
             // across a seam), so bilinear reads at an island's border mix no copied
             // values.
-            let lo = (pa.min(pb).min(pc) - GUARD_PX).floor().max(Vec2::ZERO);
-            let hi = (pa.max(pb).max(pc) + GUARD_PX).ceil().min(Vec2::splat(s));
-            let edge_len = [(pc - pb).length(), (pa - pc).length(), (pb - pa).length()];
-            for y in lo.y as usize..hi.y as usize {
-                for x in lo.x as usize..hi.x as usize {
-                    let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-                    let w0 = (pc - pb).perp_dot(p - pb) / area;
-                    let w1 = (pa - pc).perp_dot(p - pc) / area;
-                    let w2 = 1.0 - w0 - w1;
-                    // Distance outside the triangle, pixels (0 inside).
-                    let outside = [w0, w1, w2]
-                        .iter()
-                        .zip(edge_len)
-                        .map(|(w, len)| (-w).max(0.0) * area.abs() / len.max(1e-12))
-                        .fold(0.0f32, f32::max);
-                    let i = y * n + x;
-                    if outside > GUARD_PX || outside >= distance[i] {
-                        continue;
-                    }
-                    if outside > 0.0 && template.is_none() {
-                        continue;
-                    }
-                    distance[i] = outside;
-                    covered[i] |= outside == 0.0;
-                    texels[i] = match template {
-                        Some((ta, tb, tc)) => {
-                            let uv = ta * w0 + tb * w1 + tc * w2;
-                            [uv.x.rem_euclid(1.0), uv.y]
-                        }
-                        None => NONE,
-                    };
+            let guard = if template.is_some() { GUARD_PX } else { 0.0 };
+            raster_uv([*a, *b, *c], size, guard, |x, y, [w0, w1, w2], outside| {
+                let i = y * n + x;
+                if outside >= distance[i] {
+                    return;
                 }
-            }
+                distance[i] = outside;
+                covered[i] |= outside == 0.0;
+                texels[i] = match template {
+                    Some((ta, tb, tc)) => {
+                        let uv = ta * w0 + tb * w1 + tc * w2;
+                        [uv.x.rem_euclid(1.0), uv.y]
+                    }
+                    None => NONE,
+                };
+            });
         }
         cancel.check()?;
         let filled: Vec<bool> = distance.iter().map(|d| d.is_finite()).collect();
@@ -189,6 +164,46 @@ impl Correspondence {
                 }
             });
         out
+    }
+}
+
+/// Visits the texels of a `size`² map (docs/models.md §1: rows from the top, v up) whose
+/// centres lie in the UV triangle `uv` or within `guard` pixels of it: `visit(x, y,
+/// barycentric weights (extrapolated outside), distance outside in pixels)`. A triangle
+/// with no UV area visits nothing.
+pub fn raster_uv(
+    uv: [Vec2; 3],
+    size: u32,
+    guard: f32,
+    mut visit: impl FnMut(usize, usize, [f32; 3], f32),
+) {
+    let s = size as f32;
+    // Continuous pixel coordinates: texel (x, y) has its centre at (x + ½, y + ½).
+    let px = |uv: Vec2| Vec2::new(uv.x * s, (1.0 - uv.y) * s);
+    let (pa, pb, pc) = (px(uv[0]), px(uv[1]), px(uv[2]));
+    let area = (pb - pa).perp_dot(pc - pa);
+    if area.abs() < 1e-12 || !area.is_finite() {
+        return;
+    }
+    let lo = (pa.min(pb).min(pc) - guard).floor().max(Vec2::ZERO);
+    let hi = (pa.max(pb).max(pc) + guard).ceil().min(Vec2::splat(s));
+    let edge_len = [(pc - pb).length(), (pa - pc).length(), (pb - pa).length()];
+    for y in lo.y as usize..hi.y as usize {
+        for x in lo.x as usize..hi.x as usize {
+            let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            let w0 = (pc - pb).perp_dot(p - pb) / area;
+            let w1 = (pa - pc).perp_dot(p - pc) / area;
+            let w2 = 1.0 - w0 - w1;
+            // Distance outside the triangle, pixels (0 inside).
+            let outside = [w0, w1, w2]
+                .iter()
+                .zip(edge_len)
+                .map(|(w, len)| (-w).max(0.0) * area.abs() / len.max(1e-12))
+                .fold(0.0f32, f32::max);
+            if outside <= guard {
+                visit(x, y, [w0, w1, w2], outside);
+            }
+        }
     }
 }
 

@@ -30,7 +30,7 @@ use std::sync::{Arc, OnceLock};
 
 use glam::{Vec2, Vec3};
 
-pub use correspondence::Correspondence;
+pub use correspondence::{Correspondence, raster_uv};
 
 use crate::error::Error;
 use crate::landmarks::Landmarks;

@@ -584,7 +584,7 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
         .map(|(k, p)| format!(r#"{{"name":{},"mesh":{k}}}"#, json_string(&p.name)))
         .collect();
     let scene_nodes: Vec<String> = (0..nodes.len()).map(|k| k.to_string()).collect();
-    let mut json = format!(
+    let json = format!(
         r#"{{"asset":{{"version":"2.0","generator":"agesim"}},"scene":0,"scenes":[{{"nodes":[{}]}}],"nodes":[{}],"meshes":[{}],"accessors":[{}],"bufferViews":[{}],"buffers":[{{"byteLength":{}}}]{material_json}}}"#,
         scene_nodes.join(","),
         nodes.join(","),
@@ -594,9 +594,20 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
         bin.len()
     )
     .into_bytes();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
+    glb_container(&json, &bin)
+}
+
+/// A GLB file of a JSON chunk and a binary chunk (each padded to 4 bytes: the JSON with
+/// spaces, the binary with zeros), lengths written as they are.
+pub fn glb_container(json: &[u8], bin: &[u8]) -> Vec<u8> {
+    let pad = |v: &[u8], with: u8| {
+        let mut v = v.to_vec();
+        while !v.len().is_multiple_of(4) {
+            v.push(with);
+        }
+        v
+    };
+    let (json, bin) = (pad(json, b' '), pad(bin, 0));
     let total = 12 + 8 + json.len() + 8 + bin.len();
     let mut out = Vec::with_capacity(total);
     out.extend_from_slice(b"glTF");

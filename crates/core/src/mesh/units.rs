@@ -93,7 +93,8 @@ pub enum Axis {
 }
 
 impl Axis {
-    const ALL: [Axis; 6] = [
+    /// Every signed axis.
+    pub const ALL: [Axis; 6] = [
         Axis::PosX,
         Axis::NegX,
         Axis::PosY,

@@ -23,28 +23,11 @@ fn uv_positions(mesh: &Mesh, size: u32) -> Vec<Option<Vec3>> {
     let n = size as usize;
     let mut out = vec![None; n * n];
     let (p, uv) = (mesh.positions(), mesh.uvs());
-    let idx = mesh.skin_indices();
-    for t in idx.chunks_exact(3) {
-        let (a, b, c) = (t[0] as usize, t[1] as usize, t[2] as usize);
-        let px = |u: Vec2| Vec2::new(u.x * size as f32, (1.0 - u.y) * size as f32);
-        let (pa, pb, pc) = (px(uv[a]), px(uv[b]), px(uv[c]));
-        let area = (pb - pa).perp_dot(pc - pa);
-        if area.abs() < 1e-12 {
-            continue;
-        }
-        let lo = pa.min(pb).min(pc).floor().max(Vec2::ZERO);
-        let hi = pa.max(pb).max(pc).ceil().min(Vec2::splat(size as f32));
-        for y in lo.y as usize..hi.y as usize {
-            for x in lo.x as usize..hi.x as usize {
-                let q = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-                let w0 = (pc - pb).perp_dot(q - pb) / area;
-                let w1 = (pa - pc).perp_dot(q - pc) / area;
-                let w2 = 1.0 - w0 - w1;
-                if w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0 {
-                    out[y * n + x] = Some(p[a] * w0 + p[b] * w1 + p[c] * w2);
-                }
-            }
-        }
+    for t in mesh.skin_indices().chunks_exact(3) {
+        let [a, b, c] = [t[0], t[1], t[2]].map(|i| i as usize);
+        crate::fit::raster_uv([uv[a], uv[b], uv[c]], size, 0.0, |x, y, [w0, w1, w2], _| {
+            out[y * n + x] = Some(p[a] * w0 + p[b] * w1 + p[c] * w2);
+        });
     }
     out
 }

@@ -385,9 +385,27 @@ pub(super) fn create_rgba8(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     rgba: &[u8],
     srgb: bool,
+) -> Layer {
+    let format = if srgb {
+        wgpu::TextureFormat::Rgba8UnormSrgb
+    } else {
+        wgpu::TextureFormat::Rgba8Unorm
+    };
+    create_texture(device, queue, label, size, 1, format, rgba)
+}
+
+/// A 2D texture of `levels` mip levels (their bytes one after another) and its view.
+fn create_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    (width, height): (u32, u32),
+    levels: u32,
+    format: wgpu::TextureFormat,
+    bytes: &[u8],
 ) -> Layer {
     let texture = device.create_texture_with_data(
         queue,
@@ -398,19 +416,15 @@ pub(super) fn create_rgba8(
                 height,
                 depth_or_array_layers: 1,
             },
-            mip_level_count: 1,
+            mip_level_count: levels,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: if srgb {
-                wgpu::TextureFormat::Rgba8UnormSrgb
-            } else {
-                wgpu::TextureFormat::Rgba8Unorm
-            },
+            format,
             usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
-        rgba,
+        bytes,
     );
     let view = texture.create_view(&wgpu::TextureViewDescriptor {
         label: Some(label),
@@ -425,28 +439,13 @@ pub(super) fn create_r16f(
     label: &str,
     layer: &PreparedLayer,
 ) -> Layer {
-    let texture = device.create_texture_with_data(
+    create_texture(
+        device,
         queue,
-        &wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width: layer.width,
-                height: layer.height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: layer.levels,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R16Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
+        label,
+        (layer.width, layer.height),
+        layer.levels,
+        wgpu::TextureFormat::R16Float,
         &layer.bytes,
-    );
-    let view = texture.create_view(&wgpu::TextureViewDescriptor {
-        label: Some(label),
-        ..Default::default()
-    });
-    Layer { view }
+    )
 }

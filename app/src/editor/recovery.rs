@@ -1,9 +1,11 @@
 //! Autosave and crash recovery: while a document has unsaved changes, the whole session
 //! (the project and its edited wrinkle files, as a normal project that also opens by hand)
 //! is written, all or nothing, to a recovery folder in the platform's data directory
-//! (`$XDG_DATA_HOME/agesim/recovery/`, else `~/.local/share/agesim/recovery/`). A clean
-//! exit or a save removes it; a folder left by an editor that is no longer running is
-//! offered back at the next start (`agesim --recover` restores it without asking).
+//! (`$XDG_DATA_HOME/agesim/recovery/`, else `~/.local/share/agesim/recovery/`), in a
+//! folder of each running editor's own (`<pid>/`), so two editors open at once never
+//! overwrite or remove each other's. A clean exit or a save removes the editor's folder;
+//! one left by an editor that is no longer running is offered back at the next start
+//! (`agesim --recover` restores it without asking; the newest when several are left).
 
 use std::path::{Path, PathBuf};
 
@@ -38,27 +40,42 @@ pub struct Left {
     pub original: Option<PathBuf>,
 }
 
-/// The session in `dir` left by an editor that is no longer running, if any.
+/// This editor's own folder in the recovery folder `dir`.
+pub fn own(dir: &Path) -> PathBuf {
+    dir.join(std::process::id().to_string())
+}
+
+/// The newest session in the recovery folder `dir` left by an editor that is no longer
+/// running, if any. (This process's own folder counts: at start it has written nothing,
+/// so one there is an earlier editor's in this process.)
 pub fn left_behind(dir: &Path) -> Option<Left> {
-    let session = dir.join(SESSION_FILE);
-    if !session.is_file() {
-        return None;
+    let mut found: Vec<(std::time::SystemTime, Left)> = Vec::new();
+    for entry in std::fs::read_dir(dir).ok()?.flatten() {
+        let folder = entry.path();
+        let session = folder.join(SESSION_FILE);
+        let Ok(meta) = std::fs::metadata(&session) else {
+            continue;
+        };
+        let pid = entry.file_name().to_string_lossy().parse::<u64>().ok();
+        // A running editor's autosave is not a crash's.
+        if let Some(pid) = pid
+            && pid != u64::from(std::process::id())
+            && alive(pid)
+        {
+            continue;
+        }
+        let info: serde_json::Value = std::fs::read(folder.join(INFO_FILE))
+            .ok()
+            .and_then(|b| serde_json::from_slice(&b).ok())
+            .unwrap_or_default();
+        let left = Left {
+            session,
+            original: info["original"].as_str().map(PathBuf::from),
+        };
+        found.push((meta.modified().unwrap_or(std::time::UNIX_EPOCH), left));
     }
-    let info: serde_json::Value = std::fs::read(dir.join(INFO_FILE))
-        .ok()
-        .and_then(|b| serde_json::from_slice(&b).ok())
-        .unwrap_or_default();
-    // A running editor's own autosave is not a crash's.
-    if let Some(pid) = info["pid"].as_u64()
-        && pid != u64::from(std::process::id())
-        && alive(pid)
-    {
-        return None;
-    }
-    Some(Left {
-        session,
-        original: info["original"].as_str().map(PathBuf::from),
-    })
+    found.sort_by_key(|(t, _)| *t);
+    found.pop().map(|(_, left)| left)
 }
 
 /// Whether a process with this id runs (Linux: `/proc/<pid>`; elsewhere assumed not).
@@ -66,8 +83,9 @@ fn alive(pid: u64) -> bool {
     Path::new(&format!("/proc/{pid}")).exists()
 }
 
-/// Writes the session to `dir`: the recovery note, then the project and its edited
-/// wrinkle files as one all-or-nothing set (`files::save_project`).
+/// Writes the session to `dir` (this editor's folder, [`own`]): the recovery note, then
+/// the project and its edited wrinkle files as one all-or-nothing set
+/// (`files::save_project`).
 pub fn write(
     dir: &Path,
     project: &Project,
@@ -88,9 +106,9 @@ pub fn write(
     super::files::save_project(&dir.join(SESSION_FILE), project, wrinkles, None).map(|_| ())
 }
 
-/// Removes the recovery folder (a clean exit, a save).
-pub fn clear(dir: &Path) {
-    let _ = std::fs::remove_dir_all(dir);
+/// Removes a session's folder (a clean exit, a save, a session restored or discarded).
+pub fn clear(folder: &Path) {
+    let _ = std::fs::remove_dir_all(folder);
 }
 
 /// Reads a left session back: the project, and its wrinkle files as edited documents (so
@@ -130,15 +148,23 @@ mod tests {
         assert!(left_behind(&rec).is_none());
         let mut p = Project::default();
         p.noise.strength = 0.77;
-        write(&rec, &p, None, Some(Path::new("/work/p.agesim.json"))).unwrap();
-        // This process wrote it and still runs: found (it is its own).
+        write(&own(&rec), &p, None, Some(Path::new("/work/p.agesim.json"))).unwrap();
+        // This process wrote it: found (an earlier editor of this process).
         let left = left_behind(&rec).unwrap();
         assert_eq!(left.original, Some(PathBuf::from("/work/p.agesim.json")));
         let (back, wrinkles) = read(&left).unwrap();
         assert_eq!(back.noise.strength, 0.77);
         assert!(wrinkles.is_none());
-        clear(&rec);
-        assert!(left_behind(&rec).is_none());
+        // Another editor that still runs (pid 1, init) keeps its own: not offered.
+        write(&rec.join("1"), &p, None, None).unwrap();
+        clear(&own(&rec));
+        assert!(
+            left_behind(&rec).is_none(),
+            "a running editor's session is its own"
+        );
+        // One whose editor is gone is.
+        std::fs::rename(rec.join("1"), rec.join("4000000000")).unwrap();
+        assert!(left_behind(&rec).is_some());
         if let Some(f) = folder(None) {
             assert!(f.ends_with("agesim/recovery"), "{}", f.display());
         }

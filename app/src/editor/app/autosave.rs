@@ -18,6 +18,8 @@ pub struct Autosave {
     pub written: Option<u64>,
     /// A session left by an editor that did not exit cleanly, offered back.
     pub offer: Option<Left>,
+    /// The folder of the session restored, removed with this editor's own.
+    pub restored_from: Option<std::path::PathBuf>,
 }
 
 impl EditorApp {
@@ -68,9 +70,10 @@ impl EditorApp {
         let (project, wrinkles) = (self.doc.project.clone(), self.doc.wrinkles.clone());
         let original = self.doc.path.clone();
         let revision = self.doc.revision;
+        let folder = recovery::own(&dir);
         self.io.spawn(move || IoResult::Autosaved {
             revision,
-            result: recovery::write(&dir, &project, wrinkles.as_deref(), original.as_deref()),
+            result: recovery::write(&folder, &project, wrinkles.as_deref(), original.as_deref()),
         });
     }
 
@@ -93,8 +96,11 @@ impl EditorApp {
             return;
         }
         if let Some(dir) = &self.autosave.folder {
-            recovery::clear(dir);
+            recovery::clear(&recovery::own(dir));
             self.autosave.written = None;
+        }
+        if let Some(left) = self.autosave.restored_from.take() {
+            recovery::clear(&left);
         }
     }
 
@@ -103,6 +109,9 @@ impl EditorApp {
     pub(super) fn restore_session(&mut self, left: Left) {
         match recovery::read(&left) {
             Ok((project, wrinkles)) => {
+                // The left folder stays until the work is saved or the editor exits
+                // cleanly: the restored project still reads its wrinkle files there.
+                self.autosave.restored_from = left.session.parent().map(|p| p.to_owned());
                 self.replace_document(project, left.original.clone(), "recover");
                 self.doc.wrinkles = wrinkles;
                 self.doc.saved_revision = self.doc.revision.wrapping_sub(1);
@@ -149,7 +158,9 @@ impl EditorApp {
             }
             Some(false) => {
                 self.autosave.offer = None;
-                self.clear_recovery();
+                if let Some(folder) = left.session.parent() {
+                    recovery::clear(folder);
+                }
             }
             None => {}
         }

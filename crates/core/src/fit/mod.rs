@@ -16,9 +16,10 @@
 //! The result, [`Fit`], holds a template UV for each head vertex. [`Correspondence`]
 //! rasterises it in the head's own UV layout at a map size: for each texel, the template
 //! UV the layers are read at (bilinear, the template's u wrapping at its back seam).
-//! Texels outside every UV island take their nearest island texel's (padding to the
-//! edges of the map), so filtering and mip levels never pull in background, and the
-//! heights on both sides of a UV seam, being one 3D point, agree.
+//! Texels just outside a UV island take their triangle's template UV extrapolated (1.5 px),
+//! the rest their nearest written texel's (padding to the edges of the map), so filtering
+//! and mip levels never pull in background, and the heights on both sides of a UV seam,
+//! being one 3D point, agree.
 
 pub mod auto;
 pub mod bvh;

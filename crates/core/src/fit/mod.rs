@@ -61,16 +61,20 @@ pub struct Template {
     pub mesh: Arc<Mesh>,
     pub landmarks: Landmarks,
     pub(crate) bvh: Bvh,
+    /// Metres per UV unit over its skin (mean of u and v; `mesh::SurfaceScale`).
+    pub metres_per_uv: Option<f32>,
 }
 
 impl Template {
     /// Builds a template from a mesh in metres with its landmarks.
     pub fn new(mesh: Arc<Mesh>, landmarks: Landmarks) -> Self {
         let bvh = Bvh::new(mesh.positions(), &mesh.skin_indices());
+        let metres_per_uv = metres_per_uv(&mesh, 1.0);
         Self {
             mesh,
             landmarks,
             bvh,
+            metres_per_uv,
         }
     }
 
@@ -86,6 +90,12 @@ impl Template {
         let p = a * hit.bary.x + b * hit.bary.y + c * hit.bary.z;
         Vec2::new(p.x.rem_euclid(1.0), p.y)
     }
+}
+
+/// Metres per UV unit of `mesh`'s skin (mean of u and v) at `metres_per_unit`.
+pub fn metres_per_uv(mesh: &Mesh, metres_per_unit: f32) -> Option<f32> {
+    crate::mesh::SurfaceScale::measure(mesh.positions(), mesh.uvs(), &mesh.skin_indices())
+        .map(|s| 0.5 * (s.units_per_u + s.units_per_v) * metres_per_unit)
 }
 
 /// The built-in template: the default head and its landmark file (built once).

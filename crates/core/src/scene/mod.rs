@@ -524,13 +524,10 @@ impl Scene {
         if self.inputs.layout.fit.is_none() {
             return 1.0;
         }
-        let metres_per_uv = |mesh: &Mesh, metres_per_unit: f32| {
-            crate::mesh::SurfaceScale::measure(mesh.positions(), mesh.uvs(), &mesh.skin_indices())
-                .map(|s| 0.5 * (s.units_per_u + s.units_per_v) * metres_per_unit)
-        };
+        // The template's is measured once, with the template.
         match (
-            metres_per_uv(&crate::fit::template().mesh, 1.0),
-            metres_per_uv(&self.inputs.mesh, self.metres_per_unit()),
+            crate::fit::template().metres_per_uv,
+            crate::fit::metres_per_uv(&self.inputs.mesh, self.metres_per_unit()),
         ) {
             (Some(t), Some(h)) if h > 0.0 && (t / h).is_finite() => t / h,
             _ => 1.0,

@@ -9,14 +9,13 @@
 //! A set of outputs (a bake's maps and its `bake.json`) goes through an [`OutputSet`]: every
 //! file is written to its temporary first — concurrently — and only when all succeeded are
 //! they renamed into place, in the order staged (so `bake.json`, staged last, always
-//! describes the files beside it). On any error, and on drop without commit, the
-//! temporaries are removed; [`remove_temporaries_on_signals`] also removes them when the
-//! process is killed by SIGINT or SIGTERM, so the old set stays whole and nothing is left.
+//! describes the files beside it), through a commit journal, so that even a process
+//! killed half way leaves the old set or the new one, never a mix (`set` module docs). On
+//! any error, and on drop without commit, the temporaries are removed;
+//! [`remove_temporaries_on_signals`] also removes them when the process is killed by
+//! SIGINT or SIGTERM.
 
-use std::fs::File;
-use std::io::BufWriter;
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::path::Path;
 
 use crate::error::Error;
 use crate::heightmap::HeightMap;
@@ -25,238 +24,12 @@ mod openexr;
 mod png_file;
 
 pub use png_file::{PngPixels, encode_png, encode_png_rows};
+pub use set::{
+    OutputSet, finish_interrupted_commit, kill_at_step_for_tests, remove_temporaries_on_signals,
+    write_atomically,
+};
 
-/// The temporary sibling of `path`: `.<name>.<pid>.<n>.tmp`, hidden and unique per call.
-fn temp_path(path: &Path) -> PathBuf {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let name = path
-        .file_name()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    path.with_file_name(format!(".{name}.{}.{n}.tmp", std::process::id()))
-}
-
-/// Writes a file through `write` to a temporary name beside `path`, syncs it and renames
-/// it into place. On any error the temporary file is removed and `path` is untouched.
-pub fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
-) -> Result<(), Error> {
-    let set = OutputSet::new();
-    set.stage(path, write)?;
-    set.commit()
-}
-
-/// One staged file: (staging rank, temporary, final path, signal-cleanup slot).
-type Staged = (u64, PathBuf, PathBuf, Option<usize>);
-
-/// Files written to temporaries and renamed into place together (module docs). `stage`
-/// takes `&self`, so files can be staged from several threads at once.
-#[derive(Debug, Default)]
-pub struct OutputSet {
-    staged: std::sync::Mutex<Vec<Staged>>,
-    /// Staging positions, so the commit order is the order `stage` was *called*.
-    order: AtomicU64,
-}
-
-impl OutputSet {
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Writes `path`'s content to its temporary (synced to disk); nothing at `path` changes
-    /// until [`OutputSet::commit`]. Files are renamed in the order this was called.
-    pub fn stage(
-        &self,
-        path: &Path,
-        write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
-    ) -> Result<(), Error> {
-        let rank = self.order.fetch_add(1, Ordering::Relaxed);
-        let tmp = temp_path(path);
-        let slot = signals::register(&tmp);
-        let result = (|| {
-            let file = File::create(&tmp)?;
-            let mut w = BufWriter::with_capacity(1 << 20, file);
-            write(&mut w)?;
-            let file = w.into_inner().map_err(|e| e.into_error())?;
-            file.sync_all()
-        })();
-        if let Err(e) = result {
-            let _ = std::fs::remove_file(&tmp);
-            signals::unregister(slot);
-            return Err(Error::io(path, e));
-        }
-        let mut staged = self.staged.lock().unwrap_or_else(|p| p.into_inner());
-        staged.push((rank, tmp, path.to_owned(), slot));
-        Ok(())
-    }
-
-    /// Puts every staged file in place, in staging order, all or none: existing files are
-    /// first moved aside, then the new ones renamed in; if any step fails, what was done
-    /// is undone (the old files come back) and the temporaries are removed, and the error
-    /// names the file. A target that is a directory is refused before anything moves.
-    pub fn commit(self) -> Result<(), Error> {
-        let mut staged =
-            std::mem::take(&mut *self.staged.lock().unwrap_or_else(|p| p.into_inner()));
-        staged.sort_by_key(|(rank, ..)| *rank);
-        let cleanup = |staged: &[Staged]| {
-            for (_, tmp, _, slot) in staged {
-                let _ = std::fs::remove_file(tmp);
-                signals::unregister(*slot);
-            }
-        };
-        for (_, _, path, _) in &staged {
-            if path.is_dir() {
-                cleanup(&staged);
-                return Err(Error::io(
-                    path,
-                    std::io::Error::other("is a directory; a file cannot replace it"),
-                ));
-            }
-        }
-        // Phase 1: move the old files aside.
-        let mut moved: Vec<(PathBuf, PathBuf)> = Vec::new();
-        for (_, _, path, _) in &staged {
-            if path.exists() {
-                let aside = temp_path(path).with_extension("old");
-                if let Err(e) = std::fs::rename(path, &aside) {
-                    for (p, a) in moved.iter().rev() {
-                        let _ = std::fs::rename(a, p);
-                    }
-                    cleanup(&staged);
-                    return Err(Error::io(path, e));
-                }
-                moved.push((path.clone(), aside));
-            }
-        }
-        // Phase 2: the new files in.
-        let mut placed: Vec<&PathBuf> = Vec::new();
-        for (_, tmp, path, _) in &staged {
-            if let Err(e) = std::fs::rename(tmp, path) {
-                for p in placed {
-                    let _ = std::fs::remove_file(p);
-                }
-                for (p, a) in moved.iter().rev() {
-                    let _ = std::fs::rename(a, p);
-                }
-                cleanup(&staged);
-                return Err(Error::io(path, e));
-            }
-            placed.push(path);
-        }
-        for (_, aside) in &moved {
-            let _ = std::fs::remove_file(aside);
-        }
-        for (_, _, _, slot) in &staged {
-            signals::unregister(*slot);
-        }
-        Ok(())
-    }
-}
-
-impl Drop for OutputSet {
-    /// An uncommitted set (an error elsewhere, a panic) leaves no temporary behind.
-    fn drop(&mut self) {
-        let staged = std::mem::take(&mut *self.staged.lock().unwrap_or_else(|p| p.into_inner()));
-        for (_, tmp, _, slot) in staged {
-            let _ = std::fs::remove_file(&tmp);
-            signals::unregister(slot);
-        }
-    }
-}
-
-/// Removes every staged temporary when the process gets SIGINT or SIGTERM, then exits
-/// with 128 + the signal number. Call once from a program's `main` (the command line);
-/// a library user with its own handlers can leave it out.
-pub fn remove_temporaries_on_signals() {
-    signals::install();
-}
-
-/// The temporaries a signal handler must remove: a fixed table of C strings, read with
-/// only async-signal-safe calls (`unlink`, `_exit`) from the handler.
-mod signals {
-    use std::path::Path;
-    #[cfg(target_os = "linux")]
-    use std::sync::atomic::{AtomicPtr, Ordering};
-
-    #[cfg(target_os = "linux")]
-    const SLOTS: usize = 64;
-    #[cfg(target_os = "linux")]
-    #[allow(clippy::declare_interior_mutable_const)]
-    const EMPTY: AtomicPtr<libc::c_char> = AtomicPtr::new(std::ptr::null_mut());
-    #[cfg(target_os = "linux")]
-    static TABLE: [AtomicPtr<libc::c_char>; SLOTS] = [EMPTY; SLOTS];
-
-    /// Records `tmp`; `None` when the table is full (the file is then only removed by the
-    /// normal paths).
-    #[cfg(target_os = "linux")]
-    pub(super) fn register(tmp: &Path) -> Option<usize> {
-        use std::os::unix::ffi::OsStrExt as _;
-        let c = std::ffi::CString::new(tmp.as_os_str().as_bytes()).ok()?;
-        let raw = c.into_raw();
-        for (i, slot) in TABLE.iter().enumerate() {
-            if slot
-                .compare_exchange(
-                    std::ptr::null_mut(),
-                    raw,
-                    Ordering::AcqRel,
-                    Ordering::Relaxed,
-                )
-                .is_ok()
-            {
-                return Some(i);
-            }
-        }
-        // SAFETY: `raw` came from `CString::into_raw` just above and was not stored.
-        drop(unsafe { std::ffi::CString::from_raw(raw) });
-        None
-    }
-
-    #[cfg(target_os = "linux")]
-    pub(super) fn unregister(slot: Option<usize>) {
-        if let Some(i) = slot {
-            let raw = TABLE[i].swap(std::ptr::null_mut(), Ordering::AcqRel);
-            if !raw.is_null() {
-                // SAFETY: every non-null pointer in the table came from `CString::into_raw`
-                // in `register`, and the swap took it out, so it is freed exactly once.
-                drop(unsafe { std::ffi::CString::from_raw(raw) });
-            }
-        }
-    }
-
-    #[cfg(target_os = "linux")]
-    extern "C" fn on_signal(sig: libc::c_int) {
-        for slot in &TABLE {
-            let p = slot.load(Ordering::Acquire);
-            if !p.is_null() {
-                // SAFETY: `p` is a valid NUL-terminated string owned by the table;
-                // `unlink` is async-signal-safe.
-                unsafe { libc::unlink(p) };
-            }
-        }
-        // SAFETY: `_exit` is async-signal-safe and ends the process at once.
-        unsafe { libc::_exit(128 + sig) };
-    }
-
-    #[cfg(target_os = "linux")]
-    pub(super) fn install() {
-        let handler = on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
-        for sig in [libc::SIGINT, libc::SIGTERM] {
-            // SAFETY: installing a handler that only calls async-signal-safe functions.
-            unsafe { libc::signal(sig, handler) };
-        }
-    }
-
-    #[cfg(not(target_os = "linux"))]
-    pub(super) fn register(_: &Path) -> Option<usize> {
-        None
-    }
-    #[cfg(not(target_os = "linux"))]
-    pub(super) fn unregister(_: Option<usize>) {}
-    #[cfg(not(target_os = "linux"))]
-    pub(super) fn install() {}
-}
+mod set;
 
 /// Heights → 16-bit values: p = round((h − lo)/(hi − lo)·65535), so that
 /// h = lo + (hi − lo)·p/65535. A flat map (hi = lo) is all 0.

@@ -110,7 +110,11 @@ impl Project {
     }
 
     /// Reads a `*.agesim.json` file. Relative paths are resolved against its directory.
+    /// A save of it that was killed half way is finished first
+    /// ([`crate::export::finish_interrupted_commit`]), so the project and the files it
+    /// names are one set.
     pub fn load(path: &Path) -> Result<Self, Error> {
+        crate::export::finish_interrupted_commit(path)?;
         let bytes = crate::limits::read_file(path, crate::limits::MAX_TEXT_FILE_BYTES)?;
         let text = String::from_utf8(bytes).map_err(|e| Error::Project {
             source_name: path.display().to_string(),

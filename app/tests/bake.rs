@@ -133,6 +133,8 @@ fn malformed_wrinkle_file_reports_every_error_and_writes_nothing() {
     );
     assert!(err.contains(&format!("{b}:5:1: unknown key")), "{err}");
     assert!(err.contains(&format!("{b}:6:1: missing key")), "{err}");
+    // Each problem said once (not again as the error's cause).
+    assert_eq!(err.matches("unknown key").count(), 1, "{err}");
     assert!(!out.exists(), "no output directory on malformed input");
 }
 

@@ -470,10 +470,10 @@ fn a_wrinkle_file_changed_on_disk_is_reloaded() {
 }
 
 /// An input image changed on disk (here the large-wrinkle mask) is read again by the next
-/// bake; one that no longer loads keeps the previous one and says why; a good one again
-/// clears that.
+/// bake, as one undo step (undo brings the content before back); one that no longer loads
+/// keeps the previous one and says why; a good one again clears that.
 #[test]
-fn a_mask_changed_on_disk_is_reloaded() {
+fn a_mask_changed_on_disk_is_reloaded_as_one_undo_step() {
     let dir = tempfile::tempdir().unwrap();
     let mask = dir.path().join("mask.png");
     let grey = |v: u8| image::GrayImage::from_pixel(64, 64, image::Luma([v]));
@@ -492,6 +492,26 @@ fn a_mask_changed_on_disk_is_reloaded() {
     // Black: no large wrinkles anywhere.
     grey(0).save(&mask).unwrap();
     wait_for(&mut h, "the black mask", |app| {
+        app.idle()
+            && app
+                .snapshot()
+                .large
+                .as_ref()
+                .is_some_and(|l| l.height.min_max().1 == 0.0)
+    });
+    // The reload is one undo step: undone, the white mask is back as it was read (the
+    // file on disk is black); redone, the black one.
+    h.state_mut().undo();
+    wait_for(&mut h, "the white mask again", |app| {
+        app.idle()
+            && app
+                .snapshot()
+                .large
+                .as_ref()
+                .is_some_and(|l| l.height.min_max().1 > 0.1)
+    });
+    h.state_mut().redo();
+    wait_for(&mut h, "the black mask again", |app| {
         app.idle()
             && app
                 .snapshot()

@@ -61,3 +61,56 @@ fn the_editor_window_starts_and_shows_the_maps() {
         "the centre shows no map ({bright} bright pixels)"
     );
 }
+
+/// A short soak run of the real window (`--soak`): random drags, scrubs, undo/redo and
+/// files rewritten on disk; every bake request answered, no unexpected error, the memory
+/// bounded. The ten-minute run's figures are in BENCHMARKS.md.
+#[test]
+fn a_short_soak_run_answers_every_bake_and_shows_no_unexpected_error() {
+    let Some(xvfb) = common::Xvfb::start(200) else {
+        return agesim_render::ci::skip_or_fail(
+            "a_short_soak_run_answers_every_bake_and_shows_no_unexpected_error",
+            "Xvfb is not installed",
+        );
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_agesim"))
+        .args(["--soak", "20", "--autosave-seconds", "2"])
+        .env("DISPLAY", &xvfb.display)
+        .env("XDG_RUNTIME_DIR", dir.path())
+        .env("XDG_DATA_HOME", dir.path())
+        .env("XDG_CONFIG_HOME", dir.path())
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    drop(xvfb);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() && stderr.contains("could not be opened") {
+        return agesim_render::ci::skip_or_fail(
+            "a_short_soak_run_answers_every_bake_and_shows_no_unexpected_error",
+            &format!("no window could be opened: {stderr}"),
+        );
+    }
+    eprintln!("{stdout}");
+    assert!(out.status.success(), "{stdout}\n{stderr}");
+    assert!(stdout.contains("soak passed"), "{stdout}");
+    let answered = stdout
+        .lines()
+        .find(|l| l.starts_with("| bake requests answered"))
+        .unwrap();
+    // "| bake requests answered | N of N (…"
+    let figures: Vec<u64> = answered
+        .split(['|', ' ', '('])
+        .filter_map(|w| w.parse().ok())
+        .take(2)
+        .collect();
+    assert!(
+        figures.len() == 2 && figures[0] == figures[1] && figures[0] > 10,
+        "{answered}"
+    );
+    // A clean exit leaves no recovery session behind.
+    let recovery = dir.path().join("agesim/recovery");
+    let left = std::fs::read_dir(&recovery).map_or(0, |d| d.count());
+    assert_eq!(left, 0, "{}", recovery.display());
+}

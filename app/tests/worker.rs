@@ -24,7 +24,7 @@ fn bake(worker: &mut Worker, project: &Project, size_px: u32, t: f32) -> Snapsho
         what: format!("{size_px}²"),
         compare_t: None,
         detect_units: false,
-        reload: Vec::new(),
+        files: Default::default(),
     });
     let start = Instant::now();
     loop {

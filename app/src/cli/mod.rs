@@ -42,6 +42,12 @@ pub struct Cli {
     #[arg(long)]
     pub bench_ui: bool,
 
+    /// Editor: drive the editor at random for SECONDS (slider and fibre drags, age scrubs,
+    /// undo/redo, wrinkle files rewritten on disk), print its figures (bake requests
+    /// answered, memory) and quit; exits with an error when a check failed.
+    #[arg(long, value_name = "SECONDS")]
+    pub soak: Option<f64>,
+
     /// Editor: write the unsaved session to the recovery folder at most every N seconds
     /// (`$XDG_DATA_HOME/agesim/recovery/`); 0 turns autosave off.
     #[arg(long, default_value_t = 60.0, value_name = "N")]
@@ -85,7 +91,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::GenAssets(args)) => gen_assets::run(&args),
         Some(Command::Hair(args)) => hair::run(&args),
         // No subcommand: the editor.
-        None => crate::editor::run(crate::editor::EditorOptions {
+        None => run_editor(crate::editor::EditorOptions {
             project: cli.project,
             screenshot: cli.screenshot,
             frames: cli.frames,
@@ -95,12 +101,23 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
             autosave_seconds: cli.autosave_seconds.max(0.0),
             recover: cli.recover,
             edit: cli.edit,
+            soak_seconds: cli.soak.map(|s| s.max(0.0)),
             ..Default::default()
         }),
         Some(Command::Bake(args)) => bake::run(&args),
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Export(args)) => export::run(&args),
     }
+}
+
+/// The editor, until its window closes; a failed soak run is an error.
+fn run_editor(options: crate::editor::EditorOptions) -> anyhow::Result<()> {
+    let soak = options.soak_seconds.is_some();
+    crate::editor::run(options)?;
+    if soak && crate::editor::soak::failed() {
+        anyhow::bail!("the soak run failed (see above)");
+    }
+    Ok(())
 }
 
 /// The age flags of `bake`, `render` and `export`: one of them, or the project's age.

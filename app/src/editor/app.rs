@@ -116,6 +116,17 @@ pub struct EditorOptions {
     /// One edit (`field=value`) made once the first maps are shown, as if by hand
     /// (scripted runs: the recovery test).
     pub edit: Option<String>,
+    /// Drive the editor at random for this many seconds, print the figures and quit
+    /// (`--soak`, [`super::soak`]).
+    pub soak_seconds: Option<f64>,
+}
+
+impl EditorOptions {
+    /// A run that drives itself (screenshot, benchmark, soak): it starts from the
+    /// defaults, not the last session, and closes without asking.
+    pub fn scripted(&self) -> bool {
+        self.screenshot.is_some() || self.bench_ui || self.soak_seconds.is_some()
+    }
 }
 
 /// Which windows are open.
@@ -175,6 +186,7 @@ pub struct EditorApp {
     frames_with_maps: u32,
     screenshot_requested: bool,
     bench: Option<super::bench_ui::BenchUi>,
+    soak: Option<scripted::SoakRun>,
     /// The shown large map and its deepest value (the status line's figure, computed once
     /// per map, not once per frame). Weak: the old map's data is freed as usual, but its
     /// address is not reused while this refers to it.
@@ -186,10 +198,9 @@ impl EditorApp {
     pub fn new(cc: &eframe::CreationContext<'_>, options: EditorOptions) -> Self {
         // Scripted runs (screenshot, benchmark) start from the defaults, not from the last
         // session, so they show the same thing on every machine.
-        let scripted = options.screenshot.is_some() || options.bench_ui;
         let persisted: Persisted = cc
             .storage
-            .filter(|_| !scripted)
+            .filter(|_| !options.scripted())
             .and_then(|s| eframe::get_value(s, eframe::APP_KEY))
             .unwrap_or_default();
         let adapter = cc.wgpu_render_state.as_ref().map_or_else(
@@ -268,6 +279,7 @@ impl EditorApp {
             frames_with_maps: 0,
             screenshot_requested: false,
             bench: None,
+            soak: None,
             deepest: (std::sync::Weak::new(), 0.0),
             last_hover_uv: None,
         };
@@ -275,6 +287,10 @@ impl EditorApp {
             app.bench = Some(super::bench_ui::BenchUi::new());
             app.persisted.layout = Layout::default();
             app.persisted.compare = false;
+        }
+        if let Some(seconds) = app.options.soak_seconds {
+            app.soak = Some(scripted::SoakRun::new(seconds));
+            app.persisted.layout = Layout::default();
         }
         if let Some(e) = error {
             app.error(format!("Could not open the project: {e}"));
@@ -370,7 +386,7 @@ impl EditorApp {
             request,
             what: what.to_owned(),
             detect_units: self.session.measure_mesh,
-            reload: self.session.reload.clone(),
+            files: self.doc.files.clone(),
             compare_t: self.persisted.compare.then(|| {
                 self.doc
                     .project
@@ -394,6 +410,27 @@ impl EditorApp {
                 self.submit(dragging, path);
             }
             Err(e) => self.error(e.to_string()),
+        }
+    }
+
+    /// A fibre moved (the map view's drag, the soak run): one undo step per drag.
+    pub(super) fn apply_fibre_edit(
+        &mut self,
+        mut wrinkles: Vec<WrinkleSource>,
+        e: map_view::FibreEdit,
+    ) {
+        if let Some(g) = wrinkles
+            .get_mut(e.file)
+            .and_then(|f| f.file.groups.get_mut(e.group))
+        {
+            g.fibre = e.fibre;
+            self.record(
+                "fibre drag",
+                &format!("fibre {}/{}", e.file, e.group),
+                e.dragging,
+            );
+            self.doc.wrinkles = Some(wrinkles);
+            self.submit(e.dragging, "fibre");
         }
     }
 
@@ -457,6 +494,7 @@ impl EditorApp {
                     if let Some(doc) = self.doc.history.discard_last_if(|d| &d.project == good) {
                         self.doc.revision = doc.revision;
                         self.doc.wrinkles = doc.wrinkles;
+                        self.doc.files = doc.files;
                     }
                 }
             }
@@ -771,26 +809,14 @@ impl eframe::App for EditorApp {
             }
         }
         if let Some(e) = fibre_edit {
-            let mut w = wrinkles;
-            if let Some(g) = w
-                .get_mut(e.file)
-                .and_then(|f| f.file.groups.get_mut(e.group))
-            {
-                g.fibre = e.fibre;
-                self.record(
-                    "fibre drag",
-                    &format!("fibre {}/{}", e.file, e.group),
-                    e.dragging,
-                );
-                self.doc.wrinkles = Some(w);
-                self.submit(e.dragging, "fibre");
-            }
+            self.apply_fibre_edit(wrinkles, e);
         }
         self.windows_ui(&ctx);
         self.browser_ui(&ctx);
         self.notices.toasts_ui(&ctx, 150.0);
         self.maybe_screenshot(&ctx);
         self.bench_step(&ctx);
+        self.soak_step(&ctx);
     }
 
     fn on_exit(&mut self) {
@@ -800,7 +826,7 @@ impl eframe::App for EditorApp {
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
-        if self.options.screenshot.is_some() || self.options.bench_ui {
+        if self.options.scripted() {
             return;
         }
         eframe::set_value(storage, eframe::APP_KEY, &self.persisted);

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use agesim_core::project::Project;
-use agesim_core::scene::WrinkleSource;
+use agesim_core::scene::{FileVersions, WrinkleSource};
 
 use super::history::History;
 
@@ -14,6 +14,11 @@ pub(super) struct Document {
     pub(super) last_good: Project,
     /// The wrinkle files as edited here (`None` until the first fibre edit).
     pub(super) wrinkles: Option<Vec<WrinkleSource>>,
+    /// The versions of the input files reloaded from disk ([`FileVersions`]); the next
+    /// version handed out is `next_file_version` (never reused, so a version always
+    /// names one content).
+    pub(super) files: FileVersions,
+    pub(super) next_file_version: u64,
     pub(super) history: History,
     /// The document's revision, the newest handed out, the saved one and the one being
     /// saved (see [`History`]).
@@ -40,6 +45,8 @@ impl Document {
             last_good: project.clone(),
             project,
             wrinkles: None,
+            files: FileVersions::new(),
+            next_file_version: 0,
             history: History::default(),
             revision: 0,
             next_revision: 0,

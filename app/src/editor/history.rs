@@ -2,7 +2,7 @@
 //! one drag (a slider, a fibre handle, the age playhead) are one step.
 
 use agesim_core::project::Project;
-use agesim_core::scene::WrinkleSource;
+use agesim_core::scene::{FileVersions, WrinkleSource};
 
 /// The editable document: the project and the wrinkle files as edited (`None` until the
 /// first fibre edit: then the files the project names are used as they are on disk).
@@ -10,6 +10,9 @@ use agesim_core::scene::WrinkleSource;
 pub struct Doc {
     pub project: Project,
     pub wrinkles: Option<Vec<WrinkleSource>>,
+    /// Which content of each input file changed on disk the document uses (a reload is
+    /// a new version; undoing it goes back to the content before).
+    pub files: FileVersions,
     /// Identifies this state, for the modified mark (the saved revision is remembered).
     pub revision: u64,
 }
@@ -109,6 +112,7 @@ mod tests {
         Doc {
             project,
             wrinkles: None,
+            files: FileVersions::new(),
             revision,
         }
     }

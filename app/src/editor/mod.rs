@@ -15,6 +15,7 @@ mod notices;
 pub mod pick;
 pub mod recovery;
 mod session;
+pub mod soak;
 pub mod timeline;
 pub mod viewport;
 mod watch;

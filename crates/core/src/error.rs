@@ -86,7 +86,9 @@ pub enum Error {
     Cancelled,
 
     /// A wrinkle description file has errors (all of them are listed).
-    #[error("{0}")]
+    // Transparent: its text is the diagnostics' own, and it is not also exposed as a
+    // source (error-chain printers would show it twice).
+    #[error(transparent)]
     WrinkleFile(#[from] crate::diagnostic::ParseErrors),
 }
 

@@ -37,6 +37,7 @@ impl EditorApp {
         Doc {
             project: self.doc.project.clone(),
             wrinkles: self.doc.wrinkles.clone(),
+            files: self.doc.files.clone(),
             revision: self.doc.revision,
         }
     }
@@ -56,6 +57,7 @@ impl EditorApp {
     pub(super) fn restore(&mut self, doc: Doc, what: &str) {
         self.doc.project = doc.project;
         self.doc.wrinkles = doc.wrinkles;
+        self.doc.files = doc.files;
         self.doc.revision = doc.revision;
         self.submit(false, what);
     }
@@ -105,11 +107,19 @@ impl EditorApp {
 
     pub(super) fn info(&mut self, text: impl Into<String>) {
         let now = self.now;
+        let text = text.into();
+        if let Some(soak) = &mut self.soak {
+            soak.info_shown(&text);
+        }
         self.notices.post(text, false, now);
     }
 
     pub(super) fn error(&mut self, text: impl Into<String>) {
         let now = self.now;
+        let text = text.into();
+        if let Some(soak) = &mut self.soak {
+            soak.error_shown(&text);
+        }
         self.notices.post(text, true, now);
     }
 

@@ -72,7 +72,8 @@ impl EditorApp {
 
     /// Watches the files the document names. A wrinkle file that changed on disk is read
     /// again on a file thread ([`IoResult::WrinklesReloaded`]); another input (the mesh,
-    /// a mask, the tile, the landmarks) is read again by the next bake.
+    /// a mask, the tile, the landmarks, the colour and normal maps) gets a new version
+    /// (one undo step) and is read again by the next bake.
     pub(super) fn watch_files(&mut self) {
         let wrinkles: Vec<PathBuf> = self
             .wrinkles()
@@ -84,6 +85,7 @@ impl EditorApp {
             &p.mesh.path,
             &p.mesh.landmarks,
             &p.mesh.colour_map,
+            &p.mesh.normal_map,
             &p.large.mask,
             &p.hair.outer_mask,
             &p.hair.inner_mask,
@@ -99,13 +101,30 @@ impl EditorApp {
                     result: agesim_core::wrinkle_file::load(&path).map_err(|e| e.to_string()),
                     path,
                 });
-            } else if !self.session.reload.contains(&path) {
-                self.session.reload.push(path);
+            } else {
+                self.file_changed(path);
                 rebake = true;
             }
         }
         if rebake {
             self.submit(false, "reload");
+        }
+    }
+
+    /// An input file changed on disk (or was written here): one undo step that gives it a
+    /// new version, read by the next bake.
+    pub(super) fn file_changed(&mut self, path: PathBuf) {
+        let name = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        self.record(&format!("reload {name}"), "reload file", false);
+        self.doc.next_file_version += 1;
+        self.doc
+            .files
+            .insert(path.clone(), self.doc.next_file_version);
+        if !self.session.reload.contains(&path) {
+            self.session.reload.push(path);
         }
     }
 

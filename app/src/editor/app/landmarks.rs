@@ -158,9 +158,7 @@ impl EditorApp {
     /// bake fits with it (read again if the project named it already).
     pub(super) fn landmarks_saved(&mut self, path: PathBuf) {
         if self.doc.project.mesh.landmarks.as_ref() == Some(&path) {
-            if !self.session.reload.contains(&path) {
-                self.session.reload.push(path.clone());
-            }
+            self.file_changed(path.clone());
             self.submit(false, "fit to the landmarks");
         } else {
             self.apply(

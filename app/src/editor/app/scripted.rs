@@ -1,6 +1,13 @@
-//! Scripted runs: the UI benchmark (`--bench-ui`) and the screenshot (`--screenshot`).
+//! Scripted runs: the UI benchmark (`--bench-ui`), the screenshot (`--screenshot`), the
+//! soak run (`--soak`) and the hidden `--edit`.
+
+use std::path::PathBuf;
+
+use agesim_core::project::fields::{FIELDS, Field, Kind};
+use serde_json::Value;
 
 use super::{EditorApp, Layout};
+use crate::editor::soak::{Action, Soak};
 
 impl EditorApp {
     /// `--edit field=value`: applied once the first maps are shown, as the layer panel
@@ -86,6 +93,208 @@ impl EditorApp {
                 }
                 ctx2.send_viewport_cmd(egui::ViewportCommand::Close);
             });
+        }
+    }
+}
+
+/// The soak run's state on the app's side: the script ([`Soak`]), its folder and the
+/// slider fields it drags.
+pub(super) struct SoakRun {
+    soak: Soak,
+    dir: PathBuf,
+    fields: Vec<&'static Field>,
+    /// The wrinkle file a rewrite left broken (its errors are expected).
+    broken: String,
+    /// A slider edit of the script is being applied (an error now is a refusal).
+    in_edit: bool,
+}
+
+impl SoakRun {
+    pub(super) fn new(seconds: f64) -> Self {
+        // Every number and switch of the layers and the view; not the mesh's (units,
+        // axes: a different head) nor the age mapping (the scrubs move the age).
+        let fields: Vec<&'static Field> = FIELDS
+            .iter()
+            .filter(|f| matches!(f.kind, Kind::Float { .. } | Kind::Bool))
+            .filter(|f| !f.path.starts_with("mesh.") && !f.path.starts_with("age."))
+            .collect();
+        let dir = std::env::temp_dir().join(format!("agesim-soak-{}", std::process::id()));
+        println!(
+            "soak: {seconds:.0} s, seed 1, {} slider fields, files in {}",
+            fields.len(),
+            dir.display()
+        );
+        Self {
+            soak: Soak::new(seconds, fields.len(), 1),
+            dir,
+            fields,
+            broken: String::new(),
+            in_edit: false,
+        }
+    }
+
+    pub(super) fn info_shown(&mut self, text: &str) {
+        self.soak.info_shown(text);
+    }
+
+    /// An error the app showed.
+    pub(super) fn error_shown(&mut self, text: &str) {
+        self.soak.error_shown(text, &self.broken, self.in_edit);
+    }
+}
+
+impl EditorApp {
+    pub(super) fn soak_step(&mut self, ctx: &egui::Context) {
+        let Some(run) = &mut self.soak else {
+            return;
+        };
+        ctx.request_repaint();
+        let ready = self.session.snapshot.large.is_some();
+        let action = run
+            .soak
+            .frame(self.session.worker.latest, self.session.reported, ready);
+        match action {
+            Action::None => {}
+            Action::Setup => {
+                if let Err(e) = std::fs::create_dir_all(&run.dir) {
+                    eprintln!("error: {}: {e}", run.dir.display());
+                }
+                let path = run.dir.join("soak.agesim.json");
+                // The wrinkle files as edited, so the save writes them (and the mask)
+                // into the folder: the files the script rewrites on disk.
+                if self.doc.wrinkles.is_none() {
+                    self.doc.wrinkles = Some(self.wrinkles().to_vec());
+                }
+                self.save_to(path);
+            }
+            Action::Field {
+                field,
+                fraction,
+                dragging,
+            } => {
+                let Some(f) = run.fields.get(field).copied() else {
+                    return;
+                };
+                let value = match f.kind {
+                    Kind::Float { min, max } => Value::from(min + (max - min) * fraction),
+                    _ => Value::from(fraction > 0.5),
+                };
+                run.in_edit = true;
+                self.apply(f.path, value, dragging);
+                if let Some(run) = &mut self.soak {
+                    run.in_edit = false;
+                }
+            }
+            Action::Fibre {
+                pick,
+                delta,
+                dragging,
+            } => {
+                let wrinkles = self.wrinkles().to_vec();
+                let groups: Vec<(usize, usize)> = wrinkles
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(i, w)| (0..w.file.groups.len()).map(move |g| (i, g)))
+                    .collect();
+                let Some(&(file, group)) = groups.get((pick % groups.len().max(1) as u64) as usize)
+                else {
+                    return;
+                };
+                let f = &wrinkles[file].file.groups[group].fibre;
+                let shift = |p: [f32; 2]| {
+                    [
+                        (p[0] + delta[0]).clamp(0.0, 1.0),
+                        (p[1] + delta[1]).clamp(0.0, 1.0),
+                    ]
+                };
+                if let Ok(fibre) = f.with_ends(shift(f.ma()), shift(f.mb())) {
+                    let edit = crate::editor::map_view::FibreEdit {
+                        file,
+                        group,
+                        fibre,
+                        dragging,
+                    };
+                    self.apply_fibre_edit(wrinkles, edit);
+                }
+            }
+            Action::Age { t, moving } => {
+                if t != self.doc.project.age.t {
+                    self.record("age", "age", moving);
+                }
+                self.set_age(t, moving);
+            }
+            Action::Undo => self.undo(),
+            Action::Redo => self.redo(),
+            Action::RewriteWrinkles { pick, broken } => {
+                let paths: Vec<PathBuf> = self
+                    .wrinkles()
+                    .iter()
+                    .filter_map(|w| w.path.clone())
+                    .collect();
+                let Some(path) = paths.get((pick % paths.len().max(1) as u64) as usize) else {
+                    eprintln!("soak: no wrinkle file on disk to rewrite");
+                    return;
+                };
+                // What another program would write: the file on disk with its first
+                // fibre moved, or a line the parser refuses.
+                let result = agesim_core::wrinkle_file::load(path)
+                    .or_else(|_| {
+                        // The file is the broken one: mend it from the document.
+                        let w = self
+                            .wrinkles()
+                            .iter()
+                            .find(|w| w.path.as_ref() == Some(path));
+                        w.map(|w| w.file.clone()).ok_or_else(|| {
+                            agesim_core::Error::io(
+                                path,
+                                std::io::Error::other("not in the document"),
+                            )
+                        })
+                    })
+                    .map(|mut file| {
+                        if let Some(g) = file.groups.first_mut()
+                            && let Ok(f) = g.fibre.with_ends(
+                                [g.fibre.ma()[0], (g.fibre.ma()[1] + 0.001).min(1.0)],
+                                g.fibre.mb(),
+                            )
+                        {
+                            g.fibre = f;
+                        }
+                        let mut text = agesim_core::wrinkle_file::write(&file);
+                        if broken {
+                            text += "ma=not-a-number\n";
+                        }
+                        text
+                    })
+                    .and_then(|text| {
+                        agesim_core::export::write_atomically(path, |w| {
+                            std::io::Write::write_all(w, text.as_bytes())
+                        })
+                    });
+                if let Err(e) = result {
+                    eprintln!("soak: could not rewrite {}: {e}", path.display());
+                }
+                if broken && let Some(run) = &mut self.soak {
+                    run.broken = path.display().to_string();
+                }
+            }
+            Action::TouchMask => {
+                if let Some(mask) = self.doc.project.large.mask.clone()
+                    && let Ok(bytes) = std::fs::read(&mask)
+                {
+                    let _ = agesim_core::export::write_atomically(&mask, |w| {
+                        std::io::Write::write_all(w, &bytes)
+                    });
+                }
+            }
+            Action::Quit => {
+                let _ = std::fs::remove_dir_all(&run.dir);
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        }
+        let (latest, reported) = (self.session.worker.latest, self.session.reported);
+        if let Some(run) = &mut self.soak {
+            run.soak.observe(latest, reported);
         }
     }
 }

@@ -202,8 +202,8 @@ impl EditorApp {
 
     /// Asks before the window closes with unsaved changes.
     pub(super) fn intercept_close(&mut self, ctx: &egui::Context) {
-        // A scripted run (screenshot, benchmark) closes itself: nobody to ask.
-        let scripted = self.options.screenshot.is_some() || self.options.bench_ui;
+        // A scripted run (screenshot, benchmark, soak) closes itself: nobody to ask.
+        let scripted = self.options.scripted();
         if ctx.input(|i| i.viewport().close_requested())
             && self.modified()
             && !self.quit_confirmed

@@ -36,8 +36,10 @@ pub struct Job {
     pub compare_t: Option<f32>,
     /// Report how the mesh's units were decided ([`Report::units`]; a head just imported).
     pub detect_units: bool,
-    /// Input files changed on disk (mesh, masks, tile, landmarks): read them again.
-    pub reload: Vec<std::path::PathBuf>,
+    /// Which content of the input files changed on disk (mesh, masks, tile, landmarks,
+    /// colour and normal maps) to use: a new version is read again, an earlier one comes
+    /// back as it was (an undone reload).
+    pub files: agesim_core::scene::FileVersions,
 }
 
 /// What the UI shows of a finished bake. Each map is shared, not copied, between bakes
@@ -331,9 +333,7 @@ fn bake(
     let Some(s) = scene.as_mut() else {
         return Err(Error::Cancelled);
     };
-    if !job.reload.is_empty() {
-        changed.merge(s.reload_inputs(&job.reload)?);
-    }
+    changed.merge(s.set_file_versions(&job.files)?);
     // A head just imported: how its units were decided, for the status line.
     let units = job.detect_units.then(|| s.units());
     match &job.wrinkles {

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use super::WrinkleSource;
+use super::{FileVersions, WrinkleSource};
 use crate::error::Error;
 use crate::fit::Fit;
 use crate::heightmap::HeightMap;
@@ -18,7 +18,7 @@ use crate::wrinkle_file::{self, ParseErrors, WrinkleFile};
 /// Everything loaded from files (or the built-in defaults), kept until a path changes.
 #[derive(Clone, Debug)]
 pub(super) struct Inputs {
-    mesh_key: (Option<PathBuf>, BuiltinMesh),
+    mesh_key: (Option<PathBuf>, BuiltinMesh, u64),
     /// The mesh as its file has it, and turned to agesim's axes (`mesh`; the same
     /// allocation when no turn is needed).
     raw_mesh: Arc<Mesh>,
@@ -35,21 +35,21 @@ pub(super) struct Inputs {
     /// Whether `wrinkles` came from [`Scene::set_wrinkles`](super::Scene::set_wrinkles)
     /// rather than the files.
     pub(super) wrinkles_edited: bool,
-    large_mask_key: (Option<PathBuf>, bool),
+    large_mask_key: (Option<PathBuf>, bool, u64),
     pub(super) large_mask: Option<Arc<Mask>>,
-    hair_masks_key: (Option<PathBuf>, Option<PathBuf>),
+    hair_masks_key: (Option<PathBuf>, Option<PathBuf>, u64, u64),
     pub(super) hair_masks: Option<Arc<(Mask, Mask)>>,
-    fine_tile_key: Option<PathBuf>,
+    fine_tile_key: (Option<PathBuf>, u64),
     pub(super) fine_tile: Option<Arc<HeightMap>>,
-    landmarks_key: Option<PathBuf>,
+    landmarks_key: (Option<PathBuf>, u64),
     /// The head's landmarks (`mesh.landmarks`), when the project names a file.
     pub(super) landmarks: Option<Arc<Landmarks>>,
-    colour_map_key: (Option<PathBuf>, bool),
+    colour_map_key: (Option<PathBuf>, bool, u64),
     /// The head's base colour map (`mesh.colour_map`), when the project names one.
     pub(super) colour_map: Option<Arc<HeadImage>>,
     /// The pictures the mesh file's own material names (read with the mesh).
     pub(super) file_textures: Arc<crate::mesh::textures::MeshTextures>,
-    normal_map_key: (Option<PathBuf>, bool),
+    normal_map_key: (Option<PathBuf>, bool, u64),
     /// The head's normal map (`mesh.normal_map`), when the project names one.
     pub(super) normal_map: Option<Arc<HeadImage>>,
     /// How the mesh reads the layers (the template's fit).
@@ -59,55 +59,59 @@ pub(super) struct Inputs {
 }
 
 impl Inputs {
-    /// Marks every input loaded from one of `paths` as not loaded, so the next
-    /// [`Inputs::load`] with these as `previous` reads it again.
-    pub(super) fn forget(&mut self, paths: &[PathBuf]) {
-        let stale = || Some(PathBuf::from("\0 changed on disk"));
-        let hit = |p: &Option<PathBuf>| p.as_ref().is_some_and(|p| paths.contains(p));
-        if hit(&self.mesh_key.0) {
-            self.mesh_key.0 = stale();
-        }
-        if hit(&self.large_mask_key.0) {
-            self.large_mask_key.0 = stale();
-        }
-        if hit(&self.hair_masks_key.0) || hit(&self.hair_masks_key.1) {
-            self.hair_masks_key = (stale(), stale());
-        }
-        if hit(&self.fine_tile_key) {
-            self.fine_tile_key = stale();
-        }
-        if hit(&self.landmarks_key) {
-            self.landmarks_key = stale();
-        }
-        if hit(&self.colour_map_key.0) {
-            self.colour_map_key.0 = stale();
-        }
-        if hit(&self.normal_map_key.0) {
-            self.normal_map_key.0 = stale();
-        }
+    /// Whether `self` and `other` hold the same files' contents (the same decoded
+    /// allocations): kept as a past state only when they differ.
+    pub(super) fn same_files(&self, other: &Inputs) -> bool {
+        Arc::ptr_eq(&self.raw_mesh, &other.raw_mesh)
+            && opt_ptr_eq(&self.large_mask, &other.large_mask)
+            && opt_ptr_eq(&self.hair_masks, &other.hair_masks)
+            && opt_ptr_eq(&self.fine_tile, &other.fine_tile)
+            && opt_ptr_eq(&self.landmarks, &other.landmarks)
+            && opt_ptr_eq(&self.colour_map, &other.colour_map)
+            && opt_ptr_eq(&self.normal_map, &other.normal_map)
     }
 
     pub(super) fn generation_of_fine(&self) -> u64 {
         self.fine_tile.as_ref().map_or(0, |t| Arc::as_ptr(t) as u64)
     }
 
-    /// Loads what `project` names, reusing `previous`'s inputs whose key is unchanged.
+    /// Loads what `project` names, reusing the inputs of `kept` (the current state first,
+    /// then past ones) whose key — path and [`FileVersions`] version — is unchanged.
     /// Every failing input is reported (wrinkle files with all their diagnostics).
-    pub(super) fn load(project: &Project, previous: Option<&Inputs>) -> Result<Self, Error> {
-        let mesh_key = (project.mesh.path.clone(), project.mesh.builtin);
+    pub(super) fn load(
+        project: &Project,
+        versions: &FileVersions,
+        kept: &[&Inputs],
+    ) -> Result<Self, Error> {
+        let version = |p: &Option<PathBuf>| {
+            p.as_ref()
+                .and_then(|p| versions.get(p))
+                .copied()
+                .unwrap_or(0)
+        };
+        let find = |same: &dyn Fn(&Inputs) -> bool| kept.iter().copied().find(|p| same(p));
+        let previous = kept.first().copied();
+        let mesh_key = (
+            project.mesh.path.clone(),
+            project.mesh.builtin,
+            version(&project.mesh.path),
+        );
         let wrinkles_key = project.large.wrinkles.clone();
         let large_mask_key = (
             project.large.mask.clone(),
             project.large.wrinkles.is_empty(),
+            version(&project.large.mask),
         );
         let hair_masks_key = (
             project.hair.outer_mask.clone(),
             project.hair.inner_mask.clone(),
+            version(&project.hair.outer_mask),
+            version(&project.hair.inner_mask),
         );
-        let fine_tile_key = project.fine.tile.clone();
+        let fine_tile_key = (project.fine.tile.clone(), version(&project.fine.tile));
         // The inputs are independent: decoded at once on the pool (the mesh and the
         // masks are most of a bake's start-up). Errors are reported in this fixed order.
-        let load_mesh_part = || match previous.filter(|p| p.mesh_key == mesh_key) {
+        let load_mesh_part = || match find(&|p| p.mesh_key == mesh_key) {
             Some(p) => Ok((p.raw_mesh.clone(), p.file_textures.clone())),
             None => {
                 let mesh = load_mesh(project).map(Arc::new)?;
@@ -122,12 +126,11 @@ impl Inputs {
             Some(p) => Ok((p.wrinkles.clone(), p.wrinkles_edited)),
             None => load_wrinkles(&wrinkles_key).map(|w| (w, false)),
         };
-        let load_large_mask_part = || match previous.filter(|p| p.large_mask_key == large_mask_key)
-        {
+        let load_large_mask_part = || match find(&|p| p.large_mask_key == large_mask_key) {
             Some(p) => Ok(p.large_mask.clone()),
             None => load_large_mask(&large_mask_key).map(|m| m.map(Arc::new)),
         };
-        let load_hair_part = || match previous.filter(|p| p.hair_masks_key == hair_masks_key) {
+        let load_hair_part = || match find(&|p| p.hair_masks_key == hair_masks_key) {
             Some(p) => (Ok(p.hair_masks.clone()), Ok(())),
             None => {
                 let (outer, inner) = rayon::join(
@@ -150,9 +153,9 @@ impl Inputs {
                 }
             }
         };
-        let load_fine_part = || match previous.filter(|p| p.fine_tile_key == fine_tile_key) {
+        let load_fine_part = || match find(&|p| p.fine_tile_key == fine_tile_key) {
             Some(p) => Ok(p.fine_tile.clone()),
-            None => match &fine_tile_key {
+            None => match &fine_tile_key.0 {
                 None => Ok(None),
                 Some(path) => Mask::load(path)
                     .and_then(|m| {
@@ -186,10 +189,13 @@ impl Inputs {
         ok(inner_error);
         let fine_tile = fine_tile.map_err(|e| ok(Err(e))).ok();
         // A small text file: read after the rest.
-        let landmarks_key = project.mesh.landmarks.clone();
-        let landmarks = match previous.filter(|p| p.landmarks_key == landmarks_key) {
+        let landmarks_key = (
+            project.mesh.landmarks.clone(),
+            version(&project.mesh.landmarks),
+        );
+        let landmarks = match find(&|p| p.landmarks_key == landmarks_key) {
             Some(p) => p.landmarks.clone(),
-            None => match landmarks_key.as_deref().map(Landmarks::load).transpose() {
+            None => match landmarks_key.0.as_deref().map(Landmarks::load).transpose() {
                 Ok(l) => l.map(Arc::new),
                 Err(e) => {
                     errors.push(e);
@@ -199,7 +205,7 @@ impl Inputs {
         };
         // The head's pictures: small, read after the rest.
         let mut load_picture =
-            |key: &(Option<PathBuf>, bool), kept: Option<Option<Arc<HeadImage>>>| {
+            |key: &(Option<PathBuf>, bool, u64), kept: Option<Option<Arc<HeadImage>>>| {
                 kept.unwrap_or_else(|| {
                     let path = key.0.as_ref()?;
                     HeadImage::load(path, key.1)
@@ -209,19 +215,23 @@ impl Inputs {
                 })
             };
         let flip = project.mesh.maps_flip_v;
-        let colour_map_key = (project.mesh.colour_map.clone(), flip);
+        let colour_map_key = (
+            project.mesh.colour_map.clone(),
+            flip,
+            version(&project.mesh.colour_map),
+        );
         let colour_map = load_picture(
             &colour_map_key,
-            previous
-                .filter(|p| p.colour_map_key == colour_map_key)
-                .map(|p| p.colour_map.clone()),
+            find(&|p| p.colour_map_key == colour_map_key).map(|p| p.colour_map.clone()),
         );
-        let normal_map_key = (project.mesh.normal_map.clone(), flip);
+        let normal_map_key = (
+            project.mesh.normal_map.clone(),
+            flip,
+            version(&project.mesh.normal_map),
+        );
         let normal_map = load_picture(
             &normal_map_key,
-            previous
-                .filter(|p| p.normal_map_key == normal_map_key)
-                .map(|p| p.normal_map.clone()),
+            find(&|p| p.normal_map_key == normal_map_key).map(|p| p.normal_map.clone()),
         );
         match (mesh, wrinkles, large_mask, hair_masks, fine_tile) {
             (
@@ -239,22 +249,20 @@ impl Inputs {
                 );
                 // Finding the axes by fitting is not free: kept while the mesh and what
                 // decides them are the same.
-                let (axes, axes_how) = match previous {
-                    Some(p) if Arc::ptr_eq(&p.raw_mesh, &raw_mesh) && p.axes_key == axes_key => {
-                        (p.axes, p.axes_how.clone())
-                    }
-                    _ => axes_of(project, landmarks.as_deref(), &raw_mesh),
+                let (axes, axes_how) = match find(&|p| {
+                    Arc::ptr_eq(&p.raw_mesh, &raw_mesh) && p.axes_key == axes_key
+                }) {
+                    Some(p) => (p.axes, p.axes_how.clone()),
+                    None => axes_of(project, landmarks.as_deref(), &raw_mesh),
                 };
                 let skin_parts = project.mesh.skin_parts.clone();
-                let mesh = match previous {
-                    Some(p)
-                        if Arc::ptr_eq(&p.raw_mesh, &raw_mesh)
-                            && p.axes == axes
-                            && p.skin_parts == skin_parts =>
-                    {
-                        p.mesh.clone()
-                    }
-                    _ => {
+                let mesh = match find(&|p| {
+                    Arc::ptr_eq(&p.raw_mesh, &raw_mesh)
+                        && p.axes == axes
+                        && p.skin_parts == skin_parts
+                }) {
+                    Some(p) => p.mesh.clone(),
+                    None => {
                         let turned = match axes.to_standard() {
                             Some(r) if axes != Axes::STANDARD => Arc::new(raw_mesh.rotated(r)),
                             _ => raw_mesh.clone(),
@@ -280,15 +288,13 @@ impl Inputs {
                         }
                     }
                 };
-                let layout = match previous {
-                    Some(p)
-                        if Arc::ptr_eq(&p.mesh, &mesh)
-                            && opt_ptr_eq(&p.landmarks, &landmarks)
-                            && p.layout.choice == project.mesh.layout =>
-                    {
-                        p.layout.clone()
-                    }
-                    _ => Arc::new(HeadLayout::of(project, &mesh, axes, landmarks.as_deref())?),
+                let layout = match find(&|p| {
+                    Arc::ptr_eq(&p.mesh, &mesh)
+                        && opt_ptr_eq(&p.landmarks, &landmarks)
+                        && p.layout.choice == project.mesh.layout
+                }) {
+                    Some(p) => p.layout.clone(),
+                    None => Arc::new(HeadLayout::of(project, &mesh, axes, landmarks.as_deref())?),
                 };
                 let generation = previous.map_or(0, |p| p.generation)
                     + u64::from(previous.is_none_or(|p| p.wrinkles != wrinkles));
@@ -539,14 +545,14 @@ pub fn load_wrinkles(paths: &[PathBuf]) -> Result<Vec<WrinkleSource>, Error> {
 
 /// The large-wrinkle mask: the named one, or the default head's when the default wrinkle
 /// files are used, or none.
-fn load_large_mask(key: &(Option<PathBuf>, bool)) -> Result<Option<Mask>, Error> {
+fn load_large_mask(key: &(Option<PathBuf>, bool, u64)) -> Result<Option<Mask>, Error> {
     match key {
-        (Some(path), _) => Mask::load(path).map(Some),
-        (None, true) => {
+        (Some(path), ..) => Mask::load(path).map(Some),
+        (None, true, _) => {
             let (name, bytes) = crate::defaults::WRINKLE_MASK;
             Mask::decode(bytes, Path::new(name)).map(Some)
         }
-        (None, false) => Ok(None),
+        (None, false, _) => Ok(None),
     }
 }
 

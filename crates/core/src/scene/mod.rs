@@ -234,7 +234,22 @@ pub struct Scene {
     /// The correspondence maps of the current layout, by size (the large map's and the
     /// transition texture's).
     correspondences: Vec<Arc<Correspondence>>,
+    /// Which content of each input file is wanted ([`Scene::set_file_versions`]).
+    versions: FileVersions,
+    /// Earlier inputs whose files' contents differ from the current ones, newest first
+    /// (at most [`PAST_INPUTS`]): an older version asked for again (an undone reload) is
+    /// taken from here, as it was, not read again.
+    past: Vec<Inputs>,
 }
+
+/// Which content of each input file (mesh, masks, tile, landmarks, colour and normal
+/// maps) a scene uses: a file changed on disk is given a new number by the caller, and
+/// asking for an earlier number again gives that earlier content while the scene still
+/// holds it. A path not listed is version 0.
+pub type FileVersions = std::collections::BTreeMap<PathBuf, u64>;
+
+/// Past input states a scene keeps for [`FileVersions`].
+const PAST_INPUTS: usize = 8;
 
 type FineWrinkleSettingsKey = (Option<PathBuf>, u32, u32, f32, f32, f32, f32, u64);
 
@@ -246,7 +261,7 @@ impl Scene {
             source_name: "project".into(),
             message,
         })?;
-        let inputs = Inputs::load(&project, None)?;
+        let inputs = Inputs::load(&project, &FileVersions::new(), &[])?;
         let factors = project.age.factors(project.age.t, &[]);
         Ok(Self {
             tileable: project.tile,
@@ -266,6 +281,8 @@ impl Scene {
             hair: None,
             layout_generation: 1,
             correspondences: Vec::new(),
+            versions: FileVersions::new(),
+            past: Vec::new(),
         })
     }
 
@@ -293,6 +310,8 @@ impl Scene {
             hair: self.hair.clone(),
             layout_generation: self.layout_generation,
             correspondences: self.correspondences.clone(),
+            versions: self.versions.clone(),
+            past: self.past.clone(),
         }
     }
 
@@ -307,18 +326,27 @@ impl Scene {
             source_name: "project".into(),
             message,
         })?;
-        let inputs = Inputs::load(&project, Some(&self.inputs))?;
+        let inputs = Inputs::load(&project, &self.versions, &self.kept())?;
         Ok(self.adopt(inputs, project))
     }
 
-    /// Reads again the inputs loaded from any of `paths` (the mesh, the masks, the
-    /// fine-wrinkle tile, the landmarks, the colour and normal maps; files changed on disk); on error the scene is
-    /// unchanged. Wrinkle files are the caller's ([`Scene::set_wrinkles`]).
-    pub fn reload_inputs(&mut self, paths: &[PathBuf]) -> Result<Changed, Error> {
-        let mut stale = self.inputs.clone();
-        stale.forget(paths);
-        let inputs = Inputs::load(&self.project, Some(&stale))?;
+    /// Sets which content of each input file to use (the mesh, the masks, the
+    /// fine-wrinkle tile, the landmarks, the colour and normal maps; [`FileVersions`]): a
+    /// new version is read from the file, an earlier one still held is used as it was.
+    /// On error the scene is unchanged. Wrinkle files are the caller's
+    /// ([`Scene::set_wrinkles`]).
+    pub fn set_file_versions(&mut self, versions: &FileVersions) -> Result<Changed, Error> {
+        if *versions == self.versions {
+            return Ok(Changed::default());
+        }
+        let inputs = Inputs::load(&self.project, versions, &self.kept())?;
+        self.versions = versions.clone();
         Ok(self.adopt(inputs, self.project.clone()))
+    }
+
+    /// The input states to reuse from: the current one, then the past ones.
+    fn kept(&self) -> Vec<&Inputs> {
+        std::iter::once(&self.inputs).chain(&self.past).collect()
     }
 
     /// Takes `inputs` and `project`, saying what changed for the stages.
@@ -340,7 +368,12 @@ impl Scene {
             self.layout_generation += 1;
             self.correspondences.clear();
         }
-        self.inputs = inputs;
+        let old = std::mem::replace(&mut self.inputs, inputs);
+        if !old.same_files(&self.inputs) {
+            self.past.retain(|p| !p.same_files(&old));
+            self.past.insert(0, old);
+            self.past.truncate(PAST_INPUTS);
+        }
         self.project = project;
         changed
     }

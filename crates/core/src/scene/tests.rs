@@ -436,3 +436,37 @@ fn a_z_up_head_in_centimetres_is_measured_and_turned_by_its_landmarks() {
     let (n, m) = (s.hair().unwrap().len(), reference.hair().unwrap().len());
     assert!((n as f64 / m as f64 - 1.0).abs() < 0.02, "{n} vs {m}");
 }
+
+#[test]
+fn a_new_file_version_reads_the_file_again_and_an_earlier_one_comes_back_as_it_was() {
+    let never = CancelToken::never();
+    let dir = tempfile::tempdir().unwrap();
+    let mask = dir.path().join("mask.png");
+    let grey = |v: u8| image::GrayImage::from_pixel(8, 8, image::Luma([v])).save(&mask);
+    grey(255).unwrap();
+    let mut p = project();
+    p.large.mask = Some(mask.clone());
+    let mut s = fresh(&p, &small(1.0));
+    let full = scene_large(&s);
+    assert!(full.iter().any(|&h| h != 0.0));
+    // The file changes on disk: nothing happens until it is given a new version.
+    grey(0).unwrap();
+    let v = |n: u64| FileVersions::from([(mask.clone(), n)]);
+    s.set_file_versions(&v(1)).unwrap();
+    s.bake(&small(1.0), &never).unwrap();
+    assert!(scene_large(&s).iter().all(|&h| h == 0.0), "the new mask");
+    // Version 0 again (an undone reload): the first content, not the file's.
+    let c = s.set_file_versions(&v(0)).unwrap();
+    s.bake(&small(1.0), &never).unwrap();
+    assert_eq!(scene_large(&s), full, "{c:?}");
+    // A broken file: an error, the scene as it was.
+    std::fs::write(&mask, b"not a png").unwrap();
+    let err = s.set_file_versions(&v(2)).unwrap_err();
+    assert!(err.to_string().contains("mask.png"), "{err}");
+    s.bake(&small(1.0), &never).unwrap();
+    assert_eq!(scene_large(&s), full);
+}
+
+fn scene_large(s: &Scene) -> Vec<f32> {
+    s.large().unwrap().height.data().to_vec()
+}

@@ -176,8 +176,20 @@ impl Project {
             }
             return Err(err(problems));
         }
+        // Ranges are checked on the document as written too: a number beyond f32 (8e58)
+        // would otherwise become infinite in the project and pass unseen.
+        fields::check_ranges(&value, &mut problems);
         let p: Self = serde_json::from_value(value).map_err(|e| err(vec![e.to_string()]))?;
-        let problems = p.problems();
+        let named = |m: &String, problems: &[String]| {
+            problems
+                .iter()
+                .any(|q| q.split(' ').next() == m.split(' ').next())
+        };
+        for m in p.problems() {
+            if !named(&m, &problems) {
+                problems.push(m);
+            }
+        }
         if !problems.is_empty() {
             return Err(err(problems));
         }

@@ -195,3 +195,24 @@ fn type_errors_are_listed_with_range_and_consistency_errors() {
     // noise.details is both out of range and too fine a lattice: two problems.
     assert!(e.contains("5 problems"), "{e}");
 }
+
+/// A number beyond f32 (found by the fuzz run: it became infinite, was written back as
+/// null and the project no longer loaded) is out of range, in both versions.
+#[test]
+fn a_number_beyond_f32_is_out_of_range_not_infinite() {
+    for version in [1, 2] {
+        let text = format!(r#"{{"version": {version}, "noise": {{"roughness": 0.8e59}}}}"#);
+        let e = Project::from_json_str(&text, "p.json")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("noise.roughness = ") && e.contains("out of range"),
+            "{e}"
+        );
+        assert_eq!(e.matches("noise.roughness").count(), 1, "said once: {e}");
+    }
+    // Set in code, an infinite value is a problem too.
+    let mut p = Project::default();
+    p.noise.roughness = f32::INFINITY;
+    assert!(p.validate().unwrap_err().contains("noise.roughness"));
+}

@@ -152,8 +152,13 @@ impl Field {
     /// The range problem of a well-typed value, if any.
     fn range_problem(&self, v: &Value) -> Option<String> {
         let ok = match self.kind {
-            Kind::Float { min, max } | Kind::OptFloat { min, max } => match v.as_f64() {
-                None => true,
+            // A plain number field holding null here was not finite (serialised from an
+            // infinite or NaN value).
+            Kind::Float { min, max } => v
+                .as_f64()
+                .is_some_and(|x| x >= min as f64 && x <= max as f64),
+            Kind::OptFloat { min, max } => match v.as_f64() {
+                None => v.is_null(),
                 Some(x) => x >= min as f64 && x <= max as f64,
             },
             Kind::Int { min, max } | Kind::OptInt { min, max } => match v.as_u64() {

@@ -488,36 +488,24 @@ fn a_mask_changed_on_disk_is_reloaded_as_one_undo_step() {
     });
     settle(&mut h);
     let deepest = |h: &Harness<'static, EditorApp>| large_map(h).into_iter().fold(0.0, f32::max);
+    // The deepest value of the large map the editor shows, once it has one.
+    let shown_deepest =
+        |app: &EditorApp| app.snapshot().large.as_ref().map(|l| l.height.min_max().1);
     assert!(deepest(&h) > 0.1);
     // Black: no large wrinkles anywhere.
     grey(0).save(&mask).unwrap();
     wait_for(&mut h, "the black mask", |app| {
-        app.idle()
-            && app
-                .snapshot()
-                .large
-                .as_ref()
-                .is_some_and(|l| l.height.min_max().1 == 0.0)
+        app.idle() && shown_deepest(app) == Some(0.0)
     });
     // The reload is one undo step: undone, the white mask is back as it was read (the
     // file on disk is black); redone, the black one.
     h.state_mut().undo();
     wait_for(&mut h, "the white mask again", |app| {
-        app.idle()
-            && app
-                .snapshot()
-                .large
-                .as_ref()
-                .is_some_and(|l| l.height.min_max().1 > 0.1)
+        app.idle() && shown_deepest(app).is_some_and(|d| d > 0.1)
     });
     h.state_mut().redo();
     wait_for(&mut h, "the black mask again", |app| {
-        app.idle()
-            && app
-                .snapshot()
-                .large
-                .as_ref()
-                .is_some_and(|l| l.height.min_max().1 == 0.0)
+        app.idle() && shown_deepest(app) == Some(0.0)
     });
     // Not an image: the black one stays, the message names the file.
     std::fs::write(&mask, b"not a png").unwrap();
@@ -529,13 +517,7 @@ fn a_mask_changed_on_disk_is_reloaded_as_one_undo_step() {
     // White again: the wrinkles are back and the error is closed.
     grey(255).save(&mask).unwrap();
     wait_for(&mut h, "the white mask", |app| {
-        app.idle()
-            && app.open_errors().is_empty()
-            && app
-                .snapshot()
-                .large
-                .as_ref()
-                .is_some_and(|l| l.height.min_max().1 > 0.1)
+        app.idle() && app.open_errors().is_empty() && shown_deepest(app).is_some_and(|d| d > 0.1)
     });
 }
 
@@ -636,7 +618,7 @@ fn the_guided_landmark_mode_corrects_places_and_fits() {
     h.get_by_role_and_label(Role::Button, "Fit").click();
     let written = dir.path().join("mh_head.landmarks.json");
     wait_for(&mut h, "the fit from the file", |app| {
-        app.project().mesh.landmarks.as_deref() == Some(written.as_path()) && app.idle()
+        app.project().mesh.landmark_file() == Some(written.as_path()) && app.idle()
     });
     settle(&mut h);
     let file = agesim_core::landmarks::Landmarks::load(&written).unwrap();

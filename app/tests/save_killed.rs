@@ -68,7 +68,7 @@ fn version_on_disk(dir: &Path) -> u32 {
             path.display()
         );
     }
-    let l = Landmarks::load(project.mesh.landmarks.as_ref().unwrap()).unwrap();
+    let l = Landmarks::load(project.mesh.landmark_file().unwrap()).unwrap();
     assert_eq!(l.get("pronasale").unwrap().z, v as f32, "landmarks: a mix");
     v
 }

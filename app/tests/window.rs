@@ -1,5 +1,6 @@
-//! The real binary opens its window under Xvfb (a virtual X display), draws a few frames
-//! with maps and writes a screenshot; the picture must show the editor, not an empty frame.
+//! The real binary under Xvfb (a virtual X display): it opens its window, draws a few
+//! frames with maps and writes a screenshot (the picture must show the editor, not an
+//! empty frame); and a short soak run (`--soak`) passes its checks.
 //!
 //! Needs `Xvfb` and a Vulkan driver (lavapipe: `mesa-vulkan-drivers`); `.ci/run` installs
 //! them. Without Xvfb the test prints why and passes, except in CI (`CI=true`) where that
@@ -8,34 +9,51 @@
 
 mod common;
 
-use std::process::Command;
+use std::path::Path;
+use std::process::{Command, Output};
 use std::time::Instant;
 
-fn skip_or_fail(reason: &str) {
-    agesim_render::ci::skip_or_fail("the_editor_window_starts_and_shows_the_maps", reason);
-}
-
-#[test]
-fn the_editor_window_starts_and_shows_the_maps() {
-    let Some(xvfb) = common::Xvfb::start(90) else {
-        return skip_or_fail("Xvfb is not installed");
+/// Runs the real binary with `args` on a display of its own (`dir`: its runtime, data and
+/// settings folders), until it exits. `None` (after a skip, or a failure in CI) when no
+/// window can be opened here.
+fn run_editor(test: &str, display_base: u32, args: &[&str], dir: &Path) -> Option<Output> {
+    let Some(xvfb) = common::Xvfb::start(display_base) else {
+        agesim_render::ci::skip_or_fail(test, "Xvfb is not installed");
+        return None;
     };
-    let display = xvfb.display.clone();
-    let dir = tempfile::tempdir().unwrap();
-    let shot = dir.path().join("editor.png");
-    let start = Instant::now();
     let out = Command::new(env!("CARGO_BIN_EXE_agesim"))
-        .args(["--screenshot", shot.to_str().unwrap(), "--frames", "3"])
-        .env("DISPLAY", &display)
-        .env("XDG_RUNTIME_DIR", dir.path())
+        .args(args)
+        .env("DISPLAY", &xvfb.display)
+        .env("XDG_RUNTIME_DIR", dir)
+        .env("XDG_DATA_HOME", dir)
+        .env("XDG_CONFIG_HOME", dir)
         .env_remove("WAYLAND_DISPLAY")
         .output()
         .unwrap();
     drop(xvfb);
     let stderr = String::from_utf8_lossy(&out.stderr);
     if !out.status.success() && stderr.contains("could not be opened") {
-        return skip_or_fail(&format!("no window could be opened: {stderr}"));
+        agesim_render::ci::skip_or_fail(test, &format!("no window could be opened: {stderr}"));
+        return None;
     }
+    Some(out)
+}
+
+#[test]
+fn the_editor_window_starts_and_shows_the_maps() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("editor.png");
+    let start = Instant::now();
+    let args = ["--screenshot", shot.to_str().unwrap(), "--frames", "3"];
+    let Some(out) = run_editor(
+        "the_editor_window_starts_and_shows_the_maps",
+        90,
+        &args,
+        dir.path(),
+    ) else {
+        return;
+    };
+    let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
     eprintln!("window, first bake and screenshot in {:?}", start.elapsed());
     let img = image::open(&shot).unwrap().to_rgb8();
@@ -67,31 +85,17 @@ fn the_editor_window_starts_and_shows_the_maps() {
 /// bounded. The ten-minute run's figures are in BENCHMARKS.md.
 #[test]
 fn a_short_soak_run_answers_every_bake_and_shows_no_unexpected_error() {
-    let Some(xvfb) = common::Xvfb::start(200) else {
-        return agesim_render::ci::skip_or_fail(
-            "a_short_soak_run_answers_every_bake_and_shows_no_unexpected_error",
-            "Xvfb is not installed",
-        );
-    };
     let dir = tempfile::tempdir().unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_agesim"))
-        .args(["--soak", "20", "--autosave-seconds", "2"])
-        .env("DISPLAY", &xvfb.display)
-        .env("XDG_RUNTIME_DIR", dir.path())
-        .env("XDG_DATA_HOME", dir.path())
-        .env("XDG_CONFIG_HOME", dir.path())
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .unwrap();
-    drop(xvfb);
+    let Some(out) = run_editor(
+        "a_short_soak_run_answers_every_bake_and_shows_no_unexpected_error",
+        200,
+        &["--soak", "20", "--autosave-seconds", "2"],
+        dir.path(),
+    ) else {
+        return;
+    };
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    if !out.status.success() && stderr.contains("could not be opened") {
-        return agesim_render::ci::skip_or_fail(
-            "a_short_soak_run_answers_every_bake_and_shows_no_unexpected_error",
-            &format!("no window could be opened: {stderr}"),
-        );
-    }
     eprintln!("{stdout}");
     assert!(out.status.success(), "{stdout}\n{stderr}");
     assert!(stdout.contains("soak passed"), "{stdout}");

@@ -82,7 +82,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let mut project =
         super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
     if let Some(l) = &args.landmarks {
-        project.mesh.landmarks = Some(l.clone());
+        project.mesh.landmarks = Some(l.clone().into());
     }
     let years = project.age.mapping().years(args.age.t(&project)?);
     let compare = match (&args.compare, args.compare_years.as_slice()) {

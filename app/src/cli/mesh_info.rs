@@ -36,7 +36,7 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
             let mut project = Project::default();
             project.mesh.path = Some(path.clone());
             project.mesh.metres_per_unit = None;
-            project.mesh.landmarks = args.landmarks.clone();
+            project.mesh.landmarks = args.landmarks.clone().map(Into::into);
             print!("{}", describe_head(&Scene::new(project)?));
         }
         _ => {

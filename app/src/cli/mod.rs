@@ -186,7 +186,7 @@ impl MeshArgs {
         if let Some(path) = &self.mesh {
             p.mesh.path = Some(path.clone());
             p.mesh.metres_per_unit = None;
-            p.mesh.landmarks = self.landmarks.clone();
+            p.mesh.landmarks = self.landmarks.clone().map(Into::into);
         }
         if let Some(m) = self.metres_per_unit {
             p.mesh.metres_per_unit = Some(m);

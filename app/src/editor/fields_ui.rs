@@ -304,9 +304,11 @@ fn field_ui(
             }
             Some(r)
         }
-        Kind::Path | Kind::Paths => {
+        Kind::Path | Kind::Paths | Kind::Landmarks => {
             let text = match value {
+                Value::Null if field.kind == Kind::Landmarks => "(none)".to_owned(),
                 Value::Null => "(built-in)".to_owned(),
+                Value::Object(points) => format!("{} points in the project", points.len()),
                 Value::Array(a) if a.is_empty() => "(built-in)".to_owned(),
                 Value::Array(a) => format!("{} files", a.len()),
                 other => other.as_str().unwrap_or("").to_owned(),

@@ -423,7 +423,7 @@ pub fn save_project(
         let text = found.to_json_pretty();
         set.stage(&target, |w| std::io::Write::write_all(w, text.as_bytes()))
             .map_err(|e| e.to_string())?;
-        project.mesh.landmarks = Some(target);
+        project.mesh.landmarks = Some(target.into());
     }
     let text = project.file_text(path);
     set.stage(path, |w| std::io::Write::write_all(w, text.as_bytes()))
@@ -483,17 +483,23 @@ mod tests {
         project.mesh.path = Some(dir.path().join("head.obj"));
         let path = dir.path().join("p.agesim.json");
         let (saved, _) = save_project(&path, &project, None, Some(&found)).unwrap();
-        let written = saved.mesh.landmarks.clone().unwrap();
+        let written = saved.mesh.landmark_file().unwrap().to_owned();
         assert_eq!(written, dir.path().join("p-landmarks.json"));
         assert_eq!(
             agesim_core::landmarks::Landmarks::load(&written).unwrap(),
             found
         );
-        assert_eq!(Project::load(&path).unwrap().mesh.landmarks, Some(written));
+        assert_eq!(
+            Project::load(&path).unwrap().mesh.landmark_file(),
+            Some(written.as_path())
+        );
         // Named landmarks are the artist's: not replaced.
-        project.mesh.landmarks = Some(dir.path().join("mine.json"));
+        project.mesh.landmarks = Some(dir.path().join("mine.json").into());
         let (saved, _) = save_project(&path, &project, None, Some(&found)).unwrap();
-        assert_eq!(saved.mesh.landmarks, Some(dir.path().join("mine.json")));
+        assert_eq!(
+            saved.mesh.landmark_file(),
+            Some(dir.path().join("mine.json").as_path())
+        );
     }
 
     /// A save is one set: when the project file cannot be put in place (here a folder

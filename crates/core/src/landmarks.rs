@@ -107,6 +107,12 @@ impl Landmarks {
         let Some(Value::Object(points)) = top.get("landmarks") else {
             return Err("expected \"landmarks\": an object of named points".into());
         };
+        Self::from_points(points)
+    }
+
+    /// The points of an object `{name: [x, y, z]}` (a landmark file's `"landmarks"`, or a
+    /// project's inline `mesh.landmarks`); the message names each point at fault.
+    pub fn from_points(points: &serde_json::Map<String, Value>) -> Result<Self, String> {
         let mut out = Self::default();
         let mut problems = Vec::new();
         for (name, value) in points {

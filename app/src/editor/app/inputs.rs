@@ -2,7 +2,7 @@
 //! and wrinkle files (by dialog, by a path field's button, by drag-and-drop), and the
 //! results of the file threads.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use agesim_core::scene::WrinkleSource;
 use serde_json::Value;
@@ -81,9 +81,10 @@ impl EditorApp {
             .filter_map(|w| w.path.clone())
             .collect();
         let p = &self.doc.project;
+        let landmark_file = p.mesh.landmark_file().map(Path::to_path_buf);
         let inputs = [
             &p.mesh.path,
-            &p.mesh.landmarks,
+            &landmark_file,
             &p.mesh.colour_map,
             &p.mesh.normal_map,
             &p.large.mask,

@@ -6,6 +6,7 @@
 use std::path::PathBuf;
 
 use agesim_core::landmarks::{Landmarks, NAMES};
+use agesim_core::project::LandmarkSource;
 use serde_json::Value;
 
 use super::EditorApp;
@@ -125,8 +126,10 @@ impl EditorApp {
     }
 
     /// Writes the edited landmarks (in the mesh file's coordinates) to
-    /// `<mesh>.landmarks.json` beside the mesh, on a file thread; the project then names
-    /// it and the template is fitted again.
+    /// `<mesh>.landmarks.json` beside the mesh (or the file the project names), on a file
+    /// thread; the project then names it and the template is fitted again. A project that
+    /// holds its landmarks itself (`mesh.landmarks` as points) gets the new points instead
+    /// (one undo step), no file.
     fn fit_landmarks(&mut self) {
         let (Some(mode), Some(mesh)) = (&mut self.landmark_mode, &self.doc.project.mesh.path)
         else {
@@ -134,13 +137,6 @@ impl EditorApp {
             return;
         };
         mode.edited = false;
-        let path = self
-            .doc
-            .project
-            .mesh
-            .landmarks
-            .clone()
-            .unwrap_or_else(|| landmark_path_for(mesh));
         // Back from the scene's axes to the file's.
         let back = self.session.snapshot.file_from_scene;
         let mut file = Landmarks::default();
@@ -149,6 +145,22 @@ impl EditorApp {
                 let _ = file.set(name, back * p);
             }
         }
+        let path = match &self.doc.project.mesh.landmarks {
+            Some(LandmarkSource::Points(_)) => {
+                let points: serde_json::Map<String, Value> = NAMES
+                    .iter()
+                    .filter_map(|n| {
+                        let p = file.get(n)?;
+                        Some(((*n).to_owned(), Value::from(p.to_array().to_vec())))
+                    })
+                    .collect();
+                self.apply("mesh.landmarks", Value::Object(points), false);
+                self.info("Fitting to the landmarks (kept in the project)");
+                return;
+            }
+            Some(LandmarkSource::File(path)) => path.clone(),
+            None => landmark_path_for(mesh),
+        };
         self.io.spawn(move || IoResult::LandmarksSaved {
             result: write_landmarks(&path, &file).map(|()| path.clone()),
         });
@@ -157,7 +169,7 @@ impl EditorApp {
     /// The landmark file is written: the project names it (one undo step) and the next
     /// bake fits with it (read again if the project named it already).
     pub(super) fn landmarks_saved(&mut self, path: PathBuf) {
-        if self.doc.project.mesh.landmarks.as_ref() == Some(&path) {
+        if self.doc.project.mesh.landmark_file() == Some(path.as_path()) {
             self.file_changed(path.clone());
             self.submit(false, "fit to the landmarks");
         } else {

@@ -239,7 +239,12 @@ impl Project {
             .iter_mut()
             .chain(self.large.mask.as_mut())
             .chain(self.mesh.path.as_mut())
-            .chain(self.mesh.landmarks.as_mut())
+            .chain(
+                self.mesh
+                    .landmarks
+                    .as_mut()
+                    .and_then(LandmarkSource::file_mut),
+            )
             .chain(self.mesh.colour_map.as_mut())
             .chain(self.mesh.normal_map.as_mut())
             .chain(self.fine.tile.as_mut())

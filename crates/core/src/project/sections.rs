@@ -1,7 +1,8 @@
 //! The sections of the project file, one struct each, with their defaults (what each
 //! field means, its unit and range: `fields::FIELDS` and `docs/project-file.md`).
 
-use std::path::PathBuf;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
@@ -11,6 +12,47 @@ use crate::hair::GrayingRamp;
 use crate::micro::pores::{Placement, PoreProfile, Rim};
 use crate::normal_map::Convention;
 use crate::transition::DistanceMetric;
+
+/// Where a head's landmarks come from (`mesh.landmarks`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum LandmarkSource {
+    /// A landmark file ([`crate::landmarks::Landmarks::load`]).
+    File(PathBuf),
+    /// The points themselves, `{name: [x, y, z]}` in the mesh file's units (the names of
+    /// [`crate::landmarks::NAMES`]).
+    Points(BTreeMap<String, [f32; 3]>),
+}
+
+impl LandmarkSource {
+    /// The landmark file, when the landmarks are in one.
+    pub fn file(&self) -> Option<&Path> {
+        match self {
+            Self::File(p) => Some(p),
+            Self::Points(_) => None,
+        }
+    }
+
+    pub(crate) fn file_mut(&mut self) -> Option<&mut PathBuf> {
+        match self {
+            Self::File(p) => Some(p),
+            Self::Points(_) => None,
+        }
+    }
+}
+
+impl From<PathBuf> for LandmarkSource {
+    fn from(path: PathBuf) -> Self {
+        Self::File(path)
+    }
+}
+
+impl MeshSection {
+    /// The landmark file the project names (`mesh.landmarks` as a path).
+    pub fn landmark_file(&self) -> Option<&Path> {
+        self.landmarks.as_ref().and_then(LandmarkSource::file)
+    }
+}
 
 /// The head the maps are made for.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -23,9 +65,9 @@ pub struct MeshSection {
     /// Metres per mesh unit; `null` = measured from the mesh ([`crate::scene::Scene::units`]:
     /// 1 for the built-in meshes, a mesh file's from its landmarks or its size).
     pub metres_per_unit: Option<f32>,
-    /// The head's landmark file ([`crate::landmarks`], in the mesh file's units); `null` =
-    /// none.
-    pub landmarks: Option<PathBuf>,
+    /// The head's landmarks ([`crate::landmarks`], in the mesh file's units): a landmark
+    /// file, or the points themselves; `null` = none.
+    pub landmarks: Option<LandmarkSource>,
     /// The mesh file's up axis; `auto` = from the landmarks, else +Y.
     pub up: AxisChoice,
     /// The mesh file's forward axis (where the face looks); `auto` = from the landmarks,

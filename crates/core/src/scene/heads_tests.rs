@@ -76,7 +76,7 @@ fn project_for(head: &Head, landmarks: bool) -> Project {
     }
     p.mesh.path = Some(dir.join(head.file));
     p.mesh.metres_per_unit = None;
-    p.mesh.landmarks = landmarks.then(|| dir.join("landmarks.json"));
+    p.mesh.landmarks = landmarks.then(|| dir.join("landmarks.json").into());
     p
 }
 
@@ -538,4 +538,42 @@ fn a_head_files_own_textures_are_read_from_its_material() {
     p.mesh.path = Some(bad);
     let e = Scene::new(p).unwrap_err().to_string();
     assert!(e.contains("map_Kd") && e.contains("etc/x.png"), "{e}");
+}
+
+/// `mesh.landmarks` holding the points themselves fits the head as its landmark file does
+/// (the same units, the same baked map); a point of an unknown name is refused, named.
+#[test]
+fn landmarks_written_in_the_project_fit_as_their_file_does() {
+    let head = &HEADS[2];
+    let from_file = project_for(head, true);
+    let file = reference_landmarks(head);
+    let mut inline = from_file.clone();
+    let points: std::collections::BTreeMap<String, [f32; 3]> = crate::landmarks::NAMES
+        .iter()
+        .filter_map(|n| Some(((*n).to_owned(), file.get(n)?.to_array())))
+        .collect();
+    inline.mesh.landmarks = Some(crate::project::LandmarkSource::Points(points.clone()));
+    // Through the project file's text too: the points are written and read back.
+    let text = inline.to_json_pretty();
+    let inline = Project::from_json_str(&text, "inline.agesim.json").unwrap();
+    assert!(inline.mesh.landmark_file().is_none());
+    let request = BakeRequest::maps(128, 1.0, false);
+    let bake = |p: Project| {
+        let mut s = Scene::new(p).unwrap();
+        s.bake(&request, &CancelToken::never()).unwrap();
+        (
+            s.units().metres_per_unit,
+            s.large().unwrap().height.data().to_vec(),
+        )
+    };
+    assert_eq!(bake(inline), bake(from_file));
+    // An unknown name: an error naming the field and the point.
+    let bad = text.replacen("\"pronasale\"", "\"nose_tip\"", 1);
+    let e = Project::from_json_str(&bad, "bad.agesim.json")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("mesh.landmarks") && e.contains("nose_tip"),
+        "{e}"
+    );
 }

@@ -12,7 +12,7 @@ use crate::landmarks::Landmarks;
 use crate::mask::{HeadImage, Mask};
 use crate::mesh::Mesh;
 use crate::mesh::units::Axes;
-use crate::project::{AxisChoice, BuiltinMesh, Layout, Project};
+use crate::project::{AxisChoice, BuiltinMesh, LandmarkSource, Layout, Project};
 use crate::wrinkle_file::{self, ParseErrors, WrinkleFile};
 
 /// Everything loaded from files (or the built-in defaults), kept until a path changes.
@@ -41,7 +41,7 @@ pub(super) struct Inputs {
     pub(super) hair_masks: Option<Arc<(Mask, Mask)>>,
     fine_tile_key: (Option<PathBuf>, u64),
     pub(super) fine_tile: Option<Arc<HeightMap>>,
-    landmarks_key: (Option<PathBuf>, u64),
+    landmarks_key: (Option<LandmarkSource>, u64),
     /// The head's landmarks (`mesh.landmarks`), when the project names a file.
     pub(super) landmarks: Option<Arc<Landmarks>>,
     colour_map_key: (Option<PathBuf>, bool, u64),
@@ -188,14 +188,14 @@ impl Inputs {
         let hair_masks = hair_masks.map_err(|e| ok(Err(e))).ok();
         ok(inner_error);
         let fine_tile = fine_tile.map_err(|e| ok(Err(e))).ok();
-        // A small text file: read after the rest.
+        // A small text file (or the project's own points): read after the rest.
         let landmarks_key = (
             project.mesh.landmarks.clone(),
-            version(&project.mesh.landmarks),
+            version(&project.mesh.landmark_file().map(Path::to_path_buf)),
         );
         let landmarks = match find(&|p| p.landmarks_key == landmarks_key) {
             Some(p) => p.landmarks.clone(),
-            None => match landmarks_key.0.as_deref().map(Landmarks::load).transpose() {
+            None => match landmarks_key.0.as_ref().map(load_landmarks).transpose() {
                 Ok(l) => l.map(Arc::new),
                 Err(e) => {
                     errors.push(e);
@@ -540,6 +540,23 @@ pub fn load_wrinkles(paths: &[PathBuf]) -> Result<Vec<WrinkleSource>, Error> {
         Ok(loaded)
     } else {
         Err(Error::WrinkleFile(ParseErrors(diagnostics)))
+    }
+}
+
+/// The landmarks of `mesh.landmarks`: its file's, or the project's own points.
+fn load_landmarks(source: &LandmarkSource) -> Result<Landmarks, Error> {
+    match source {
+        LandmarkSource::File(path) => Landmarks::load(path),
+        LandmarkSource::Points(points) => {
+            let object = points
+                .iter()
+                .map(|(name, p)| (name.clone(), serde_json::Value::from(p.to_vec())))
+                .collect();
+            Landmarks::from_points(&object).map_err(|message| Error::Project {
+                source_name: "project".into(),
+                message: format!("mesh.landmarks: {message}"),
+            })
+        }
     }
 }
 

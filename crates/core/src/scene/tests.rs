@@ -377,7 +377,7 @@ fn the_units_come_from_the_landmarks_else_the_size_else_the_project() {
     p.mesh.path = Some(obj);
     let s = Scene::new(p.clone()).unwrap();
     assert_eq!(s.metres_per_unit(), 0.01, "{}", s.units().how);
-    p.mesh.landmarks = Some(landmarks.clone());
+    p.mesh.landmarks = Some(landmarks.clone().into());
     let s = Scene::new(p.clone()).unwrap();
     let u = s.units();
     assert_eq!(u.metres_per_unit, 0.1, "{}", u.how);
@@ -413,7 +413,7 @@ fn a_z_up_head_in_centimetres_is_measured_and_turned_by_its_landmarks() {
     std::fs::write(dir.path().join("l.json"), marks.to_json_pretty()).unwrap();
     let mut p = Project::default();
     p.mesh.path = Some(dir.path().join("head.obj"));
-    p.mesh.landmarks = Some(dir.path().join("l.json"));
+    p.mesh.landmarks = Some(dir.path().join("l.json").into());
     let mut s = Scene::new(p).unwrap();
     assert_eq!(s.metres_per_unit(), 0.01, "{}", s.units().how);
     let axes = s.axes();

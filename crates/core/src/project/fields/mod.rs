@@ -43,6 +43,8 @@ pub enum Kind {
     Paths,
     /// An sRGB colour `"#rrggbb"`.
     Colour,
+    /// A landmark file's path, the points themselves (`{name: [x, y, z]}`), or `null`.
+    Landmarks,
     /// A list of names, or `null` (chosen automatically).
     OptNames,
 }
@@ -114,6 +116,7 @@ impl Field {
             Kind::Paths => "a list of paths".into(),
             Kind::Colour => "\"#rrggbb\"".into(),
             Kind::OptNames => "a list of names or null".into(),
+            Kind::Landmarks => "a path, {name: [x, y, z]} or null".into(),
         }
     }
 
@@ -130,6 +133,7 @@ impl Field {
             Kind::Paths => "a list of paths",
             Kind::Colour => "a colour \"#rrggbb\"",
             Kind::OptNames => "a list of names or null",
+            Kind::Landmarks => "a path (string), an object {name: [x, y, z]} or null",
         }
     }
 
@@ -146,11 +150,18 @@ impl Field {
             Kind::OptNames => {
                 v.is_null() || v.as_array().is_some_and(|a| a.iter().all(Value::is_string))
             }
+            Kind::Landmarks => v.is_null() || v.is_string() || v.is_object(),
         }
     }
 
     /// The range problem of a well-typed value, if any.
     fn range_problem(&self, v: &Value) -> Option<String> {
+        if let (Kind::Landmarks, Value::Object(points)) = (self.kind, v) {
+            // Each point named as in a landmark file, three finite numbers.
+            return crate::landmarks::Landmarks::from_points(points)
+                .err()
+                .map(|e| format!("{}: {e}", self.path));
+        }
         let ok = match self.kind {
             // A plain number field holding null here was not finite (serialised from an
             // infinite or NaN value).
@@ -167,7 +178,7 @@ impl Field {
             },
             Kind::Choice(names) => v.as_str().is_some_and(|s| names.contains(&s)),
             Kind::Colour => v.as_str().and_then(super::Colour::parse).is_some(),
-            Kind::Bool | Kind::Path | Kind::Paths | Kind::OptNames => true,
+            Kind::Bool | Kind::Path | Kind::Paths | Kind::OptNames | Kind::Landmarks => true,
         };
         (!ok).then(|| {
             format!(
@@ -227,8 +238,14 @@ impl Field {
             Kind::OptInt { .. } => t.parse::<u64>().ok().map(Value::from),
             Kind::Bool => t.parse::<bool>().ok().map(Value::Bool),
             Kind::Choice(_) | Kind::Colour => Some(Value::String(t.to_owned())),
-            Kind::Path if t == "null" => Some(Value::Null),
-            Kind::Path => Some(Value::String(t.to_owned())),
+            Kind::Path | Kind::Landmarks if t == "null" => Some(Value::Null),
+            // An object typed as such (a quoted string is a path, whatever it holds).
+            Kind::Landmarks if decoded.is_none() && t.starts_with('{') => {
+                serde_json::from_str::<Value>(t)
+                    .ok()
+                    .filter(Value::is_object)
+            }
+            Kind::Path | Kind::Landmarks => Some(Value::String(t.to_owned())),
             Kind::OptNames if t == "null" || t.is_empty() => Some(Value::Null),
             Kind::Paths | Kind::OptNames => serde_json::from_str::<Vec<String>>(t)
                 .ok()

@@ -172,8 +172,8 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
         },
         k(
             "mesh.landmarks",
-            Kind::Path,
-            "the head's landmark file ({\"landmarks\": {name: [x, y, z]}}, in the mesh file's units); null = none",
+            Kind::Landmarks,
+            "the head's landmarks, in the mesh file's units: a landmark file ({\"landmarks\": {name: [x, y, z]}}) or the points themselves ({name: [x, y, z]}); null = none",
         ),
         k(
             "mesh.up",

@@ -94,16 +94,24 @@ impl EditorApp {
         ];
         let mut paths = wrinkles.clone();
         paths.extend(inputs.into_iter().flatten().cloned());
+        // The pictures the mesh file names are read with it: a change to one is a change
+        // to the mesh.
+        let textures = self.session.snapshot.mesh_texture_files.clone();
+        paths.extend(textures.iter().cloned());
         self.watcher.set(&paths);
         let mut rebake = false;
+        let mesh = self.doc.project.mesh.path.clone();
         for path in self.watcher.poll() {
-            if wrinkles.contains(&path) {
+            if let Some(mesh) = mesh.as_ref().filter(|_| textures.contains(&path)) {
+                self.file_changed(mesh.clone(), &path);
+                rebake = true;
+            } else if wrinkles.contains(&path) {
                 self.io.spawn(move || IoResult::WrinklesReloaded {
                     result: agesim_core::wrinkle_file::load(&path).map_err(|e| e.to_string()),
                     path,
                 });
             } else {
-                self.file_changed(path);
+                self.file_changed(path.clone(), &path);
                 rebake = true;
             }
         }
@@ -112,11 +120,12 @@ impl EditorApp {
         }
     }
 
-    /// An input file changed on disk (or was written here): one undo step that gives it a
-    /// new version, read by the next bake.
-    pub(super) fn file_changed(&mut self, path: PathBuf) {
-        let name = path.file_name().map_or_else(
-            || path.display().to_string(),
+    /// An input file changed on disk (or was written here): one undo step that gives the
+    /// input `path` a new version, read by the next bake (`changed`: the file that did;
+    /// for a picture the mesh file's material names, the input is the mesh).
+    pub(super) fn file_changed(&mut self, path: PathBuf, changed: &Path) {
+        let name = changed.file_name().map_or_else(
+            || changed.display().to_string(),
             |n| n.to_string_lossy().into_owned(),
         );
         self.record(&format!("reload {name}"), "reload file", false);

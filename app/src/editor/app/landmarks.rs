@@ -170,7 +170,7 @@ impl EditorApp {
     /// bake fits with it (read again if the project named it already).
     pub(super) fn landmarks_saved(&mut self, path: PathBuf) {
         if self.doc.project.mesh.landmark_file() == Some(path.as_path()) {
-            self.file_changed(path.clone());
+            self.file_changed(path.clone(), &path);
             self.submit(false, "fit to the landmarks");
         } else {
             self.apply(

@@ -79,6 +79,8 @@ pub struct Snapshot {
     /// A fitted head's correspondence (head UV → template UV) at the large map's size:
     /// a click on the head marks its template UV on the fibres' chart.
     pub correspondence: Option<Arc<agesim_core::fit::Correspondence>>,
+    /// The picture files the mesh file's material names (watched with the mesh).
+    pub mesh_texture_files: Vec<std::path::PathBuf>,
 }
 
 /// The outcome of one job.
@@ -386,6 +388,7 @@ fn bake(
         }
     }
     snapshot.layout_how = s.layout().how.clone();
+    snapshot.mesh_texture_files = s.file_texture_paths().to_vec();
     snapshot.landmarks = match (&s.layout().landmarks, s.project().mesh.path.is_some()) {
         (Some(l), _) => Some(l.clone()),
         // The template shows its own.

@@ -16,6 +16,9 @@ pub struct MeshTextures {
     pub normal: Option<std::sync::Arc<HeadImage>>,
     /// Where each came from, for reports.
     pub sources: Vec<String>,
+    /// The picture files read (beside the head file; not the embedded ones): a change to
+    /// one is a change to the head.
+    pub files: Vec<PathBuf>,
 }
 
 /// One picture a material names.
@@ -63,6 +66,11 @@ pub fn load(path: &Path) -> Result<MeshTextures, Error> {
         _ => (None, None),
     };
     let mut out = MeshTextures::default();
+    for s in [&colour, &normal].into_iter().flatten() {
+        if let Source::File(p) = s {
+            out.files.push(p.clone());
+        }
+    }
     if let Some(s) = colour {
         let (image, name) = s.decode()?;
         out.colour = Some(std::sync::Arc::new(image));

@@ -521,6 +521,25 @@ fn a_head_files_own_textures_are_read_from_its_material() {
             "{:?}",
             scene.file_textures()
         );
+        // The OBJ's pictures are files beside it, read with the mesh: one changed on disk
+        // is read again with a new version of the mesh file (the editor watches them).
+        let is_obj = path.extension().is_some_and(|e| e == "obj");
+        let files = scene.file_texture_paths().to_vec();
+        if is_obj {
+            assert_eq!(
+                files,
+                [dir.path().join("colour.png"), dir.path().join("normal.png")]
+            );
+            let mut scene = scene;
+            std::fs::write(dir.path().join("colour.png"), png([10, 20, 30])).unwrap();
+            scene
+                .set_file_versions(&FileVersions::from([(path.clone(), 1)]))
+                .unwrap();
+            assert_eq!(&scene.colour_map().unwrap().rgba[..3], &[10, 20, 30]);
+            std::fs::write(dir.path().join("colour.png"), &colour).unwrap();
+        } else {
+            assert!(files.is_empty(), "embedded: {files:?}");
+        }
         // The project's own picture wins.
         p.mesh.colour_map = Some(dir.path().join("normal.png"));
         let scene = Scene::new(p).unwrap();

@@ -492,6 +492,12 @@ impl Scene {
         &self.inputs.file_textures.sources
     }
 
+    /// The picture files the mesh file's material names (read with the mesh: a change to
+    /// one is a new version of the mesh file, [`FileVersions`]).
+    pub fn file_texture_paths(&self) -> &[PathBuf] {
+        &self.inputs.file_textures.files
+    }
+
     /// The head's tangent-space normal map (`mesh.normal_map`, else the one the mesh
     /// file's material names), over its own UVs.
     pub fn normal_map(&self) -> Option<&Arc<crate::mask::HeadImage>> {

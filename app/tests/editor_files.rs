@@ -253,8 +253,17 @@ fn a_preset_applies_its_skin_and_undo_takes_it_back() {
     wait_for(&mut h, "the preset file", |_| saved.is_file());
     h.run_steps(3);
     h.get_by_role_and_label(Role::Button, "Presets").click();
-    h.run_steps(2);
-    assert!(h.query_by_label("my skin").is_some());
+    // The menu lists the presets folder as read on a file thread: a few frames, more
+    // when the machine is busy.
+    let start = std::time::Instant::now();
+    while h.query_by_label("my skin").is_none() {
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(60),
+            "the saved preset is not in the menu"
+        );
+        h.run_steps(1);
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
 }
 
 #[test]

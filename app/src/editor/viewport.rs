@@ -269,6 +269,8 @@ impl Viewport {
         self.landmark_dots.clear();
         if let Some(overlay) = &self.landmarks {
             let painter = ui.painter().with_clip_rect(rect);
+            let font = egui::FontId::proportional(11.0);
+            let mut dots = Vec::new();
             for (name, p) in &overlay.points {
                 let Some(at) = to_screen(clip, rect, *p) else {
                     continue;
@@ -281,15 +283,25 @@ impl Viewport {
                 } else {
                     egui::Color32::from_rgb(90, 200, 255)
                 };
+                let galley = painter.layout_no_wrap((*name).to_owned(), font.clone(), colour);
+                dots.push((at, chosen, colour, galley));
+            }
+            // Labels placed so none covers another or a dot (close landmarks: the mouth,
+            // the nose), on the side of the face their dot is on.
+            let spots: Vec<(egui::Pos2, egui::Vec2)> =
+                dots.iter().map(|(at, _, _, g)| (*at, g.size())).collect();
+            let labels = place_labels(&spots);
+            for ((at, chosen, colour, galley), label) in dots.into_iter().zip(labels) {
                 painter.circle_filled(at, if chosen { 5.0 } else { 4.0 }, colour);
                 painter.circle_stroke(at, 6.0, egui::Stroke::new(1.0, egui::Color32::BLACK));
-                painter.text(
-                    at + egui::vec2(7.0, -7.0),
-                    egui::Align2::LEFT_BOTTOM,
-                    *name,
-                    egui::FontId::proportional(11.0),
-                    colour,
-                );
+                if label.distance_to_pos(at) > 12.0 {
+                    painter.line_segment(
+                        [at, label.center()],
+                        egui::Stroke::new(1.0, colour.gamma_multiply(0.6)),
+                    );
+                }
+                painter.rect_filled(label.expand(1.0), 2.0, egui::Color32::from_black_alpha(150));
+                painter.galley(label.min, galley, colour);
             }
         }
         if let Some(e) = &self.error {
@@ -507,4 +519,76 @@ fn to_screen(clip: glam::Mat4, rect: Rect, p: Vec3) -> Option<egui::Pos2> {
             rect.top() + (1.0 - c.y / c.w) * 0.5 * rect.height(),
         )
     })
+}
+
+/// Where each landmark's label goes: for each dot (its screen point and its label's
+/// size) a rectangle that overlaps no label placed before it and no dot, trying spots
+/// around the dot from the nearest out, on the side of the face the dot is on (right of
+/// the dots' mean x: to the right). A label with no free spot nearby takes the first one.
+pub fn place_labels(dots: &[(egui::Pos2, egui::Vec2)]) -> Vec<egui::Rect> {
+    use egui::{Rect, pos2, vec2};
+    let mean_x = dots.iter().map(|(p, _)| p.x).sum::<f32>() / dots.len().max(1) as f32;
+    let dot_box = |p: egui::Pos2| Rect::from_center_size(p, vec2(12.0, 12.0));
+    let mut placed: Vec<Rect> = Vec::new();
+    for &(at, size) in dots {
+        let right = at.x >= mean_x;
+        let candidates = (0..6).flat_map(|ring| {
+            let d = 7.0 + 12.0 * ring as f32;
+            let dys = [-d - size.y, d, -size.y * 0.5, -d - size.y * 2.0];
+            dys.into_iter().flat_map(move |dy| {
+                let out = if right { d } else { -d - size.x };
+                let inward = if right { -d - size.x } else { d };
+                [out, inward].map(|dx| Rect::from_min_size(pos2(at.x + dx, at.y + dy), size))
+            })
+        });
+        let free = |r: &Rect| {
+            !placed.iter().any(|p| p.intersects(*r))
+                && !dots.iter().any(|(p, _)| dot_box(*p).intersects(*r))
+        };
+        let mut first = None;
+        let mut chosen = None;
+        for r in candidates {
+            first.get_or_insert(r);
+            if free(&r) {
+                chosen = Some(r);
+                break;
+            }
+        }
+        let r = chosen.or(first).unwrap_or(Rect::from_min_size(at, size));
+        placed.push(r);
+    }
+    placed
+}
+
+#[cfg(test)]
+mod label_tests {
+    use super::*;
+
+    #[test]
+    fn close_landmarks_get_labels_that_do_not_overlap() {
+        // The mouth and nose of a small head on screen: six dots within 20 px.
+        let size = egui::vec2(60.0, 12.0);
+        let dots: Vec<(egui::Pos2, egui::Vec2)> = [
+            (300.0, 300.0),
+            (310.0, 304.0),
+            (320.0, 300.0),
+            (305.0, 315.0),
+            (315.0, 315.0),
+            (310.0, 290.0),
+        ]
+        .iter()
+        .map(|&(x, y)| (egui::pos2(x, y), size))
+        .collect();
+        let labels = place_labels(&dots);
+        for (i, a) in labels.iter().enumerate() {
+            for b in &labels[i + 1..] {
+                assert!(!a.intersects(*b), "{a:?} overlaps {b:?}");
+            }
+            for (p, _) in &dots {
+                assert!(!a.contains(*p), "{a:?} covers the dot {p:?}");
+            }
+        }
+        // The subject's left (screen right) labels go right.
+        assert!(labels[2].min.x >= 320.0, "{:?}", labels[2]);
+    }
 }

@@ -10,7 +10,6 @@ use std::path::{Path, PathBuf};
 
 use agesim_core::cancel::CancelToken;
 use agesim_core::export::OutputSet;
-use agesim_core::mesh::SurfaceScale;
 use agesim_core::mesh::gltf::{GlbMaterial, write_glb_with_material};
 use agesim_core::normal_map::Convention;
 use agesim_core::project::Project;
@@ -387,8 +386,8 @@ pub fn head_normal_map(
     cancel: &CancelToken,
 ) -> anyhow::Result<Vec<u8>> {
     let project = scene.project();
-    let mesh = scene.mesh();
-    let scale = SurfaceScale::measure(mesh.positions(), mesh.uvs(), mesh.indices())
+    let scale = scene
+        .surface_scale()
         .context("the mesh's UVs are degenerate: no normal map can be laid on it")?;
     let head = view::HeadScale::of(scene);
     let mpu = head.metres_per_unit;

@@ -593,8 +593,8 @@ fn the_guided_landmark_mode_corrects_places_and_fits() {
     h.run_steps(2);
     let mode = h.state().landmark_mode().unwrap();
     let after = mode.points.get("exocanthion_r").unwrap();
-    assert!(mode.edited);
-    assert!(after.distance(before) > 0.01, "{before} → {after}");
+    assert!(mode.edited, "{dots:?}");
+    assert!(after.distance(before) > 0.01, "{before} → {after} {dots:?}");
     assert!(after.y < before.y, "dragged down: {before} → {after}");
     // Pick "vertex" in the list and click on the head: the top of the head moves there.
     h.get_by_role_and_label(Role::Button, "vertex").click();

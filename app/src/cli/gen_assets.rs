@@ -9,9 +9,9 @@ use agesim_core::export::{write_grey8_png, write_height_png16, write_rgb8_png};
 use agesim_core::{HeightMap, Mask, fine_wrinkles, head, muscle, wrinkle_file};
 use anyhow::Context as _;
 
-use crate::assets::head as generator;
 use crate::assets::masks as head_assets;
 use crate::assets::preview::{self, View};
+use crate::assets::scan;
 use glam::{Vec2, Vec3};
 
 #[derive(Debug, clap::Args)]
@@ -44,16 +44,23 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
         std::fs::create_dir_all(out.join(dir))
             .with_context(|| format!("cannot create {}", out.join(dir).display()))?;
     }
-    // The default head, built into agesim-core (include_bytes!) for a fast start-up.
-    let mesh = generator::generate_default_head()?;
+    // The default head, converted from the scan; built into agesim-core (include_bytes!).
+    let head = scan::convert_scan(out)?;
     let glb = out.join(head::DEFAULT_HEAD_ASSET);
-    std::fs::write(&glb, agesim_core::mesh::gltf::write_glb(&mesh))
+    std::fs::write(&glb, default_head_glb(&head))
         .with_context(|| format!("cannot write {}", glb.display()))?;
+    let landmarks_path = out.join(head::DEFAULT_HEAD_LANDMARKS_ASSET);
+    std::fs::write(&landmarks_path, head.landmarks.to_json_pretty() + "\n")
+        .with_context(|| format!("cannot write {}", landmarks_path.display()))?;
+    let mesh = &head.mesh;
+    let face = head_assets::Face::new(&head.landmarks)
+        .context("the converted scan lacks the eye, mouth or ear landmarks")?;
 
     // Masks.
-    let outer = head_assets::paint(MASK_PX, head_assets::hair_outer)?;
-    let inner = head_assets::paint(MASK_PX, head_assets::hair_inner)?;
-    let wrinkles = head_assets::paint(MASK_PX, head_assets::wrinkle_region)?;
+    let surface = head_assets::Surface::new(mesh, MASK_PX)?;
+    let outer = surface.paint(|p| face.hair_outer(p))?;
+    let inner = surface.paint(|p| face.hair_inner(p))?;
+    let wrinkles = surface.paint(|p| face.wrinkle_region(p))?;
     write_mask(&out.join("masks/hair-outer.png"), &outer)?;
     write_mask(&out.join("masks/hair-inner.png"), &inner)?;
     write_mask(&out.join("masks/wrinkles.png"), &wrinkles)?;
@@ -61,21 +68,33 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
     let tile = fine_wrinkles::generate(TILE_PX, &fine_wrinkles::DEFAULT_FINE_WRINKLES)?;
     write_height_png16(&out.join("tiles/fine-wrinkles.png"), &tile)?;
 
-    // Pictures.
-    let layout = head_assets::lit_layout(DOC_PX)?;
-    let grey = |m: &Mask, k: usize| m.values()[k];
+    // Pictures: the layout is the scan's colour map, with the landmarks on it.
+    let colour = agesim_core::mask::HeadImage::decode(&head.colour_jpeg, Path::new("Map-COL.jpg"))?;
+    let albedo = |uv: Vec2| colour_at(&colour, uv);
     let n = (DOC_PX * DOC_PX) as usize;
-    let mut pixels = vec![Vec3::ZERO; n];
-    for (k, p) in pixels.iter_mut().enumerate() {
-        *p = Vec3::splat(grey(&layout, k));
+    let layout: Vec<Vec3> = (0..n)
+        .map(|k| {
+            let (x, y) = (k as u32 % DOC_PX, k as u32 / DOC_PX);
+            albedo(Vec2::new(
+                agesim_core::heightmap::pixel_to_u(x, DOC_PX),
+                agesim_core::heightmap::pixel_to_v(y, DOC_PX),
+            ))
+        })
+        .collect();
+    let mut pixels = layout.clone();
+    for name in agesim_core::landmarks::NAMES {
+        if let Some(uv) = head
+            .landmarks
+            .get(name)
+            .and_then(|p| head_assets::uv_near(mesh, p))
+        {
+            draw_dot(&mut pixels, uv, Vec3::new(0.1, 0.9, 0.2));
+        }
     }
-    draw_layout_guides(&mut pixels);
     write_rgb(&out.join("docs/uv-layout.png"), &pixels)?;
 
     // Every wrinkle file baked onto the layout, one colour per file.
-    let mut pixels: Vec<Vec3> = (0..n)
-        .map(|k| Vec3::splat(0.8 * grey(&layout, k)))
-        .collect();
+    let mut pixels: Vec<Vec3> = layout.iter().map(|&c| 0.8 * c).collect();
     for (name, colour) in WRINKLE_FILES {
         let path = out.join(format!("wrinkles/{name}.wrk"));
         let file = wrinkle_file::load(&path)?;
@@ -90,19 +109,19 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
     }
     write_rgb(&out.join("docs/wrinkles.png"), &pixels)?;
 
-    let mask_over_layout = |mask: &Mask, colour: Vec3| -> Vec<Vec3> {
-        let small = mask
-            .resampled(DOC_PX, DOC_PX)
-            .unwrap_or_else(|_| mask.clone());
-        (0..n)
-            .map(|k| Vec3::splat(grey(&layout, k)).lerp(colour, 0.6 * small.values()[k]))
-            .collect()
+    let mask_over_layout = |mask: &Mask, colour: Vec3| -> anyhow::Result<Vec<Vec3>> {
+        let small = mask.resampled(DOC_PX, DOC_PX)?;
+        Ok(layout
+            .iter()
+            .zip(small.values())
+            .map(|(&c, &m)| c.lerp(colour, 0.6 * m))
+            .collect())
     };
     write_rgb(
         &out.join("docs/mask-wrinkles.png"),
-        &mask_over_layout(&wrinkles, Vec3::new(1.0, 0.35, 0.2)),
+        &mask_over_layout(&wrinkles, Vec3::new(1.0, 0.35, 0.2))?,
     )?;
-    let mut hair = mask_over_layout(&outer, Vec3::new(0.95, 0.8, 0.2));
+    let mut hair = mask_over_layout(&outer, Vec3::new(0.95, 0.8, 0.2))?;
     let inner_small = inner.resampled(DOC_PX, DOC_PX)?;
     for (p, &v) in hair.iter_mut().zip(inner_small.values()) {
         *p = p.lerp(Vec3::new(0.45, 0.25, 0.1), 0.8 * v);
@@ -116,24 +135,24 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
         .collect();
     write_rgb(&out.join("docs/fine-wrinkles.png"), &pixels)?;
 
-    // Renders of the head: plain, and with the hair masks and the wrinkle mask painted.
-    let clay = |_: Vec2| Vec3::splat(0.8);
+    // Renders of the head: with its colour map, and with the hair masks and the wrinkle
+    // mask painted over it.
     let painted = |uv: Vec2| {
-        let skin = Vec3::new(0.85, 0.7, 0.62);
+        let skin = albedo(uv);
         let with_wrinkle_area = skin.lerp(
             Vec3::new(0.9, 0.45, 0.35),
             0.5 * wrinkles.sample(uv.x, uv.y),
         );
         let outer_hair =
-            with_wrinkle_area.lerp(Vec3::new(0.75, 0.6, 0.25), outer.sample(uv.x, uv.y));
-        outer_hair.lerp(Vec3::new(0.3, 0.18, 0.08), inner.sample(uv.x, uv.y))
+            with_wrinkle_area.lerp(Vec3::new(0.75, 0.6, 0.25), 0.8 * outer.sample(uv.x, uv.y));
+        outer_hair.lerp(Vec3::new(0.3, 0.18, 0.08), 0.8 * inner.sample(uv.x, uv.y))
     };
     for (name, view) in [
         ("front", View::FRONT),
         ("three-quarter", View::THREE_QUARTER),
         ("side", View::SIDE),
     ] {
-        let img = preview::render(&mesh, view, DOC_PX, clay);
+        let img = preview::render(mesh, view, DOC_PX, albedo);
         write_rgb8_png(
             &out.join(format!("docs/head-{name}.png")),
             DOC_PX,
@@ -141,8 +160,12 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
             img.as_raw(),
         )?;
     }
-    for (name, view) in [("three-quarter", View::THREE_QUARTER), ("back", View::BACK)] {
-        let img = preview::render(&mesh, view, DOC_PX, painted);
+    for (name, view) in [
+        ("front", View::FRONT),
+        ("three-quarter", View::THREE_QUARTER),
+        ("back", View::BACK),
+    ] {
+        let img = preview::render(mesh, view, DOC_PX, painted);
         write_rgb8_png(
             &out.join(format!("docs/head-masks-{name}.png")),
             DOC_PX,
@@ -152,6 +175,46 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
     }
     println!("wrote the generated assets to {}", out.display());
     Ok(())
+}
+
+/// The default head as GLB, with the scan's maps embedded as its material.
+pub fn default_head_glb(head: &scan::DefaultHead) -> Vec<u8> {
+    let material = agesim_core::mesh::gltf::GlbMaterial {
+        name: "skin (Lee Perry-Smith scan, CC BY 3.0)".to_owned(),
+        base_colour: [1.0; 4],
+        base_colour_png: Some(head.colour_jpeg.clone()),
+        roughness: 0.6,
+        metallic: 0.0,
+        normal_png: Some(head.normal_jpeg.clone()),
+        extras: serde_json::json!({
+            "credit": "Infinite, 3D Head Scan by Lee Perry-Smith, licensed under CC BY 3.0, based on a work at triplegangers.com"
+        }),
+    };
+    agesim_core::mesh::gltf::write_glb_with_material(&head.mesh, Some(&material))
+}
+
+/// The colour map at `uv` (linear, nearest texel; v up).
+fn colour_at(image: &agesim_core::mask::HeadImage, uv: Vec2) -> Vec3 {
+    let (w, h) = (image.width_px as f32, image.height_px as f32);
+    let x = ((uv.x * w) as u32).min(image.width_px - 1);
+    let y = (((1.0 - uv.y) * h) as u32).min(image.height_px - 1);
+    let i = 4 * (y * image.width_px + x) as usize;
+    let px = &image.rgba[i..i + 3];
+    Vec3::new(px[0] as f32, px[1] as f32, px[2] as f32) / 255.0
+}
+
+/// A 5-pixel dot at `uv` on a DOC_PX² picture.
+fn draw_dot(pixels: &mut [Vec3], uv: Vec2, colour: Vec3) {
+    let n = DOC_PX as i64;
+    let (cx, cy) = ((uv.x * n as f32) as i64, ((1.0 - uv.y) * n as f32) as i64);
+    for dy in -2..=2 {
+        for dx in -2..=2 {
+            let (x, y) = (cx + dx, cy + dy);
+            if (0..n).contains(&x) && (0..n).contains(&y) && dx * dx + dy * dy <= 5 {
+                pixels[(y * n + x) as usize] = colour;
+            }
+        }
+    }
 }
 
 fn write_mask(path: &Path, mask: &Mask) -> anyhow::Result<()> {
@@ -182,30 +245,4 @@ fn tint(pixels: &mut [Vec3], map: &HeightMap, colour: Vec3) {
     for (p, &h) in pixels.iter_mut().zip(map.data()) {
         *p = p.lerp(colour, h.clamp(0.0, 1.0));
     }
-}
-
-/// Outlines the documented regions of the layout (face rectangle, forehead, neck line).
-fn draw_layout_guides(pixels: &mut [Vec3]) {
-    let n = DOC_PX as usize;
-    let to_px = |u: f32, v: f32| {
-        (
-            (u * n as f32) as usize,
-            (((1.0 - v) * n as f32) as usize).min(n - 1),
-        )
-    };
-    let mut rect = |u0: f32, v0: f32, u1: f32, v1: f32, c: Vec3| {
-        let (x0, y1) = to_px(u0, v0);
-        let (x1, y0) = to_px(u1, v1);
-        for x in x0..=x1.min(n - 1) {
-            pixels[y0 * n + x] = c;
-            pixels[y1 * n + x] = c;
-        }
-        for y in y0..=y1 {
-            pixels[y * n + x0] = c;
-            pixels[y * n + x1.min(n - 1)] = c;
-        }
-    };
-    rect(0.36, 0.25, 0.64, 0.78, Vec3::new(1.0, 0.3, 0.2));
-    rect(0.40, 0.61, 0.60, 0.77, Vec3::new(0.2, 0.8, 0.3));
-    rect(0.35, 0.0, 0.65, 0.24, Vec3::new(0.2, 0.6, 1.0));
 }

@@ -113,6 +113,9 @@ pub struct LandmarkOverlay {
 
 /// How near (points) the pointer must be to a dot to drag it.
 const LANDMARK_GRAB_PT: f32 = 10.0;
+/// How near (a fraction of the head's size) the surface seen at a dot must be to its
+/// landmark for the dot to count as visible (grabbable).
+const LANDMARK_SEEN_WITHIN: f32 = 0.03;
 
 impl Viewport {
     pub fn new(rs: &egui_wgpu::RenderState) -> Result<Self, agesim_render::RenderError> {
@@ -201,17 +204,35 @@ impl Viewport {
         // (and does not orbit); a click places the selected landmark.
         self.landmark_edit = None;
         let clip = self.clip_from_world(project, rect);
+        let pick_at = |viewport: &Self, pos: egui::Pos2| {
+            let mesh = viewport.mesh.as_ref()?;
+            let ndc = glam::Vec2::new(
+                2.0 * (pos.x - rect.left()) / rect.width() - 1.0,
+                1.0 - 2.0 * (pos.y - rect.top()) / rect.height(),
+            );
+            let (origin, dir) = super::pick::view_ray(clip, ndc);
+            super::pick::ray_pick(mesh, origin, dir)
+        };
         if let Some(overlay) = &self.landmarks {
             // The dot under the press, not under the pointer once the drag has begun.
             if response.drag_started_by(egui::PointerButton::Primary)
                 && let Some(pos) = ui.input(|i| i.pointer.press_origin())
             {
+                // A dot behind the head (the far ear seen from the front) is not grabbed
+                // through the face: the surface seen at the dot must be the landmark's.
+                let hidden_beyond = self.mesh.as_ref().map_or(f32::INFINITY, |m| {
+                    LANDMARK_SEEN_WITHIN * m.bounds().size().length()
+                });
                 let near: Vec<(&'static str, f32)> = overlay
                     .points
                     .iter()
-                    .filter_map(|(name, p)| Some((*name, to_screen(clip, rect, *p)?)))
-                    .map(|(name, at)| (name, at.distance(pos)))
-                    .filter(|(_, d)| *d <= LANDMARK_GRAB_PT)
+                    .filter_map(|(name, p)| Some((*name, *p, to_screen(clip, rect, *p)?)))
+                    .filter(|(_, _, at)| at.distance(pos) <= LANDMARK_GRAB_PT)
+                    .filter(|(_, p, at)| {
+                        pick_at(self, *at)
+                            .is_none_or(|hit| hit.position.distance(*p) <= hidden_beyond)
+                    })
+                    .map(|(name, _, at)| (name, at.distance(pos)))
                     .collect();
                 // Dots can overlap (the nose tip over the base of the nose): the one
                 // selected in the list wins, else the nearest.
@@ -224,15 +245,6 @@ impl Viewport {
         } else {
             self.dragging_landmark = None;
         }
-        let pick_at = |viewport: &Self, pos: egui::Pos2| {
-            let mesh = viewport.mesh.as_ref()?;
-            let ndc = glam::Vec2::new(
-                2.0 * (pos.x - rect.left()) / rect.width() - 1.0,
-                1.0 - 2.0 * (pos.y - rect.top()) / rect.height(),
-            );
-            let (origin, dir) = super::pick::view_ray(clip, ndc);
-            super::pick::ray_pick(mesh, origin, dir)
-        };
         if let Some(name) = self.dragging_landmark {
             if let Some(pos) = response.interact_pointer_pos()
                 && let Some(hit) = pick_at(self, pos)

@@ -27,6 +27,8 @@ pub struct Layers {
     pub metres_per_unit: f32,
     /// The head's relief depth per template UV unit ([`Scene::relief_scale`]).
     pub relief_scale: f32,
+    /// The head's UV density over its face ([`Scene::surface_scale`]).
+    pub surface_scale: Option<agesim_core::mesh::SurfaceScale>,
     /// The head's base colour map ([`Scene::colour_map`]).
     pub colour: Option<Arc<HeadImage>>,
     /// The head's normal map ([`Scene::normal_map`]).
@@ -44,6 +46,7 @@ impl Default for Layers {
             hair: None,
             metres_per_unit: 1.0,
             relief_scale: 1.0,
+            surface_scale: None,
             colour: None,
             normal: None,
         }
@@ -78,6 +81,7 @@ impl Layers {
         // Measured over the mesh: only when the mesh or its units change.
         if new_mesh || metres_per_unit != self.metres_per_unit {
             self.relief_scale = scene.relief_scale();
+            self.surface_scale = scene.surface_scale();
         }
         self.metres_per_unit = metres_per_unit;
     }
@@ -121,6 +125,9 @@ impl Uploaded {
             && let Some(m) = &layers.mesh
         {
             result = result.and(renderer.upload_mesh(m, metres_per_unit));
+            if let Some(scale) = layers.surface_scale {
+                renderer.set_surface_scale(scale);
+            }
             self.mesh = mesh;
         }
         result = result.and(self.upload_age_layers(renderer, ViewId::MAIN, layers));

@@ -335,6 +335,7 @@ impl HairInstances {
         }
         let cos_max = params.max_deviation_rad.cos();
         let onset = (params.graying_onset_min, params.graying_onset_max);
+        let torn = torn_triangles(surface);
 
         // Chunks of consecutive triangles, concatenated in order: few allocations, and the
         // same sequence whatever the thread count.
@@ -348,6 +349,9 @@ impl HairInstances {
                 for (j, &area) in chunk.iter().enumerate() {
                     let t = c * TRIANGLES_PER_TASK + j;
                     let tri = &surface.indices[3 * t..3 * t + 3];
+                    if torn[t] {
+                        continue;
+                    }
                     candidates += triangle_hairs(
                         &mut out,
                         surface,
@@ -444,6 +448,52 @@ fn sort_by_age_descending(unsorted: &[HairInstance]) -> Vec<HairInstance> {
     keys.par_sort_unstable();
     keys.par_iter()
         .map(|&k| unsorted[(k & 0xFFFF_FFFF) as usize])
+        .collect()
+}
+
+/// How many times the median UV stretch (UV length per unit of 3D length) a triangle's
+/// may have before it counts as torn across the layout.
+const TORN_STRETCH: f32 = 8.0;
+
+/// Triangles whose UVs are torn across the layout (a scan's eye patch joined to the lid
+/// by triangles reaching from one island to another): their UV, interpolated, would read
+/// the masks at places unrelated to the surface (the scalp, for a triangle inside an eye
+/// socket), so they get no hair. Stretch is the longest UV edge over the longest 3D edge;
+/// torn is over [`TORN_STRETCH`] × the mesh's median.
+fn torn_triangles(surface: &SurfaceRef<'_>) -> Vec<bool> {
+    let stretch: Vec<f32> = surface
+        .indices
+        .chunks_exact(3)
+        .map(|tri| {
+            let [a, b, c] = [0, 1, 2].map(|k| tri[k] as usize);
+            let longest = |d: [f32; 3]| d[0].max(d[1]).max(d[2]);
+            let (p, uv) = (surface.positions, surface.uvs);
+            let edge_3d = longest([
+                p[a].distance(p[b]),
+                p[b].distance(p[c]),
+                p[c].distance(p[a]),
+            ]);
+            let edge_uv = longest([
+                uv[a].distance(uv[b]),
+                uv[b].distance(uv[c]),
+                uv[c].distance(uv[a]),
+            ]);
+            if edge_3d > 0.0 {
+                edge_uv / edge_3d
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let mut sorted: Vec<f32> = stretch.iter().copied().filter(|s| s.is_finite()).collect();
+    if sorted.is_empty() {
+        return vec![false; stretch.len()];
+    }
+    let mid = sorted.len() / 2;
+    let median = *sorted.select_nth_unstable_by(mid, f32::total_cmp).1;
+    stretch
+        .iter()
+        .map(|&s| s.is_nan() || s > TORN_STRETCH * median)
         .collect()
 }
 
@@ -966,8 +1016,9 @@ mod tests {
     fn the_default_head_in_metres_gets_a_plausible_scalp() {
         let head = crate::head::default_head();
         let surface = SurfaceRef::from(&head);
-        // The scalp of the default head lies above v ≈ 0.79 at the front and 0.45 at the
-        // nape (head module docs): an outer mask v > 0.6 and an inner band 0.6 < v < 0.7.
+        // The upper part of the default head's chart (the forehead, the scalp and the
+        // top of the ears; head module docs): an outer mask v > 0.6 and an inner band
+        // 0.6 < v < 0.7.
         let n = 64u32;
         let outer: Vec<f32> = (0..n * n)
             .map(|i| f32::from(crate::heightmap::pixel_to_v(i / n, n) > 0.6))
@@ -990,11 +1041,13 @@ mod tests {
             HairInstances::generate(&surface, &tex, &HairParams::new(10.0, 1.0).unwrap()).unwrap();
         // A head's crown above v = 0.6 is a few hundred cm²: thousands of hairs at 10 /cm².
         assert!((1_000..20_000).contains(&hairs.len()), "{}", hairs.len());
-        // Hairs point away from the head: upward on the crown.
-        let top = hairs.instances().iter().filter(|h| h.uv().y > 0.97);
+        // Hairs point away from the head: upward on the crown (within 1 cm of the top,
+        // metres, where the scan's normals are within 35° of +Y).
+        let crown = head.bounds().max.y - 0.01;
+        let top = hairs.instances().iter().filter(|h| h.position().y > crown);
         assert!(top.clone().count() > 10);
         assert!(
-            top.clone().all(|h| h.direction().y > 0.8),
+            top.clone().all(|h| h.direction().y > 0.7),
             "crown hairs point up"
         );
     }

@@ -1,37 +1,28 @@
 //! The default head and the skin patch, as the engine uses them.
 //!
 //! - [`default_head`]: the shipped mesh `assets/meshes/default-head.glb`, built into the
-//!   binary (≈ 4.6 MB; a few tens of ms to read, `benches/head.rs` in the app). It is made
-//!   by `agesim gen-assets` from a signed distance function; that generator (and the mask
-//!   painter and the CPU preview used for the pictures) lives in the app's `assets`
-//!   module, not here: the engine only reads the result.
+//!   binary (≈ 0.9 MB; a few ms to read, `benches/head.rs` in the app): the Lee Perry-Smith
+//!   scan ("Infinite, 3D Head Scan by Lee Perry-Smith, licensed under CC BY 3.0, based on a
+//!   work at triplegangers.com"), converted by `agesim gen-assets` (the app's `assets`
+//!   module: the engine only reads the result), with the scan's colour and normal maps
+//!   embedded (`mesh::textures::default_head`). It is also the template every other head
+//!   is fitted to (`fit::template`).
 //! - [`skin_patch`]: a flat 5 cm square for close-ups of micro-relief, generated here in a
 //!   few ms (its exact tangent frame is cheap).
 //!
 //! # Units and axes
 //! Metres (glTF convention), +Y up, the face looking along +Z, the subject's left on
-//! +X. Chin to crown ≈ 0.23 m; the open neck ends at y = −0.17 m.
+//! +X; x = 0 the face's midline, y = 0 the outer eye corners' height, z = 0 the left
+//! tragion. Crown at y ≈ 0.12 m, chin at ≈ −0.11 m, the neck cut at −0.18 m.
 //!
 //! # UV layout of the default head
-//! - u goes around the head: u = 0.5 + φ/2π with φ the longitude from the front
-//!   (+Z), positive toward +X. The front of the face is at u = 0.5, the seam at the back
-//!   (u = 0 ≡ 1). Looking at the UV image is like looking at the face from the front
-//!   (the subject's left, +X, is on the right of the image).
-//! - v goes up along each profile, proportional to arc length: v = 0 is the open edge of
-//!   the neck, v = 1 the crown.
-//! - Regions (measured on this mesh; the tests of the app's `assets` module
-//!   check the key ones, `assets/docs/uv-layout.png` shows them):
-//!   - face rectangle: u ∈ [0.36, 0.64], v ∈ [0.25, 0.78] — at u = 0.5: under the chin
-//!     v ≈ 0.20–0.26, chin front ≈ 0.30, lips ≈ 0.37–0.43, base of the nose ≈ 0.47, nose
-//!     tip ≈ 0.50, eyes ≈ 0.555 (centres at u ≈ 0.446 / 0.554), brows ≈ 0.60, front
-//!     hairline ≈ 0.78;
-//!   - forehead: u ∈ [0.40, 0.60], v ∈ [0.61, 0.77] (the example fibres of docs/models.md §3,
-//!     u 0.42–0.56, v 0.64–0.73, lie on it);
-//!   - ears: around u ≈ 0.25 and 0.75, v ≈ 0.47–0.60;
-//!   - scalp: v > 0.78 at the front, down to v ≈ 0.31 at the nape (u = 0 ≡ 1); exactly
-//!     the white of `assets/masks/hair-outer.png`;
-//!   - neck: v < 0.24 in front (u ∈ [0.35, 0.65]), up to the hairline at the back.
-//!
+//! The scan's own single chart (docs/models.md §7, `assets/README.md` tabulates it): the
+//! face in the middle of the square and magnified (outer eye corners at u ≈ 0.40 / 0.60,
+//! v ≈ 0.70; mouth corners at v ≈ 0.535; forehead v ≈ 0.76–0.86), the scalp above, the ears
+//! at the sides (u ≈ 0.29 / 0.72), the back of the head split down the left and right
+//! edges, the neck below the chin (v ≈ 0.2–0.38 in front). Two parts: the skin, and the
+//! insides of the eye sockets behind the closed lids (the discs in the top corners), which
+//! is not skin.
 
 use std::path::Path;
 
@@ -45,19 +36,22 @@ pub const SKIN_PATCH_SIZE_M: f32 = 0.05;
 /// Quads per side of the skin patch (2 triangles each).
 pub const SKIN_PATCH_QUADS: u32 = 256;
 
-/// Where `agesim gen-assets` writes the generated default head as GLB
+/// Where `agesim gen-assets` writes the converted default head as GLB
 /// ([`gltf::write_glb`]), relative to the assets folder.
 pub const DEFAULT_HEAD_ASSET: &str = "meshes/default-head.glb";
 
+/// Where `agesim gen-assets` writes the default head's landmarks (metres), relative to the
+/// assets folder: the template's ([`crate::fit::TEMPLATE_LANDMARKS_JSON`]).
+pub const DEFAULT_HEAD_LANDMARKS_ASSET: &str = "meshes/default-head.landmarks.json";
+
 /// The shipped default head, `assets/meshes/default-head.glb` built into the binary: what
-/// `agesim gen-assets` wrote the last time the assets were regenerated (≈ 4.6 MB:
-/// positions, normals, tangents, UVs as `f32`, `u32` indices). The app's `assets`
-/// tests check that it still matches a fresh generation.
+/// `agesim gen-assets` wrote the last time the assets were regenerated (≈ 0.9 MB:
+/// positions, normals, tangents, UVs as `f32`, `u32` indices, the scan's two JPEG maps).
+/// The app's `assets` tests check that it still matches a fresh conversion.
 pub const DEFAULT_HEAD_GLB: &[u8] = include_bytes!("../../../assets/meshes/default-head.glb");
 
-/// The default head (see the module docs): about 128 000 triangles, closed except at
-/// the neck, normals outward, UVs in [0,1] with the layout documented above, tangents
-/// from MikkTSpace.
+/// The default head (see the module docs): 16 186 triangles, normals outward, UVs in
+/// [0,1] with the layout documented above, tangents from MikkTSpace.
 ///
 /// Read from the shipped file [`DEFAULT_HEAD_GLB`] ([`shipped_default_head`], a few ms).
 /// Should the built-in file ever be unreadable (a bug the tests catch), a single
@@ -66,11 +60,9 @@ pub fn default_head() -> Mesh {
     shipped_default_head().unwrap_or_else(|_| Mesh::single_triangle())
 }
 
-/// Reads the default head from [`DEFAULT_HEAD_GLB`]. Its parts and [`MeshReport`] are
-/// those of the generation the file stores (normals generated, tangents from
-/// MikkTSpace), not those of reading a file. Equal to the app's generator up to a
-/// few ulps of rounding in the file round trip (tested: positions to 1 µm, UVs to 1e-6,
-/// normals and tangents to 1e-5 rad, indices exactly).
+/// Reads the default head from [`DEFAULT_HEAD_GLB`]. Equal to the app's conversion up to
+/// a few ulps of rounding in the file round trip (tested corner by corner: positions to
+/// 1 µm, UVs to 1e-6, normals and tangents to 1e-5 rad).
 pub fn shipped_default_head() -> Result<Mesh, Error> {
     // The report is the load's own (normals and tangents from the file), exactly what
     // loading `assets/meshes/default-head.glb` from disk reports: one provenance.
@@ -154,7 +146,13 @@ mod tests {
     fn the_default_head_is_the_shipped_file() {
         let m = default_head();
         assert_eq!(m.report().tangent_source, Some(TangentSource::File));
-        assert!(m.vertex_count() > 50_000, "{}", m.vertex_count());
+        // The converted scan: about 8 500 vertices, in metres, with its maps embedded.
+        assert!(m.vertex_count() > 8_000, "{}", m.vertex_count());
+        assert!(
+            (0.28..0.32).contains(&m.bounds().size().y),
+            "{:?}",
+            m.bounds()
+        );
         assert!(shipped_default_head().is_ok());
     }
 

@@ -191,11 +191,11 @@ impl EditorApp {
                     }
                 });
                 ui.add_space(6.0);
-                ui.label("Test heads (assets/heads):");
+                ui.label("The default head and template (assets/heads/lee-perry-smith):");
                 ui.label(
                     "Infinite, 3D Head Scan by Lee Perry-Smith, licensed under CC BY 3.0, based on a work at triplegangers.com.",
                 );
-                ui.label("The MakeHuman head: CC0 1.0.");
+                ui.label("Test heads: the MakeHuman head, CC0 1.0; agesim's mannequin.");
             });
         self.windows.about = open;
     }

@@ -378,12 +378,20 @@ fn bake(
     if merged.mesh || snapshot.mesh.is_none() || fitted != snapshot.fitted {
         snapshot.mesh = Some(s.mesh().clone());
         snapshot.fitted = fitted;
+        // The fibres' chart shows its face: the template's colour map (a fitted head's
+        // own is shown over its own layout).
+        let colour = s.colour_map().map(|c| c.as_ref());
         if fitted {
             let template = &agesim_core::fit::template().mesh;
-            snapshot.images.uv_layout = Some(uv_layout_image(template, 1024));
-            snapshot.images.head_uv_layout = Some(uv_layout_image(s.mesh(), 1024));
+            let template_colour = agesim_core::mesh::textures::default_head();
+            snapshot.images.uv_layout = Some(uv_layout_image(
+                template,
+                template_colour.colour.as_deref(),
+                1024,
+            ));
+            snapshot.images.head_uv_layout = Some(uv_layout_image(s.mesh(), colour, 1024));
         } else {
-            snapshot.images.uv_layout = Some(uv_layout_image(s.mesh(), 1024));
+            snapshot.images.uv_layout = Some(uv_layout_image(s.mesh(), colour, 1024));
             snapshot.images.head_uv_layout = None;
         }
     }

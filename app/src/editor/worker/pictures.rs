@@ -23,10 +23,26 @@ pub struct MapImages {
     pub mask: Option<Arc<egui::ColorImage>>,
 }
 
-/// The triangle edges of `mesh` in UV space, drawn into a `size`² transparent picture (v up,
-/// row 0 at the top); made once per mesh on the worker.
-pub(super) fn uv_layout_image(mesh: &agesim_core::Mesh, size: usize) -> Arc<egui::ColorImage> {
+/// The triangle edges of `mesh` in UV space, drawn into a `size`² picture (v up, row 0
+/// at the top) over its colour map `colour` when it has one, both translucent over the
+/// map they are shown on: the chart reads as the face it is; made once per mesh on the
+/// worker.
+pub(super) fn uv_layout_image(
+    mesh: &agesim_core::Mesh,
+    colour: Option<&agesim_core::mask::HeadImage>,
+    size: usize,
+) -> Arc<egui::ColorImage> {
     let mut pixels = vec![egui::Color32::TRANSPARENT; size * size];
+    if let Some(c) = colour.filter(|c| c.width_px > 0 && c.height_px > 0) {
+        for (k, p) in pixels.iter_mut().enumerate() {
+            let (x, y) = (k % size, k / size);
+            let cx = (x * c.width_px as usize / size).min(c.width_px as usize - 1);
+            let cy = (y * c.height_px as usize / size).min(c.height_px as usize - 1);
+            let i = 4 * (cy * c.width_px as usize + cx);
+            let [r, g, b] = [c.rgba[i], c.rgba[i + 1], c.rgba[i + 2]];
+            *p = egui::Color32::from_rgba_unmultiplied(r, g, b, LAYOUT_COLOUR_ALPHA);
+        }
+    }
     let uv = mesh.uvs();
     let to_px = |p: glam::Vec2| ((p.x * size as f32), ((1.0 - p.y) * size as f32));
     let line = egui::Color32::from_rgba_unmultiplied(255, 255, 255, 40);
@@ -50,6 +66,9 @@ pub(super) fn uv_layout_image(mesh: &agesim_core::Mesh, size: usize) -> Arc<egui
     }
     Arc::new(egui::ColorImage::new([size, size], pixels))
 }
+
+/// How opaque a chart's colour map is over the map shown under it.
+const LAYOUT_COLOUR_ALPHA: u8 = 110;
 
 /// Side of the pictures of the 2D view; larger maps are shown subsampled.
 pub const IMAGE_MAX_PX: u32 = 1024;

@@ -1,7 +1,7 @@
 //! The correspondence map: for each texel of the head's UV layout, the template UV its
 //! layers are read at (see the module docs of [`crate::fit`]).
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 use super::{Fit, unwrap_u};
@@ -12,6 +12,10 @@ use crate::mesh::Mesh;
 /// How far (pixels) outside its triangle a texel still takes the triangle's extrapolated
 /// template UV.
 const GUARD_PX: f32 = 1.5;
+
+/// How much farther apart (template UV) two corners of one head triangle may lie than
+/// their 3D distance says before they count as lying on two islands of the template.
+const SEAM_SLACK_UV: f32 = 0.01;
 
 /// No template point: the layers are 0 there (no wrinkle, no hair).
 const NONE: [f32; 2] = [f32::NAN, f32::NAN];
@@ -38,7 +42,12 @@ impl Correspondence {
         // How far outside the triangle that wrote each texel it lies (∞: none did).
         let mut distance = vec![f32::INFINITY; n * n];
         let uvs = head.uvs();
+        let positions = head.positions();
         let idx = head.skin_indices();
+        let template_m_per_uv = super::template().metres_per_uv.unwrap_or(1.0);
+        // The 3D point each guard texel stands for (the writing triangle's plane, just
+        // beyond its edge), for the surface's continuation below.
+        let mut guard_points: Vec<Vec3> = vec![Vec3::NAN; n * n];
         for (k, tri) in idx.chunks_exact(3).enumerate() {
             if k % 4096 == 0 {
                 cancel.check()?;
@@ -54,11 +63,29 @@ impl Correspondence {
                 (Some(x), Some(y), Some(z)) => Some(unwrap_u([x, y, z])),
                 _ => None,
             };
+            // Corners whose template points lie on different islands of the template's
+            // layout (the head's triangle spans a template seam): mixing their UVs would
+            // read somewhere unrelated in between, so each texel reads only the corners
+            // on the island of its nearest corner.
+            let p3 = |i: usize| positions.get(corner(i)).copied().unwrap_or(Vec3::ZERO);
+            let same_island = template.map(|(ta, tb, tc)| {
+                let t = [ta, tb, tc];
+                let near = |i: usize, j: usize| {
+                    let metres = p3(i).distance(p3(j)) * fit.similarity.scale;
+                    t[i].distance(t[j]) <= 4.0 * metres / template_m_per_uv + SEAM_SLACK_UV
+                };
+                [
+                    [true, near(0, 1), near(0, 2)],
+                    [near(1, 0), true, near(1, 2)],
+                    [near(2, 0), near(2, 1), true],
+                ]
+            });
             // The triangle and a guard band around it: texels just outside every island
             // take the triangle's template UV extrapolated (the surface's continuation
             // across a seam), so bilinear reads at an island's border mix no copied
             // values.
             let guard = if template.is_some() { GUARD_PX } else { 0.0 };
+            let (pa, pb, pc) = (p3(0), p3(1), p3(2));
             raster_uv([*a, *b, *c], size, guard, |x, y, [w0, w1, w2], outside| {
                 let i = y * n + x;
                 if outside >= distance[i] {
@@ -66,16 +93,49 @@ impl Correspondence {
                 }
                 distance[i] = outside;
                 covered[i] |= outside == 0.0;
-                texels[i] = match template {
-                    Some((ta, tb, tc)) => {
-                        let uv = ta * w0 + tb * w1 + tc * w2;
+                guard_points[i] = if outside > 0.0 {
+                    pa * w0 + pb * w1 + pc * w2
+                } else {
+                    Vec3::NAN
+                };
+                texels[i] = match (template, same_island) {
+                    (Some((ta, tb, tc)), Some(same)) => {
+                        let w = [w0, w1, w2];
+                        let k = (0..3).fold(0, |k, j| if w[j] > w[k] { j } else { k });
+                        let w: [f32; 3] =
+                            std::array::from_fn(|j| if same[k][j] { w[j] } else { 0.0 });
+                        let sum = w[0] + w[1] + w[2];
+                        let uv = (ta * w[0] + tb * w[1] + tc * w[2]) / sum;
                         [uv.x.rem_euclid(1.0), uv.y]
                     }
-                    None => NONE,
+                    _ => NONE,
                 };
             });
         }
         cancel.check()?;
+        // A guard texel across a seam stands for the surface on the other side of it: its
+        // template UV is read where its point lies on the head (the neighbouring
+        // triangle, wherever that is in the UV layout), not extrapolated from one
+        // triangle, so heights on both sides of a seam agree (docs/models.md §7b).
+        let bvh = super::bvh::Bvh::new(positions, &idx);
+        let continued: Vec<(usize, [f32; 2])> = guard_points
+            .par_iter()
+            .enumerate()
+            .filter(|(i, q)| !q.is_nan() && !covered[*i])
+            .filter_map(|(i, &q)| {
+                // A texel's width in 3D is far below 5 cm: farther is no continuation.
+                let hit = bvh.closest(q, 0.05 * head.bounds().size().max_element())?;
+                let t = hit.triangle as usize * 3;
+                let uv = |k: usize| fit.template_uv.get(idx[t + k] as usize).copied().flatten();
+                let (ta, tb, tc) = unwrap_u([uv(0)?, uv(1)?, uv(2)?]);
+                let w = hit.bary;
+                let uv = ta * w.x + tb * w.y + tc * w.z;
+                Some((i, [uv.x.rem_euclid(1.0), uv.y]))
+            })
+            .collect();
+        for (i, uv) in continued {
+            texels[i] = uv;
+        }
         let filled: Vec<bool> = distance.iter().map(|d| d.is_finite()).collect();
         pad(&mut texels, &filled, n);
         Ok(Self {
@@ -167,8 +227,13 @@ impl Correspondence {
     }
 }
 
+/// How far below 0 a guard texel's barycentric weight may go (1: one triangle's width
+/// beyond the edge).
+const MAX_GUARD_WEIGHT: f32 = 1.0;
+
 /// Visits the texels of a `size`² map (docs/models.md §1: rows from the top, v up) whose
-/// centres lie in the UV triangle `uv` or within `guard` pixels of it: `visit(x, y,
+/// centres lie in the UV triangle `uv` or within `guard` pixels of it (and no farther than
+/// its own width beyond an edge: a sliver's guard band is thinner): `visit(x, y,
 /// barycentric weights (extrapolated outside), distance outside in pixels)`. A triangle
 /// with no UV area visits nothing.
 pub fn raster_uv(
@@ -200,7 +265,10 @@ pub fn raster_uv(
                 .zip(edge_len)
                 .map(|(w, len)| (-w).max(0.0) * area.abs() / len.max(1e-12))
                 .fold(0.0f32, f32::max);
-            if outside <= guard {
+            // Beyond a sliver's edge the weights blow up (a point far off the surface):
+            // only a guard texel whose weights stay near the triangle is visited.
+            let sane = outside == 0.0 || w0.min(w1).min(w2) >= -MAX_GUARD_WEIGHT;
+            if outside <= guard && sane {
                 visit(x, y, [w0, w1, w2], outside);
             }
         }
@@ -228,7 +296,7 @@ fn bilinear(src: &[f32], width: u32, height: u32, u: f32, v: f32) -> f32 {
 /// Fills every texel not `filled` with the value of its nearest filled texel (two
 /// chamfer passes propagating the nearest source, 8-neighbour: within a texel of the
 /// Euclidean nearest). Nothing covered: nothing changes.
-fn pad(texels: &mut [[f32; 2]], filled: &[bool], n: usize) {
+pub fn pad<T: Copy>(texels: &mut [T], filled: &[bool], n: usize) {
     let covered = filled;
     if !covered.iter().any(|&c| c) {
         return;

@@ -31,7 +31,7 @@ use std::sync::{Arc, OnceLock};
 
 use glam::{Vec2, Vec3};
 
-pub use correspondence::{Correspondence, raster_uv};
+pub use correspondence::{Correspondence, pad, raster_uv};
 
 use crate::error::Error;
 use crate::landmarks::Landmarks;
@@ -55,25 +55,47 @@ const TPS_LAMBDA_M: f32 = 0.002;
 /// Fewest landmarks the fit works from (the similarity needs three; the warp four).
 pub const MIN_LANDMARKS: usize = 5;
 
+/// Twice the UV area below which a template triangle has no layout to read.
+const MIN_UV_AREA: f32 = 1e-9;
+
 /// The head every layout is authored on, with its landmarks and a tree for closest points.
 #[derive(Debug)]
 pub struct Template {
     pub mesh: Arc<Mesh>,
     pub landmarks: Landmarks,
     pub(crate) bvh: Bvh,
-    /// Metres per UV unit over its skin (mean of u and v; `mesh::SurfaceScale`).
+    /// The triangles of [`Template::bvh`] (its hits' `triangle` index these).
+    bvh_indices: Vec<u32>,
+    /// Metres per UV unit over its face (mean of u and v; `mesh::SurfaceScale::measure_face`).
     pub metres_per_uv: Option<f32>,
 }
 
 impl Template {
     /// Builds a template from a mesh in metres with its landmarks.
     pub fn new(mesh: Arc<Mesh>, landmarks: Landmarks) -> Self {
-        let bvh = Bvh::new(mesh.positions(), &mesh.skin_indices());
-        let metres_per_uv = metres_per_uv(&mesh, 1.0);
+        // Triangles without UV area carry no layout (the scan's eye patches are joined to
+        // the lids by such triangles, their rims collapsed to one UV): a closest point on
+        // one would read that one UV for a whole rim.
+        let uvs = mesh.uvs();
+        let with_area: Vec<u32> = mesh
+            .skin_indices()
+            .chunks_exact(3)
+            .filter(|t| {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| uvs[i as usize]);
+                (b - a).perp_dot(c - a).abs() > MIN_UV_AREA
+            })
+            .flatten()
+            .copied()
+            .collect();
+        let bvh = Bvh::new(mesh.positions(), &with_area);
+        let bvh_indices = with_area;
+        let metres_per_uv = crate::mesh::SurfaceScale::measure_face(&mesh, Some(&landmarks))
+            .map(|s| 0.5 * (s.units_per_u + s.units_per_v));
         Self {
             mesh,
             landmarks,
             bvh,
+            bvh_indices,
             metres_per_uv,
         }
     }
@@ -81,7 +103,7 @@ impl Template {
     /// The template UV at a closest-point hit.
     fn uv_at(&self, hit: &bvh::Hit) -> Vec2 {
         let t = hit.triangle as usize * 3;
-        let idx = self.mesh.skin_indices();
+        let idx = &self.bvh_indices;
         let uvs = self.mesh.uvs();
         let uv = |k: usize| uvs[idx[t + k] as usize];
         let (a, b, c) = (uv(0), uv(1), uv(2));

@@ -412,12 +412,12 @@ pub struct GlbMaterial {
     pub name: String,
     /// Linear RGBA (`baseColorFactor`; multiplies `base_colour_png` when there is one).
     pub base_colour: [f32; 4],
-    /// The base colour as PNG bytes (sRGB, over the mesh's UVs), embedded in the binary
-    /// chunk as `baseColorTexture`.
+    /// The base colour as PNG (or JPEG) bytes (sRGB, over the mesh's UVs), embedded in the
+    /// binary chunk as `baseColorTexture`.
     pub base_colour_png: Option<Vec<u8>>,
     pub roughness: f32,
     pub metallic: f32,
-    /// A tangent-space normal map as PNG bytes (OpenGL convention: green = +bitangent, as
+    /// A tangent-space normal map as PNG (or JPEG) bytes (OpenGL convention: green = +bitangent, as
     /// glTF 2.0 §3.9.3 asks), embedded in the binary chunk as `normalTexture`.
     pub normal_png: Option<Vec<u8>>,
     /// Recorded in the file's `extras` (glTF has no displacement: a height map beside).
@@ -540,8 +540,14 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
             let Some(png) = png else { continue };
             let view = push_view(&mut bin, &mut views, png, "");
             let index = images.len();
+            // JPEG bytes (the default head's scanned maps) are embedded as they are.
+            let mime = if png.starts_with(&[0xFF, 0xD8]) {
+                "image/jpeg"
+            } else {
+                "image/png"
+            };
             images.push(format!(
-                r#"{{"bufferView":{view},"mimeType":"image/png","name":"{name}"}}"#
+                r#"{{"bufferView":{view},"mimeType":"{mime}","name":"{name}"}}"#
             ));
             let texture = format!(r#"{{"index":{index}}}"#);
             if name == "normal" {

@@ -65,6 +65,11 @@ pub fn load(path: &Path) -> Result<MeshTextures, Error> {
         "obj" => obj_sources(path)?,
         _ => (None, None),
     };
+    decode(colour, normal)
+}
+
+/// Decodes the pictures found, noting the files among them.
+fn decode(colour: Option<Source>, normal: Option<Source>) -> Result<MeshTextures, Error> {
     let mut out = MeshTextures::default();
     for s in [&colour, &normal].into_iter().flatten() {
         if let Source::File(p) = s {
@@ -84,13 +89,54 @@ pub fn load(path: &Path) -> Result<MeshTextures, Error> {
     Ok(out)
 }
 
+/// The pictures embedded in the GLB `bytes` (named `name` in reports), as [`load`] reads
+/// them from a file; nothing outside the bytes is read.
+pub fn load_glb_bytes(bytes: &[u8], name: &Path) -> Result<MeshTextures, Error> {
+    let (colour, normal) = match std::panic::catch_unwind(|| gltf_sources_in(bytes, name, None)) {
+        Ok(found) => found?,
+        Err(_) => {
+            return Err(Error::MeshFile {
+                path: name.to_owned(),
+                message: "its material names an image the file does not describe fully".into(),
+            });
+        }
+    };
+    decode(colour, normal)
+}
+
+/// The built-in default head's own colour and normal maps (the scan's, embedded in
+/// [`crate::head::DEFAULT_HEAD_GLB`]), decoded once.
+pub fn default_head() -> std::sync::Arc<MeshTextures> {
+    static TEXTURES: std::sync::OnceLock<std::sync::Arc<MeshTextures>> = std::sync::OnceLock::new();
+    TEXTURES
+        .get_or_init(|| {
+            let name = format!("{} (built in)", crate::head::DEFAULT_HEAD_ASSET);
+            // Checked by the tests; unreadable, the head is drawn in the skin colour.
+            std::sync::Arc::new(
+                load_glb_bytes(crate::head::DEFAULT_HEAD_GLB, Path::new(&name)).unwrap_or_default(),
+            )
+        })
+        .clone()
+}
+
 fn gltf_sources(path: &Path) -> Result<(Option<Source>, Option<Source>), Error> {
+    let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES)?;
+    let dir = path.parent().unwrap_or(Path::new("")).to_owned();
+    gltf_sources_in(&bytes, path, Some(&dir))
+}
+
+/// The material's pictures in the glTF `bytes`; `dir` is where files beside it are read
+/// (none for a GLB held in memory: a URI is then an error).
+fn gltf_sources_in(
+    bytes: &[u8],
+    path: &Path,
+    dir: Option<&Path>,
+) -> Result<(Option<Source>, Option<Source>), Error> {
     let fail = |message: String| Error::MeshFile {
         path: path.to_owned(),
         message,
     };
-    let bytes = crate::limits::read_file(path, crate::limits::MAX_MESH_FILE_BYTES)?;
-    let gltf = super::gltf::parse(&bytes).map_err(fail)?;
+    let gltf = super::gltf::parse(bytes).map_err(fail)?;
     // The material of the most triangles with a base colour map: the skin's.
     let mut count = vec![0usize; gltf.document.materials().len()];
     for mesh in gltf.document.meshes() {
@@ -108,8 +154,7 @@ fn gltf_sources(path: &Path) -> Result<(Option<Source>, Option<Source>), Error> 
     else {
         return Ok((None, None));
     };
-    let dir = path.parent().unwrap_or(Path::new("")).to_owned();
-    let buffers = ::gltf::import_buffers(&gltf.document, Some(&dir), gltf.blob.clone())
+    let buffers = ::gltf::import_buffers(&gltf.document, dir, gltf.blob.clone())
         .map_err(|e| fail(format!("cannot read its buffers: {e}")))?;
     let source = |texture: ::gltf::Texture<'_>| -> Result<Source, Error> {
         let image = texture.source();
@@ -142,6 +187,9 @@ fn gltf_sources(path: &Path) -> Result<(Option<Source>, Option<Source>), Error> 
                         image.index(),
                         crate::limits::shorten(uri, 80)
                     ))
+                })?;
+                let dir = dir.ok_or_else(|| {
+                    fail(format!("image {} is a file, not embedded", image.index()))
                 })?;
                 Ok(Source::File(dir.join(super::gltf::decode_uri(uri))))
             }

@@ -40,7 +40,7 @@ struct Head {
     file: &'static str,
 }
 
-const HEADS: [Head; 3] = [
+const HEADS: [Head; 4] = [
     // The template itself, read at its own UVs: its layout checked against its landmarks.
     Head {
         name: "default head",
@@ -53,6 +53,11 @@ const HEADS: [Head; 3] = [
     Head {
         name: "makehuman",
         file: "mh_head.obj",
+    },
+    // The procedural mannequin that was the default head before the scan.
+    Head {
+        name: "mannequin",
+        file: "mannequin.glb",
     },
 ];
 

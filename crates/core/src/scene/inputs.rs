@@ -115,11 +115,14 @@ impl Inputs {
             Some(p) => Ok((p.raw_mesh.clone(), p.file_textures.clone())),
             None => {
                 let mesh = load_mesh(project).map(Arc::new)?;
-                let textures = match &project.mesh.path {
-                    Some(path) => crate::mesh::textures::load(path)?,
-                    None => Default::default(),
+                let textures = match (&project.mesh.path, project.mesh.builtin) {
+                    (Some(path), _) => Arc::new(crate::mesh::textures::load(path)?),
+                    (None, crate::project::BuiltinMesh::Head) => {
+                        crate::mesh::textures::default_head()
+                    }
+                    (None, _) => Arc::default(),
                 };
-                Ok((mesh, Arc::new(textures)))
+                Ok((mesh, textures))
             }
         };
         let load_wrinkles_part = || match previous.filter(|p| p.wrinkles_key == wrinkles_key) {

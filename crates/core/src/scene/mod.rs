@@ -563,14 +563,31 @@ impl Scene {
         if self.inputs.layout.fit.is_none() {
             return 1.0;
         }
+        let head = self
+            .surface_scale()
+            .map(|s| 0.5 * (s.units_per_u + s.units_per_v) * self.metres_per_unit());
         // The template's is measured once, with the template.
-        match (
-            crate::fit::template().metres_per_uv,
-            crate::fit::metres_per_uv(&self.inputs.mesh, self.metres_per_unit()),
-        ) {
+        match (crate::fit::template().metres_per_uv, head) {
             (Some(t), Some(h)) if h > 0.0 && (t / h).is_finite() => t / h,
             _ => 1.0,
         }
+    }
+
+    /// The head's UV density where it is looked at: over its face when its landmarks
+    /// are known (the project's, the found ones, the default head's own), else over its
+    /// skin ([`SurfaceScale::measure_face`]); it sizes the repeated tiles (micro-relief,
+    /// fine wrinkles) and the relief depth. `None` when every UV triangle is degenerate.
+    ///
+    /// [`SurfaceScale::measure_face`]: crate::mesh::SurfaceScale::measure_face
+    pub fn surface_scale(&self) -> Option<crate::mesh::SurfaceScale> {
+        let builtin_head = self.project.mesh.path.is_none()
+            && self.project.mesh.builtin == crate::project::BuiltinMesh::Head;
+        let landmarks = if builtin_head {
+            Some(&crate::fit::template().landmarks)
+        } else {
+            self.landmarks().or(self.inputs.layout.landmarks.as_deref())
+        };
+        crate::mesh::SurfaceScale::measure_face(&self.inputs.mesh, landmarks)
     }
 
     /// [`Scene::units`]' metres per unit.

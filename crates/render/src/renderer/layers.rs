@@ -75,6 +75,13 @@ impl Renderer {
         Ok(())
     }
 
+    /// Sizes the repeated tiles by `scale` instead of the uploaded mesh's mean UV density
+    /// (the scene's measure over the face: `Scene::surface_scale`); until the next
+    /// [`Renderer::upload_mesh`].
+    pub fn set_surface_scale(&mut self, scale: SurfaceScale) {
+        self.surface_scale = scale;
+    }
+
     /// The uploaded mesh's measured UV density (mesh units per UV unit).
     pub fn surface_scale(&self) -> SurfaceScale {
         self.surface_scale

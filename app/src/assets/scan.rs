@@ -126,9 +126,12 @@ pub fn convert_scan(assets: &Path) -> anyhow::Result<DefaultHead> {
     // The insides of the eye sockets behind the closed lids are two small patches in the
     // top corners of the chart, joined to the lids by triangles without UV area: not skin
     // (no wrinkles, no hair), a part of their own.
+    // The back of the scalp reaches those corners too: a socket lies in front of the ears.
     let in_socket = |i: u32| {
         let uv = uvs[i as usize];
-        uv.y > 1.0 - SOCKET_PATCH_UV && (uv.x < SOCKET_PATCH_UV || uv.x > 1.0 - SOCKET_PATCH_UV)
+        let corner = uv.y > 1.0 - SOCKET_PATCH_UV
+            && (uv.x < SOCKET_PATCH_UV || uv.x > 1.0 - SOCKET_PATCH_UV);
+        corner && positions[i as usize].z > 0.0
     };
     let mut skin = Vec::with_capacity(indices.len());
     let mut sockets = Vec::new();

@@ -47,7 +47,8 @@ impl Correspondence {
         let template_m_per_uv = super::template().metres_per_uv.unwrap_or(1.0);
         // The 3D point each guard texel stands for (the writing triangle's plane, just
         // beyond its edge), for the surface's continuation below.
-        let mut guard_points: Vec<Vec3> = vec![Vec3::NAN; n * n];
+        // (texel, point, distance outside) of every guard write: few beside the map.
+        let mut guard_points: Vec<(u32, Vec3, f32)> = Vec::new();
         for (k, tri) in idx.chunks_exact(3).enumerate() {
             if k % 4096 == 0 {
                 cancel.check()?;
@@ -85,6 +86,7 @@ impl Correspondence {
             // across a seam), so bilinear reads at an island's border mix no copied
             // values.
             let guard = if template.is_some() { GUARD_PX } else { 0.0 };
+            let one_island = same_island.is_none_or(|s| s.iter().flatten().all(|&b| b));
             let (pa, pb, pc) = (p3(0), p3(1), p3(2));
             raster_uv([*a, *b, *c], size, guard, |x, y, [w0, w1, w2], outside| {
                 let i = y * n + x;
@@ -93,12 +95,14 @@ impl Correspondence {
                 }
                 distance[i] = outside;
                 covered[i] |= outside == 0.0;
-                guard_points[i] = if outside > 0.0 {
-                    pa * w0 + pb * w1 + pc * w2
-                } else {
-                    Vec3::NAN
-                };
+                if outside > 0.0 {
+                    guard_points.push((i as u32, pa * w0 + pb * w1 + pc * w2, outside));
+                }
                 texels[i] = match (template, same_island) {
+                    (Some((ta, tb, tc)), Some(_)) if one_island => {
+                        let uv = ta * w0 + tb * w1 + tc * w2;
+                        [uv.x.rem_euclid(1.0), uv.y]
+                    }
                     (Some((ta, tb, tc)), Some(same)) => {
                         let w = [w0, w1, w2];
                         let k = (0..3).fold(0, |k, j| if w[j] > w[k] { j } else { k });
@@ -118,19 +122,20 @@ impl Correspondence {
         // triangle, wherever that is in the UV layout), not extrapolated from one
         // triangle, so heights on both sides of a seam agree (docs/models.md §7b).
         let bvh = super::bvh::Bvh::new(positions, &idx);
+        // A texel's width in 3D is far below this: farther is no continuation.
+        let reach = 0.05 * head.bounds().size().max_element();
         let continued: Vec<(usize, [f32; 2])> = guard_points
             .par_iter()
-            .enumerate()
-            .filter(|(i, q)| !q.is_nan() && !covered[*i])
-            .filter_map(|(i, &q)| {
-                // A texel's width in 3D is far below 5 cm: farther is no continuation.
-                let hit = bvh.closest(q, 0.05 * head.bounds().size().max_element())?;
+            // The last write of a texel outside every island.
+            .filter(|(i, _, outside)| !covered[*i as usize] && *outside == distance[*i as usize])
+            .filter_map(|&(i, q, _)| {
+                let hit = bvh.closest(q, reach)?;
                 let t = hit.triangle as usize * 3;
                 let uv = |k: usize| fit.template_uv.get(idx[t + k] as usize).copied().flatten();
                 let (ta, tb, tc) = unwrap_u([uv(0)?, uv(1)?, uv(2)?]);
                 let w = hit.bary;
                 let uv = ta * w.x + tb * w.y + tc * w.z;
-                Some((i, [uv.x.rem_euclid(1.0), uv.y]))
+                Some((i as usize, [uv.x.rem_euclid(1.0), uv.y]))
             })
             .collect();
         for (i, uv) in continued {

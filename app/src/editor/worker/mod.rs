@@ -20,7 +20,7 @@ use crate::view::Layers;
 
 mod pictures;
 pub use pictures::{IMAGE_MAX_PX, MapImages};
-use pictures::{grey_image, rgb_image, uv_layout_image};
+use pictures::{colour_on_template, grey_image, rgb_image, uv_layout_image};
 
 /// One request: the whole document state and what to bake.
 #[derive(Clone, Debug)]
@@ -378,15 +378,24 @@ fn bake(
     if merged.mesh || snapshot.mesh.is_none() || fitted != snapshot.fitted {
         snapshot.mesh = Some(s.mesh().clone());
         snapshot.fitted = fitted;
-        // The fibres' chart shows its face: the template's colour map (a fitted head's
-        // own is shown over its own layout).
-        let colour = s.colour_map().map(|c| c.as_ref());
+        // Each chart shows a face: the fibres' chart (the template's) a fitted head's own
+        // colour map carried onto it, else the template's; a layout of the head's own its
+        // colour map.
+        let colour = s.colour_map().cloned();
+        let colour = colour.as_deref();
         if fitted {
             let template = &agesim_core::fit::template().mesh;
+            // The head's own face on the template's chart, else the template's (through
+            // the large map's correspondence, which the bake just made).
+            let size = job.request.large_size_px;
+            let carried = match (colour, s.correspondence(size, cancel)?) {
+                (Some(image), Some(c)) => Some(colour_on_template(&c, image, 512)),
+                _ => None,
+            };
             let template_colour = agesim_core::mesh::textures::default_head();
             snapshot.images.uv_layout = Some(uv_layout_image(
                 template,
-                template_colour.colour.as_deref(),
+                carried.as_ref().or(template_colour.colour.as_deref()),
                 1024,
             ));
             snapshot.images.head_uv_layout = Some(uv_layout_image(s.mesh(), colour, 1024));

@@ -67,6 +67,53 @@ pub(super) fn uv_layout_image(
     Arc::new(egui::ColorImage::new([size, size], pixels))
 }
 
+/// A fitted head's colour map carried onto the template's chart, `size`² (rows from the
+/// top): each texel of the head's own layout inside one of its islands (`c`, the
+/// correspondence) writes its colour at its template UV; template texels no head texel
+/// reached take the nearest written one's. So the chart the fibres are edited on shows
+/// the artist's own face.
+pub(super) fn colour_on_template(
+    c: &agesim_core::fit::Correspondence,
+    colour: &agesim_core::mask::HeadImage,
+    size: usize,
+) -> agesim_core::mask::HeadImage {
+    let mut rgba = vec![0u8; size * size * 4];
+    let mut written = vec![false; size * size];
+    let n = c.size();
+    let (w, h) = (colour.width_px as usize, colour.height_px as usize);
+    for y in 0..n {
+        for x in 0..n {
+            let Some(t) = c.get(x, y).filter(|_| c.covered(x, y)) else {
+                continue;
+            };
+            // The head texel's colour (its own UV: the texel's centre).
+            let (cx, cy) = (
+                (x as usize * w / n as usize).min(w.saturating_sub(1)),
+                (y as usize * h / n as usize).min(h.saturating_sub(1)),
+            );
+            let (tx, ty) = (
+                ((t.x * size as f32) as usize).min(size - 1),
+                (((1.0 - t.y) * size as f32).max(0.0) as usize).min(size - 1),
+            );
+            let (src, dst) = (4 * (cy * w + cx), ty * size + tx);
+            if let Some(px) = colour.rgba.get(src..src + 4) {
+                rgba[4 * dst..4 * dst + 4].copy_from_slice(px);
+                written[dst] = true;
+            }
+        }
+    }
+    let mut texels: Vec<[u8; 4]> = rgba
+        .chunks_exact(4)
+        .map(|p| [p[0], p[1], p[2], p[3]])
+        .collect();
+    agesim_core::fit::pad(&mut texels, &written, size);
+    agesim_core::mask::HeadImage {
+        width_px: size as u32,
+        height_px: size as u32,
+        rgba: texels.into_iter().flatten().collect(),
+    }
+}
+
 /// How opaque a chart's colour map is over the map shown under it.
 const LAYOUT_COLOUR_ALPHA: u8 = 110;
 

@@ -439,7 +439,7 @@ impl Default for ViewSection {
             light_pitch_deg: 30.0,
             camera_yaw_deg: 20.0,
             camera_pitch_deg: 5.0,
-            camera_distance_m: 0.8,
+            camera_distance_m: 0.9,
             fov_deg: 30.0,
             show_hair: true,
             wireframe: false,

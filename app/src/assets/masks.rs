@@ -86,7 +86,15 @@ pub struct Face {
     /// The middle of the mouth and its half width.
     pub mouth: Vec3,
     pub mouth_half_width: f32,
+    /// The whorl of the crown (behind the vertex) and the corners of the hairline at the
+    /// temples, where the recession starts.
+    pub crown: Vec3,
+    pub temples: [Vec3; 2],
 }
+
+/// How far from the crown's whorl and from a temple's corner the early recession reaches.
+const CROWN_RADIUS_M: f32 = 0.1;
+const TEMPLE_RADIUS_M: f32 = 0.07;
 
 /// Radius of an adult eyeball, metres.
 const EYEBALL_RADIUS_M: f32 = 0.012;
@@ -101,8 +109,22 @@ impl Face {
         };
         let (cr, cl) = (landmarks.get("cheilion_r")?, landmarks.get("cheilion_l")?);
         let ear = landmarks.get("tragion_l")?;
+        let top = landmarks.get("vertex")?;
+        let skull_centre = Vec3::new(0.0, ear.y + 0.03, ear.z);
+        // The hairline's corner at 45° of longitude, on a skull of the ear's radius.
+        let corner_lon = 45f32.to_radians();
+        let radius = ear.x.abs();
+        let temple = |side: f32| {
+            Vec3::new(
+                side * radius * corner_lon.sin(),
+                lerp_table(OUTER_HAIRLINE_M, 45.0),
+                skull_centre.z + radius * corner_lon.cos(),
+            )
+        };
         Some(Self {
-            skull_centre: Vec3::new(0.0, ear.y + 0.03, ear.z),
+            skull_centre,
+            crown: Vec3::new(0.0, top.y - 0.015, top.z - 0.045),
+            temples: [temple(-1.0), temple(1.0)],
             eyes: [
                 eye("exocanthion_r", "endocanthion_r")?,
                 eye("endocanthion_l", "exocanthion_l")?,
@@ -128,6 +150,21 @@ impl Face {
     pub fn hair_inner(&self, p: Vec3) -> f32 {
         let top = lerp_table(INNER_TOP_M, self.longitude_deg(p));
         self.hair_outer(p) * smoothstep(-EDGE_M, EDGE_M, top - p.y)
+    }
+
+    /// The order the hair of the outer region goes in (docs/models.md §9 "order"): the
+    /// disappearance age, white = last. Male-pattern recession: the temples' corners and
+    /// the crown first (0.1), spreading from them; what lies farthest from both (the front
+    /// of the top, above the sides) last (0.95). In 3D, so the recession looks the same
+    /// whatever the UV layout does to the scalp.
+    pub fn hair_order(&self, p: Vec3) -> f32 {
+        let crown = 1.0 - smoothstep(0.0, CROWN_RADIUS_M, p.distance(self.crown));
+        let temple = self
+            .temples
+            .iter()
+            .map(|&q| 1.0 - smoothstep(0.0, TEMPLE_RADIUS_M, p.distance(q)))
+            .fold(0.0, f32::max);
+        0.1 + 0.85 * (1.0 - crown.max(temple))
     }
 
     /// Where large wrinkles may appear (white): the face and the front of the neck, fading
@@ -248,6 +285,7 @@ mod tests {
             ),
             ("hair-inner", &|p| face.hair_inner(p)),
             ("wrinkles", &|p| face.wrinkle_region(p)),
+            ("hair-order", &|p| face.hair_order(p)),
         ] {
             let shipped = Mask::load(&assets().join(format!("masks/{name}.png"))).unwrap();
             let fresh = surface.paint(region).unwrap();
@@ -291,6 +329,22 @@ mod tests {
         for (a, b) in inner.values().iter().zip(outer.values()) {
             assert!(a <= b, "inner hair outside the outer region");
         }
+    }
+
+    #[test]
+    fn the_temples_and_the_crown_recede_before_the_front_of_the_top() {
+        let face = Face::new(&template().landmarks).unwrap();
+        let order = Mask::load(&assets().join("masks/hair-order.png")).unwrap();
+        let g = |n: &str| template().landmarks.get(n).unwrap();
+        // The middle of the front hairline, a little behind it.
+        let front = g("glabella") + Vec3::new(0.0, 0.065, -0.02);
+        let (temple, crown) = (face.temples[0], face.crown);
+        let (t, c, f) = (at(&order, temple), at(&order, crown), at(&order, front));
+        assert!(t < 0.2 && c < 0.2, "temple {t}, crown {c}");
+        assert!(
+            f > t + 0.4 && f > c + 0.4,
+            "front {f}, temple {t}, crown {c}"
+        );
     }
 
     #[test]

@@ -61,6 +61,8 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
     let outer = surface.paint(|p| face.hair_outer(p))?;
     let inner = surface.paint(|p| face.hair_inner(p))?;
     let wrinkles = surface.paint(|p| face.wrinkle_region(p))?;
+    let order = surface.paint(|p| face.hair_order(p))?;
+    write_mask(&out.join("masks/hair-order.png"), &order)?;
     write_mask(&out.join("masks/hair-outer.png"), &outer)?;
     write_mask(&out.join("masks/hair-inner.png"), &inner)?;
     write_mask(&out.join("masks/wrinkles.png"), &wrinkles)?;

@@ -78,6 +78,22 @@ pub const HAIR_INNER_MASK: (&str, &[u8]) = (
     include_bytes!("../../../assets/masks/hair-inner.png"),
 );
 
+/// The order the default head's hair goes in (white: last; docs/models.md §9 "order"),
+/// used with the two masks above.
+pub const HAIR_ORDER_MASK: (&str, &[u8]) = (
+    "assets/masks/hair-order.png",
+    include_bytes!("../../../assets/masks/hair-order.png"),
+);
+
+/// [`HAIR_ORDER_MASK`] decoded (once); `None` should it not decode (the tests check it).
+pub fn hair_order_mask() -> Option<&'static crate::mask::Mask> {
+    static MASK: std::sync::OnceLock<Option<crate::mask::Mask>> = std::sync::OnceLock::new();
+    MASK.get_or_init(|| {
+        crate::mask::Mask::decode(HAIR_ORDER_MASK.1, std::path::Path::new(HAIR_ORDER_MASK.0)).ok()
+    })
+    .as_ref()
+}
+
 /// A shipped preset by name: (repository path, contents).
 pub fn preset(name: &str) -> Option<(&'static str, &'static str)> {
     PRESETS

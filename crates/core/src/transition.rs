@@ -498,6 +498,46 @@ impl TransitionTexture {
         )
     }
 
+    /// The texture with the disappearance ages given by an **order** mask instead of grown
+    /// from the inner region (docs/models.md §9, "order"): inner pixels 1, outer-only
+    /// pixels the order mask's value (bilinear at the working size) kept inside
+    /// [1/256, 255/256], so all of them go by t = 1; other pixels 0. The default head's
+    /// masks come with one painted in 3D (temples and crown first): a recession that does
+    /// not depend on how a UV layout stretches the scalp. O(pixels).
+    pub fn from_order(
+        outer: &Mask,
+        inner: &Mask,
+        order: &Mask,
+        width_px: u32,
+        height_px: u32,
+    ) -> Result<Self, Error> {
+        let regions = HairRegions::from_masks(outer, inner, width_px, height_px)?;
+        let w = width_px as usize;
+        let columns = BilinearAxis::columns(order, width_px);
+        let mut ages = try_vec(w * height_px as usize, 0.0f32, "hair transition")?;
+        ages.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+            let oy = BilinearAxis::row(order, y as u32, height_px);
+            for (x, a) in row.iter_mut().enumerate() {
+                let i = y * w + x;
+                *a = if regions.is_inner(i) {
+                    1.0
+                } else if regions.is_outer(i) {
+                    sample_at(order, &columns[x], &oy).clamp(1.0 / 256.0, 255.0 / 256.0)
+                } else {
+                    0.0
+                };
+            }
+        });
+        Ok(Self {
+            width_px,
+            height_px,
+            metric: DistanceMetric::Chebyshev,
+            ages,
+            max_generation_px: 0.0,
+            unreachable_px: 0,
+        })
+    }
+
     /// Builds the texture from binary regions. O(pixels).
     pub fn from_regions(regions: &HairRegions, metric: DistanceMetric) -> Result<Self, Error> {
         let dist = geodesic_distances(regions, metric)?;
@@ -1067,5 +1107,21 @@ mod tests {
             t.to_luma16(),
             vec![65535, 52428, 39321, 26214, 0, 13107, 0, 65535]
         );
+    }
+
+    #[test]
+    fn an_order_mask_sets_the_ages_of_the_outer_hair() {
+        // 4×1: outer only with order 0.25, outer only with order 0.75, inner, neither.
+        let m = |v: [f32; 4]| Mask::from_values(4, 1, v.to_vec()).unwrap();
+        let outer = m([1.0, 1.0, 1.0, 0.0]);
+        let inner = m([0.0, 0.0, 1.0, 0.0]);
+        let order = m([0.25, 0.75, 0.1, 0.9]);
+        let t = TransitionTexture::from_order(&outer, &inner, &order, 4, 1).unwrap();
+        let a: Vec<f32> = (0..4).map(|i| t.ages[i]).collect();
+        assert_eq!(a, vec![0.25, 0.75, 1.0, 0.0]);
+        // An order of 0 or 1 still leaves the outer hair for a moment and takes it by t = 1.
+        let t =
+            TransitionTexture::from_order(&outer, &inner, &m([0.0, 1.0, 0.0, 0.0]), 4, 1).unwrap();
+        assert!(t.ages[0] > 0.0 && t.ages[1] < 1.0);
     }
 }

@@ -763,6 +763,15 @@ impl Scene {
                     .max(inner.width_px())
                     .max(inner.height_px())
             });
+            // The built-in masks come with the order their hair goes in; masks of the
+            // artist's own grow their transition from the inner region.
+            let order = (h.outer_mask.is_none() && h.inner_mask.is_none())
+                .then(crate::defaults::hair_order_mask)
+                .flatten();
+            let build = |o: &Mask, i: &Mask, order: Option<&Mask>| match order {
+                Some(order) => TransitionTexture::from_order(o, i, order, size, size),
+                None => TransitionTexture::from_masks(o, i, size, size, h.metric),
+            };
             // A fitted head: the masks read through the correspondence, in its own layout.
             let t = match self.correspondence(size, cancel)? {
                 Some(c) => {
@@ -771,9 +780,10 @@ impl Scene {
                         Mask::from_values(size, size, values)
                     };
                     let (o, i) = (through(outer)?, through(inner)?);
-                    TransitionTexture::from_masks(&o, &i, size, size, h.metric)?
+                    let order = order.map(through).transpose()?;
+                    build(&o, &i, order.as_ref())?
                 }
-                None => TransitionTexture::from_masks(outer, inner, size, size, h.metric)?,
+                None => build(outer, inner, order)?,
             };
             self.transition = Some(Arc::new(t));
             self.transition_key = Some(tkey);

@@ -31,6 +31,7 @@ fn automatic_landmarks_are_near_the_hand_placed_ones() {
     for (folder, file) in [
         ("lee-perry-smith", "LeePerrySmith.glb"),
         ("makehuman", "mh_head.obj"),
+        ("mannequin", "mannequin.glb"),
     ] {
         let (mesh, hand) = shipped_head(folder, file);
         let guess = crate::mesh::units::detect(&mesh.bounds(), None).metres_per_unit;

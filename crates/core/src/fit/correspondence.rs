@@ -45,9 +45,9 @@ impl Correspondence {
         let positions = head.positions();
         let idx = head.skin_indices();
         let template_m_per_uv = super::template().metres_per_uv.unwrap_or(1.0);
-        // The 3D point each guard texel stands for (the writing triangle's plane, just
-        // beyond its edge), for the surface's continuation below.
-        // (texel, point, distance outside) of every guard write: few beside the map.
+        // Every guard write as (texel, the 3D point it stands for in the writing
+        // triangle's plane just beyond its edge, distance outside), for the surface's
+        // continuation below: a short list beside the map.
         let mut guard_points: Vec<(u32, Vec3, f32)> = Vec::new();
         for (k, tri) in idx.chunks_exact(3).enumerate() {
             if k % 4096 == 0 {
@@ -120,7 +120,7 @@ impl Correspondence {
         // A guard texel across a seam stands for the surface on the other side of it: its
         // template UV is read where its point lies on the head (the neighbouring
         // triangle, wherever that is in the UV layout), not extrapolated from one
-        // triangle, so heights on both sides of a seam agree (docs/models.md §7b).
+        // triangle, so heights on both sides of a seam agree (docs/models.md §7a).
         let bvh = super::bvh::Bvh::new(positions, &idx);
         // A texel's width in 3D is far below this: farther is no continuation.
         let reach = 0.05 * head.bounds().size().max_element();

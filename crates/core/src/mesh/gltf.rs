@@ -461,7 +461,14 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
         |v: &mut dyn Iterator<Item = f32>| -> Vec<u8> { v.flat_map(f32::to_le_bytes).collect() };
     const ARRAY_BUFFER: u32 = 34962;
     const ELEMENT_ARRAY_BUFFER: u32 = 34963;
-    for part in mesh.parts() {
+    // Parts that are not skin (eyes, teeth…) get a plain material of their own: our maps
+    // are the skin's.
+    let any_not_skin = mesh
+        .parts()
+        .iter()
+        .enumerate()
+        .any(|(k, p)| !mesh.part_is_skin(k, p));
+    for (k, part) in mesh.parts().iter().enumerate() {
         let first = part.first_triangle as usize * 3;
         let tri = &mesh.indices()[first..first + part.triangle_count as usize * 3];
         let mut used = vec![false; mesh.vertex_count()];
@@ -524,7 +531,11 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
         meshes.push(format!(
             r#"{{"name":{},"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4{}}}]}}"#,
             json_string(&part.name),
-            if material.is_some() { r#","material":0"# } else { "" }
+            match material {
+                Some(_) if mesh.part_is_skin(k, part) => r#","material":0"#,
+                Some(_) => r#","material":1"#,
+                None => "",
+            }
         ));
     }
     // The material, and its normal map as an image in the binary chunk.
@@ -570,8 +581,13 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
         };
         let f = |x: f32| if x.is_finite() { x } else { 0.0 };
         let [r, g, b, a] = m.base_colour.map(f);
+        let plain = if any_not_skin {
+            r#",{"name":"not skin (left as it is by agesim)","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0,"roughnessFactor":0.3}}"#
+        } else {
+            ""
+        };
         material_json = format!(
-            r#","materials":[{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}}}{normal}}}]{images}"#,
+            r#","materials":[{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}}}{normal}}}{plain}]{images}"#,
             json_string(&m.name),
             f(m.metallic),
             f(m.roughness),
@@ -970,8 +986,30 @@ mod tests {
         let prim = gltf.meshes().next().unwrap().primitives().next().unwrap();
         assert_eq!(prim.material().index(), Some(0));
         assert!(prim.get(&::gltf::Semantic::Tangents).is_some());
+        assert_eq!(gltf.materials().count(), 1, "all skin: one material");
         // And it still loads as a mesh.
         load_bytes(&glb, Path::new("x.glb")).unwrap();
+
+        // A part that is not skin (an eye) gets a plain material, without our maps.
+        let two = Mesh::load(Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../assets/heads/makehuman/mh_head.obj"
+        )))
+        .unwrap();
+        let glb = write_glb_with_material(&two, Some(&material));
+        let gltf = ::gltf::Gltf::from_slice(&glb).expect("a valid GLB");
+        assert_eq!(gltf.materials().count(), 2);
+        for (k, mesh) in gltf.meshes().enumerate() {
+            let prim = mesh.primitives().next().unwrap();
+            let skin = two.part_is_skin(k, &two.parts()[k]);
+            assert_eq!(
+                prim.material().index(),
+                Some(usize::from(!skin)),
+                "{:?}",
+                mesh.name()
+            );
+            assert_eq!(prim.material().normal_texture().is_some(), skin);
+        }
     }
 
     #[test]

@@ -25,8 +25,6 @@ pub struct Surface {
     /// The surface point of each texel (row-major, rows from the top; texels outside every
     /// island take their nearest island texel's point).
     pub points: Vec<Vec3>,
-    /// Whether each texel lies on an island (before padding).
-    pub covered: Vec<bool>,
 }
 
 impl Surface {
@@ -53,14 +51,9 @@ impl Surface {
                 }
             });
         }
-        let covered: Vec<bool> = distance.iter().map(|&d| d == 0.0).collect();
         let filled: Vec<bool> = distance.iter().map(|d| d.is_finite()).collect();
         agesim_core::fit::pad(&mut points, &filled, n);
-        Ok(Self {
-            size_px,
-            points,
-            covered,
-        })
+        Ok(Self { size_px, points })
     }
 
     /// `region` evaluated at every texel's point.

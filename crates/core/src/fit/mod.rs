@@ -114,12 +114,6 @@ impl Template {
     }
 }
 
-/// Metres per UV unit of `mesh`'s skin (mean of u and v) at `metres_per_unit`.
-pub fn metres_per_uv(mesh: &Mesh, metres_per_unit: f32) -> Option<f32> {
-    crate::mesh::SurfaceScale::measure(mesh.positions(), mesh.uvs(), &mesh.skin_indices())
-        .map(|s| 0.5 * (s.units_per_u + s.units_per_v) * metres_per_unit)
-}
-
 /// The built-in template: the default head and its landmark file (built once).
 pub fn template() -> &'static Template {
     static TEMPLATE: OnceLock<Template> = OnceLock::new();

@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 
 use agesim_core::cancel::CancelToken;
 use agesim_core::export::OutputSet;
-use agesim_core::mesh::gltf::{GlbMaterial, write_glb_with_material};
+use agesim_core::mesh::gltf::{GlbMaterial, write_glb_with_materials};
+use agesim_core::mesh::udim::Udim;
 use agesim_core::normal_map::Convention;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Scene, WrinkleSource};
@@ -77,6 +78,16 @@ impl RendersOut {
     fn any(&self) -> bool {
         self.image.is_some() || self.sequence.is_some() || self.compare.is_some()
     }
+
+    /// The images, in order.
+    fn outputs(&self) -> Vec<PathBuf> {
+        let mut files: Vec<PathBuf> = self.image.iter().cloned().collect();
+        if let Some((path, years)) = &self.sequence {
+            files.extend((0..years.len()).map(|i| view::numbered(path, i)));
+        }
+        files.extend(self.compare.iter().map(|(p, _)| p.clone()));
+        files
+    }
 }
 
 /// One export: what to write, at which age.
@@ -90,7 +101,8 @@ pub struct ExportRequest {
 }
 
 impl ExportRequest {
-    /// Every file the request writes, in order.
+    /// Every file the request names, in order (a multi-tile head's maps are written one
+    /// per UDIM tile: `height.1001.png`, …; [`run`] returns those).
     pub fn outputs(&self) -> Vec<PathBuf> {
         let m = &self.maps;
         let mut files: Vec<PathBuf> = [&m.height_png, &m.height_exr, &m.normal_png]
@@ -102,12 +114,7 @@ impl ExportRequest {
             files.push(g.path.clone());
             files.push(g.height_path());
         }
-        let r = &self.renders;
-        files.extend(r.image.iter().cloned());
-        if let Some((path, years)) = &r.sequence {
-            files.extend((0..years.len()).map(|i| view::numbered(path, i)));
-        }
-        files.extend(r.compare.iter().map(|(p, _)| p.clone()));
+        files.extend(self.renders.outputs());
         files
     }
 }
@@ -194,6 +201,8 @@ pub fn run(
     }
     let t = project.age.mapping().t(request.years);
     let set = OutputSet::new();
+    // The files written: the outputs, a multi-tile (UDIM) head's maps one per tile.
+    let mut written = Vec::new();
     // Shares of the progress bar per part, by rough cost.
     let parts = [
         request.maps.any() as u8 as f32,
@@ -210,22 +219,40 @@ pub fn run(
     if request.maps.any() {
         let (start, share) = step(0);
         let p = |f: f32, what: &str| progress(start + share * f, what);
-        export_maps(project, wrinkles, t, &request.maps, &set, &p, cancel)?;
+        written.extend(export_maps(
+            project,
+            wrinkles,
+            t,
+            &request.maps,
+            &set,
+            &p,
+            cancel,
+        )?);
     }
     if let Some(glb) = &request.glb {
         let (start, share) = step(1);
         let p = |f: f32, what: &str| progress(start + share * f, what);
-        export_glb(project, wrinkles, t, request.years, glb, &set, &p, cancel)?;
+        written.extend(export_glb(
+            project,
+            wrinkles,
+            t,
+            request.years,
+            glb,
+            &set,
+            &p,
+            cancel,
+        )?);
     }
     if r.any() {
         let (start, share) = step(2);
         let p = |f: f32, what: &str| progress(start + share * f, what);
         export_renders(project, wrinkles, t, r, &set, &p, cancel)?;
+        written.extend(r.outputs());
     }
     cancel.check()?;
     progress(1.0, "putting the files in place");
     set.commit()?;
-    Ok(outputs)
+    Ok(written)
 }
 
 /// A scene of `project` with the edited wrinkle files.
@@ -237,6 +264,7 @@ fn scene(project: Project, wrinkles: Option<&[WrinkleSource]>) -> anyhow::Result
     Ok(scene)
 }
 
+/// Stages the maps; returns the files (one per UDIM tile and map on a multi-tile head).
 fn export_maps(
     project: &Project,
     wrinkles: Option<&[WrinkleSource]>,
@@ -245,20 +273,23 @@ fn export_maps(
     set: &OutputSet,
     progress: Progress<'_>,
     cancel: &CancelToken,
-) -> anyhow::Result<()> {
+) -> anyhow::Result<Vec<PathBuf>> {
     let mut p = project.clone();
     if let Some(c) = maps.convention {
         p.normal.convention = c;
     }
     progress(0.0, "loading the inputs");
     let mut scene = scene(p, wrinkles)?;
+    // A UDIM head is baked over its atlas, `size_px` per tile, and cut into tiles.
+    let udim = scene.mesh().udim().cloned();
+    let atlas_px = atlas_size(udim.as_ref(), maps.size_px, "map size")?;
     progress(0.1, "baking the maps");
-    scene.bake(&BakeRequest::maps(maps.size_px, t, maps.tileable), cancel)?;
+    scene.bake(&BakeRequest::maps(atlas_px, t, maps.tileable), cancel)?;
     let height = scene.take_height()?;
     let normal = scene.normal_settings();
     cancel.check()?;
     progress(0.6, "writing the maps");
-    out::stage_maps(
+    out::stage_tiled_maps(
         set,
         out::MapPaths {
             height_png: maps.height_png.as_deref(),
@@ -268,10 +299,33 @@ fn export_maps(
         &height,
         &normal,
         maps.exr_compression,
+        udim.as_ref(),
     )?;
-    Ok(())
+    let paths = [&maps.height_png, &maps.height_exr, &maps.normal_png];
+    Ok(paths
+        .into_iter()
+        .flatten()
+        .flat_map(|p| Udim::paths(udim.as_ref(), p))
+        .collect())
 }
 
+/// The side of a bake over `udim`'s atlas with `tile_px` per tile (`tile_px` for a
+/// single-tile head), refused when too large (`what` names the setting).
+pub fn atlas_size(udim: Option<&Udim>, tile_px: u32, what: &str) -> anyhow::Result<u32> {
+    let grid = udim.map_or(1, Udim::grid);
+    let atlas_px = tile_px.saturating_mul(grid);
+    if grid > 1 {
+        check_map_size(atlas_px, what).with_context(|| {
+            format!(
+                "{what} {tile_px} per tile: the head's {} UDIM tiles are baked side by side, {grid} × {grid}",
+                udim.map_or(1, |u| u.tiles().len())
+            )
+        })?;
+    }
+    Ok(atlas_px)
+}
+
+/// Stages the GLB and its wrinkle height map(s); returns the files.
 #[allow(clippy::too_many_arguments)]
 fn export_glb(
     project: &Project,
@@ -282,12 +336,14 @@ fn export_glb(
     set: &OutputSet,
     progress: Progress<'_>,
     cancel: &CancelToken,
-) -> anyhow::Result<()> {
+) -> anyhow::Result<Vec<PathBuf>> {
     progress(0.0, "loading the head");
     let mut scene = scene(project.clone(), wrinkles)?;
+    let udim = scene.mesh().udim().cloned();
+    let atlas_px = atlas_size(udim.as_ref(), glb.size_px, "GLB texture size")?;
     progress(0.1, "baking the head's maps");
     let request = BakeRequest {
-        large_size_px: glb.size_px,
+        large_size_px: atlas_px,
         micro_size_px: 1024.min(glb.size_px.max(64)),
         t,
         // The tiles repeat over the head: they must wrap.
@@ -300,17 +356,7 @@ fn export_glb(
     };
     scene.bake(&request, cancel)?;
     progress(0.5, "composing the normal map");
-    let normals = head_normal_map(&scene, t, glb.size_px, cancel)?;
-    progress(0.7, "encoding the textures");
-    let mut png = Vec::new();
-    out::encode_png(
-        &mut png,
-        glb.size_px,
-        glb.size_px,
-        out::PngPixels::Rgb8,
-        &normals,
-    )
-    .context("encoding the normal map")?;
+    let normals = head_normal_map(&scene, t, atlas_px, cancel)?;
     cancel.check()?;
     let project = scene.project();
     let head = view::HeadScale::of(&scene);
@@ -319,60 +365,118 @@ fn export_glb(
     let depth = project.large.depth;
     let height = match scene.large() {
         Some(l) => l.scaled(depth)?,
-        None => HeightMap::zeros(glb.size_px, glb.size_px)?,
+        None => HeightMap::zeros(atlas_px, atlas_px)?,
     };
-    let height_name = glb
-        .height_path()
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
     let range = scene.large().map(|_| height.min_max());
     // The head's own colour map, paled for the age as the view pales it; else the
     // skin colour as a factor.
     let a = params.skin.albedo;
-    let (base_colour, base_colour_png) = match scene.colour_map() {
-        Some(map) => {
-            let aged = map.paled(params.skin.pale_albedo.to_array(), params.skin.pale);
-            let mut png = Vec::new();
-            out::encode_png(
-                &mut png,
-                aged.width_px,
-                aged.height_px,
-                out::PngPixels::Rgba8,
-                &aged.rgba,
-            )
-            .context("encoding the base colour map")?;
-            ([1.0; 4], Some(png))
-        }
-        None => ([a.x, a.y, a.z, 1.0], None),
+    let aged = scene
+        .colour_map()
+        .map(|map| map.paled(params.skin.pale_albedo.to_array(), params.skin.pale));
+    let base_colour = match aged {
+        Some(_) => [1.0; 4],
+        None => [a.x, a.y, a.z, 1.0],
     };
-    let material = GlbMaterial {
-        name: format!("agesim skin, {years:.0} years"),
-        base_colour,
-        base_colour_png,
-        roughness: 0.42,
-        metallic: 0.0,
-        normal_png: Some(png),
-        extras: serde_json::json!({
-            "agesim_version": env!("CARGO_PKG_VERSION"),
-            "age_years": years,
-            "age_t": t,
-            "height_map": height_name,
-            "height_range": range.map(|(lo, hi)| [lo, hi]),
-            "height_meaning": "large-wrinkle height = lo + (hi - lo) * p / 65535 for a 16-bit value p, in the project's height units (large.depth = deepest)",
-        }),
-    };
+    // One material per UDIM tile (one for a single-tile head), each with its tile's maps.
+    let tiles = udim.as_ref().map_or(vec![0], |u| u.numbers());
+    let multi = tiles.len() > 1;
+    let height_paths = Udim::paths(udim.as_ref(), &glb.height_path());
+    let mut materials = Vec::new();
+    for (k, &number) in tiles.iter().enumerate() {
+        progress(
+            0.7 + 0.2 * k as f32 / tiles.len() as f32,
+            "encoding the textures",
+        );
+        let crop = |texels: &[u8], side: u32, channels: usize| match &udim {
+            Some(u) if multi => u.crop(k, texels, side, channels),
+            _ => texels.to_vec(),
+        };
+        let tile_px = if multi { glb.size_px } else { atlas_px };
+        let mut normal_png = Vec::new();
+        out::encode_png(
+            &mut normal_png,
+            tile_px,
+            tile_px,
+            out::PngPixels::Rgb8,
+            &crop(&normals, atlas_px, 3),
+        )
+        .context("encoding the normal map")?;
+        let base_colour_png = match &aged {
+            Some(aged) => {
+                let side = if multi {
+                    aged.width_px / udim.as_ref().map_or(1, Udim::grid)
+                } else {
+                    aged.width_px
+                };
+                let rgba = match &udim {
+                    Some(u) if multi => u.crop(k, &aged.rgba, aged.width_px, 4),
+                    _ => aged.rgba.clone(),
+                };
+                let (w, h) = if multi {
+                    (side, side)
+                } else {
+                    (aged.width_px, aged.height_px)
+                };
+                let mut png = Vec::new();
+                out::encode_png(&mut png, w, h, out::PngPixels::Rgba8, &rgba)
+                    .context("encoding the base colour map")?;
+                Some(png)
+            }
+            None => None,
+        };
+        let height_name = height_paths[k]
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        materials.push(GlbMaterial {
+            name: if multi {
+                format!("agesim skin, {years:.0} years, UDIM {number}")
+            } else {
+                format!("agesim skin, {years:.0} years")
+            },
+            base_colour,
+            base_colour_png,
+            roughness: 0.42,
+            metallic: 0.0,
+            normal_png: Some(normal_png),
+            extras: serde_json::json!({
+                "agesim_version": env!("CARGO_PKG_VERSION"),
+                "age_years": years,
+                "age_t": t,
+                "udim_tile": multi.then_some(number),
+                "height_map": height_name,
+                "height_range": range.map(|(lo, hi)| [lo, hi]),
+                "height_meaning": "large-wrinkle height = lo + (hi - lo) * p / 65535 for a 16-bit value p, in the project's height units (large.depth = deepest)",
+            }),
+        });
+    }
+    cancel.check()?;
     // glTF is in metres, +Y up, +Z forward: the scene's mesh is turned already; its
     // units are made metres here (a head in centimetres or the scan's 0.052 m).
     let mesh = match mpu {
         1.0 => scene.mesh().clone(),
         m => std::sync::Arc::new(scene.mesh().scaled(m)),
     };
-    let bytes = write_glb_with_material(&mesh, Some(&material));
+    let bytes = write_glb_with_materials(&mesh, &materials);
     progress(0.9, "writing the GLB");
     set.stage(&glb.path, |w| std::io::Write::write_all(w, &bytes))?;
-    out::stage_height_png16(set, &glb.height_path(), &height)?;
-    Ok(())
+    // The wrinkle heights beside it, tile by tile on one range.
+    let settings = scene.normal_settings();
+    out::stage_tiled_maps(
+        set,
+        out::MapPaths {
+            height_png: Some(&glb.height_path()),
+            ..Default::default()
+        },
+        &height,
+        &settings,
+        Default::default(),
+        udim.as_ref(),
+    )?;
+    let mut files = vec![glb.path.clone()];
+    files.extend(height_paths);
+    Ok(files)
 }
 
 /// The head's tangent-space normal map of `scene` at age `t`, `size_px`² over the head's

@@ -253,3 +253,146 @@ fn the_glb_is_in_metres_for_a_head_in_centimetres() {
         top - bottom
     );
 }
+
+/// The default head re-cut as a two-tile UDIM head: the subject's right (x < 0) moved to
+/// tile 1002. Written as OBJ.
+fn udim_head(dir: &std::path::Path) -> std::path::PathBuf {
+    use glam::Vec2;
+    let head = agesim_core::head::default_head();
+    let mut raw = agesim_core::mesh::RawMesh::default();
+    let mut uvs = Vec::new();
+    let mut copies = std::collections::HashMap::new();
+    for [a, b, c] in head.triangles() {
+        let right = [a, b, c]
+            .iter()
+            .all(|&i| head.positions()[i as usize].x < 0.0);
+        for i in [a, b, c] {
+            let v = *copies.entry((i, right)).or_insert_with(|| {
+                raw.positions.push(head.positions()[i as usize]);
+                uvs.push(head.uvs()[i as usize] + Vec2::new(if right { 1.0 } else { 0.0 }, 0.0));
+                raw.positions.len() as u32 - 1
+            });
+            raw.indices.push(v);
+        }
+    }
+    raw.uvs = Some(uvs);
+    let mesh = agesim_core::mesh::Mesh::build(raw, "udim head").unwrap();
+    assert_eq!(mesh.udim().unwrap().numbers(), [1001, 1002]);
+    let path = dir.join("udim.obj");
+    std::fs::write(&path, agesim_core::mesh::obj::to_obj(&mesh, |p| p)).unwrap();
+    path
+}
+
+/// A UDIM head's maps are written one per tile (`height.1001.png`, …, each the size asked
+/// for), by `export` and `bake`; its GLB has a material per tile, each with its tile's
+/// maps, and UVs in [0, 1] as those maps are laid out.
+#[test]
+fn a_udim_head_is_exported_tile_by_tile() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = udim_head(dir.path());
+    let o = cli::agesim(&["mesh-info", obj.to_str().unwrap()]);
+    assert!(
+        cli::stdout(&o).contains("udim:      tiles 1001, 1002"),
+        "{}",
+        cli::stdout(&o)
+    );
+
+    let maps = dir.path().join("maps");
+    let glb = dir.path().join("head.glb");
+    let o = agesim(&[
+        "export",
+        "--mesh",
+        obj.to_str().unwrap(),
+        "--age-years",
+        "75",
+        "--size",
+        "128",
+        "--height-png",
+        maps.join("height.png").to_str().unwrap(),
+        "--normal-png",
+        maps.join("normal.png").to_str().unwrap(),
+        "--glb",
+        glb.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let listed = cli::stdout(&o);
+    for name in [
+        "maps/height.1001.png",
+        "maps/height.1002.png",
+        "maps/normal.1001.png",
+        "maps/normal.1002.png",
+        "head_wrinkle_height.1001.png",
+        "head_wrinkle_height.1002.png",
+    ] {
+        let path = dir.path().join(name);
+        assert!(listed.contains(name), "{name} not listed: {listed}");
+        let image = image::open(&path).unwrap();
+        assert_eq!((image.width(), image.height()), (128, 128), "{name}");
+    }
+    assert!(!maps.join("height.png").exists());
+    // Both tiles carry wrinkles (the forehead lines cross the midline).
+    for n in [1001, 1002] {
+        let h = image::open(maps.join(format!("height.{n}.png")))
+            .unwrap()
+            .into_luma16();
+        let (lo, hi) = h
+            .pixels()
+            .fold((u16::MAX, 0), |(lo, hi), p| (lo.min(p[0]), hi.max(p[0])));
+        assert!(hi - lo > 10_000, "tile {n}: heights {lo}..{hi}");
+    }
+
+    let (doc, buffers, images) = gltf::import(&glb).expect("the GLB imports");
+    let skin: Vec<_> = doc
+        .materials()
+        .filter(|m| m.name().is_some_and(|n| n.contains("UDIM")))
+        .collect();
+    assert_eq!(skin.len(), 2);
+    for (m, n) in skin.iter().zip([1001, 1002]) {
+        assert!(m.name().unwrap().ends_with(&format!("UDIM {n}")));
+        let normal = m.normal_texture().expect("a normal map per tile");
+        let image = &images[normal.texture().source().index()];
+        assert_eq!((image.width, image.height), (128, 128));
+    }
+    let mut skin_primitives = 0;
+    for mesh in doc.meshes() {
+        for prim in mesh.primitives() {
+            let reader = prim.reader(|b| Some(&buffers[b.index()]));
+            for uv in reader.read_tex_coords(0).unwrap().into_f32() {
+                assert!(uv.iter().all(|c| (-1e-4..=1.0001).contains(c)), "{uv:?}");
+            }
+            skin_primitives +=
+                usize::from(prim.material().name().is_some_and(|n| n.contains("UDIM")));
+        }
+    }
+    assert_eq!(skin_primitives, 2, "one skin primitive per tile");
+
+    let out = dir.path().join("bake");
+    let o = agesim(&[
+        "bake",
+        "--mesh",
+        obj.to_str().unwrap(),
+        "--size",
+        "64",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    assert_eq!(report["udim_tiles"], serde_json::json!([1001, 1002]));
+    for name in ["height.1001.exr", "height.1002.exr", "normal.1002.png"] {
+        assert!(out.join(name).exists(), "{name}");
+    }
+    // Too large a size per tile for the atlas is refused, naming the tiles.
+    let o = agesim(&[
+        "bake",
+        "--mesh",
+        obj.to_str().unwrap(),
+        "--size",
+        "16384",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("UDIM tiles"), "{}", stderr(&o));
+}

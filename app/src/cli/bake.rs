@@ -10,6 +10,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use agesim_core::cancel::CancelToken;
+use agesim_core::mesh::udim::Udim;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Scene};
 use agesim_core::{defaults, export, heightmap};
@@ -39,6 +40,12 @@ pub struct BakeArgs {
     /// Grey-scale mask multiplied into the large-wrinkle layer (any image, any size).
     #[arg(long, value_name = "MASK.png")]
     pub mask: Option<PathBuf>,
+
+    /// Head mesh (OBJ, glTF, GLB) whose UV layout the maps are baked in (`mesh.path`; its
+    /// units and axes detected unless `--set mesh.metres_per_unit=…`). Default: the
+    /// project's, else the built-in default head.
+    #[arg(long, value_name = "FILE")]
+    pub mesh: Option<PathBuf>,
 
     /// The head's landmark file (`mesh.landmarks`, in the mesh file's units).
     #[arg(long, value_name = "L.json")]
@@ -145,6 +152,11 @@ fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
         super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
     // (field, value as JSON, what the user typed): errors quote the flag as typed.
     let mut edits: Vec<(&str, String, String)> = Vec::new();
+    if let Some(m) = &args.mesh {
+        let typed = format!("--mesh {}", m.display());
+        edits.push(("mesh.path", json!(m).to_string(), typed.clone()));
+        edits.push(("mesh.metres_per_unit", "null".into(), typed));
+    }
     if !args.wrinkles.is_empty() {
         let typed: Vec<String> = args
             .wrinkles
@@ -282,10 +294,13 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let tileable = project.tile;
     // Loads the mesh, wrinkle files and masks, and checks every setting.
     let mut scene = Scene::new(project)?;
+    // A UDIM head is baked over its atlas, `--size` per tile, and written tile by tile.
+    let udim = scene.mesh().udim().cloned();
+    let atlas_px = crate::export::atlas_size(udim.as_ref(), args.size, "--size")?;
     let parse_ms = ms(t);
     let t = Instant::now();
     scene.bake(
-        &BakeRequest::maps(args.size, age_t, tileable),
+        &BakeRequest::maps(atlas_px, age_t, tileable),
         &CancelToken::never(),
     )?;
     let bake_ms = ms(t);
@@ -318,17 +333,25 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     // once), and only when all are written are they renamed into place, bake.json last.
     let outputs = export::OutputSet::new();
     let write_start = Instant::now();
-    let staged = export::stage_maps(
+    let names = ["height.png", "height.exr", "normal.png"].map(|n| args.out.join(n));
+    let staged = export::stage_tiled_maps(
         &outputs,
         export::MapPaths {
-            height_png: Some(&args.out.join("height.png")),
-            height_exr: Some(&args.out.join("height.exr")),
-            normal_png: Some(&args.out.join("normal.png")),
+            height_png: Some(&names[0]),
+            height_exr: Some(&names[1]),
+            normal_png: Some(&names[2]),
         },
         &height,
         &normal_settings,
         args.exr_compression.into(),
+        udim.as_ref(),
     )?;
+    let mut files: Vec<String> = names
+        .iter()
+        .flat_map(|p| Udim::paths(udim.as_ref(), p))
+        .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .collect();
+    files.push("bake.json".to_owned());
     let (lo, hi) = staged.height_png_range.unwrap_or_default();
     let maps_ms = ms(write_start);
 
@@ -347,6 +370,7 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
                 (None, false) => None,
             },
             "size": args.size,
+            "size_meaning": if udim.as_ref().is_some_and(|u| u.multi_tile()) { "per UDIM tile" } else { "the map's side" },
             "gamma": f32_json(project.large.gamma),
             "normal_strength": f32_json(project.normal.strength),
             "normal_convention": normal_settings.convention,
@@ -363,7 +387,8 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         "project": project.to_value_relative_to(&args.out),
         "height_range": [lo, hi],
         "height_range_meaning": "height = lo + (hi - lo) * p / 65535 for a height.png value p",
-        "outputs": ["height.png", "height.exr", "normal.png", "bake.json"],
+        "outputs": files,
+        "udim_tiles": udim.as_ref().filter(|u| u.multi_tile()).map(|u| u.numbers()),
         "timings_ms": {
             "parse_and_features": parse_ms,
             "bake": bake_ms,
@@ -382,7 +407,7 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     })?;
     outputs.commit()?;
     println!(
-        "baked {layers} ({fibres} fibres, {pores} pores, {furrows} furrows) at {size}×{size} in {total_ms:.0} ms → {out}",
+        "baked {layers} ({fibres} fibres, {pores} pores, {furrows} furrows) at {size}×{size}{tiles} in {total_ms:.0} ms → {out}",
         layers = layer_names(project).join("+"),
         fibres = if project.large.enabled {
             fibres.len()
@@ -390,6 +415,10 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
             0
         },
         size = args.size,
+        tiles = match &udim {
+            Some(u) if u.multi_tile() => format!(" per tile, UDIM tiles {:?}", u.numbers()),
+            _ => String::new(),
+        },
         total_ms = ms(total),
         out = args.out.display()
     );

@@ -21,12 +21,17 @@ pub struct ExportArgs {
     /// The age of the export.
     #[command(flatten)]
     pub age: super::AgeArgs,
+    /// Head mesh (OBJ, glTF, GLB) to age instead of the project's (`mesh.path`; its units
+    /// and axes detected).
+    #[arg(long, value_name = "FILE")]
+    pub mesh: Option<PathBuf>,
     /// The head's landmark file (`mesh.landmarks`, in the mesh file's units): its outer eye
     /// corners set the units when the project does not.
     #[arg(long, value_name = "L.json")]
     pub landmarks: Option<PathBuf>,
     /// Side of the maps and of the GLB's textures, px (1..=16384; beyond 8192 only as far
-    /// as memory allows).
+    /// as memory allows); per tile for a UDIM head, whose maps are written one per tile
+    /// (`height.1001.png`, …).
     #[arg(long, default_value_t = 2048, value_name = "N")]
     pub size: u32,
     /// Height map as a 16-bit PNG.
@@ -81,6 +86,11 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let start = Instant::now();
     let mut project =
         super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
+    if let Some(m) = &args.mesh {
+        project.mesh.path = Some(m.clone());
+        project.mesh.metres_per_unit = None;
+        project.mesh.landmarks = None;
+    }
     if let Some(l) = &args.landmarks {
         project.mesh.landmarks = Some(l.clone().into());
     }

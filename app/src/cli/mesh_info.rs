@@ -111,6 +111,22 @@ pub fn describe(name: &str, mesh: &Mesh) -> String {
         "from the file".to_owned()
     };
     let _ = writeln!(s, "uvs:       {uv}");
+    if let Some(u) = mesh.udim() {
+        let split = match r.udim_split_vertices {
+            0 => String::new(),
+            n => format!("; {n} vertices split where tiles met"),
+        };
+        let _ = writeln!(
+            s,
+            "udim:      tiles {} (baked side by side, {g} × {g}; maps written per tile{split})",
+            u.numbers()
+                .iter()
+                .map(u32::to_string)
+                .collect::<Vec<_>>()
+                .join(", "),
+            g = u.grid()
+        );
+    }
     let tangents = match r.tangent_source {
         Some(TangentSource::File) => "from the file".to_owned(),
         Some(TangentSource::Analytic) => "generated (exact frame of a flat UV grid)".to_owned(),

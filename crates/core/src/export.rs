@@ -90,7 +90,16 @@ pub fn stage_height_png16(
     path: &Path,
     map: &HeightMap,
 ) -> Result<(f32, f32), Error> {
-    let range = map.min_max();
+    stage_height_png16_in(set, path, map, map.min_max())
+}
+
+/// [`stage_height_png16`] over a given `range` (the tiles of a UDIM head share one).
+fn stage_height_png16_in(
+    set: &OutputSet,
+    path: &Path,
+    map: &HeightMap,
+    range: (f32, f32),
+) -> Result<(f32, f32), Error> {
     let scale = quantize_scale(range);
     let width = map.width_px() as usize;
     set.stage(path, |w| {
@@ -217,6 +226,61 @@ pub struct MapsStaged {
     pub height_png_ms: f64,
     pub height_exr_ms: f64,
     pub normal_png_ms: f64,
+}
+
+/// [`stage_maps`] for a head's map over its UDIM atlas (`crate::mesh::udim`): each tile's
+/// square written as its own files, named by the convention (`height.1001.png`, …;
+/// `<UDIM>` in a name is replaced). The 16-bit PNGs share one height range, and the
+/// normals are taken over the whole atlas before it is cut. A single-tile layout writes
+/// the paths as they are.
+pub fn stage_tiled_maps(
+    set: &OutputSet,
+    paths: MapPaths<'_>,
+    height: &HeightMap,
+    normal: &crate::normal_map::NormalSettings,
+    exr: ExrCompression,
+    udim: Option<&crate::mesh::udim::Udim>,
+) -> Result<MapsStaged, Error> {
+    let Some(udim) = udim.filter(|u| u.multi_tile()) else {
+        return stage_maps(set, paths, height, normal, exr);
+    };
+    let atlas_px = height.width_px();
+    let range = height.min_max();
+    let normals = match paths.normal_png {
+        Some(_) => {
+            normal.validate()?;
+            let mut rgb = vec![0u8; atlas_px as usize * height.height_px() as usize * 3];
+            crate::normal_map::encode_rgb8_rows(height, normal, 0, &mut rgb)?;
+            rgb
+        }
+        None => Vec::new(),
+    };
+    let mut staged = MapsStaged {
+        height_png_range: paths.height_png.map(|_| range),
+        ..MapsStaged::default()
+    };
+    let name = |p: &Path, n: u32| crate::mesh::udim::Udim::tile_path(p, n);
+    for (k, n) in udim.numbers().into_iter().enumerate() {
+        let side = udim.tile_rect_px(k, atlas_px).2;
+        let tile = HeightMap::from_vec(side, side, udim.crop(k, height.data(), atlas_px, 1))?;
+        let start = std::time::Instant::now();
+        if let Some(p) = paths.height_png {
+            stage_height_png16_in(set, &name(p, n), &tile, range)?;
+        }
+        let t = std::time::Instant::now();
+        if let Some(p) = paths.height_exr {
+            stage_height_exr_with(set, &name(p, n), &tile, exr)?;
+        }
+        let u = std::time::Instant::now();
+        if let Some(p) = paths.normal_png {
+            let rgb = udim.crop(k, &normals, atlas_px, 3);
+            stage_rgb8_png(set, &name(p, n), side, side, &rgb)?;
+        }
+        staged.height_png_ms += (t - start).as_secs_f64() * 1e3;
+        staged.height_exr_ms += (u - t).as_secs_f64() * 1e3;
+        staged.normal_png_ms += u.elapsed().as_secs_f64() * 1e3;
+    }
+    Ok(staged)
 }
 
 /// Stages a bake's three maps at once (each encoder is single-threaded but the EXR's RLE,

@@ -424,7 +424,6 @@ pub struct GlbMaterial {
     pub extras: serde_json::Value,
 }
 
-/// [`write_glb`], with every primitive using `material` when given.
 /// Appends `bytes` to the binary chunk `bin` (4-byte aligned) and a buffer view on them to
 /// `views` (`extra`: more members of the view, e.g. `,"target":34962`); returns the view's
 /// index.
@@ -441,7 +440,16 @@ fn push_view(bin: &mut Vec<u8>, views: &mut Vec<String>, bytes: &[u8], extra: &s
     views.len() - 1
 }
 
+/// [`write_glb`], with every skin primitive using `material` when given.
 pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial>) -> Vec<u8> {
+    write_glb_with_materials(mesh, material.map(std::slice::from_ref).unwrap_or_default())
+}
+
+/// [`write_glb`] with the skin's `materials`, one per UDIM tile of the mesh
+/// ([`super::Mesh::udim`]; one for a single-tile layout): a multi-tile head's skin is one
+/// primitive per tile, its UVs in [0, 1] as the tile's own maps are (glTF has no UDIM).
+/// Parts that are not skin get a plain material of their own.
+pub fn write_glb_with_materials(mesh: &super::Mesh, materials: &[GlbMaterial]) -> Vec<u8> {
     let mut bin: Vec<u8> = Vec::new();
     let mut views = Vec::new();
     let mut accessors = Vec::new();
@@ -468,104 +476,149 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
         .iter()
         .enumerate()
         .any(|(k, p)| !mesh.part_is_skin(k, p));
+    let plain_material = materials.len();
+    // UVs as each tile's maps read them: a UDIM head's atlas cell back to [0, 1].
+    let triangle_tiles = mesh.triangle_tiles();
+    let local_uv = |i: usize, tile: usize| match mesh.udim() {
+        Some(u) => mesh.uvs()[i] * u.grid() as f32 - u.cell(tile).as_vec2(),
+        None => mesh.uvs()[i],
+    };
+    let tiles = mesh.udim().map_or(1, |u| u.tiles().len());
     for (k, part) in mesh.parts().iter().enumerate() {
-        let first = part.first_triangle as usize * 3;
-        let tri = &mesh.indices()[first..first + part.triangle_count as usize * 3];
-        let mut used = vec![false; mesh.vertex_count()];
-        for &i in tri {
-            used[i as usize] = true;
-        }
-        let mut remap = vec![0u32; mesh.vertex_count()];
-        let mut verts = Vec::new();
-        for (i, &u) in used.iter().enumerate() {
-            if u {
-                remap[i] = verts.len() as u32;
-                verts.push(i);
+        let first = part.first_triangle as usize;
+        let count = part.triangle_count as usize;
+        let skin = mesh.part_is_skin(k, part);
+        let mut primitives = Vec::new();
+        for tile in 0..tiles {
+            let tri: Vec<u32> = (first..first + count)
+                .filter(|&t| triangle_tiles[t] == tile)
+                .flat_map(|t| mesh.indices()[t * 3..t * 3 + 3].iter().copied())
+                .collect();
+            if tri.is_empty() {
+                continue;
             }
+            let mut used = vec![false; mesh.vertex_count()];
+            for &i in &tri {
+                used[i as usize] = true;
+            }
+            let mut remap = vec![0u32; mesh.vertex_count()];
+            let mut verts = Vec::new();
+            for (i, &u) in used.iter().enumerate() {
+                if u {
+                    remap[i] = verts.len() as u32;
+                    verts.push(i);
+                }
+            }
+            let count = verts.len();
+            let positions: Vec<Vec3> = verts.iter().map(|&i| mesh.positions()[i]).collect();
+            let (lo, hi) = super::Aabb::from_points(&positions).map_or(([0.0; 3], [0.0; 3]), |b| {
+                (b.min.to_array(), b.max.to_array())
+            });
+            let vec = |ty: &str| {
+                format!(
+                    r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"{ty}"}}"#
+                )
+            };
+            let pos = push(
+                &f32s(&mut positions.iter().flat_map(|p| p.to_array())),
+                ARRAY_BUFFER,
+                format!(
+                    r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#
+                ),
+            );
+            let nor = push(
+                &f32s(&mut verts.iter().flat_map(|&i| mesh.normals()[i].to_array())),
+                ARRAY_BUFFER,
+                vec("VEC3"),
+            );
+            let tan = push(
+                &f32s(&mut verts.iter().flat_map(|&i| mesh.tangents()[i].to_array())),
+                ARRAY_BUFFER,
+                vec("VEC4"),
+            );
+            let uv = push(
+                &f32s(&mut verts.iter().flat_map(|&i| {
+                    let uv = local_uv(i, tile);
+                    [uv.x, 1.0 - uv.y]
+                })),
+                ARRAY_BUFFER,
+                vec("VEC2"),
+            );
+            let ix: Vec<u8> = tri
+                .iter()
+                .flat_map(|&i| remap[i as usize].to_le_bytes())
+                .collect();
+            let ind = push(
+                &ix,
+                ELEMENT_ARRAY_BUFFER,
+                format!(
+                    r#"{{"bufferView":VIEW,"componentType":5125,"count":{},"type":"SCALAR"}}"#,
+                    tri.len()
+                ),
+            );
+            let material = match materials.len() {
+                0 => String::new(),
+                n if skin => format!(r#","material":{}"#, tile.min(n - 1)),
+                _ => format!(r#","material":{plain_material}"#),
+            };
+            primitives.push(format!(
+                r#"{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4{material}}}"#
+            ));
         }
-        let count = verts.len();
-        let positions: Vec<Vec3> = verts.iter().map(|&i| mesh.positions()[i]).collect();
-        let (lo, hi) = super::Aabb::from_points(&positions).map_or(([0.0; 3], [0.0; 3]), |b| {
-            (b.min.to_array(), b.max.to_array())
-        });
-        let vec = |ty: &str| {
-            format!(r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"{ty}"}}"#)
-        };
-        let pos = push(
-            &f32s(&mut positions.iter().flat_map(|p| p.to_array())),
-            ARRAY_BUFFER,
-            format!(
-                r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#
-            ),
-        );
-        let nor = push(
-            &f32s(&mut verts.iter().flat_map(|&i| mesh.normals()[i].to_array())),
-            ARRAY_BUFFER,
-            vec("VEC3"),
-        );
-        let tan = push(
-            &f32s(&mut verts.iter().flat_map(|&i| mesh.tangents()[i].to_array())),
-            ARRAY_BUFFER,
-            vec("VEC4"),
-        );
-        let uv = push(
-            &f32s(&mut verts.iter().flat_map(|&i| {
-                let uv = mesh.uvs()[i];
-                [uv.x, 1.0 - uv.y]
-            })),
-            ARRAY_BUFFER,
-            vec("VEC2"),
-        );
-        let ix: Vec<u8> = tri
-            .iter()
-            .flat_map(|&i| remap[i as usize].to_le_bytes())
-            .collect();
-        let ind = push(
-            &ix,
-            ELEMENT_ARRAY_BUFFER,
-            format!(
-                r#"{{"bufferView":VIEW,"componentType":5125,"count":{},"type":"SCALAR"}}"#,
-                tri.len()
-            ),
-        );
         meshes.push(format!(
-            r#"{{"name":{},"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4{}}}]}}"#,
+            r#"{{"name":{},"primitives":[{}]}}"#,
             json_string(&part.name),
-            match material {
-                Some(_) if mesh.part_is_skin(k, part) => r#","material":0"#,
-                Some(_) => r#","material":1"#,
-                None => "",
-            }
+            primitives.join(",")
         ));
     }
-    // The material, and its normal map as an image in the binary chunk.
+    // The materials, and their maps as images in the binary chunk.
     let mut material_json = String::new();
-    if let Some(m) = material {
-        let mut normal = String::new();
-        let mut colour = String::new();
+    if !materials.is_empty() {
         let mut images = Vec::new();
-        for (png, name) in [
-            (&m.normal_png, "normal"),
-            (&m.base_colour_png, "base colour"),
-        ] {
-            let Some(png) = png else { continue };
-            let view = push_view(&mut bin, &mut views, png, "");
-            let index = images.len();
-            // JPEG bytes (the default head's scanned maps) are embedded as they are.
-            let mime = if png.starts_with(&[0xFF, 0xD8]) {
-                "image/jpeg"
-            } else {
-                "image/png"
-            };
-            images.push(format!(
-                r#"{{"bufferView":{view},"mimeType":"{mime}","name":"{name}"}}"#
-            ));
-            let texture = format!(r#"{{"index":{index}}}"#);
-            if name == "normal" {
-                normal = format!(r#","normalTexture":{texture}"#);
-            } else {
-                colour = format!(r#","baseColorTexture":{texture}"#);
+        let mut list = Vec::new();
+        for m in materials {
+            let mut normal = String::new();
+            let mut colour = String::new();
+            for (png, name) in [
+                (&m.normal_png, "normal"),
+                (&m.base_colour_png, "base colour"),
+            ] {
+                let Some(png) = png else { continue };
+                let view = push_view(&mut bin, &mut views, png, "");
+                let index = images.len();
+                // JPEG bytes (the default head's scanned maps) are embedded as they are.
+                let mime = if png.starts_with(&[0xFF, 0xD8]) {
+                    "image/jpeg"
+                } else {
+                    "image/png"
+                };
+                images.push(format!(
+                    r#"{{"bufferView":{view},"mimeType":"{mime}","name":{}}}"#,
+                    json_string(&format!("{name}, {}", m.name))
+                ));
+                let texture = format!(r#"{{"index":{index}}}"#);
+                if name == "normal" {
+                    normal = format!(r#","normalTexture":{texture}"#);
+                } else {
+                    colour = format!(r#","baseColorTexture":{texture}"#);
+                }
             }
+            let f = |x: f32| if x.is_finite() { x } else { 0.0 };
+            let [r, g, b, a] = m.base_colour.map(f);
+            let extras = if m.extras.is_null() {
+                String::new()
+            } else {
+                format!(r#","extras":{}"#, m.extras)
+            };
+            list.push(format!(
+                r#"{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}}}{normal}{extras}}}"#,
+                json_string(&m.name),
+                f(m.metallic),
+                f(m.roughness),
+            ));
+        }
+        if any_not_skin {
+            list.push(r#"{"name":"not skin (left as it is by agesim)","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0,"roughnessFactor":0.3}}"#.to_owned());
         }
         let images = if images.is_empty() {
             String::new()
@@ -579,21 +632,11 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
                 textures.join(",")
             )
         };
-        let f = |x: f32| if x.is_finite() { x } else { 0.0 };
-        let [r, g, b, a] = m.base_colour.map(f);
-        let plain = if any_not_skin {
-            r#",{"name":"not skin (left as it is by agesim)","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0,"roughnessFactor":0.3}}"#
-        } else {
-            ""
-        };
-        material_json = format!(
-            r#","materials":[{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}}}{normal}}}{plain}]{images}"#,
-            json_string(&m.name),
-            f(m.metallic),
-            f(m.roughness),
-        );
-        if !m.extras.is_null() {
-            material_json.push_str(&format!(r#","extras":{}"#, m.extras));
+        material_json = format!(r#","materials":[{}]{images}"#, list.join(","));
+        // The first material's extras also describe the file (readers that show the
+        // asset's extras).
+        if !materials[0].extras.is_null() {
+            material_json.push_str(&format!(r#","extras":{}"#, materials[0].extras));
         }
     }
     while !bin.len().is_multiple_of(4) {

@@ -23,6 +23,7 @@ pub mod spherical_uv;
 mod surface_scale;
 pub mod tangents;
 pub mod textures;
+pub mod udim;
 pub mod units;
 
 pub use surface_scale::SurfaceScale;
@@ -187,6 +188,8 @@ pub struct MeshReport {
     /// Vertices duplicated because MikkTSpace gave one vertex different tangents in
     /// different triangles (mirrored UVs, UV seams).
     pub tangent_split_vertices: usize,
+    /// Vertices duplicated because triangles of two UDIM tiles shared them.
+    pub udim_split_vertices: usize,
     /// Everything repaired, with counts.
     pub warnings: Vec<MeshWarning>,
 }
@@ -227,6 +230,8 @@ pub struct Mesh {
     /// Which parts are skin, when chosen by hand ([`Mesh::with_skin_parts`]); else by
     /// their names ([`MeshPart::is_skin`]).
     skin: Option<Vec<bool>>,
+    /// The UDIM tiles of a multi-tile layout, whose UVs are held in its atlas.
+    udim: Option<std::sync::Arc<udim::Udim>>,
 }
 
 /// Triangles whose doubled UV area is below this are "degenerate in UV" (docs/models.md §5: no
@@ -341,6 +346,7 @@ impl Mesh {
         // regenerated so that it stays one mapping.
         let mut tangents = tangents;
         let mut indices = indices;
+        let mut udim_layout = None;
         let uvs = match uvs {
             Some(mut given) if given.iter().all(|uv| !uv.x.is_nan()) => {
                 let mut bad = 0;
@@ -352,6 +358,24 @@ impl Mesh {
                 }
                 if bad > 0 {
                     report.warnings.push(MeshWarning::BadUvsReplaced(bad));
+                }
+                if let Some((layout, assign, crossing)) = udim::detect(&given, &indices) {
+                    let split_before = positions.len();
+                    udim::into_atlas(&layout, &assign, &mut given, &mut indices, |src| {
+                        let s = src as usize;
+                        positions.push(positions[s]);
+                        normals.push(normals[s]);
+                        if let Some(t) = tangents.as_mut() {
+                            t.push(t[s]);
+                        }
+                    });
+                    report.udim_split_vertices = positions.len() - split_before;
+                    if crossing > 0 {
+                        report.warnings.push(MeshWarning::Note(format!(
+                            "{crossing} triangles cross a UDIM tile border: each is baked in the tile of its centre"
+                        )));
+                    }
+                    udim_layout = Some(std::sync::Arc::new(layout));
                 }
                 given
             }
@@ -435,6 +459,7 @@ impl Mesh {
                     parts,
                     report,
                     skin: None,
+                    udim: udim_layout,
                 });
             }
         };
@@ -449,6 +474,7 @@ impl Mesh {
             parts,
             report,
             skin: None,
+            udim: udim_layout,
         })
     }
 
@@ -470,6 +496,7 @@ impl Mesh {
             }],
             report: MeshReport::default(),
             skin: None,
+            udim: None,
         }
     }
 
@@ -493,9 +520,55 @@ impl Mesh {
     }
 
     /// UVs, v up (docs/models.md §1). Mostly in [0,1]; generated spherical UVs may reach 1.5 at
-    /// the seam (textures wrap in u).
+    /// the seam (textures wrap in u). A multi-tile (UDIM) layout's UVs are in its atlas
+    /// ([`Mesh::udim`]).
     pub fn uvs(&self) -> &[Vec2] {
         &self.uvs
+    }
+
+    /// The UVs as the file laid them out: [`Mesh::uvs`], or for a UDIM layout each vertex
+    /// back in its tile.
+    pub fn file_uvs(&self) -> std::borrow::Cow<'_, [Vec2]> {
+        match &self.udim {
+            None => std::borrow::Cow::Borrowed(&self.uvs),
+            Some(u) => {
+                // Each vertex belongs to the tile of its triangles (split where two tiles
+                // met).
+                let mut out = self.uvs.clone();
+                let g = u.grid() as f32;
+                for (t, k) in self.indices.chunks_exact(3).zip(self.triangle_tiles()) {
+                    let offset = u.tiles()[k].as_vec2() - u.cell(k).as_vec2();
+                    for &i in t {
+                        out[i as usize] = self.uvs[i as usize] * g + offset;
+                    }
+                }
+                std::borrow::Cow::Owned(out)
+            }
+        }
+    }
+
+    /// The UDIM tile (index into [`udim::Udim::tiles`]) of each triangle, from its centre
+    /// in the atlas (a corner on a cell's edge is ambiguous, a centre is not); all 0 for a
+    /// single-tile layout.
+    pub fn triangle_tiles(&self) -> Vec<usize> {
+        let Some(u) = &self.udim else {
+            return vec![0; self.triangle_count()];
+        };
+        self.indices
+            .chunks_exact(3)
+            .map(|t| {
+                let centre =
+                    (self.uvs[t[0] as usize] + self.uvs[t[1] as usize] + self.uvs[t[2] as usize])
+                        / 3.0;
+                u.from_atlas(centre).map_or(0, |(k, _)| k)
+            })
+            .collect()
+    }
+
+    /// The UDIM tiles when the file's layout spreads over several unit tiles (or lies in
+    /// one other than the first): [`Mesh::uvs`] are then in the tiles' atlas.
+    pub fn udim(&self) -> Option<&udim::Udim> {
+        self.udim.as_deref()
     }
 
     /// Unit tangents (xyz, along +u) with handedness `w` = ±1:
@@ -540,6 +613,7 @@ impl Mesh {
             parts: self.parts.clone(),
             report: self.report.clone(),
             skin: self.skin.clone(),
+            udim: self.udim.clone(),
         }
     }
 

@@ -104,7 +104,7 @@ pub fn to_obj(mesh: &super::Mesh, place: impl Fn(Vec3) -> Vec3) -> String {
         let q = place(*p);
         let _ = writeln!(s, "v {} {} {}", q.x, q.y, q.z);
     }
-    for uv in mesh.uvs() {
+    for uv in mesh.file_uvs().iter() {
         let _ = writeln!(s, "vt {} {}", uv.x, uv.y);
     }
     for [a, b, c] in mesh.triangles() {

@@ -46,6 +46,13 @@ impl Source {
 /// triangles that has a base colour map, for glTF); none for other formats or none
 /// named. An unreadable picture is an error naming it.
 pub fn load(path: &Path) -> Result<MeshTextures, Error> {
+    load_tiled(path, None)
+}
+
+/// [`load`] for a head with a UDIM layout: a picture file named for one tile
+/// (`skin.1001.png`, or `skin.<UDIM>.png`) is read for every tile the head uses and laid
+/// out in the head's atlas ([`super::udim`]), as its UVs are.
+pub fn load_tiled(path: &Path, udim: Option<&super::udim::Udim>) -> Result<MeshTextures, Error> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_lowercase())
@@ -65,7 +72,10 @@ pub fn load(path: &Path) -> Result<MeshTextures, Error> {
         "obj" => obj_sources(path)?,
         _ => (None, None),
     };
-    decode(colour, normal)
+    match udim {
+        Some(u) => decode_tiled(colour, normal, u),
+        None => decode(colour, normal),
+    }
 }
 
 /// Decodes the pictures found, noting the files among them.
@@ -85,6 +95,84 @@ fn decode(colour: Option<Source>, normal: Option<Source>) -> Result<MeshTextures
         let (image, name) = s.decode()?;
         out.normal = Some(std::sync::Arc::new(image));
         out.sources.push(format!("normal map {name}"));
+    }
+    Ok(out)
+}
+
+/// The tile files of `path` when its name marks a tile (`<UDIM>`, or a number of one of
+/// `udim`'s tiles); `None` for a picture of the whole layout.
+fn tile_files(path: &Path, udim: &super::udim::Udim) -> Option<Vec<PathBuf>> {
+    let name = path.file_name()?.to_string_lossy().into_owned();
+    let numbers = udim.numbers();
+    let pattern = if name.contains("<UDIM>") {
+        name.clone()
+    } else {
+        let n = numbers.iter().find(|n| name.contains(&n.to_string()))?;
+        name.replacen(&n.to_string(), "<UDIM>", 1)
+    };
+    Some(
+        numbers
+            .iter()
+            .map(|n| path.with_file_name(pattern.replace("<UDIM>", &n.to_string())))
+            .collect(),
+    )
+}
+
+/// [`decode`] for a UDIM head: tile pictures laid out in its atlas. Every tile must be
+/// there and square, all of one size; a missing or odd one is an error naming it.
+fn decode_tiled(
+    colour: Option<Source>,
+    normal: Option<Source>,
+    udim: &super::udim::Udim,
+) -> Result<MeshTextures, Error> {
+    let expand = |s: Option<Source>| match s {
+        Some(Source::File(p)) => match tile_files(&p, udim) {
+            Some(files) => (None, files),
+            None => (Some(Source::File(p)), Vec::new()),
+        },
+        other => (other, Vec::new()),
+    };
+    let (colour, colour_tiles) = expand(colour);
+    let (normal, normal_tiles) = expand(normal);
+    let mut out = decode(colour, normal)?;
+    for (files, colour) in [(colour_tiles, true), (normal_tiles, false)] {
+        if files.is_empty() {
+            continue;
+        }
+        let mut images = Vec::new();
+        for f in &files {
+            let image = HeadImage::load(f, false)?;
+            let side = images
+                .first()
+                .map_or(image.width_px, |i: &HeadImage| i.width_px);
+            if image.width_px != image.height_px || image.width_px != side {
+                return Err(Error::InvalidValue {
+                    what: format!("{}: size of a UDIM tile", f.display()),
+                    value: format!("{}×{}", image.width_px, image.height_px),
+                    expected: format!("{side}×{side}, square and as the other tiles"),
+                });
+            }
+            images.push(image);
+        }
+        let side = images[0].width_px;
+        let tiles: Vec<Vec<u8>> = images.into_iter().map(|i| i.rgba).collect();
+        let atlas = HeadImage {
+            width_px: side * udim.grid(),
+            height_px: side * udim.grid(),
+            rgba: udim.assemble(&tiles, side, 4, 0),
+        };
+        let what = if colour { "colour map" } else { "normal map" };
+        out.sources.push(format!(
+            "{what} {} ({} UDIM tiles)",
+            files[0].display(),
+            files.len()
+        ));
+        out.files.extend(files);
+        if colour {
+            out.colour = Some(std::sync::Arc::new(atlas));
+        } else {
+            out.normal = Some(std::sync::Arc::new(atlas));
+        }
     }
     Ok(out)
 }

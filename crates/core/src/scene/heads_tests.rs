@@ -356,27 +356,25 @@ fn copies_of_one_head_in_other_units_and_axes_give_the_same_maps() {
     }
 }
 
-/// Texels on both sides of a UV seam that are one 3D point get one height: the scan
-/// re-cut into islands (every triangle of the face's right half moved to its own island
-/// on the right of the chart), the heights compared across the cut.
-#[test]
-fn heights_agree_across_a_uv_seam() {
+/// The scan re-cut down the middle of the face: the triangles of the subject's right
+/// (x < 0) get `recut(uv, true)`, the others `recut(uv, false)`; written as OBJ.
+fn recut_scan(dir: &std::path::Path, name: &str, recut: impl Fn(Vec2, bool) -> Vec2) -> PathBuf {
     let scan = Mesh::load(&heads_dir().join("lee-perry-smith/LeePerrySmith.glb")).unwrap();
-    let size = 512u32;
-    // Re-UV: the chart shrunk into the left half of the square; the triangles of the
-    // subject's right (x < 0) moved by +0.5 in u into the right half: a seam down the
-    // middle of the face.
     let mut positions = Vec::new();
     let mut uvs = Vec::new();
     let mut indices = Vec::new();
+    // Vertices shared as in the scan, split only along the cut.
+    let mut copies = std::collections::HashMap::new();
     for [a, b, c] in scan.triangles() {
         let corners = [a, b, c].map(|i| i as usize);
         let right = corners.iter().all(|&i| scan.positions()[i].x < 0.0);
         for i in corners {
-            indices.push(positions.len() as u32);
-            positions.push(scan.positions()[i]);
-            let uv = scan.uvs()[i];
-            uvs.push(Vec2::new(uv.x * 0.5 + if right { 0.5 } else { 0.0 }, uv.y));
+            let v = *copies.entry((i, right)).or_insert_with(|| {
+                positions.push(scan.positions()[i]);
+                uvs.push(recut(scan.uvs()[i], right));
+                positions.len() as u32 - 1
+            });
+            indices.push(v);
         }
     }
     let raw = crate::mesh::RawMesh {
@@ -385,11 +383,33 @@ fn heights_agree_across_a_uv_seam() {
         indices,
         ..Default::default()
     };
-    let islands = Mesh::build(raw, "scan in islands").unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("islands.obj");
-    std::fs::write(&path, crate::mesh::obj::to_obj(&islands, |p| p)).unwrap();
-    let (_scene, map) = default_map(&path, size);
+    let recut = Mesh::build(raw, name).unwrap();
+    let path = dir.join(format!("{name}.obj"));
+    std::fs::write(&path, crate::mesh::obj::to_obj(&recut, |p| p)).unwrap();
+    path
+}
+
+/// Bilinear height of `map` (`size`², v up) at `uv`.
+fn sample_map(map: &[f32], size: u32, uv: Vec2) -> f32 {
+    let n = size as f32;
+    let (x, y) = (uv.x * n - 0.5, (1.0 - uv.y) * n - 0.5);
+    let (x0, y0) = (x.floor(), y.floor());
+    let at = |xi: f32, yi: f32| {
+        let (xi, yi) = (xi.clamp(0.0, n - 1.0), yi.clamp(0.0, n - 1.0));
+        map[yi as usize * size as usize + xi as usize]
+    };
+    let (fx, fy) = (x - x0, y - y0);
+    let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1.0, y0) * fx;
+    let bottom = at(x0, y0 + 1.0) * (1.0 - fx) + at(x0 + 1.0, y0 + 1.0) * fx;
+    top * (1.0 - fy) + bottom * fy
+}
+
+/// Texels on both sides of a UV seam that are one 3D point get one height: the scan's
+/// face cut down the middle by `recut_scan`, baked at `size`, and the heights compared
+/// along the cut (`at(uv, right)` is where the scan's `uv` lies in the baked map).
+fn check_seam(path: &std::path::Path, size: u32, at: impl Fn(&Mesh, Vec2, bool) -> Vec2) {
+    let scan = Mesh::load(&heads_dir().join("lee-perry-smith/LeePerrySmith.glb")).unwrap();
+    let (scene, map) = default_map(path, size);
     let peak = map.iter().fold(0.0f32, |m, h| m.max(h.abs()));
     // The cut's edges: shared by a triangle moved to the right island and one kept.
     let mut edges: std::collections::HashMap<(u32, u32), [bool; 2]> = Default::default();
@@ -401,19 +421,6 @@ fn heights_agree_across_a_uv_seam() {
             edges.entry((p.min(q), p.max(q))).or_default()[usize::from(right)] = true;
         }
     }
-    let sample = |uv: Vec2| {
-        let n = size as f32;
-        let (x, y) = (uv.x * n - 0.5, (1.0 - uv.y) * n - 0.5);
-        let (x0, y0) = (x.floor(), y.floor());
-        let at = |xi: f32, yi: f32| {
-            let (xi, yi) = (xi.clamp(0.0, n - 1.0), yi.clamp(0.0, n - 1.0));
-            map[yi as usize * size as usize + xi as usize]
-        };
-        let (fx, fy) = (x - x0, y - y0);
-        let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1.0, y0) * fx;
-        let bottom = at(x0, y0 + 1.0) * (1.0 - fx) + at(x0 + 1.0, y0 + 1.0) * fx;
-        top * (1.0 - fy) + bottom * fy
-    };
     // Points along each seam edge, read in both islands.
     let (mut pairs, mut worst, mut wrinkled) = (0, 0.0f32, 0);
     for (&(a, b), sides) in &edges {
@@ -423,15 +430,16 @@ fn heights_agree_across_a_uv_seam() {
         let (ua, ub) = (scan.uvs()[a as usize], scan.uvs()[b as usize]);
         for s in [0.25f32, 0.5, 0.75] {
             let uv = ua.lerp(ub, s);
-            let kept = sample(Vec2::new(uv.x * 0.5, uv.y));
-            let moved = sample(Vec2::new(uv.x * 0.5 + 0.5, uv.y));
+            let kept = sample_map(&map, size, at(scene.mesh(), uv, false));
+            let moved = sample_map(&map, size, at(scene.mesh(), uv, true));
             pairs += 1;
             worst = worst.max((kept - moved).abs());
             wrinkled += usize::from(kept.abs().max(moved.abs()) > 0.05 * peak);
         }
     }
     eprintln!(
-        "{pairs} points on the seam ({wrinkled} on a wrinkle), worst difference {worst} (peak {peak})"
+        "{}: {pairs} points on the seam ({wrinkled} on a wrinkle), worst difference {worst} (peak {peak})",
+        path.display()
     );
     assert!(pairs > 40, "only {pairs} points on the seam");
     // The seam runs down the middle of the forehead, through its middle lines.
@@ -440,6 +448,100 @@ fn heights_agree_across_a_uv_seam() {
         worst <= 0.1 * peak,
         "heights across the seam differ by up to {worst} (peak {peak}, {pairs} pairs)"
     );
+}
+
+/// The scan re-cut into islands: the chart shrunk into the left half of the square, the
+/// triangles of the subject's right moved by +0.5 in u into the right half.
+#[test]
+fn heights_agree_across_a_uv_seam() {
+    let dir = tempfile::tempdir().unwrap();
+    let half = |uv: Vec2, right: bool| Vec2::new(uv.x * 0.5 + if right { 0.5 } else { 0.0 }, uv.y);
+    let path = recut_scan(dir.path(), "islands", half);
+    check_seam(&path, 512, |_, uv, right| half(uv, right));
+}
+
+/// The scan made a two-tile UDIM head (the subject's right moved to tile 1002): it is
+/// baked tile by tile in its atlas, each tile's texels as the single-tile scan's, and
+/// heights agree across the tile border.
+#[test]
+fn a_udim_head_is_baked_tile_by_tile() {
+    let dir = tempfile::tempdir().unwrap();
+    let tiles = |uv: Vec2, right: bool| uv + Vec2::new(if right { 1.0 } else { 0.0 }, 0.0);
+    let path = recut_scan(dir.path(), "udim", tiles);
+    let head = Mesh::load(&path).unwrap();
+    let udim = head.udim().expect("two tiles found");
+    assert_eq!(udim.numbers(), [1001, 1002]);
+    assert_eq!(udim.grid(), 2);
+    let back = head.file_uvs();
+    let scan = Mesh::load(&heads_dir().join("lee-perry-smith/LeePerrySmith.glb")).unwrap();
+    assert!(
+        back.iter()
+            .all(|uv| (uv.x < 1.0 && uv.x >= 0.0) || (1.0..=2.0).contains(&uv.x)),
+        "the file's UVs come back"
+    );
+    assert_eq!(head.triangle_count(), scan.triangle_count());
+
+    // The atlas is the layout the bake sees: the same head laid out in one tile as the
+    // atlas lays it out (the tiles side by side, half size) bakes the same texels.
+    let size = 512u32;
+    let atlas_layout = |uv: Vec2, right: bool| {
+        (uv + Vec2::new(if right { 1.0 } else { 0.0 }, 0.0)) / udim.grid() as f32
+    };
+    let one_tile = recut_scan(dir.path(), "one-tile", atlas_layout);
+    let (_, atlas) = default_map(&path, size);
+    let (_, single) = default_map(&one_tile, size);
+    let peak = single.iter().fold(0.0f32, |m, h| m.max(h.abs()));
+    let off = atlas
+        .iter()
+        .zip(&single)
+        .filter(|(a, b)| (*a - *b).abs() > 1e-3 * peak)
+        .count();
+    eprintln!(
+        "{off} of {} texels differ by over 0.1 % of the peak {peak}",
+        atlas.len()
+    );
+    assert!(off * 1000 <= atlas.len(), "{off} texels differ");
+    // Each tile is its cell of the atlas.
+    let tile = udim.crop(1, &atlas, size, 1);
+    assert_eq!(tile.len(), (size as usize / 2).pow(2));
+    assert_eq!(
+        tile[0],
+        atlas[(size as usize / 2) * size as usize + size as usize / 2]
+    );
+
+    check_seam(&path, 512, |mesh, uv, right| {
+        mesh.udim()
+            .unwrap()
+            .to_atlas(usize::from(right), tiles(uv, right))
+    });
+
+    // Its colour map, one picture per tile, is read into the atlas; a missing tile is an
+    // error naming its file.
+    let textured = dir.path().join("textured.obj");
+    let obj = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(&textured, format!("mtllib skin.mtl\n{obj}")).unwrap();
+    std::fs::write(
+        dir.path().join("skin.mtl"),
+        "newmtl skin\nmap_Kd skin.1001.png\n",
+    )
+    .unwrap();
+    for (n, rgb) in [(1001, [200, 30, 30]), (1002, [30, 30, 200])] {
+        image::RgbImage::from_pixel(8, 8, image::Rgb(rgb))
+            .save(dir.path().join(format!("skin.{n}.png")))
+            .unwrap();
+    }
+    let mut p = Project::default();
+    p.mesh.path = Some(textured.clone());
+    let scene = Scene::new(p.clone()).unwrap();
+    let colour = scene.colour_map().expect("the tiles read");
+    assert_eq!((colour.width_px, colour.height_px), (16, 16));
+    let at = |x: usize, y: usize| &colour.rgba[(y * 16 + x) * 4..(y * 16 + x) * 4 + 3];
+    assert_eq!(at(2, 12), [200, 30, 30], "tile 1001 bottom left");
+    assert_eq!(at(12, 12), [30, 30, 200], "tile 1002 bottom right");
+    assert_eq!(scene.file_texture_paths().len(), 2);
+    std::fs::remove_file(dir.path().join("skin.1002.png")).unwrap();
+    let err = Scene::new(p).unwrap_err().to_string();
+    assert!(err.contains("skin.1002.png"), "{err}");
 }
 
 /// `mesh.skin_parts` chooses the skin by hand: the MakeHuman head's eyes are left out by

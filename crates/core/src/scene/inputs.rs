@@ -116,7 +116,9 @@ impl Inputs {
             None => {
                 let mesh = load_mesh(project).map(Arc::new)?;
                 let textures = match (&project.mesh.path, project.mesh.builtin) {
-                    (Some(path), _) => Arc::new(crate::mesh::textures::load(path)?),
+                    (Some(path), _) => {
+                        Arc::new(crate::mesh::textures::load_tiled(path, mesh.udim())?)
+                    }
                     (None, crate::project::BuiltinMesh::Head) => {
                         crate::mesh::textures::default_head()
                     }

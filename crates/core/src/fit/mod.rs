@@ -9,7 +9,10 @@
 //! 2. **Similarity** (Umeyama): the head's landmarks onto the template's, least squares.
 //! 3. **Thin-plate spline** from the similarity-aligned landmarks to the template's: the
 //!    smoothest warp that puts each of the head's landmarks on the template's.
-//! 4. **Closest point**: each warped vertex of the head's skin is projected onto the
+//! 4. **Non-rigid refinement** ([`refine`]): the warped skin drawn onto the template's
+//!    surface by a smooth displacement field, in rounds of decreasing stiffness (non-rigid
+//!    ICP), the landmarks anchored.
+//! 5. **Closest point**: each warped vertex of the head's skin is projected onto the
 //!    template surface ([`bvh::Bvh`]); its template UV is the layout there. Beyond
 //!    [`MAX_DISTANCE_M`] (shoulders, a helmet, the inside of the mouth) it has none.
 //!
@@ -24,6 +27,7 @@
 pub mod auto;
 pub mod bvh;
 mod correspondence;
+pub mod refine;
 pub mod similarity;
 pub mod tps;
 
@@ -66,6 +70,8 @@ pub struct Template {
     pub(crate) bvh: Bvh,
     /// The triangles of [`Template::bvh`] (its hits' `triangle` index these).
     bvh_indices: Vec<u32>,
+    /// The unit normal of each of those triangles.
+    bvh_normals: Vec<Vec3>,
     /// Metres per UV unit over its face (mean of u and v; `mesh::SurfaceScale::measure_face`).
     pub metres_per_uv: Option<f32>,
 }
@@ -88,6 +94,14 @@ impl Template {
             .copied()
             .collect();
         let bvh = Bvh::new(mesh.positions(), &with_area);
+        let p = mesh.positions();
+        let bvh_normals = with_area
+            .chunks_exact(3)
+            .map(|t| {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| p[i as usize]);
+                (b - a).cross(c - a).normalize_or_zero()
+            })
+            .collect();
         let bvh_indices = with_area;
         let metres_per_uv = crate::mesh::SurfaceScale::measure_face(&mesh, Some(&landmarks))
             .map(|s| 0.5 * (s.units_per_u + s.units_per_v));
@@ -96,6 +110,7 @@ impl Template {
             landmarks,
             bvh,
             bvh_indices,
+            bvh_normals,
             metres_per_uv,
         }
     }
@@ -131,6 +146,9 @@ pub struct Fit {
     /// Per vertex of the head: the template UV, `None` beyond [`MAX_DISTANCE_M`] or off
     /// the skin.
     pub template_uv: Vec<Option<Vec2>>,
+    /// Per vertex of the head: the template surface point (template metres) its UV is
+    /// read at, `None` where the UV is.
+    pub template_point: Vec<Option<Vec3>>,
     /// The head's coordinates to the template's.
     pub similarity: Similarity,
     /// What the fit found, for reports.
@@ -148,24 +166,61 @@ pub struct FitReport {
     /// Skin vertices that found a template point.
     pub matched_vertices: usize,
     pub skin_vertices: usize,
+    /// The non-rigid refinement after the warp (`None`: not run).
+    pub refined: Option<refine::RefineReport>,
 }
 
 impl std::fmt::Display for FitReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} landmarks, {:.1} mm apart after the similarity; {} of {} skin vertices on the template",
-            self.landmarks_used,
-            self.similarity_residual_mm,
-            self.matched_vertices,
-            self.skin_vertices
+            "{} landmarks, {:.1} mm apart after the similarity; ",
+            self.landmarks_used, self.similarity_residual_mm,
+        )?;
+        if let Some(r) = &self.refined {
+            write!(
+                f,
+                "skin {:.1} mm from the template after the warp, {:.1} mm refined (median); ",
+                r.median_before_mm, r.median_after_mm
+            )?;
+        }
+        write!(
+            f,
+            "{} of {} skin vertices on the template",
+            self.matched_vertices, self.skin_vertices
         )
+    }
+}
+
+/// How a fit is made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FitOptions {
+    /// Rounds of [`refine::SCHEDULE`] the landmark warp is refined by (non-rigid ICP,
+    /// [`refine`]); 0: none.
+    pub refine_rounds: usize,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        Self {
+            refine_rounds: refine::SCHEDULE.len(),
+        }
     }
 }
 
 /// Fits `template` to `head`, whose `landmarks` are in the head mesh's coordinates (the
 /// scene's: turned to +Y up, +Z forward).
 pub fn fit(head: &Mesh, landmarks: &Landmarks, template: &Template) -> Result<Fit, Error> {
+    fit_with(head, landmarks, template, FitOptions::default())
+}
+
+/// [`fit`] with `options`.
+pub fn fit_with(
+    head: &Mesh,
+    landmarks: &Landmarks,
+    template: &Template,
+    options: FitOptions,
+) -> Result<Fit, Error> {
     let (from, to): (Vec<Vec3>, Vec<Vec3>) = crate::landmarks::NAMES
         .iter()
         .filter_map(|n| Some((landmarks.get(n)?, template.landmarks.get(n)?)))
@@ -196,27 +251,51 @@ pub fn fit(head: &Mesh, landmarks: &Landmarks, template: &Template) -> Result<Fi
             *s = true;
         }
     }
-    let template_uv: Vec<Option<Vec2>> = {
-        use rayon::prelude::*;
-        positions
-            .par_iter()
-            .zip(skin.par_iter())
-            .map(|(&p, &is_skin)| {
-                if !is_skin {
-                    return None;
-                }
-                let q = similarity.apply(p);
-                let q = warp.as_ref().map_or(q, |w| w.apply(q));
-                let hit = template.bvh.closest(q, MAX_DISTANCE_M)?;
-                Some(template.uv_at(&hit))
-            })
-            .collect()
+    use rayon::prelude::*;
+    // The skin warped into the template's space, refined onto its surface.
+    let skin_vertices: Vec<usize> = (0..positions.len()).filter(|&i| skin[i]).collect();
+    let warped = |p: Vec3| {
+        let q = similarity.apply(p);
+        warp.as_ref().map_or(q, |w| w.apply(q))
     };
+    let mut points: Vec<Vec3> = skin_vertices
+        .par_iter()
+        .map(|&i| warped(positions[i]))
+        .collect();
+    let rounds = &refine::SCHEDULE[..options.refine_rounds.min(refine::SCHEDULE.len())];
+    let refined = (!rounds.is_empty()).then(|| {
+        let normals: Vec<Vec3> = skin_vertices
+            .iter()
+            .map(|&i| similarity.turn(head.normals()[i]).normalize_or_zero())
+            .collect();
+        let anchors: Vec<Vec3> = from.iter().map(|&p| warped(p)).collect();
+        refine::refine(
+            &mut points,
+            &normals,
+            &template.bvh,
+            &template.bvh_normals,
+            &anchors,
+            rounds,
+        )
+    });
+    let hits: Vec<Option<bvh::Hit>> = points
+        .par_iter()
+        .map(|&q| template.bvh.closest(q, MAX_DISTANCE_M))
+        .collect();
+    let mut template_uv = vec![None; positions.len()];
+    let mut template_point = vec![None; positions.len()];
+    for (&i, hit) in skin_vertices.iter().zip(&hits) {
+        if let Some(hit) = hit {
+            template_uv[i] = Some(template.uv_at(hit));
+            template_point[i] = Some(hit.point);
+        }
+    }
     let report = FitReport {
         landmarks_used: from.len(),
         similarity_residual_mm: residual * 1e3,
         matched_vertices: template_uv.iter().filter(|t| t.is_some()).count(),
-        skin_vertices: skin.iter().filter(|&&s| s).count(),
+        skin_vertices: skin_vertices.len(),
+        refined,
     };
     if report.matched_vertices == 0 {
         return Err(fail(format!(
@@ -226,6 +305,7 @@ pub fn fit(head: &Mesh, landmarks: &Landmarks, template: &Template) -> Result<Fi
     }
     Ok(Fit {
         template_uv,
+        template_point,
         similarity,
         report,
     })

@@ -16,7 +16,8 @@ const MODE_COMBINED: u32 = 2u;
 const MODE_NORMAL_ONLY: u32 = 3u;
 const MODE_DISPLACEMENT: u32 = 4u;
 
-// Large wrinkles: height in [0, 1] (1 = the polygon's surface, docs/models.md §10), over the mesh UV.
+// Large wrinkles: height in [0, 1] (1 = the polygon's surface = unwrinkled skin, the
+// wrinkles' depth below it = 1 − height; docs/models.md §10), over the mesh UV.
 @group(0) @binding(1) var large_map: texture_2d<f32>;
 // Tileable micro-relief heights (height units of the project), one tile = map_size_mm.
 @group(0) @binding(2) var micro_map: texture_2d<f32>;
@@ -54,7 +55,8 @@ fn vs_main(in: VertexIn) -> VertexOut {
     var p = in.position;
     if frame.pom.x == MODE_DISPLACEMENT {
         // [P] eq. 14, P' = P + d(u,v)·n, with the same depth convention as POM: the
-        // polygon is the top of the height field, h = 0 lies `disp.y` below it.
+        // polygon is the top of the height field (unwrinkled skin), h = 0 lies `disp.y`
+        // below it (the bottom of a full-depth wrinkle).
         let h = textureSampleLevel(large_map, surface_sampler, tex(in.uv), 0.0).r;
         p = p + in.normal * ((h - 1.0) * frame.disp.y);
     }

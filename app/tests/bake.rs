@@ -114,7 +114,7 @@ fn malformed_wrinkle_file_reports_every_error_and_writes_nothing() {
     let bad = dir.path().join("bad.wrk");
     std::fs::write(
         &bad,
-        "!\nma=0.1;0.2\nmb=0.3;0.2\nn=1\nwidth=2\n!\nma=0.5;0.5\n",
+        "!\nma=0.1;0.2\nmb=0.3;0.2\nn=0\nwidth=2\n!\nma=0.5;0.5\n",
     )
     .unwrap();
     let out = dir.path().join("maps");

@@ -33,7 +33,8 @@ pub struct RepeatedTile<'a> {
 /// What the composition reads: every layer optional.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Layers<'a> {
-    /// The large-wrinkle map, normalised (a full-depth wrinkle spans 1).
+    /// The large-wrinkle map, normalised: the depth below the skin (1 = the deepest point
+    /// of a full-depth wrinkle; the surface is −depth, cut in).
     pub large: Option<&'a HeightMap>,
     /// The relief depth of a normalised height of 1, UV units (`view.disp_scale` ×
     /// `large.depth`).
@@ -109,8 +110,8 @@ pub fn normal_map(
     Ok(rgb)
 }
 
-/// The large-wrinkle normal at texel (x, y) of a `side`² map (row 0 = top, v up): central
-/// differences, the neighbours clamped at the border.
+/// The large-wrinkle normal at texel (x, y) of a `side`² depth map (row 0 = top, v up):
+/// central differences of the height −depth, the neighbours clamped at the border.
 fn large_normal(h: &[f32], side: usize, x: usize, y: usize, disp: f32) -> Vec3 {
     let row = |y: usize| &h[y * side..(y + 1) * side];
     let (left, right) = (x.saturating_sub(1), (x + 1).min(side - 1));
@@ -118,7 +119,7 @@ fn large_normal(h: &[f32], side: usize, x: usize, y: usize, disp: f32) -> Vec3 {
     let here = row(y);
     let du = (here[right] - here[left]) * 0.5 * side as f32;
     let dv = (row(up)[x] - row(down)[x]) * 0.5 * side as f32;
-    Vec3::new(-disp * du, -disp * dv, 1.0).normalize()
+    Vec3::new(disp * du, disp * dv, 1.0).normalize()
 }
 
 /// A fine-wrinkle normal expressed in the large wrinkles' tangent frame.
@@ -263,7 +264,8 @@ mod tests {
 
     #[test]
     fn a_ramp_in_u_tilts_the_normal_against_u() {
-        // Heights rising with u: the normal leans toward −u, by disp × slope.
+        // Depth rising with u (the surface falling): the normal leans toward +u, by disp ×
+        // slope.
         let side = 16;
         let data = (0..side * side)
             .map(|i| (i % side) as f32 / side as f32)
@@ -276,8 +278,8 @@ mod tests {
         };
         let rgb = normal_map(&layers, 16, &CancelToken::never()).unwrap();
         let n = decode(&rgb, 8 * 16 + 8);
-        // Slope 1 per UV unit × 0.5: n ∝ (−0.5, 0, 1).
-        let expected = Vec3::new(-0.5, 0.0, 1.0).normalize();
+        // Slope 1 per UV unit × 0.5: n ∝ (0.5, 0, 1).
+        let expected = Vec3::new(0.5, 0.0, 1.0).normalize();
         assert!((n - expected).length() < 0.02, "{n} vs {expected}");
     }
 

@@ -27,6 +27,8 @@ pub const DEFAULT_GAMMA: f32 = 0.4;
 
 /// Smallest allowed relative width (docs/models.md §2: W ≥ 1e-6).
 pub const MIN_REL_WIDTH: f32 = 1e-6;
+/// Largest allowed relative width (an agesim extension: [T] keeps W ≤ 1).
+pub const MAX_REL_WIDTH: f32 = 10.0;
 /// Largest wrinkle count per fibre we accept (beyond it a fibre is noise, not wrinkles).
 pub const MAX_WRINKLE_COUNT: u32 = 1000;
 /// Valid range of the per-fibre amplitude.
@@ -36,7 +38,9 @@ pub const GAMMA_RANGE: (f32, f32) = (0.01, 10.0);
 
 /// The cross-section of the wrinkles along a fibre (docs/models.md §2 "Alternative cross-section
 /// profiles"). Every profile is a function of the phase x = n·ω(d)·t with period 1, equal
-/// to 0 at integer x (between wrinkles) and 1 at half-integer x (the crest).
+/// to 0 at integer x (between wrinkles) and 1 at half-integer x (the bottom of the
+/// wrinkle: the layer is a depth, cut into the skin). `fold` alone goes below 0: its raised
+/// side.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Profile {
@@ -50,15 +54,33 @@ pub enum Profile {
     Gauss,
     /// 1 − x'²/ω² with x' = frac(x) − 0.5 and ω = 0.5 — [P] eq. 16 applied per wrinkle.
     Parabola,
+    /// (1 − |x'|/w)² for |x'| < w, w = [`CREASE_HALF_WIDTH`], else 0: a narrow crease with a
+    /// sharp bottom and soft shoulders in flat skin (how skin folds at a line; the shipped
+    /// forehead, glabella, crow's feet, lip and neck lines).
+    Crease,
+    /// A crease with one side raised over it: [`Profile::Crease`] minus a hump of height
+    /// [`FOLD_RAISE`] on the side toward mA (x' < 0), so the crease's wall there is steep
+    /// and high and the other side falls gently (the nasolabial and marionette folds: the
+    /// cheek over the crease, docs/models.md §2 "Folds").
+    Fold,
 }
+
+/// Half-width of a [`Profile::Crease`], in periods: the crease takes 2 × 0.12 of the spacing
+/// between wrinkles and flat skin the rest.
+pub const CREASE_HALF_WIDTH: f32 = 0.12;
+
+/// Height of a [`Profile::Fold`]'s raised side, relative to its crease's depth.
+pub const FOLD_RAISE: f32 = 0.35;
 
 impl Profile {
     /// All profiles, in the order the wrinkle file documents them.
-    pub const ALL: [Profile; 4] = [
+    pub const ALL: [Profile; 6] = [
         Profile::AbsSin,
         Profile::Sin,
         Profile::Gauss,
         Profile::Parabola,
+        Profile::Crease,
+        Profile::Fold,
     ];
 
     /// The name used in wrinkle files (`profile=abs_sin`).
@@ -68,6 +90,8 @@ impl Profile {
             Profile::Sin => "sin",
             Profile::Gauss => "gauss",
             Profile::Parabola => "parabola",
+            Profile::Crease => "crease",
+            Profile::Fold => "fold",
         }
     }
 
@@ -78,7 +102,7 @@ impl Profile {
             .find(|p| p.name().eq_ignore_ascii_case(name))
     }
 
-    /// The profile at phase `x` (any real; period 1), in [0, 1].
+    /// The profile at phase `x` (any real; period 1), in [0, 1] (`fold`: [−FOLD_RAISE, 1]).
     #[inline]
     pub fn eval(self, x: f32) -> f32 {
         match self {
@@ -93,8 +117,45 @@ impl Profile {
                 let xc = x - x.floor() - 0.5;
                 (1.0 - xc * xc / 0.25).max(0.0)
             }
+            Profile::Crease => crease(x - x.floor() - 0.5),
+            Profile::Fold => {
+                let xc = x - x.floor() - 0.5;
+                // The hump: a smooth bump of half-width 0.2 just beside the crease's
+                // wall, rising from nothing at the crease's centre.
+                let bump = {
+                    let s = ((xc + 0.2) / 0.2).abs();
+                    if s < 1.0 { (1.0 - s * s).powi(2) } else { 0.0 }
+                };
+                let wall = if xc < 0.0 { bump } else { 0.0 };
+                crease(xc) - FOLD_RAISE * wall
+            }
         }
     }
+}
+
+/// The crease (1 − |x'|/w)² of [`Profile::Crease`] at the offset `xc` from its centre.
+#[inline]
+fn crease(xc: f32) -> f32 {
+    let s = xc.abs() / CREASE_HALF_WIDTH;
+    if s < 1.0 { (1.0 - s) * (1.0 - s) } else { 0.0 }
+}
+
+/// A hash of `key` to [0, 1).
+#[inline]
+fn hash01(key: u32) -> f32 {
+    (crate::rng::mix64(u64::from(key)) >> 40) as f32 / (1u64 << 24) as f32
+}
+
+/// Smooth 1D value noise in [0, 1]: hashed values at the integers of `x`, joined by
+/// smoothstep; one stream per `key`.
+#[inline]
+fn value_noise(x: f32, key: u32) -> f32 {
+    let i = x.floor();
+    let f = x - i;
+    let at = |j: f32| {
+        hash01(key.wrapping_mul(0x85EB_CA6B) ^ (j as i32 as u32).wrapping_mul(0xC2B2_AE35))
+    };
+    at(i) + (at(i + 1.0) - at(i)) * smoothstep(f)
 }
 
 /// The smoothstep S(x) = 3x² − 2x³ ([T] 5.7), for x in [0,1].
@@ -140,7 +201,24 @@ pub struct Fibre {
     omega_low: f32,
     profile: Profile,
     depth: f32,
+    /// Irregularity in [0, 1] (docs/models.md §2 "Irregularity"): 0 = [T]'s regular wrinkles.
+    irregularity: f32,
+    /// Waviness, in periods of the wrinkle spacing, [0, 0.5].
+    waviness: f32,
+    /// Seed of the irregularity and waviness.
+    seed: u32,
 }
+
+/// Irregularity's share that varies the depth *between* the wrinkles of a group; the rest
+/// varies it along each wrinkle.
+const BETWEEN_SHARE: f32 = 0.5;
+
+/// Correlation length of the variation along a wrinkle, relative to the fibre's influence
+/// half-width W·L: a few swells along one wrinkle.
+const ALONG_SCALE: f32 = 0.35;
+
+/// Valid range of the waviness, in periods.
+pub const WAVINESS_RANGE: (f32, f32) = (0.0, 0.5);
 
 /// Why a fibre parameter is invalid: the value's expected form, for error messages.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -170,20 +248,22 @@ pub fn check_point(p: [f32; 2]) -> Result<[f32; 2], RangeError> {
     }
 }
 
-/// Validates the wrinkle count: an integer in 2..=[`MAX_WRINKLE_COUNT`] (docs/models.md §2: n > 1).
+/// Validates the wrinkle count: an integer in 1..=[`MAX_WRINKLE_COUNT`] ([T] asks n > 1;
+/// agesim also takes one wrinkle, a lone fold such as the nasolabial, docs/models.md §2).
 pub fn check_count(n: i64) -> Result<u32, RangeError> {
-    if (2..=MAX_WRINKLE_COUNT as i64).contains(&n) {
+    if (1..=MAX_WRINKLE_COUNT as i64).contains(&n) {
         Ok(n as u32)
     } else {
         Err(RangeError {
-            expected: format!("an integer in 2..={MAX_WRINKLE_COUNT}"),
+            expected: format!("an integer in 1..={MAX_WRINKLE_COUNT}"),
         })
     }
 }
 
-/// Validates W: (0, 1], at least [`MIN_REL_WIDTH`].
+/// Validates W: [1e-6, 10] ([T] keeps W ≤ 1; agesim lets a one-wrinkle fibre reach
+/// further than its own length, a long line crossed by a short fibre, docs/models.md §2).
 pub fn check_rel_width(w: f32) -> Result<f32, RangeError> {
-    check_range(w, MIN_REL_WIDTH, 1.0, "a number in [1e-6, 1]")
+    check_range(w, MIN_REL_WIDTH, MAX_REL_WIDTH, "a number in [1e-6, 10]")
 }
 
 /// Validates αmax: [1, 2] (units of π/2).
@@ -196,6 +276,21 @@ pub fn check_omega_low(f: f32) -> Result<f32, RangeError> {
     check_range(f, 0.0, 1.0, "a number in [0, 1]")
 }
 
+/// Validates the irregularity: [0, 1].
+pub fn check_irregularity(a: f32) -> Result<f32, RangeError> {
+    check_range(a, 0.0, 1.0, "a number in [0, 1]")
+}
+
+/// Validates the waviness: [0, 0.5] periods.
+pub fn check_waviness(w: f32) -> Result<f32, RangeError> {
+    check_range(
+        w,
+        WAVINESS_RANGE.0,
+        WAVINESS_RANGE.1,
+        "a number in [0, 0.5]",
+    )
+}
+
 /// Validates the per-fibre amplitude A: [0, 100].
 pub fn check_depth(a: f32) -> Result<f32, RangeError> {
     check_range(a, DEPTH_RANGE.0, DEPTH_RANGE.1, "a number in [0, 100]")
@@ -203,7 +298,7 @@ pub fn check_depth(a: f32) -> Result<f32, RangeError> {
 
 impl Fibre {
     /// A fibre from `ma` to `mb` with `n` wrinkles and the docs/models.md §2 defaults.
-    /// Fails when a point is not finite, `n` is outside 2..=1000 or `ma == mb`.
+    /// Fails when a point is not finite, `n` is outside 1..=1000 or `ma == mb`.
     pub fn new(ma: [f32; 2], mb: [f32; 2], n: u32) -> Result<Self, Error> {
         let invalid = |what: &str, value: String, e: RangeError| Error::InvalidValue {
             what: what.into(),
@@ -229,10 +324,33 @@ impl Fibre {
             omega_low: DEFAULT_OMEGA_LOW,
             profile: Profile::AbsSin,
             depth: DEFAULT_DEPTH,
+            irregularity: 0.0,
+            waviness: 0.0,
+            seed: 0,
         })
     }
 
-    /// Sets W, the half-width relative to the fibre length, in [1e-6, 1].
+    /// Sets the irregularity in [0, 1]: each wrinkle's depth varies along it and between
+    /// the wrinkles of the group by up to this fraction (docs/models.md §2).
+    pub fn with_irregularity(mut self, a: f32) -> Result<Self, Error> {
+        self.irregularity = check_irregularity(a).map_err(|e| range_err("irregularity", a, e))?;
+        Ok(self)
+    }
+
+    /// Sets the waviness: each wrinkle line wanders across by up to this many periods of
+    /// the wrinkle spacing, in [0, 0.5].
+    pub fn with_waviness(mut self, w: f32) -> Result<Self, Error> {
+        self.waviness = check_waviness(w).map_err(|e| range_err("waviness", w, e))?;
+        Ok(self)
+    }
+
+    /// Sets the seed of the irregularity and waviness.
+    pub fn with_seed(mut self, seed: u32) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// Sets W, the half-width relative to the fibre length, in [1e-6, 10].
     pub fn with_rel_width(mut self, w: f32) -> Result<Self, Error> {
         self.rel_width = check_rel_width(w).map_err(|e| range_err("relWidth", w, e))?;
         Ok(self)
@@ -272,7 +390,7 @@ impl Fibre {
         })
     }
 
-    /// The same fibre with a new wrinkle count n (2..=1000).
+    /// The same fibre with a new wrinkle count n (1..=1000).
     pub fn with_n(&self, n: u32) -> Result<Self, Error> {
         Fibre::new(self.ma, self.mb, n).map(|f| Self {
             n: f.n,
@@ -304,6 +422,15 @@ impl Fibre {
     }
     pub fn depth(&self) -> f32 {
         self.depth
+    }
+    pub fn irregularity(&self) -> f32 {
+        self.irregularity
+    }
+    pub fn waviness(&self) -> f32 {
+        self.waviness
+    }
+    pub fn seed(&self) -> u32 {
+        self.seed
     }
 
     /// Length L = ‖mB − mA‖ in UV units.
@@ -357,7 +484,22 @@ impl Fibre {
         };
         let s = smoothstep(at);
         let omega = relative_frequency(at, self.omega_low);
-        self.depth * s * self.profile.eval(self.n as f32 * omega * t) * a_alpha
+        let phase = self.n as f32 * omega * t;
+        if self.irregularity <= 0.0 && self.waviness <= 0.0 {
+            return self.depth * s * self.profile.eval(phase) * a_alpha;
+        }
+        // Irregularity: where along its wrinkle a point lies is its signed distance across
+        // the fibre; which wrinkle, the whole part of its phase (the profiles are ~0
+        // between wrinkles, where that changes).
+        let across = (px * ey - py * ex) / len / (self.rel_width * len);
+        let k = phase.floor();
+        let key = self.seed.wrapping_mul(0x9E37_79B9) ^ (k as i32 as u32);
+        let wave =
+            self.waviness * (2.0 * value_noise(across / ALONG_SCALE, key ^ 0x5bd1_e995) - 1.0);
+        let a = self.irregularity;
+        let between = 1.0 - a * BETWEEN_SHARE * hash01(key);
+        let along = 1.0 - a * (1.0 - BETWEEN_SHARE) * value_noise(across / ALONG_SCALE, key);
+        self.depth * s * self.profile.eval(phase + wave) * a_alpha * between * along
     }
 }
 
@@ -529,11 +671,12 @@ pub(crate) fn finish_impl(
             };
             for (x, p) in row.iter_mut().enumerate() {
                 // Most of a face map is untouched skin: 0^γ = 0, skip the powf.
-                if *p <= 0.0 {
+                if *p == 0.0 || p.is_nan() {
                     *p = 0.0;
                     continue;
                 }
-                let mut value = (*p * inv).clamp(0.0, 1.0).powf(gamma);
+                // A fold's raised side is below zero: γ shapes both sides alike.
+                let mut value = (p.abs() * inv).clamp(0.0, 1.0).powf(gamma).copysign(*p);
                 match mask {
                     MaskValues::None => {}
                     MaskValues::Sample(m) => value *= m.sample(pixel_to_u(x as u32, w), v),
@@ -690,10 +833,125 @@ mod tests {
         );
     }
 
+    /// A lone crease's cross-section: narrow (depth above 5 % over under a quarter of the
+    /// spacing), sharp at the bottom, flat between wrinkles; a fold's is a crease with the
+    /// side toward mA raised above the skin and the other side not.
+    #[test]
+    fn a_crease_is_narrow_and_a_fold_is_raised_on_one_side() {
+        let samples: Vec<f32> = (0..1000).map(|i| i as f32 / 1000.0).collect();
+        let deep = samples
+            .iter()
+            .filter(|&&x| Profile::Crease.eval(x) > 0.05)
+            .count();
+        assert!(deep < 250, "{deep} of 1000 samples below 5 %");
+        assert_eq!(Profile::Crease.eval(0.5 + CREASE_HALF_WIDTH + 0.01), 0.0);
+        // Steeper near the bottom than at the shoulder.
+        let slope = |x: f32| (Profile::Crease.eval(x + 1e-3) - Profile::Crease.eval(x)) / 1e-3;
+        assert!(slope(0.5 - 0.01).abs() > 3.0 * slope(0.5 - CREASE_HALF_WIDTH + 0.01).abs());
+        let low = |range: std::ops::Range<f32>| {
+            samples
+                .iter()
+                .filter(|x| range.contains(x))
+                .map(|&x| Profile::Fold.eval(x))
+                .fold(f32::INFINITY, f32::min)
+        };
+        let (toward_ma, toward_mb) = (low(0.0..0.5), low(0.5..1.0));
+        assert!(
+            (toward_ma + FOLD_RAISE).abs() < 0.01,
+            "raised side {toward_ma}"
+        );
+        assert!(toward_mb >= 0.0, "other side {toward_mb}");
+        close(Profile::Fold.eval(0.5), 1.0, 1e-6);
+    }
+
+    /// Irregularity: along one wrinkle the depth (over the fade across the fibre) varies by
+    /// up to a/2 and at least a few %; between the wrinkles of a group by up to a/2 more;
+    /// the same seed gives the same wrinkles, another seed others, and a = 0 is [T]'s.
+    #[test]
+    fn irregular_wrinkles_vary_in_depth_along_and_between_deterministically() {
+        let base = Fibre::new([0.2, 0.5], [0.8, 0.5], 3)
+            .unwrap()
+            .with_profile(Profile::Crease)
+            .with_omega_low(1.0)
+            .unwrap();
+        let a = 0.5;
+        let irregular = base.clone().with_irregularity(a).unwrap().with_seed(7);
+        let half_width = base.rel_width() * base.length_uv();
+        // The middle wrinkle's bottom: phase 1.5 at t = 0.5 (u = 0.5); along it, v varies.
+        let along = |f: &Fibre| -> Vec<f32> {
+            (0..=40)
+                .map(|i| {
+                    let s = -0.8 + 1.6 * i as f32 / 40.0;
+                    let fade = smoothstep(attenuation(s.abs() * half_width, half_width));
+                    f.height_at(0.5, 0.5 + s * half_width) / fade
+                })
+                .collect()
+        };
+        let regular = along(&base);
+        assert!(
+            regular.iter().all(|&d| (d - 1.0).abs() < 1e-5),
+            "{regular:?}"
+        );
+        let depths = along(&irregular);
+        let (lo, hi) = depths
+            .iter()
+            .fold((f32::INFINITY, 0.0f32), |(l, h), &d| (l.min(d), h.max(d)));
+        let spread = (hi - lo) / hi;
+        eprintln!(
+            "depth along one wrinkle {lo:.3}..{hi:.3}: {:.0} %",
+            spread * 100.0
+        );
+        assert!((0.05..=a / 2.0 + 1e-3).contains(&spread), "spread {spread}");
+        assert!(hi <= 1.0 && lo >= (1.0 - a / 2.0).powi(2) - 1e-4);
+        assert_eq!(
+            depths,
+            along(&irregular.clone().with_seed(7)),
+            "deterministic"
+        );
+        assert_ne!(depths, along(&irregular.clone().with_seed(8)));
+        // Between wrinkles: the three bottoms on the fibre's axis differ.
+        let bottoms: Vec<f32> = (0..3)
+            .map(|k| irregular.height_at(0.2 + 0.6 * (k as f32 + 0.5) / 3.0, 0.5))
+            .collect();
+        let (blo, bhi) = bottoms
+            .iter()
+            .fold((f32::INFINITY, 0.0f32), |(l, h), &d| (l.min(d), h.max(d)));
+        assert!(bhi - blo > 0.01, "{bottoms:?}");
+    }
+
+    /// Waviness: the bottom of a wrinkle wanders across by up to w periods.
+    #[test]
+    fn wavy_wrinkles_wander_by_at_most_the_waviness() {
+        let w = 0.1;
+        let f = Fibre::new([0.2, 0.5], [0.8, 0.5], 3)
+            .unwrap()
+            .with_profile(Profile::Crease)
+            .with_omega_low(1.0)
+            .unwrap()
+            .with_waviness(w)
+            .unwrap();
+        let period = 0.6 / 3.0;
+        let half_width = f.rel_width() * f.length_uv();
+        let mut offsets = Vec::new();
+        for i in 0..=20 {
+            let v = 0.5 + (-0.8 + 1.6 * i as f32 / 20.0) * half_width;
+            // The deepest point near the middle wrinkle (u = 0.5), to 1e-4 UV.
+            let best = (0..=2000)
+                .map(|j| 0.5 - 0.5 * period + period * j as f32 / 2000.0)
+                .max_by(|a, b| f.height_at(*a, v).total_cmp(&f.height_at(*b, v)))
+                .unwrap();
+            offsets.push((best - 0.5) / period);
+        }
+        let most = offsets.iter().fold(0.0f32, |m, o| m.max(o.abs()));
+        let least = offsets.iter().fold(f32::INFINITY, |m, o| m.min(o.abs()));
+        assert!(most <= w + 0.002, "{offsets:?}");
+        assert!(most - least > 0.02, "the line does not wander: {offsets:?}");
+    }
+
     #[test]
     fn invalid_fibres_are_refused() {
         assert!(Fibre::new([0.1, 0.1], [0.1, 0.1], 3).is_err());
-        assert!(Fibre::new([0.1, 0.1], [0.2, 0.1], 1).is_err());
+        assert!(Fibre::new([0.1, 0.1], [0.2, 0.1], 0).is_err());
         assert!(Fibre::new([f32::NAN, 0.1], [0.2, 0.1], 3).is_err());
         assert!(horizontal(3).with_rel_width(0.0).is_err());
         assert!(horizontal(3).with_max_angle(2.5).is_err());

@@ -11,8 +11,13 @@
 //! Keys are case-insensitive; spaces are allowed around every token; CRLF line ends are
 //! accepted. `ma`, `mb` and `n` are required, the others take docs/models.md §2's defaults.
 //! agesim extensions (optional, so [T]'s files load unchanged):
-//! - `profile` — `abs_sin` (default), `sin`, `gauss` or `parabola` (docs/models.md §2 profiles);
+//! - `profile` — `abs_sin` (default), `sin`, `gauss`, `parabola`, `crease` or `fold`
+//!   (docs/models.md §2 profiles);
 //! - `depth` — the fibre's relative amplitude A in [0, 100], default 1;
+//! - `irregularity` — in [0, 1], default 0: each wrinkle's depth varies along it and between
+//!   the wrinkles of the group by up to this fraction; `waviness` — in [0, 0.5] periods of
+//!   the spacing, default 0: each wrinkle line wanders across; `seed` — an integer, default
+//!   the group's number in the file (docs/models.md §2 "Irregularity");
 //! - `ageOnset`, `ageFull` — the fibre's age curve (`docs/models.md` "Age"): the age in
 //!   years at which its wrinkles start to show and at which they reach full depth, both in
 //!   [0, 150], given together, `ageFull ≥ ageOnset`; `ageShape` — `smoothstep` (default)
@@ -68,13 +73,16 @@ enum Key {
     OmegaLow,
     Profile,
     Depth,
+    Irregularity,
+    Waviness,
+    Seed,
     AgeOnset,
     AgeFull,
     AgeShape,
 }
 
 impl Key {
-    const ALL: [Key; 11] = [
+    const ALL: [Key; 14] = [
         Key::Ma,
         Key::Mb,
         Key::N,
@@ -83,6 +91,9 @@ impl Key {
         Key::OmegaLow,
         Key::Profile,
         Key::Depth,
+        Key::Irregularity,
+        Key::Waviness,
+        Key::Seed,
         Key::AgeOnset,
         Key::AgeFull,
         Key::AgeShape,
@@ -98,6 +109,9 @@ impl Key {
             Key::OmegaLow => "omegaLow",
             Key::Profile => "profile",
             Key::Depth => "depth",
+            Key::Irregularity => "irregularity",
+            Key::Waviness => "waviness",
+            Key::Seed => "seed",
             Key::AgeOnset => "ageOnset",
             Key::AgeFull => "ageFull",
             Key::AgeShape => "ageShape",
@@ -129,6 +143,11 @@ struct PendingGroup {
     omega_low: Option<f32>,
     profile: Option<Profile>,
     depth: Option<f32>,
+    irregularity: Option<f32>,
+    waviness: Option<f32>,
+    seed: Option<u32>,
+    /// The group's number in the file, from 1: its seed unless `seed` says otherwise.
+    number: u32,
     age_onset: Option<f32>,
     age_full: Option<f32>,
     age_shape: Option<CurveShape>,
@@ -173,6 +192,7 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
     let mut errors = Vec::new();
     let mut groups = Vec::new();
     let mut current: Option<PendingGroup> = None;
+    let mut group_count = 0u32;
     let mut comments: Vec<String> = Vec::new();
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
 
@@ -207,10 +227,12 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
             if let Some(done) = current.take() {
                 groups.extend(finish_group(done, file, &mut errors));
             }
+            group_count += 1;
             current = Some(PendingGroup {
                 line: line_no,
                 column: column_of(start),
                 comments: std::mem::take(&mut comments),
+                number: group_count,
                 ..PendingGroup::default()
             });
             continue;
@@ -321,6 +343,19 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
                     false
                 }
             },
+            Key::Seed => match value_text.parse::<u32>() {
+                Ok(seed) => {
+                    group.seed = Some(seed);
+                    true
+                }
+                Err(_) => {
+                    bad(
+                        DiagnosticKind::MalformedValue,
+                        "an integer in 0..=4294967295",
+                    );
+                    false
+                }
+            },
             Key::AgeShape => match CurveShape::ALL
                 .into_iter()
                 .find(|c| c.name().eq_ignore_ascii_case(value_text))
@@ -338,6 +373,8 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
             | Key::MaxAngle
             | Key::OmegaLow
             | Key::Depth
+            | Key::Irregularity
+            | Key::Waviness
             | Key::AgeOnset
             | Key::AgeFull => {
                 let (check, slot): (RangeCheck, &mut Option<f32>) = match key {
@@ -346,6 +383,8 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
                     Key::OmegaLow => (muscle::check_omega_low, &mut group.omega_low),
                     Key::AgeOnset => (check_years, &mut group.age_onset),
                     Key::AgeFull => (check_years, &mut group.age_full),
+                    Key::Irregularity => (muscle::check_irregularity, &mut group.irregularity),
+                    Key::Waviness => (muscle::check_waviness, &mut group.waviness),
                     _ => (muscle::check_depth, &mut group.depth),
                 };
                 match parse_number(value_text) {
@@ -490,7 +529,12 @@ fn finish_group(
         .and_then(|f| f.with_max_angle(g.max_angle.unwrap_or(DEFAULT_MAX_ANGLE)))
         .and_then(|f| f.with_omega_low(g.omega_low.unwrap_or(DEFAULT_OMEGA_LOW)))
         .and_then(|f| f.with_depth(g.depth.unwrap_or(DEFAULT_DEPTH)))
-        .map(|f| f.with_profile(g.profile.unwrap_or_default()));
+        .and_then(|f| f.with_irregularity(g.irregularity.unwrap_or(0.0)))
+        .and_then(|f| f.with_waviness(g.waviness.unwrap_or(0.0)))
+        .map(|f| {
+            f.with_profile(g.profile.unwrap_or_default())
+                .with_seed(g.seed.unwrap_or(g.number))
+        });
     match built {
         Ok(fibre) => Some(WrinkleGroup {
             fibre,
@@ -538,6 +582,15 @@ pub fn write(file: &WrinkleFile) -> String {
         }
         if f.depth() != DEFAULT_DEPTH {
             let _ = writeln!(out, "depth={}", f.depth());
+        }
+        if f.irregularity() != 0.0 {
+            let _ = writeln!(out, "irregularity={}", f.irregularity());
+        }
+        if f.waviness() != 0.0 {
+            let _ = writeln!(out, "waviness={}", f.waviness());
+        }
+        if f.seed() != i as u32 + 1 {
+            let _ = writeln!(out, "seed={}", f.seed());
         }
         if let Some(age) = &g.age {
             let _ = writeln!(out, "ageOnset={}", age.onset_years);
@@ -667,7 +720,7 @@ mod tests {
     #[test]
     fn values_out_of_range() {
         let e =
-            errors_of("!\nma=0.1;0.2\nmb=0.2;0.2\nn=1\nmaxAngle=0.25\nomegaLow=2\nrelWidth=0\n");
+            errors_of("!\nma=0.1;0.2\nmb=0.2;0.2\nn=0\nmaxAngle=0.25\nomegaLow=2\nrelWidth=0\n");
         let got: Vec<_> = e.iter().map(|d| (d.line, d.column, d.kind)).collect();
         assert_eq!(
             got,
@@ -748,13 +801,13 @@ mod tests {
     #[test]
     fn diagnostics_print_as_file_line_column() {
         let e = parse(
-            "!\nn=1\nma=0.1;0.2\nmb=0.3;0.2\n",
+            "!\nn=0\nma=0.1;0.2\nmb=0.3;0.2\n",
             Path::new("assets/x.wrk"),
         )
         .unwrap_err();
         assert_eq!(
             e.to_string(),
-            "assets/x.wrk:2:3: value out of range: expected an integer in 2..=1000, found `1`"
+            "assets/x.wrk:2:3: value out of range: expected an integer in 1..=1000, found `0`"
         );
     }
 

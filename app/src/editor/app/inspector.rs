@@ -3,12 +3,16 @@
 use super::EditorApp;
 
 impl EditorApp {
-    /// Adds a fibre (3 wrinkles across the middle of the UV square) to the selected
-    /// fibre's file, or the first file, and selects it.
+    /// Adds a fibre (3 creases across the middle of the UV square, irregular as the shipped
+    /// layout's) to the selected fibre's file, or the first file, and selects it.
     pub fn add_fibre(&mut self) {
         let mut wrinkles = self.wrinkles().to_vec();
         let fi = self.persisted.map_view.selected.map_or(0, |(f, _)| f);
-        let Ok(fibre) = agesim_core::muscle::Fibre::new([0.45, 0.5], [0.55, 0.5], 3) else {
+        let Ok(fibre) = agesim_core::muscle::Fibre::new([0.45, 0.5], [0.55, 0.5], 3)
+            .and_then(|f| f.with_irregularity(0.5))
+            .and_then(|f| f.with_waviness(0.08))
+            .map(|f| f.with_profile(agesim_core::muscle::Profile::Crease))
+        else {
             return;
         };
         let Some(file) = wrinkles.get_mut(fi) else {
@@ -83,7 +87,7 @@ impl EditorApp {
         ));
         let mut n = f.n();
         if ui
-            .add(egui::Slider::new(&mut n, 2..=40).text("n (wrinkles)"))
+            .add(egui::Slider::new(&mut n, 1..=40).text("n (wrinkles)"))
             .changed()
         {
             changed = f.with_n(n).ok();
@@ -92,11 +96,11 @@ impl EditorApp {
             agesim_core::muscle::Fibre,
             f32,
         ) -> Result<agesim_core::muscle::Fibre, agesim_core::Error>;
-        let rows: [(&str, f32, std::ops::RangeInclusive<f32>, Setter); 4] = [
+        let rows: [(&str, f32, std::ops::RangeInclusive<f32>, Setter); 6] = [
             (
                 "relWidth",
                 f.rel_width(),
-                0.01..=1.0,
+                0.01..=4.0,
                 agesim_core::muscle::Fibre::with_rel_width,
             ),
             (
@@ -116,6 +120,18 @@ impl EditorApp {
                 f.depth(),
                 0.0..=5.0,
                 agesim_core::muscle::Fibre::with_depth,
+            ),
+            (
+                "irregularity",
+                f.irregularity(),
+                0.0..=1.0,
+                agesim_core::muscle::Fibre::with_irregularity,
+            ),
+            (
+                "waviness",
+                f.waviness(),
+                0.0..=0.5,
+                agesim_core::muscle::Fibre::with_waviness,
             ),
         ];
         for (label, mut value, range, set) in rows {

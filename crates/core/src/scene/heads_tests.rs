@@ -444,8 +444,11 @@ fn check_seam(path: &std::path::Path, size: u32, at: impl Fn(&Mesh, Vec2, bool) 
     assert!(pairs > 40, "only {pairs} points on the seam");
     // The seam runs down the middle of the forehead, through its middle lines.
     assert!(wrinkled >= 5, "only {wrinkled} seam points on a wrinkle");
+    // The creases are narrow (a quarter of their spacing): a bilinear read a fraction of
+    // a texel off on one side differs by a few % of the peak; a side reading another part
+    // of the template would differ by the peak.
     assert!(
-        worst <= 0.1 * peak,
+        worst <= 0.15 * peak,
         "heights across the seam differ by up to {worst} (peak {peak}, {pairs} pairs)"
     );
 }

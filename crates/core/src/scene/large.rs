@@ -165,7 +165,7 @@ impl LargeStage {
         key: LargeKey,
         cancel: &CancelToken,
     ) -> Result<(), Error> {
-        let packed_range = (0.0, depth.max(f32::MIN_POSITIVE));
+        let packed_range = (-depth.max(f32::MIN_POSITIVE), 0.0);
         let packed_rgba = if request.packed {
             normal_map::pack_rgba8(&scaled(&height, depth)?, normal, packed_range)?
         } else {

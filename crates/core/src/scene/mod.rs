@@ -862,7 +862,7 @@ impl Scene {
             }
             (None, Some(mut large)) => {
                 for h in large.data_mut() {
-                    *h *= depth;
+                    *h *= -depth;
                 }
                 Ok(large)
             }
@@ -890,22 +890,24 @@ impl Scene {
     }
 }
 
-/// h += l × depth, pixel by pixel.
+/// h −= l × depth, pixel by pixel: the large wrinkles cut into the skin.
 fn add_into(height: &mut HeightMap, large: &HeightMap, depth: f32) {
     for (h, l) in height.data_mut().iter_mut().zip(large.data()) {
-        *h += l * depth;
+        *h -= l * depth;
     }
 }
 
-/// `map` × `depth`: a normalised large-wrinkle map in height units.
+/// −`map` × `depth`: a normalised large-wrinkle map (1 = the deepest point of a full-depth
+/// wrinkle) as heights in height units, ≤ 0: wrinkles are cut into the skin
+/// (docs/models.md §2 "Heights").
 fn scaled(map: &HeightMap, depth: f32) -> Result<HeightMap, Error> {
-    let data = map.data().iter().map(|h| h * depth).collect();
+    let data = map.data().iter().map(|h| -h * depth).collect();
     HeightMap::from_vec(map.width_px(), map.height_px(), data)
 }
 
 impl LargeMap {
-    /// The heights in height units: the normalised map × `depth` (the project's
-    /// `large.depth`).
+    /// The heights in height units: −(the normalised map × `depth`, the project's
+    /// `large.depth`), ≤ 0: the wrinkles cut in.
     pub fn scaled(&self, depth: f32) -> Result<HeightMap, Error> {
         scaled(&self.height, depth)
     }

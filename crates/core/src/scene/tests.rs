@@ -296,7 +296,9 @@ fn take_height_moves_what_export_maps_copies_and_the_scene_bakes_again() {
     let (copied, _) = s.export_maps().unwrap();
     let kept = s.large().unwrap().height.data().to_vec();
     let taken = s.take_height().unwrap();
-    assert_eq!(taken.data(), &kept[..]);
+    // Cut into the skin: the heights are −depth × the normalised map.
+    let cut: Vec<f32> = kept.iter().map(|h| -h * large_only.large.depth).collect();
+    assert_eq!(taken.data(), &cut[..]);
     assert_eq!(copied.data(), taken.data());
 }
 

@@ -109,9 +109,10 @@ impl Renderer {
         }
     }
 
-    /// Uploads the large-wrinkle heights over the mesh UV (docs/models.md §2, §5), normalised to
-    /// [0, 1] (values outside are clamped): 1 = the polygon's surface (wrinkle crest),
-    /// 0 = `disp_scale` below it. Stored as f16 heights only; the normals are derived in
+    /// Uploads the large wrinkles over the mesh UV (docs/models.md §2, §5): the scene's
+    /// normalised map, the wrinkles' depth in [0, 1] (a fold's raised side down to −1;
+    /// values outside are clamped), drawn cut into the skin: depth 0 lies on the polygon's
+    /// surface, 1 `disp_scale` below it. Stored as f16 heights only; the normals are derived in
     /// the shader with the frame's `disp_scale`, so the lit relief always matches the
     /// marched and the displaced one, at any age scaling of the heights.
     pub fn upload_large_wrinkles(&mut self, heights01: &HeightMap) -> Result<(), RenderError> {
@@ -322,10 +323,18 @@ pub struct PreparedLayer {
 }
 
 impl PreparedLayer {
-    /// The large-wrinkle heights, clamped to [0, 1] (see
+    /// The large wrinkles' depth map, clamped to [−1, 1], as the height field 1 − depth (see
     /// [`Renderer::upload_large_wrinkles`]), one level.
     pub fn large_wrinkles(heights01: &HeightMap) -> Self {
-        let data: Vec<f32> = heights01.data().iter().map(|h| h.clamp(0.0, 1.0)).collect();
+        // The map is the wrinkles' depth (0 = unwrinkled skin); the shader's height field
+        // has the polygon on top (1), so skin stays on the polygon and wrinkles cut in. A
+        // fold's raised side (depth < 0) rises above 1: the march meets it at once, its
+        // normals show it.
+        let data: Vec<f32> = heights01
+            .data()
+            .iter()
+            .map(|h| 1.0 - h.clamp(-1.0, 1.0))
+            .collect();
         prepare_r16f((heights01.width_px(), heights01.height_px()), &data, false)
     }
 

@@ -10,6 +10,8 @@
 // loaded (crates/render/src/shaders.rs).
 
 
+// How much a full-depth wrinkle's bottom is darkened (ambient; half of it for the light).
+const CAVITY: f32 = 0.55;
 const MODE_LINEAR: u32 = 0u;
 const MODE_BINARY: u32 = 1u;
 const MODE_COMBINED: u32 = 2u;
@@ -388,8 +390,14 @@ fn shade(s: Surface) -> vec4<f32> {
     let spec = skin_specular(n, to_eye, l, frame.skin_wrap.w, frame.skin_spec.x);
     // Hemisphere ambient through the perturbed normal, so micro-relief shows in shadow.
     let sky = 0.6 + 0.4 * n.y;
-    let ambient = frame.light_colour.w * sky;
-    let colour = albedo * (diffuse * light + vec3<f32>(ambient)) + vec3<f32>(spec) * light;
+    // Cavity occlusion (docs/models.md §10): the bottom of a wrinkle sees less of the sky
+    // and of the light than the skin beside it. The map's depth at the hit, scaled by the
+    // drawn relief (0 with no relief; full at the default 0.005).
+    let depth01 = clamp(1.0 - large_height(uv, ddx, ddy), 0.0, 1.0);
+    let cavity = 1.0 - clamp(CAVITY * depth01 * frame.disp.x / 0.005, 0.0, 0.7);
+    let ambient = frame.light_colour.w * sky * cavity;
+    let colour = albedo * (diffuse * light * mix(1.0, cavity, 0.5) + vec3<f32>(ambient))
+        + vec3<f32>(spec) * light * cavity;
     return output_colour(colour);
 }
 

@@ -33,14 +33,16 @@ fn default_bake_writes_the_four_files() {
     let report: serde_json::Value = bake_json(&out);
     let range = report["height_range"].as_array().unwrap();
     let (lo, hi) = (range[0].as_f64().unwrap(), range[1].as_f64().unwrap());
+    // Cut in: the deepest point of the normalised depth at full age is −1; the folds'
+    // raised cheek sides the only heights above the skin.
     assert_eq!(
-        (lo, hi),
-        (0.0, 1.0),
-        "large wrinkles at full age are normalised to [0,1]"
+        lo, -1.0,
+        "large wrinkles at full age are normalised to a depth of 1"
     );
+    assert!((0.0..0.6).contains(&hi), "raised fold sides up to {hi}");
     assert_eq!(report["inputs"]["age_t"], 1.0);
     assert_eq!(report["inputs"]["size"], 256);
-    assert_eq!(report["inputs"]["gamma"], 0.4);
+    assert_eq!(report["inputs"]["gamma"], 0.7);
     assert!(report["timings_ms"]["bake"].as_f64().unwrap() >= 0.0);
     assert_eq!(report["inputs"]["layers"], serde_json::json!(["large"]));
     assert!(
@@ -62,17 +64,22 @@ fn default_bake_writes_the_four_files() {
     // none on the back of the head (u < 0.1).
     let h = height.into_luma16();
     let at = |u: f32, v: f32| h.get_pixel((u * 256.0) as u32, ((1.0 - v) * 256.0) as u32)[0];
+    // Unwrinkled skin is height 0, the wrinkles below it.
+    let skin = at(0.05, 0.1);
     let forehead = (0..20)
         .flat_map(|i| [0.8, 0.81, 0.82].map(|v| (0.43 + i as f32 * 0.006, v)))
         .map(|(u, v)| at(u, v) as u32)
-        .max()
+        .min()
         .unwrap();
-    assert!(forehead > 20000, "forehead crest {forehead}");
-    assert!((0..50).all(|i| at(0.05, 0.1 + i as f32 * 0.016) == 0));
+    assert!(
+        forehead + 20000 < u32::from(skin),
+        "forehead crease {forehead}, skin {skin}"
+    );
+    assert!((0..50).all(|i| at(0.05, 0.1 + i as f32 * 0.016) == skin));
 }
 
 #[test]
-fn thesis_example_crests_on_its_forehead() {
+fn thesis_example_is_cut_into_its_forehead() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("maps");
     let wrk = concat!(
@@ -96,15 +103,16 @@ fn thesis_example_crests_on_its_forehead() {
         "own files: no default mask"
     );
     let h = image::open(out.join("height.png")).unwrap().into_luma16();
-    let crest = (0..256u32)
+    // The deepest point (0: the wrinkles are cut in) lies on the forehead.
+    let deepest = (0..256u32)
         .flat_map(|x| (0..256u32).map(move |y| (x, y)))
-        .filter(|&(x, y)| h.get_pixel(x, y)[0] == 65535)
+        .filter(|&(x, y)| h.get_pixel(x, y)[0] == 0)
         .map(|(x, y)| ((x as f32 + 0.5) / 256.0, 1.0 - (y as f32 + 0.5) / 256.0))
         .next()
         .unwrap();
     assert!(
-        (0.4..0.6).contains(&crest.0) && (0.76..0.86).contains(&crest.1),
-        "crest at {crest:?}"
+        (0.4..0.6).contains(&deepest.0) && (0.76..0.86).contains(&deepest.1),
+        "deepest at {deepest:?}"
     );
 }
 
@@ -337,9 +345,13 @@ fn layers_select_what_is_baked() {
     for ((a, m), l) in all.iter().zip(&micro).zip(&large) {
         assert!((a - (m + l)).abs() < 1e-5, "{a} vs {m} + {l}");
     }
+    // Large wrinkles are cut in; only the folds' raised sides rise, less than the creases sink.
+    let (lo, hi) = large
+        .iter()
+        .fold((0.0f32, 0.0f32), |(l, h), &x| (l.min(x), h.max(x)));
     assert!(
-        large.iter().all(|&h| h >= 0.0),
-        "large wrinkles alone are crests, never pores"
+        lo < -0.5 && hi < 0.6 && hi < -lo,
+        "large wrinkles {lo}..{hi}"
     );
     assert!(micro.iter().any(|&h| h < -0.1));
 }
@@ -487,7 +499,8 @@ fn older_bakes_are_deeper() {
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
         let r: serde_json::Value = bake_json(&out);
-        r["height_range"][1].as_f64().unwrap()
+        // The deepest point (the heights are cut in: below zero).
+        -r["height_range"][0].as_f64().unwrap()
     };
     let (a, b, c) = (range("30"), range("50"), range("80"));
     assert!(a < b && b < c, "{a} {b} {c}");

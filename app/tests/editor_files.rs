@@ -455,7 +455,7 @@ fn a_wrinkle_file_changed_on_disk_is_reloaded() {
     settle(&mut h);
     assert_eq!(fibre_count(&h), 2);
     // Broken: the two fibres stay, the error names the file and the line.
-    std::fs::write(&wrk, "!\nma=0.3;0.5\nmb=0.35;0.6\nn=1\n").unwrap();
+    std::fs::write(&wrk, "!\nma=0.3;0.5\nmb=0.35;0.6\nn=0\n").unwrap();
     wait_for(&mut h, "the error", |app| {
         app.open_errors().iter().any(|e| e.contains("f.wrk:4:"))
     });

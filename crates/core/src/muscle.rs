@@ -65,12 +65,16 @@ pub enum Profile {
     Fold,
 }
 
-/// Half-width of a [`Profile::Crease`], in periods: the crease takes 2 × 0.12 of the spacing
+/// Half-width of a [`Profile::Crease`], in periods: the crease takes 2 × 0.15 of the spacing
 /// between wrinkles and flat skin the rest.
-pub const CREASE_HALF_WIDTH: f32 = 0.12;
+pub const CREASE_HALF_WIDTH: f32 = 0.15;
 
 /// Height of a [`Profile::Fold`]'s raised side, relative to its crease's depth.
-pub const FOLD_RAISE: f32 = 0.35;
+pub const FOLD_RAISE: f32 = 0.45;
+
+/// Half-width of a [`Profile::Fold`]'s crease, in periods (wider than a line's: a fold is
+/// a valley under the cheek, not a line).
+pub const FOLD_HALF_WIDTH: f32 = 0.22;
 
 impl Profile {
     /// All profiles, in the order the wrinkle file documents them.
@@ -120,14 +124,14 @@ impl Profile {
             Profile::Crease => crease(x - x.floor() - 0.5),
             Profile::Fold => {
                 let xc = x - x.floor() - 0.5;
-                // The hump: a smooth bump of half-width 0.2 just beside the crease's
+                // The hump: a smooth bump of half-width 0.25 just beside the crease's
                 // wall, rising from nothing at the crease's centre.
                 let bump = {
-                    let s = ((xc + 0.2) / 0.2).abs();
+                    let s = ((xc + 0.25) / 0.25).abs();
                     if s < 1.0 { (1.0 - s * s).powi(2) } else { 0.0 }
                 };
                 let wall = if xc < 0.0 { bump } else { 0.0 };
-                crease(xc) - FOLD_RAISE * wall
+                crease_of_width(xc, FOLD_HALF_WIDTH) - FOLD_RAISE * wall
             }
         }
     }
@@ -136,7 +140,13 @@ impl Profile {
 /// The crease (1 − |x'|/w)² of [`Profile::Crease`] at the offset `xc` from its centre.
 #[inline]
 fn crease(xc: f32) -> f32 {
-    let s = xc.abs() / CREASE_HALF_WIDTH;
+    crease_of_width(xc, CREASE_HALF_WIDTH)
+}
+
+/// (1 − |x'|/w)² for |x'| < w, else 0.
+#[inline]
+fn crease_of_width(xc: f32, w: f32) -> f32 {
+    let s = xc.abs() / w;
     if s < 1.0 { (1.0 - s) * (1.0 - s) } else { 0.0 }
 }
 

@@ -15,12 +15,13 @@ use glam::Vec3;
 mod common;
 use common::gpu_or_skip;
 
+/// Five narrow creases across v: the depth of the `crease` profile (cut into the skin).
 fn creases(size: u32) -> HeightMap {
     let mut data = Vec::new();
     for y in 0..size {
         let v = agesim_core::heightmap::pixel_to_v(y, size);
         for _ in 0..size {
-            data.push((0.5 + 0.5 * (v * 5.0 * std::f32::consts::TAU).cos()).powf(0.4));
+            data.push(agesim_core::muscle::Profile::Crease.eval(v * 5.0).powf(0.7));
         }
     }
     HeightMap::from_vec(size, size, data).unwrap()

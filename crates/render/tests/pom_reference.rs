@@ -39,7 +39,9 @@ impl Field {
                 ));
             }
         }
-        let map = HeightMap::from_vec(MAP_PX, MAP_PX, values.clone()).unwrap();
+        // The renderer takes the wrinkles' depth and marches the height field 1 − depth.
+        let depth = values.iter().map(|h| 1.0 - h).collect();
+        let map = HeightMap::from_vec(MAP_PX, MAP_PX, depth).unwrap();
         (Self { values }, map)
     }
 

@@ -43,8 +43,11 @@ pub use sections::*;
 pub const PROJECT_VERSION: u32 = 2;
 /// Default side of the skin patch, mm.
 pub const DEFAULT_MAP_SIZE_MM: f32 = 50.0;
-/// Default large-wrinkle crest flattening γ (docs/models.md §2).
-pub const DEFAULT_GAMMA: f32 = crate::muscle::DEFAULT_GAMMA;
+/// Default large-wrinkle shaping γ of a project (docs/models.md §2 "Blending"): 0.7, which
+/// widens the shipped creases' dark core a little and keeps their shoulders soft. [T]'s 0.4
+/// (`muscle::DEFAULT_GAMMA`) flattens `abs_sin` crests; on creases it turns the soft
+/// shoulders into sharp edges and lifts young faces' shallow wrinkles toward full depth.
+pub const DEFAULT_GAMMA: f32 = 0.7;
 
 /// The whole project. See `docs/project-file.md` for every field.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -230,7 +230,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             Kind::Path,
             "grey mask multiplying the layer; null = the default head's mask with the default files",
         ),
-        f("large.gamma", "", 0.01, 10.0, "crest flattening γ"),
+        f(
+            "large.gamma",
+            "",
+            0.01,
+            10.0,
+            "shaping γ of the normalised depth (1: the profiles as they are; [T]: 0.4)",
+        ),
         f(
             "large.depth",
             HU,

@@ -58,7 +58,7 @@ fn default_bake_writes_the_four_files() {
     let normal = image::open(out.join("normal.png")).unwrap();
     assert_eq!(normal.color(), image::ColorType::Rgb8);
     // The default files are the default head's: every wrinkle group, with its mask.
-    assert_eq!(report["inputs"]["wrinkles"].as_array().unwrap().len(), 6);
+    assert_eq!(report["inputs"]["wrinkles"].as_array().unwrap().len(), 8);
     assert_eq!(report["inputs"]["mask"], "assets/masks/wrinkles.png");
     // Wrinkles on the forehead (u 0.43–0.56, v 0.78–0.84 on the default head's layout),
     // none on the back of the head (u < 0.1).

@@ -167,14 +167,15 @@ impl Face {
         let lon = self.longitude_deg(p);
         let front = 1.0 - smoothstep(70.0, 95.0, lon);
         let below_hair = 1.0 - smoothstep(-0.004, 0.006, p.y - lerp_table(OUTER_HAIRLINE_M, lon));
-        // The eye (closed lids on the scan) is 0; the skin around it full.
+        // The eye (closed lids on the scan) is 0; the skin around it full from just
+        // beyond the lids, so the lines under the lower lid can show.
         let eye = self
             .eyes
             .iter()
             .map(|&c| {
                 smoothstep(
-                    EYEBALL_RADIUS_M * 1.05,
-                    EYEBALL_RADIUS_M * 1.3,
+                    EYEBALL_RADIUS_M * 1.0,
+                    EYEBALL_RADIUS_M * 1.15,
                     p.distance(c),
                 )
             })
@@ -366,7 +367,9 @@ mod tests {
             "forehead",
             "glabella",
             "crows-feet",
+            "under-eye",
             "nasolabial",
+            "perioral",
             "marionette",
             "neck",
             "thesis-forehead",

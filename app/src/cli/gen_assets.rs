@@ -33,7 +33,9 @@ pub const WRINKLE_FILES: &[(&str, [f32; 3])] = &[
     ("forehead", [0.95, 0.25, 0.2]),
     ("glabella", [1.0, 0.75, 0.1]),
     ("crows-feet", [0.2, 0.8, 0.3]),
+    ("under-eye", [0.6, 0.9, 0.2]),
     ("nasolabial", [0.2, 0.6, 1.0]),
+    ("perioral", [1.0, 0.45, 0.6]),
     ("marionette", [0.8, 0.3, 0.9]),
     ("neck", [0.1, 0.9, 0.9]),
 ];

@@ -19,8 +19,16 @@ pub const WRINKLE_FILES: &[(&str, &str)] = &[
         include_str!("../../../assets/wrinkles/crows-feet.wrk"),
     ),
     (
+        "assets/wrinkles/under-eye.wrk",
+        include_str!("../../../assets/wrinkles/under-eye.wrk"),
+    ),
+    (
         "assets/wrinkles/nasolabial.wrk",
         include_str!("../../../assets/wrinkles/nasolabial.wrk"),
+    ),
+    (
+        "assets/wrinkles/perioral.wrk",
+        include_str!("../../../assets/wrinkles/perioral.wrk"),
     ),
     (
         "assets/wrinkles/marionette.wrk",

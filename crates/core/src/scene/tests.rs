@@ -472,3 +472,95 @@ fn a_new_file_version_reads_the_file_again_and_an_earlier_one_comes_back_as_it_w
 fn scene_large(s: &Scene) -> Vec<f32> {
     s.large().unwrap().height.data().to_vec()
 }
+
+/// Each shipped region, baked alone on the default head across ages: when it becomes
+/// visible (its deepest point past 10 % of its full depth) and how deep it is, against the
+/// onsets of the literature (docs/models.md "Age": forehead and crow's feet by 35–40, crow's
+/// feet near full depth by 60, glabellar lines not before 40, marionette from 40–45, lip
+/// lines from 45–50, neck from 40), and in that order.
+#[test]
+fn each_region_appears_at_its_age_and_in_the_literatures_order() {
+    let mut p = project();
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
+    p.noise.details = 0.0;
+    let regions = [
+        "forehead",
+        "crows-feet",
+        "under-eye",
+        "glabella",
+        "nasolabial",
+        "marionette",
+        "perioral",
+        "neck",
+    ];
+    let ages: Vec<f32> = (20..=80).step_by(5).map(|a| a as f32).collect();
+    let mut visible_at = std::collections::BTreeMap::new();
+    for region in regions {
+        p.large.wrinkles = vec![
+            std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+                .join(format!("../../assets/wrinkles/{region}.wrk")),
+        ];
+        let mut scene = Scene::new(p.clone()).unwrap();
+        let depth_at = |scene: &mut Scene, years: f32| {
+            let t = p.age.mapping().t(years);
+            scene
+                .bake(&BakeRequest::maps(256, t, false), &CancelToken::never())
+                .unwrap();
+            scene
+                .large()
+                .unwrap()
+                .height
+                .data()
+                .iter()
+                .fold(0.0f32, |m, &h| m.max(h))
+        };
+        let full = depth_at(&mut scene, 80.0);
+        assert!(full > 0.5, "{region}: {full} at 80");
+        let depths: Vec<f32> = ages
+            .iter()
+            .map(|&a| depth_at(&mut scene, a) / full)
+            .collect();
+        eprintln!(
+            "{region:>10}: {:?}",
+            depths
+                .iter()
+                .map(|d| (d * 100.0).round())
+                .collect::<Vec<_>>()
+        );
+        let first = ages
+            .iter()
+            .zip(&depths)
+            .find(|(_, d)| **d > 0.1)
+            .map(|(a, _)| *a)
+            .unwrap();
+        let at = |years: f32| depths[ages.iter().position(|&a| a == years).unwrap()];
+        match region {
+            "forehead" | "crows-feet" => assert!(first <= 40.0, "{region} first at {first}"),
+            "glabella" => assert!(
+                at(40.0) == 0.0 && first <= 50.0,
+                "{region} first at {first}"
+            ),
+            "marionette" => assert!(
+                at(40.0) == 0.0 && first <= 55.0,
+                "{region} first at {first}"
+            ),
+            "perioral" => assert!(
+                at(45.0) == 0.0 && first <= 60.0,
+                "{region} first at {first}"
+            ),
+            "neck" => assert!(
+                at(35.0) == 0.0 && first <= 50.0,
+                "{region} first at {first}"
+            ),
+            _ => {}
+        }
+        if region == "crows-feet" {
+            assert!(at(60.0) > 0.9, "crow's feet at 60: {}", at(60.0));
+        }
+        visible_at.insert(region, first);
+    }
+    let v = |r: &str| visible_at[r];
+    assert!(v("forehead") <= v("glabella") && v("crows-feet") <= v("glabella"));
+    assert!(v("glabella") <= v("perioral") && v("marionette") <= v("perioral"));
+}

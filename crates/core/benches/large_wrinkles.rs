@@ -68,12 +68,34 @@ fn main() {
     let normal = time_ms(7, || {
         normal_map::encode_rgb8(&map, &NormalSettings::default()).unwrap()
     });
+    // The shipped layout's fibres: creases with irregularity and waviness (a hashed
+    // value noise per pixel on top of [T]'s model).
+    let irregular: Vec<Fibre> = fibres
+        .iter()
+        .map(|f| {
+            f.clone()
+                .with_profile(muscle::Profile::Crease)
+                .with_irregularity(0.5)
+                .unwrap()
+                .with_waviness(0.08)
+                .unwrap()
+        })
+        .collect();
+    let raster_irregular = time_ms(7, || {
+        let mut map = HeightMap::zeros(size, size).unwrap();
+        muscle::accumulate(&irregular, &mut map);
+        map
+    });
     let baseline = time_ms(1, || {
         let mut map = HeightMap::zeros(size, size).unwrap();
         muscle::accumulate_brute_force(&fibres, &mut map);
         map
     });
     println!("  accumulate (bounded, parallel)    median {raster:9.1} ms");
+    println!(
+        "  accumulate, creases with irregularity and waviness  median {raster_irregular:9.1} ms ({:.2}× the regular [T] fibres)",
+        raster_irregular / raster
+    );
     println!("  full layer (+ normalise, γ)       median {full:9.1} ms");
     println!("  normal map RGB8                   median {normal:9.1} ms");
     println!("  baseline: every pixel × fibre, 1 thread {baseline:9.1} ms");

@@ -11,8 +11,9 @@
 //!   the midpoints of its left/right landmark pairs), y = 0 the outer eye corners' height,
 //!   z = 0 the left ear's tragion. The rotation turns the line through the paired landmarks
 //!   onto +X and keeps the scan's own up as near +Y as that allows (the scan is turned ≈ 3°);
-//! - **shoulders cut**: triangles with a vertex more than [`NECK_BELOW_EYES_M`] below the
-//!   eyes are dropped (the scan goes down to the chest), so views and the fit are the head's;
+//! - **shoulders cut**: the scan (down to the chest) is clipped by the plane
+//!   [`NECK_BELOW_EYES_M`] below the eyes, triangles across it cut at the plane, so views
+//!   and the fit are the head's and the neck ends in a straight edge;
 //! - **eye sockets**: the patches inside the closed lids (the two discs in the chart's top
 //!   corners) become a part of their own, which is not skin (docs/models.md §7a);
 //! - **UVs**: the scan's UVs are in OBJ's convention relative to its maps, so the glTF v flip
@@ -57,6 +58,60 @@ const PAIRS: [(&str, &str); 4] = [
     ("alare_r", "alare_l"),
     ("cheilion_r", "cheilion_l"),
 ];
+
+/// The triangles of `indices` clipped to y ≥ `y0`: those wholly below dropped, those across
+/// the plane cut along it (Sutherland–Hodgman, a fan of the kept polygon). A vertex made on
+/// an edge is shared by both triangles of that edge; its position, UV and normal are
+/// interpolated and appended to the arrays.
+fn clip_below(
+    indices: &[u32],
+    y0: f32,
+    positions: &mut Vec<Vec3>,
+    uvs: &mut Vec<Vec2>,
+    mut normals: Option<&mut Vec<Vec3>>,
+) -> Vec<u32> {
+    let mut out = Vec::with_capacity(indices.len());
+    let mut on_edge: std::collections::HashMap<(u32, u32), u32> = Default::default();
+    for t in indices.chunks_exact(3) {
+        let above = [t[0], t[1], t[2]].map(|i| positions[i as usize].y >= y0);
+        if above.iter().all(|&a| a) {
+            out.extend_from_slice(t);
+            continue;
+        }
+        if !above.iter().any(|&a| a) {
+            continue;
+        }
+        let mut polygon = Vec::with_capacity(4);
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if above[k] {
+                polygon.push(a);
+            }
+            if above[k] != above[(k + 1) % 3] {
+                let key = (a.min(b), a.max(b));
+                let v = *on_edge.entry(key).or_insert_with(|| {
+                    let (pa, pb) = (positions[key.0 as usize], positions[key.1 as usize]);
+                    let s = ((y0 - pa.y) / (pb.y - pa.y)).clamp(0.0, 1.0);
+                    positions.push(pa.lerp(pb, s));
+                    let uv = uvs[key.0 as usize].lerp(uvs[key.1 as usize], s);
+                    uvs.push(uv);
+                    if let Some(n) = normals.as_deref_mut() {
+                        let m = n[key.0 as usize]
+                            .lerp(n[key.1 as usize], s)
+                            .normalize_or_zero();
+                        n.push(m);
+                    }
+                    (positions.len() - 1) as u32
+                });
+                polygon.push(v);
+            }
+        }
+        for k in 1..polygon.len().saturating_sub(1) {
+            out.extend_from_slice(&[polygon[0], polygon[k], polygon[k + 1]]);
+        }
+    }
+    out
+}
 
 /// Converts the scan in `assets/`[`SCAN_DIR`] (see the module docs).
 pub fn convert_scan(assets: &Path) -> anyhow::Result<DefaultHead> {
@@ -112,17 +167,22 @@ pub fn convert_scan(assets: &Path) -> anyhow::Result<DefaultHead> {
         warnings,
         ..
     } = raw;
-    let positions: Vec<Vec3> = positions.into_iter().map(to_head).collect();
-    let uvs: Vec<Vec2> = uvs
+    let mut positions: Vec<Vec3> = positions.into_iter().map(to_head).collect();
+    let mut uvs: Vec<Vec2> = uvs
         .with_context(|| format!("{}: the scan has no UVs", glb.display()))?
         .into_iter()
         .map(|uv| Vec2::new(uv.x, 1.0 - uv.y))
         .collect();
-    // Drop the shoulders: every triangle with a vertex below the cut, part by part.
-    let keep = |t: &[u32]| {
-        t.iter()
-            .all(|&i| positions[i as usize].y >= -NECK_BELOW_EYES_M)
-    };
+    let mut normals = normals;
+    // Cut the shoulders off along the plane y = −cut: triangles below it dropped, those
+    // across it clipped, so the neck ends in a clean edge, not a ragged one.
+    let indices = clip_below(
+        &indices,
+        -NECK_BELOW_EYES_M,
+        &mut positions,
+        &mut uvs,
+        normals.as_mut(),
+    );
     // The insides of the eye sockets behind the closed lids are two small patches in the
     // top corners of the chart, joined to the lids by triangles without UV area: not skin
     // (no wrinkles, no hair), a part of their own.
@@ -135,7 +195,7 @@ pub fn convert_scan(assets: &Path) -> anyhow::Result<DefaultHead> {
     };
     let mut skin = Vec::with_capacity(indices.len());
     let mut sockets = Vec::new();
-    for t in indices.chunks_exact(3).filter(|t| keep(t)) {
+    for t in indices.chunks_exact(3) {
         if t.iter().any(|&i| in_socket(i)) {
             sockets.extend_from_slice(t);
         } else {
@@ -272,7 +332,8 @@ mod tests {
         assert!(g("exocanthion_l").x > 0.04 && g("exocanthion_r").x < -0.04);
         // (The right ear is nearer the midline than the left: 7 mm.)
         assert!((g("tragion_r").x + g("tragion_l").x).abs() < 0.01);
-        // The shoulders cut off below the neck.
-        assert!(head.mesh.bounds().min.y >= -NECK_BELOW_EYES_M);
+        // The shoulders cut off below the neck, along the plane (a straight edge).
+        let bottom = head.mesh.bounds().min.y;
+        assert!((bottom + NECK_BELOW_EYES_M).abs() < 1e-5, "{bottom}");
     }
 }

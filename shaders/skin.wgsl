@@ -11,6 +11,8 @@
 
 
 // How much a full-depth wrinkle's bottom is darkened (ambient; half of it for the light).
+// The same as `agesim_core::compose::CAVITY` (and 0.7, 0.005 below: CAVITY_MAX,
+// CAVITY_REFERENCE_DISP), which the exported GLB's occlusion texture uses.
 const CAVITY: f32 = 0.55;
 const MODE_LINEAR: u32 = 0u;
 const MODE_BINARY: u32 = 1u;

@@ -368,6 +368,11 @@ fn export_glb(
         None => HeightMap::zeros(atlas_px, atlas_px)?,
     };
     let range = scene.large().map(|_| height.min_max());
+    // The creases' cavity occlusion, as the view darkens them (docs/models.md §10).
+    let occlusion = scene
+        .large()
+        .filter(|l| l.height.width_px() == atlas_px)
+        .map(|l| agesim_core::compose::occlusion_map(&l.height, params.skin.disp_scale));
     // The head's own colour map, paled for the age as the view pales it; else the
     // skin colour as a factor.
     let a = params.skin.albedo;
@@ -402,6 +407,21 @@ fn export_glb(
             &crop(&normals, atlas_px, 3),
         )
         .context("encoding the normal map")?;
+        let occlusion_png = match &occlusion {
+            Some(ao) => {
+                let mut png = Vec::new();
+                out::encode_png(
+                    &mut png,
+                    tile_px,
+                    tile_px,
+                    out::PngPixels::Grey8,
+                    &crop(ao, atlas_px, 1),
+                )
+                .context("encoding the occlusion map")?;
+                Some(png)
+            }
+            None => None,
+        };
         let base_colour_png = match &aged {
             Some(aged) => {
                 let side = if multi {
@@ -440,6 +460,7 @@ fn export_glb(
             roughness: 0.42,
             metallic: 0.0,
             normal_png: Some(normal_png),
+            occlusion_png,
             extras: serde_json::json!({
                 "agesim_version": env!("CARGO_PKG_VERSION"),
                 "age_years": years,

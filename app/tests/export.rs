@@ -37,6 +37,26 @@ fn the_aged_head_glb_loads_back_with_its_material() {
     let (r, g, b) = (mean(0), mean(1), mean(2));
     assert!(r > g && g > b, "a skin tone, got {r} {g} {b}");
     assert_eq!(pbr.base_color_factor()[3], 1.0);
+    // The creases' cavity occlusion, as the view darkens them: open skin white, the
+    // bottoms of the wrinkles darker.
+    let occlusion = material.occlusion_texture().expect("an occlusion texture");
+    let ao = &images[occlusion.texture().source().index()];
+    assert_eq!((ao.width, ao.height), (256, 256));
+    let channels = ao.pixels.len() / (256 * 256);
+    let open = ao
+        .pixels
+        .chunks_exact(channels)
+        .filter(|p| p[0] == 255)
+        .count();
+    let dark = ao
+        .pixels
+        .chunks_exact(channels)
+        .filter(|p| p[0] < 200)
+        .count();
+    assert!(
+        open > 256 * 256 * 3 / 4 && dark > 30,
+        "{open} open, {dark} dark texels"
+    );
     let normal = material.normal_texture().expect("a normal texture");
     let image = &images[normal.texture().source().index()];
     assert_eq!((image.width, image.height), (256, 256));

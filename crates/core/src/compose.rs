@@ -19,6 +19,32 @@ use crate::cancel::CancelToken;
 use crate::heightmap::{self, HeightMap};
 use crate::normal_map::encode_unorm8;
 
+/// How much a full-depth wrinkle's bottom is darkened (docs/models.md §10 "Cavity
+/// occlusion"; the skin shader's `CAVITY`).
+pub const CAVITY: f32 = 0.55;
+/// The most a cavity darkens.
+pub const CAVITY_MAX: f32 = 0.7;
+/// The relief depth (UV units) at which [`CAVITY`] applies in full.
+pub const CAVITY_REFERENCE_DISP: f32 = 0.005;
+
+/// The ambient occlusion of a wrinkle's `depth` (normalised, 0–1) drawn `disp_scale` deep:
+/// 1 − min(CAVITY · depth · disp_scale / 0.005, 0.7), as the skin pass darkens it.
+pub fn cavity(depth: f32, disp_scale: f32) -> f32 {
+    let d = depth.clamp(0.0, 1.0) * disp_scale.max(0.0) / CAVITY_REFERENCE_DISP;
+    1.0 - (CAVITY * d).clamp(0.0, CAVITY_MAX)
+}
+
+/// The occlusion map of a large-wrinkle depth map, 8-bit grey (255 = open skin): the
+/// exported GLB's `occlusionTexture`, so the exported head darkens its creases as the view
+/// does.
+pub fn occlusion_map(large: &HeightMap, disp_scale: f32) -> Vec<u8> {
+    large
+        .data()
+        .par_iter()
+        .map(|&d| (cavity(d, disp_scale) * 255.0).round() as u8)
+        .collect()
+}
+
 /// A height tile repeated over the UV square.
 #[derive(Clone, Copy, Debug)]
 pub struct RepeatedTile<'a> {
@@ -260,6 +286,18 @@ mod tests {
             "{:?}",
             &rgb[..6]
         );
+    }
+
+    #[test]
+    fn cavities_darken_with_depth_and_relief_only() {
+        assert_eq!(cavity(0.0, 0.005), 1.0);
+        assert!((cavity(1.0, 0.005) - (1.0 - CAVITY)).abs() < 1e-6);
+        assert_eq!(cavity(1.0, 0.0), 1.0, "no relief, no cavity");
+        assert!((cavity(1.0, 1.0) - (1.0 - CAVITY_MAX)).abs() < 1e-6);
+        // A fold's raised side is open skin.
+        assert_eq!(cavity(-0.4, 0.005), 1.0);
+        let map = HeightMap::from_vec(2, 1, vec![0.0, 1.0]).unwrap();
+        assert_eq!(occlusion_map(&map, 0.005), [255, 115]);
     }
 
     #[test]

@@ -420,6 +420,9 @@ pub struct GlbMaterial {
     /// A tangent-space normal map as PNG (or JPEG) bytes (OpenGL convention: green = +bitangent, as
     /// glTF 2.0 §3.9.3 asks), embedded in the binary chunk as `normalTexture`.
     pub normal_png: Option<Vec<u8>>,
+    /// Ambient occlusion as grey PNG bytes (the red channel is read, glTF 2.0 §3.9.3),
+    /// embedded as `occlusionTexture`.
+    pub occlusion_png: Option<Vec<u8>>,
     /// Recorded in the file's `extras` (glTF has no displacement: a height map beside).
     pub extras: serde_json::Value,
 }
@@ -579,9 +582,11 @@ pub fn write_glb_with_materials(mesh: &super::Mesh, materials: &[GlbMaterial]) -
         for m in materials {
             let mut normal = String::new();
             let mut colour = String::new();
+            let mut occlusion = String::new();
             for (png, name) in [
                 (&m.normal_png, "normal"),
                 (&m.base_colour_png, "base colour"),
+                (&m.occlusion_png, "occlusion"),
             ] {
                 let Some(png) = png else { continue };
                 let view = push_view(&mut bin, &mut views, png, "");
@@ -597,10 +602,10 @@ pub fn write_glb_with_materials(mesh: &super::Mesh, materials: &[GlbMaterial]) -
                     json_string(&format!("{name}, {}", m.name))
                 ));
                 let texture = format!(r#"{{"index":{index}}}"#);
-                if name == "normal" {
-                    normal = format!(r#","normalTexture":{texture}"#);
-                } else {
-                    colour = format!(r#","baseColorTexture":{texture}"#);
+                match name {
+                    "normal" => normal = format!(r#","normalTexture":{texture}"#),
+                    "occlusion" => occlusion = format!(r#","occlusionTexture":{texture}"#),
+                    _ => colour = format!(r#","baseColorTexture":{texture}"#),
                 }
             }
             let f = |x: f32| if x.is_finite() { x } else { 0.0 };
@@ -611,7 +616,7 @@ pub fn write_glb_with_materials(mesh: &super::Mesh, materials: &[GlbMaterial]) -
                 format!(r#","extras":{}"#, m.extras)
             };
             list.push(format!(
-                r#"{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}}}{normal}{extras}}}"#,
+                r#"{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}}}{normal}{occlusion}{extras}}}"#,
                 json_string(&m.name),
                 f(m.metallic),
                 f(m.roughness),
@@ -1008,6 +1013,7 @@ mod tests {
             roughness: 0.45,
             metallic: 0.0,
             normal_png: Some(png.clone()),
+            occlusion_png: None,
             extras: serde_json::json!({"age_years": 70.0}),
         };
         let glb = write_glb_with_material(&original, Some(&material));

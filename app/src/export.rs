@@ -393,58 +393,38 @@ fn export_glb(
             0.7 + 0.2 * k as f32 / tiles.len() as f32,
             "encoding the textures",
         );
-        let crop = |texels: &[u8], side: u32, channels: usize| match &udim {
-            Some(u) if multi => u.crop(k, texels, side, channels),
-            _ => texels.to_vec(),
+        // One atlas picture (`w`×`h`) as this tile's PNG: its cell of a multi-tile
+        // head's atlas, or the whole picture.
+        let tile_png = |texels: &[u8],
+                        (w, h): (u32, u32),
+                        pixels: out::PngPixels,
+                        channels: usize,
+                        what: &str| {
+            let (texels, w, h) = match &udim {
+                Some(u) if multi => {
+                    let side = w / u.grid();
+                    (u.crop(k, texels, w, channels), side, side)
+                }
+                _ => (texels.to_vec(), w, h),
+            };
+            let mut png = Vec::new();
+            out::encode_png(&mut png, w, h, pixels, &texels)
+                .with_context(|| format!("encoding the {what}"))?;
+            anyhow::Ok(png)
         };
-        let tile_px = if multi { glb.size_px } else { atlas_px };
-        let mut normal_png = Vec::new();
-        out::encode_png(
-            &mut normal_png,
-            tile_px,
-            tile_px,
-            out::PngPixels::Rgb8,
-            &crop(&normals, atlas_px, 3),
-        )
-        .context("encoding the normal map")?;
-        let occlusion_png = match &occlusion {
-            Some(ao) => {
-                let mut png = Vec::new();
-                out::encode_png(
-                    &mut png,
-                    tile_px,
-                    tile_px,
-                    out::PngPixels::Grey8,
-                    &crop(ao, atlas_px, 1),
-                )
-                .context("encoding the occlusion map")?;
-                Some(png)
-            }
-            None => None,
-        };
-        let base_colour_png = match &aged {
-            Some(aged) => {
-                let side = if multi {
-                    aged.width_px / udim.as_ref().map_or(1, Udim::grid)
-                } else {
-                    aged.width_px
-                };
-                let rgba = match &udim {
-                    Some(u) if multi => u.crop(k, &aged.rgba, aged.width_px, 4),
-                    _ => aged.rgba.clone(),
-                };
-                let (w, h) = if multi {
-                    (side, side)
-                } else {
-                    (aged.width_px, aged.height_px)
-                };
-                let mut png = Vec::new();
-                out::encode_png(&mut png, w, h, out::PngPixels::Rgba8, &rgba)
-                    .context("encoding the base colour map")?;
-                Some(png)
-            }
-            None => None,
-        };
+        let atlas = (atlas_px, atlas_px);
+        let normal_png = tile_png(&normals, atlas, out::PngPixels::Rgb8, 3, "normal map")?;
+        let occlusion_png = occlusion
+            .as_ref()
+            .map(|ao| tile_png(ao, atlas, out::PngPixels::Grey8, 1, "occlusion map"))
+            .transpose()?;
+        let base_colour_png = aged
+            .as_ref()
+            .map(|c| {
+                let size = (c.width_px, c.height_px);
+                tile_png(&c.rgba, size, out::PngPixels::Rgba8, 4, "base colour map")
+            })
+            .transpose()?;
         let height_name = height_paths[k]
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())

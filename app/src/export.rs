@@ -373,16 +373,16 @@ fn export_glb(
         .large()
         .filter(|l| l.height.width_px() == atlas_px)
         .map(|l| agesim_core::compose::occlusion_map(&l.height, params.skin.disp_scale));
-    // The head's own colour map, paled for the age as the view pales it; else the
-    // skin colour as a factor.
-    let a = params.skin.albedo;
-    let aged = scene
+    // The aged base colour (docs/models.md "Skin colour"): the head's own colour map, or
+    // the skin colour, with its spots, uneven tone and paling at this age, at the
+    // texture size (the colour map's own when that is larger, up to 4096²).
+    let colour_px = scene
         .colour_map()
-        .map(|map| map.paled(params.skin.pale_albedo.to_array(), params.skin.pale));
-    let base_colour = match aged {
-        Some(_) => [1.0; 4],
-        None => [a.x, a.y, a.z, 1.0],
-    };
+        .map_or(atlas_px, |c| c.width_px.max(atlas_px))
+        .min(4096);
+    scene.bake_colour(colour_px, t, cancel)?;
+    let aged = scene.aged_colour().cloned();
+    let base_colour = [1.0; 4];
     // One material per UDIM tile (one for a single-tile head), each with its tile's maps.
     let tiles = udim.as_ref().map_or(vec![0], |u| u.numbers());
     let multi = tiles.len() > 1;

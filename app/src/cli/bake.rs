@@ -304,6 +304,10 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         &CancelToken::never(),
     )?;
     let bake_ms = ms(t);
+    // The aged base colour (docs/models.md "Skin colour"), at the maps' size.
+    let t = Instant::now();
+    scene.bake_colour(atlas_px, age_t, &CancelToken::never())?;
+    let colour_ms = ms(t);
     let t = Instant::now();
     let height = scene.take_height()?;
     let sum_ms = ms(t);
@@ -346,8 +350,13 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         args.exr_compression.into(),
         udim.as_ref(),
     )?;
+    let albedo = args.out.join("albedo.png");
+    if let Some(colour) = scene.aged_colour() {
+        export::stage_tiled_colour(&outputs, &albedo, colour, udim.as_ref())?;
+    }
     let mut files: Vec<String> = names
         .iter()
+        .chain(scene.aged_colour().map(|_| &albedo))
         .flat_map(|p| Udim::paths(udim.as_ref(), p))
         .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
@@ -392,6 +401,7 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         "timings_ms": {
             "parse_and_features": parse_ms,
             "bake": bake_ms,
+            "bake_colour": colour_ms,
             "export_sum": sum_ms,
             "write_height_png": staged.height_png_ms,
             "write_height_exr": staged.height_exr_ms,

@@ -136,7 +136,9 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
             },
             albedo,
             pale_albedo: linear(s.pale_albedo),
-            pale,
+            // The colour map shown is the scene's aged colour (`Scene::bake_colour`),
+            // paled already; `albedo` is paled for a frame drawn before it is baked.
+            pale: 0.0,
             head_normal_green_down: project.mesh.normal_map_convention == Convention::DirectX,
             micro_relief: project.micro_enabled(),
             micro_tile,

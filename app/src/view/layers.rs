@@ -31,6 +31,9 @@ pub struct Layers {
     pub surface_scale: Option<agesim_core::mesh::SurfaceScale>,
     /// The head's base colour map ([`Scene::colour_map`]).
     pub colour: Option<Arc<HeadImage>>,
+    /// The aged base colour of this bake's age ([`Scene::aged_colour`]): shown instead of
+    /// `colour`, per view (the compare view has its own age's).
+    pub aged: Option<Arc<HeadImage>>,
     /// The head's normal map ([`Scene::normal_map`]).
     pub normal: Option<Arc<HeadImage>>,
 }
@@ -48,6 +51,7 @@ impl Default for Layers {
             relief_scale: 1.0,
             surface_scale: None,
             colour: None,
+            aged: None,
             normal: None,
         }
     }
@@ -76,6 +80,7 @@ impl Layers {
         }
         self.hair = scene.hair().cloned();
         self.colour = scene.colour_map().cloned();
+        self.aged = scene.aged_colour().cloned();
         self.normal = scene.normal_map().cloned();
         let metres_per_unit = scene.metres_per_unit();
         // Measured over the mesh: only when the mesh or its units change.
@@ -95,6 +100,12 @@ impl Layers {
     }
 }
 
+/// A head picture as the renderer takes it.
+fn picture(p: &Option<Arc<HeadImage>>) -> Option<(u32, u32, &[u8])> {
+    p.as_deref()
+        .map(|c| (c.width_px, c.height_px, c.rgba.as_slice()))
+}
+
 /// The identity of a shared layer: the address of its allocation (0: none).
 fn stamp<T>(a: &Option<Arc<T>>) -> usize {
     a.as_ref().map_or(0, |a| Arc::as_ptr(a) as usize)
@@ -111,6 +122,7 @@ pub struct Uploaded {
     fine: usize,
     hair: usize,
     colour: usize,
+    aged: usize,
     normal: usize,
 }
 
@@ -147,10 +159,6 @@ impl Uploaded {
             renderer.upload_hair(h);
             self.hair = stamp(&layers.hair);
         }
-        fn picture(p: &Option<Arc<HeadImage>>) -> Option<(u32, u32, &[u8])> {
-            p.as_deref()
-                .map(|c| (c.width_px, c.height_px, c.rgba.as_slice()))
-        }
         if stamp(&layers.colour) != self.colour {
             result = result.and(renderer.upload_colour_map(picture(&layers.colour)));
             self.colour = stamp(&layers.colour);
@@ -163,7 +171,7 @@ impl Uploaded {
     }
 
     /// Uploads the layers that differ between two ages (the large-wrinkle map, the
-    /// micro-relief tile) to `view` of `renderer`: a second view (the compare age) shares
+    /// micro-relief tile, the aged colour) to `view` of `renderer`: a second view (the compare age) shares
     /// the mesh, the fine tile and the hair of the first.
     pub fn upload_age_layers(
         &mut self,
@@ -183,6 +191,10 @@ impl Uploaded {
                 }
             });
             self.large = stamp(&layers.large);
+        }
+        if stamp(&layers.aged) != self.aged {
+            result = result.and(renderer.upload_colour_map_to(view, picture(&layers.aged)));
+            self.aged = stamp(&layers.aged);
         }
         // A micro tile that is off stays uploaded: the frame turns the layer off
         // (`SkinParams::micro_relief`).

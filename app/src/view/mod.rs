@@ -18,6 +18,11 @@ pub use frame::{
 pub use headless::HeadlessView;
 pub use layers::{Layers, Uploaded};
 
+/// The largest aged colour map the view bakes (the 3D view and `agesim render`): at the
+/// large map's size up to this, 2048² (≈ 0.7 s on two cores); exports bake theirs at
+/// their own size.
+pub const MAX_COLOUR_PX: u32 = 2048;
+
 /// Images of one size side by side, each labelled in its top-left corner.
 pub fn side_by_side(images: Vec<(String, image::RgbaImage)>) -> image::RgbaImage {
     let (w, h) = images.first().map_or((1, 1), |(_, i)| i.dimensions());

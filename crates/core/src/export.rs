@@ -354,6 +354,35 @@ pub fn stage_rgb8_png(
     })
 }
 
+/// An RGBA8 picture over the head's UV layout (the aged base colour) as RGB8 PNG: each
+/// UDIM tile's square as its own file (`albedo.1001.png`, …), or the one path for a
+/// single-tile head.
+pub fn stage_tiled_colour(
+    set: &OutputSet,
+    path: &Path,
+    picture: &crate::mask::HeadImage,
+    udim: Option<&crate::mesh::udim::Udim>,
+) -> Result<(), Error> {
+    let rgb: Vec<u8> = picture
+        .rgba
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    let side = picture.width_px;
+    match udim.filter(|u| u.multi_tile()) {
+        Some(u) => {
+            for (k, n) in u.numbers().into_iter().enumerate() {
+                let tile_side = u.tile_rect_px(k, side).2;
+                let tile = u.crop(k, &rgb, side, 3);
+                let name = crate::mesh::udim::Udim::tile_path(path, n);
+                stage_rgb8_png(set, &name, tile_side, tile_side, &tile)?;
+            }
+            Ok(())
+        }
+        None => stage_rgb8_png(set, path, side, picture.height_px, &rgb),
+    }
+}
+
 /// Writes 8-bit grey pixels as PNG (previews, masks).
 pub fn write_grey8_png(
     path: &Path,

@@ -28,6 +28,7 @@ pub mod project;
 pub mod rng;
 pub mod scene;
 mod simd;
+pub mod skin_colour;
 #[cfg(test)]
 mod test_util;
 pub mod transition;

@@ -97,34 +97,9 @@ impl HeadImage {
         }
         n.normalize_or(glam::Vec3::Z)
     }
-
-    /// The map paled with age as the renderer pales it (docs/models.md "Age"): each
-    /// texel moved toward `tone` (linear RGB) by `amount` in linear light, re-encoded as
-    /// sRGB; alpha kept.
-    pub fn paled(&self, tone: [f32; 3], amount: f32) -> Self {
-        let amount = if amount.is_nan() {
-            0.0
-        } else {
-            amount.clamp(0.0, 1.0)
-        };
-        // The 256 sRGB codes in linear light, and back by a 4096-step table.
-        let to_linear: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
-        let to_srgb: Vec<u8> = (0..4096)
-            .map(|i| (linear_to_srgb(i as f32 / 4095.0) * 255.0).round() as u8)
-            .collect();
-        let mut rgba = self.rgba.clone();
-        for px in rgba.chunks_exact_mut(4) {
-            for c in 0..3 {
-                let l = to_linear[px[c] as usize];
-                let m = l + (tone[c].clamp(0.0, 1.0) - l) * amount;
-                px[c] = to_srgb[(m * 4095.0).round() as usize];
-            }
-        }
-        Self { rgba, ..*self }
-    }
 }
 
-fn srgb_to_linear(c: f32) -> f32 {
+pub(crate) fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 {
         c / 12.92
     } else {
@@ -132,7 +107,7 @@ fn srgb_to_linear(c: f32) -> f32 {
     }
 }
 
-fn linear_to_srgb(l: f32) -> f32 {
+pub(crate) fn linear_to_srgb(l: f32) -> f32 {
     if l <= 0.003_130_8 {
         l * 12.92
     } else {

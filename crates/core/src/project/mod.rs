@@ -386,6 +386,49 @@ impl Project {
         (lo, hi)
     }
 
+    /// The aged colour's settings (`skin`, the hair's gray colour).
+    pub fn colour_settings(&self) -> crate::skin_colour::ColourSettings {
+        let s = &self.skin;
+        crate::skin_colour::ColourSettings {
+            albedo: s.albedo.linear(),
+            pale_albedo: s.pale_albedo.linear(),
+            pale_amount: s.pale_amount,
+            spots_per_cm2: s.spots_per_cm2,
+            spot_strength: s.spot_strength,
+            mottle: s.mottle,
+            redness: s.redness,
+            yellowing: s.yellowing,
+            contrast_loss: s.contrast_loss,
+            gray_hair: self.hair.gray_colour.linear(),
+            seed: s.colour_seed,
+        }
+    }
+
+    /// The aged colour's factors at age `t`: each effect's curve, and the brows' gray
+    /// fraction — the mean of the hair's (onsets uniform over the graying range, the
+    /// hair's ramp), as the brows gray with the hair.
+    pub fn colour_factors(&self, t: f32) -> crate::skin_colour::ColourFactors {
+        let a = &self.age;
+        let years = a.mapping().years(t);
+        let (lo, hi) = self.graying_onset_t();
+        const ONSETS: usize = 64;
+        let brow_gray = (0..ONSETS)
+            .map(|k| {
+                let onset = lo + (hi - lo) * (k as f32 + 0.5) / ONSETS as f32;
+                crate::hair::gray_fraction(a.mapping().t(years), onset, self.hair.graying_ramp)
+            })
+            .sum::<f32>()
+            / ONSETS as f32;
+        crate::skin_colour::ColourFactors {
+            pale: a.pale.factor(years),
+            spots: a.spots.factor(years),
+            mottle: a.mottle.factor(years),
+            redness: a.redness.factor(years),
+            contrast: a.contrast.factor(years),
+            brow_gray,
+        }
+    }
+
     /// The micro-relief settings of this project, after checking every field.
     pub fn micro_settings(&self) -> Result<crate::micro::MicroSettings, Error> {
         self.validate().map_err(|message| Error::Project {

@@ -211,6 +211,20 @@ pub struct SkinSection {
     pub pale_albedo: Colour,
     /// How far toward `pale_albedo` the skin goes at full paling, 0–1.
     pub pale_amount: f32,
+    /// Age spots (solar lentigines) per cm² of sun-exposed skin at full age.
+    pub spots_per_cm2: f32,
+    /// How dark an age spot is, 0–1.
+    pub spot_strength: f32,
+    /// Mottled melanin on sun-exposed skin at full age, 0–1.
+    pub mottle: f32,
+    /// Redness and thread veins on the cheeks and nose at full age, 0–1.
+    pub redness: f32,
+    /// Yellowing at full paling, 0–1.
+    pub yellowing: f32,
+    /// How far lips and brows fade toward the skin at full age, 0–1.
+    pub contrast_loss: f32,
+    /// Seed of the spots and the uneven tone.
+    pub colour_seed: u64,
     pub subsurface_colour: Colour,
     /// Wrap-lighting amount (cheap subsurface scattering), 0–1.
     pub wrap: f32,
@@ -238,8 +252,16 @@ pub struct AgeSection {
     pub furrows: AgeCurve,
     /// Furrow depth at the young end, relative to the project's depth.
     pub furrows_young_scale: f32,
-    /// Skin paling.
+    /// Skin paling and yellowing.
     pub pale: AgeCurve,
+    /// Age spots appearing (each spot its own draw under this curve).
+    pub spots: AgeCurve,
+    /// Mottled melanin.
+    pub mottle: AgeCurve,
+    /// Redness and thread veins.
+    pub redness: AgeCurve,
+    /// Lips and brows fading toward the skin.
+    pub contrast: AgeCurve,
 }
 
 /// How the head is shown (the renderer's settings, saved with the project).
@@ -400,6 +422,13 @@ impl Default for SkinSection {
             // measured faces darkening and yellowing with age (docs/models.md "Age").
             pale_albedo: Colour([0xd9, 0xb8, 0xa4]),
             pale_amount: 0.4,
+            spots_per_cm2: 0.2,
+            spot_strength: 0.75,
+            mottle: 0.5,
+            redness: 0.5,
+            yellowing: 0.6,
+            contrast_loss: 0.5,
+            colour_seed: 1,
             // With `wrap` 0.35: red wraps 0.45, green 0.22, blue 0.15 (docs/models.md
             // "Rendering"): red light scatters farthest under the skin.
             subsurface_colour: Colour([0xff, 0x7d, 0x55]),
@@ -424,6 +453,11 @@ impl Default for AgeSection {
             furrows: AgeCurve::new(25.0, 70.0, CurveShape::Smoothstep),
             furrows_young_scale: 0.5,
             pale: AgeCurve::new(40.0, 80.0, CurveShape::Linear),
+            // docs/models.md "Skin colour": lentigines from about 50, most by 80.
+            spots: AgeCurve::new(48.0, 85.0, CurveShape::Linear),
+            mottle: AgeCurve::new(30.0, 80.0, CurveShape::Smoothstep),
+            redness: AgeCurve::new(35.0, 80.0, CurveShape::Smoothstep),
+            contrast: AgeCurve::new(35.0, 80.0, CurveShape::Linear),
         }
     }
 }

@@ -28,6 +28,7 @@
 //! **Deterministic.** Each stage is deterministic on any thread count, so the incremental
 //! result equals a fresh scene's bake byte for byte (tested).
 
+mod colour;
 mod inputs;
 mod large;
 mod micro;
@@ -229,6 +230,7 @@ pub struct Scene {
     transition: Option<Arc<TransitionTexture>>,
     hair_key: Option<HairKey>,
     hair: Option<Arc<HairInstances>>,
+    colour: colour::ColourStage,
     /// Bumped when the head's layout (its fit) changes.
     layout_generation: u64,
     /// The correspondence maps of the current layout, by size (the large map's and the
@@ -279,6 +281,7 @@ impl Scene {
             transition: None,
             hair_key: None,
             hair: None,
+            colour: colour::ColourStage::default(),
             layout_generation: 1,
             correspondences: Vec::new(),
             versions: FileVersions::new(),
@@ -308,6 +311,7 @@ impl Scene {
             transition: self.transition.clone(),
             hair_key: self.hair_key.clone(),
             hair: self.hair.clone(),
+            colour: self.colour.clone(),
             layout_generation: self.layout_generation,
             correspondences: self.correspondences.clone(),
             versions: self.versions.clone(),
@@ -819,6 +823,44 @@ impl Scene {
         self.hair_key = Some(key);
         changed.hair = true;
         Ok(changed)
+    }
+
+    /// Bakes the aged base colour (docs/models.md "Skin colour") at `size`² and age `t`:
+    /// the head's colour map (else the skin colour) with its age spots, uneven tone,
+    /// paling and faded lips and brows ([`crate::skin_colour`]); [`Scene::aged_colour`]
+    /// then holds it. Redone only when the head, the size, the colour settings or an
+    /// effect's age factor changed; returns whether it was.
+    pub fn bake_colour(&mut self, size: u32, t: f32, cancel: &CancelToken) -> Result<bool, Error> {
+        crate::heightmap::check_size(size, size)?;
+        let settings = self.project.colour_settings();
+        let factors = self.project.colour_factors(t);
+        let key = colour::HeadKey {
+            mesh_generation: self.mesh_generation,
+            layout_generation: self.layout_generation,
+            metres_per_unit: self.metres_per_unit(),
+        };
+        let fit = self.inputs.layout.fit.clone();
+        let base = self.colour_map().cloned();
+        let head = colour::Head {
+            key,
+            mesh: &self.inputs.mesh,
+            template_points: fit.as_deref().map(|f| f.template_point.as_slice()),
+            is_template: self.project.mesh.path.is_none()
+                && self.project.mesh.builtin == crate::project::BuiltinMesh::Head,
+            base: base.as_ref(),
+        };
+        self.colour.bake(&head, size, &settings, &factors, cancel)
+    }
+
+    /// The aged base colour of the last [`Scene::bake_colour`] (RGBA8, sRGB, in the head's
+    /// UV layout).
+    pub fn aged_colour(&self) -> Option<&Arc<crate::mask::HeadImage>> {
+        self.colour.image.as_ref()
+    }
+
+    /// The age spots placed on the head by the last [`Scene::bake_colour`] (head metres).
+    pub fn age_spots(&self) -> Option<&Arc<Vec<crate::skin_colour::Spot>>> {
+        self.colour.spots()
     }
 
     /// The height and normal maps `agesim bake` writes: the micro-relief and the

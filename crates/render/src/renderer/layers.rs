@@ -185,6 +185,24 @@ impl Renderer {
         Ok(())
     }
 
+    /// Uploads a base colour map of `view`'s own (the aged colour at its age: the compare
+    /// view's differs from the main view's), used instead of the shared one
+    /// ([`Renderer::upload_colour_map`]); `None` goes back to the shared one.
+    pub fn upload_colour_map_to(
+        &mut self,
+        view: ViewId,
+        map: Option<(u32, u32, &[u8])>,
+    ) -> Result<(), RenderError> {
+        let vi = self.view_index(view)?;
+        let layer = match map {
+            Some(_) => Some(self.head_picture("colour map", map, [255; 4], true)?),
+            None => None,
+        };
+        self.views[vi].colour = layer;
+        self.views[vi].skin_bind_group = None;
+        Ok(())
+    }
+
     /// Uploads the head's tangent-space normal map (RGBA8, linear, row 0 at the top, over
     /// the mesh's UVs; green up unless [`crate::SkinParams::head_normal_green_down`]),
     /// shared by every view: the layers are combined onto it (reoriented normal
@@ -298,7 +316,9 @@ impl Renderer {
                 },
                 wgpu::BindGroupEntry {
                     binding: 6,
-                    resource: wgpu::BindingResource::TextureView(&self.colour.view),
+                    resource: wgpu::BindingResource::TextureView(
+                        &v.colour.as_ref().unwrap_or(&self.colour).view,
+                    ),
                 },
                 wgpu::BindGroupEntry {
                     binding: 7,

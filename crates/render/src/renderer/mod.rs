@@ -267,7 +267,7 @@ impl Renderer {
             fine_strength: fine.strength,
             mesh_units_per_uv: 0.5
                 * (self.surface_scale.units_per_u + self.surface_scale.units_per_v),
-            colour_map: self.has_colour_map,
+            colour_map: self.has_colour_map || self.views[vi].colour.is_some(),
             normal_map: self.has_normal_map,
         };
         let uniform = FrameUniform::new(params, &ctx);

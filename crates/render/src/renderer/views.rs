@@ -26,6 +26,8 @@ pub(super) struct View {
     pub(super) hair_bind_group: wgpu::BindGroup,
     pub(super) large: Layer,
     pub(super) micro: Layer,
+    /// This view's own base colour map (the aged colour of its age), else the shared one.
+    pub(super) colour: Option<Layer>,
     /// Bumped on every large-wrinkle upload (displacement moves the surface with it).
     pub(super) large_generation: u64,
     /// Rebuilt lazily when one of its textures is replaced.
@@ -66,6 +68,7 @@ impl View {
             hair_bind_group,
             large: flat("agesim large-wrinkle heights (placeholder)", 1.0),
             micro: flat("agesim micro-relief tile (placeholder)", 0.0),
+            colour: None,
             large_generation: 0,
             skin_bind_group: None,
             surface_key: None,

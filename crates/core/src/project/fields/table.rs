@@ -575,6 +575,49 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             1.0,
             "how far toward pale_albedo at full paling",
         ),
+        f(
+            "skin.spots_per_cm2",
+            "/cm²",
+            0.0,
+            2.0,
+            "age spots (solar lentigines, 2–20 mm) per cm² of sun-exposed skin at full age",
+        ),
+        f(
+            "skin.spot_strength",
+            "",
+            0.0,
+            1.0,
+            "how dark an age spot is",
+        ),
+        f(
+            "skin.mottle",
+            "",
+            0.0,
+            1.0,
+            "mottled melanin (uneven tone) on sun-exposed skin at full age",
+        ),
+        f(
+            "skin.redness",
+            "",
+            0.0,
+            1.0,
+            "redness and thread veins on the cheeks and nose at full age",
+        ),
+        f("skin.yellowing", "", 0.0, 1.0, "yellowing at full paling"),
+        f(
+            "skin.contrast_loss",
+            "",
+            0.0,
+            1.0,
+            "how far lips and brows fade toward the skin at full age",
+        ),
+        i(
+            "skin.colour_seed",
+            "",
+            0,
+            MAX_SEED,
+            "seed of the age spots and the uneven tone",
+        ),
         k(
             "skin.subsurface_colour",
             Kind::Colour,
@@ -632,7 +675,11 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
         1.0,
         "furrow depth at the young end, relative to furrows.depth",
     ));
-    v.extend(curve!("pale", "skin paling"));
+    v.extend(curve!("pale", "skin paling and yellowing"));
+    v.extend(curve!("spots", "age spots appearing"));
+    v.extend(curve!("mottle", "mottled melanin"));
+    v.extend(curve!("redness", "redness and thread veins"));
+    v.extend(curve!("contrast", "lips and brows fading"));
     v.extend([
         k(
             "view.pom",

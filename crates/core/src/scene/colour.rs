@@ -1,0 +1,135 @@
+//! The scene's aged-colour stage ([`crate::skin_colour`]): the surface per texel at a size,
+//! the age spots of the head and the aged colour map, each kept while its inputs hold.
+
+use std::sync::Arc;
+
+use glam::Vec3;
+
+use crate::cancel::CancelToken;
+use crate::error::Error;
+use crate::mask::HeadImage;
+use crate::mesh::Mesh;
+use crate::skin_colour::{self, ColourFactors, ColourSettings, Regions, Spot, SurfaceTexels};
+
+/// What the surface and the spots are made from: the mesh, its fit and its units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct HeadKey {
+    pub mesh_generation: u64,
+    pub layout_generation: u64,
+    pub metres_per_unit: f32,
+}
+
+/// The spots' head, density (bits) and seed.
+type SpotsKey = (HeadKey, u32, u64);
+
+#[derive(Clone, Debug, Default)]
+pub(super) struct ColourStage {
+    texels: Option<((HeadKey, u32), Arc<SurfaceTexels>)>,
+    spots: Option<(SpotsKey, Arc<Vec<Spot>>)>,
+    image_key: Option<ImageKey>,
+    pub image: Option<Arc<HeadImage>>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct ImageKey {
+    head: HeadKey,
+    size: u32,
+    base: usize,
+    settings: ColourSettings,
+    factors: ColourFactors,
+}
+
+/// The head as the stage reads it.
+pub(super) struct Head<'a> {
+    pub key: HeadKey,
+    pub mesh: &'a Mesh,
+    /// Per vertex, the template point (template metres), when the head is fitted.
+    pub template_points: Option<&'a [Option<Vec3>]>,
+    /// Whether the head is the template itself (a built-in head: its points are the
+    /// template's).
+    pub is_template: bool,
+    pub base: Option<&'a Arc<HeadImage>>,
+}
+
+impl ColourStage {
+    /// Bakes the aged colour at `size`², redoing only what changed; whether it changed.
+    pub fn bake(
+        &mut self,
+        head: &Head,
+        size: u32,
+        settings: &ColourSettings,
+        factors: &ColourFactors,
+        cancel: &CancelToken,
+    ) -> Result<bool, Error> {
+        let key = ImageKey {
+            head: head.key,
+            size,
+            base: head.base.map_or(0, |b| Arc::as_ptr(b) as usize),
+            settings: settings.clone(),
+            factors: *factors,
+        };
+        if self.image_key.as_ref() == Some(&key) && self.image.is_some() {
+            return Ok(false);
+        }
+        let mpu = head.key.metres_per_unit;
+        let template_point = |v: usize| -> Option<Vec3> {
+            match head.template_points {
+                Some(points) => points.get(v).copied().flatten(),
+                None if head.is_template => head.mesh.positions().get(v).map(|p| *p * mpu),
+                None => None,
+            }
+        };
+        let regions = Regions::template().ok_or_else(|| Error::InvalidValue {
+            what: "the template's landmarks".into(),
+            value: "incomplete".into(),
+            expected: "eye and mouth corners, nose, chin and ears".into(),
+        })?;
+        let texels = match &self.texels {
+            Some((k, t)) if *k == (head.key, size) => t.clone(),
+            _ => {
+                let t = Arc::new(SurfaceTexels::new(
+                    head.mesh,
+                    &template_point,
+                    mpu,
+                    size,
+                    cancel,
+                )?);
+                self.texels = Some(((head.key, size), t.clone()));
+                t
+            }
+        };
+        let spots_key = (head.key, settings.spots_per_cm2.to_bits(), settings.seed);
+        let spots = match &self.spots {
+            Some((k, s)) if *k == spots_key => s.clone(),
+            _ => {
+                let s = Arc::new(skin_colour::place_spots(
+                    head.mesh,
+                    &template_point,
+                    mpu,
+                    regions,
+                    settings.spots_per_cm2,
+                    settings.seed,
+                ));
+                self.spots = Some((spots_key, s.clone()));
+                s
+            }
+        };
+        let image = skin_colour::bake(
+            head.base.map(|b| &**b),
+            &texels,
+            &spots,
+            regions,
+            settings,
+            factors,
+            cancel,
+        )?;
+        self.image = Some(Arc::new(image));
+        self.image_key = Some(key);
+        Ok(true)
+    }
+
+    /// The spots of the last bake.
+    pub fn spots(&self) -> Option<&Arc<Vec<Spot>>> {
+        self.spots.as_ref().map(|(_, s)| s)
+    }
+}

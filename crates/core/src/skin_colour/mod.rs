@@ -1,0 +1,888 @@
+//! The aged base colour (docs/models.md "Skin colour"): the head's own colour map (or the
+//! skin colour when it has none) baked at an age, in its own UV layout, with
+//!
+//! - **age spots** (solar lentigines), 2–20 mm across, placed on the head's surface in
+//!   metres, on sun-exposed skin (forehead, temples, cheeks, nose, ears, a bald scalp),
+//!   appearing one after another from the onset of their curve and growing;
+//! - **uneven tone**: mottled melanin on sun-exposed skin, and redness with thread veins
+//!   (telangiectasia) on the cheeks and the nose;
+//! - **paling and yellowing**, as a tint (the scan's brows and lips stay darker than the
+//!   skin around them);
+//! - **lower facial contrast**: lips and brows fade toward the skin around them, and the
+//!   brows **gray** with the hair.
+//!
+//! The regions (sun exposure, brows, lips, cheeks and nose, eyes) are functions of the
+//! template point each texel stands for (the default head's own point, or the fitted
+//! template's through [`crate::fit::Fit::template_point`]): authored once on the template,
+//! they reach every head. The spots and the noise live in the head's own metres, so their
+//! sizes are physical whatever the head's units and UV layout, and a spot crossing a UV
+//! seam continues on the other side. Seeded and hashed: the same bytes on any thread count.
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::cancel::CancelToken;
+use crate::error::Error;
+use crate::fit::raster_uv;
+use crate::landmarks::Landmarks;
+use crate::mask::{HeadImage, linear_to_srgb, srgb_to_linear};
+use crate::mesh::Mesh;
+use crate::rng::{Rng, mix64};
+
+/// Smallest and largest age-spot diameter, mm (solar lentigines: docs/models.md
+/// "Skin colour").
+pub const SPOT_DIAMETER_MM: (f32, f32) = (2.0, 20.0);
+
+/// A spot's size when it first shows, as a fraction of its final size.
+const SPOT_FIRST_SIZE: f32 = 0.4;
+
+/// How far (in the spot curve's factor) after it appears a spot reaches its full size.
+const SPOT_GROWTH: f32 = 0.35;
+
+/// How much each linear channel of a full-strength spot darkens (brown: blue most).
+const SPOT_TINT: [f32; 3] = [0.42, 0.56, 0.68];
+
+/// How much melanin mottling darkens each channel at full strength.
+const MOTTLE_TINT: [f32; 3] = [0.30, 0.40, 0.50];
+
+/// Feature sizes of the mottling, mm: blotches and a finer grain.
+const MOTTLE_MM: (f32, f32) = (9.0, 2.6);
+
+/// Feature size of the redness and of the thread veins, mm.
+const REDNESS_MM: (f32, f32) = (6.0, 3.0);
+
+/// The yellowing's tint per unit (green and blue lowered, red kept).
+const YELLOW_TINT: [f32; 3] = [0.0, 0.06, 0.22];
+
+/// How much of the contrast loss reaches the brows and the lips (brows keep more: they
+/// thin and gray more than they fade).
+const CONTRAST_BROWS: f32 = 0.35;
+const CONTRAST_LIPS: f32 = 0.6;
+
+/// Brightness of gray brow hair relative to the hair's gray colour (brows are coarser and
+/// sparser than scalp hair: they read a little darker than it).
+const BROW_GRAY_BRIGHTNESS: f32 = 0.62;
+
+/// The brows' gray fraction relative to the scalp hair's: brows gray later.
+const BROW_GRAY_LAG: f32 = 0.6;
+
+/// The width of one brow hair's draw in the salt-and-pepper graying, mm.
+const BROW_HAIR_MM: f32 = 0.45;
+
+/// Gray brow hair is a little warmer than the hair's gray: yellowed, as old white hair.
+const BROW_GRAY_TINT: [f32; 3] = [1.0, 0.96, 0.88];
+
+/// Side of the coarse grid of the local skin tone (the reference brows and lips fade to).
+const TONE_GRID: usize = 32;
+
+/// The artist's settings of the aged colour (the project's `skin` section).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ColourSettings {
+    /// The skin colour of a head without a colour map, linear RGB.
+    pub albedo: [f32; 3],
+    /// The tone skin pales toward, linear RGB; paling multiplies the colour by
+    /// `pale_albedo / albedo` (so dark brows stay dark).
+    pub pale_albedo: [f32; 3],
+    /// How far toward that tint at full paling, 0–1.
+    pub pale_amount: f32,
+    /// Age spots per cm² of fully sun-exposed skin at full age.
+    pub spots_per_cm2: f32,
+    /// Darkness of a spot, 0–1.
+    pub spot_strength: f32,
+    /// Melanin mottling at full age, 0–1.
+    pub mottle: f32,
+    /// Redness and thread veins on the cheeks and the nose at full age, 0–1.
+    pub redness: f32,
+    /// Yellowing at full paling, 0–1.
+    pub yellowing: f32,
+    /// How far lips and brows fade toward the skin at full age, 0–1.
+    pub contrast_loss: f32,
+    /// Gray hair colour (the hair's), linear RGB.
+    pub gray_hair: [f32; 3],
+    pub seed: u64,
+}
+
+impl Default for ColourSettings {
+    fn default() -> Self {
+        Self {
+            albedo: [0.69, 0.35, 0.24],
+            pale_albedo: [0.69, 0.48, 0.37],
+            pale_amount: 0.4,
+            spots_per_cm2: 0.2,
+            spot_strength: 0.75,
+            mottle: 0.5,
+            redness: 0.5,
+            yellowing: 0.6,
+            contrast_loss: 0.5,
+            gray_hair: [0.69, 0.67, 0.62],
+            seed: 1,
+        }
+    }
+}
+
+/// Each effect's age factor, 0–1 (the age model's curves at one age).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ColourFactors {
+    /// Paling and yellowing.
+    pub pale: f32,
+    /// Which spots show and how grown they are (a spot appears when this passes its own
+    /// draw in [0, 1)).
+    pub spots: f32,
+    pub mottle: f32,
+    pub redness: f32,
+    /// Lips and brows fading.
+    pub contrast: f32,
+    /// The brows' gray fraction.
+    pub brow_gray: f32,
+}
+
+impl ColourFactors {
+    /// Whether nothing ages: the bake is then the base colour itself.
+    pub fn is_young(&self) -> bool {
+        [
+            self.pale,
+            self.spots,
+            self.mottle,
+            self.redness,
+            self.contrast,
+            self.brow_gray,
+        ]
+        .iter()
+        .all(|&f| f <= 0.0)
+    }
+}
+
+/// The regions of the aged colour on the template, from its landmarks (template metres,
+/// +Y up, +Z forward): each a weight in [0, 1] of a template point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Regions {
+    /// Midpoint of the outer eye corners.
+    origin: Vec3,
+    /// Half the outer eye corners' distance, metres: the unit of the region shapes.
+    unit: f32,
+    /// The inner and outer eye corners of each side (x > 0 first), relative to `origin`
+    /// in `unit`s.
+    eyes: [(Vec3, Vec3); 2],
+    mouth: Vec3,
+    mouth_half_width: f32,
+    nose_tip: Vec3,
+    nasion: Vec3,
+    chin_y: f32,
+    ear_z: f32,
+}
+
+impl Regions {
+    /// The regions of a head with these landmarks (the template's), `None` when one of
+    /// the eye corners, mouth corners, nose points, chin or ears is missing.
+    pub fn new(landmarks: &Landmarks) -> Option<Self> {
+        let get = |n: &str| landmarks.get(n);
+        let (exo_l, exo_r) = (get("exocanthion_l")?, get("exocanthion_r")?);
+        let (endo_l, endo_r) = (get("endocanthion_l")?, get("endocanthion_r")?);
+        let origin = 0.5 * (exo_l + exo_r);
+        let unit = 0.5 * exo_l.distance(exo_r);
+        if unit.is_nan() || unit <= 1e-6 {
+            return None;
+        }
+        let rel = |p: Vec3| (p - origin) / unit;
+        // Side +x first.
+        let (first, second) = if exo_l.x >= exo_r.x {
+            ((endo_l, exo_l), (endo_r, exo_r))
+        } else {
+            ((endo_r, exo_r), (endo_l, exo_l))
+        };
+        let (ch_l, ch_r) = (get("cheilion_l")?, get("cheilion_r")?);
+        Some(Self {
+            origin,
+            unit,
+            eyes: [(rel(first.0), rel(first.1)), (rel(second.0), rel(second.1))],
+            mouth: rel(0.5 * (ch_l + ch_r)),
+            mouth_half_width: 0.5 * ch_l.distance(ch_r) / unit,
+            nose_tip: rel(get("pronasale")?),
+            nasion: rel(get("nasion")?),
+            chin_y: rel(get("pogonion")?).y,
+            ear_z: 0.5 * (rel(get("tragion_l")?).z + rel(get("tragion_r")?).z),
+        })
+    }
+
+    /// The template's regions.
+    pub fn template() -> Option<&'static Self> {
+        static REGIONS: std::sync::OnceLock<Option<Regions>> = std::sync::OnceLock::new();
+        REGIONS
+            .get_or_init(|| Self::new(&crate::fit::template().landmarks))
+            .as_ref()
+    }
+
+    fn rel(&self, p: Vec3) -> Vec3 {
+        (p - self.origin) / self.unit
+    }
+
+    /// The eyes and their lids (no spots, no mottling).
+    pub fn eyes(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        let mut w: f32 = 0.0;
+        for (inner, outer) in self.eyes {
+            let c = 0.5 * (inner + outer);
+            let half = 0.5 * inner.distance(outer) + 0.08;
+            let d = Vec2::new((q.x - c.x) / half, (q.y - c.y) / 0.28);
+            w = w.max(1.0 - smoothstep(0.8, 1.15, d.length()));
+        }
+        w * front(q.z, self.ear_z)
+    }
+
+    /// The brows: an arched band above each eye from its inner corner to past its outer
+    /// one.
+    pub fn brows(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        let mut w: f32 = 0.0;
+        for (inner, outer) in self.eyes {
+            // 0 at the inner corner, 1 at the outer one, along x.
+            let s = (q.x - inner.x) / (outer.x - inner.x);
+            let along = smoothstep(-0.35, -0.1, s) * (1.0 - smoothstep(1.05, 1.3, s));
+            let corners_y = inner.y + (outer.y - inner.y) * s.clamp(0.0, 1.0);
+            // The arch: lowest at the inner end, highest two-thirds out.
+            let centre =
+                corners_y + 0.34 + 0.14 * (std::f32::consts::PI * (s + 0.1) / 1.3).sin().max(0.0);
+            let across = 1.0 - smoothstep(0.16, 0.3, (q.y - centre).abs());
+            w = w.max(along * across);
+        }
+        w * front(q.z, self.ear_z)
+    }
+
+    /// The lips: an ellipse round the mouth corners' line.
+    pub fn lips(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        let d = Vec2::new(
+            (q.x - self.mouth.x) / (self.mouth_half_width + 0.05),
+            (q.y - self.mouth.y + 0.02) / 0.22,
+        );
+        (1.0 - smoothstep(0.75, 1.05, d.length())) * front(q.z, self.ear_z)
+    }
+
+    /// Cheeks and nose, where redness and thread veins come.
+    pub fn redness(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        let mut w: f32 = 0.0;
+        for (inner, outer) in self.eyes {
+            // Below the eye, over the cheekbone.
+            let c = Vec2::new(0.45 * inner.x + 0.55 * outer.x, outer.y - 0.55);
+            let d = Vec2::new((q.x - c.x) / 0.48, (q.y - c.y) / 0.4);
+            w = w.max(1.0 - smoothstep(0.4, 1.0, d.length()));
+        }
+        // The nose: a capsule from below the nasion to the tip.
+        let (a, b) = (
+            Vec2::new(self.nasion.x, self.nasion.y - 0.15),
+            Vec2::new(self.nose_tip.x, self.nose_tip.y),
+        );
+        let qa = Vec2::new(q.x, q.y) - a;
+        let ab = b - a;
+        let h = (qa.dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+        let d = (qa - ab * h).length() / (0.2 + 0.12 * h);
+        w = w.max(1.0 - smoothstep(0.6, 1.0, d));
+        w * front(q.z, self.ear_z) * (1.0 - self.eyes(p))
+    }
+
+    /// Sun exposure: the face in front of the ears down to the chin, the ears, the top
+    /// of the head (seen when it is bald); not under the chin, nor the lips or the eyes.
+    pub fn sun(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        // In front of the ears (their plane), fading behind them.
+        let face = smoothstep(self.ear_z - 1.0, self.ear_z + 0.8, q.z);
+        // The top of the head, above the forehead.
+        let top = smoothstep(1.6, 2.3, q.y);
+        // The underside of the chin and the neck below it are shaded.
+        let below_chin = smoothstep(self.chin_y - 1.2, self.chin_y + 0.1, q.y);
+        face.max(top) * below_chin * (1.0 - self.lips(p)) * (1.0 - self.eyes(p))
+    }
+}
+
+/// 1 in front of the ears' plane, fading behind it (the face's regions stay on the face).
+fn front(z: f32, ear_z: f32) -> f32 {
+    smoothstep(ear_z + 0.4, ear_z + 0.9, z)
+}
+
+fn smoothstep(lo: f32, hi: f32, x: f32) -> f32 {
+    let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// One age spot on the head's surface (head metres).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spot {
+    pub centre: Vec3,
+    /// The surface normal there (the spot's plane).
+    pub normal: Vec3,
+    /// Final diameter, mm, in [`SPOT_DIAMETER_MM`].
+    pub diameter_mm: f32,
+    /// The spot curve's factor at which it appears, [0, 1).
+    pub appears: f32,
+    /// Darkness, 0–1 (times the project's strength).
+    pub strength: f32,
+    /// Phases of its outline's wobble.
+    phases: [f32; 3],
+}
+
+impl Spot {
+    /// Its size (fraction of the final diameter) and darkness at spot factor `f`; 0 before
+    /// it appears.
+    pub fn grown(&self, f: f32) -> f32 {
+        if f <= self.appears {
+            return 0.0;
+        }
+        let g = ((f - self.appears) / SPOT_GROWTH).min(1.0);
+        SPOT_FIRST_SIZE + (1.0 - SPOT_FIRST_SIZE) * g
+    }
+
+    /// Its diameter at spot factor `f`, mm (0 before it appears).
+    pub fn diameter_at(&self, f: f32) -> f32 {
+        self.diameter_mm * self.grown(f)
+    }
+}
+
+/// The age spots of a head: drawn by area over its skin, weighted by sun exposure, each
+/// with its own appearance, size and darkness (docs/models.md "Skin colour").
+pub fn place_spots(
+    mesh: &Mesh,
+    template_point: &dyn Fn(usize) -> Option<Vec3>,
+    metres_per_unit: f32,
+    regions: &Regions,
+    spots_per_cm2: f32,
+    seed: u64,
+) -> Vec<Spot> {
+    let positions = mesh.positions();
+    let idx = mesh.skin_indices();
+    // Each skin triangle's exposed area, m², as a running sum.
+    let mut cumulative = Vec::with_capacity(idx.len() / 3);
+    let mut total = 0.0f64;
+    for tri in idx.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|i| positions[tri[i] as usize] * metres_per_unit);
+        let area = 0.5 * (b - a).cross(c - a).length();
+        let points: Option<Vec<Vec3>> = tri.iter().map(|&v| template_point(v as usize)).collect();
+        let sun = points.map_or(0.0, |p| regions.sun((p[0] + p[1] + p[2]) / 3.0));
+        if area.is_finite() {
+            total += f64::from(area * sun);
+        }
+        cumulative.push(total);
+    }
+    let expected = total * 1e4 * f64::from(spots_per_cm2.max(0.0));
+    if expected.is_nan() || expected <= 0.0 || !expected.is_finite() {
+        return Vec::new();
+    }
+    let mut rng = Rng::for_stream(seed, 0x5907);
+    // The count: the expectation's whole part, and one more with its fraction.
+    let count = expected.floor() as usize + usize::from(rng.next_f64() < expected.fract());
+    let count = count.min(100_000);
+    let (lo, hi) = SPOT_DIAMETER_MM;
+    (0..count)
+        .map(|_| {
+            let x = rng.next_f64() * total;
+            let k = cumulative
+                .partition_point(|&c| c <= x)
+                .min(cumulative.len() - 1);
+            let tri = &idx[3 * k..3 * k + 3];
+            let [a, b, c] = [0, 1, 2].map(|i| positions[tri[i] as usize] * metres_per_unit);
+            let (mut u, mut v) = (rng.next_f32(), rng.next_f32());
+            if u + v > 1.0 {
+                (u, v) = (1.0 - u, 1.0 - v);
+            }
+            // Small spots are common, large ones rare: d = lo·(hi/lo)^(x²).
+            let size = rng.next_f32();
+            Spot {
+                centre: a + (b - a) * u + (c - a) * v,
+                normal: (b - a).cross(c - a).normalize_or(Vec3::Z),
+                diameter_mm: lo * (hi / lo).powf(size * size),
+                appears: rng.next_f32(),
+                strength: rng.range_f32(0.45, 1.0),
+                phases: [0; 3].map(|_| rng.range_f32(0.0, std::f32::consts::TAU)),
+            }
+        })
+        .collect()
+}
+
+/// The head's surface per texel of its UV layout: the point (head metres) and the template
+/// point (template metres) each texel stands for; NaN where no skin triangle covers it.
+#[derive(Clone, Debug)]
+pub struct SurfaceTexels {
+    size: u32,
+    position: Vec<Vec3>,
+    template: Vec<Vec3>,
+}
+
+/// How far (pixels) beyond its triangle a texel still takes the triangle's surface: the
+/// bilinear and mip filtering of an island's edge read aged texels.
+const GUARD_PX: f32 = 1.5;
+
+impl SurfaceTexels {
+    /// Rasterises the skin triangles of `mesh` in its UV layout at `size`².
+    pub fn new(
+        mesh: &Mesh,
+        template_point: &dyn Fn(usize) -> Option<Vec3>,
+        metres_per_unit: f32,
+        size: u32,
+        cancel: &CancelToken,
+    ) -> Result<Self, Error> {
+        crate::heightmap::check_size(size, size)?;
+        let n = size as usize;
+        let nan = Vec3::splat(f32::NAN);
+        let mut position = vec![nan; n * n];
+        let mut template = vec![nan; n * n];
+        let mut distance = vec![f32::INFINITY; n * n];
+        let (uvs, positions) = (mesh.uvs(), mesh.positions());
+        for (k, tri) in mesh.skin_indices().chunks_exact(3).enumerate() {
+            if k % 4096 == 0 {
+                cancel.check()?;
+            }
+            let v = [0, 1, 2].map(|i| tri[i] as usize);
+            let uv = v.map(|i| uvs.get(i).copied().unwrap_or(Vec2::NAN));
+            let p = v.map(|i| positions[i] * metres_per_unit);
+            let t = v.map(|i| template_point(i).unwrap_or(nan));
+            raster_uv(uv, size, GUARD_PX, |x, y, w, outside| {
+                let i = y * n + x;
+                if outside < distance[i] {
+                    distance[i] = outside;
+                    position[i] = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
+                    template[i] = t[0] * w[0] + t[1] * w[1] + t[2] * w[2];
+                }
+            });
+        }
+        Ok(Self {
+            size,
+            position,
+            template,
+        })
+    }
+
+    pub fn size(&self) -> u32 {
+        self.size
+    }
+}
+
+/// The aged base colour at `size`² (the texels' size): `base` (the head's colour map, any
+/// size, sRGB) or `settings.albedo` where there is none, aged by `factors`, as sRGB RGBA8.
+/// Texels no skin triangle covers keep the base colour.
+pub fn bake(
+    base: Option<&HeadImage>,
+    texels: &SurfaceTexels,
+    spots: &[Spot],
+    regions: &Regions,
+    settings: &ColourSettings,
+    factors: &ColourFactors,
+    cancel: &CancelToken,
+) -> Result<HeadImage, Error> {
+    let n = texels.size as usize;
+    let to_linear: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
+    let base_at = |x: usize, y: usize| -> Vec3 {
+        match base {
+            Some(img) => sample_linear(
+                img,
+                &to_linear,
+                (x as f32 + 0.5) / n as f32,
+                (y as f32 + 0.5) / n as f32,
+            ),
+            None => Vec3::from(settings.albedo),
+        }
+    };
+    let tone = local_tone(n, &texels.position, &base_at);
+    let grid = SpotGrid::new(spots, factors.spots);
+    let seed = settings.seed;
+    let key = |k: u64| (mix64(seed ^ k) & 0xffff_ffff) as u32;
+    let keys = [key(1), key(2), key(3), key(4), key(5)];
+    let pale_tint = {
+        let (a, p) = (
+            Vec3::from(settings.albedo),
+            Vec3::from(settings.pale_albedo),
+        );
+        let ratio = (p / a.max(Vec3::splat(1e-3))).clamp(Vec3::splat(0.25), Vec3::splat(4.0));
+        Vec3::ONE + (ratio - Vec3::ONE) * (settings.pale_amount * factors.pale).clamp(0.0, 1.0)
+    };
+    let yellow = Vec3::ONE - Vec3::from(YELLOW_TINT) * settings.yellowing * factors.pale;
+    let gray = Vec3::from(settings.gray_hair) * Vec3::from(BROW_GRAY_TINT) * BROW_GRAY_BRIGHTNESS;
+    let to_srgb: Vec<u8> = (0..4096)
+        .map(|i| (linear_to_srgb(i as f32 / 4095.0) * 255.0).round() as u8)
+        .collect();
+    let encode = |c: f32| to_srgb[(c.clamp(0.0, 1.0) * 4095.0).round() as usize];
+    let mut rgba = vec![0u8; n * n * 4];
+    let young = factors.is_young();
+    rgba.par_chunks_mut(n * 4)
+        .enumerate()
+        .try_for_each(|(y, row)| -> Result<(), Error> {
+            if y % 64 == 0 {
+                cancel.check()?;
+            }
+            for (x, px) in row.chunks_exact_mut(4).enumerate() {
+                let i = y * n + x;
+                let mut c = base_at(x, y);
+                let p = texels.position[i];
+                let t = texels.template[i];
+                if !young && !p.x.is_nan() {
+                    let reference = tone[i];
+                    c = age_texel(
+                        c, p, t, reference, regions, settings, factors, &grid, &keys, pale_tint,
+                        yellow, gray,
+                    );
+                }
+                px[0] = encode(c.x);
+                px[1] = encode(c.y);
+                px[2] = encode(c.z);
+                px[3] = base.map_or(255, |img| alpha_at(img, x, y, n));
+            }
+            Ok(())
+        })?;
+    Ok(HeadImage {
+        width_px: n as u32,
+        height_px: n as u32,
+        rgba,
+    })
+}
+
+/// One texel aged (linear RGB in, linear RGB out).
+#[allow(clippy::too_many_arguments)]
+fn age_texel(
+    mut c: Vec3,
+    p: Vec3,
+    t: Vec3,
+    reference: Vec3,
+    regions: &Regions,
+    s: &ColourSettings,
+    f: &ColourFactors,
+    grid: &SpotGrid,
+    keys: &[u32; 5],
+    pale_tint: Vec3,
+    yellow: Vec3,
+    gray: Vec3,
+) -> Vec3 {
+    let on_template = !t.x.is_nan();
+    let w = |g: fn(&Regions, Vec3) -> f32| if on_template { g(regions, t) } else { 0.0 };
+    let (sun, brows, lips, red) = (
+        w(Regions::sun),
+        w(Regions::brows),
+        w(Regions::lips),
+        w(Regions::redness),
+    );
+    // Brow hair: darker than the skin around it.
+    let lum = |c: Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722));
+    let hair = brows * smoothstep(0.12, 0.45, 1.0 - lum(c) / lum(reference).max(1e-4));
+    // Lips and brows fade toward the skin around them.
+    let fade = s.contrast_loss * f.contrast * (CONTRAST_BROWS * brows).max(CONTRAST_LIPS * lips);
+    c = c.lerp(reference, fade.clamp(0.0, 1.0));
+    // Paling and yellowing: a tint, so what is darker stays darker.
+    c *= pale_tint * yellow;
+    // The brows gray with the hair, hair by hair: a texel's hair is gray when its draw
+    // (hashed noise at a hair's width) is under the gray fraction: salt and pepper.
+    if hair > 0.0 && f.brow_gray > 0.0 {
+        let draw = 0.5 + 0.5 * value3(p * 1000.0 / BROW_HAIR_MM, keys[4] ^ 0x62);
+        let gray_hair = smoothstep(-0.08, 0.08, BROW_GRAY_LAG * f.brow_gray - draw);
+        c = c.lerp(
+            gray * (0.75 + 0.25 * draw),
+            (hair * gray_hair).clamp(0.0, 1.0),
+        );
+    }
+    let mm = p * 1000.0;
+    // Uneven tone: melanin blotches on sun-exposed skin, lighter between.
+    // Every skin mottles some; sun-exposed skin most. Darker blotches and lighter skin
+    // between, about even on average, so no region's mean tone shifts (no edge where the
+    // exposure falls off).
+    let m = s.mottle * f.mottle * (0.35 + 0.65 * sun);
+    if m > 0.0 {
+        let blotch = fbm(mm / MOTTLE_MM.0, keys[0]);
+        let grain = fbm(mm / MOTTLE_MM.1, keys[1]);
+        let d =
+            (smoothstep(-0.3, 0.6, blotch) - 0.45 + 0.4 * (smoothstep(-0.2, 0.7, grain) - 0.4)) * m;
+        c *= Vec3::ONE - Vec3::from(MOTTLE_TINT) * d;
+    }
+    // Redness and thread veins on the cheeks and the nose.
+    let r = s.redness * f.redness * red;
+    if r > 0.0 {
+        let flush = r * (0.55 + 0.45 * fbm(mm / REDNESS_MM.0, keys[2]));
+        let vein = 1.0 - fbm(mm / REDNESS_MM.1, keys[3]).abs();
+        let veins = r * vein.powi(14);
+        c *= Vec3::new(
+            1.0 + 0.06 * flush,
+            1.0 - 0.3 * flush - 0.4 * veins,
+            1.0 - 0.22 * flush - 0.34 * veins,
+        );
+    }
+    // Age spots.
+    let spot = grid.darkness(p, keys[4]) * s.spot_strength;
+    if spot > 0.0 {
+        c *= Vec3::ONE - Vec3::from(SPOT_TINT) * spot.min(1.0);
+    }
+    c
+}
+
+/// The spots that show at one spot factor, in a uniform grid over their bounds (each spot
+/// listed in every cell its disc touches, so a texel reads one cell).
+struct SpotGrid {
+    spots: Vec<(Spot, f32)>,
+    origin: Vec3,
+    cell: f32,
+    dims: [usize; 3],
+    cells: Vec<Vec<u32>>,
+}
+
+impl SpotGrid {
+    fn new(spots: &[Spot], factor: f32) -> Self {
+        let shown: Vec<(Spot, f32)> = spots
+            .iter()
+            .filter_map(|s| {
+                let g = s.grown(factor);
+                (g > 0.0).then_some((*s, g))
+            })
+            .collect();
+        // A spot's reach: its radius and its wobble, metres.
+        let reach = |s: &Spot, g: f32| 0.5e-3 * s.diameter_mm * g * 1.4;
+        let cell = SPOT_DIAMETER_MM.1 * 1e-3;
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for (s, g) in &shown {
+            lo = lo.min(s.centre - reach(s, *g));
+            hi = hi.max(s.centre + reach(s, *g));
+        }
+        if shown.is_empty() {
+            return Self {
+                spots: shown,
+                origin: Vec3::ZERO,
+                cell,
+                dims: [0; 3],
+                cells: Vec::new(),
+            };
+        }
+        let dims = ((hi - lo) / cell)
+            .ceil()
+            .max(Vec3::ONE)
+            .to_array()
+            .map(|d| (d as usize).min(512));
+        let mut cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
+        let index = |c: [usize; 3]| (c[2] * dims[1] + c[1]) * dims[0] + c[0];
+        let to_cell = |p: Vec3| {
+            let c = ((p - lo) / cell).floor();
+            [0, 1, 2].map(|k| (c[k].max(0.0) as usize).min(dims[k] - 1))
+        };
+        for (k, (s, g)) in shown.iter().enumerate() {
+            let (a, b) = (
+                to_cell(s.centre - reach(s, *g)),
+                to_cell(s.centre + reach(s, *g)),
+            );
+            for z in a[2]..=b[2] {
+                for y in a[1]..=b[1] {
+                    for x in a[0]..=b[0] {
+                        cells[index([x, y, z])].push(k as u32);
+                    }
+                }
+            }
+        }
+        Self {
+            spots: shown,
+            origin: lo,
+            cell,
+            dims,
+            cells,
+        }
+    }
+
+    /// The darkest spot at `p` (head metres), 0–1.
+    fn darkness(&self, p: Vec3, key: u32) -> f32 {
+        if self.cells.is_empty() {
+            return 0.0;
+        }
+        let c = ((p - self.origin) / self.cell).floor();
+        let mut at = [0usize; 3];
+        for k in 0..3 {
+            if c[k] < 0.0 || c[k] >= self.dims[k] as f32 {
+                return 0.0;
+            }
+            at[k] = c[k] as usize;
+        }
+        let list = &self.cells[(at[2] * self.dims[1] + at[1]) * self.dims[0] + at[0]];
+        let mut dark: f32 = 0.0;
+        for &k in list {
+            let (s, g) = &self.spots[k as usize];
+            let d = p - s.centre;
+            // In the spot's plane.
+            let d = d - s.normal * d.dot(s.normal);
+            let r = 0.5e-3 * s.diameter_mm * g;
+            let dist = d.length();
+            if dist > 1.4 * r {
+                continue;
+            }
+            // The outline wobbles: an irregular macule, not a disc.
+            let (e1, e2) = s.normal.any_orthonormal_pair();
+            let theta = d.dot(e2).atan2(d.dot(e1));
+            let ph = s.phases;
+            let edge = r
+                * (1.0
+                    + 0.16 * (2.0 * theta + ph[0]).sin()
+                    + 0.1 * (3.0 * theta + ph[1]).sin()
+                    + 0.06 * (5.0 * theta + ph[2]).sin());
+            let inside = 1.0 - smoothstep(0.7 * edge, edge, dist);
+            if inside <= 0.0 {
+                continue;
+            }
+            // Uneven inside: darker in patches.
+            let grain = 0.82 + 0.18 * value3(p * 1000.0 / 1.2, key ^ k);
+            dark = dark.max(
+                inside
+                    * s.strength
+                    * grain
+                    * (0.5 + 0.5 * ((g - SPOT_FIRST_SIZE) / (1.0 - SPOT_FIRST_SIZE))),
+            );
+        }
+        dark
+    }
+}
+
+/// The local skin tone per texel: the base colour averaged over a coarse grid of the UV
+/// layout (only covered texels count, so the background does not darken island edges),
+/// blurred, read back bilinearly. What lips and brows fade toward, and what brow hair is
+/// darker than.
+fn local_tone(
+    n: usize,
+    position: &[Vec3],
+    base_at: &(dyn Fn(usize, usize) -> Vec3 + Sync),
+) -> Vec<Vec3> {
+    let g = TONE_GRID;
+    let mut sum = vec![Vec3::ZERO; g * g];
+    let mut weight = vec![0.0f32; g * g];
+    // A sparse sample is enough for a coarse average.
+    let step = (n / 256).max(1);
+    for y in (0..n).step_by(step) {
+        for x in (0..n).step_by(step) {
+            if position[y * n + x].x.is_nan() {
+                continue;
+            }
+            let k = (y * g / n) * g + x * g / n;
+            sum[k] += base_at(x, y);
+            weight[k] += 1.0;
+        }
+    }
+    // Two passes of a 3×3 box blur of the sums and the weights (normalised convolution).
+    for _ in 0..2 {
+        let (s0, w0) = (sum.clone(), weight.clone());
+        for y in 0..g {
+            for x in 0..g {
+                let (mut s, mut w) = (Vec3::ZERO, 0.0);
+                for dy in -1i32..=1 {
+                    for dx in -1i32..=1 {
+                        let (xx, yy) = (x as i32 + dx, y as i32 + dy);
+                        if xx < 0 || yy < 0 || xx >= g as i32 || yy >= g as i32 {
+                            continue;
+                        }
+                        let k = yy as usize * g + xx as usize;
+                        s += s0[k];
+                        w += w0[k];
+                    }
+                }
+                sum[y * g + x] = s;
+                weight[y * g + x] = w;
+            }
+        }
+    }
+    let cells: Vec<Vec3> = sum
+        .iter()
+        .zip(&weight)
+        .map(|(s, &w)| {
+            if w > 0.0 {
+                *s / w
+            } else {
+                Vec3::splat(f32::NAN)
+            }
+        })
+        .collect();
+    let mut out = vec![Vec3::ZERO; n * n];
+    out.par_chunks_mut(n).enumerate().for_each(|(y, row)| {
+        let fy = ((y as f32 + 0.5) * g as f32 / n as f32 - 0.5).clamp(0.0, (g - 1) as f32);
+        for (x, o) in row.iter_mut().enumerate() {
+            let fx = ((x as f32 + 0.5) * g as f32 / n as f32 - 0.5).clamp(0.0, (g - 1) as f32);
+            let (x0, y0) = (fx.floor() as usize, fy.floor() as usize);
+            let (x1, y1) = ((x0 + 1).min(g - 1), (y0 + 1).min(g - 1));
+            let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+            let mut acc = Vec3::ZERO;
+            let mut w = 0.0;
+            for (cx, cy, cw) in [
+                (x0, y0, (1.0 - tx) * (1.0 - ty)),
+                (x1, y0, tx * (1.0 - ty)),
+                (x0, y1, (1.0 - tx) * ty),
+                (x1, y1, tx * ty),
+            ] {
+                let v = cells[cy * g + cx];
+                if !v.x.is_nan() && cw > 0.0 {
+                    acc += v * cw;
+                    w += cw;
+                }
+            }
+            *o = if w > 0.0 { acc / w } else { Vec3::splat(0.5) };
+        }
+    });
+    out
+}
+
+/// Bilinear linear-light colour of an sRGB picture at (u, v) (v up, u wrapping, v clamped).
+fn sample_linear(img: &HeadImage, to_linear: &[f32], u: f32, v_down: f32) -> Vec3 {
+    let (w, h) = (img.width_px as i64, img.height_px as i64);
+    if w == 0 || h == 0 {
+        return Vec3::splat(0.5);
+    }
+    let x = u * w as f32 - 0.5;
+    let y = v_down * h as f32 - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let at = |xi: i64, yi: i64| {
+        let i = ((yi.clamp(0, h - 1) * w + xi.rem_euclid(w)) * 4) as usize;
+        Vec3::new(
+            to_linear[img.rgba[i] as usize],
+            to_linear[img.rgba[i + 1] as usize],
+            to_linear[img.rgba[i + 2] as usize],
+        )
+    };
+    let (x0, y0) = (x0 as i64, y0 as i64);
+    let top = at(x0, y0).lerp(at(x0 + 1, y0), fx);
+    let bottom = at(x0, y0 + 1).lerp(at(x0 + 1, y0 + 1), fx);
+    top.lerp(bottom, fy)
+}
+
+/// The base picture's alpha at texel (x, y) of an `n`² bake (nearest).
+fn alpha_at(img: &HeadImage, x: usize, y: usize, n: usize) -> u8 {
+    let (w, h) = (img.width_px as usize, img.height_px as usize);
+    if w == 0 || h == 0 {
+        return 255;
+    }
+    let (sx, sy) = ((x * w / n).min(w - 1), (y * h / n).min(h - 1));
+    img.rgba[(sy * w + sx) * 4 + 3]
+}
+
+/// Smooth 3D value noise in [−1, 1]: hashed values at the integer lattice, joined by
+/// smoothstep; one stream per `key`.
+fn value3(p: Vec3, key: u32) -> f32 {
+    let i = p.floor();
+    let f = p - i;
+    let f = f * f * (Vec3::splat(3.0) - 2.0 * f);
+    let (x, y, z) = (i.x as i32 as u32, i.y as i32 as u32, i.z as i32 as u32);
+    let h = |dx: u32, dy: u32, dz: u32| {
+        let k = u64::from(key) << 32
+            ^ u64::from(x.wrapping_add(dx).wrapping_mul(0x8DA6_B343))
+            ^ u64::from(y.wrapping_add(dy).wrapping_mul(0xD816_3841)) << 16
+            ^ u64::from(z.wrapping_add(dz).wrapping_mul(0xCB1A_B31F)) << 8;
+        (mix64(k) >> 40) as f32 / (1u64 << 23) as f32 - 1.0
+    };
+    let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
+    let x0 = lerp(
+        lerp(h(0, 0, 0), h(1, 0, 0), f.x),
+        lerp(h(0, 1, 0), h(1, 1, 0), f.x),
+        f.y,
+    );
+    let x1 = lerp(
+        lerp(h(0, 0, 1), h(1, 0, 1), f.x),
+        lerp(h(0, 1, 1), h(1, 1, 1), f.x),
+        f.y,
+    );
+    lerp(x0, x1, f.z)
+}
+
+/// Three octaves of [`value3`], in about [−1, 1].
+fn fbm(p: Vec3, key: u32) -> f32 {
+    (value3(p, key)
+        + 0.5 * value3(p * 2.03 + Vec3::splat(17.1), key ^ 0x9e37)
+        + 0.25 * value3(p * 4.1 + Vec3::splat(31.7), key ^ 0x7f4a))
+        / 1.75
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,331 @@
+use super::*;
+use crate::project::Project;
+use crate::scene::Scene;
+
+/// A point on the template's forehead (fully sun-exposed, no other region).
+fn forehead() -> Vec3 {
+    let l = &crate::fit::template().landmarks;
+    l.get("glabella").unwrap() + Vec3::new(0.0, 0.03, 0.0)
+}
+
+/// Settings with only the age spots on.
+fn spots_only() -> ColourSettings {
+    ColourSettings {
+        pale_amount: 0.0,
+        mottle: 0.0,
+        redness: 0.0,
+        yellowing: 0.0,
+        contrast_loss: 0.0,
+        ..ColourSettings::default()
+    }
+}
+
+/// The linear luminance of each texel of an sRGB picture.
+fn luminance(img: &HeadImage) -> Vec<f32> {
+    img.rgba
+        .chunks_exact(4)
+        .map(|p| {
+            let c = Vec3::new(
+                srgb_to_linear(p[0] as f32 / 255.0),
+                srgb_to_linear(p[1] as f32 / 255.0),
+                srgb_to_linear(p[2] as f32 / 255.0),
+            );
+            c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+        })
+        .collect()
+}
+
+#[test]
+fn the_regions_lie_where_the_face_has_them() {
+    let r = Regions::template().expect("the template's landmarks");
+    let l = &crate::fit::template().landmarks;
+    let at = |name: &str, offset_mm: [f32; 3]| l.get(name).unwrap() + Vec3::from(offset_mm) * 1e-3;
+    // Forehead and nose in the sun; under the chin, the back of the head not.
+    assert!(r.sun(at("glabella", [0.0, 30.0, 0.0])) > 0.95);
+    assert!(r.sun(at("pronasale", [0.0, 0.0, 0.0])) > 0.95);
+    assert!(r.sun(at("pogonion", [0.0, -60.0, -40.0])) < 0.05);
+    assert!(r.sun(at("vertex", [0.0, -60.0, -90.0])) < 0.05);
+    // A brow above each eye's middle, none on the cheek below it.
+    for side in ["l", "r"] {
+        let mid = 0.5
+            * (l.get(&format!("endocanthion_{side}")).unwrap()
+                + l.get(&format!("exocanthion_{side}")).unwrap());
+        let above = mid + Vec3::new(0.0, 0.018, 0.005);
+        assert!(r.brows(above) > 0.5, "brow {side}: {}", r.brows(above));
+        assert!(r.brows(mid - Vec3::new(0.0, 0.03, 0.0)) == 0.0);
+        assert!(r.eyes(mid) > 0.9);
+        assert!(r.redness(mid - Vec3::new(0.0, 0.026, -0.005)) > 0.5);
+    }
+    let mouth = 0.5 * (at("cheilion_l", [0.0; 3]) + at("cheilion_r", [0.0; 3]));
+    assert!(r.lips(mouth + Vec3::new(0.0, 0.0, 0.008)) > 0.9);
+    assert_eq!(r.lips(at("glabella", [0.0; 3])), 0.0);
+}
+
+#[test]
+fn spots_are_2_to_20_mm_and_appear_one_by_one_from_the_onset() {
+    let mut scene = Scene::new(Project::default()).unwrap();
+    let cancel = CancelToken::never();
+    scene.bake_colour(256, 1.0, &cancel).unwrap();
+    let spots = scene.age_spots().unwrap().clone();
+    // About 0.2 per cm² over the exposed face, scalp and ears.
+    assert!((60..600).contains(&spots.len()), "{} spots", spots.len());
+    let (lo, hi) = SPOT_DIAMETER_MM;
+    assert!(spots.iter().all(|s| (lo..=hi).contains(&s.diameter_mm)));
+    // Small spots are the common ones.
+    let small = spots.iter().filter(|s| s.diameter_mm < 6.0).count();
+    assert!(
+        small * 2 > spots.len(),
+        "{small} of {} under 6 mm",
+        spots.len()
+    );
+    // The count at each age, by the project's spot curve (48 → 85 years).
+    let p = Project::default();
+    let shown = |years: f32| {
+        let f = p.colour_factors(p.age.mapping().t(years)).spots;
+        spots.iter().filter(|s| s.diameter_at(f) > 0.0).count()
+    };
+    let counts: Vec<usize> = [40.0, 48.0, 55.0, 65.0, 80.0].map(shown).to_vec();
+    eprintln!(
+        "{} spots; shown at 40/48/55/65/80 years: {counts:?}",
+        spots.len()
+    );
+    assert_eq!(&counts[..2], &[0, 0], "{counts:?}");
+    assert!(counts.windows(2).all(|w| w[0] <= w[1]), "{counts:?}");
+    assert!(counts[2] > 0 && counts[4] > 3 * counts[2], "{counts:?}");
+    // A spot shows at 40 % of its size and grows to it.
+    let s = spots[0];
+    assert_eq!(s.diameter_at(s.appears), 0.0);
+    assert!((s.diameter_at(s.appears + 1e-4) - 0.4 * s.diameter_mm).abs() < 0.01);
+    assert_eq!(s.diameter_at(1.0).max(s.diameter_mm), s.diameter_mm);
+}
+
+#[test]
+fn a_baked_spot_measures_its_diameter_in_millimetres() {
+    // The 5 cm skin patch, in metres, all of it on the template's forehead.
+    let mesh = crate::head::skin_patch();
+    let point = forehead();
+    let template = |_: usize| Some(point);
+    let regions = Regions::template().unwrap();
+    let size = 500; // 0.1 mm a texel
+    let texels = SurfaceTexels::new(&mesh, &template, 1.0, size, &CancelToken::never()).unwrap();
+    // Three lone spots of known sizes, fully grown.
+    let spot = |x_mm: f32, y_mm: f32, d: f32| Spot {
+        centre: Vec3::new(x_mm, y_mm, 0.0) * 1e-3,
+        normal: Vec3::Z,
+        diameter_mm: d,
+        appears: 0.0,
+        strength: 1.0,
+        phases: [0.3, 1.9, 4.0],
+    };
+    let spots = [
+        spot(-12.0, -12.0, 3.0),
+        spot(10.0, -8.0, 8.0),
+        spot(0.0, 11.0, 16.0),
+    ];
+    let factors = ColourFactors {
+        spots: 1.0,
+        ..ColourFactors::default()
+    };
+    let s = spots_only();
+    let img = bake(
+        None,
+        &texels,
+        &spots,
+        regions,
+        &s,
+        &factors,
+        &CancelToken::never(),
+    )
+    .unwrap();
+    let plain = luminance(
+        &bake(
+            None,
+            &texels,
+            &[],
+            regions,
+            &s,
+            &ColourFactors {
+                spots: 1.0,
+                ..Default::default()
+            },
+            &CancelToken::never(),
+        )
+        .unwrap(),
+    );
+    let lum = luminance(&img);
+    let n = size as usize;
+    let mm_per_texel = 50.0 / size as f32;
+    for sp in spots {
+        // Darkened by over a fifth of the spot's full darkening, within 15 mm of its centre.
+        let (cx, cy) = (
+            (sp.centre.x * 1000.0 + 25.0) / mm_per_texel,
+            (25.0 - sp.centre.y * 1000.0) / mm_per_texel,
+        );
+        let mut area = 0usize;
+        for y in 0..n {
+            for x in 0..n {
+                let d = ((x as f32 + 0.5 - cx).hypot(y as f32 + 0.5 - cy)) * mm_per_texel;
+                let i = y * n + x;
+                if d < 15.0 && lum[i] < plain[i] * (1.0 - 0.2 * 0.6) {
+                    area += 1;
+                }
+            }
+        }
+        let diameter = 2.0 * (area as f32 / std::f32::consts::PI).sqrt() * mm_per_texel;
+        let ratio = diameter / sp.diameter_mm;
+        eprintln!("a {} mm spot measures {diameter:.2} mm", sp.diameter_mm);
+        assert!(
+            (0.75..=1.15).contains(&ratio),
+            "a {} mm spot measures {diameter:.2} mm",
+            sp.diameter_mm
+        );
+    }
+}
+
+#[test]
+fn young_skin_is_its_own_colour_and_old_skin_is_uneven() {
+    let mut scene = Scene::new(Project::default()).unwrap();
+    let cancel = CancelToken::never();
+    let p = Project::default();
+    let n = 512usize;
+    scene
+        .bake_colour(n as u32, p.age.mapping().t(25.0), &cancel)
+        .unwrap();
+    let young = scene.aged_colour().unwrap().clone();
+    scene.bake_colour(n as u32, 1.0, &cancel).unwrap();
+    let old = scene.aged_colour().unwrap().clone();
+    // At 25 nothing has started: the bake is the scan's colour map, resampled.
+    let base = scene.colour_map().unwrap();
+    let to_linear: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
+    let (x, y) = (n / 2, n * 3 / 10);
+    let centre = |k: usize| (k as f32 + 0.5) / n as f32;
+    let resampled = sample_linear(base, &to_linear, centre(x), centre(y));
+    let i = (y * n + x) * 4;
+    let c = Vec3::new(
+        young.rgba[i] as f32,
+        young.rgba[i + 1] as f32,
+        young.rgba[i + 2] as f32,
+    ) / 255.0;
+    let expected = Vec3::new(
+        linear_to_srgb(resampled.x),
+        linear_to_srgb(resampled.y),
+        linear_to_srgb(resampled.z),
+    );
+    assert!(
+        (c - expected).abs().max_element() < 1.0 / 255.0 + 1e-4,
+        "{c} vs {expected}"
+    );
+    // Unevenness: the spread of old/young luminance over the sun-exposed face.
+    let regions = Regions::template().unwrap();
+    let mesh = scene.mesh().clone();
+    let texels = SurfaceTexels::new(
+        &mesh,
+        &|v| mesh.positions().get(v).copied(),
+        1.0,
+        n as u32,
+        &cancel,
+    )
+    .unwrap();
+    let (ly, lo) = (luminance(&young), luminance(&old));
+    let ratios: Vec<f32> = (0..n * n)
+        .filter(|&i| {
+            let t = texels.template[i];
+            !t.x.is_nan() && regions.sun(t) > 0.9 && ly[i] > 0.05
+        })
+        .map(|i| lo[i] / ly[i])
+        .collect();
+    assert!(ratios.len() > 5000, "{} exposed texels", ratios.len());
+    let mean = ratios.iter().sum::<f32>() / ratios.len() as f32;
+    let sd = (ratios.iter().map(|r| (r - mean).powi(2)).sum::<f32>() / ratios.len() as f32).sqrt();
+    // Spots and blotches: the old face's tone varies by over 8 % where the young one's
+    // is its own (0 by construction).
+    eprintln!("old/young luminance over the exposed face: mean {mean:.3}, sd {sd:.3}");
+    assert!(sd > 0.08, "old/young luminance: mean {mean:.3}, sd {sd:.3}");
+    // Under 2 % of the face darker by a third: spots, not a dirty face.
+    let dark = ratios.iter().filter(|&&r| r < mean * 0.67).count();
+    assert!(
+        dark * 50 < ratios.len(),
+        "{dark} of {} much darker",
+        ratios.len()
+    );
+}
+
+#[test]
+fn brows_gray_and_lips_fade_toward_the_skin() {
+    let mut scene = Scene::new(Project::default()).unwrap();
+    let cancel = CancelToken::never();
+    let n = 512usize;
+    scene.bake_colour(n as u32, 0.0, &cancel).unwrap();
+    let young = scene.aged_colour().unwrap().clone();
+    scene.bake_colour(n as u32, 1.0, &cancel).unwrap();
+    let old = scene.aged_colour().unwrap().clone();
+    let regions = Regions::template().unwrap();
+    let mesh = scene.mesh().clone();
+    let texels = SurfaceTexels::new(
+        &mesh,
+        &|v| mesh.positions().get(v).copied(),
+        1.0,
+        n as u32,
+        &cancel,
+    )
+    .unwrap();
+    let (ly, lo) = (luminance(&young), luminance(&old));
+    let in_region = |f: fn(&Regions, Vec3) -> f32| -> Vec<usize> {
+        (0..n * n)
+            .filter(|&i| !texels.template[i].x.is_nan() && f(regions, texels.template[i]) > 0.9)
+            .collect()
+    };
+    // Brow hair: the darkest quarter of the brows when young gets lighter.
+    let mut brows = in_region(Regions::brows);
+    assert!(brows.len() > 100, "{} brow texels", brows.len());
+    brows.sort_by(|&a, &b| ly[a].total_cmp(&ly[b]));
+    let hair = &brows[..brows.len() / 4];
+    let mean = |v: &[f32], idx: &[usize]| idx.iter().map(|&i| v[i]).sum::<f32>() / idx.len() as f32;
+    eprintln!(
+        "brow hair luminance {:.3} → {:.3}",
+        mean(&ly, hair),
+        mean(&lo, hair)
+    );
+    assert!(
+        mean(&lo, hair) > 1.5 * mean(&ly, hair),
+        "brow hair {} → {}",
+        mean(&ly, hair),
+        mean(&lo, hair)
+    );
+    // Lips: their redness (r − g over luminance) falls.
+    let lips = in_region(Regions::lips);
+    let redness = |img: &HeadImage| {
+        lips.iter()
+            .map(|&i| (img.rgba[4 * i] as f32 - img.rgba[4 * i + 1] as f32) / 255.0)
+            .sum::<f32>()
+            / lips.len() as f32
+    };
+    assert!(
+        redness(&old) < 0.85 * redness(&young),
+        "lips r − g {} → {}",
+        redness(&young),
+        redness(&old)
+    );
+}
+
+#[test]
+fn the_bake_is_the_same_on_any_thread_count() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut scene = Scene::new(Project::default()).unwrap();
+            scene.bake_colour(256, 1.0, &CancelToken::never()).unwrap();
+            scene.aged_colour().unwrap().rgba.clone()
+        })
+    };
+    assert!(run(1) == run(3), "bytes differ between 1 and 3 threads");
+    // Another seed, other spots.
+    let mut p = Project::default();
+    p.skin.colour_seed = 2;
+    let mut scene = Scene::new(p).unwrap();
+    scene.bake_colour(256, 1.0, &CancelToken::never()).unwrap();
+    assert!(scene.aged_colour().unwrap().rgba != run(2));
+}

@@ -14,7 +14,7 @@ fn bake_json(out: &Path) -> serde_json::Value {
 }
 
 #[test]
-fn default_bake_writes_the_four_files() {
+fn default_bake_writes_the_five_files() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("maps");
     let o = agesim(&[
@@ -27,10 +27,26 @@ fn default_bake_writes_the_four_files() {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    for f in ["height.png", "height.exr", "normal.png", "bake.json"] {
+    for f in [
+        "height.png",
+        "height.exr",
+        "normal.png",
+        "albedo.png",
+        "bake.json",
+    ] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
+    // The aged base colour at the maps' size.
+    let albedo = image::open(out.join("albedo.png")).unwrap();
+    assert_eq!((albedo.width(), albedo.height()), (256, 256));
     let report: serde_json::Value = bake_json(&out);
+    assert!(
+        report["outputs"]
+            .as_array()
+            .unwrap()
+            .contains(&serde_json::json!("albedo.png")),
+        "{report}"
+    );
     let range = report["height_range"].as_array().unwrap();
     let (lo, hi) = (range[0].as_f64().unwrap(), range[1].as_f64().unwrap());
     // Cut in: the deepest point of the normalised depth at full age is −1; the folds'
@@ -622,7 +638,7 @@ fn an_output_set_is_all_old_or_all_new() {
     let o = agesim(&["bake", "--size", "64", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let old = snapshot_dir(&out);
-    assert_eq!(old.len(), 4);
+    assert_eq!(old.len(), 5);
 
     // A later output that cannot be written (normal.png is a directory): nothing changes.
     std::fs::remove_file(out.join("normal.png")).unwrap();
@@ -631,7 +647,7 @@ fn an_output_set_is_all_old_or_all_new() {
     let o = agesim(&["bake", "--size", "96", "--out", out.to_str().unwrap()]);
     assert!(!o.status.success());
     let after: Vec<(String, Vec<u8>)> = snapshot_dir(&out);
-    assert_eq!(before.iter().filter(|(n, _)| n != "normal.png").count(), 3);
+    assert_eq!(before.iter().filter(|(n, _)| n != "normal.png").count(), 4);
     for (name, bytes) in before.iter().filter(|(n, _)| n != "normal.png") {
         let now = after.iter().find(|(n, _)| n == name).unwrap();
         assert_eq!(&now.1, bytes, "{name} was replaced although the set failed");

@@ -134,13 +134,81 @@ fn a_colour_map_is_exported_aged_as_the_base_colour_texture() {
         assert_eq!(pbr.base_color_factor(), [1.0; 4]);
         let texture = pbr.base_color_texture().expect("a base colour texture");
         let image = images[texture.texture().source().index()].clone();
-        assert_eq!((image.width, image.height), (16, 8));
-        images_at.push(image.pixels[..4].to_vec());
+        // Baked over the head's UVs at the texture size (the map's own when larger).
+        assert_eq!((image.width, image.height), (64, 64));
+        let channels = image.pixels.len() / (64 * 64);
+        let mean = |c: usize| {
+            image
+                .pixels
+                .chunks_exact(channels)
+                .map(|p| f64::from(p[c]))
+                .sum::<f64>()
+                / (64.0 * 64.0)
+        };
+        images_at.push([mean(0), mean(1), mean(2)]);
     }
-    // Young: the map as it is; old: paler (toward the pale tone, every channel up).
-    assert_eq!(&images_at[0][..3], &[150, 60, 40]);
-    let (young, old) = (&images_at[0], &images_at[1]);
-    assert!((0..3).all(|c| old[c] > young[c]), "{young:?} → {old:?}");
+    // Young: the map as it is; old: sallower (less red against green and blue, the
+    // paling tint and the yellowing), and uneven.
+    assert_eq!(images_at[0], [150.0, 60.0, 40.0]);
+    let (young, old) = (images_at[0], images_at[1]);
+    assert!(old[1] / old[0] > young[1] / young[0], "{young:?} → {old:?}");
+}
+
+/// The GLB's base colour at 80 has the age spots and the uneven tone; at 25 it is the
+/// head's own colour, as even as it was (nothing has started).
+#[test]
+fn the_old_base_colour_is_uneven_and_the_young_one_even() {
+    let dir = tempfile::tempdir().unwrap();
+    let texture_at = |years: &str| {
+        let glb = dir.path().join(format!("head-{years}.glb"));
+        let o = agesim(&[
+            "export",
+            "--age-years",
+            years,
+            "--size",
+            "512",
+            "--glb",
+            glb.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (doc, _, images) = gltf::import(&glb).expect("the GLB imports");
+        let pbr = doc.materials().next().unwrap().pbr_metallic_roughness();
+        let texture = pbr.base_color_texture().expect("a base colour texture");
+        let image = images[texture.texture().source().index()].clone();
+        let channels = image.pixels.len() / (image.width * image.height) as usize;
+        let lum: Vec<f64> = image
+            .pixels
+            .chunks_exact(channels)
+            .map(|p| 0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]))
+            .collect();
+        (image.width, lum)
+    };
+    let (n20, at20) = texture_at("20");
+    let (n25, at25) = texture_at("25");
+    let (n80, at80) = texture_at("80");
+    assert_eq!((n20, n25), (n80, n80));
+    assert!(at25 == at20, "at 25 the colour is the head's own, as at 20");
+    // The face's middle (the default head's layout: the face in the middle of the map).
+    let n = n80 as usize;
+    let face: Vec<usize> = (n * 3 / 10..n * 6 / 10)
+        .flat_map(|y| (n * 3 / 10..n * 7 / 10).map(move |x| y * n + x))
+        .filter(|&i| at25[i] > 60.0)
+        .collect();
+    let ratios: Vec<f64> = face.iter().map(|&i| at80[i] / at25[i]).collect();
+    let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
+    let sd = (ratios.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / ratios.len() as f64).sqrt();
+    // Spots: small patches darker by a tenth than the tone around them.
+    let spots = ratios.iter().filter(|&&r| r < 0.9 * mean).count();
+    eprintln!(
+        "old/young over the face: mean {mean:.3}, sd {sd:.3}, {spots} spot texels of {}",
+        ratios.len()
+    );
+    assert!(sd > 0.03, "sd {sd:.3}");
+    assert!(
+        spots > 100 && spots * 10 < ratios.len(),
+        "{spots} of {}",
+        ratios.len()
+    );
 }
 
 #[test]

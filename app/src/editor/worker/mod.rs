@@ -345,7 +345,7 @@ fn bake(
         None => s.reset_wrinkles()?,
     }
     let baked = s.bake(&job.request, cancel)?;
-    let colour_px = job.request.large_size_px.min(crate::view::MAX_COLOUR_PX);
+    let colour_px = crate::view::colour_px(s, job.request.large_size_px);
     s.bake_colour(colour_px, job.request.t, cancel)?;
     changed.mesh |= baked.mesh;
     let merged = if refresh_all {

@@ -19,12 +19,15 @@ pub(super) struct HeadKey {
     pub metres_per_unit: f32,
 }
 
+/// The texels' head, size and seed.
+type TexelsKey = (HeadKey, u32, u64);
+
 /// The spots' head, density (bits) and seed.
 type SpotsKey = (HeadKey, u32, u64);
 
 #[derive(Clone, Debug, Default)]
 pub(super) struct ColourStage {
-    texels: Option<((HeadKey, u32), Arc<SurfaceTexels>)>,
+    texels: Option<(TexelsKey, Arc<SurfaceTexels>)>,
     spots: Option<(SpotsKey, Arc<Vec<Spot>>)>,
     image_key: Option<ImageKey>,
     pub image: Option<Arc<HeadImage>>,
@@ -84,17 +87,20 @@ impl ColourStage {
             value: "incomplete".into(),
             expected: "eye and mouth corners, nose, chin and ears".into(),
         })?;
+        let texels_key = (head.key, size, settings.seed);
         let texels = match &self.texels {
-            Some((k, t)) if *k == (head.key, size) => t.clone(),
+            Some((k, t)) if *k == texels_key => t.clone(),
             _ => {
                 let t = Arc::new(SurfaceTexels::new(
                     head.mesh,
                     &template_point,
                     mpu,
                     size,
+                    regions,
+                    settings.seed,
                     cancel,
                 )?);
-                self.texels = Some(((head.key, size), t.clone()));
+                self.texels = Some((texels_key, t.clone()));
                 t
             }
         };
@@ -118,7 +124,6 @@ impl ColourStage {
             head.base.map(|b| &**b),
             &texels,
             &spots,
-            regions,
             settings,
             factors,
             cancel,

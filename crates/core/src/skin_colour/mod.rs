@@ -398,13 +398,83 @@ pub fn place_spots(
         .collect()
 }
 
-/// The head's surface per texel of its UV layout: the point (head metres) and the template
-/// point (template metres) each texel stands for; NaN where no skin triangle covers it.
+/// The head's surface per texel of its UV layout: the point (head metres) each texel
+/// stands for (NaN where no skin triangle covers it), and what does not change with age
+/// there ([`Fields`]: the regions of its template point, the noise): made once per head, size and
+/// seed, so an age change only re-weights.
 #[derive(Clone, Debug)]
 pub struct SurfaceTexels {
     size: u32,
     position: Vec<Vec3>,
-    template: Vec<Vec3>,
+    fields: Vec<Fields>,
+}
+
+/// The regions' weights and the uneven tone's noise at one texel, as bytes (weights
+/// 0–1, noise −1–1 in 255 steps: far below what a colour shows).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Fields {
+    sun: u8,
+    brows: u8,
+    lips: u8,
+    red: u8,
+    blotch: u8,
+    grain: u8,
+    flush: u8,
+    vein: u8,
+    brow_draw: u8,
+}
+
+fn unit_byte(x: f32) -> u8 {
+    (x.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+fn signed_byte(x: f32) -> u8 {
+    unit_byte(0.5 + 0.5 * x)
+}
+
+fn from_unit(b: u8) -> f32 {
+    f32::from(b) / 255.0
+}
+
+fn from_signed(b: u8) -> f32 {
+    f32::from(b) / 127.5 - 1.0
+}
+
+/// The noise streams of one seed: blotch, grain, flush, vein, brow hair, spot grain.
+fn noise_keys(seed: u64) -> [u32; 6] {
+    [1, 2, 3, 4, 5, 6].map(|k| (mix64(seed ^ k) & 0xffff_ffff) as u32)
+}
+
+impl Fields {
+    fn at(p: Vec3, t: Vec3, regions: &Regions, keys: &[u32; 6]) -> Self {
+        let on_template = !t.x.is_nan();
+        let w = |g: fn(&Regions, Vec3) -> f32| if on_template { g(regions, t) } else { 0.0 };
+        let (sun, brows, red) = (w(Regions::sun), w(Regions::brows), w(Regions::redness));
+        let mm = p * 1000.0;
+        Self {
+            sun: unit_byte(sun),
+            brows: unit_byte(brows),
+            lips: unit_byte(w(Regions::lips)),
+            red: unit_byte(red),
+            blotch: signed_byte(fbm(mm / MOTTLE_MM.0, keys[0])),
+            grain: signed_byte(value3(mm / MOTTLE_MM.1, keys[1])),
+            flush: if red > 0.0 {
+                signed_byte(fbm(mm / REDNESS_MM.0, keys[2]))
+            } else {
+                128
+            },
+            vein: if red > 0.0 {
+                signed_byte(fbm(mm / REDNESS_MM.1, keys[3]))
+            } else {
+                128
+            },
+            brow_draw: if brows > 0.0 {
+                signed_byte(value3(mm / BROW_HAIR_MM, keys[4]))
+            } else {
+                128
+            },
+        }
+    }
 }
 
 /// How far (pixels) beyond its triangle a texel still takes the triangle's surface: the
@@ -412,12 +482,15 @@ pub struct SurfaceTexels {
 const GUARD_PX: f32 = 1.5;
 
 impl SurfaceTexels {
-    /// Rasterises the skin triangles of `mesh` in its UV layout at `size`².
+    /// Rasterises the skin triangles of `mesh` in its UV layout at `size`², and each
+    /// covered texel's regions and noise (of `seed`).
     pub fn new(
         mesh: &Mesh,
         template_point: &dyn Fn(usize) -> Option<Vec3>,
         metres_per_unit: f32,
         size: u32,
+        regions: &Regions,
+        seed: u64,
         cancel: &CancelToken,
     ) -> Result<Self, Error> {
         crate::heightmap::check_size(size, size)?;
@@ -444,10 +517,27 @@ impl SurfaceTexels {
                 }
             });
         }
+        let keys = noise_keys(seed);
+        let mut fields = vec![Fields::default(); n * n];
+        fields
+            .par_chunks_mut(n)
+            .enumerate()
+            .try_for_each(|(y, row)| -> Result<(), Error> {
+                if y % 64 == 0 {
+                    cancel.check()?;
+                }
+                for (x, f) in row.iter_mut().enumerate() {
+                    let p = position[y * n + x];
+                    if !p.x.is_nan() {
+                        *f = Fields::at(p, template[y * n + x], regions, &keys);
+                    }
+                }
+                Ok(())
+            })?;
         Ok(Self {
             size,
             position,
-            template,
+            fields,
         })
     }
 
@@ -463,7 +553,6 @@ pub fn bake(
     base: Option<&HeadImage>,
     texels: &SurfaceTexels,
     spots: &[Spot],
-    regions: &Regions,
     settings: &ColourSettings,
     factors: &ColourFactors,
     cancel: &CancelToken,
@@ -483,9 +572,7 @@ pub fn bake(
     };
     let tone = local_tone(n, &texels.position, &base_at);
     let grid = SpotGrid::new(spots, factors.spots);
-    let seed = settings.seed;
-    let key = |k: u64| (mix64(seed ^ k) & 0xffff_ffff) as u32;
-    let keys = [key(1), key(2), key(3), key(4), key(5)];
+    let spot_key = noise_keys(settings.seed)[5];
     let pale_tint = {
         let (a, p) = (
             Vec3::from(settings.albedo),
@@ -512,13 +599,17 @@ pub fn bake(
                 let i = y * n + x;
                 let mut c = base_at(x, y);
                 let p = texels.position[i];
-                let t = texels.template[i];
                 if !young && !p.x.is_nan() {
-                    let reference = tone[i];
-                    c = age_texel(
-                        c, p, t, reference, regions, settings, factors, &grid, &keys, pale_tint,
-                        yellow, gray,
-                    );
+                    let look = Look {
+                        settings,
+                        factors,
+                        grid: &grid,
+                        spot_key,
+                        pale_tint,
+                        yellow,
+                        gray,
+                    };
+                    c = look.age(c, p, &texels.fields[i], tone[i]);
                 }
                 px[0] = encode(c.x);
                 px[1] = encode(c.y);
@@ -534,79 +625,77 @@ pub fn bake(
     })
 }
 
-/// One texel aged (linear RGB in, linear RGB out).
-#[allow(clippy::too_many_arguments)]
-fn age_texel(
-    mut c: Vec3,
-    p: Vec3,
-    t: Vec3,
-    reference: Vec3,
-    regions: &Regions,
-    s: &ColourSettings,
-    f: &ColourFactors,
-    grid: &SpotGrid,
-    keys: &[u32; 5],
+/// What ages every texel alike at one age: the settings, the factors and the tints made
+/// from them, the spots that show.
+struct Look<'a> {
+    settings: &'a ColourSettings,
+    factors: &'a ColourFactors,
+    grid: &'a SpotGrid,
+    spot_key: u32,
     pale_tint: Vec3,
     yellow: Vec3,
     gray: Vec3,
-) -> Vec3 {
-    let on_template = !t.x.is_nan();
-    let w = |g: fn(&Regions, Vec3) -> f32| if on_template { g(regions, t) } else { 0.0 };
-    let (sun, brows, lips, red) = (
-        w(Regions::sun),
-        w(Regions::brows),
-        w(Regions::lips),
-        w(Regions::redness),
-    );
-    // Brow hair: darker than the skin around it.
-    let lum = |c: Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722));
-    let hair = brows * smoothstep(0.12, 0.45, 1.0 - lum(c) / lum(reference).max(1e-4));
-    // Lips and brows fade toward the skin around them.
-    let fade = s.contrast_loss * f.contrast * (CONTRAST_BROWS * brows).max(CONTRAST_LIPS * lips);
-    c = c.lerp(reference, fade.clamp(0.0, 1.0));
-    // Paling and yellowing: a tint, so what is darker stays darker.
-    c *= pale_tint * yellow;
-    // The brows gray with the hair, hair by hair: a texel's hair is gray when its draw
-    // (hashed noise at a hair's width) is under the gray fraction: salt and pepper.
-    if hair > 0.0 && f.brow_gray > 0.0 {
-        let draw = 0.5 + 0.5 * value3(p * 1000.0 / BROW_HAIR_MM, keys[4] ^ 0x62);
-        let gray_hair = smoothstep(-0.08, 0.08, BROW_GRAY_LAG * f.brow_gray - draw);
-        c = c.lerp(
-            gray * (0.75 + 0.25 * draw),
-            (hair * gray_hair).clamp(0.0, 1.0),
+}
+
+impl Look<'_> {
+    /// One texel aged (linear RGB in, linear RGB out): `p` its point (head metres), `f`
+    /// its regions and noise, `reference` the skin tone around it.
+    fn age(&self, mut c: Vec3, p: Vec3, f: &Fields, reference: Vec3) -> Vec3 {
+        let (s, a) = (self.settings, self.factors);
+        let (sun, brows, lips, red) = (
+            from_unit(f.sun),
+            from_unit(f.brows),
+            from_unit(f.lips),
+            from_unit(f.red),
         );
+        // Brow hair: darker than the skin around it.
+        let lum = |c: Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722));
+        let hair = brows * smoothstep(0.12, 0.45, 1.0 - lum(c) / lum(reference).max(1e-4));
+        // Lips and brows fade toward the skin around them.
+        let fade =
+            s.contrast_loss * a.contrast * (CONTRAST_BROWS * brows).max(CONTRAST_LIPS * lips);
+        c = c.lerp(reference, fade.clamp(0.0, 1.0));
+        // Paling and yellowing: a tint, so what is darker stays darker.
+        c *= self.pale_tint * self.yellow;
+        // The brows gray with the hair, hair by hair: a texel's hair is gray when its draw
+        // (hashed noise at a hair's width) is under the gray fraction: salt and pepper.
+        if hair > 0.0 && a.brow_gray > 0.0 {
+            let draw = 0.5 + 0.5 * from_signed(f.brow_draw);
+            let gray_hair = smoothstep(-0.08, 0.08, BROW_GRAY_LAG * a.brow_gray - draw);
+            c = c.lerp(
+                self.gray * (0.75 + 0.25 * draw),
+                (hair * gray_hair).clamp(0.0, 1.0),
+            );
+        }
+        // Every skin mottles some; sun-exposed skin most. Darker blotches and lighter skin
+        // between, about even on average, so no region's mean tone shifts (no edge where
+        // the exposure falls off).
+        let m = s.mottle * a.mottle * (0.35 + 0.65 * sun);
+        if m > 0.0 {
+            let (blotch, grain) = (from_signed(f.blotch), from_signed(f.grain));
+            let d = (smoothstep(-0.3, 0.6, blotch) - 0.45
+                + 0.4 * (smoothstep(-0.2, 0.7, grain) - 0.4))
+                * m;
+            c *= Vec3::ONE - Vec3::from(MOTTLE_TINT) * d;
+        }
+        // Redness and thread veins on the cheeks and the nose.
+        let r = s.redness * a.redness * red;
+        if r > 0.0 {
+            let flush = r * (0.55 + 0.45 * from_signed(f.flush));
+            let veins = r * (1.0 - from_signed(f.vein).abs()).powi(14);
+            c *= Vec3::new(
+                1.0 + 0.06 * flush,
+                1.0 - 0.3 * flush - 0.4 * veins,
+                1.0 - 0.22 * flush - 0.34 * veins,
+            );
+        }
+        // Age spots.
+        let spot = self.grid.darkness(p, self.spot_key) * s.spot_strength;
+        if spot > 0.0 {
+            c *= Vec3::ONE - Vec3::from(SPOT_TINT) * spot.min(1.0);
+        }
+        c
     }
-    let mm = p * 1000.0;
-    // Uneven tone: melanin blotches on sun-exposed skin, lighter between.
-    // Every skin mottles some; sun-exposed skin most. Darker blotches and lighter skin
-    // between, about even on average, so no region's mean tone shifts (no edge where the
-    // exposure falls off).
-    let m = s.mottle * f.mottle * (0.35 + 0.65 * sun);
-    if m > 0.0 {
-        let blotch = fbm(mm / MOTTLE_MM.0, keys[0]);
-        let grain = fbm(mm / MOTTLE_MM.1, keys[1]);
-        let d =
-            (smoothstep(-0.3, 0.6, blotch) - 0.45 + 0.4 * (smoothstep(-0.2, 0.7, grain) - 0.4)) * m;
-        c *= Vec3::ONE - Vec3::from(MOTTLE_TINT) * d;
-    }
-    // Redness and thread veins on the cheeks and the nose.
-    let r = s.redness * f.redness * red;
-    if r > 0.0 {
-        let flush = r * (0.55 + 0.45 * fbm(mm / REDNESS_MM.0, keys[2]));
-        let vein = 1.0 - fbm(mm / REDNESS_MM.1, keys[3]).abs();
-        let veins = r * vein.powi(14);
-        c *= Vec3::new(
-            1.0 + 0.06 * flush,
-            1.0 - 0.3 * flush - 0.4 * veins,
-            1.0 - 0.22 * flush - 0.34 * veins,
-        );
-    }
-    // Age spots.
-    let spot = grid.darkness(p, keys[4]) * s.spot_strength;
-    if spot > 0.0 {
-        c *= Vec3::ONE - Vec3::from(SPOT_TINT) * spot.min(1.0);
-    }
-    c
 }
 
 /// The spots that show at one spot factor, in a uniform grid over their bounds (each spot

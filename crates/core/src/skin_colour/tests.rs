@@ -107,7 +107,16 @@ fn a_baked_spot_measures_its_diameter_in_millimetres() {
     let template = |_: usize| Some(point);
     let regions = Regions::template().unwrap();
     let size = 500; // 0.1 mm a texel
-    let texels = SurfaceTexels::new(&mesh, &template, 1.0, size, &CancelToken::never()).unwrap();
+    let texels = SurfaceTexels::new(
+        &mesh,
+        &template,
+        1.0,
+        size,
+        regions,
+        1,
+        &CancelToken::never(),
+    )
+    .unwrap();
     // Three lone spots of known sizes, fully grown.
     let spot = |x_mm: f32, y_mm: f32, d: f32| Spot {
         centre: Vec3::new(x_mm, y_mm, 0.0) * 1e-3,
@@ -127,22 +136,12 @@ fn a_baked_spot_measures_its_diameter_in_millimetres() {
         ..ColourFactors::default()
     };
     let s = spots_only();
-    let img = bake(
-        None,
-        &texels,
-        &spots,
-        regions,
-        &s,
-        &factors,
-        &CancelToken::never(),
-    )
-    .unwrap();
+    let img = bake(None, &texels, &spots, &s, &factors, &CancelToken::never()).unwrap();
     let plain = luminance(
         &bake(
             None,
             &texels,
             &[],
-            regions,
             &s,
             &ColourFactors {
                 spots: 1.0,
@@ -223,15 +222,14 @@ fn young_skin_is_its_own_colour_and_old_skin_is_uneven() {
         &|v| mesh.positions().get(v).copied(),
         1.0,
         n as u32,
+        regions,
+        1,
         &cancel,
     )
     .unwrap();
     let (ly, lo) = (luminance(&young), luminance(&old));
     let ratios: Vec<f32> = (0..n * n)
-        .filter(|&i| {
-            let t = texels.template[i];
-            !t.x.is_nan() && regions.sun(t) > 0.9 && ly[i] > 0.05
-        })
+        .filter(|&i| from_unit(texels.fields[i].sun) > 0.9 && ly[i] > 0.05)
         .map(|i| lo[i] / ly[i])
         .collect();
     assert!(ratios.len() > 5000, "{} exposed texels", ratios.len());
@@ -266,17 +264,19 @@ fn brows_gray_and_lips_fade_toward_the_skin() {
         &|v| mesh.positions().get(v).copied(),
         1.0,
         n as u32,
+        regions,
+        1,
         &cancel,
     )
     .unwrap();
     let (ly, lo) = (luminance(&young), luminance(&old));
-    let in_region = |f: fn(&Regions, Vec3) -> f32| -> Vec<usize> {
+    let in_region = |f: fn(&Fields) -> u8| -> Vec<usize> {
         (0..n * n)
-            .filter(|&i| !texels.template[i].x.is_nan() && f(regions, texels.template[i]) > 0.9)
+            .filter(|&i| from_unit(f(&texels.fields[i])) > 0.9)
             .collect()
     };
     // Brow hair: the darkest quarter of the brows when young gets lighter.
-    let mut brows = in_region(Regions::brows);
+    let mut brows = in_region(|f| f.brows);
     assert!(brows.len() > 100, "{} brow texels", brows.len());
     brows.sort_by(|&a, &b| ly[a].total_cmp(&ly[b]));
     let hair = &brows[..brows.len() / 4];
@@ -293,7 +293,7 @@ fn brows_gray_and_lips_fade_toward_the_skin() {
         mean(&lo, hair)
     );
     // Lips: their redness (r − g over luminance) falls.
-    let lips = in_region(Regions::lips);
+    let lips = in_region(|f| f.lips);
     let redness = |img: &HeadImage| {
         lips.iter()
             .map(|&i| (img.rgba[4 * i] as f32 - img.rgba[4 * i + 1] as f32) / 255.0)

@@ -64,8 +64,8 @@ fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32) -> HairCurve {
     let along = g - dir * dot(g, dir);
     // At the crown gravity is parallel to the hair: no combing direction, stay straight.
     let comb = select(dir, normalize(along), length(along) > 1e-3);
-    let p1 = root + dir * (len * mix(0.5, 0.35, droop));
-    let p2 = p1 + normalize(mix(dir, comb, droop)) * (len * mix(0.5, 0.7, droop));
+    let p1 = root + dir * (len * mix(0.5, 0.2, droop));
+    let p2 = p1 + normalize(mix(dir, comb, droop)) * (len * mix(0.5, 0.8, droop));
     return HairCurve(root, p1, p2);
 }
 
@@ -104,8 +104,13 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     var out: VertexOut;
     out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
     out.tangent = tangent;
-    // C_k(t) = (1 − y_k)·C_base + y_k·C_gray.
-    out.colour = mix(base, frame.hair_gray.rgb, y);
+    // Each gray hair its own shade (0.7–1.15 of C_gray, from the spare random number's
+    // other digits): a gray mass reads as strands, not a slab.
+    let gray = frame.hair_gray.rgb * (0.7 + 0.45 * fract(inst.random * 7.0));
+    // C_k(t) = (1 − y_k)·C_base + y_k·C_gray, darker toward the root (the light the
+    // hairs around it keep from it: 55 % at the root), so the mass has depth and its
+    // edge against the skin is soft.
+    out.colour = mix(base, gray, y) * mix(0.55, 1.0, s);
     out.world_pos = p;
     return out;
 }

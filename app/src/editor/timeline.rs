@@ -37,7 +37,7 @@ pub struct TimelineEdit {
 }
 
 /// The project's age curves shown, with their field paths and colours.
-fn curves(p: &Project) -> [(&'static str, &'static str, AgeCurve, Color32); 5] {
+fn curves(p: &Project) -> [(&'static str, &'static str, AgeCurve, Color32); 9] {
     let a = &p.age;
     [
         (
@@ -69,6 +69,30 @@ fn curves(p: &Project) -> [(&'static str, &'static str, AgeCurve, Color32); 5] {
             "age.pale",
             a.pale,
             Color32::from_rgb(220, 220, 220),
+        ),
+        (
+            "age spots",
+            "age.spots",
+            a.spots,
+            Color32::from_rgb(190, 130, 80),
+        ),
+        (
+            "mottling",
+            "age.mottle",
+            a.mottle,
+            Color32::from_rgb(200, 170, 120),
+        ),
+        (
+            "redness",
+            "age.redness",
+            a.redness,
+            Color32::from_rgb(240, 90, 90),
+        ),
+        (
+            "lips and brows fading",
+            "age.contrast",
+            a.contrast,
+            Color32::from_rgb(170, 140, 230),
         ),
     ]
 }
@@ -172,7 +196,11 @@ pub fn timeline_ui(ui: &mut egui::Ui, project: &Project, playback: &mut Playback
             .collect();
         painter.add(egui::Shape::line(pts, Stroke::new(1.5, colour)));
         painter.text(
-            pos2(plot.left() + 4.0, plot.top() + 12.0 * i as f32),
+            // Two columns of five names: the strip is five lines tall.
+            pos2(
+                plot.left() + 4.0 + 130.0 * (i / 5) as f32,
+                plot.top() + 12.0 * (i % 5) as f32,
+            ),
             egui::Align2::LEFT_TOP,
             name,
             egui::FontId::proportional(10.0),

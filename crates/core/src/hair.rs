@@ -31,6 +31,16 @@ pub const DEFAULT_MAX_DEVIATION_RAD: f32 = 0.175;
 pub const DEFAULT_GRAYING_ONSET_MIN: f32 = 0.2;
 /// See [`DEFAULT_GRAYING_ONSET_MIN`].
 pub const DEFAULT_GRAYING_ONSET_MAX: f32 = 0.9;
+/// The project's default thinning (`hair.thinning`): the fraction of every region's hair
+/// (the fringe that stays too) lost by t = 1, hair by hair, evenly over t ∈
+/// [[`THINNING_FROM`], 1] (docs/models.md §9 "Thinning": scalp hair density falls by about
+/// a third to a half into old age). [`HairParams`] start with none ([T]'s model).
+pub const DEFAULT_THINNING: f32 = 0.4;
+/// The age t from which hair thins.
+pub const THINNING_FROM: f32 = 0.3;
+/// How far (in t) the project spreads each receding hair's disappearance age about the
+/// texture's: the hairline recedes as a thinning fringe, not a cut edge.
+pub const RECESSION_SPREAD: f32 = 0.12;
 /// The largest number of hairs one generation may produce (32 bytes each: 2 GiB). [T]
 /// notes about 20 million instances fit in instance data on current hardware.
 pub const MAX_INSTANCES: u64 = 64 << 20;
@@ -43,6 +53,8 @@ pub struct HairParams {
     max_deviation_rad: f32,
     graying_onset_min: f32,
     graying_onset_max: f32,
+    thinning: f32,
+    recession_spread: f32,
     seed: u64,
 }
 
@@ -55,6 +67,8 @@ impl Default for HairParams {
             max_deviation_rad: DEFAULT_MAX_DEVIATION_RAD,
             graying_onset_min: DEFAULT_GRAYING_ONSET_MIN,
             graying_onset_max: DEFAULT_GRAYING_ONSET_MAX,
+            thinning: 0.0,
+            recession_spread: 0.0,
             seed: 0,
         }
     }
@@ -116,6 +130,25 @@ impl HairParams {
         }
         self.graying_onset_min = min;
         self.graying_onset_max = max;
+        Ok(self)
+    }
+
+    /// Thinning and a receding fringe (docs/models.md §9 "Thinning"): the fraction of the
+    /// hair lost by t = 1, in [0, 1], and how far (t, in [0, 1)) each receding hair's
+    /// disappearance age is spread about its texel's. Both 0 by default ([T]).
+    pub fn with_thinning(mut self, thinning: f32, recession_spread: f32) -> Result<Self, Error> {
+        if !(0.0..=1.0).contains(&thinning) {
+            return Err(invalid("hair thinning", thinning, "0 ≤ value ≤ 1"));
+        }
+        if !(0.0..1.0).contains(&recession_spread) {
+            return Err(invalid(
+                "hair recession spread",
+                recession_spread,
+                "0 ≤ value < 1",
+            ));
+        }
+        self.thinning = thinning;
+        self.recession_spread = recession_spread;
         Ok(self)
     }
 
@@ -334,7 +367,6 @@ impl HairInstances {
             });
         }
         let cos_max = params.max_deviation_rad.cos();
-        let onset = (params.graying_onset_min, params.graying_onset_max);
         let torn = torn_triangles(surface);
 
         // Chunks of consecutive triangles, concatenated in order: few allocations, and the
@@ -359,9 +391,8 @@ impl HairInstances {
                         t,
                         area * per_unit2,
                         transition,
-                        params.seed,
+                        params,
                         cos_max,
-                        onset,
                     ) as u64;
                 }
                 (candidates, out)
@@ -506,14 +537,14 @@ fn triangle_hairs(
     t: usize,
     expected: f64,
     transition: &TransitionTexture,
-    seed: u64,
+    params: &HairParams,
     cos_max: f32,
-    (onset_min, onset_max): (f32, f32),
 ) -> u32 {
     if expected <= 0.0 {
         return 0;
     }
-    let mut rng = Rng::for_stream(seed, t as u64);
+    let (onset_min, onset_max) = (params.graying_onset_min, params.graying_onset_max);
+    let mut rng = Rng::for_stream(params.seed, t as u64);
     let whole = expected.floor();
     let n = whole as u32 + u32::from(rng.next_f64() < expected - whole);
     let [i0, i1, i2] = [0, 1, 2].map(|k| tri[k] as usize);
@@ -532,6 +563,7 @@ fn triangle_hairs(
         let azimuth = rng.next_f32() * std::f32::consts::TAU;
         let onset_u = rng.next_f32();
         let random = rng.next_f32();
+        let (spread, thin) = (rng.next_f32(), rng.next_f32());
 
         let b0 = 1.0 - r1 - r2;
         let uv_k = uv[0] * b0 + uv[1] * r1 + uv[2] * r2;
@@ -539,6 +571,7 @@ fn triangle_hairs(
         if age <= 0.0 {
             continue;
         }
+        let age = disappearance(age, spread, thin, params);
         let position = p[0] * b0 + p[1] * r1 + p[2] * r2;
         let mut normal = (nrm[0] * b0 + nrm[1] * r1 + nrm[2] * r2).normalize_or_zero();
         if normal == Vec3::ZERO {
@@ -562,6 +595,23 @@ fn triangle_hairs(
         });
     }
     n
+}
+
+/// A hair's disappearance age a_k from its texel's age `texture_age` (docs/models.md §9
+/// "Thinning"): receding hair (age < 1) spread by ± half the params' recession spread by
+/// its draw `spread`, and a hair whose draw `thin` is under the params' thinning lost at a
+/// time spread evenly over [[`THINNING_FROM`], 1]. Always in (0, 1]: every hair is there
+/// at t = 0. With neither, the texel's age as it is ([T]).
+fn disappearance(texture_age: f32, spread: f32, thin: f32, params: &HairParams) -> f32 {
+    let thinning = params.thinning;
+    let mut a = texture_age;
+    if a < 1.0 && params.recession_spread > 0.0 {
+        a = (a + (spread - 0.5) * params.recession_spread).clamp(1e-3, 0.999);
+    }
+    if thin < thinning {
+        a = a.min(THINNING_FROM + (1.0 - THINNING_FROM) * thin / thinning);
+    }
+    a.max(1e-3)
 }
 
 fn count_levels(sorted: &[HairInstance]) -> Vec<AgeLevel> {
@@ -1049,6 +1099,67 @@ mod tests {
         assert!(
             top.clone().all(|h| h.direction().y > 0.7),
             "crown hairs point up"
+        );
+    }
+
+    #[test]
+    fn thinning_loses_its_fraction_of_the_hair_that_stays_and_the_fringe_recedes_ragged() {
+        let g = grid(16, 0.3);
+        let tex = transition();
+        let plain = HairInstances::generate(
+            &g.surface(),
+            &tex,
+            &HairParams::new(30.0, 1.0).unwrap().with_seed(3),
+        )
+        .unwrap();
+        let params = HairParams::new(30.0, 1.0)
+            .unwrap()
+            .with_seed(3)
+            .with_thinning(0.4, RECESSION_SPREAD)
+            .unwrap();
+        let thinned = HairInstances::generate(&g.surface(), &tex, &params).unwrap();
+        // The same hairs are placed; only their disappearance ages change.
+        assert_eq!(plain.len(), thinned.len());
+        // Of the hair that stays, 40 % is gone at t = 1, none before THINNING_FROM.
+        let stays = plain.count(1.0) as f32;
+        let kept = thinned.count(1.0) as f32 / stays;
+        assert!(
+            (0.55..0.65).contains(&kept),
+            "{kept} of the hair that stays kept"
+        );
+        assert!(thinned.instances().iter().all(|h| h.disappear_age() > 0.0));
+        let lost_early = thinned
+            .instances()
+            .iter()
+            .zip(plain.instances())
+            .filter(|(h, _)| h.disappear_age() < THINNING_FROM - RECESSION_SPREAD)
+            .count();
+        let receding_early = plain
+            .instances()
+            .iter()
+            .filter(|h| h.disappear_age() < THINNING_FROM)
+            .count();
+        assert!(
+            lost_early <= receding_early,
+            "{lost_early} > {receding_early}"
+        );
+        // The receding hair goes over a band of ages, not at its texel's age: at the
+        // middle of the recession, some hairs of a texel are gone and some not.
+        let mid = 0.5;
+        let fringe = thinned
+            .instances()
+            .iter()
+            .filter(|h| {
+                let uv = h.uv();
+                (tex.age_at_uv(uv.x, uv.y) - mid).abs() < 0.03
+            })
+            .map(|h| h.disappear_age() >= mid)
+            .collect::<Vec<_>>();
+        let present = fringe.iter().filter(|&&p| p).count();
+        assert!(
+            present > fringe.len() / 5 && present < fringe.len() * 4 / 5,
+            "{present} of {} fringe hairs present at t = {mid}",
+            fringe.len()
         );
     }
 

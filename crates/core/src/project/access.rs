@@ -124,6 +124,7 @@ slots! {
     "hair.graying_onset_min_years" => hair.graying_onset_min_years;
     "hair.graying_onset_max_years" => hair.graying_onset_max_years;
     "hair.graying_ramp" => hair.graying_ramp;
+    "hair.thinning" => hair.thinning;
     "hair.k_diff" => hair.k_diff;
     "hair.k_spec" => hair.k_spec;
     "hair.shininess" => hair.shininess;

@@ -196,6 +196,8 @@ pub struct HairSection {
     pub graying_onset_min_years: f32,
     pub graying_onset_max_years: f32,
     pub graying_ramp: GrayingRamp,
+    /// The fraction of the hair lost to thinning by the old end, 0–1.
+    pub thinning: f32,
     pub k_diff: f32,
     pub k_spec: f32,
     pub shininess: f32,
@@ -406,6 +408,7 @@ impl Default for HairSection {
             graying_onset_min_years: 30.0,
             graying_onset_max_years: 65.0,
             graying_ramp: GrayingRamp::default(),
+            thinning: crate::hair::DEFAULT_THINNING,
             k_diff: 0.7,
             k_spec: 0.35,
             shininess: 40.0,

@@ -209,6 +209,7 @@ struct HairKey {
     seed: u64,
     deviation_deg: f32,
     onset_t: (f32, f32),
+    thinning: f32,
 }
 
 /// A project, its loaded inputs and everything baked from them. See the module docs.
@@ -802,6 +803,7 @@ impl Scene {
             seed: h.seed,
             deviation_deg: h.max_deviation_deg,
             onset_t: self.project.graying_onset_t(),
+            thinning: h.thinning,
         };
         if self.hair_key.as_ref() == Some(&key) && self.hair.is_some() {
             return Ok(changed);
@@ -813,7 +815,8 @@ impl Scene {
         let params = HairParams::new(h.density_per_cm2, self.metres_per_unit())?
             .with_seed(h.seed)
             .with_max_deviation_rad(h.max_deviation_deg.to_radians())?
-            .with_graying_onset_range(key.onset_t.0, key.onset_t.1)?;
+            .with_graying_onset_range(key.onset_t.0, key.onset_t.1)?
+            .with_thinning(h.thinning, crate::hair::RECESSION_SPREAD)?;
         let mesh = &self.inputs.mesh;
         // Hair grows on the skin, not on eyes, teeth or lashes that come with the head.
         let skin = mesh.skin_indices();

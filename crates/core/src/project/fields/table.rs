@@ -552,6 +552,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             Kind::Choice(&["linear", "smoothstep"]),
             "how a hair grays after its onset",
         ),
+        f(
+            "hair.thinning",
+            "",
+            0.0,
+            1.0,
+            "fraction of the hair (the fringe that stays too) lost by the old end, hair by hair",
+        ),
         f("hair.k_diff", "", 0.0, 4.0, "Kajiya–Kay diffuse weight"),
         f("hair.k_spec", "", 0.0, 4.0, "Kajiya–Kay specular weight"),
         f(

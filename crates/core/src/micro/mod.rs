@@ -35,6 +35,9 @@ pub struct MicroSettings {
     pub pore_shape: pores::PoreShape,
     /// The furrow network, or `None` when furrows are off.
     pub furrows: Option<furrows::FurrowParams>,
+    /// The skin's tension lines on the patch, degrees counter-clockwise from +u (the
+    /// furrows' preferred direction θ): what pores stretch along with age.
+    pub tension_deg: f32,
     pub noise: noise::FbmParams,
     /// λ of eq. 17, height units.
     pub noise_strength: f32,

@@ -187,6 +187,8 @@ slots! {
     "age.contrast.onset_years" => age.contrast.onset_years;
     "age.contrast.full_years" => age.contrast.full_years;
     "age.contrast.shape" => age.contrast.shape;
+    "pores.elongation" => pores.elongation;
+    "furrows.anisotropy" => furrows.anisotropy;
     "pores.radius_mm.mean" => pores.radius_mm.mean;
     "pores.radius_mm.spread" => pores.radius_mm.spread;
     "pores.depth.mean" => pores.depth.mean;

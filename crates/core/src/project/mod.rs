@@ -447,6 +447,7 @@ impl Project {
                 rim: self.pores.rim,
             },
             furrows: self.furrows.enabled.then(|| self.furrow_params()),
+            tension_deg: self.furrows.direction_deg,
             noise: self.noise_params(),
             noise_strength: self.noise.strength,
             warp: self.warp_params(),

@@ -568,6 +568,9 @@ pub struct PoreSection {
     pub falloff: MeanSpread,
     pub profile: PoreProfile,
     pub rim: Rim,
+    /// Aspect ratio (long over short axis) of every pore at full age, along the furrows'
+    /// direction θ (the tension lines), 1–4; 1 = round at every age.
+    pub elongation: f32,
 }
 
 /// Furrows between pores (docs/models.md §4 "Wrinkles between pores").
@@ -587,6 +590,9 @@ pub struct FurrowSection {
     pub direction_deg: f32,
     /// 0–1: how much shallower links across θ are than links along it.
     pub direction_strength: f32,
+    /// 0–1: how much more the furrows follow θ at full age (across ones fading, along
+    /// ones deepening), on top of `direction_strength`.
+    pub anisotropy: f32,
     /// Fraction of the length over which each end narrows to half width (the depth stays
     /// full, so furrows join at pores), 0.01–0.5.
     pub taper: f32,
@@ -667,6 +673,8 @@ impl Default for PoreSection {
             falloff: MeanSpread::new(1.0, 0.2),
             profile: PoreProfile::Gaussian,
             rim: Rim::Smooth,
+            // docs/models.md "Micro-relief with age": ≈ 1 young, ≥ 1.5 by the 60s.
+            elongation: 1.7,
         }
     }
 }
@@ -681,6 +689,7 @@ impl Default for FurrowSection {
             width_mm: MeanSpread::new(0.3, 0.05),
             direction_deg: 30.0,
             direction_strength: 0.5,
+            anisotropy: 0.8,
             taper: 0.3,
         }
     }

@@ -79,11 +79,13 @@ impl MicroStage {
                 project.micro_relief()?
             }
         };
-        let scales = (factors.pore_radius_scale, factors.furrow_depth_scale);
-        relief.set_age_scales(scales.0, scales.1);
+        age_relief(&mut relief, project, factors);
+        let scales = relief.age_scales();
+        let directions = relief.age_directions();
         let key = MicroKey {
             project: micro_relevant(project),
             scales,
+            directions,
             size: request.micro_size_px,
             normals: request.micro_normals || request.micro_size_px > SPLIT_MAX_PX,
         };
@@ -240,6 +242,19 @@ fn micro_relevant(p: &Project) -> Project {
 pub(super) struct MicroKey {
     project: Project,
     scales: (f32, f32),
+    directions: (f32, f32),
     size: u32,
     normals: bool,
+}
+
+/// Sets the age of `relief` (`docs/models.md` "Age"): its pores' radius and furrows' depth
+/// scales, and how its pores stretch and furrows align along the tension lines (the
+/// `pores.elongation` and `furrows.anisotropy` at full age, with the furrows' curve).
+pub(crate) fn age_relief(relief: &mut MicroRelief, project: &Project, factors: &AgeFactors) {
+    relief.set_age_scales(factors.pore_radius_scale, factors.furrow_depth_scale);
+    let along = project.age.furrows.factor(factors.years);
+    relief.set_age_directions(
+        1.0 + (project.pores.elongation - 1.0) * along,
+        project.furrows.anisotropy * along,
+    );
 }

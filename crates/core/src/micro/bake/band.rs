@@ -335,6 +335,7 @@ pub(super) fn stamp_row(ctx: &Context, st: &Stamp, y_mm: f32, reach: f32, s: &mu
         Stamp::Pore {
             centre,
             inv_r2,
+            ellipse,
             beta_depth,
             falloff,
             radius,
@@ -351,13 +352,37 @@ pub(super) fn stamp_row(ctx: &Context, st: &Stamp, y_mm: f32, reach: f32, s: &mu
             let span = Span::new(s, c0, c1);
             // One monomorphised loop per (profile, rim), each calling the one copy of the
             // formula in `pores` with constant settings (the match there folds away).
+            // A round pore keeps the exact circular formula; a stretched one its ellipse
+            // (u along its long axis: t = (u²/aspect + v²·aspect)/R², area kept).
+            let [c, sn, aspect] = ellipse;
+            let (ka, kb) = (inv_r2 / aspect, inv_r2 * aspect);
             macro_rules! stamp {
                 ($profile:expr, $rim:expr) => {{
                     let shape = PoreShape {
                         profile: $profile,
                         rim: $rim,
                     };
-                    span.pore(cx, cy, inv_r2, beta_depth, |t| shape.shape(t, falloff))
+                    if aspect == 1.0 {
+                        span.pore(
+                            cx,
+                            cy,
+                            |dx, dy| (dx * dx + dy * dy) * inv_r2,
+                            beta_depth,
+                            |t| shape.shape(t, falloff),
+                        )
+                    } else {
+                        span.pore(
+                            cx,
+                            cy,
+                            |dx, dy| {
+                                let u = dx * c + dy * sn;
+                                let v = dy * c - dx * sn;
+                                u * u * ka + v * v * kb
+                            },
+                            beta_depth,
+                            |t| shape.shape(t, falloff),
+                        )
+                    }
                 }};
             }
             match (ctx.profile, ctx.rim) {
@@ -420,13 +445,14 @@ impl<'s> Span<'s> {
         }
     }
 
-    /// Pore centred `cy` mm above this row at x = `cx`: β·m = β·dmax·shape(r²/R²).
+    /// Pore centred `cy` mm above this row at x = `cx`: β·m = β·dmax·shape(t), t =
+    /// `metric(dx, dy)` (r²/R² for a round pore).
     #[inline(always)]
     pub(super) fn pore(
         self,
         cx: f32,
         cy: f32,
-        inv_r2: f32,
+        metric: impl Fn(f32, f32) -> f32,
         beta_depth: f32,
         shape: impl Fn(f32) -> f32,
     ) {
@@ -435,7 +461,7 @@ impl<'s> Span<'s> {
             for l in 0..LANES {
                 let dx = x.0[l] - cx;
                 let dy = wy.0[l] - cy;
-                t[l] = (dx * dx + dy * dy) * inv_r2;
+                t[l] = metric(dx, dy);
             }
             if !any(t.map(|t| t < 1.0)) {
                 continue;

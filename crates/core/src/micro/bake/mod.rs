@@ -114,6 +114,10 @@ pub struct MicroRelief {
     /// Age scales (`docs/models.md` "Age"): R and A multipliers, 1 = the project's values.
     pore_radius_scale: f32,
     furrow_depth_scale: f32,
+    /// Age directions (`docs/models.md` "Age", "Micro-relief with age"): each pore's
+    /// aspect ratio (1 = round) and how much the furrows follow the tension lines.
+    pore_aspect: f32,
+    furrow_anisotropy: f32,
 }
 
 impl MicroRelief {
@@ -146,6 +150,8 @@ impl MicroRelief {
             features_ms: t0.elapsed().as_secs_f64() * 1e3,
             pore_radius_scale: 1.0,
             furrow_depth_scale: 1.0,
+            pore_aspect: 1.0,
+            furrow_anisotropy: 0.0,
         })
     }
 
@@ -157,6 +163,7 @@ impl MicroRelief {
         if !self.settings.same_features(settings) {
             let mut fresh = Self::new(settings)?;
             fresh.set_age_scales(self.pore_radius_scale, self.furrow_depth_scale);
+            fresh.set_age_directions(self.pore_aspect, self.furrow_anisotropy);
             return Ok((fresh, true));
         }
         let (noise, warp) = fields(settings);
@@ -171,6 +178,8 @@ impl MicroRelief {
                 features_ms: 0.0,
                 pore_radius_scale: self.pore_radius_scale,
                 furrow_depth_scale: self.furrow_depth_scale,
+                pore_aspect: self.pore_aspect,
+                furrow_anisotropy: self.furrow_anisotropy,
             },
             false,
         ))
@@ -189,6 +198,31 @@ impl MicroRelief {
         };
         self.pore_radius_scale = clamp(pore_radius);
         self.furrow_depth_scale = clamp(furrow_depth);
+    }
+
+    /// Sets how the pores stretch and the furrows align with age along the tension lines
+    /// (the furrows' preferred direction θ; `docs/models.md` "Micro-relief with age"):
+    /// every pore an ellipse of `pore_aspect` (long over short axis, area kept) along θ ±
+    /// 15° (its own, hashed), and every furrow's depth times (1 − a·sin²φ)(1 + a·cos²φ/2)
+    /// for `furrow_anisotropy` a and φ its angle to θ (across ones fade, along ones deepen).
+    /// Clamped to [1, 4] and [0, 1]; (1, 0), the default, bakes the project's values bit for
+    /// bit.
+    pub fn set_age_directions(&mut self, pore_aspect: f32, furrow_anisotropy: f32) {
+        self.pore_aspect = if pore_aspect.is_finite() {
+            pore_aspect.clamp(1.0, 4.0)
+        } else {
+            1.0
+        };
+        self.furrow_anisotropy = if furrow_anisotropy.is_finite() {
+            furrow_anisotropy.clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+    }
+
+    /// The current (pore aspect, furrow anisotropy) age directions.
+    pub fn age_directions(&self) -> (f32, f32) {
+        (self.pore_aspect, self.furrow_anisotropy)
     }
 
     /// The current (pore radius, furrow depth) age scales.

@@ -13,6 +13,9 @@ pub(super) enum Stamp {
     Pore {
         centre: [f32; 2],
         inv_r2: f32,
+        /// The pore's ellipse: cos and sin of its long axis and its aspect ratio (1 =
+        /// round, the exact circular formula).
+        ellipse: [f32; 3],
         /// β·dmax: the profile times this is β·m.
         beta_depth: f32,
         falloff: f32,
@@ -108,25 +111,49 @@ impl<'a> Context<'a> {
         let beta = p.overlap_beta;
         let mut stamps = Vec::new();
         if parts.features {
-            for pore in &relief.pores {
+            // The tension lines: the furrows' preferred direction θ.
+            let theta = p.tension_deg.to_radians();
+            let aspect = relief.pore_aspect;
+            for (k, pore) in relief.pores.iter().enumerate() {
                 // Exact for the default scale 1 (x·1 = x): the project's own bytes.
                 let radius = pore.radius_mm * relief.pore_radius_scale;
+                // Each pore's long axis θ ± 15°, hashed from its index.
+                let jitter = (crate::rng::mix64(p.seed ^ 0x504f_5245 ^ k as u64) >> 40) as f32
+                    / (1u64 << 24) as f32
+                    - 0.5;
+                let angle = theta + jitter * 30f32.to_radians();
                 stamps.push(Stamp::Pore {
                     centre: pore.centre_mm,
                     inv_r2: 1.0 / (radius * radius),
+                    ellipse: [angle.cos(), angle.sin(), aspect],
                     beta_depth: beta * pore.depth,
                     falloff: pore.falloff,
-                    radius,
+                    // The long semi-axis, R·√aspect (area kept).
+                    radius: if aspect == 1.0 {
+                        radius
+                    } else {
+                        radius * aspect.sqrt()
+                    },
                 });
             }
+            let (ct, st) = (theta.cos(), theta.sin());
+            let a = relief.furrow_anisotropy;
             for f in &relief.furrows {
                 let d = [f.end_mm[0] - f.start_mm[0], f.end_mm[1] - f.start_mm[1]];
                 let len = (d[0] * d[0] + d[1] * d[1]).sqrt().max(1e-6);
+                // Along the tension lines deeper, across them fading (exactly 1 at a = 0).
+                let along = if a == 0.0 {
+                    1.0
+                } else {
+                    let sin = (d[0] * st - d[1] * ct) / len;
+                    let sin2 = sin * sin;
+                    (1.0 - a * sin2) * (1.0 + 0.5 * a * (1.0 - sin2))
+                };
                 stamps.push(Stamp::Furrow {
                     start: f.start_mm,
                     dir: [d[0] / len, d[1] / len],
                     len,
-                    beta_depth: beta * (f.depth * relief.furrow_depth_scale),
+                    beta_depth: beta * (f.depth * relief.furrow_depth_scale) * along,
                     width: f.width_mm,
                     inv_w2: 1.0 / (f.width_mm * f.width_mm),
                     inv_taper: 1.0 / (f.taper * len).max(1e-6),

@@ -301,6 +301,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             Kind::Choice(&["smooth", "exact"]),
             "eq. 15's rim: windowed to 0, or the exact step",
         ),
+        f(
+            "pores.elongation",
+            "",
+            1.0,
+            4.0,
+            "pore aspect ratio at full age (age.furrows curve), along the tension lines θ; 1 = round",
+        ),
         k("furrows.enabled", Kind::Bool, "bake furrows"),
         i(
             "furrows.links_per_pore",
@@ -348,6 +355,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             0.0,
             1.0,
             "how much shallower links across θ are",
+        ),
+        f(
+            "furrows.anisotropy",
+            "",
+            0.0,
+            1.0,
+            "how much more the furrows follow θ at full age (age.furrows curve)",
         ),
         f(
             "furrows.taper",

@@ -216,3 +216,36 @@ fn a_number_beyond_f32_is_out_of_range_not_infinite() {
     p.noise.roughness = f32::INFINITY;
     assert!(p.validate().unwrap_err().contains("noise.roughness"));
 }
+
+/// docs/models.md "Age": with the default graying range the hair's mean gray fraction is
+/// about a quarter over 45–65 and about 40 % at 61–65 (Panhard et al. 2012), and the brows
+/// follow it.
+#[test]
+fn the_default_graying_follows_the_population_curve() {
+    let p = Project::default();
+    let (lo, hi) = p.graying_onset_t();
+    let mean_gray = |years: f32| {
+        let t = p.age.mapping().t(years);
+        (0..1000)
+            .map(|k| {
+                let onset = lo + (hi - lo) * (k as f32 + 0.5) / 1000.0;
+                crate::hair::gray_fraction(t, onset, p.hair.graying_ramp)
+            })
+            .sum::<f32>()
+            / 1000.0
+    };
+    let over = |a: f32, b: f32| {
+        let n = 41;
+        (0..n)
+            .map(|i| mean_gray(a + (b - a) * i as f32 / (n - 1) as f32))
+            .sum::<f32>()
+            / n as f32
+    };
+    let (quarter, forty) = (over(45.0, 65.0), over(61.0, 65.0));
+    assert!((0.18..0.32).contains(&quarter), "45–65: {quarter}");
+    assert!((0.35..0.5).contains(&forty), "61–65: {forty}");
+    assert!(mean_gray(45.0) < 0.1 && mean_gray(30.0) == 0.0);
+    // The brows gray with the hair (the colour bake takes this mean).
+    let brows = p.colour_factors(p.age.mapping().t(63.0)).brow_gray;
+    assert!((brows - mean_gray(63.0)).abs() < 0.01, "{brows} vs {}", mean_gray(63.0));
+}

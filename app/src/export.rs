@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use agesim_core::cancel::CancelToken;
 use agesim_core::export::OutputSet;
-use agesim_core::mesh::gltf::{GlbMaterial, write_glb_with_materials};
+use agesim_core::mesh::gltf::{GlbMaterial, GlbMorph, write_glb_with_morph};
 use agesim_core::mesh::udim::Udim;
 use agesim_core::normal_map::Convention;
 use agesim_core::project::Project;
@@ -459,7 +459,34 @@ fn export_glb(
         1.0 => scene.mesh().clone(),
         m => std::sync::Arc::new(scene.mesh().scaled(m)),
     };
-    let bytes = write_glb_with_materials(&mesh, &materials);
+    // Age changes the shape (docs/models.md §13): the full old-age displacement as the
+    // `age` morph target, its weight the chosen age's, in metres like the mesh.
+    let morph = scene.shape_field().map(|field| {
+        let full = field.full();
+        let head = scene.mesh();
+        let normals = field.normals(head, &full);
+        let tangent = head
+            .tangents()
+            .iter()
+            .zip(&normals)
+            .map(|(t, n)| {
+                let t3 = t.truncate();
+                (t3 - *n * n.dot(t3)).normalize_or(t3) - t3
+            })
+            .collect();
+        GlbMorph {
+            name: "age".into(),
+            position: full.iter().map(|d| *d * mpu).collect(),
+            normal: normals
+                .iter()
+                .zip(head.normals())
+                .map(|(n, n0)| *n - *n0)
+                .collect(),
+            tangent,
+            weight: field.weight_at(years),
+        }
+    });
+    let bytes = write_glb_with_morph(&mesh, &materials, morph.as_ref());
     progress(0.9, "writing the GLB");
     set.stage(&glb.path, |w| std::io::Write::write_all(w, &bytes))?;
     // The wrinkle heights beside it, tile by tile on one range.

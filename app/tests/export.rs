@@ -484,3 +484,83 @@ fn a_udim_head_is_exported_tile_by_tile() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("UDIM tiles"), "{}", stderr(&o));
 }
+
+/// The aged head's `age` morph target (docs/models.md §13), read back with the `gltf`
+/// crate: its name, one target per primitive, the weight of the age, and the full old-age
+/// displacement in metres: 1–25 mm at most, on the face, downward on the whole — on the
+/// default head and on the MakeHuman head (decimetres, its own landmarks).
+#[test]
+fn the_glb_carries_the_age_morph_target() {
+    let dir = tempfile::tempdir().unwrap();
+    let heads = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/heads/makehuman");
+    for (name, extra) in [
+        ("default", vec![]),
+        (
+            "makehuman",
+            vec![
+                "--mesh".to_owned(),
+                format!("{heads}/mh_head.obj"),
+                "--landmarks".to_owned(),
+                format!("{heads}/landmarks.json"),
+            ],
+        ),
+    ] {
+        let glb = dir.path().join(format!("{name}.glb"));
+        let mut args = vec![
+            "export".to_owned(),
+            "--age-years".to_owned(),
+            "65".to_owned(),
+            "--size".to_owned(),
+            "64".to_owned(),
+            "--glb".to_owned(),
+            glb.to_str().unwrap().to_owned(),
+        ];
+        args.extend(extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = agesim(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (doc, buffers, _) = gltf::import(&glb).expect("the GLB imports");
+        // The target's name, in each mesh's extras (the JSON chunk).
+        let bytes = std::fs::read(&glb).unwrap();
+        let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+        for m in json["meshes"].as_array().unwrap() {
+            assert_eq!(
+                m["extras"]["targetNames"],
+                serde_json::json!(["age"]),
+                "{name}"
+            );
+        }
+        let (mut largest, mut down, mut moved) = (0.0f32, 0.0f32, 0usize);
+        let mut weight = None;
+        for mesh in doc.meshes() {
+            let w = mesh.weights().expect("a default weight");
+            assert_eq!(w.len(), 1);
+            weight = Some(w[0]);
+            for prim in mesh.primitives() {
+                assert_eq!(prim.morph_targets().count(), 1, "{name}: one target");
+                let reader = prim.reader(|b| Some(&buffers[b.index()]));
+                let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+                let target = reader.read_morph_targets().next().unwrap();
+                let (dp, dn, dt) = target;
+                let dp: Vec<[f32; 3]> = dp.expect("position deltas").collect();
+                assert!(dn.is_some() && dt.is_some(), "normal and tangent deltas");
+                assert_eq!(dp.len(), positions.len());
+                for d in &dp {
+                    let mm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() * 1000.0;
+                    largest = largest.max(mm);
+                    down += d[1];
+                    moved += usize::from(mm > 0.5);
+                }
+            }
+        }
+        let weight = weight.unwrap();
+        eprintln!(
+            "{name}: largest {largest:.2} mm, {moved} vertices over 0.5 mm, Σ dy {down:.4} m, weight at 65: {weight:.3}"
+        );
+        assert!((1.0..=25.0).contains(&largest), "{name}: {largest} mm");
+        assert!(down < 0.0, "{name}: downward on the whole");
+        assert!(moved > 100, "{name}: {moved}");
+        assert!(weight > 0.3 && weight < 1.0, "{name}: weight {weight}");
+    }
+}

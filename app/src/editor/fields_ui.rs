@@ -28,8 +28,8 @@ pub enum Pick {
 
 /// Sections shown as layers, with an on/off switch where the section has `enabled`.
 pub const LAYER_SECTIONS: &[&str] = &[
-    "large", "pores", "furrows", "noise", "warp", "overlap", "fine", "hair", "skin", "age",
-    "normal", "view", "mesh", "",
+    "large", "pores", "furrows", "noise", "warp", "overlap", "fine", "hair", "skin", "shape",
+    "age", "normal", "view", "mesh", "",
 ];
 
 /// A readable label: the path below the section, `_` as spaces.

@@ -27,6 +27,7 @@ pub mod normal_map;
 pub mod project;
 pub mod rng;
 pub mod scene;
+pub mod shape;
 mod simd;
 pub mod skin_colour;
 #[cfg(test)]

@@ -453,6 +453,28 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
 /// primitive per tile, its UVs in [0, 1] as the tile's own maps are (glTF has no UDIM).
 /// Parts that are not skin get a plain material of their own.
 pub fn write_glb_with_materials(mesh: &super::Mesh, materials: &[GlbMaterial]) -> Vec<u8> {
+    write_glb_with_morph(mesh, materials, None)
+}
+
+/// A morph target of every primitive (glTF `targets`, named in the mesh's
+/// `extras.targetNames`, the convention Blender and three.js read as shape keys): per vertex
+/// of the mesh, the position, normal and tangent (xyz) deltas, and the mesh's default
+/// weight.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GlbMorph {
+    pub name: String,
+    pub position: Vec<Vec3>,
+    pub normal: Vec<Vec3>,
+    pub tangent: Vec<Vec3>,
+    pub weight: f32,
+}
+
+/// [`write_glb_with_materials`] with a morph target on every mesh.
+pub fn write_glb_with_morph(
+    mesh: &super::Mesh,
+    materials: &[GlbMaterial],
+    morph: Option<&GlbMorph>,
+) -> Vec<u8> {
     let mut bin: Vec<u8> = Vec::new();
     let mut views = Vec::new();
     let mut accessors = Vec::new();
@@ -559,17 +581,49 @@ pub fn write_glb_with_materials(mesh: &super::Mesh, materials: &[GlbMaterial]) -
                     tri.len()
                 ),
             );
+            // The morph target's deltas of this primitive's vertices.
+            let targets = morph.map_or(String::new(), |m| {
+                let at = |v: &[Vec3], i: usize| v.get(i).copied().unwrap_or(Vec3::ZERO);
+                let dp: Vec<Vec3> = verts.iter().map(|&i| at(&m.position, i)).collect();
+                let (lo, hi) = super::Aabb::from_points(&dp)
+                    .map_or(([0.0; 3], [0.0; 3]), |b| (b.min.to_array(), b.max.to_array()));
+                let pos = push(
+                    &f32s(&mut dp.iter().flat_map(|p| p.to_array())),
+                    ARRAY_BUFFER,
+                    format!(
+                        r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#
+                    ),
+                );
+                let nor = push(
+                    &f32s(&mut verts.iter().flat_map(|&i| at(&m.normal, i).to_array())),
+                    ARRAY_BUFFER,
+                    vec("VEC3"),
+                );
+                let tan = push(
+                    &f32s(&mut verts.iter().flat_map(|&i| at(&m.tangent, i).to_array())),
+                    ARRAY_BUFFER,
+                    vec("VEC3"),
+                );
+                format!(r#","targets":[{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan}}}]"#)
+            });
             let material = match materials.len() {
                 0 => String::new(),
                 n if skin => format!(r#","material":{}"#, tile.min(n - 1)),
                 _ => format!(r#","material":{plain_material}"#),
             };
             primitives.push(format!(
-                r#"{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4{material}}}"#
+                r#"{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4{material}{targets}}}"#
             ));
         }
+        let morph_json = morph.map_or(String::new(), |m| {
+            let w = if m.weight.is_finite() { m.weight } else { 0.0 };
+            format!(
+                r#","weights":[{w}],"extras":{{"targetNames":[{}]}}"#,
+                json_string(&m.name)
+            )
+        });
         meshes.push(format!(
-            r#"{{"name":{},"primitives":[{}]}}"#,
+            r#"{{"name":{},"primitives":[{}]{morph_json}}}"#,
             json_string(&part.name),
             primitives.join(",")
         ));

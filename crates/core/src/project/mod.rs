@@ -73,6 +73,7 @@ pub struct Project {
     pub hair: HairSection,
     pub skin: SkinSection,
     pub age: AgeSection,
+    pub shape: ShapeSection,
     pub view: ViewSection,
 }
 
@@ -95,6 +96,7 @@ impl Default for Project {
             hair: HairSection::default(),
             skin: SkinSection::default(),
             age: AgeSection::default(),
+            shape: ShapeSection::default(),
             view: ViewSection::default(),
         }
     }

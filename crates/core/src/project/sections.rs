@@ -736,3 +736,76 @@ impl Default for NormalSection {
         }
     }
 }
+
+/// Age changes the shape (docs/models.md §13): the regions' strengths.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ShapeSection {
+    pub enabled: bool,
+    /// Every region's millimetres times this, 0–3.
+    pub strength: f32,
+    /// Brow descent: a multiplier of its millimetres, 0–3.
+    pub brows: f32,
+    /// Upper lids hooding: a multiplier of its millimetres, 0–3.
+    pub lids: f32,
+    /// Bags under the eyes: a multiplier of its millimetres, 0–3.
+    pub bags: f32,
+    /// Tear trough hollowing: a multiplier of its millimetres, 0–3.
+    pub tear_trough: f32,
+    /// Temples hollowing: a multiplier of its millimetres, 0–3.
+    pub temples: f32,
+    /// Cheeks descending over the nasolabial fold: a multiplier of its millimetres, 0–3.
+    pub cheeks: f32,
+    /// Jowls below the jaw line: a multiplier of its millimetres, 0–3.
+    pub jowls: f32,
+    /// Upper lip lengthening, lips thinning: a multiplier of its millimetres, 0–3.
+    pub lips: f32,
+    /// Nose tip drooping: a multiplier of its millimetres, 0–3.
+    pub nose: f32,
+    /// Earlobes lengthening: a multiplier of its millimetres, 0–3.
+    pub ears: f32,
+    /// Submental laxity: a multiplier of its millimetres, 0–3.
+    pub neck: f32,
+}
+
+impl Default for ShapeSection {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            strength: 1.0,
+            brows: 1.0,
+            lids: 1.0,
+            bags: 1.0,
+            tear_trough: 1.0,
+            temples: 1.0,
+            cheeks: 1.0,
+            jowls: 1.0,
+            lips: 1.0,
+            nose: 1.0,
+            ears: 1.0,
+            neck: 1.0,
+        }
+    }
+}
+
+impl ShapeSection {
+    /// Each region's strength (its own times the overall), in `shape::REGIONS` order; all
+    /// 0 when the layer is off.
+    pub fn strengths(&self) -> [f32; crate::shape::REGIONS.len()] {
+        let on = if self.enabled { self.strength } else { 0.0 };
+        [
+            self.brows,
+            self.lids,
+            self.bags,
+            self.tear_trough,
+            self.temples,
+            self.cheeks,
+            self.jowls,
+            self.lips,
+            self.nose,
+            self.ears,
+            self.neck,
+        ]
+        .map(|s| s * on)
+    }
+}

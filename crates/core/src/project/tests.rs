@@ -247,5 +247,9 @@ fn the_default_graying_follows_the_population_curve() {
     assert!(mean_gray(45.0) < 0.1 && mean_gray(30.0) == 0.0);
     // The brows gray with the hair (the colour bake takes this mean).
     let brows = p.colour_factors(p.age.mapping().t(63.0)).brow_gray;
-    assert!((brows - mean_gray(63.0)).abs() < 0.01, "{brows} vs {}", mean_gray(63.0));
+    assert!(
+        (brows - mean_gray(63.0)).abs() < 0.01,
+        "{brows} vs {}",
+        mean_gray(63.0)
+    );
 }

@@ -46,11 +46,8 @@ struct ImageKey {
 pub(super) struct Head<'a> {
     pub key: HeadKey,
     pub mesh: &'a Mesh,
-    /// Per vertex, the template point (template metres), when the head is fitted.
-    pub template_points: Option<&'a [Option<Vec3>]>,
-    /// Whether the head is the template itself (a built-in head: its points are the
-    /// template's).
-    pub is_template: bool,
+    /// Each vertex's template point (template metres; [`super::Scene::template_point`]).
+    pub template_point: &'a dyn Fn(usize) -> Option<Vec3>,
     pub base: Option<&'a Arc<HeadImage>>,
 }
 
@@ -75,13 +72,7 @@ impl ColourStage {
             return Ok(false);
         }
         let mpu = head.key.metres_per_unit;
-        let template_point = |v: usize| -> Option<Vec3> {
-            match head.template_points {
-                Some(points) => points.get(v).copied().flatten(),
-                None if head.is_template => head.mesh.positions().get(v).map(|p| *p * mpu),
-                None => None,
-            }
-        };
+        let template_point = head.template_point;
         let regions = Regions::template().ok_or_else(|| Error::InvalidValue {
             what: "the template's landmarks".into(),
             value: "incomplete".into(),
@@ -93,7 +84,7 @@ impl ColourStage {
             _ => {
                 let t = Arc::new(SurfaceTexels::new(
                     head.mesh,
-                    &template_point,
+                    template_point,
                     mpu,
                     size,
                     regions,
@@ -110,7 +101,7 @@ impl ColourStage {
             _ => {
                 let s = Arc::new(skin_colour::place_spots(
                     head.mesh,
-                    &template_point,
+                    template_point,
                     mpu,
                     regions,
                     settings.spots_per_cm2,

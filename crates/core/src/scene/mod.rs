@@ -232,6 +232,9 @@ pub struct Scene {
     hair_key: Option<HairKey>,
     hair: Option<Arc<HairInstances>>,
     colour: colour::ColourStage,
+    /// The shape field and what it was made from (mesh and layout generations, metres per
+    /// unit, strengths).
+    shape: Option<(ShapeKey, Arc<crate::shape::ShapeField>)>,
     /// Bumped when the head's layout (its fit) changes.
     layout_generation: u64,
     /// The correspondence maps of the current layout, by size (the large map's and the
@@ -253,6 +256,10 @@ pub type FileVersions = std::collections::BTreeMap<PathBuf, u64>;
 
 /// Past input states a scene keeps for [`FileVersions`].
 const PAST_INPUTS: usize = 8;
+
+/// What a shape field is made from: mesh and layout generations, metres per unit (bits),
+/// each region's strength (bits).
+type ShapeKey = (u64, u64, u32, [u32; crate::shape::REGIONS.len()]);
 
 type FineWrinkleSettingsKey = (Option<PathBuf>, u32, u32, f32, f32, f32, f32, u64);
 
@@ -283,6 +290,7 @@ impl Scene {
             hair_key: None,
             hair: None,
             colour: colour::ColourStage::default(),
+            shape: None,
             layout_generation: 1,
             correspondences: Vec::new(),
             versions: FileVersions::new(),
@@ -313,6 +321,7 @@ impl Scene {
             hair_key: self.hair_key.clone(),
             hair: self.hair.clone(),
             colour: self.colour.clone(),
+            shape: self.shape.clone(),
             layout_generation: self.layout_generation,
             correspondences: self.correspondences.clone(),
             versions: self.versions.clone(),
@@ -842,17 +851,62 @@ impl Scene {
             layout_generation: self.layout_generation,
             metres_per_unit: self.metres_per_unit(),
         };
-        let fit = self.inputs.layout.fit.clone();
         let base = self.colour_map().cloned();
+        let points = self.template_points();
+        let template_point = |v: usize| points.get(v).copied().flatten();
         let head = colour::Head {
             key,
             mesh: &self.inputs.mesh,
-            template_points: fit.as_deref().map(|f| f.template_point.as_slice()),
-            is_template: self.project.mesh.path.is_none()
-                && self.project.mesh.builtin == crate::project::BuiltinMesh::Head,
+            template_point: &template_point,
             base: base.as_ref(),
         };
         self.colour.bake(&head, size, &settings, &factors, cancel)
+    }
+
+    /// Each vertex's template point (template metres): the fitted template's
+    /// ([`crate::fit::Fit::template_point`]), the vertex itself on the built-in head (the
+    /// template), none on a head read at its own UVs.
+    pub fn template_points(&self) -> Vec<Option<glam::Vec3>> {
+        let mesh = &self.inputs.mesh;
+        match &self.inputs.layout.fit {
+            Some(fit) => fit.template_point.clone(),
+            None if self.project.mesh.path.is_none()
+                && self.project.mesh.builtin == crate::project::BuiltinMesh::Head =>
+            {
+                let mpu = self.metres_per_unit();
+                mesh.positions().iter().map(|p| Some(*p * mpu)).collect()
+            }
+            None => vec![None; mesh.vertex_count()],
+        }
+    }
+
+    /// The shape regions' displacements on this head (docs/models.md §13), made once per
+    /// head and strengths; `None` when the shape layer is off or every strength is 0.
+    pub fn shape_field(&mut self) -> Option<Arc<crate::shape::ShapeField>> {
+        let strengths = self.project.shape.strengths();
+        if strengths.iter().all(|&s| s <= 0.0) {
+            return None;
+        }
+        let key = (
+            self.mesh_generation,
+            self.layout_generation,
+            self.metres_per_unit().to_bits(),
+            strengths.map(f32::to_bits),
+        );
+        if let Some((k, f)) = &self.shape
+            && *k == key
+        {
+            return Some(f.clone());
+        }
+        let points = self.template_points();
+        let field = Arc::new(crate::shape::ShapeField::new(
+            &self.inputs.mesh,
+            &|v| points.get(v).copied().flatten(),
+            &strengths,
+            self.metres_per_unit(),
+        ));
+        self.shape = Some((key, field.clone()));
+        Some(field)
     }
 
     /// The aged base colour of the last [`Scene::bake_colour`] (RGBA8, sRGB, in the head's

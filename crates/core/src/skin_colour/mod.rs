@@ -212,8 +212,15 @@ impl Regions {
             .as_ref()
     }
 
-    fn rel(&self, p: Vec3) -> Vec3 {
+    /// A template point in the face's own units: from the outer eye corners' midpoint, in
+    /// half their distance (+Y up, +Z forward). The frame the regions (and the shape
+    /// regions of [`crate::shape`]) are drawn in.
+    pub fn relative(&self, p: Vec3) -> Vec3 {
         (p - self.origin) / self.unit
+    }
+
+    fn rel(&self, p: Vec3) -> Vec3 {
+        self.relative(p)
     }
 
     /// The eyes and their lids (no spots, no mottling).

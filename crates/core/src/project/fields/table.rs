@@ -111,7 +111,14 @@ pub const SECTIONS: &[(&str, &str)] = &[
         "hair",
         "Hair recession (transition texture), instances, graying and Kajiya–Kay shading ([T] §6).",
     ),
-    ("skin", "Skin shading and paling with age ([T] §3.1.1)."),
+    (
+        "skin",
+        "Skin shading, and its colour with age: spots, uneven tone, paling, lips and brows fading (docs/models.md §12).",
+    ),
+    (
+        "shape",
+        "Age changes the shape: regions of the face descending, hollowing and bulging, each with its strength (docs/models.md §13).",
+    ),
     (
         "age",
         "The age: the current t, the years it stands for, and each layer's age curve (docs/models.md \"Age\").",
@@ -702,6 +709,95 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
     v.extend(curve!("redness", "redness and thread veins"));
     v.extend(curve!("contrast", "lips and brows fading"));
     v.extend([
+        k(
+            "shape.enabled",
+            Kind::Bool,
+            "age changes the shape (docs/models.md §13)",
+        ),
+        f(
+            "shape.strength",
+            "",
+            0.0,
+            3.0,
+            "every shape region's millimetres times this",
+        ),
+        f(
+            "shape.brows",
+            "",
+            0.0,
+            3.0,
+            "brow descent: its millimetres times this",
+        ),
+        f(
+            "shape.lids",
+            "",
+            0.0,
+            3.0,
+            "upper lids hooding: its millimetres times this",
+        ),
+        f(
+            "shape.bags",
+            "",
+            0.0,
+            3.0,
+            "bags under the eyes: its millimetres times this",
+        ),
+        f(
+            "shape.tear_trough",
+            "",
+            0.0,
+            3.0,
+            "tear trough hollowing: its millimetres times this",
+        ),
+        f(
+            "shape.temples",
+            "",
+            0.0,
+            3.0,
+            "temples hollowing: its millimetres times this",
+        ),
+        f(
+            "shape.cheeks",
+            "",
+            0.0,
+            3.0,
+            "cheeks descending over the nasolabial fold: its millimetres times this",
+        ),
+        f(
+            "shape.jowls",
+            "",
+            0.0,
+            3.0,
+            "jowls below the jaw line: its millimetres times this",
+        ),
+        f(
+            "shape.lips",
+            "",
+            0.0,
+            3.0,
+            "upper lip lengthening, lips thinning: its millimetres times this",
+        ),
+        f(
+            "shape.nose",
+            "",
+            0.0,
+            3.0,
+            "nose tip drooping: its millimetres times this",
+        ),
+        f(
+            "shape.ears",
+            "",
+            0.0,
+            3.0,
+            "earlobes lengthening: its millimetres times this",
+        ),
+        f(
+            "shape.neck",
+            "",
+            0.0,
+            3.0,
+            "submental laxity: its millimetres times this",
+        ),
         k(
             "view.pom",
             Kind::Choice(&["linear", "binary", "combined", "normal", "displacement"]),

@@ -1,0 +1,331 @@
+//! Age changes the shape (docs/models.md §13 "Shape"): regions on the template, each a
+//! smooth weight field with a displacement in millimetres — a descent along gravity, a
+//! deflation along the inward normal, a bulge along the outward one — and its own age
+//! curve. Read at each vertex's template point (the default head's own point, or the
+//! fitted template's), so they reach any head; expressed in the head's own units.
+//!
+//! [`ShapeField::new`] computes every region's full (old-age) displacement per vertex once;
+//! [`ShapeField::at`] weighs them by their curves at an age (a sum per vertex), and
+//! [`ShapeField::normals`] gives the displaced mesh's normals (the original ones moved by
+//! how the smooth normals of the displaced positions differ from the undisplaced: exactly
+//! the original where nothing moves). Vertices at one position (split for UV seams) move
+//! together; parts that are not skin (eyes, teeth) stay, but for their border where they
+//! share a position with the skin (an eye socket's rim moves with the lid: no crack).
+
+use glam::Vec3;
+
+use crate::age::{AgeCurve, CurveShape};
+use crate::mesh::Mesh;
+use crate::mesh::normals::{smooth_normals, weld_by_position};
+use crate::skin_colour::Regions;
+
+/// How a region moves the skin.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Motion {
+    /// Down along gravity (−Y of the scene: the head turned to agesim's axes).
+    Descent,
+    /// Inward along the normal (fat deflating, a hollow).
+    Deflate,
+    /// Outward along the normal (a bag, a jowl).
+    Bulge,
+}
+
+/// An ellipsoid of the face frame ([`Regions::relative`]: half the outer eye corners'
+/// distance as the unit, the eye corners' midpoint as the origin), mirrored to both sides
+/// when its centre is off the midline.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Blob {
+    pub centre: [f32; 3],
+    pub radii: [f32; 3],
+}
+
+impl Blob {
+    const fn new(centre: [f32; 3], radii: [f32; 3]) -> Self {
+        Self { centre, radii }
+    }
+
+    /// 1 inside its inner third, falling smoothly to 0 at its surface.
+    fn weight(&self, q: Vec3) -> f32 {
+        let c = Vec3::from(self.centre);
+        // Both sides: the x distance to the nearer of the centre and its mirror.
+        let q = if c.x != 0.0 {
+            Vec3::new(q.x.abs(), q.y, q.z)
+        } else {
+            q
+        };
+        let d = ((q - Vec3::new(c.x.abs(), c.y, c.z)) / Vec3::from(self.radii)).length();
+        1.0 - smoothstep(0.35, 1.0, d)
+    }
+}
+
+fn smoothstep(lo: f32, hi: f32, x: f32) -> f32 {
+    let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// One shape region: where (the largest of its blobs' weights), how it moves (each motion
+/// with its millimetres at full age and full strength) and when.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShapeRegion {
+    /// The project field of its strength (`shape.NAME`).
+    pub name: &'static str,
+    pub what: &'static str,
+    pub blobs: &'static [Blob],
+    pub motions: &'static [(Motion, f32)],
+    pub curve: AgeCurve,
+}
+
+impl ShapeRegion {
+    pub fn weight(&self, q: Vec3) -> f32 {
+        self.blobs.iter().map(|b| b.weight(q)).fold(0.0, f32::max)
+    }
+}
+
+const fn curve(onset: f32, full: f32) -> AgeCurve {
+    AgeCurve::new(onset, full, CurveShape::Smoothstep)
+}
+
+use Motion::{Bulge, Deflate, Descent};
+
+/// The default regions (docs/models.md §13, each with its source). Millimetres at full
+/// age; the face frame's unit is about 47 mm on an adult.
+pub const REGIONS: [ShapeRegion; 11] = [
+    ShapeRegion {
+        name: "brows",
+        what: "brow descent, most at its tail",
+        blobs: &[Blob::new([0.75, 0.45, 0.25], [0.65, 0.35, 0.6])],
+        motions: &[(Descent, 3.0)],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "lids",
+        what: "upper lids hooding",
+        blobs: &[Blob::new([0.62, 0.14, 0.3], [0.5, 0.17, 0.45])],
+        motions: &[(Descent, 1.5), (Bulge, 0.5)],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "bags",
+        what: "bags under the eyes",
+        blobs: &[Blob::new([0.62, -0.26, 0.3], [0.45, 0.18, 0.45])],
+        motions: &[(Bulge, 2.0), (Descent, 0.8)],
+        curve: curve(40.0, 75.0),
+    },
+    ShapeRegion {
+        name: "tear_trough",
+        what: "tear trough hollowing",
+        blobs: &[Blob::new([0.4, -0.42, 0.42], [0.32, 0.14, 0.4])],
+        motions: &[(Deflate, 1.5)],
+        curve: curve(35.0, 70.0),
+    },
+    ShapeRegion {
+        name: "temples",
+        what: "temples hollowing",
+        blobs: &[Blob::new([1.3, 0.5, -0.45], [0.42, 0.55, 0.55])],
+        motions: &[(Deflate, 3.0)],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "cheeks",
+        what: "cheeks descending over the nasolabial fold",
+        blobs: &[
+            Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]),
+            Blob::new([0.72, -1.05, 0.35], [0.32, 0.32, 0.45]),
+        ],
+        motions: &[(Descent, 4.0), (Bulge, 1.0)],
+        curve: curve(35.0, 75.0),
+    },
+    ShapeRegion {
+        name: "jowls",
+        what: "jowls below the jaw line",
+        blobs: &[Blob::new([0.95, -2.0, 0.0], [0.5, 0.45, 0.65])],
+        motions: &[(Descent, 5.0), (Bulge, 2.0)],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "lips",
+        what: "upper lip lengthening, lips thinning",
+        blobs: &[Blob::new([0.0, -1.2, 0.5], [0.6, 0.25, 0.45])],
+        motions: &[(Descent, 1.5), (Deflate, 1.0)],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "nose",
+        what: "nose tip drooping",
+        blobs: &[Blob::new([0.0, -0.65, 0.95], [0.28, 0.28, 0.35])],
+        motions: &[(Descent, 2.0)],
+        curve: curve(45.0, 85.0),
+    },
+    ShapeRegion {
+        name: "ears",
+        what: "earlobes lengthening",
+        blobs: &[Blob::new([1.7, -0.95, -1.3], [0.3, 0.35, 0.35])],
+        motions: &[(Descent, 3.0)],
+        curve: curve(40.0, 85.0),
+    },
+    ShapeRegion {
+        name: "neck",
+        what: "submental laxity under the chin",
+        blobs: &[Blob::new([0.0, -2.75, 0.05], [0.85, 0.45, 0.7])],
+        motions: &[(Descent, 3.0), (Bulge, 1.0)],
+        curve: curve(40.0, 80.0),
+    },
+];
+
+/// Every region's full displacement per vertex of one head, in its units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeField {
+    /// Per region (in [`REGIONS`] order), per vertex.
+    full: Vec<Vec<Vec3>>,
+    /// The smooth normals of the undisplaced positions, for [`ShapeField::normals`].
+    smooth: Vec<Vec3>,
+}
+
+impl ShapeField {
+    /// The regions' displacements on `mesh`: `template_point(v)` is vertex v's template
+    /// point (template metres; `None`: off the template, it stays), `strengths` each
+    /// region's multiplier (in [`REGIONS`] order), `metres_per_unit` the head's unit. Only
+    /// skin vertices move.
+    pub fn new(
+        mesh: &Mesh,
+        template_point: &dyn Fn(usize) -> Option<Vec3>,
+        strengths: &[f32],
+        metres_per_unit: f32,
+    ) -> Self {
+        let n = mesh.vertex_count();
+        let mut skin = vec![false; n];
+        for &i in mesh.skin_indices().iter() {
+            skin[i as usize] = true;
+        }
+        let regions = Regions::template();
+        // One computation per position: split vertices move together. At each position
+        // the first skin vertex there stands for all (its template point and normal).
+        let welded = weld_by_position(mesh.positions());
+        let mut skin_at = vec![u32::MAX; n];
+        for v in 0..n {
+            let w = welded[v] as usize;
+            if skin[v] && skin_at[w] == u32::MAX {
+                skin_at[w] = v as u32;
+            }
+        }
+        let mm = 1e-3 / metres_per_unit.max(1e-12);
+        let full = REGIONS
+            .iter()
+            .enumerate()
+            .map(|(r, region)| {
+                let strength = strengths.get(r).copied().unwrap_or(1.0);
+                let mut out = vec![Vec3::ZERO; n];
+                let (Some(frame), true) = (regions, strength > 0.0) else {
+                    return out;
+                };
+                for v in 0..n {
+                    // The first vertex at a position computes it (welded[v] ≤ v); the
+                    // others copy it, whatever part they belong to.
+                    let w = welded[v] as usize;
+                    if w != v {
+                        out[v] = out[w];
+                        continue;
+                    }
+                    let s = skin_at[v];
+                    if s == u32::MAX {
+                        continue;
+                    }
+                    let Some(t) = template_point(s as usize) else {
+                        continue;
+                    };
+                    let weight = region.weight(frame.relative(t));
+                    if weight <= 0.0 {
+                        continue;
+                    }
+                    let normal = mesh.normals()[s as usize];
+                    let d: Vec3 = region
+                        .motions
+                        .iter()
+                        .map(|&(motion, amount)| {
+                            amount
+                                * match motion {
+                                    Descent => Vec3::NEG_Y,
+                                    Deflate => -normal,
+                                    Bulge => normal,
+                                }
+                        })
+                        .sum();
+                    out[v] = d * (weight * strength * mm);
+                }
+                out
+            })
+            .collect();
+        Self {
+            full,
+            smooth: smooth_normals(mesh.positions(), mesh.indices()),
+        }
+    }
+
+    /// The displacement per vertex at `years`: each region's full displacement times its
+    /// curve there.
+    pub fn at(&self, years: f32) -> Vec<Vec3> {
+        let factors: Vec<f32> = REGIONS.iter().map(|r| r.curve.factor(years)).collect();
+        self.weighted(&factors)
+    }
+
+    /// The full (old-age) displacement: every region at its full age.
+    pub fn full(&self) -> Vec<Vec3> {
+        self.weighted(&[1.0; REGIONS.len()])
+    }
+
+    /// Σ factor_r · full_r.
+    fn weighted(&self, factors: &[f32]) -> Vec<Vec3> {
+        let n = self.smooth.len();
+        let mut out = vec![Vec3::ZERO; n];
+        for (field, &f) in self.full.iter().zip(factors) {
+            if f == 0.0 {
+                continue;
+            }
+            for (o, d) in out.iter_mut().zip(field) {
+                *o += *d * f;
+            }
+        }
+        out
+    }
+
+    /// The morph weight that stands for `years` when one target holds [`Self::full`]: the
+    /// displacement's size at that age over its full size (summed over the vertices).
+    pub fn weight_at(&self, years: f32) -> f32 {
+        let size = |d: &[Vec3]| d.iter().map(|v| f64::from(v.length())).sum::<f64>();
+        let full = size(&self.full());
+        if full <= 0.0 {
+            return 0.0;
+        }
+        (size(&self.at(years)) / full) as f32
+    }
+
+    /// The normals of `mesh` displaced by `delta`: each original normal turned by how the
+    /// smooth normal there changes, so an undisplaced region keeps its normals exactly.
+    pub fn normals(&self, mesh: &Mesh, delta: &[Vec3]) -> Vec<Vec3> {
+        if delta.iter().all(|d| *d == Vec3::ZERO) {
+            return mesh.normals().to_vec();
+        }
+        let moved: Vec<Vec3> = mesh
+            .positions()
+            .iter()
+            .zip(delta)
+            .map(|(p, d)| *p + *d)
+            .collect();
+        let smooth = smooth_normals(&moved, mesh.indices());
+        mesh.normals()
+            .iter()
+            .zip(smooth.iter().zip(&self.smooth))
+            .zip(delta)
+            .map(|((n, (s, s0)), d)| {
+                if *d == Vec3::ZERO && s == s0 {
+                    *n
+                } else {
+                    (*n + (*s - *s0)).normalize_or(*n)
+                }
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,119 @@
+use super::*;
+use crate::project::Project;
+use crate::scene::Scene;
+
+/// The default head (metres) and its shape field (every region at strength 1), its own
+/// points as the template's.
+fn default_head() -> (std::sync::Arc<Mesh>, ShapeField) {
+    let scene = Scene::new(Project::default()).unwrap();
+    let mesh = scene.mesh().clone();
+    let m = mesh.clone();
+    let field = ShapeField::new(
+        &mesh,
+        &|v| m.positions().get(v).copied(),
+        &[1.0; REGIONS.len()],
+        1.0,
+    );
+    (mesh, field)
+}
+
+#[test]
+fn nothing_moves_when_young_nor_outside_the_regions() {
+    let (mesh, field) = default_head();
+    assert!(field.at(25.0).iter().all(|d| *d == Vec3::ZERO), "at 25");
+    assert_eq!(field.weight_at(25.0), 0.0);
+    let full = field.full();
+    // The back of the head and the crown: no region there.
+    let l = &crate::fit::template().landmarks;
+    let vertex = l.get("vertex").unwrap();
+    for (p, d) in mesh.positions().iter().zip(&full) {
+        if p.z < -0.04 || p.y > vertex.y - 0.04 {
+            assert_eq!(*d, Vec3::ZERO, "{p} moved by {d}");
+        }
+    }
+    // Not skin (the eye sockets): stays, but for its border, where it shares a position
+    // with the skin and moves with it (no crack opens).
+    let mut skin = vec![false; mesh.vertex_count()];
+    for &i in mesh.skin_indices().iter() {
+        skin[i as usize] = true;
+    }
+    let skin_at: std::collections::HashSet<[u32; 3]> = mesh
+        .positions()
+        .iter()
+        .zip(&skin)
+        .filter(|(_, s)| **s)
+        .map(|(p, _)| p.to_array().map(f32::to_bits))
+        .collect();
+    let mut border = 0;
+    for ((p, d), s) in mesh.positions().iter().zip(&full).zip(&skin) {
+        if !s && *d != Vec3::ZERO {
+            assert!(
+                skin_at.contains(&p.to_array().map(f32::to_bits)),
+                "{p} moved"
+            );
+            border += 1;
+        }
+    }
+    eprintln!("{border} border vertices of other parts move with the skin");
+}
+
+#[test]
+fn the_old_face_descends_by_millimetres_in_any_units() {
+    let (mesh, field) = default_head();
+    let full = field.full();
+    let mm = |d: &Vec3| d.length() * 1000.0;
+    let largest = full.iter().map(mm).fold(0.0, f32::max);
+    let down: f32 = full.iter().map(|d| d.y).sum();
+    let moved = full.iter().filter(|d| mm(d) > 0.5).count();
+    eprintln!(
+        "default head: largest {largest:.2} mm, {moved} vertices over 0.5 mm, Σy {down:.4} m"
+    );
+    assert!((1.0..=25.0).contains(&largest), "{largest} mm");
+    assert!(down < 0.0, "downward on the whole");
+    assert!(moved > 200, "{moved}");
+    // The same head in centimetres moves by the same millimetres: 100× the units.
+    let cm = mesh.scaled(100.0);
+    let field_cm = ShapeField::new(
+        &cm,
+        &|v| mesh.positions().get(v).copied(),
+        &[1.0; REGIONS.len()],
+        0.01,
+    );
+    for (d, c) in full.iter().zip(field_cm.full()) {
+        assert!((c - *d * 100.0).length() < 1e-4, "{d} m vs {c} cm");
+    }
+    // The regions' curves: half-way, more than nothing and less than full.
+    let w = field.weight_at(60.0);
+    assert!(w > 0.3 && w < 1.0, "{w}");
+    assert_eq!(field.weight_at(90.0), 1.0);
+}
+
+#[test]
+fn split_vertices_move_together_and_keep_their_normals_where_nothing_moves() {
+    let (mesh, field) = default_head();
+    let full = field.full();
+    let welded = weld_by_position(mesh.positions());
+    let mut split = 0;
+    for (v, &w) in welded.iter().enumerate() {
+        if w as usize != v {
+            assert_eq!(full[v], full[w as usize], "vertex {v} and {w}");
+            if full[v] != Vec3::ZERO {
+                split += 1;
+            }
+        }
+    }
+    eprintln!("{split} moving split vertices");
+    let normals = field.normals(&mesh, &full);
+    let mut turned = 0;
+    for ((n, n0), d) in normals.iter().zip(mesh.normals()).zip(&full) {
+        assert!((n.length() - 1.0).abs() < 1e-4);
+        if n != n0 {
+            turned += 1;
+        }
+        if *d == Vec3::ZERO && n != n0 {
+            // Only beside a moved vertex (its triangles turned).
+            assert!(n.angle_between(*n0) < 0.5, "{n} vs {n0}");
+        }
+    }
+    assert!(turned > 100, "{turned} normals turned");
+}

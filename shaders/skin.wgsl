@@ -44,6 +44,10 @@ struct VertexIn {
     @location(2) uv: vec2<f32>,
     // xyz: tangent (toward +u); w: handedness, bitangent = w·cross(N, T) (toward +v).
     @location(3) tangent: vec4<f32>,
+    // The shape of the view's age (docs/models.md §13): the vertex's displacement (mesh
+    // units) and its displaced normal (zero: keep `normal`).
+    @location(4) shape_delta: vec3<f32>,
+    @location(5) shape_normal: vec3<f32>,
 }
 
 struct VertexOut {
@@ -56,20 +60,28 @@ struct VertexOut {
 
 @vertex
 fn vs_main(in: VertexIn) -> VertexOut {
-    var p = in.position;
+    var p = in.position + in.shape_delta;
+    var n = in.normal;
+    var t = in.tangent;
+    if dot(in.shape_normal, in.shape_normal) > 0.25 {
+        // The displaced normal, and the tangent turned with it (Gram–Schmidt: still along
+        // +u, so the maps' frame is the one they were baked against, turned).
+        n = in.shape_normal;
+        t = vec4<f32>(normalize(t.xyz - n * dot(n, t.xyz)), t.w);
+    }
     if frame.pom.x == MODE_DISPLACEMENT {
         // [P] eq. 14, P' = P + d(u,v)·n, with the same depth convention as POM: the
         // polygon is the top of the height field (unwrinkled skin), h = 0 lies `disp.y`
         // below it (the bottom of a full-depth wrinkle).
         let h = textureSampleLevel(large_map, surface_sampler, tex(in.uv), 0.0).r;
-        p = p + in.normal * ((h - 1.0) * frame.disp.y);
+        p = p + n * ((h - 1.0) * frame.disp.y);
     }
     var out: VertexOut;
     out.clip = frame.clip_from_world * vec4<f32>(p, 1.0);
     out.world_pos = p;
-    out.normal = in.normal;
+    out.normal = n;
     out.uv = in.uv;
-    out.tangent = in.tangent;
+    out.tangent = t;
     return out;
 }
 

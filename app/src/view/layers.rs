@@ -34,6 +34,8 @@ pub struct Layers {
     /// The aged base colour of this bake's age ([`Scene::aged_colour`]): shown instead of
     /// `colour`, per view (the compare view has its own age's).
     pub aged: Option<Arc<HeadImage>>,
+    /// The shape of this bake's age ([`Scene::aged_shape`]), per view like the colour.
+    pub shape: Option<Arc<agesim_core::scene::AgedShape>>,
     /// The head's normal map ([`Scene::normal_map`]).
     pub normal: Option<Arc<HeadImage>>,
 }
@@ -52,6 +54,7 @@ impl Default for Layers {
             surface_scale: None,
             colour: None,
             aged: None,
+            shape: None,
             normal: None,
         }
     }
@@ -81,6 +84,7 @@ impl Layers {
         self.hair = scene.hair().cloned();
         self.colour = scene.colour_map().cloned();
         self.aged = scene.aged_colour().cloned();
+        self.shape = scene.aged_shape().cloned();
         self.normal = scene.normal_map().cloned();
         let metres_per_unit = scene.metres_per_unit();
         // Measured over the mesh: only when the mesh or its units change.
@@ -123,6 +127,7 @@ pub struct Uploaded {
     hair: usize,
     colour: usize,
     aged: usize,
+    shape: usize,
     normal: usize,
 }
 
@@ -171,7 +176,7 @@ impl Uploaded {
     }
 
     /// Uploads the layers that differ between two ages (the large-wrinkle map, the
-    /// micro-relief tile, the aged colour) to `view` of `renderer`: a second view (the compare age) shares
+    /// micro-relief tile, the aged colour, the shape) to `view` of `renderer`: a second view (the compare age) shares
     /// the mesh, the fine tile and the hair of the first.
     pub fn upload_age_layers(
         &mut self,
@@ -191,6 +196,14 @@ impl Uploaded {
                 }
             });
             self.large = stamp(&layers.large);
+        }
+        if stamp(&layers.shape) != self.shape {
+            let shape = layers
+                .shape
+                .as_deref()
+                .map(|s| (s.delta.as_slice(), s.normals.as_slice()));
+            result = result.and(renderer.upload_shape_to(view, shape));
+            self.shape = stamp(&layers.shape);
         }
         if stamp(&layers.aged) != self.aged {
             result = result.and(renderer.upload_colour_map_to(view, picture(&layers.aged)));

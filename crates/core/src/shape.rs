@@ -94,7 +94,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "brows",
         what: "brow descent, most at its tail",
         blobs: &[Blob::new([0.75, 0.45, 0.25], [0.65, 0.35, 0.6])],
-        motions: &[(Descent, 3.0)],
+        motions: &[(Descent, 4.0)],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
@@ -108,7 +108,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "bags",
         what: "bags under the eyes",
         blobs: &[Blob::new([0.62, -0.26, 0.3], [0.45, 0.18, 0.45])],
-        motions: &[(Bulge, 2.0), (Descent, 0.8)],
+        motions: &[(Bulge, 2.5), (Descent, 1.0)],
         curve: curve(40.0, 75.0),
     },
     ShapeRegion {
@@ -122,7 +122,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "temples",
         what: "temples hollowing",
         blobs: &[Blob::new([1.3, 0.5, -0.45], [0.42, 0.55, 0.55])],
-        motions: &[(Deflate, 3.0)],
+        motions: &[(Deflate, 4.0)],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
@@ -132,21 +132,23 @@ pub const REGIONS: [ShapeRegion; 11] = [
             Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]),
             Blob::new([0.72, -1.05, 0.35], [0.32, 0.32, 0.45]),
         ],
-        motions: &[(Descent, 4.0), (Bulge, 1.0)],
+        motions: &[(Descent, 5.0), (Bulge, 1.5)],
         curve: curve(35.0, 75.0),
     },
     ShapeRegion {
         name: "jowls",
         what: "jowls below the jaw line",
         blobs: &[Blob::new([0.95, -2.0, 0.0], [0.5, 0.45, 0.65])],
-        motions: &[(Descent, 5.0), (Bulge, 2.0)],
+        motions: &[(Descent, 7.0), (Bulge, 3.0)],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
         name: "lips",
-        what: "upper lip lengthening, lips thinning",
-        blobs: &[Blob::new([0.0, -1.2, 0.5], [0.6, 0.25, 0.45])],
-        motions: &[(Descent, 1.5), (Deflate, 1.0)],
+        what: "upper lip lengthening",
+        // The whole mouth descends together: a deflation along the normals parts the
+        // lips (their normals at the slit point at each other).
+        blobs: &[Blob::new([0.0, -1.2, 0.5], [0.6, 0.3, 0.45])],
+        motions: &[(Descent, 1.5)],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
@@ -167,7 +169,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "neck",
         what: "submental laxity under the chin",
         blobs: &[Blob::new([0.0, -2.75, 0.05], [0.85, 0.45, 0.7])],
-        motions: &[(Descent, 3.0), (Bulge, 1.0)],
+        motions: &[(Descent, 5.0), (Bulge, 2.0)],
         curve: curve(40.0, 80.0),
     },
 ];

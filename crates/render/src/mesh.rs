@@ -20,10 +20,48 @@ pub(crate) const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_at
     0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4
 ];
 
-/// Geometry ready to upload: vertices and u32 triangle indices.
+/// How the shape of an age moves one vertex (docs/models.md §13): its displacement (mesh
+/// units) and its displaced normal (zero: keep the mesh's own). 24 bytes, a second vertex
+/// buffer beside the mesh's.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub(crate) struct ShapeVertex {
+    pub delta: [f32; 3],
+    pub normal: [f32; 3],
+}
+
+pub(crate) const SHAPE_ATTRIBUTES: [wgpu::VertexAttribute; 2] = wgpu::vertex_attr_array![
+    4 => Float32x3, 5 => Float32x3
+];
+
+/// Geometry ready to upload: vertices and u32 triangle indices, and for a subdivided mesh
+/// the two vertices each new one lies between (in order, after the original vertices), so
+/// any per-vertex data can be subdivided the same way ([`subdivide_shape`]).
 pub(crate) struct MeshData {
     pub vertices: Vec<Vertex>,
     pub indices: Vec<u32>,
+    pub parents: Vec<(u32, u32)>,
+}
+
+/// A shape of the original vertices for the subdivided mesh: each new vertex the mean of
+/// its two parents (normals renormalised; a zero normal stays zero: keep the mesh's).
+pub(crate) fn subdivide_shape(base: &[ShapeVertex], parents: &[(u32, u32)]) -> Vec<ShapeVertex> {
+    let mut out = base.to_vec();
+    out.extend(parents.iter().map(|&(a, b)| {
+        let (va, vb) = (base[a as usize], base[b as usize]);
+        let delta = (Vec3::from(va.delta) + Vec3::from(vb.delta)) * 0.5;
+        let (na, nb) = (Vec3::from(va.normal), Vec3::from(vb.normal));
+        let normal = if na == Vec3::ZERO || nb == Vec3::ZERO {
+            Vec3::ZERO
+        } else {
+            (na + nb).normalize_or(na)
+        };
+        ShapeVertex {
+            delta: delta.to_array(),
+            normal: normal.to_array(),
+        }
+    }));
+    out
 }
 
 impl MeshData {
@@ -44,6 +82,7 @@ impl MeshData {
         Self {
             vertices,
             indices: mesh.indices().to_vec(),
+            parents: Vec::new(),
         }
     }
 }
@@ -57,8 +96,10 @@ pub(crate) fn subdivide(data: &MeshData) -> MeshData {
     let mut indices = Vec::with_capacity(data.indices.len() * 4);
     let mut midpoints: HashMap<(u32, u32), u32> =
         HashMap::with_capacity(data.indices.len() * 3 / 2);
+    let mut parents = Vec::with_capacity(data.indices.len() * 3 / 2);
     let mut midpoint = |a: u32, b: u32| -> u32 {
         *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            parents.push((a, b));
             let (va, vb) = (vertices[a as usize], vertices[b as usize]);
             let mid = |x: [f32; 3], y: [f32; 3]| (Vec3::from(x) + Vec3::from(y)) * 0.5;
             let na = Vec3::from(va.normal);
@@ -80,7 +121,11 @@ pub(crate) fn subdivide(data: &MeshData) -> MeshData {
         let ca = midpoint(c, a);
         indices.extend_from_slice(&[a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca]);
     }
-    MeshData { vertices, indices }
+    MeshData {
+        vertices,
+        indices,
+        parents,
+    }
 }
 
 #[cfg(test)]
@@ -102,6 +147,7 @@ mod tests {
                 })
                 .to_vec(),
             indices: vec![0, 1, 2, 0, 2, 3],
+            parents: Vec::new(),
         };
         let sub = subdivide(&data);
         // 5 edges (4 sides + the diagonal) → 5 new vertices; 2 → 8 triangles.

@@ -427,7 +427,7 @@ impl Default for SkinSection {
             pale_amount: 0.4,
             spots_per_cm2: 0.2,
             spot_strength: 0.75,
-            mottle: 0.5,
+            mottle: 0.4,
             redness: 0.5,
             yellowing: 0.6,
             contrast_loss: 0.5,
@@ -758,7 +758,7 @@ pub struct ShapeSection {
     pub cheeks: f32,
     /// Jowls below the jaw line: a multiplier of its millimetres, 0–3.
     pub jowls: f32,
-    /// Upper lip lengthening, lips thinning: a multiplier of its millimetres, 0–3.
+    /// Upper lip lengthening: a multiplier of its millimetres, 0–3.
     pub lips: f32,
     /// Nose tip drooping: a multiplier of its millimetres, 0–3.
     pub nose: f32,

@@ -235,6 +235,8 @@ pub struct Scene {
     /// The shape field and what it was made from (mesh and layout generations, metres per
     /// unit, strengths).
     shape: Option<(ShapeKey, Arc<crate::shape::ShapeField>)>,
+    /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
+    shape_aged: Option<((usize, u32), Arc<AgedShape>)>,
     /// Bumped when the head's layout (its fit) changes.
     layout_generation: u64,
     /// The correspondence maps of the current layout, by size (the large map's and the
@@ -256,6 +258,15 @@ pub type FileVersions = std::collections::BTreeMap<PathBuf, u64>;
 
 /// Past input states a scene keeps for [`FileVersions`].
 const PAST_INPUTS: usize = 8;
+
+/// The head's shape at one age (docs/models.md §13): per vertex, its displacement (mesh
+/// units) and its displaced normal.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AgedShape {
+    pub delta: Vec<glam::Vec3>,
+    pub normals: Vec<glam::Vec3>,
+    pub years: f32,
+}
 
 /// What a shape field is made from: mesh and layout generations, metres per unit (bits),
 /// each region's strength (bits).
@@ -291,6 +302,7 @@ impl Scene {
             hair: None,
             colour: colour::ColourStage::default(),
             shape: None,
+            shape_aged: None,
             layout_generation: 1,
             correspondences: Vec::new(),
             versions: FileVersions::new(),
@@ -322,6 +334,7 @@ impl Scene {
             hair: self.hair.clone(),
             colour: self.colour.clone(),
             shape: self.shape.clone(),
+            shape_aged: self.shape_aged.clone(),
             layout_generation: self.layout_generation,
             correspondences: self.correspondences.clone(),
             versions: self.versions.clone(),
@@ -878,6 +891,38 @@ impl Scene {
             }
             None => vec![None; mesh.vertex_count()],
         }
+    }
+
+    /// Makes the shape at age `t` (docs/models.md §13): every vertex's displacement and the
+    /// displaced normals ([`Scene::aged_shape`]; `None` when the shape layer is off).
+    /// Redone only when the age or the field changed; returns whether it was.
+    pub fn bake_shape(&mut self, t: f32) -> bool {
+        let years = self.project.age.mapping().years(t);
+        let Some(field) = self.shape_field() else {
+            let changed = self.shape_aged.is_some();
+            self.shape_aged = None;
+            return changed;
+        };
+        let key = (Arc::as_ptr(&field) as usize, years.to_bits());
+        if self.shape_aged.as_ref().is_some_and(|(k, _)| *k == key) {
+            return false;
+        }
+        let delta = field.at(years);
+        let normals = field.normals(&self.inputs.mesh, &delta);
+        self.shape_aged = Some((
+            key,
+            Arc::new(AgedShape {
+                delta,
+                normals,
+                years,
+            }),
+        ));
+        true
+    }
+
+    /// The shape of the last [`Scene::bake_shape`].
+    pub fn aged_shape(&self) -> Option<&Arc<AgedShape>> {
+        self.shape_aged.as_ref().map(|(_, s)| s)
     }
 
     /// The shape regions' displacements on this head (docs/models.md §13), made once per

@@ -111,8 +111,9 @@ fn split_vertices_move_together_and_keep_their_normals_where_nothing_moves() {
             turned += 1;
         }
         if *d == Vec3::ZERO && n != n0 {
-            // Only beside a moved vertex (its triangles turned).
-            assert!(n.angle_between(*n0) < 0.5, "{n} vs {n0}");
+            // Only beside a moved vertex (its triangles turned): at most the fold under
+            // the chin's 30° (the neck's 5 mm descent over the chin's small triangles).
+            assert!(n.angle_between(*n0) < 0.6, "{n} vs {n0}");
         }
     }
     assert!(turned > 100, "{turned} normals turned");

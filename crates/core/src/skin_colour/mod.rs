@@ -110,7 +110,7 @@ impl Default for ColourSettings {
             pale_amount: 0.4,
             spots_per_cm2: 0.2,
             spot_strength: 0.75,
-            mottle: 0.5,
+            mottle: 0.4,
             redness: 0.5,
             yellowing: 0.6,
             contrast_loss: 0.5,

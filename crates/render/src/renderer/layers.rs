@@ -8,8 +8,9 @@ use wgpu::util::DeviceExt as _;
 
 use crate::RenderError;
 use crate::f16::to_f16_bytes;
-use crate::mesh::MeshData;
+use crate::mesh::{MeshData, ShapeVertex};
 
+use super::views::ViewShape;
 use super::{GpuMesh, Hair, Renderer, TileLayer, Upload, ViewId};
 
 /// A height texture (the view keeps its texture alive).
@@ -69,6 +70,11 @@ impl Renderer {
         ));
         self.displaced_mesh = None;
         self.mesh_to_subdivide = Some(data);
+        // A shape is per vertex of the mesh it was made for.
+        for v in &mut self.views {
+            v.shape = None;
+            v.shape_generation += 1;
+        }
         self.mesh_generation += 1;
         self.surface_scale = scale;
         self.metres_per_unit = metres_per_unit;
@@ -102,11 +108,73 @@ impl Renderer {
                 contents: bytemuck::cast_slice(&data.indices),
                 usage: wgpu::BufferUsages::INDEX,
             });
+        // No shape: every vertex where the mesh has it.
+        let no_shape = self.shape_buffer(
+            &format!("{label} (no shape)"),
+            &vec![ShapeVertex::default(); data.vertices.len()],
+        );
         GpuMesh {
             vertices,
             indices,
             index_count: data.indices.len() as u32,
+            no_shape,
+            parents: data.parents.clone(),
         }
+    }
+
+    pub(super) fn shape_buffer(&self, label: &str, shape: &[ShapeVertex]) -> wgpu::Buffer {
+        self.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::cast_slice(shape),
+                usage: wgpu::BufferUsages::VERTEX,
+            })
+    }
+
+    /// Uploads the shape of `view`'s age (docs/models.md §13: the regions' displacement of
+    /// each vertex of the uploaded mesh, mesh units, and the displaced normals), drawn by
+    /// moving the vertices in the surface pass; `None` draws the mesh as it is. The view's
+    /// stored surface is drawn again.
+    pub fn upload_shape_to(
+        &mut self,
+        view: ViewId,
+        shape: Option<(&[glam::Vec3], &[glam::Vec3])>,
+    ) -> Result<(), RenderError> {
+        let vi = self.view_index(view)?;
+        let shape = match shape {
+            None => None,
+            Some((delta, normals)) => {
+                let count = self
+                    .mesh
+                    .as_ref()
+                    .map_or(0, |m| m.vertex_count_of() as usize);
+                if delta.len() != count || normals.len() != count {
+                    return Err(RenderError::InvalidMesh(format!(
+                        "a shape of {} displacements and {} normals for a mesh of {count} vertices",
+                        delta.len(),
+                        normals.len()
+                    )));
+                }
+                let data: Vec<ShapeVertex> = delta
+                    .iter()
+                    .zip(normals)
+                    .map(|(d, n)| ShapeVertex {
+                        delta: d.to_array(),
+                        normal: n.to_array(),
+                    })
+                    .collect();
+                let base = self.shape_buffer("agesim shape", &data);
+                Some(ViewShape {
+                    data,
+                    base,
+                    subdivided: None,
+                })
+            }
+        };
+        let v = &mut self.views[vi];
+        v.shape = shape;
+        v.shape_generation += 1;
+        Ok(())
     }
 
     /// Uploads the large wrinkles over the mesh UV (docs/models.md §2, §5): the scene's

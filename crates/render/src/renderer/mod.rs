@@ -65,6 +65,16 @@ struct GpuMesh {
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
+    /// A zero shape of its vertices (the second vertex buffer when a view has no shape).
+    no_shape: wgpu::Buffer,
+    /// A subdivided mesh's new vertices' parents ([`crate::mesh::subdivide_shape`]).
+    parents: Vec<(u32, u32)>,
+}
+
+impl GpuMesh {
+    fn vertex_count_of(&self) -> u32 {
+        (self.no_shape.size() / std::mem::size_of::<crate::mesh::ShapeVertex>() as u64) as u32
+    }
 }
 
 /// What the stored surface depends on: the camera, the mesh and the targets (the
@@ -74,8 +84,8 @@ struct GpuMesh {
 struct SurfaceKey {
     clip_from_world: [[f32; 4]; 4],
     camera_pos: [f32; 4],
-    /// (mesh generation, the view's target generation).
-    generation: (u64, u64),
+    /// (mesh generation, the view's target generation, its shape generation).
+    generation: (u64, u64, u64),
     /// (displacement depth, large-map generation) in displacement mode.
     displacement: Option<(f32, u64)>,
 }
@@ -234,6 +244,18 @@ impl Renderer {
                 Some(self.create_mesh("agesim subdivided mesh", &subdivide(&data)));
             self.mesh_generation += 1;
         }
+        // The view's shape for the subdivided mesh, made once per shape.
+        if params.skin.pom_mode == PomMode::Displacement
+            && let Some(sub) = &self.displaced_mesh
+            && let Some(shape) = &self.views[vi].shape
+            && shape.subdivided.is_none()
+        {
+            let data = crate::mesh::subdivide_shape(&shape.data, &sub.parents);
+            let buffer = self.shape_buffer("agesim subdivided shape", &data);
+            if let Some(shape) = &mut self.views[vi].shape {
+                shape.subdivided = Some(buffer);
+            }
+        }
         let (micro, fine) = (params.skin.micro_tile, params.skin.fine_tile);
         for (what, value, ok) in [
             ("tile size (m)", micro.size_m, micro.size_m > 0.0),
@@ -281,7 +303,11 @@ impl Renderer {
         let key = SurfaceKey {
             clip_from_world: uniform.clip_from_world,
             camera_pos: uniform.camera_pos,
-            generation: (self.mesh_generation, self.views[vi].target_generation),
+            generation: (
+                self.mesh_generation,
+                self.views[vi].target_generation,
+                self.views[vi].shape_generation,
+            ),
             displacement: (params.skin.pom_mode == PomMode::Displacement)
                 .then_some((uniform.disp[1], self.views[vi].large_generation)),
         };
@@ -309,6 +335,17 @@ impl Renderer {
             self.mesh.as_ref()
         };
         let hair_bind_group = &v.hair_bind_group;
+        // The view's shape for `mesh` (the base or the subdivided one), else none.
+        let shape_of = |mesh: &'_ GpuMesh| -> wgpu::Buffer {
+            let own = v.shape.as_ref().and_then(|s| {
+                if mesh.parents.is_empty() {
+                    Some(&s.base)
+                } else {
+                    s.subdivided.as_ref()
+                }
+            });
+            own.unwrap_or(&mesh.no_shape).clone()
+        };
         if redraw_surface {
             // The surface pass: the mesh into the G-buffer. The first target's alpha (the
             // depth) is cleared to 2: the background.
@@ -345,6 +382,7 @@ impl Renderer {
                 pass.set_pipeline(&self.pipelines.surface_pipeline);
                 pass.set_bind_group(0, &skin_bind_group, &[]);
                 pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                pass.set_vertex_buffer(1, shape_of(mesh).slice(..));
                 pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(0..mesh.index_count, 0, 0..1);
             }
@@ -451,6 +489,8 @@ impl Renderer {
             pass.set_pipeline(&self.pipelines.wire_pipeline);
             pass.set_bind_group(0, &skin_bind_group, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            let shape = shape_of(mesh);
+            pass.set_vertex_buffer(1, shape.slice(..));
             pass.set_index_buffer(edges.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..*count, 0, 0..1);
         }

@@ -119,11 +119,19 @@ impl Pipelines {
             bind_group_layouts: &[Some(&skin_layout)],
             immediate_size: 0,
         });
-        let skin_vertex_buffers = [Some(wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<Vertex>() as u64,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &VERTEX_ATTRIBUTES,
-        })];
+        // The mesh, and the shape of the view's age beside it (docs/models.md §13).
+        let skin_vertex_buffers = [
+            Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<Vertex>() as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &VERTEX_ATTRIBUTES,
+            }),
+            Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<crate::mesh::ShapeVertex>() as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &crate::mesh::SHAPE_ATTRIBUTES,
+            }),
+        ];
         // The skin and the wireframe overlay share the vertex stage.
         let skin_vertex = wgpu::VertexState {
             module: &skin_module,

@@ -28,6 +28,10 @@ pub(super) struct View {
     pub(super) micro: Layer,
     /// This view's own base colour map (the aged colour of its age), else the shared one.
     pub(super) colour: Option<Layer>,
+    /// The shape of this view's age (`None`: the mesh as it is).
+    pub(super) shape: Option<ViewShape>,
+    /// Bumped on every shape upload (the surface is drawn again).
+    pub(super) shape_generation: u64,
     /// Bumped on every large-wrinkle upload (displacement moves the surface with it).
     pub(super) large_generation: u64,
     /// Rebuilt lazily when one of its textures is replaced.
@@ -37,6 +41,14 @@ pub(super) struct View {
     pub(super) targets: Option<Targets>,
     /// Bumped whenever the targets are recreated (see [`Renderer::target_generation`]).
     pub(super) target_generation: u64,
+}
+
+/// A view's shape on the GPU: per vertex of the mesh, and of the subdivided mesh once the
+/// displacement mode asks for it.
+pub(super) struct ViewShape {
+    pub(super) data: Vec<crate::mesh::ShapeVertex>,
+    pub(super) base: wgpu::Buffer,
+    pub(super) subdivided: Option<wgpu::Buffer>,
 }
 
 impl View {
@@ -69,6 +81,8 @@ impl View {
             large: flat("agesim large-wrinkle heights (placeholder)", 1.0),
             micro: flat("agesim micro-relief tile (placeholder)", 0.0),
             colour: None,
+            shape: None,
+            shape_generation: 0,
             large_generation: 0,
             skin_bind_group: None,
             surface_key: None,

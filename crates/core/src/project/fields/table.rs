@@ -775,7 +775,7 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             "",
             0.0,
             3.0,
-            "upper lip lengthening, lips thinning: its millimetres times this",
+            "upper lip lengthening: its millimetres times this",
         ),
         f(
             "shape.nose",

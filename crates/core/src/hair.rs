@@ -35,7 +35,7 @@ pub const DEFAULT_GRAYING_ONSET_MAX: f32 = 0.9;
 /// (the fringe that stays too) lost by t = 1, hair by hair, evenly over t ∈
 /// [[`THINNING_FROM`], 1] (docs/models.md §9 "Thinning": scalp hair density falls by about
 /// a third to a half into old age). [`HairParams`] start with none ([T]'s model).
-pub const DEFAULT_THINNING: f32 = 0.4;
+pub const DEFAULT_THINNING: f32 = 0.55;
 /// The age t from which hair thins.
 pub const THINNING_FROM: f32 = 0.3;
 /// How far (in t) the project spreads each receding hair's disappearance age about the

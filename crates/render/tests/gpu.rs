@@ -585,3 +585,64 @@ fn a_second_view_draws_its_own_layers_with_the_shared_mesh() {
     );
     assert_ne!(second.as_raw(), main_after.as_raw());
 }
+
+/// A view's shape (docs/models.md §13) moves the surface: the same picture as the mesh
+/// moved on the CPU and uploaded, in every mode (the displacement mode's subdivided mesh
+/// too); a shape of another vertex count is refused and the last one kept.
+#[test]
+fn a_shape_moves_the_surface_as_the_moved_mesh_does() {
+    let Some(gpu) = gpu_or_skip("a_shape_moves_the_surface_as_the_moved_mesh_does") else {
+        return;
+    };
+    let mesh = head::default_head();
+    let size = (96, 96);
+    let mut p = FrameParams::default();
+    p.hair.enabled = false;
+    p.camera.yaw_rad = 1.2;
+    // The lower face 8 mm down, fading above the mouth.
+    let delta: Vec<Vec3> = mesh
+        .positions()
+        .iter()
+        .map(|q| Vec3::new(0.0, -0.008 * ((-0.03 - q.y) / 0.05).clamp(0.0, 1.0), 0.0))
+        .collect();
+    let normals = mesh.normals().to_vec();
+    let moved = {
+        let mut raw = agesim_core::mesh::RawMesh::default();
+        raw.positions = mesh
+            .positions()
+            .iter()
+            .zip(&delta)
+            .map(|(p, d)| *p + *d)
+            .collect();
+        raw.normals = Some(normals.clone());
+        raw.uvs = Some(mesh.uvs().to_vec());
+        raw.tangents = Some(mesh.tangents().to_vec());
+        raw.indices = mesh.indices().to_vec();
+        raw.parts = mesh.parts().to_vec();
+        Mesh::build(raw, "moved").unwrap()
+    };
+    for mode in [PomMode::Combined, PomMode::Displacement] {
+        p.skin.pom_mode = mode;
+        let mut r = head_renderer(&gpu, &mesh);
+        let still = r.render_to_image(&p, size).unwrap();
+        r.upload_shape_to(ViewId::MAIN, Some((&delta, &normals)))
+            .unwrap();
+        let shaped = r.render_to_image(&p, size).unwrap();
+        assert!(shaped != still, "{mode:?}: the shape changed nothing");
+        let mut m = head_renderer(&gpu, &moved);
+        let reference = m.render_to_image(&p, size).unwrap();
+        let diff = mean_abs_diff(&shaped, &reference);
+        assert!(diff < 0.5, "{mode:?}: {diff} from the moved mesh");
+        // A shape for another mesh: refused, the view keeps its shape.
+        assert!(
+            r.upload_shape_to(ViewId::MAIN, Some((&delta[1..], &normals[1..])))
+                .is_err()
+        );
+        assert!(r.render_to_image(&p, size).unwrap() == shaped);
+        r.upload_shape_to(ViewId::MAIN, None).unwrap();
+        assert!(
+            r.render_to_image(&p, size).unwrap() == still,
+            "{mode:?}: back"
+        );
+    }
+}

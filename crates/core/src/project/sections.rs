@@ -402,7 +402,7 @@ impl Default for HairSection {
             transition_size_px: None,
             seed: 0,
             max_deviation_deg: crate::hair::DEFAULT_MAX_DEVIATION_RAD.to_degrees(),
-            length_mm: 30.0,
+            length_mm: 20.0,
             base_colour: Colour([0x5a, 0x3d, 0x28]),
             gray_colour: Colour([0xd9, 0xd6, 0xcf]),
             graying_onset_min_years: 30.0,
@@ -427,7 +427,7 @@ impl Default for SkinSection {
             pale_amount: 0.4,
             spots_per_cm2: 0.2,
             spot_strength: 0.75,
-            mottle: 0.4,
+            mottle: 0.3,
             redness: 0.5,
             yellowing: 0.6,
             contrast_loss: 0.5,
@@ -688,8 +688,8 @@ impl Default for FurrowSection {
             // Narrow, shallow lines (a blind rating read [P]'s 0.6 deep, 0.3 mm half-wide
             // network as cracked vinyl at a face's distance): skin furrows are 20–200 µm
             // deep and about a tenth of a millimetre wide.
-            depth: MeanSpread::new(0.45, 0.15),
-            width_mm: MeanSpread::new(0.16, 0.04),
+            depth: MeanSpread::new(0.3, 0.1),
+            width_mm: MeanSpread::new(0.12, 0.03),
             direction_deg: 30.0,
             direction_strength: 0.5,
             anisotropy: 0.8,

@@ -110,7 +110,7 @@ impl Default for ColourSettings {
             pale_amount: 0.4,
             spots_per_cm2: 0.2,
             spot_strength: 0.75,
-            mottle: 0.4,
+            mottle: 0.3,
             redness: 0.5,
             yellowing: 0.6,
             contrast_loss: 0.5,
@@ -398,7 +398,7 @@ pub fn place_spots(
                 normal: (b - a).cross(c - a).normalize_or(Vec3::Z),
                 diameter_mm: lo * (hi / lo).powf(size * size),
                 appears: rng.next_f32(),
-                strength: rng.range_f32(0.45, 1.0),
+                strength: rng.range_f32(0.3, 1.0),
                 phases: [0; 3].map(|_| rng.range_f32(0.0, std::f32::consts::TAU)),
             }
         })
@@ -725,7 +725,7 @@ impl SpotGrid {
             })
             .collect();
         // A spot's reach: its radius and its wobble, metres.
-        let reach = |s: &Spot, g: f32| 0.5e-3 * s.diameter_mm * g * 1.4;
+        let reach = |s: &Spot, g: f32| 0.5e-3 * s.diameter_mm * g * 1.5;
         let cell = SPOT_DIAMETER_MM.1 * 1e-3;
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
         for (s, g) in &shown {
@@ -796,7 +796,7 @@ impl SpotGrid {
             let d = d - s.normal * d.dot(s.normal);
             let r = 0.5e-3 * s.diameter_mm * g;
             let dist = d.length();
-            if dist > 1.4 * r {
+            if dist > 1.5 * r {
                 continue;
             }
             // The outline wobbles: an irregular macule, not a disc.
@@ -805,15 +805,15 @@ impl SpotGrid {
             let ph = s.phases;
             let edge = r
                 * (1.0
-                    + 0.16 * (2.0 * theta + ph[0]).sin()
-                    + 0.1 * (3.0 * theta + ph[1]).sin()
-                    + 0.06 * (5.0 * theta + ph[2]).sin());
-            let inside = 1.0 - smoothstep(0.7 * edge, edge, dist);
+                    + 0.22 * (2.0 * theta + ph[0]).sin()
+                    + 0.14 * (3.0 * theta + ph[1]).sin()
+                    + 0.08 * (5.0 * theta + ph[2]).sin());
+            let inside = 1.0 - smoothstep(0.55 * edge, edge, dist);
             if inside <= 0.0 {
                 continue;
             }
             // Uneven inside: darker in patches.
-            let grain = 0.82 + 0.18 * value3(p * 1000.0 / 1.2, key ^ k);
+            let grain = 0.75 + 0.25 * value3(p * 1000.0 / 1.2, key ^ k);
             dark = dark.max(
                 inside
                     * s.strength

@@ -607,18 +607,20 @@ fn a_shape_moves_the_surface_as_the_moved_mesh_does() {
         .collect();
     let normals = mesh.normals().to_vec();
     let moved = {
-        let mut raw = agesim_core::mesh::RawMesh::default();
-        raw.positions = mesh
-            .positions()
-            .iter()
-            .zip(&delta)
-            .map(|(p, d)| *p + *d)
-            .collect();
-        raw.normals = Some(normals.clone());
-        raw.uvs = Some(mesh.uvs().to_vec());
-        raw.tangents = Some(mesh.tangents().to_vec());
-        raw.indices = mesh.indices().to_vec();
-        raw.parts = mesh.parts().to_vec();
+        let raw = agesim_core::mesh::RawMesh {
+            positions: mesh
+                .positions()
+                .iter()
+                .zip(&delta)
+                .map(|(p, d)| *p + *d)
+                .collect(),
+            normals: Some(normals.clone()),
+            uvs: Some(mesh.uvs().to_vec()),
+            tangents: Some(mesh.tangents().to_vec()),
+            indices: mesh.indices().to_vec(),
+            parts: mesh.parts().to_vec(),
+            ..Default::default()
+        };
         Mesh::build(raw, "moved").unwrap()
     };
     for mode in [PomMode::Combined, PomMode::Displacement] {

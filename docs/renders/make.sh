@@ -22,4 +22,8 @@ $A render $P --age-years 75 --no-hair --map-size 4096 --distance 0.2 --yaw 45 --
 $A render $P --age-years 75 --no-hair --map-size 4096 --distance 0.2 --yaw 15 --pitch -12 --size 400x400 --out "$T/fold.png"
 convert "$T/eye.png" "$T/fold.png" +append docs/renders/close-up-75.png
 $A render --compare 0.1,0.95 --size 360x360 --out docs/renders/compare.png
+# The shape at 25 and 85 (t of 25 and 85 years with the old end at 90), front and profile.
+$A render $P --compare 0.0714,0.9286 --no-hair --yaw 0 --pitch 0 --distance 0.6 --size 360x360 --out "$T/shape-front.png"
+$A render $P --compare 0.0714,0.9286 --no-hair --yaw 90 --pitch 0 --distance 0.6 --size 360x360 --out "$T/shape-profile.png"
+convert "$T/shape-front.png" "$T/shape-profile.png" -append docs/renders/shape-25-85.png
 rm -rf "$T"

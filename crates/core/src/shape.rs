@@ -132,14 +132,14 @@ pub const REGIONS: [ShapeRegion; 11] = [
             Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]),
             Blob::new([0.72, -1.05, 0.35], [0.32, 0.32, 0.45]),
         ],
-        motions: &[(Descent, 5.0), (Bulge, 1.5)],
+        motions: &[(Descent, 5.0), (Bulge, 0.5)],
         curve: curve(35.0, 75.0),
     },
     ShapeRegion {
         name: "jowls",
         what: "jowls below the jaw line",
         blobs: &[Blob::new([0.95, -2.0, 0.0], [0.5, 0.45, 0.65])],
-        motions: &[(Descent, 7.0), (Bulge, 3.0)],
+        motions: &[(Descent, 7.0), (Bulge, 1.0)],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
@@ -169,7 +169,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "neck",
         what: "submental laxity under the chin",
         blobs: &[Blob::new([0.0, -2.75, 0.05], [0.85, 0.45, 0.7])],
-        motions: &[(Descent, 5.0), (Bulge, 2.0)],
+        motions: &[(Descent, 5.0), (Bulge, 0.5)],
         curve: curve(40.0, 80.0),
     },
 ];

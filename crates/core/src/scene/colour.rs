@@ -9,7 +9,9 @@ use crate::cancel::CancelToken;
 use crate::error::Error;
 use crate::mask::HeadImage;
 use crate::mesh::Mesh;
-use crate::skin_colour::{self, ColourFactors, ColourSettings, Regions, Spot, SurfaceTexels};
+use crate::skin_colour::{
+    self, BaseColour, ColourFactors, ColourSettings, Regions, Spot, SurfaceTexels,
+};
 
 /// What the surface and the spots are made from: the mesh, its fit and its units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,6 +24,9 @@ pub(super) struct HeadKey {
 /// The texels' head, size and seed.
 type TexelsKey = (HeadKey, u32, u64);
 
+/// What a base colour is made from: the texels, the head's colour map, the skin colour.
+type BaseKey = (TexelsKey, Option<Arc<HeadImage>>, [u32; 3]);
+
 /// The spots' head, density (bits) and seed.
 type SpotsKey = (HeadKey, u32, u64);
 
@@ -29,6 +34,9 @@ type SpotsKey = (HeadKey, u32, u64);
 pub(super) struct ColourStage {
     texels: Option<(TexelsKey, Arc<SurfaceTexels>)>,
     spots: Option<(SpotsKey, Arc<Vec<Spot>>)>,
+    /// The base colour of the texels (their key), the colour map (kept, so its address is
+    /// not reused while it is compared) and the skin colour (bits).
+    base: Option<(BaseKey, Arc<BaseColour>)>,
     image_key: Option<ImageKey>,
     pub image: Option<Arc<HeadImage>>,
 }
@@ -111,14 +119,34 @@ impl ColourStage {
                 s
             }
         };
-        let image = skin_colour::bake(
-            head.base.map(|b| &**b),
-            &texels,
-            &spots,
-            settings,
-            factors,
-            cancel,
-        )?;
+        let base_key: BaseKey = (
+            texels_key,
+            head.base.cloned(),
+            settings.albedo.map(f32::to_bits),
+        );
+        let same = |k: &BaseKey| {
+            k.0 == base_key.0
+                && k.2 == base_key.2
+                && match (&k.1, &base_key.1) {
+                    (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+                    (None, None) => true,
+                    _ => false,
+                }
+        };
+        let base = match &self.base {
+            Some((k, b)) if same(k) => b.clone(),
+            _ => {
+                cancel.check()?;
+                let b = Arc::new(BaseColour::new(
+                    head.base.map(|b| &**b),
+                    settings.albedo,
+                    &texels,
+                ));
+                self.base = Some((base_key, b.clone()));
+                b
+            }
+        };
+        let image = skin_colour::bake_from(&base, &texels, &spots, settings, factors, cancel)?;
         self.image = Some(Arc::new(image));
         self.image_key = Some(key);
         Ok(true)

@@ -553,9 +553,60 @@ impl SurfaceTexels {
     }
 }
 
+/// What the aged colour starts from at each texel, kept between ages: the base colour
+/// (the head's colour map resampled, or the skin colour), in linear light, its alpha, and
+/// the local skin tone around it.
+#[derive(Clone, Debug)]
+pub struct BaseColour {
+    size: u32,
+    colour: Vec<Vec3>,
+    alpha: Vec<u8>,
+    tone: Vec<Vec3>,
+}
+
+impl BaseColour {
+    /// `base` (the head's colour map, any size, sRGB) or `albedo` (linear) where there is
+    /// none, at the texels' size.
+    pub fn new(base: Option<&HeadImage>, albedo: [f32; 3], texels: &SurfaceTexels) -> Self {
+        let n = texels.size as usize;
+        let to_linear: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
+        let base_at = |x: usize, y: usize| -> Vec3 {
+            match base {
+                Some(img) => sample_linear(
+                    img,
+                    &to_linear,
+                    (x as f32 + 0.5) / n as f32,
+                    (y as f32 + 0.5) / n as f32,
+                ),
+                None => Vec3::from(albedo),
+            }
+        };
+        let mut colour = vec![Vec3::ZERO; n * n];
+        let mut alpha = vec![255u8; n * n];
+        colour
+            .par_chunks_mut(n)
+            .zip(alpha.par_chunks_mut(n))
+            .enumerate()
+            .for_each(|(y, (row, a))| {
+                for x in 0..n {
+                    row[x] = base_at(x, y);
+                    a[x] = base.map_or(255, |img| alpha_at(img, x, y, n));
+                }
+            });
+        let tone = local_tone(n, &texels.position, &base_at);
+        Self {
+            size: texels.size,
+            colour,
+            alpha,
+            tone,
+        }
+    }
+}
+
 /// The aged base colour at `size`² (the texels' size): `base` (the head's colour map, any
 /// size, sRGB) or `settings.albedo` where there is none, aged by `factors`, as sRGB RGBA8.
-/// Texels no skin triangle covers keep the base colour.
+/// Texels no skin triangle covers keep the base colour. ([`bake_from`] with the base made
+/// here.)
 pub fn bake(
     base: Option<&HeadImage>,
     texels: &SurfaceTexels,
@@ -564,20 +615,28 @@ pub fn bake(
     factors: &ColourFactors,
     cancel: &CancelToken,
 ) -> Result<HeadImage, Error> {
+    let base = BaseColour::new(base, settings.albedo, texels);
+    bake_from(&base, texels, spots, settings, factors, cancel)
+}
+
+/// The aged colour from a kept [`BaseColour`] of the same texels: what an age change
+/// re-does (the regions and noise of the texels, the base and its tone stay).
+pub fn bake_from(
+    base: &BaseColour,
+    texels: &SurfaceTexels,
+    spots: &[Spot],
+    settings: &ColourSettings,
+    factors: &ColourFactors,
+    cancel: &CancelToken,
+) -> Result<HeadImage, Error> {
     let n = texels.size as usize;
-    let to_linear: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
-    let base_at = |x: usize, y: usize| -> Vec3 {
-        match base {
-            Some(img) => sample_linear(
-                img,
-                &to_linear,
-                (x as f32 + 0.5) / n as f32,
-                (y as f32 + 0.5) / n as f32,
-            ),
-            None => Vec3::from(settings.albedo),
-        }
-    };
-    let tone = local_tone(n, &texels.position, &base_at);
+    if base.size != texels.size {
+        return Err(Error::InvalidValue {
+            what: "aged colour base".into(),
+            value: format!("{}² for texels of {}²", base.size, texels.size),
+            expected: "the texels' size".into(),
+        });
+    }
     let grid = SpotGrid::new(spots, factors.spots);
     let spot_key = noise_keys(settings.seed)[5];
     let pale_tint = {
@@ -596,6 +655,15 @@ pub fn bake(
     let encode = |c: f32| to_srgb[(c.clamp(0.0, 1.0) * 4095.0).round() as usize];
     let mut rgba = vec![0u8; n * n * 4];
     let young = factors.is_young();
+    let look = Look {
+        settings,
+        factors,
+        grid: &grid,
+        spot_key,
+        pale_tint,
+        yellow,
+        gray,
+    };
     rgba.par_chunks_mut(n * 4)
         .enumerate()
         .try_for_each(|(y, row)| -> Result<(), Error> {
@@ -604,24 +672,15 @@ pub fn bake(
             }
             for (x, px) in row.chunks_exact_mut(4).enumerate() {
                 let i = y * n + x;
-                let mut c = base_at(x, y);
+                let mut c = base.colour[i];
                 let p = texels.position[i];
                 if !young && !p.x.is_nan() {
-                    let look = Look {
-                        settings,
-                        factors,
-                        grid: &grid,
-                        spot_key,
-                        pale_tint,
-                        yellow,
-                        gray,
-                    };
-                    c = look.age(c, p, &texels.fields[i], tone[i]);
+                    c = look.age(c, p, &texels.fields[i], base.tone[i]);
                 }
                 px[0] = encode(c.x);
                 px[1] = encode(c.y);
                 px[2] = encode(c.z);
-                px[3] = base.map_or(255, |img| alpha_at(img, x, y, n));
+                px[3] = base.alpha[i];
             }
             Ok(())
         })?;

@@ -74,3 +74,48 @@ fn previews_and_full_bakes_each_show_their_own_maps() {
     assert_eq!(sizes(&old_full), [full, full, full, full / 2]);
     assert_eq!(old_full.factors.as_ref().unwrap().t, 0.9);
 }
+
+/// Each bake brings the aged colour and the shape of its age to the 3D view, and the
+/// shape's field as pictures: the map view's (movement in the head's UVs) and the head's
+/// colour tinted by it (docs/models.md §13: "the weight field visible on the head").
+#[test]
+fn a_bake_brings_the_colour_the_shape_and_its_field() {
+    let mut worker = Worker::spawn(|| {});
+    let mut project = Project::default();
+    let young = bake(&mut worker, &project, 256, 0.05);
+    let old = bake(&mut worker, &project, 256, 1.0);
+    for s in [&young, &old] {
+        let colour = s.layers.aged.as_ref().expect("the aged colour");
+        assert_eq!(colour.width_px, 256);
+        assert!(s.images.shape.is_some() && s.shape_overlay.is_some());
+    }
+    // Young: no shape moves; old: some vertices by millimetres.
+    let moved = |s: &Snapshot| {
+        let shape = s.layers.shape.as_ref().expect("a shape");
+        shape
+            .delta
+            .iter()
+            .map(|d| d.length())
+            .fold(0.0f32, f32::max)
+            * 1000.0
+    };
+    assert_eq!(moved(&young), 0.0);
+    assert!(moved(&old) > 3.0, "{} mm", moved(&old));
+    // The tint: red where the cheeks and jowls move, the colour as it is elsewhere.
+    let overlay = old.shape_overlay.as_ref().unwrap();
+    let colour = old.layers.aged.as_ref().unwrap();
+    let differ = overlay
+        .rgba
+        .chunks_exact(4)
+        .zip(colour.rgba.chunks_exact(4))
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        differ > 500 && differ < 256 * 256 / 3,
+        "{differ} texels tinted"
+    );
+    // The layer off: no shape, no field.
+    project.shape.enabled = false;
+    let off = bake(&mut worker, &project, 256, 1.0);
+    assert!(off.layers.shape.is_none() && off.images.shape.is_none());
+}

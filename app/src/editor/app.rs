@@ -543,6 +543,7 @@ impl EditorApp {
             MapKind::Fine => images.fine.clone(),
             MapKind::Mask => images.mask.clone(),
             MapKind::LargeHead => images.large_head.clone().or(images.large_height.clone()),
+            MapKind::Shape => images.shape.clone(),
         }?;
         let stamp = Arc::as_ptr(&image) as usize;
         if let Some((_, t, s)) = self.textures.iter_mut().find(|(k, _, _)| *k == kind) {
@@ -774,6 +775,10 @@ impl eframe::App for EditorApp {
         if wants_normals != self.baked_normal_picture {
             self.baked_normal_picture = wants_normals;
             self.submit(false, "map view");
+        }
+        // The shape's movement on the head while the map view shows it.
+        if let Some(v) = &mut self.viewport {
+            v.show_shape = self.persisted.map_view.kind == MapKind::Shape;
         }
         // Head ↔ map: a click on the head marks its UV on the map; the pointer over the
         // map marks the surface point on the head.

@@ -20,6 +20,9 @@ pub enum MapKind {
     /// The large-wrinkle heights in the head's own UV layout (what the 3D view and the
     /// exports use): for checking an imported head's output.
     LargeHead,
+    /// How far the shape moves the head at full age (docs/models.md §13), in its own UVs;
+    /// the 3D view shows it on the head while this is shown.
+    Shape,
 }
 
 impl MapKind {
@@ -29,7 +32,7 @@ impl MapKind {
         (self == Self::LargeNormal, self == Self::MicroNormal)
     }
 
-    pub const ALL: [MapKind; 8] = [
+    pub const ALL: [MapKind; 9] = [
         MapKind::LargeHeight,
         MapKind::LargeNormal,
         MapKind::LargeHead,
@@ -38,6 +41,7 @@ impl MapKind {
         MapKind::Transition,
         MapKind::Fine,
         MapKind::Mask,
+        MapKind::Shape,
     ];
 
     pub fn name(self) -> &'static str {
@@ -50,6 +54,7 @@ impl MapKind {
             MapKind::Fine => "fine-wrinkle tile",
             MapKind::Mask => "large-wrinkle mask",
             MapKind::LargeHead => "large wrinkles: the head's own UVs",
+            MapKind::Shape => "shape: movement at full age",
         }
     }
 
@@ -68,7 +73,7 @@ impl MapKind {
     pub fn on_fibre_chart(self, fitted: bool) -> bool {
         match self {
             MapKind::LargeHeight | MapKind::LargeNormal | MapKind::Mask => true,
-            MapKind::Transition | MapKind::LargeHead => !fitted,
+            MapKind::Transition | MapKind::LargeHead | MapKind::Shape => !fitted,
             MapKind::MicroHeight | MapKind::MicroNormal | MapKind::Fine => false,
         }
     }

@@ -58,6 +58,9 @@ impl Pane {
 }
 
 pub struct Viewport {
+    /// Show the head's colour tinted by the shape's movement (the map view shows the
+    /// shape: docs/models.md §13).
+    pub show_shape: bool,
     /// Resolution scale of the next frames (1 = full; lower while the age plays or the
     /// view is dragged, so the view keeps up on slow adapters; the image is upscaled).
     pub scale: f32,
@@ -120,6 +123,7 @@ const LANDMARK_SEEN_WITHIN: f32 = 0.03;
 impl Viewport {
     pub fn new(rs: &egui_wgpu::RenderState) -> Result<Self, agesim_render::RenderError> {
         Ok(Self {
+            show_shape: false,
             scale: 1.0,
             renderer: Renderer::new(&rs.device, &rs.queue, VIEW_FORMAT)?,
             blit: Arc::new(agesim_render::Blit::new(&rs.device, rs.target_format)),
@@ -143,8 +147,20 @@ impl Viewport {
         })
     }
 
-    /// Uploads what the snapshot brought that pane `i`'s view does not have yet.
+    /// Uploads what the snapshot brought that pane `i`'s view does not have yet (the
+    /// head's colour tinted by the shape's movement while [`Self::show_shape`]).
     fn upload(&mut self, i: usize, snapshot: &Snapshot) {
+        let tinted;
+        let layers = match &snapshot.shape_overlay {
+            Some(overlay) if self.show_shape => {
+                tinted = crate::view::Layers {
+                    aged: Some(overlay.clone()),
+                    ..snapshot.layers.clone()
+                };
+                &tinted
+            }
+            _ => &snapshot.layers,
+        };
         let pane = &mut self.panes[i];
         let result = if i == MAIN {
             if let Some(mesh) = &snapshot.layers.mesh
@@ -155,10 +171,10 @@ impl Viewport {
                 self.frame_pending = true;
             }
             self.metres_per_unit = snapshot.layers.metres_per_unit;
-            pane.uploaded.upload(&mut self.renderer, &snapshot.layers)
+            pane.uploaded.upload(&mut self.renderer, layers)
         } else {
             pane.uploaded
-                .upload_age_layers(&mut self.renderer, pane.view, &snapshot.layers)
+                .upload_age_layers(&mut self.renderer, pane.view, layers)
         };
         if let Err(e) = result {
             self.error = Some(e.to_string());

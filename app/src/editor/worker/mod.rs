@@ -66,6 +66,11 @@ pub struct Snapshot {
     pub compare: Option<Box<Snapshot>>,
     /// Which mask `images.mask` shows.
     mask_stamp: usize,
+    /// The aged colour tinted by the shape's movement (`images.shape` on the head): the
+    /// 3D view's colour while the map view shows the shape.
+    pub shape_overlay: Option<Arc<agesim_core::mask::HeadImage>>,
+    /// What `shape_overlay` and `images.shape` were made from (field, aged colour).
+    shape_stamps: (usize, usize),
     /// Whether the head reads the layers through the template's fit.
     pub fitted: bool,
     /// How the head's layout was decided (`Scene::layout`).
@@ -428,6 +433,26 @@ fn bake(
         .to_standard()
         .map_or(glam::Mat3::IDENTITY, |r| r.transpose());
     snapshot.layers.refresh(s, &merged, refresh_all);
+    // The shape field shown (docs/models.md §13): its movement over the head's UVs, for
+    // the map view and over the aged colour for the 3D view.
+    let field = s.shape_field();
+    let colour = s.aged_colour().cloned();
+    let stamps = (
+        field.as_ref().map_or(0, |f| Arc::as_ptr(f) as usize),
+        colour.as_ref().map_or(0, |c| Arc::as_ptr(c) as usize),
+    );
+    if stamps != snapshot.shape_stamps {
+        snapshot.shape_stamps = stamps;
+        (snapshot.images.shape, snapshot.shape_overlay) = match (field, colour) {
+            (Some(f), Some(c)) => {
+                let mm = agesim_core::shape::movement_mm(&f.full(), s.metres_per_unit());
+                let picture = agesim_core::shape::uv_picture(s.mesh(), &mm, c.width_px);
+                let (image, tinted) = pictures::shape_pictures(&picture, c.width_px, &c);
+                (Some(image), Some(tinted))
+            }
+            _ => (None, None),
+        };
+    }
     let images = &mut snapshot.images;
     if merged.large || snapshot.large.is_none() {
         snapshot.large = s.large().cloned().map(Arc::new);

@@ -21,6 +21,63 @@ pub struct MapImages {
     pub large_head: Option<Arc<egui::ColorImage>>,
     /// The large-wrinkle mask.
     pub mask: Option<Arc<egui::ColorImage>>,
+    /// How far the shape moves each point of the head at full age, in its own UVs
+    /// (docs/models.md §13): black still, red to yellow up to [`SHAPE_FULL_MM`].
+    pub shape: Option<Arc<egui::ColorImage>>,
+}
+
+/// The movement that shows as full yellow in the shape pictures, mm.
+pub const SHAPE_FULL_MM: f32 = 8.0;
+
+/// The least movement shown, as a fraction of [`SHAPE_FULL_MM`] (0.2 mm): below it a
+/// region's far edge reaches only a few vertices, whose triangles would show as patches.
+const SHAPE_LEAST: f32 = 0.025;
+
+/// The heat colour of a movement `w` in [0, 1] (sRGB): dark red to yellow.
+fn heat(w: f32) -> [u8; 3] {
+    let w = w.clamp(0.0, 1.0);
+    [
+        (90.0 + 165.0 * w.min(0.5) * 2.0) as u8,
+        (255.0 * (w - 0.5).max(0.0) * 2.0) as u8,
+        0,
+    ]
+}
+
+/// The shape's movement (`mm`, a `size`² picture in the head's UVs) as a map-view picture,
+/// and over `colour` (the aged colour, same size) as the head's colour while the map view
+/// shows it: where and how much the shape moves, on the head.
+pub(super) fn shape_pictures(
+    mm: &[f32],
+    size: u32,
+    colour: &agesim_core::mask::HeadImage,
+) -> (Arc<egui::ColorImage>, Arc<agesim_core::mask::HeadImage>) {
+    let n = size as usize;
+    let step = n.div_ceil(IMAGE_MAX_PX as usize).max(1);
+    let m = n / step;
+    let mut pixels = Vec::with_capacity(m * m);
+    for y in 0..m {
+        for x in 0..m {
+            let v = mm[y * step * n + x * step] / SHAPE_FULL_MM;
+            let [r, g, b] = if v > SHAPE_LEAST { heat(v) } else { [0, 0, 0] };
+            pixels.push(egui::Color32::from_rgb(r, g, b));
+        }
+    }
+    let picture = Arc::new(egui::ColorImage::new([m, m], pixels));
+    let mut tinted = colour.clone();
+    if tinted.width_px as usize == n && tinted.height_px as usize == n {
+        for (px, &v) in tinted.rgba.chunks_exact_mut(4).zip(mm) {
+            let w = (v / SHAPE_FULL_MM).clamp(0.0, 1.0);
+            if w > SHAPE_LEAST {
+                let h = heat(w);
+                // Fading in from the least shown: no edge where the field starts.
+                let a = 0.8 * ((w - SHAPE_LEAST) / (1.0 - SHAPE_LEAST)).sqrt();
+                for c in 0..3 {
+                    px[c] = (f32::from(px[c]) * (1.0 - a) + f32::from(h[c]) * a) as u8;
+                }
+            }
+        }
+    }
+    (picture, Arc::new(tinted))
 }
 
 /// The triangle edges of `mesh` in UV space, drawn into a `size`² picture (v up, row 0

@@ -35,6 +35,23 @@ fn luminance(img: &HeadImage) -> Vec<f32> {
         .collect()
 }
 
+/// The default head's texels at `size`² (its own points are the template's; seed 1).
+fn default_head_texels(scene: &Scene, size: u32) -> SurfaceTexels {
+    let mesh = scene.mesh().clone();
+    let regions = Regions::template().unwrap();
+    let template = |v: usize| mesh.positions().get(v).copied();
+    SurfaceTexels::new(
+        &mesh,
+        &template,
+        1.0,
+        size,
+        regions,
+        1,
+        &CancelToken::never(),
+    )
+    .unwrap()
+}
+
 #[test]
 fn the_regions_lie_where_the_face_has_them() {
     let r = Regions::template().expect("the template's landmarks");
@@ -215,18 +232,7 @@ fn young_skin_is_its_own_colour_and_old_skin_is_uneven() {
         "{c} vs {expected}"
     );
     // Unevenness: the spread of old/young luminance over the sun-exposed face.
-    let regions = Regions::template().unwrap();
-    let mesh = scene.mesh().clone();
-    let texels = SurfaceTexels::new(
-        &mesh,
-        &|v| mesh.positions().get(v).copied(),
-        1.0,
-        n as u32,
-        regions,
-        1,
-        &cancel,
-    )
-    .unwrap();
+    let texels = default_head_texels(&scene, n as u32);
     let (ly, lo) = (luminance(&young), luminance(&old));
     let ratios: Vec<f32> = (0..n * n)
         .filter(|&i| from_unit(texels.fields[i].sun) > 0.9 && ly[i] > 0.05)
@@ -257,18 +263,7 @@ fn brows_gray_and_lips_fade_toward_the_skin() {
     let young = scene.aged_colour().unwrap().clone();
     scene.bake_colour(n as u32, 1.0, &cancel).unwrap();
     let old = scene.aged_colour().unwrap().clone();
-    let regions = Regions::template().unwrap();
-    let mesh = scene.mesh().clone();
-    let texels = SurfaceTexels::new(
-        &mesh,
-        &|v| mesh.positions().get(v).copied(),
-        1.0,
-        n as u32,
-        regions,
-        1,
-        &cancel,
-    )
-    .unwrap();
+    let texels = default_head_texels(&scene, n as u32);
     let (ly, lo) = (luminance(&young), luminance(&old));
     let in_region = |f: fn(&Fields) -> u8| -> Vec<usize> {
         (0..n * n)

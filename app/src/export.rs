@@ -374,12 +374,9 @@ fn export_glb(
         .filter(|l| l.height.width_px() == atlas_px)
         .map(|l| agesim_core::compose::occlusion_map(&l.height, params.skin.disp_scale));
     // The aged base colour (docs/models.md "Skin colour"): the head's own colour map, or
-    // the skin colour, with its spots, uneven tone and paling at this age, at the
-    // texture size (the colour map's own when that is larger, up to 4096²).
-    let colour_px = scene
-        .colour_map()
-        .map_or(atlas_px, |c| c.width_px.max(atlas_px))
-        .min(4096);
+    // the skin colour, with its spots, uneven tone and paling at this age, at the colour
+    // map's own size (`view::colour_px`; 1024² even for smaller GLB textures).
+    let colour_px = view::colour_px(&scene, atlas_px.max(1024));
     scene.bake_colour(colour_px, t, cancel)?;
     let aged = scene.aged_colour().cloned();
     let base_colour = [1.0; 4];

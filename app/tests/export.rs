@@ -134,16 +134,16 @@ fn a_colour_map_is_exported_aged_as_the_base_colour_texture() {
         assert_eq!(pbr.base_color_factor(), [1.0; 4]);
         let texture = pbr.base_color_texture().expect("a base colour texture");
         let image = images[texture.texture().source().index()].clone();
-        // Baked over the head's UVs at the texture size (the map's own when larger).
-        assert_eq!((image.width, image.height), (64, 64));
-        let channels = image.pixels.len() / (64 * 64);
+        // Baked over the head's UVs at the colour map's size, at least 1024².
+        assert_eq!((image.width, image.height), (1024, 1024));
+        let channels = image.pixels.len() / (1024 * 1024);
         let mean = |c: usize| {
             image
                 .pixels
                 .chunks_exact(channels)
                 .map(|p| f64::from(p[c]))
                 .sum::<f64>()
-                / (64.0 * 64.0)
+                / (1024.0 * 1024.0)
         };
         images_at.push([mean(0), mean(1), mean(2)]);
     }

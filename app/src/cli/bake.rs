@@ -304,9 +304,11 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         &CancelToken::never(),
     )?;
     let bake_ms = ms(t);
-    // The aged base colour (docs/models.md "Skin colour"), at the maps' size.
+    // The aged base colour (docs/models.md "Skin colour"), at the head's colour map's size
+    // (`view::colour_px`), not the maps'.
     let t = Instant::now();
-    scene.bake_colour(atlas_px, age_t, &CancelToken::never())?;
+    let colour_px = crate::view::colour_px(&scene, atlas_px);
+    scene.bake_colour(colour_px, age_t, &CancelToken::never())?;
     let colour_ms = ms(t);
     let t = Instant::now();
     let height = scene.take_height()?;

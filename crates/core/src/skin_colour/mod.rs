@@ -455,8 +455,12 @@ fn noise_keys(seed: u64) -> [u32; 6] {
 impl Fields {
     fn at(p: Vec3, t: Vec3, regions: &Regions, keys: &[u32; 6]) -> Self {
         let on_template = !t.x.is_nan();
-        let w = |g: fn(&Regions, Vec3) -> f32| if on_template { g(regions, t) } else { 0.0 };
-        let (sun, brows, red) = (w(Regions::sun), w(Regions::brows), w(Regions::redness));
+        // Behind the face (the scalp, the back of the head) only the sun exposure can be
+        // non-zero: the face's regions are skipped there.
+        let face = on_template && front(regions.relative(t).z, regions.ear_z) > 0.0;
+        let w = |g: fn(&Regions, Vec3) -> f32| if face { g(regions, t) } else { 0.0 };
+        let sun = if on_template { regions.sun(t) } else { 0.0 };
+        let (brows, red) = (w(Regions::brows), w(Regions::redness));
         let mm = p * 1000.0;
         Self {
             sun: unit_byte(sun),

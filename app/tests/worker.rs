@@ -25,6 +25,7 @@ fn bake(worker: &mut Worker, project: &Project, size_px: u32, t: f32) -> Snapsho
         compare_t: None,
         detect_units: false,
         files: Default::default(),
+        shape_pictures: true,
     });
     let start = Instant::now();
     loop {

@@ -171,6 +171,8 @@ pub struct EditorApp {
     /// Whether the bakes make the normal-map pictures, (large, micro) (the map view shows
     /// one).
     baked_normal_picture: (bool, bool),
+    /// Whether the last job made the shape's pictures (the map view shows the shape).
+    baked_shape_pictures: bool,
     textures: Vec<(MapKind, egui::TextureHandle, usize)>,
     layout_texture: Option<(egui::TextureHandle, usize)>,
     /// The guided landmark mode, when open.
@@ -267,6 +269,7 @@ impl EditorApp {
             preset_name: String::new(),
             title: String::new(),
             baked_normal_picture: (false, false),
+            baked_shape_pictures: false,
             textures: Vec::new(),
             layout_texture: None,
             landmark_mode: None,
@@ -302,6 +305,7 @@ impl EditorApp {
         }
         app.refresh_user_presets();
         app.baked_normal_picture = app.persisted.map_view.kind.normal_picture();
+        app.baked_shape_pictures = app.persisted.map_view.kind == MapKind::Shape;
         app.submit(false, "open");
         app.start_recovery();
         app
@@ -379,7 +383,9 @@ impl EditorApp {
             one_off: false,
             micro_normals: self.persisted.map_view.kind == MapKind::MicroNormal,
         };
+        let shape_pictures = self.persisted.map_view.kind == MapKind::Shape;
         self.session.worker.submit(Job {
+            shape_pictures,
             id: 0,
             project: self.doc.project.clone(),
             wrinkles: self.doc.wrinkles.clone(),
@@ -772,8 +778,11 @@ impl eframe::App for EditorApp {
         }
         // The normal-map pictures are baked only while one is shown.
         let wants_normals = self.persisted.map_view.kind.normal_picture();
-        if wants_normals != self.baked_normal_picture {
+        // So are the shape's pictures.
+        let wants_shape = self.persisted.map_view.kind == MapKind::Shape;
+        if wants_normals != self.baked_normal_picture || wants_shape != self.baked_shape_pictures {
             self.baked_normal_picture = wants_normals;
+            self.baked_shape_pictures = wants_shape;
             self.submit(false, "map view");
         }
         // The shape's movement on the head while the map view shows it.

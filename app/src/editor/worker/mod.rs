@@ -40,7 +40,14 @@ pub struct Job {
     /// colour and normal maps) to use: a new version is read again, an earlier one comes
     /// back as it was (an undone reload).
     pub files: agesim_core::scene::FileVersions,
+    /// Also make the shape's pictures (`images.shape`, `shape_overlay`): while the map
+    /// view shows the shape.
+    pub shape_pictures: bool,
 }
+
+/// The shape's movement picture, the field it shows (kept, so its address is not reused
+/// while compared) and its size.
+type ShapeMovement = (Arc<agesim_core::shape::ShapeField>, u32, Arc<Vec<f32>>);
 
 /// What the UI shows of a finished bake. Each map is shared, not copied, between bakes
 /// that did not change it.
@@ -71,6 +78,9 @@ pub struct Snapshot {
     pub shape_overlay: Option<Arc<agesim_core::mask::HeadImage>>,
     /// What `shape_overlay` and `images.shape` were made from (field, aged colour).
     shape_stamps: (usize, usize),
+    /// The shape's movement over the head's UVs (mm), kept while its field and size hold:
+    /// an age change only tints the new colour with it.
+    shape_movement: Option<ShapeMovement>,
     /// Whether the head reads the layers through the template's fit.
     pub fitted: bool,
     /// How the head's layout was decided (`Scene::layout`).
@@ -441,12 +451,24 @@ fn bake(
         field.as_ref().map_or(0, |f| Arc::as_ptr(f) as usize),
         colour.as_ref().map_or(0, |c| Arc::as_ptr(c) as usize),
     );
-    if stamps != snapshot.shape_stamps {
+    if !job.shape_pictures {
+        snapshot.shape_stamps = (0, 0);
+        (snapshot.images.shape, snapshot.shape_overlay) = (None, None);
+    } else if stamps != snapshot.shape_stamps {
         snapshot.shape_stamps = stamps;
         (snapshot.images.shape, snapshot.shape_overlay) = match (field, colour) {
             (Some(f), Some(c)) => {
-                let mm = agesim_core::shape::movement_mm(&f.full(), s.metres_per_unit());
-                let picture = agesim_core::shape::uv_picture(s.mesh(), &mm, c.width_px);
+                let picture = match &snapshot.shape_movement {
+                    Some((field, size, p)) if Arc::ptr_eq(field, &f) && *size == c.width_px => {
+                        p.clone()
+                    }
+                    _ => {
+                        let mm = agesim_core::shape::movement_mm(&f.full(), s.metres_per_unit());
+                        let p = Arc::new(agesim_core::shape::uv_picture(s.mesh(), &mm, c.width_px));
+                        snapshot.shape_movement = Some((f.clone(), c.width_px, p.clone()));
+                        p
+                    }
+                };
                 let (image, tinted) = pictures::shape_pictures(&picture, c.width_px, &c);
                 (Some(image), Some(tinted))
             }

@@ -75,30 +75,24 @@ const BROW_GRAY_TINT: [f32; 3] = [1.0, 0.96, 0.88];
 /// Side of the coarse grid of the local skin tone (the reference brows and lips fade to).
 const TONE_GRID: usize = 32;
 
-/// The artist's settings of the aged colour (the project's `skin` section).
+/// The artist's settings of the aged colour: the project's `skin` fields of the same
+/// names (their meaning, units and ranges: `project::fields`), colours in linear RGB, and
+/// the hair's gray colour (`hair.gray_colour`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ColourSettings {
-    /// The skin colour of a head without a colour map, linear RGB.
+    /// `skin.albedo`: also the colour of a head without a colour map.
     pub albedo: [f32; 3],
-    /// The tone skin pales toward, linear RGB; paling multiplies the colour by
-    /// `pale_albedo / albedo` (so dark brows stay dark).
+    /// `skin.pale_albedo`: paling multiplies the colour by `pale_albedo / albedo`.
     pub pale_albedo: [f32; 3],
-    /// How far toward that tint at full paling, 0–1.
     pub pale_amount: f32,
-    /// Age spots per cm² of fully sun-exposed skin at full age.
     pub spots_per_cm2: f32,
-    /// Darkness of a spot, 0–1.
     pub spot_strength: f32,
-    /// Melanin mottling at full age, 0–1.
     pub mottle: f32,
-    /// Redness and thread veins on the cheeks and the nose at full age, 0–1.
     pub redness: f32,
-    /// Yellowing at full paling, 0–1.
     pub yellowing: f32,
-    /// How far lips and brows fade toward the skin at full age, 0–1.
     pub contrast_loss: f32,
-    /// Gray hair colour (the hair's), linear RGB.
     pub gray_hair: [f32; 3],
+    /// `skin.colour_seed`.
     pub seed: u64,
 }
 

@@ -35,21 +35,16 @@ fn luminance(img: &HeadImage) -> Vec<f32> {
         .collect()
 }
 
-/// The default head's texels at `size`² (its own points are the template's; seed 1).
+/// The texels of `mesh` (metres) at `size`², seed 1, with `template` as its template points.
+fn texels_of(mesh: &Mesh, template: &dyn Fn(usize) -> Option<Vec3>, size: u32) -> SurfaceTexels {
+    let regions = Regions::template().unwrap();
+    SurfaceTexels::new(mesh, template, 1.0, size, regions, 1, &CancelToken::never()).unwrap()
+}
+
+/// The default head's texels at `size`² (its own points are the template's).
 fn default_head_texels(scene: &Scene, size: u32) -> SurfaceTexels {
     let mesh = scene.mesh().clone();
-    let regions = Regions::template().unwrap();
-    let template = |v: usize| mesh.positions().get(v).copied();
-    SurfaceTexels::new(
-        &mesh,
-        &template,
-        1.0,
-        size,
-        regions,
-        1,
-        &CancelToken::never(),
-    )
-    .unwrap()
+    texels_of(&mesh, &|v| mesh.positions().get(v).copied(), size)
 }
 
 #[test]
@@ -122,18 +117,8 @@ fn a_baked_spot_measures_its_diameter_in_millimetres() {
     let mesh = crate::head::skin_patch();
     let point = forehead();
     let template = |_: usize| Some(point);
-    let regions = Regions::template().unwrap();
     let size = 500; // 0.1 mm a texel
-    let texels = SurfaceTexels::new(
-        &mesh,
-        &template,
-        1.0,
-        size,
-        regions,
-        1,
-        &CancelToken::never(),
-    )
-    .unwrap();
+    let texels = texels_of(&mesh, &template, size);
     // Three lone spots of known sizes, fully grown.
     let spot = |x_mm: f32, y_mm: f32, d: f32| Spot {
         centre: Vec3::new(x_mm, y_mm, 0.0) * 1e-3,

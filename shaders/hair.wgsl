@@ -19,7 +19,9 @@ struct Instance {
     @location(2) direction_oct: vec2<f32>,
     @location(3) graying_onset: f32,
     @location(4) uv: vec2<f32>,
-    @location(5) random: f32,
+    // A uniform random number per hair, and its length factor (the taper toward the
+    // edge of its region).
+    @location(5) random_length: vec2<f32>,
 }
 
 struct VertexOut {
@@ -48,10 +50,12 @@ fn gray_fraction(t: f32, onset: f32) -> f32 {
     return y;
 }
 
-// The hair as a quadratic Bézier: out of the scalp along its direction for a third of
-// its length, then combed down along the scalp (gravity projected onto the plane across
-// the hair's root direction), so hair lies on the head instead of standing like bristles.
-// `droop` ∈ [0, 1] is how far it bends (0: straight along its direction).
+// The hair as a quadratic Bézier: out of the scalp along its direction for up to half of
+// its length, then combed along the scalp, back and down (the comb direction projected
+// onto the plane across the hair's root direction: swept back from the hairline, down at
+// the back, back and down over the ears), so hair lies on the head instead of standing
+// like bristles or falling over the brow. The head is in the standard frame (+y up, +z
+// forward). `droop` ∈ [0, 1] is how far it bends (0: straight along its direction).
 struct HairCurve {
     p0: vec3<f32>,
     p1: vec3<f32>,
@@ -60,12 +64,12 @@ struct HairCurve {
 
 fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32) -> HairCurve {
     let droop = clamp(frame.hair_misc.y, 0.0, 1.0);
-    let g = vec3<f32>(0.0, -1.0, 0.0);
+    let g = normalize(vec3<f32>(0.0, -0.5, -1.0));
     let along = g - dir * dot(g, dir);
-    // At the crown gravity is parallel to the hair: no combing direction, stay straight.
+    // Where the comb is parallel to the hair there is no combing direction: stay straight.
     let comb = select(dir, normalize(along), length(along) > 1e-3);
-    let p1 = root + dir * (len * mix(0.5, 0.2, droop));
-    let p2 = p1 + normalize(mix(dir, comb, droop)) * (len * mix(0.5, 0.8, droop));
+    let p1 = root + dir * (len * mix(0.5, 0.08, droop));
+    let p2 = p1 + normalize(mix(dir, comb, droop)) * (len * mix(0.5, 0.92, droop));
     return HairCurve(root, p1, p2);
 }
 
@@ -81,8 +85,9 @@ fn curve_tangent(c: HairCurve, s: f32) -> vec3<f32> {
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let dir = oct_decode(inst.direction_oct);
-    // ±15 % length per hair from the spare random number.
-    let len = frame.hair_base.w * (0.85 + 0.3 * inst.random);
+    // The taper, and ±15 % length per hair from its random number.
+    let random = inst.random_length.x;
+    let len = frame.hair_base.w * inst.random_length.y * (0.85 + 0.3 * random);
     let s = f32(vertex / 2u) / f32(SEGMENTS);
     let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
     let curve = hair_curve(inst.position, dir, len);
@@ -99,14 +104,14 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let width_px = frame.hair_gray.w * (1.0 - 0.65 * s);
     let offset_ndc = perp * (width_px / viewport);
 
-    let base = frame.hair_base.rgb * (0.8 + 0.4 * inst.random);
+    let base = frame.hair_base.rgb * (0.8 + 0.4 * random);
     let y = gray_fraction(frame.disp.w, inst.graying_onset);
     var out: VertexOut;
     out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
     out.tangent = tangent;
     // Each gray hair its own shade (0.7–1.15 of C_gray, from the spare random number's
     // other digits): a gray mass reads as strands, not a slab.
-    let gray = frame.hair_gray.rgb * (0.7 + 0.45 * fract(inst.random * 7.0));
+    let gray = frame.hair_gray.rgb * (0.7 + 0.45 * fract(random * 7.0));
     // C_k(t) = (1 − y_k)·C_base + y_k·C_gray, darker toward the root (the light the
     // hairs around it keep from it: 55 % at the root), so the mass has depth and its
     // edge against the skin is soft.

@@ -55,6 +55,7 @@ pub struct HairParams {
     graying_onset_max: f32,
     thinning: f32,
     recession_spread: f32,
+    taper_mm: f32,
     seed: u64,
 }
 
@@ -69,6 +70,7 @@ impl Default for HairParams {
             graying_onset_max: DEFAULT_GRAYING_ONSET_MAX,
             thinning: 0.0,
             recession_spread: 0.0,
+            taper_mm: 0.0,
             seed: 0,
         }
     }
@@ -149,6 +151,17 @@ impl HairParams {
         }
         self.thinning = thinning;
         self.recession_spread = recession_spread;
+        Ok(self)
+    }
+
+    /// The taper (docs/models.md §9 "Taper"): hairs shorten over this many mm toward the
+    /// edge of their region, to [`TAPER_SHORTEST`] of their length at it; finite, ≥ 0 (0,
+    /// the default, keeps every hair at full length, [T]'s model).
+    pub fn with_taper_mm(mut self, taper_mm: f32) -> Result<Self, Error> {
+        if !(taper_mm.is_finite() && taper_mm >= 0.0) {
+            return Err(invalid("hair taper (mm)", taper_mm, "a finite value ≥ 0"));
+        }
+        self.taper_mm = taper_mm;
         Ok(self)
     }
 
@@ -256,7 +269,9 @@ impl<'a> From<&'a crate::mesh::Mesh> for SurfaceRef<'a> {
 ///                               //            (storage buffer: unpack2x16snorm)
 ///     graying_onset: f32,       // offset 20, Float32,   t_k ∈ [0, a_k)
 ///     uv: u32,                  // offset 24, Unorm16x2, docs/models.md §1 UV (unpack2x16unorm)
-///     random: f32,              // offset 28, Float32,   the spare: uniform [0, 1) per hair
+///     random: u16,              // offset 28, Unorm16,   uniform [0, 1) per hair
+///     length: u16,              // offset 30, Unorm16,   the taper: length factor (0, 1]
+///                               //            (the pair: Unorm16x2, unpack2x16unorm)
 /// }
 /// ```
 #[repr(C)]
@@ -267,7 +282,8 @@ pub struct HairInstance {
     direction_oct: [i16; 2],
     graying_onset: f32,
     uv_unorm: [u16; 2],
-    random: f32,
+    random_unorm: u16,
+    length_unorm: u16,
 }
 
 impl HairInstance {
@@ -298,7 +314,14 @@ impl HairInstance {
 
     /// A uniform random number in [0, 1) for per-hair variation (length, shade).
     pub fn random(&self) -> f32 {
-        self.random
+        self.random_unorm as f32 / 65536.0
+    }
+
+    /// The hair's length as a fraction of the project's (docs/models.md §9 "Taper"): 1
+    /// inside its region, shorter toward the region's edge (the nape, round the ears, the
+    /// hairline), as a barber tapers a cut.
+    pub fn length_factor(&self) -> f32 {
+        self.length_unorm as f32 / 65535.0
     }
 
     /// y_k(t), the gray fraction of this hair at age `t` (see [`gray_fraction`]).
@@ -552,6 +575,12 @@ fn triangle_hairs(
     let nrm = [i0, i1, i2].map(|i| surface.normals[i]);
     let uv = [i0, i1, i2].map(|i| surface.uvs[i]);
     let face_normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+    // Millimetres per transition texel on this triangle: √(surface area / texel area).
+    let uv_area = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]).abs()
+        * (transition.width_px() * transition.height_px()) as f32;
+    let mm_per_texel = ((p[1] - p[0]).cross(p[2] - p[0]).length() / uv_area.max(1e-12)).sqrt()
+        * params.metres_per_unit
+        * 1e3;
     for _ in 0..n {
         // Every candidate draws the same numbers, kept or not, so a hair's values do not
         // depend on which other hairs the masks reject.
@@ -565,6 +594,7 @@ fn triangle_hairs(
         let random = rng.next_f32();
         let (spread, thin) = (rng.next_f32(), rng.next_f32());
         let edge_u = rng.next_f32();
+        let fringe_u = rng.next_f32();
 
         let b0 = 1.0 - r1 - r2;
         let uv_k = uv[0] * b0 + uv[1] * r1 + uv[2] * r2;
@@ -572,12 +602,38 @@ fn triangle_hairs(
         if age <= 0.0 {
             continue;
         }
+        let texture_age = age;
         let mut age = disappearance(age, spread, thin, params);
+        // The taper (docs/models.md §9 "Taper"): shorter toward bare skin; the hair that
+        // stays shorter and sparser toward the hair that goes, so the fringe left at old age
+        // fades out (miniaturised hairs) instead of ending in a cut edge.
+        let mut length = 1.0;
+        let taper_mm = params.taper_mm;
+        if taper_mm > 0.0 {
+            let bare = nearest_ring(transition, uv_k, mm_per_texel, taper_mm, |a| a <= 0.0);
+            length = taper(bare.map_or(taper_mm, |(d, _)| d), taper_mm);
+            // Sparser too: at the edge three in four are missing, none at the taper's end.
+            if edge_u < 0.75 * (1.0 - length) / (1.0 - TAPER_SHORTEST) {
+                continue;
+            }
+            if texture_age >= 1.0
+                && let Some((d, earliest)) =
+                    nearest_ring(transition, uv_k, mm_per_texel, taper_mm, |a| {
+                        a > 0.0 && a < 1.0
+                    })
+            {
+                length = length.min(taper(d, taper_mm));
+                let goes = 0.85 * (1.0 - taper(d, taper_mm)) / (1.0 - TAPER_SHORTEST);
+                if fringe_u < goes {
+                    age = age.min((earliest + (1.0 - earliest) * fringe_u / goes).max(1e-3));
+                }
+            }
+        }
         // A soft edge (with the receding fringe): near bare skin fewer hairs, and next to
         // hair that goes earlier some go as early, at random between the two ages.
         if params.recession_spread > 0.0 {
             let (bare, earliest) = edge_around(transition, uv_k);
-            if edge_u < 0.8 * bare {
+            if taper_mm <= 0.0 && edge_u < 0.8 * bare {
                 continue;
             }
             if earliest < age && edge_u < 0.5 {
@@ -603,7 +659,8 @@ fn triangle_hairs(
             direction_oct: oct_encode(direction),
             graying_onset: onset,
             uv_unorm: [unorm16(uv_k.x), unorm16(uv_k.y)],
-            random,
+            random_unorm: (random * 65536.0).min(65535.0) as u16,
+            length_unorm: unorm16(length),
         });
     }
     n
@@ -649,6 +706,57 @@ fn edge_around(transition: &TransitionTexture, uv: Vec2) -> (f32, f32) {
 
 /// How far (transition texels) a hair looks for the edge of its region.
 const EDGE_PX: f32 = 6.0;
+
+/// The project's default taper (`hair.taper_mm`): the distance over which hair shortens
+/// toward the edge of its region, mm.
+pub const DEFAULT_TAPER_MM: f32 = 18.0;
+/// The length factor of a hair at the very edge of its region.
+pub const TAPER_SHORTEST: f32 = 0.2;
+/// The rings at which [`edge_distance`] looks, as fractions of the taper's distance.
+const TAPER_RINGS: [f32; 5] = [0.08, 0.2, 0.4, 0.65, 1.0];
+
+/// The nearest of the rings [`TAPER_RINGS`] × `reach_mm` around `uv` (eight directions
+/// each) with a texel of the transition texture whose age passes `wanted`: its radius, mm,
+/// and the least such age on it; `None` when there is none that near. `mm_per_texel`: the
+/// surface's scale at `uv`.
+fn nearest_ring(
+    transition: &TransitionTexture,
+    uv: Vec2,
+    mm_per_texel: f32,
+    reach_mm: f32,
+    wanted: impl Fn(f32) -> bool,
+) -> Option<(f32, f32)> {
+    if !(mm_per_texel.is_finite() && mm_per_texel > 0.0 && reach_mm > 0.0) {
+        return None;
+    }
+    let texel = Vec2::new(
+        1.0 / transition.width_px().max(1) as f32,
+        1.0 / transition.height_px().max(1) as f32,
+    );
+    TAPER_RINGS.iter().find_map(|&ring| {
+        let mm = ring * reach_mm;
+        let r = texel * (mm / mm_per_texel);
+        (0..8)
+            .map(|k| {
+                let a = (k as f32 + 0.5 * ring) * std::f32::consts::FRAC_PI_4;
+                let q = uv + Vec2::new(a.cos(), a.sin()) * r;
+                transition.age_at_uv(q.x, q.y)
+            })
+            .filter(|&age| wanted(age))
+            .min_by(f32::total_cmp)
+            .map(|age| (mm, age))
+    })
+}
+
+/// The length factor at `distance_mm` from the region's edge: [`TAPER_SHORTEST`] at the
+/// edge, smoothly to 1 at `taper_mm` (always 1 without a taper).
+fn taper(distance_mm: f32, taper_mm: f32) -> f32 {
+    if taper_mm <= 0.0 {
+        return 1.0;
+    }
+    let x = (distance_mm / taper_mm).clamp(0.0, 1.0);
+    TAPER_SHORTEST + (1.0 - TAPER_SHORTEST) * x * x * (3.0 - 2.0 * x)
+}
 
 fn count_levels(sorted: &[HairInstance]) -> Vec<AgeLevel> {
     let mut levels: Vec<AgeLevel> = Vec::new();
@@ -831,7 +939,8 @@ mod tests {
         assert_eq!(std::mem::offset_of!(HairInstance, direction_oct), 16);
         assert_eq!(std::mem::offset_of!(HairInstance, graying_onset), 20);
         assert_eq!(std::mem::offset_of!(HairInstance, uv_unorm), 24);
-        assert_eq!(std::mem::offset_of!(HairInstance, random), 28);
+        assert_eq!(std::mem::offset_of!(HairInstance, random_unorm), 28);
+        assert_eq!(std::mem::offset_of!(HairInstance, length_unorm), 30);
     }
 
     #[test]
@@ -1067,7 +1176,8 @@ mod tests {
                 direction_oct: [0, 0],
                 graying_onset: 0.0,
                 uv_unorm: [0, 0],
-                random: 0.0,
+                random_unorm: 0,
+                length_unorm: 65535,
             })
             .collect();
         let mut want = unsorted.clone();
@@ -1189,6 +1299,86 @@ mod tests {
             "{present} of {} fringe hairs present at t = {mid}",
             fringe.len()
         );
+    }
+
+    #[test]
+    fn the_taper_shortens_and_thins_the_hair_toward_its_regions_edges() {
+        // The disc of hair (radius 0.4 of the 300 mm square: 120 mm), the part that stays
+        // below v = 0.25; texels of 4.7 mm.
+        let g = grid(16, 0.3);
+        let tex = transition();
+        let base = HairParams::new(30.0, 1.0).unwrap().with_seed(3);
+        let plain = HairInstances::generate(&g.surface(), &tex, &base).unwrap();
+        assert!(plain.instances().iter().all(|h| h.length_factor() == 1.0));
+        let tapered = HairInstances::generate(
+            &g.surface(),
+            &tex,
+            &base.clone().with_taper_mm(DEFAULT_TAPER_MM).unwrap(),
+        )
+        .unwrap();
+        // mm inside the disc's edge.
+        let inside = |h: &HairInstance| (0.4 - (h.uv() - Vec2::splat(0.5)).length()) * 300.0;
+        let mean_length = |lo: f32, hi: f32| {
+            let l: Vec<f32> = tapered
+                .instances()
+                .iter()
+                .filter(|h| (lo..hi).contains(&inside(h)) && h.uv().y > 0.35)
+                .map(HairInstance::length_factor)
+                .collect();
+            (l.iter().sum::<f32>() / l.len() as f32, l.len())
+        };
+        let (edge, n_edge) = mean_length(0.0, 5.0);
+        let (deep, _) = mean_length(30.0, 200.0);
+        eprintln!("length factor {edge} within 5 mm of the edge ({n_edge} hairs), {deep} deep");
+        assert!(edge < 0.45, "{edge}");
+        assert!(deep > 0.99, "{deep}");
+        // Sparser at the edge: fewer of the same places kept within 5 mm than deep in.
+        let kept = |lo: f32, hi: f32, hairs: &HairInstances| {
+            hairs
+                .instances()
+                .iter()
+                .filter(|h| (lo..hi).contains(&inside(h)) && h.uv().y > 0.35)
+                .count() as f32
+        };
+        let edge_kept = kept(0.0, 5.0, &tapered) / kept(0.0, 5.0, &plain);
+        let deep_kept = kept(30.0, 200.0, &tapered) / kept(30.0, 200.0, &plain);
+        assert!(
+            edge_kept < 0.6 && deep_kept == 1.0,
+            "{edge_kept} {deep_kept}"
+        );
+        // The hair that stays (v < 0.25) fades out toward the hair that goes: at t = 1
+        // fewer and shorter hairs within 5 mm of v = 0.25 than 20–25 mm below it (and as
+        // far inside the disc: the taper's reach is 18 mm).
+        let band = |lo: f32, hi: f32| {
+            let hs: Vec<&HairInstance> = tapered
+                .instances()
+                .iter()
+                .filter(|h| {
+                    let below = (0.25 - h.uv().y) * 300.0;
+                    (lo..hi).contains(&below) && inside(h) > 20.0
+                })
+                .collect();
+            let stay = hs.iter().filter(|h| h.disappear_age() >= 1.0).count() as f32;
+            let length = hs.iter().map(|h| h.length_factor()).sum::<f32>() / hs.len() as f32;
+            (stay / hs.len() as f32, length)
+        };
+        let (near_stay, near_length) = band(0.0, 5.0);
+        let (far_stay, far_length) = band(20.0, 25.0);
+        eprintln!("stays at t = 1: {near_stay} near the fringe's edge, {far_stay} below it");
+        assert!(near_stay < 0.5 && far_stay == 1.0, "{near_stay} {far_stay}");
+        assert!(
+            near_length < 0.45 && far_length > 0.99,
+            "{near_length} {far_length}"
+        );
+        // Same bytes again.
+        let again = HairInstances::generate(
+            &g.surface(),
+            &tex,
+            &base.with_taper_mm(DEFAULT_TAPER_MM).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(again.as_bytes(), tapered.as_bytes());
+        assert!(HairParams::default().with_taper_mm(f32::NAN).is_err());
     }
 
     #[test]

@@ -21,7 +21,7 @@ pub(crate) const INSTANCE_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_
     2 => Snorm16x2, // direction_oct
     3 => Float32,   // graying_onset
     4 => Unorm16x2, // uv
-    5 => Float32,   // random
+    5 => Unorm16x2, // random, length factor
 ];
 
 /// Stride of one instance, bytes.

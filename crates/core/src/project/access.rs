@@ -125,6 +125,7 @@ slots! {
     "hair.graying_onset_max_years" => hair.graying_onset_max_years;
     "hair.graying_ramp" => hair.graying_ramp;
     "hair.thinning" => hair.thinning;
+    "hair.taper_mm" => hair.taper_mm;
     "hair.k_diff" => hair.k_diff;
     "hair.k_spec" => hair.k_spec;
     "hair.shininess" => hair.shininess;
@@ -136,6 +137,7 @@ slots! {
     "skin.spot_strength" => skin.spot_strength;
     "skin.mottle" => skin.mottle;
     "skin.redness" => skin.redness;
+    "skin.under_eye" => skin.under_eye;
     "skin.yellowing" => skin.yellowing;
     "skin.contrast_loss" => skin.contrast_loss;
     "skin.colour_seed" => skin.colour_seed;

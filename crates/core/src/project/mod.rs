@@ -401,6 +401,7 @@ impl Project {
             redness: s.redness,
             yellowing: s.yellowing,
             contrast_loss: s.contrast_loss,
+            under_eye: s.under_eye,
             gray_hair: self.hair.gray_colour.linear(),
             seed: s.colour_seed,
         }

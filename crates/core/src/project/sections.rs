@@ -198,6 +198,8 @@ pub struct HairSection {
     pub graying_ramp: GrayingRamp,
     /// The fraction of the hair lost to thinning by the old end, 0–1.
     pub thinning: f32,
+    /// How far from the edge of its region the hair shortens (a barber's taper), mm.
+    pub taper_mm: f32,
     pub k_diff: f32,
     pub k_spec: f32,
     pub shininess: f32,
@@ -225,6 +227,8 @@ pub struct SkinSection {
     pub yellowing: f32,
     /// How far lips and brows fade toward the skin at full age, 0–1.
     pub contrast_loss: f32,
+    /// The shadow under the eyes (lower lid, tear trough) at full age, 0–1.
+    pub under_eye: f32,
     /// Seed of the spots and the uneven tone.
     pub colour_seed: u64,
     pub subsurface_colour: Colour,
@@ -409,6 +413,7 @@ impl Default for HairSection {
             graying_onset_max_years: 65.0,
             graying_ramp: GrayingRamp::default(),
             thinning: crate::hair::DEFAULT_THINNING,
+            taper_mm: crate::hair::DEFAULT_TAPER_MM,
             k_diff: 0.7,
             k_spec: 0.35,
             shininess: 40.0,
@@ -431,6 +436,7 @@ impl Default for SkinSection {
             redness: 0.5,
             yellowing: 0.6,
             contrast_loss: 0.5,
+            under_eye: 0.8,
             colour_seed: 1,
             // With `wrap` 0.35: red wraps 0.45, green 0.22, blue 0.15 (docs/models.md
             // "Rendering"): red light scatters farthest under the skin.

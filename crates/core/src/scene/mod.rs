@@ -210,6 +210,7 @@ struct HairKey {
     deviation_deg: f32,
     onset_t: (f32, f32),
     thinning: f32,
+    taper_mm: f32,
 }
 
 /// A project, its loaded inputs and everything baked from them. See the module docs.
@@ -826,6 +827,7 @@ impl Scene {
             deviation_deg: h.max_deviation_deg,
             onset_t: self.project.graying_onset_t(),
             thinning: h.thinning,
+            taper_mm: h.taper_mm,
         };
         if self.hair_key.as_ref() == Some(&key) && self.hair.is_some() {
             return Ok(changed);
@@ -838,7 +840,8 @@ impl Scene {
             .with_seed(h.seed)
             .with_max_deviation_rad(h.max_deviation_deg.to_radians())?
             .with_graying_onset_range(key.onset_t.0, key.onset_t.1)?
-            .with_thinning(h.thinning, crate::hair::RECESSION_SPREAD)?;
+            .with_thinning(h.thinning, crate::hair::RECESSION_SPREAD)?
+            .with_taper_mm(h.taper_mm)?;
         let mesh = &self.inputs.mesh;
         // Hair grows on the skin, not on eyes, teeth or lashes that come with the head.
         let skin = mesh.skin_indices();

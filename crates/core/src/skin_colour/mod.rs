@@ -48,6 +48,8 @@ const MOTTLE_TINT: [f32; 3] = [0.30, 0.40, 0.50];
 /// Feature sizes of the mottling, mm: blotches and a finer grain.
 const MOTTLE_MM: (f32, f32) = (9.0, 2.6);
 
+/// How much a full under-eye shadow takes from each linear channel (red least: violet-brown).
+const UNDER_EYE_TINT: [f32; 3] = [0.3, 0.42, 0.34];
 /// Feature size of the redness and of the thread veins, mm.
 const REDNESS_MM: (f32, f32) = (6.0, 3.0);
 
@@ -91,6 +93,8 @@ pub struct ColourSettings {
     pub redness: f32,
     pub yellowing: f32,
     pub contrast_loss: f32,
+    /// `skin.under_eye`: the shadow of the tear trough and the lower lid.
+    pub under_eye: f32,
     pub gray_hair: [f32; 3],
     /// `skin.colour_seed`.
     pub seed: u64,
@@ -108,6 +112,7 @@ impl Default for ColourSettings {
             redness: 0.5,
             yellowing: 0.6,
             contrast_loss: 0.5,
+            under_eye: 0.8,
             gray_hair: [0.69, 0.67, 0.62],
             seed: 1,
         }
@@ -228,6 +233,25 @@ impl Regions {
             w = w.max(1.0 - smoothstep(0.8, 1.15, d.length()));
         }
         w * front(q.z, self.ear_z)
+    }
+
+    /// Below each eye: the lower lid and the tear trough, a crescent from the inner corner
+    /// (where it is deepest: the tear trough runs down and out from it) to below the outer
+    /// one, where the under-eye shadow comes with age.
+    pub fn under_eye(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        let mut w: f32 = 0.0;
+        for (inner, outer) in self.eyes {
+            // 0 at the inner corner, 1 at the outer one.
+            let s = (q.x - inner.x) / (outer.x - inner.x);
+            let along = smoothstep(-0.25, 0.05, s) * (1.0 - smoothstep(0.8, 1.15, s));
+            let corners_y = inner.y + (outer.y - inner.y) * s.clamp(0.0, 1.0);
+            // The crescent's middle sags below the corners' line; deepest inside.
+            let centre = corners_y - 0.3 - 0.08 * (std::f32::consts::PI * s.clamp(0.0, 1.0)).sin();
+            let across = 1.0 - smoothstep(0.06, 0.2, (q.y - centre).abs());
+            w = w.max(along * across * (1.0 - 0.45 * s.clamp(0.0, 1.0)));
+        }
+        w * front(q.z, self.ear_z) * (1.0 - 0.7 * self.eyes(p))
     }
 
     /// The brows: an arched band above each eye from its inner corner to past its outer
@@ -423,6 +447,7 @@ struct Fields {
     flush: u8,
     vein: u8,
     brow_draw: u8,
+    under_eye: u8,
 }
 
 fn unit_byte(x: f32) -> u8 {
@@ -478,6 +503,7 @@ impl Fields {
             } else {
                 128
             },
+            under_eye: unit_byte(w(Regions::under_eye)),
         }
     }
 }
@@ -719,6 +745,12 @@ impl Look<'_> {
         let fade =
             s.contrast_loss * a.contrast * (CONTRAST_BROWS * brows).max(CONTRAST_LIPS * lips);
         c = c.lerp(reference, fade.clamp(0.0, 1.0));
+        // The under-eye shadow (thinner lid skin over the orbicularis, the tear trough's
+        // hollow): a violet-brown darkening on the contrast curve.
+        let shadow = s.under_eye * a.contrast * from_unit(f.under_eye);
+        if shadow > 0.0 {
+            c *= Vec3::ONE - Vec3::from(UNDER_EYE_TINT) * shadow.min(1.0);
+        }
         // Paling and yellowing: a tint, so what is darker stays darker.
         c *= self.pale_tint * self.yellow;
         // The brows gray with the hair, hair by hair: a texel's hair is gray when its draw

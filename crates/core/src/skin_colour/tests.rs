@@ -71,6 +71,23 @@ fn the_regions_lie_where_the_face_has_them() {
     let mouth = 0.5 * (at("cheilion_l", [0.0; 3]) + at("cheilion_r", [0.0; 3]));
     assert!(r.lips(mouth + Vec3::new(0.0, 0.0, 0.008)) > 0.9);
     assert_eq!(r.lips(at("glabella", [0.0; 3])), 0.0);
+    // The under-eye crescent: below each eye (deepest toward the inner corner), not on
+    // the brow nor the lower cheek.
+    for side in ["l", "r"] {
+        let inner = l.get(&format!("endocanthion_{side}")).unwrap();
+        let outer = l.get(&format!("exocanthion_{side}")).unwrap();
+        let below = |s: f32, mm: f32| inner.lerp(outer, s) - Vec3::new(0.0, mm * 1e-3, 0.0);
+        let unit_mm = 0.5
+            * l.get("exocanthion_l")
+                .unwrap()
+                .distance(l.get("exocanthion_r").unwrap())
+            * 1e3;
+        let trough = below(0.2, 0.33 * unit_mm);
+        assert!(r.under_eye(trough) > 0.6, "{side}: {}", r.under_eye(trough));
+        assert!(r.under_eye(below(0.2, 0.33 * unit_mm)) > r.under_eye(below(0.9, 0.33 * unit_mm)));
+        assert_eq!(r.under_eye(below(0.5, -20.0)), 0.0);
+        assert_eq!(r.under_eye(below(0.5, 40.0)), 0.0);
+    }
 }
 
 #[test]
@@ -240,7 +257,7 @@ fn young_skin_is_its_own_colour_and_old_skin_is_uneven() {
 }
 
 #[test]
-fn brows_gray_and_lips_fade_toward_the_skin() {
+fn brows_gray_lips_fade_and_a_shadow_comes_under_the_eyes() {
     let mut scene = Scene::new(Project::default()).unwrap();
     let cancel = CancelToken::never();
     let n = 512usize;
@@ -286,6 +303,19 @@ fn brows_gray_and_lips_fade_toward_the_skin() {
         redness(&young),
         redness(&old)
     );
+    // Under the eyes: darker with age, and not without the shadow.
+    let under = in_region(|f| f.under_eye);
+    assert!(under.len() > 50, "{} under-eye texels", under.len());
+    let mut project = Project::default();
+    project.skin.under_eye = 0.0;
+    let mut plain = Scene::new(project).unwrap();
+    plain.bake_colour(n as u32, 1.0, &cancel).unwrap();
+    let lp = luminance(plain.aged_colour().unwrap());
+    let (shadowed, without) = (mean(&lo, &under), mean(&lp, &under));
+    eprintln!("under-eye luminance at 80 {shadowed:.3}, {without:.3} without the shadow");
+    assert!(shadowed < 0.85 * without, "{shadowed} vs {without}");
+    let outside = in_region(|f| f.brows);
+    assert_eq!(mean(&lo, &outside), mean(&lp, &outside));
 }
 
 #[test]

@@ -580,6 +580,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             1.0,
             "fraction of the hair (the fringe that stays too) lost by the old end, hair by hair",
         ),
+        f(
+            "hair.taper_mm",
+            "mm",
+            0.0,
+            100.0,
+            "hair shortens over this distance toward the edge of its region (the nape, round the ears)",
+        ),
         f("hair.k_diff", "", 0.0, 4.0, "Kajiya–Kay diffuse weight"),
         f("hair.k_spec", "", 0.0, 4.0, "Kajiya–Kay specular weight"),
         f(
@@ -630,6 +637,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             0.0,
             1.0,
             "redness and thread veins on the cheeks and nose at full age",
+        ),
+        f(
+            "skin.under_eye",
+            "",
+            0.0,
+            1.0,
+            "shadow under the eyes (lower lid, tear trough) at full age, on the contrast curve",
         ),
         f("skin.yellowing", "", 0.0, 1.0, "yellowing at full paling"),
         f(

@@ -62,14 +62,21 @@ struct HairCurve {
     p2: vec3<f32>,
 }
 
-fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32) -> HairCurve {
+fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32, random: f32) -> HairCurve {
     let droop = clamp(frame.hair_misc.y, 0.0, 1.0);
     let g = normalize(vec3<f32>(0.0, -0.5, -1.0));
     let along = g - dir * dot(g, dir);
     // Where the comb is parallel to the hair there is no combing direction: stay straight.
-    let comb = select(dir, normalize(along), length(along) > 1e-3);
+    var comb = select(dir, normalize(along), length(along) > 1e-3);
+    // Each hair its own way, up to ±20° about its root direction from the comb (from its
+    // random number's other digits): a combed mass, not parallel streaks.
+    let turn = (fract(random * 13.0) - 0.5) * 0.7;
+    comb = comb * cos(turn) + cross(dir, comb) * sin(turn);
     let p1 = root + dir * (len * mix(0.5, 0.08, droop));
-    let p2 = p1 + normalize(mix(dir, comb, droop)) * (len * mix(0.5, 0.92, droop));
+    // The tip bends back toward the scalp (as far as a head's curvature takes it from a
+    // straight hair), so hair lies on it instead of flaring where the head curves away.
+    let p2 = p1 + normalize(mix(dir, comb, droop)) * (len * mix(0.5, 0.92, droop))
+        - dir * (len * 0.12 * droop);
     return HairCurve(root, p1, p2);
 }
 
@@ -90,7 +97,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let len = frame.hair_base.w * inst.random_length.y * (0.85 + 0.3 * random);
     let s = f32(vertex / 2u) / f32(SEGMENTS);
     let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
-    let curve = hair_curve(inst.position, dir, len);
+    let curve = hair_curve(inst.position, dir, len, random);
     let p = curve_point(curve, s);
     let tangent = curve_tangent(curve, s);
 
@@ -109,9 +116,9 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     var out: VertexOut;
     out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
     out.tangent = tangent;
-    // Each gray hair its own shade (0.7–1.15 of C_gray, from the spare random number's
+    // Each gray hair its own shade (0.55–1.15 of C_gray, from the spare random number's
     // other digits): a gray mass reads as strands, not a slab.
-    let gray = frame.hair_gray.rgb * (0.7 + 0.45 * fract(random * 7.0));
+    let gray = frame.hair_gray.rgb * (0.55 + 0.6 * fract(random * 7.0));
     // C_k(t) = (1 − y_k)·C_base + y_k·C_gray, darker toward the root (the light the
     // hairs around it keep from it: 55 % at the root), so the mass has depth and its
     // edge against the skin is soft.

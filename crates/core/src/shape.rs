@@ -115,14 +115,14 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "tear_trough",
         what: "tear trough hollowing",
         blobs: &[Blob::new([0.4, -0.42, 0.42], [0.32, 0.14, 0.4])],
-        motions: &[(Deflate, 3.0)],
+        motions: &[(Deflate, 4.0)],
         curve: curve(35.0, 70.0),
     },
     ShapeRegion {
         name: "temples",
         what: "temples hollowing",
-        blobs: &[Blob::new([1.3, 0.5, -0.45], [0.42, 0.55, 0.55])],
-        motions: &[(Deflate, 6.0)],
+        blobs: &[Blob::new([1.32, 0.45, -0.4], [0.55, 0.62, 0.7])],
+        motions: &[(Deflate, 7.0)],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {

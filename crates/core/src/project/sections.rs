@@ -430,8 +430,8 @@ impl Default for SkinSection {
             // measured faces darkening and yellowing with age (docs/models.md "Age").
             pale_albedo: Colour([0xd9, 0xb8, 0xa4]),
             pale_amount: 0.4,
-            spots_per_cm2: 0.2,
-            spot_strength: 0.75,
+            spots_per_cm2: 0.35,
+            spot_strength: 0.85,
             mottle: 0.3,
             redness: 0.5,
             yellowing: 0.6,

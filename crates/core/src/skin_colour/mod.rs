@@ -1,7 +1,7 @@
 //! The aged base colour (docs/models.md "Skin colour"): the head's own colour map (or the
 //! skin colour when it has none) baked at an age, in its own UV layout, with
 //!
-//! - **age spots** (solar lentigines), 2–20 mm across, placed on the head's surface in
+//! - **age spots** (solar lentigines), 2–14 mm across, placed on the head's surface in
 //!   metres, on sun-exposed skin (forehead, temples, cheeks, nose, ears, a bald scalp),
 //!   appearing one after another from the onset of their curve and growing;
 //! - **uneven tone**: mottled melanin on sun-exposed skin, and redness with thread veins
@@ -31,7 +31,7 @@ use crate::rng::{Rng, mix64};
 
 /// Smallest and largest age-spot diameter, mm (solar lentigines: docs/models.md
 /// "Skin colour").
-pub const SPOT_DIAMETER_MM: (f32, f32) = (2.0, 20.0);
+pub const SPOT_DIAMETER_MM: (f32, f32) = (2.0, 14.0);
 
 /// A spot's size when it first shows, as a fraction of its final size.
 const SPOT_FIRST_SIZE: f32 = 0.4;
@@ -40,7 +40,7 @@ const SPOT_FIRST_SIZE: f32 = 0.4;
 const SPOT_GROWTH: f32 = 0.35;
 
 /// How much each linear channel of a full-strength spot darkens (brown: blue most).
-const SPOT_TINT: [f32; 3] = [0.42, 0.56, 0.68];
+const SPOT_TINT: [f32; 3] = [0.55, 0.68, 0.78];
 
 /// How much melanin mottling darkens each channel at full strength.
 const MOTTLE_TINT: [f32; 3] = [0.30, 0.40, 0.50];
@@ -48,6 +48,11 @@ const MOTTLE_TINT: [f32; 3] = [0.30, 0.40, 0.50];
 /// Feature sizes of the mottling, mm: blotches and a finer grain.
 const MOTTLE_MM: (f32, f32) = (9.0, 2.6);
 
+/// How far the beard's darkest texels go toward the skin around them when all the hair is
+/// gray, and how far every beard texel does.
+const BEARD_GRAY: f32 = 0.8;
+/// See [`BEARD_GRAY`].
+const BEARD_LIFT: f32 = 0.35;
 /// How much a full under-eye shadow takes from each linear channel (red least: violet-brown).
 const UNDER_EYE_TINT: [f32; 3] = [0.3, 0.42, 0.34];
 /// Feature size of the redness and of the thread veins, mm.
@@ -106,8 +111,8 @@ impl Default for ColourSettings {
             albedo: [0.69, 0.35, 0.24],
             pale_albedo: [0.69, 0.48, 0.37],
             pale_amount: 0.4,
-            spots_per_cm2: 0.2,
-            spot_strength: 0.75,
+            spots_per_cm2: 0.35,
+            spot_strength: 0.85,
             mottle: 0.3,
             redness: 0.5,
             yellowing: 0.6,
@@ -273,6 +278,19 @@ impl Regions {
         w * front(q.z, self.ear_z)
     }
 
+    /// The beard: below the nose to under the chin, out along the jaw toward the ears; not
+    /// the lips.
+    pub fn beard(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        let side = (q.x.abs() - 0.5).max(0.0);
+        // The top edge: under the nose, rising over the cheeks toward the ears.
+        let below_top = 1.0 - smoothstep(-0.15, 0.1, q.y - (self.nose_tip.y - 0.3 + 0.45 * side));
+        // Under the chin it fades onto the neck.
+        let above_neck = smoothstep(self.chin_y - 1.0, self.chin_y - 0.5, q.y);
+        let width = 1.0 - smoothstep(1.5, 1.9, q.x.abs());
+        below_top * above_neck * width * front(q.z, self.ear_z) * (1.0 - self.lips(p))
+    }
+
     /// The lips: an ellipse round the mouth corners' line.
     pub fn lips(&self, p: Vec3) -> f32 {
         let q = self.rel(p);
@@ -314,9 +332,12 @@ impl Regions {
         let face = smoothstep(self.ear_z - 1.0, self.ear_z + 0.8, q.z);
         // The top of the head, above the forehead.
         let top = smoothstep(1.6, 2.3, q.y);
-        // The underside of the chin and the neck below it are shaded.
+        // The underside of the chin and the neck below it are shaded, the lower face
+        // less exposed than the forehead, cheekbones and nose (the brow and the head's
+        // tilt shade it less than the jaw's angle does): 0.4 at the chin.
         let below_chin = smoothstep(self.chin_y - 1.2, self.chin_y + 0.1, q.y);
-        face.max(top) * below_chin * (1.0 - self.lips(p)) * (1.0 - self.eyes(p))
+        let lower = 0.4 + 0.6 * smoothstep(self.chin_y + 0.2, self.mouth.y + 0.4, q.y);
+        face.max(top) * below_chin * lower * (1.0 - self.lips(p)) * (1.0 - self.eyes(p))
     }
 }
 
@@ -409,14 +430,15 @@ pub fn place_spots(
             if u + v > 1.0 {
                 (u, v) = (1.0 - u, 1.0 - v);
             }
-            // Small spots are common, large ones rare: d = lo·(hi/lo)^(x²).
+            // Small spots are common, large ones rare: d = lo·(hi/lo)^(x³) (a blind
+            // rating read x² as "a few large soft smudges").
             let size = rng.next_f32();
             Spot {
                 centre: a + (b - a) * u + (c - a) * v,
                 normal: (b - a).cross(c - a).normalize_or(Vec3::Z),
-                diameter_mm: lo * (hi / lo).powf(size * size),
+                diameter_mm: lo * (hi / lo).powf(size * size * size),
                 appears: rng.next_f32(),
-                strength: rng.range_f32(0.3, 1.0),
+                strength: rng.range_f32(0.5, 1.0),
                 phases: [0; 3].map(|_| rng.range_f32(0.0, std::f32::consts::TAU)),
             }
         })
@@ -448,6 +470,7 @@ struct Fields {
     vein: u8,
     brow_draw: u8,
     under_eye: u8,
+    beard: u8,
 }
 
 fn unit_byte(x: f32) -> u8 {
@@ -504,6 +527,7 @@ impl Fields {
                 128
             },
             under_eye: unit_byte(w(Regions::under_eye)),
+            beard: unit_byte(w(Regions::beard)),
         }
     }
 }
@@ -745,6 +769,15 @@ impl Look<'_> {
         let fade =
             s.contrast_loss * a.contrast * (CONTRAST_BROWS * brows).max(CONTRAST_LIPS * lips);
         c = c.lerp(reference, fade.clamp(0.0, 1.0));
+        // The stubble grays with the hair: gray stubble on pale skin casts no shadow, so
+        // the beard's darker texels lighten toward the skin around them, a little lighter
+        // than its tone (which the dark stubble pulls down): no "moustache" shadow at 80.
+        let beard = from_unit(f.beard) * a.brow_gray;
+        if beard > 0.0 {
+            let dark = smoothstep(0.0, 0.25, 1.0 - lum(c) / lum(reference).max(1e-4));
+            let lift = beard * (BEARD_GRAY * dark + BEARD_LIFT);
+            c = c.lerp(reference * 1.1, lift.clamp(0.0, 1.0));
+        }
         // The under-eye shadow (thinner lid skin over the orbicularis, the tear trough's
         // hollow): a violet-brown darkening on the contrast curve.
         let shadow = s.under_eye * a.contrast * from_unit(f.under_eye);
@@ -897,7 +930,7 @@ impl SpotGrid {
                     + 0.22 * (2.0 * theta + ph[0]).sin()
                     + 0.14 * (3.0 * theta + ph[1]).sin()
                     + 0.08 * (5.0 * theta + ph[2]).sin());
-            let inside = 1.0 - smoothstep(0.55 * edge, edge, dist);
+            let inside = 1.0 - smoothstep(0.7 * edge, edge, dist);
             if inside <= 0.0 {
                 continue;
             }

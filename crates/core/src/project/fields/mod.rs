@@ -310,6 +310,15 @@ fn default_text(v: &Value) -> String {
         Value::Null => "null".into(),
         Value::String(s) => format!("`{s}`"),
         Value::Array(a) if a.is_empty() => "[]".into(),
+        // The fields are f32: their shortest f32 text (0.35, not 0.3499999940395355).
+        Value::Number(n) if n.is_f64() => n.as_f64().map_or(n.to_string(), |f| {
+            let text = (f as f32).to_string();
+            if text.contains('.') {
+                text
+            } else {
+                format!("{text}.0")
+            }
+        }),
         other => other.to_string(),
     }
 }

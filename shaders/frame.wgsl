@@ -44,6 +44,10 @@ struct Frame {
     // x: specular reflectance at normal incidence (F0); yzw: the pale tone (linear) the
     // colour map pales toward.
     skin_spec: vec4<f32>,
+    // x: how far the scalp under the hair present takes the hair's colour (0: off; the
+    // colour map's alpha is each texel's hair disappearance age, 0 = never hair, else
+    // 1 + 254·a over 255); y: the hair's mean gray fraction at this age.
+    scalp: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

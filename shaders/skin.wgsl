@@ -390,8 +390,22 @@ fn shade(s: Surface) -> vec4<f32> {
     // own colour map pales the same way.
     var albedo = frame.skin_albedo.rgb;
     if (head_maps & 1u) != 0u {
-        let c = textureSampleGrad(colour_map, surface_sampler, tex(uv), ddx, ddy).rgb;
-        albedo = mix(c, frame.skin_spec.yzw, clamp(frame.skin_albedo.w, 0.0, 1.0));
+        let c = textureSampleGrad(colour_map, surface_sampler, tex(uv), ddx, ddy);
+        albedo = mix(c.rgb, frame.skin_spec.yzw, clamp(frame.skin_albedo.w, 0.0, 1.0));
+        // The scalp under the hair present at this age takes the hair's colour (the roots
+        // of short hair; docs/models.md §9 "The scalp under the hair"): the alpha is the
+        // texel's hair disappearance age a (1 + 254·a over 255; 0 where none ever grows).
+        if frame.scalp.x > 0.0 {
+            let byte = c.a * 255.0;
+            let a = (byte - 1.0) / 254.0;
+            let t = frame.disp.w;
+            // Present while a ≥ t; fading where it will soon go (the ragged fringe thins)
+            // and where the blurred age falls toward the edge of the hair.
+            let present = smoothstep(t - 0.05, t + 0.05, a) * smoothstep(t, t + 0.5, a)
+                * smoothstep(0.3, 1.0, byte);
+            let hair = mix(frame.hair_base.rgb, frame.hair_gray.rgb, frame.scalp.y);
+            albedo = mix(albedo, hair, frame.scalp.x * present);
+        }
     }
 
     let l = frame.light_dir.xyz;

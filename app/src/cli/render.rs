@@ -45,7 +45,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub binary: Option<u32>,
     /// dispScale: depth of the large wrinkles in UV units (default: the project's
-    /// `view.disp_scale`, 0.005 ≈ 2.5 mm on the default head; 0.02 on the 5 cm patch,
+    /// `view.disp_scale`, 0.0035 ≈ 1.7 mm on the default head; 0.02 on the 5 cm patch,
     /// ≈ 1 mm). The drawn depth is this × `large.depth`.
     #[arg(long)]
     pub disp_scale: Option<f32>,

@@ -161,6 +161,14 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
                 GrayingRamp::Smoothstep => GrayingRampParam::Smoothstep,
             },
             length: h.length_mm / 1000.0 / metres_per_unit.max(1e-9),
+            // The scalp's tint follows the hair left by thinning (docs/models.md §9).
+            scalp_tint: h.scalp_tint
+                * (1.0
+                    - h.thinning
+                        * ((factors.t - agesim_core::hair::THINNING_FROM)
+                            / (1.0 - agesim_core::hair::THINNING_FROM))
+                            .clamp(0.0, 1.0)),
+            gray_fraction: project.colour_factors(factors.t).brow_gray,
             ..HairShading::default()
         },
         age: factors.t,

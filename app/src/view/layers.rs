@@ -83,7 +83,9 @@ impl Layers {
         }
         self.hair = scene.hair().cloned();
         self.colour = scene.colour_map().cloned();
-        self.aged = scene.aged_colour().cloned();
+        // The view shows the aged colour with the hair's ages in its alpha (the scalp's
+        // tint); exports take `Scene::aged_colour` itself.
+        self.aged = scene.shown_colour().cloned();
         self.shape = scene.aged_shape().cloned();
         self.normal = scene.normal_map().cloned();
         let metres_per_unit = scene.metres_per_unit();

@@ -7,7 +7,7 @@
 use std::time::{Duration, Instant};
 
 use agesim_core::Mask;
-use agesim_core::hair::{HairInstances, HairParams, SurfaceRef};
+use agesim_core::hair::{self, HairInstances, HairParams, SurfaceRef};
 use agesim_core::transition::{
     DistanceMetric, HairRegions, TransitionTexture, generations_by_dilation, geodesic_distances,
 };
@@ -204,4 +204,23 @@ fn main() {
         .map(|&t| hairs.count(t))
         .collect();
     println!("  count(0, .25, .5, .75, 1) = {counts:?}");
+
+    // The project's hair: thinning, the ragged fringe and the taper (two ring searches of
+    // the transition texture per hair), against [T]'s bare model above.
+    let project = params
+        .clone()
+        .with_thinning(hair::DEFAULT_THINNING, hair::RECESSION_SPREAD)
+        .unwrap()
+        .with_taper_mm(hair::DEFAULT_TAPER_MM)
+        .unwrap();
+    let tapered = median(
+        || time(|| HairInstances::generate(&surface, &tex, &project).unwrap()).1,
+        5,
+    );
+    println!(
+        "  with thinning and taper ({:.0} mm): median {:.1} ms, {:.2}× the bare model",
+        hair::DEFAULT_TAPER_MM,
+        ms(tapered),
+        tapered.as_secs_f64() / many.as_secs_f64()
+    );
 }

@@ -248,6 +248,12 @@ pub struct HairShading {
     /// How far the hair bends from its growth direction down along the scalp, in [0, 1]
     /// (0: straight out; 1: combed flat after the first third).
     pub droop: f32,
+    /// How far the scalp under the hair present takes the hair's colour, in [0, 1] (the
+    /// colour map's alpha holds each texel's hair disappearance age:
+    /// `agesim_core::skin_colour::with_hair_ages`); 0 leaves the skin as it is.
+    pub scalp_tint: f32,
+    /// The hair's mean gray fraction at this age, in [0, 1]: the scalp's hair colour.
+    pub gray_fraction: f32,
     /// Draw every [`SPARSE_HAIR_STRIDE`]-th of the hairs of the age instead of all: a
     /// lighter pass while the age plays or the view moves (on a CPU adapter the hair pass
     /// costs ≈ 2.6 ms per 1,000 hairs whatever the resolution). The same hairs, evenly
@@ -274,6 +280,8 @@ impl Default for HairShading {
             length: 0.03,
             width_px: 1.2,
             droop: 0.85,
+            scalp_tint: 0.0,
+            gray_fraction: 0.0,
             sparse: false,
         }
     }

@@ -5,7 +5,7 @@
 
 use crate::params::{FrameOutput, FrameParams, GrayingRampParam};
 
-/// `struct Frame` of `shaders/frame.wgsl` (see the member comments there). 352 bytes.
+/// `struct Frame` of `shaders/frame.wgsl` (see the member comments there). 368 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniform {
@@ -25,6 +25,7 @@ pub struct FrameUniform {
     pub hair_misc: [f32; 4],
     pub skin_wrap: [f32; 4],
     pub skin_spec: [f32; 4],
+    pub scalp: [f32; 4],
 }
 
 macro_rules! members {
@@ -53,6 +54,7 @@ impl FrameUniform {
         hair_misc,
         skin_wrap,
         skin_spec,
+        scalp,
     );
 }
 
@@ -157,6 +159,12 @@ impl FrameUniform {
                 unit(s.pale_albedo.x),
                 unit(s.pale_albedo.y),
                 unit(s.pale_albedo.z),
+            ],
+            scalp: [
+                if hr.enabled { unit(hr.scalp_tint) } else { 0.0 },
+                unit(hr.gray_fraction),
+                0.0,
+                0.0,
             ],
         }
     }

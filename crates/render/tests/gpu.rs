@@ -648,3 +648,48 @@ fn a_shape_moves_the_surface_as_the_moved_mesh_does() {
         );
     }
 }
+
+#[test]
+fn the_scalp_under_the_hair_takes_the_hairs_colour() {
+    let Some(gpu) = gpu_or_skip("the_scalp_under_the_hair_takes_the_hairs_colour") else {
+        return;
+    };
+    let mesh = head::default_head();
+    let mut r = head_renderer(&gpu, &mesh);
+    // A grey colour map whose alpha (the hair's disappearance age) says hair that stays
+    // (a = 1) on the top fifth of the layout (the scalp above the forehead), none below.
+    let n = 64u32;
+    let rgba: Vec<u8> = (0..n * n)
+        .flat_map(|i| [170, 170, 170, if i / n < n / 5 { 255 } else { 0 }])
+        .collect();
+    r.upload_colour_map(Some((n, n, &rgba))).unwrap();
+    let mut p = FrameParams::default();
+    p.camera.pitch_rad = 0.5;
+    p.hair.base_colour = Vec3::ZERO;
+    p.hair.gray_colour = Vec3::ZERO;
+    p.age = 0.2;
+    let size = (96, 96);
+    let plain = r.render_to_image(&p, size).unwrap();
+    p.hair.scalp_tint = 0.8;
+    let tinted = r.render_to_image(&p, size).unwrap();
+    // Some pixels darker (the scalp), none lighter, and most of the head (the face, no
+    // hair) untouched.
+    let bg = background(&p);
+    let luma = |px: &image::Rgba<u8>| u32::from(px[0]) + u32::from(px[1]) + u32::from(px[2]);
+    let head: Vec<_> = plain
+        .pixels()
+        .zip(tinted.pixels())
+        .filter(|(a, _)| !is_background(a, bg))
+        .collect();
+    let darker = head.iter().filter(|(a, b)| luma(b) + 30 < luma(a)).count();
+    let same = head.iter().filter(|(a, b)| a == b).count();
+    assert!(
+        darker > 100 && same > head.len() / 3,
+        "{darker} darker, {same} of {} the same",
+        head.len()
+    );
+    assert!(head.iter().all(|(a, b)| luma(b) <= luma(a) + 3));
+    // With the hair pass off, no tint.
+    p.hair.enabled = false;
+    assert!(r.render_to_image(&p, size).unwrap() == plain);
+}

@@ -446,7 +446,7 @@ fn bake(
     // The shape field shown (docs/models.md §13): its movement over the head's UVs, for
     // the map view and over the aged colour for the 3D view.
     let field = s.shape_field();
-    let colour = s.aged_colour().cloned();
+    let colour = s.shown_colour().cloned();
     let stamps = (
         field.as_ref().map_or(0, |f| Arc::as_ptr(f) as usize),
         colour.as_ref().map_or(0, |c| Arc::as_ptr(c) as usize),

@@ -126,6 +126,7 @@ slots! {
     "hair.graying_ramp" => hair.graying_ramp;
     "hair.thinning" => hair.thinning;
     "hair.taper_mm" => hair.taper_mm;
+    "hair.scalp_tint" => hair.scalp_tint;
     "hair.k_diff" => hair.k_diff;
     "hair.k_spec" => hair.k_spec;
     "hair.shininess" => hair.shininess;

@@ -200,6 +200,8 @@ pub struct HairSection {
     pub thinning: f32,
     /// How far from the edge of its region the hair shortens (a barber's taper), mm.
     pub taper_mm: f32,
+    /// How far the scalp under the hair takes the hair's colour in the 3D view, 0–1.
+    pub scalp_tint: f32,
     pub k_diff: f32,
     pub k_spec: f32,
     pub shininess: f32,
@@ -414,6 +416,7 @@ impl Default for HairSection {
             graying_ramp: GrayingRamp::default(),
             thinning: crate::hair::DEFAULT_THINNING,
             taper_mm: crate::hair::DEFAULT_TAPER_MM,
+            scalp_tint: 0.6,
             k_diff: 0.7,
             k_spec: 0.35,
             shininess: 40.0,
@@ -477,7 +480,7 @@ impl Default for ViewSection {
             pom: PomMode::Combined,
             linear_steps: 8,
             binary_steps: 4,
-            disp_scale: 0.005,
+            disp_scale: 0.0035,
             light_yaw_deg: 35.0,
             light_pitch_deg: 30.0,
             camera_yaw_deg: 20.0,

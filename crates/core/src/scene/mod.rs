@@ -213,6 +213,19 @@ struct HairKey {
     taper_mm: f32,
 }
 
+/// What [`Scene::shown_colour`] was made from.
+#[derive(Clone, Debug)]
+struct ShownKey {
+    aged: Arc<crate::mask::HeadImage>,
+    transition: Option<u64>,
+}
+
+impl PartialEq for ShownKey {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.aged, &other.aged) && self.transition == other.transition
+    }
+}
+
 /// A project, its loaded inputs and everything baked from them. See the module docs.
 #[derive(Clone, Debug)]
 pub struct Scene {
@@ -238,6 +251,9 @@ pub struct Scene {
     shape: Option<(ShapeKey, Arc<crate::shape::ShapeField>)>,
     /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
     shape_aged: Option<((usize, u32), Arc<AgedShape>)>,
+    /// The aged colour as the 3D view shows it ([`Scene::shown_colour`]), with the aged
+    /// colour and the transition generation it was made from.
+    shown: Option<(ShownKey, Arc<crate::mask::HeadImage>)>,
     /// Bumped when the head's layout (its fit) changes.
     layout_generation: u64,
     /// The correspondence maps of the current layout, by size (the large map's and the
@@ -304,6 +320,7 @@ impl Scene {
             colour: colour::ColourStage::default(),
             shape: None,
             shape_aged: None,
+            shown: None,
             layout_generation: 1,
             correspondences: Vec::new(),
             versions: FileVersions::new(),
@@ -336,6 +353,7 @@ impl Scene {
             colour: self.colour.clone(),
             shape: self.shape.clone(),
             shape_aged: self.shape_aged.clone(),
+            shown: self.shown.clone(),
             layout_generation: self.layout_generation,
             correspondences: self.correspondences.clone(),
             versions: self.versions.clone(),
@@ -876,7 +894,42 @@ impl Scene {
             template_point: &template_point,
             base: base.as_ref(),
         };
-        self.colour.bake(&head, size, &settings, &factors, cancel)
+        let baked = self.colour.bake(&head, size, &settings, &factors, cancel)?;
+        self.refresh_shown();
+        Ok(baked)
+    }
+
+    /// Remakes [`Scene::shown_colour`] when the aged colour or the hair's transition
+    /// texture changed.
+    fn refresh_shown(&mut self) {
+        let Some(aged) = self.colour.image.clone() else {
+            self.shown = None;
+            return;
+        };
+        let transition = self
+            .transition
+            .clone()
+            .filter(|_| self.project.hair.enabled);
+        let key = ShownKey {
+            aged: aged.clone(),
+            transition: transition.as_ref().map(|_| self.transition_generation),
+        };
+        if self.shown.as_ref().is_some_and(|(k, _)| *k == key) {
+            return;
+        }
+        let image = Arc::new(crate::skin_colour::with_hair_ages(
+            &aged,
+            transition.as_deref(),
+        ));
+        self.shown = Some((key, image));
+    }
+
+    /// The aged colour of the last [`Scene::bake_colour`] as the 3D view shows it: its
+    /// alpha is the hair's disappearance age at each texel
+    /// ([`crate::skin_colour::with_hair_ages`]), which the skin pass reads to tint the scalp
+    /// under the hair (docs/models.md §9 "The scalp under the hair"). Not for export.
+    pub fn shown_colour(&self) -> Option<&Arc<crate::mask::HeadImage>> {
+        self.shown.as_ref().map(|(_, s)| s)
     }
 
     /// Each vertex's template point (template metres): the fitted template's

@@ -28,6 +28,7 @@ use crate::landmarks::Landmarks;
 use crate::mask::{HeadImage, linear_to_srgb, srgb_to_linear};
 use crate::mesh::Mesh;
 use crate::rng::{Rng, mix64};
+use crate::transition::TransitionTexture;
 
 /// Smallest and largest age-spot diameter, mm (solar lentigines: docs/models.md
 /// "Skin colour").
@@ -737,6 +738,82 @@ pub fn bake_from(
         height_px: n as u32,
         rgba,
     })
+}
+
+/// `aged` with its alpha replaced by the hair's disappearance age at each texel
+/// (docs/models.md §9 "The scalp under the hair"): 0 where there is no hair at t = 0, else
+/// 1 + 254·a, a the transition texture's age (0 where no hair grows) averaged over a box
+/// of [`SCALP_EDGE`] of the map's side around the texel, so the tint fades in over a few
+/// mm at the edge of the hair; 0 everywhere without a transition texture. The 3D view's
+/// colour map: the skin pass tints the scalp under the hair present at its age.
+pub fn with_hair_ages(aged: &HeadImage, transition: Option<&TransitionTexture>) -> HeadImage {
+    let mut image = aged.clone();
+    let (w, h) = (image.width_px as usize, image.height_px as usize);
+    let Some(transition) = transition else {
+        image.rgba.par_chunks_mut(4).for_each(|px| px[3] = 0);
+        return image;
+    };
+    let mut ages: Vec<f32> = vec![0.0; w * h];
+    ages.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+        let v = crate::heightmap::pixel_to_v(y as u32, h as u32);
+        for (x, a) in row.iter_mut().enumerate() {
+            *a = transition
+                .age_at_uv(crate::heightmap::pixel_to_u(x as u32, w as u32), v)
+                .max(0.0);
+        }
+    });
+    let r = ((w.max(h) as f32 * SCALP_EDGE).round() as usize).max(1);
+    let ages = box_blur(&ages, w, h, r);
+    image
+        .rgba
+        .par_chunks_mut(4)
+        .zip(ages.par_iter())
+        .for_each(|(px, &a)| px[3] = hair_age_byte(a));
+    image
+}
+
+/// The scalp tint's soft edge, as a fraction of the map's side (≈ 10 mm on the default
+/// head).
+const SCALP_EDGE: f32 = 0.02;
+
+/// The mean of `v` (`w`×`h`) over a (2r + 1)² box around each texel, the box clipped to
+/// the map: running sums along the rows, then along the columns.
+fn box_blur(v: &[f32], w: usize, h: usize, r: usize) -> Vec<f32> {
+    let pass = |src: &[f32], len: usize, stride: usize, count: usize, step: usize| {
+        let mut out = vec![0.0f32; src.len()];
+        for line in 0..count {
+            let at = |i: usize| line * step + i * stride;
+            let mut sum = 0.0f64;
+            let mut n = 0usize;
+            for i in 0..len.min(r + 1) {
+                sum += f64::from(src[at(i)]);
+                n += 1;
+            }
+            for i in 0..len {
+                out[at(i)] = (sum / n as f64) as f32;
+                if i + r + 1 < len {
+                    sum += f64::from(src[at(i + r + 1)]);
+                    n += 1;
+                }
+                if i >= r {
+                    sum -= f64::from(src[at(i - r)]);
+                    n -= 1;
+                }
+            }
+        }
+        out
+    };
+    let rows = pass(v, w, 1, h, w);
+    pass(&rows, h, w, w, 1)
+}
+
+/// A transition age as [`with_hair_ages`] stores it.
+fn hair_age_byte(age: f32) -> u8 {
+    if age > 0.0 {
+        1 + (age.min(1.0) * 254.0).round() as u8
+    } else {
+        0
+    }
 }
 
 /// What ages every texel alike at one age: the settings, the factors and the tints made

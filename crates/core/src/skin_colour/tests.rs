@@ -339,3 +339,39 @@ fn the_bake_is_the_same_on_any_thread_count() {
     scene.bake_colour(256, 1.0, &CancelToken::never()).unwrap();
     assert!(scene.aged_colour().unwrap().rgba != run(2));
 }
+
+#[test]
+fn the_shown_colour_carries_the_hair_ages_in_its_alpha_with_a_soft_edge() {
+    use crate::transition::{DistanceMetric, HairRegions, TransitionTexture};
+    // Hair on the left half of the layout (all of it staying), none on the right.
+    let n = 64u32;
+    let outer: Vec<bool> = (0..n * n).map(|i| i % n < n / 2).collect();
+    let regions = HairRegions::from_bools(n, n, &outer, &outer).unwrap();
+    let transition = TransitionTexture::from_regions(&regions, DistanceMetric::Chebyshev).unwrap();
+    let aged = HeadImage {
+        width_px: 200,
+        height_px: 200,
+        rgba: vec![128; 200 * 200 * 4],
+    };
+    let shown = with_hair_ages(&aged, Some(&transition));
+    let alpha = |x: usize| shown.rgba[4 * (100 * 200 + x) + 3];
+    // Deep in the hair: a = 1 (byte 255); far from it: none (0); across the edge (at
+    // x = 100) it falls over the blur's box (2 % of 200 px: 4 px each side).
+    assert_eq!((alpha(20), alpha(180)), (255, 0));
+    let ramp: Vec<u8> = (94..107).map(alpha).collect();
+    assert!(ramp.windows(2).all(|w| w[0] >= w[1]), "{ramp:?}");
+    assert!(
+        ramp.iter().filter(|&&a| a > 0 && a < 255).count() >= 6,
+        "{ramp:?}"
+    );
+    // The colour itself is the aged colour's.
+    assert!(
+        shown
+            .rgba
+            .chunks_exact(4)
+            .all(|p| p[..3] == [128, 128, 128])
+    );
+    // Without hair, no tint anywhere.
+    let bare = with_hair_ages(&aged, None);
+    assert!(bare.rgba.chunks_exact(4).all(|p| p[3] == 0));
+}

@@ -587,6 +587,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             100.0,
             "hair shortens over this distance toward the edge of its region (the nape, round the ears)",
         ),
+        f(
+            "hair.scalp_tint",
+            "",
+            0.0,
+            1.0,
+            "how far the scalp under the hair takes the hair's colour in the 3D view (the roots of short hair; not exported)",
+        ),
         f("hair.k_diff", "", 0.0, 4.0, "Kajiya–Kay diffuse weight"),
         f("hair.k_spec", "", 0.0, 4.0, "Kajiya–Kay specular weight"),
         f(

@@ -610,10 +610,12 @@ fn triangle_hairs(
         let mut length = 1.0;
         let taper_mm = params.taper_mm;
         if taper_mm > 0.0 {
-            let bare = nearest_ring(transition, uv_k, mm_per_texel, taper_mm, |a| a <= 0.0);
-            length = taper(bare.map_or(taper_mm, |(d, _)| d), taper_mm);
-            // Sparser too: at the edge three in four are missing, none at the taper's end.
-            if edge_u < 0.75 * (1.0 - length) / (1.0 - TAPER_SHORTEST) {
+            let bare = nearest_ring(transition, uv_k, mm_per_texel, taper_mm, |a| a <= 0.0)
+                .map_or(taper_mm, |(d, _)| d);
+            length = taper(bare, taper_mm);
+            // Sparser too, over the first third of the taper (a narrow sideburn keeps
+            // some): at the edge three in four are missing.
+            if edge_u < 0.75 * (1.0 - smooth01(bare / (SPARSE_REACH * taper_mm))) {
                 continue;
             }
             if texture_age >= 1.0
@@ -623,7 +625,7 @@ fn triangle_hairs(
                     })
             {
                 length = length.min(taper(d, taper_mm));
-                let goes = 0.85 * (1.0 - taper(d, taper_mm)) / (1.0 - TAPER_SHORTEST);
+                let goes = 0.85 * (1.0 - smooth01(d / (FRINGE_REACH * taper_mm)));
                 if fringe_u < goes {
                     age = age.min((earliest + (1.0 - earliest) * fringe_u / goes).max(1e-3));
                 }
@@ -712,6 +714,16 @@ const EDGE_PX: f32 = 6.0;
 pub const DEFAULT_TAPER_MM: f32 = 18.0;
 /// The length factor of a hair at the very edge of its region.
 pub const TAPER_SHORTEST: f32 = 0.2;
+/// How far (a fraction of the taper) hair thins toward bare skin.
+const SPARSE_REACH: f32 = 1.0 / 3.0;
+/// How far (a fraction of the taper) the hair that stays fades toward the hair that goes.
+const FRINGE_REACH: f32 = 0.6;
+
+/// smoothstep(0, 1, x).
+fn smooth01(x: f32) -> f32 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
 /// The rings at which [`edge_distance`] looks, as fractions of the taper's distance.
 const TAPER_RINGS: [f32; 5] = [0.08, 0.2, 0.4, 0.65, 1.0];
 
@@ -1343,7 +1355,7 @@ mod tests {
         let edge_kept = kept(0.0, 5.0, &tapered) / kept(0.0, 5.0, &plain);
         let deep_kept = kept(30.0, 200.0, &tapered) / kept(30.0, 200.0, &plain);
         assert!(
-            edge_kept < 0.6 && deep_kept == 1.0,
+            edge_kept < 0.75 && deep_kept == 1.0,
             "{edge_kept} {deep_kept}"
         );
         // The hair that stays (v < 0.25) fades out toward the hair that goes: at t = 1

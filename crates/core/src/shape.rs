@@ -132,7 +132,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]),
             Blob::new([0.72, -1.05, 0.35], [0.32, 0.32, 0.45]),
         ],
-        motions: &[(Descent, 5.0), (Bulge, 0.5)],
+        motions: &[(Descent, 5.0), (Bulge, 1.5)],
         curve: curve(35.0, 75.0),
     },
     ShapeRegion {

@@ -250,7 +250,7 @@ pub struct HairShading {
     pub droop: f32,
     /// How far the scalp under the hair present takes the hair's colour, in [0, 1] (the
     /// colour map's alpha holds each texel's hair disappearance age:
-    /// `agesim_core::skin_colour::with_hair_ages`); 0 leaves the skin as it is.
+    /// `agesim_core::skin_colour::hair_age_alpha`); 0 leaves the skin as it is.
     pub scalp_tint: f32,
     /// The hair's mean gray fraction at this age, in [0, 1]: the scalp's hair colour.
     pub gray_fraction: f32,
@@ -278,7 +278,7 @@ impl Default for HairShading {
             gray_colour: Vec3::new(0.32, 0.315, 0.30),
             ramp: GrayingRampParam::Linear,
             length: 0.03,
-            width_px: 1.2,
+            width_px: 0.9,
             droop: 0.85,
             scalp_tint: 0.0,
             gray_fraction: 0.0,

@@ -408,7 +408,7 @@ impl Default for HairSection {
             transition_size_px: None,
             seed: 0,
             max_deviation_deg: crate::hair::DEFAULT_MAX_DEVIATION_RAD.to_degrees(),
-            length_mm: 20.0,
+            length_mm: 16.0,
             base_colour: Colour([0x5a, 0x3d, 0x28]),
             gray_colour: Colour([0xd9, 0xd6, 0xcf]),
             graying_onset_min_years: 30.0,

@@ -254,6 +254,9 @@ pub struct Scene {
     /// The aged colour as the 3D view shows it ([`Scene::shown_colour`]), with the aged
     /// colour and the transition generation it was made from.
     shown: Option<(ShownKey, Arc<crate::mask::HeadImage>)>,
+    /// The hair's ages as the shown colour's alpha
+    /// ([`crate::skin_colour::hair_age_alpha`]), per transition generation and size.
+    hair_alpha: Option<((u64, u32, u32), Arc<Vec<u8>>)>,
     /// Bumped when the head's layout (its fit) changes.
     layout_generation: u64,
     /// The correspondence maps of the current layout, by size (the large map's and the
@@ -321,6 +324,7 @@ impl Scene {
             shape: None,
             shape_aged: None,
             shown: None,
+            hair_alpha: None,
             layout_generation: 1,
             correspondences: Vec::new(),
             versions: FileVersions::new(),
@@ -354,6 +358,7 @@ impl Scene {
             shape: self.shape.clone(),
             shape_aged: self.shape_aged.clone(),
             shown: self.shown.clone(),
+            hair_alpha: self.hair_alpha.clone(),
             layout_generation: self.layout_generation,
             correspondences: self.correspondences.clone(),
             versions: self.versions.clone(),
@@ -917,16 +922,24 @@ impl Scene {
         if self.shown.as_ref().is_some_and(|(k, _)| *k == key) {
             return;
         }
-        let image = Arc::new(crate::skin_colour::with_hair_ages(
-            &aged,
-            transition.as_deref(),
-        ));
-        self.shown = Some((key, image));
+        let alpha = transition.map(|t| {
+            let k = (self.transition_generation, aged.width_px, aged.height_px);
+            match &self.hair_alpha {
+                Some((kept, a)) if *kept == k => a.clone(),
+                _ => {
+                    let a = Arc::new(crate::skin_colour::hair_age_alpha(&t, k.1, k.2));
+                    self.hair_alpha = Some((k, a.clone()));
+                    a
+                }
+            }
+        });
+        let image = crate::skin_colour::with_alpha(&aged, alpha.as_deref().map(Vec::as_slice));
+        self.shown = Some((key, Arc::new(image)));
     }
 
     /// The aged colour of the last [`Scene::bake_colour`] as the 3D view shows it: its
     /// alpha is the hair's disappearance age at each texel
-    /// ([`crate::skin_colour::with_hair_ages`]), which the skin pass reads to tint the scalp
+    /// ([`crate::skin_colour::hair_age_alpha`]), which the skin pass reads to tint the scalp
     /// under the hair (docs/models.md §9 "The scalp under the hair"). Not for export.
     pub fn shown_colour(&self) -> Option<&Arc<crate::mask::HeadImage>> {
         self.shown.as_ref().map(|(_, s)| s)

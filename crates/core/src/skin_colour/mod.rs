@@ -740,36 +740,54 @@ pub fn bake_from(
     })
 }
 
-/// `aged` with its alpha replaced by the hair's disappearance age at each texel
-/// (docs/models.md §9 "The scalp under the hair"): 0 where there is no hair at t = 0, else
-/// 1 + 254·a, a the transition texture's age (0 where no hair grows) averaged over a box
-/// of [`SCALP_EDGE`] of the map's side around the texel, so the tint fades in over a few
-/// mm at the edge of the hair; 0 everywhere without a transition texture. The 3D view's
-/// colour map: the skin pass tints the scalp under the hair present at its age.
-pub fn with_hair_ages(aged: &HeadImage, transition: Option<&TransitionTexture>) -> HeadImage {
-    let mut image = aged.clone();
-    let (w, h) = (image.width_px as usize, image.height_px as usize);
-    let Some(transition) = transition else {
-        image.rgba.par_chunks_mut(4).for_each(|px| px[3] = 0);
-        return image;
-    };
+/// The hair's disappearance age at each texel of a `width`×`height` map of the head's
+/// layout, as the 3D view's colour map carries it in its alpha (docs/models.md §9 "The
+/// scalp under the hair"): 0 where there is no hair at t = 0, else 1 + 254·a, a the
+/// transition texture's age (0 where no hair grows) averaged over a box of
+/// [`SCALP_EDGE`] of the map's side around the texel, so the tint fades in over a few mm
+/// at the edge of the hair. Rows from the top (docs/models.md §1).
+pub fn hair_age_alpha(transition: &TransitionTexture, width: u32, height: u32) -> Vec<u8> {
+    let (w, h) = (width as usize, height as usize);
     let mut ages: Vec<f32> = vec![0.0; w * h];
-    ages.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
-        let v = crate::heightmap::pixel_to_v(y as u32, h as u32);
-        for (x, a) in row.iter_mut().enumerate() {
-            *a = transition
-                .age_at_uv(crate::heightmap::pixel_to_u(x as u32, w as u32), v)
-                .max(0.0);
-        }
-    });
+    ages.par_chunks_mut(w.max(1))
+        .enumerate()
+        .for_each(|(y, row)| {
+            let v = crate::heightmap::pixel_to_v(y as u32, height);
+            for (x, a) in row.iter_mut().enumerate() {
+                *a = transition
+                    .age_at_uv(crate::heightmap::pixel_to_u(x as u32, width), v)
+                    .max(0.0);
+            }
+        });
     let r = ((w.max(h) as f32 * SCALP_EDGE).round() as usize).max(1);
-    let ages = box_blur(&ages, w, h, r);
-    image
-        .rgba
-        .par_chunks_mut(4)
-        .zip(ages.par_iter())
-        .for_each(|(px, &a)| px[3] = hair_age_byte(a));
-    image
+    box_blur(&ages, w, h, r)
+        .into_iter()
+        .map(hair_age_byte)
+        .collect()
+}
+
+/// `image` with its alpha replaced by `alpha` ([`hair_age_alpha`] of its size), or by 0
+/// (no hair anywhere) without one: the 3D view's colour map; the skin pass tints the scalp
+/// under the hair present at its age.
+pub fn with_alpha(image: &HeadImage, alpha: Option<&[u8]>) -> HeadImage {
+    let mut shown = image.clone();
+    match alpha.filter(|a| a.len() * 4 == shown.rgba.len()) {
+        Some(alpha) => shown
+            .rgba
+            .par_chunks_mut(4 * 4096)
+            .zip(alpha.par_chunks(4096))
+            .for_each(|(px, a)| {
+                for (p, &a) in px.chunks_exact_mut(4).zip(a) {
+                    p[3] = a;
+                }
+            }),
+        None => shown.rgba.par_chunks_mut(4 * 4096).for_each(|px| {
+            for p in px.chunks_exact_mut(4) {
+                p[3] = 0;
+            }
+        }),
+    }
+    shown
 }
 
 /// The scalp tint's soft edge, as a fraction of the map's side (≈ 10 mm on the default
@@ -807,7 +825,7 @@ fn box_blur(v: &[f32], w: usize, h: usize, r: usize) -> Vec<f32> {
     pass(&rows, h, w, w, 1)
 }
 
-/// A transition age as [`with_hair_ages`] stores it.
+/// A transition age as [`hair_age_alpha`] stores it.
 fn hair_age_byte(age: f32) -> u8 {
     if age > 0.0 {
         1 + (age.min(1.0) * 254.0).round() as u8

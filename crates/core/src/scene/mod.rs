@@ -213,6 +213,9 @@ struct HairKey {
     taper_mm: f32,
 }
 
+/// The transition generation and the width and height of a kept hair-age alpha.
+type HairAlphaKey = (u64, u32, u32);
+
 /// What [`Scene::shown_colour`] was made from.
 #[derive(Clone, Debug)]
 struct ShownKey {
@@ -256,7 +259,7 @@ pub struct Scene {
     shown: Option<(ShownKey, Arc<crate::mask::HeadImage>)>,
     /// The hair's ages as the shown colour's alpha
     /// ([`crate::skin_colour::hair_age_alpha`]), per transition generation and size.
-    hair_alpha: Option<((u64, u32, u32), Arc<Vec<u8>>)>,
+    hair_alpha: Option<(HairAlphaKey, Arc<Vec<u8>>)>,
     /// Bumped when the head's layout (its fit) changes.
     layout_generation: u64,
     /// The correspondence maps of the current layout, by size (the large map's and the

@@ -141,7 +141,11 @@ impl Face {
 
     /// Hair that remains at t = 1 (white): sides and back below the horseshoe line.
     pub fn hair_inner(&self, p: Vec3) -> f32 {
-        let top = lerp_table(INNER_TOP_M, self.longitude_deg(p));
+        let lon = self.longitude_deg(p);
+        // The edge wanders a few mm (a fringe is not cut level).
+        let a = lon.to_radians();
+        let top =
+            lerp_table(INNER_TOP_M, lon) + 0.004 * (9.0 * a).sin() + 0.002 * (23.0 * a + 1.0).sin();
         self.hair_outer(p) * smoothstep(-EDGE_M, EDGE_M, top - p.y)
     }
 
@@ -192,27 +196,37 @@ const OUTER_HAIRLINE_M: &[(f32, f32)] = &[
     (0.0, 0.075),
     (25.0, 0.072),
     (40.0, 0.062),
-    (55.0, 0.045),
-    (64.0, 0.04),
-    (72.0, 0.0),
+    (55.0, 0.046),
+    (62.0, 0.036),
+    (67.0, 0.018),
+    (71.0, -0.004),
     (74.0, -0.012),
-    (81.0, -0.012),
-    (84.0, 0.022),
-    (110.0, 0.02),
+    (79.0, -0.01),
+    (82.0, 0.004),
+    (85.0, 0.017),
+    (90.0, 0.025),
+    (100.0, 0.028),
+    (108.0, 0.024),
+    (115.0, 0.01),
     (122.0, -0.008),
     (140.0, -0.04),
     (160.0, -0.056),
     (180.0, -0.062),
 ];
 
-/// Lower edge (y, metres) of the hair that stays at old age: a horseshoe over the ears
-/// and around the back; nothing on top (receded temples and crown).
+/// Upper edge (y, metres) of the hair that stays at old age: a horseshoe from the
+/// sideburns over the ears and around the back, lowest in front of the ears and rising
+/// toward the back of the head (a straight, level edge read as a pasted-on slab); nothing
+/// on top (receded temples and crown).
 const INNER_TOP_M: &[(f32, f32)] = &[
     (0.0, -1.0),
-    (55.0, -1.0),
-    (70.0, 0.045),
-    (110.0, 0.055),
-    (180.0, 0.06),
+    (58.0, -1.0),
+    (63.0, -0.004),
+    (72.0, 0.026),
+    (90.0, 0.038),
+    (120.0, 0.05),
+    (150.0, 0.06),
+    (180.0, 0.064),
 ];
 
 /// Piecewise-linear table lookup (`table` sorted by its first column).

@@ -113,8 +113,15 @@ pub const REGIONS: [ShapeRegion; 11] = [
     },
     ShapeRegion {
         name: "tear_trough",
-        what: "tear trough hollowing",
-        blobs: &[Blob::new([0.4, -0.42, 0.42], [0.32, 0.14, 0.4])],
+        what: "tear trough, upper-lid sulcus and mid-cheek hollowing",
+        // The tear trough; the sulcus between the upper lid's fold and the brow (the
+        // orbit's rim shows); the malar fat of the mid-cheek, deflating as it descends
+        // (blind ratings read the face without them as keeping its young volume).
+        blobs: &[
+            Blob::new([0.4, -0.42, 0.42], [0.32, 0.14, 0.4]),
+            Blob::new([0.55, 0.3, 0.2], [0.4, 0.15, 0.35]),
+            Blob::new([0.78, -0.55, 0.4], [0.38, 0.26, 0.42]),
+        ],
         motions: &[(Deflate, 4.0)],
         curve: curve(35.0, 70.0),
     },

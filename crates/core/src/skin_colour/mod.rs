@@ -1030,7 +1030,12 @@ impl SpotGrid {
                 continue;
             }
             // Uneven inside: darker in patches.
-            let grain = 0.75 + 0.25 * value3(p * 1000.0 / 1.2, key ^ k);
+            // Patchy inside (a blind rating read an even tint as "stickers"): blotches at
+            // 1.2 mm and specks at 0.4 mm, darker toward the middle.
+            let grain = (0.7
+                + 0.3 * value3(p * 1000.0 / 1.2, key ^ k)
+                + 0.15 * value3(p * 1000.0 / 0.4, (key ^ k).rotate_left(7)))
+                * (1.1 - 0.25 * (dist / edge).min(1.0));
             dark = dark.max(
                 inside
                     * s.strength

@@ -439,7 +439,7 @@ impl Default for SkinSection {
             redness: 0.5,
             yellowing: 0.6,
             contrast_loss: 0.5,
-            under_eye: 0.8,
+            under_eye: 0.65,
             colour_seed: 1,
             // With `wrap` 0.35: red wraps 0.45, green 0.22, blue 0.15 (docs/models.md
             // "Rendering"): red light scatters farthest under the skin.

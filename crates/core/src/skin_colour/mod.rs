@@ -54,8 +54,9 @@ const MOTTLE_MM: (f32, f32) = (9.0, 2.6);
 const BEARD_GRAY: f32 = 0.8;
 /// See [`BEARD_GRAY`].
 const BEARD_LIFT: f32 = 0.35;
-/// How much a full under-eye shadow takes from each linear channel (red least: violet-brown).
-const UNDER_EYE_TINT: [f32; 3] = [0.3, 0.42, 0.34];
+/// How much a full under-eye shadow takes from each linear channel (red least: a brown-grey
+/// shadow; a violet one read as bruises).
+const UNDER_EYE_TINT: [f32; 3] = [0.28, 0.33, 0.33];
 /// Feature size of the redness and of the thread veins, mm.
 const REDNESS_MM: (f32, f32) = (6.0, 3.0);
 
@@ -118,7 +119,7 @@ impl Default for ColourSettings {
             redness: 0.5,
             yellowing: 0.6,
             contrast_loss: 0.5,
-            under_eye: 0.8,
+            under_eye: 0.65,
             gray_hair: [0.69, 0.67, 0.62],
             seed: 1,
         }
@@ -874,7 +875,7 @@ impl Look<'_> {
             c = c.lerp(reference * 1.1, lift.clamp(0.0, 1.0));
         }
         // The under-eye shadow (thinner lid skin over the orbicularis, the tear trough's
-        // hollow): a violet-brown darkening on the contrast curve.
+        // hollow): a brown-grey darkening on the contrast curve.
         let shadow = s.under_eye * a.contrast * from_unit(f.under_eye);
         if shadow > 0.0 {
             c *= Vec3::ONE - Vec3::from(UNDER_EYE_TINT) * shadow.min(1.0);

@@ -68,11 +68,12 @@ fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32, random: f32) -> HairCur
     let along = g - dir * dot(g, dir);
     // Where the comb is parallel to the hair there is no combing direction: stay straight.
     var comb = select(dir, normalize(along), length(along) > 1e-3);
-    // Each hair its own way, up to ±20° about its root direction from the comb (from its
-    // random number's other digits): a combed mass, not parallel streaks.
-    let turn = (fract(random * 13.0) - 0.5) * 0.7;
+    // Each hair its own way, up to ±12° about its root direction from the comb (from its
+    // random number's other digits): a combed mass, neither parallel streaks nor (at
+    // ±20°) static.
+    let turn = (fract(random * 13.0) - 0.5) * 0.42;
     comb = comb * cos(turn) + cross(dir, comb) * sin(turn);
-    let p1 = root + dir * (len * mix(0.5, 0.08, droop));
+    let p1 = root + dir * (len * mix(0.5, 0.05, droop));
     // The tip bends back toward the scalp (as far as a head's curvature takes it from a
     // straight hair), so hair lies on it instead of flaring where the head curves away.
     let p2 = p1 + normalize(mix(dir, comb, droop)) * (len * mix(0.5, 0.92, droop))
@@ -116,9 +117,9 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     var out: VertexOut;
     out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
     out.tangent = tangent;
-    // Each gray hair its own shade (0.55–1.15 of C_gray, from the spare random number's
+    // Each gray hair its own shade (0.62–1.12 of C_gray, from the spare random number's
     // other digits): a gray mass reads as strands, not a slab.
-    let gray = frame.hair_gray.rgb * (0.55 + 0.6 * fract(random * 7.0));
+    let gray = frame.hair_gray.rgb * (0.62 + 0.5 * fract(random * 7.0));
     // C_k(t) = (1 − y_k)·C_base + y_k·C_gray, darker toward the root (the light the
     // hairs around it keep from it: 55 % at the root), so the mass has depth and its
     // edge against the skin is soft.

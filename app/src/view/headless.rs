@@ -55,6 +55,7 @@ impl HeadlessView {
         let colour_px = super::colour_px(&self.scene, self.request.large_size_px);
         self.scene
             .bake_colour(colour_px, t, &CancelToken::never())?;
+        self.scene.prepare_shown_colour();
         self.scene.bake_shape(t);
         self.layers.refresh(&self.scene, &changed, false);
         self.uploaded.upload(renderer, &self.layers)?;

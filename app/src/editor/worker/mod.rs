@@ -362,6 +362,7 @@ fn bake(
     let baked = s.bake(&job.request, cancel)?;
     let colour_px = crate::view::colour_px(s, job.request.large_size_px);
     s.bake_colour(colour_px, job.request.t, cancel)?;
+    s.prepare_shown_colour();
     s.bake_shape(job.request.t);
     changed.mesh |= baked.mesh;
     let merged = if refresh_all {

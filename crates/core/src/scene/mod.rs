@@ -902,14 +902,13 @@ impl Scene {
             template_point: &template_point,
             base: base.as_ref(),
         };
-        let baked = self.colour.bake(&head, size, &settings, &factors, cancel)?;
-        self.refresh_shown();
-        Ok(baked)
+        self.colour.bake(&head, size, &settings, &factors, cancel)
     }
 
-    /// Remakes [`Scene::shown_colour`] when the aged colour or the hair's transition
-    /// texture changed.
-    fn refresh_shown(&mut self) {
+    /// Makes [`Scene::shown_colour`] from the last [`Scene::bake_colour`] and the hair's
+    /// transition texture, when either changed: what the 3D view shows (the worker and
+    /// `HeadlessView` call it; exports need only the aged colour).
+    pub fn prepare_shown_colour(&mut self) {
         let Some(aged) = self.colour.image.clone() else {
             self.shown = None;
             return;
@@ -940,7 +939,7 @@ impl Scene {
         self.shown = Some((key, Arc::new(image)));
     }
 
-    /// The aged colour of the last [`Scene::bake_colour`] as the 3D view shows it: its
+    /// The aged colour of the last [`Scene::prepare_shown_colour`] as the 3D view shows it: its
     /// alpha is the hair's disappearance age at each texel
     /// ([`crate::skin_colour::hair_age_alpha`]), which the skin pass reads to tint the scalp
     /// under the hair (docs/models.md §9 "The scalp under the hair"). Not for export.

@@ -16,6 +16,14 @@ mod common;
 use common::{settle, wait_for};
 
 fn harness(data_dir: &Path, edit: Option<&str>) -> Harness<'static, EditorApp> {
+    harness_with(data_dir, edit, Duration::ZERO)
+}
+
+fn harness_with(
+    data_dir: &Path,
+    edit: Option<&str>,
+    autosave_delay: Duration,
+) -> Harness<'static, EditorApp> {
     let data_dir = data_dir.to_owned();
     let edit = edit.map(str::to_owned);
     Harness::builder()
@@ -25,6 +33,7 @@ fn harness(data_dir: &Path, edit: Option<&str>) -> Harness<'static, EditorApp> {
                 cc,
                 EditorOptions {
                     autosave_seconds: 0.2,
+                    autosave_delay,
                     data_dir: Some(data_dir.clone()),
                     edit: edit.clone(),
                     config_dir: Some(data_dir.join("config")),
@@ -70,6 +79,32 @@ fn an_autosaved_edit_is_offered_back_after_a_crash() {
         app.project().noise.strength == 0.75 && app.idle()
     });
     assert!(h.state().modified(), "the recovered work is unsaved");
+}
+
+/// A clean exit while an autosave is still being written waits for it, then removes the
+/// folder: the write cannot put the session back after the exit removed it. (The soak run
+/// once left a folder this way.)
+#[test]
+fn a_clean_exit_during_an_autosave_leaves_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let rec = dir.path().join("recovery");
+    // A slow disk: the write starts half a second after the autosave does.
+    let mut h = harness_with(
+        &rec,
+        Some("noise.strength=0.75"),
+        Duration::from_millis(500),
+    );
+    let start = Instant::now();
+    while !h.state().autosaving() {
+        assert!(start.elapsed() < Duration::from_secs(60), "no autosave");
+        h.step();
+    }
+    eframe::App::on_exit(h.state_mut());
+    assert!(!h.state().autosaving());
+    // Whatever the thread was still doing, it is done: the folder stays empty.
+    std::thread::sleep(Duration::from_millis(700));
+    let left = std::fs::read_dir(&rec).map_or(0, |d| d.count());
+    assert_eq!(left, 0, "{}", rec.display());
 }
 
 /// The real binary under Xvfb, killed with SIGKILL after an edit was autosaved: the

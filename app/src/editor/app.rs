@@ -109,6 +109,9 @@ pub struct EditorOptions {
     /// Write the session to the recovery folder at most this often while there are
     /// unsaved changes (seconds; 0: off).
     pub autosave_seconds: f64,
+    /// The file thread waits this long before it writes an autosave (tests: a slow disk,
+    /// so an exit meets a write still running).
+    pub autosave_delay: std::time::Duration,
     /// Restore the session a crash left behind without asking.
     pub recover: bool,
     /// The recovery folder (default: the platform's data directory; tests set it).
@@ -834,9 +837,7 @@ impl eframe::App for EditorApp {
     }
 
     fn on_exit(&mut self) {
-        // A clean exit: nothing to recover.
-        self.autosave.in_flight = false;
-        self.clear_recovery();
+        self.exit_cleanly();
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

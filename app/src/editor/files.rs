@@ -304,6 +304,30 @@ impl Io {
         self.pending = self.pending.saturating_sub(results.len());
         results
     }
+
+    /// Waits (at most `timeout`) for the first result `wanted` picks, and returns it with
+    /// the results that came before it. Only for the exit, where a write still running
+    /// must finish before the folder it writes is removed.
+    pub fn wait_for(
+        &mut self,
+        timeout: std::time::Duration,
+        wanted: impl Fn(&IoResult) -> bool,
+    ) -> Vec<IoResult> {
+        let until = std::time::Instant::now() + timeout;
+        let mut results = Vec::new();
+        while let Some(left) = until.checked_duration_since(std::time::Instant::now()) {
+            let Ok(r) = self.rx.recv_timeout(left) else {
+                break;
+            };
+            self.pending = self.pending.saturating_sub(1);
+            let done = wanted(&r);
+            results.push(r);
+            if done {
+                break;
+            }
+        }
+        results
+    }
 }
 
 /// A picked path: the files the UI applies directly are loaded here (a project, a wrinkle

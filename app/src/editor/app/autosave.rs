@@ -71,9 +71,18 @@ impl EditorApp {
         let original = self.doc.path.clone();
         let revision = self.doc.revision;
         let folder = recovery::own(&dir);
-        self.io.spawn(move || IoResult::Autosaved {
-            revision,
-            result: recovery::write(&folder, &project, wrinkles.as_deref(), original.as_deref()),
+        let delay = self.options.autosave_delay;
+        self.io.spawn(move || {
+            std::thread::sleep(delay);
+            IoResult::Autosaved {
+                revision,
+                result: recovery::write(
+                    &folder,
+                    &project,
+                    wrinkles.as_deref(),
+                    original.as_deref(),
+                ),
+            }
         });
     }
 
@@ -88,6 +97,28 @@ impl EditorApp {
         if !self.modified() {
             self.clear_recovery();
         }
+    }
+
+    /// Whether an autosave is being written on the file thread.
+    pub fn autosaving(&self) -> bool {
+        self.autosave.in_flight
+    }
+
+    /// A clean exit: nothing to recover. An autosave still being written would put the
+    /// folder back after it is removed (or be cut off half-written by the exit), so it is
+    /// waited for first.
+    pub(super) fn exit_cleanly(&mut self) {
+        if self.autosave.in_flight {
+            let autosaved = |r: &IoResult| matches!(r, IoResult::Autosaved { .. });
+            let waited = self
+                .io
+                .wait_for(std::time::Duration::from_secs(10), autosaved);
+            if !waited.iter().any(autosaved) {
+                eprintln!("agesim: the autosave being written at exit did not finish in 10 s");
+            }
+        }
+        self.autosave.in_flight = false;
+        self.clear_recovery();
     }
 
     /// No unsaved work any more (a save, a clean exit): the folder goes.

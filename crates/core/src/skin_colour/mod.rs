@@ -65,18 +65,27 @@ const YELLOW_TINT: [f32; 3] = [0.0, 0.06, 0.22];
 
 /// How much of the contrast loss reaches the brows and the lips (brows keep more: they
 /// thin and gray more than they fade).
-const CONTRAST_BROWS: f32 = 0.35;
+const CONTRAST_BROWS: f32 = 0.2;
 const CONTRAST_LIPS: f32 = 0.6;
 
 /// Brightness of gray brow hair relative to the hair's gray colour (brows are coarser and
 /// sparser than scalp hair: they read a little darker than it).
-const BROW_GRAY_BRIGHTNESS: f32 = 0.62;
+const BROW_GRAY_BRIGHTNESS: f32 = 0.8;
 
 /// The brows' gray fraction relative to the scalp hair's: brows gray later.
 const BROW_GRAY_LAG: f32 = 0.6;
 
-/// The width of one brow hair's draw in the salt-and-pepper graying, mm.
-const BROW_HAIR_MM: f32 = 0.45;
+/// One brow hair's draw in the salt-and-pepper graying and the bushier old brow: a streak
+/// this long along the brow's arch and this wide, mm.
+const BROW_STRAND_MM: (f32, f32) = (5.0, 0.9);
+
+/// How dark a brow hair grown with age is against the skin around it (the scan's brow
+/// hair, where the young brow was, is about this dark).
+const BROW_GROWN_DARKNESS: f32 = 0.45;
+
+/// How much of the brow region the old brow's longer, unruly hairs cover at full age
+/// (beyond the young brow's own hair).
+const BROW_BUSHY: f32 = 0.55;
 
 /// Gray brow hair is a little warmer than the hair's gray: yellowed, as old white hair.
 const BROW_GRAY_TINT: [f32; 3] = [1.0, 0.96, 0.88];
@@ -280,6 +289,24 @@ impl Regions {
         w * front(q.z, self.ear_z)
     }
 
+    /// Where `p` lies on the nearer brow, mm: along it (the template's x) and across it
+    /// (above the brow's arched middle line, [`Regions::brows`]). Brow hair lies along the
+    /// arch.
+    pub fn brow_coords(&self, p: Vec3) -> Vec2 {
+        let q = self.rel(p);
+        let near = |(inner, outer): (Vec3, Vec3)| (q.x - 0.5 * (inner.x + outer.x)).abs();
+        let (inner, outer) = if near(self.eyes[0]) < near(self.eyes[1]) {
+            self.eyes[0]
+        } else {
+            self.eyes[1]
+        };
+        let s = (q.x - inner.x) / (outer.x - inner.x);
+        let corners_y = inner.y + (outer.y - inner.y) * s.clamp(0.0, 1.0);
+        let centre =
+            corners_y + 0.34 + 0.14 * (std::f32::consts::PI * (s + 0.1) / 1.3).sin().max(0.0);
+        Vec2::new(q.x, q.y - centre) * self.unit * 1000.0
+    }
+
     /// The beard: below the nose to under the chin, out along the jaw toward the ears; not
     /// the lips.
     pub fn beard(&self, p: Vec3) -> f32 {
@@ -471,6 +498,7 @@ struct Fields {
     flush: u8,
     vein: u8,
     brow_draw: u8,
+    brow_strand: u8,
     under_eye: u8,
     beard: u8,
 }
@@ -524,7 +552,12 @@ impl Fields {
                 128
             },
             brow_draw: if brows > 0.0 {
-                signed_byte(value3(mm / BROW_HAIR_MM, keys[4]))
+                signed_byte(value3(brow_streak(regions, t), keys[4]))
+            } else {
+                128
+            },
+            brow_strand: if brows > 0.0 {
+                signed_byte(value3(brow_streak(regions, t), keys[4] ^ 0x5bd1_e995))
             } else {
                 128
             },
@@ -860,7 +893,18 @@ impl Look<'_> {
         );
         // Brow hair: darker than the skin around it.
         let lum = |c: Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722));
-        let hair = brows * smoothstep(0.12, 0.45, 1.0 - lum(c) / lum(reference).max(1e-4));
+        let mut hair = brows * smoothstep(0.12, 0.45, 1.0 - lum(c) / lum(reference).max(1e-4));
+        // The old brow is bushier: longer, unruly hairs beyond the young brow's own, in
+        // streaks along the hairs' direction.
+        let grown = BROW_BUSHY
+            * a.contrast
+            * brows
+            * brows
+            * smoothstep(0.1, 0.45, from_signed(f.brow_strand));
+        if grown > hair {
+            c = c.lerp(reference * BROW_GROWN_DARKNESS, grown - hair);
+            hair = grown;
+        }
         // Lips and brows fade toward the skin around them.
         let fade =
             s.contrast_loss * a.contrast * (CONTRAST_BROWS * brows).max(CONTRAST_LIPS * lips);
@@ -883,13 +927,16 @@ impl Look<'_> {
         // Paling and yellowing: a tint, so what is darker stays darker.
         c *= self.pale_tint * self.yellow;
         // The brows gray with the hair, hair by hair: a texel's hair is gray when its draw
-        // (hashed noise at a hair's width) is under the gray fraction: salt and pepper.
+        // (value noise in streaks along the hairs, [`BROW_STRAND_MM`]) is under the gray
+        // fraction: salt and pepper. The skin shows a little between the hairs.
         if hair > 0.0 && a.brow_gray > 0.0 {
-            let draw = 0.5 + 0.5 * from_signed(f.brow_draw);
+            // Value noise gathers near 0: spread to about even over [0, 1], so the gray
+            // fraction is the share of gray hair.
+            let draw = 0.5 + 0.5 * (2.2 * from_signed(f.brow_draw)).clamp(-1.0, 1.0);
             let gray_hair = smoothstep(-0.08, 0.08, BROW_GRAY_LAG * a.brow_gray - draw);
             c = c.lerp(
                 self.gray * (0.75 + 0.25 * draw),
-                (hair * gray_hair).clamp(0.0, 1.0),
+                (0.85 * hair * gray_hair).clamp(0.0, 1.0),
             );
         }
         // Every skin mottles some; sun-exposed skin most. Darker blotches and lighter skin
@@ -1169,6 +1216,13 @@ fn alpha_at(img: &HeadImage, x: usize, y: usize, n: usize) -> u8 {
 
 /// Smooth 3D value noise in [−1, 1]: hashed values at the integer lattice, joined by
 /// smoothstep; one stream per `key`.
+/// The point `t` (template metres) in brow-hair streak units: its place on the brow
+/// ([`Regions::brow_coords`]) over [`BROW_STRAND_MM`].
+fn brow_streak(regions: &Regions, t: Vec3) -> Vec3 {
+    let b = regions.brow_coords(t);
+    Vec3::new(b.x / BROW_STRAND_MM.0, b.y / BROW_STRAND_MM.1, 0.0)
+}
+
 fn value3(p: Vec3, key: u32) -> f32 {
     let i = p.floor();
     let f = p - i;

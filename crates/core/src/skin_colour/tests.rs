@@ -318,6 +318,64 @@ fn brows_gray_lips_fade_and_a_shadow_comes_under_the_eyes() {
     assert_eq!(mean(&lo, &outside), mean(&lp, &outside));
 }
 
+/// The old brow grays hair by hair (some hair stays dark, some turns light: salt and
+/// pepper, not a gray strip), in streaks along the brow (the draw varies less along it
+/// than across), and grows bushier beyond the young brow's hair.
+#[test]
+fn the_old_brow_is_salt_and_pepper_in_streaks_and_bushier() {
+    let mut scene = Scene::new(Project::default()).unwrap();
+    let cancel = CancelToken::never();
+    let n = 1024usize;
+    scene.bake_colour(n as u32, 0.0, &cancel).unwrap();
+    let (ly, _) = (luminance(scene.aged_colour().unwrap()), ());
+    scene.bake_colour(n as u32, 1.0, &cancel).unwrap();
+    let lo = luminance(scene.aged_colour().unwrap());
+    let texels = default_head_texels(&scene, n as u32);
+    let mut brows: Vec<usize> = (0..n * n)
+        .filter(|&i| from_unit(texels.fields[i].brows) > 0.9)
+        .collect();
+    brows.sort_by(|&a, &b| ly[a].total_cmp(&ly[b]));
+    // The young brow's hair: its darkest quarter.
+    let hair = &brows[..brows.len() / 4];
+    let share = |f: &dyn Fn(f32) -> bool| {
+        hair.iter().filter(|&&i| f(lo[i] / ly[i].max(1e-4))).count() as f32 / hair.len() as f32
+    };
+    let (kept, gray) = (share(&|r| r < 1.6), share(&|r| r > 2.5));
+    eprintln!("brow hair at 80: {kept:.2} stays dark, {gray:.2} turns light");
+    assert!(kept > 0.2 && gray > 0.2, "{kept} dark, {gray} light");
+    // Bushier: the lighter half of the young brow region (skin between and around the
+    // hairs) takes hair at 80, dark or gray: its texels vary more about their mean.
+    let skin = &brows[brows.len() / 2..];
+    let variation = |l: &[f32]| {
+        let m = skin.iter().map(|&i| l[i]).sum::<f32>() / skin.len() as f32;
+        (skin.iter().map(|&i| (l[i] - m).powi(2)).sum::<f32>() / skin.len() as f32).sqrt() / m
+    };
+    let (vy, vo) = (variation(&ly), variation(&lo));
+    eprintln!("brow skin's variation {vy:.3} at 25, {vo:.3} at 80");
+    assert!(vo > 1.2 * vy, "{vy} → {vo}");
+    // Streaks: the draw two millimetres along the brow is closer than two across it.
+    let r = Regions::template().unwrap();
+    let l = &crate::fit::template().landmarks;
+    let (mut along, mut across) = (0.0, 0.0);
+    for side in ["l", "r"] {
+        let inner = l.get(&format!("endocanthion_{side}")).unwrap();
+        let outer = l.get(&format!("exocanthion_{side}")).unwrap();
+        for k in 0..200 {
+            let s = k as f32 / 200.0;
+            let p = inner.lerp(outer, s) + Vec3::new(0.0, 0.016 + 0.00003 * k as f32, 0.005);
+            // Two millimetres along the arch: out along x, then back to the same
+            // height above the brow's middle line.
+            let mut a = p + Vec3::new(0.002, 0.0, 0.0);
+            a.y -= (r.brow_coords(a).y - r.brow_coords(p).y) * 1e-3;
+            let draw = |q: Vec3| value3(brow_streak(&r, q), 5);
+            along += (draw(a) - draw(p)).abs();
+            across += (draw(p + Vec3::new(0.0, 0.002, 0.0)) - draw(p)).abs();
+        }
+    }
+    eprintln!("brow draw change over 2 mm: {along:.1} along, {across:.1} across");
+    assert!(along < 0.5 * across, "{along} along, {across} across");
+}
+
 #[test]
 fn the_bake_is_the_same_on_any_thread_count() {
     let run = |threads: usize| {

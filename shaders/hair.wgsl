@@ -29,6 +29,9 @@ struct VertexOut {
     @location(0) tangent: vec3<f32>,
     @location(1) colour: vec3<f32>,
     @location(2) world_pos: vec3<f32>,
+    // Coverage: strands are finer than a pixel and thin toward the tip, gray hair finer
+    // than pigmented hair; blended over what is behind (no depth write).
+    @location(3) alpha: f32,
 }
 
 fn oct_decode(e: vec2<f32>) -> vec3<f32> {
@@ -125,6 +128,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // edge against the skin is soft.
     out.colour = mix(base, gray, y) * mix(0.55, 1.0, s);
     out.world_pos = p;
+    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.7, y);
     return out;
 }
 
@@ -156,7 +160,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let c = (k.x * t_diff + k.y * t_spec) * in.colour * light + k.w * in.colour;
     let mapped = aces(c);
     if frame.camera_pos.w > 0.5 {
-        return vec4<f32>(srgb_encode(mapped), 1.0);
+        return vec4<f32>(srgb_encode(mapped), in.alpha);
     }
-    return vec4<f32>(mapped, 1.0);
+    return vec4<f32>(mapped, in.alpha);
 }

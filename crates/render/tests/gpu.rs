@@ -172,6 +172,11 @@ fn pom_differs_from_normal_only_and_tracks_displacement() {
 
 /// A renderer with the default head and its hair at the shipped masks (128²).
 fn haired_head(gpu: &Gpu) -> Renderer {
+    haired_head_at(gpu, 40.0)
+}
+
+/// [`haired_head`] with `density` hairs per cm².
+fn haired_head_at(gpu: &Gpu, density: f32) -> Renderer {
     let mesh = head::default_head();
     // The shipped masks, at 128² (what the transition texture below is made at).
     let shipped = |(name, bytes): (&str, &[u8])| {
@@ -188,9 +193,12 @@ fn haired_head(gpu: &Gpu) -> Renderer {
         TransitionTexture::from_masks(&outer, &inner, 128, 128, DistanceMetric::Chebyshev).unwrap();
     let surface =
         SurfaceRef::new(mesh.positions(), mesh.normals(), mesh.uvs(), mesh.indices()).unwrap();
-    let hairs =
-        HairInstances::generate(&surface, &transition, &HairParams::new(40.0, 1.0).unwrap())
-            .unwrap();
+    let hairs = HairInstances::generate(
+        &surface,
+        &transition,
+        &HairParams::new(density, 1.0).unwrap(),
+    )
+    .unwrap();
     let mut r = head_renderer(gpu, &mesh);
     r.upload_hair(&hairs);
     r
@@ -258,6 +266,48 @@ fn hair_thins_and_grays_with_age() {
     );
     assert!(old_lum > young_lum + 20.0, "hair not lighter when old");
     assert!(old_sat < young_sat, "hair not grayer when old");
+}
+
+/// Strands are blended over the skin, not opaque: sparse black hair with no light of its
+/// own makes few black pixels (a strand covers 90 % of its pixels at its root, 30 % at
+/// its tip; only where strands cross is it black), while opaque strands make every
+/// pixel they cover black.
+#[test]
+fn strands_are_blended_over_the_skin() {
+    let Some(gpu) = gpu_or_skip("strands_are_blended_over_the_skin") else {
+        return;
+    };
+    let mut r = haired_head_at(&gpu, 3.0);
+    let mut p = behind(0.0);
+    p.hair.base_colour = Vec3::ZERO;
+    p.hair.k_amb = 0.0;
+    let bare = r
+        .render_to_image(
+            &FrameParams {
+                hair: HairShading {
+                    enabled: false,
+                    ..p.hair
+                },
+                ..p
+            },
+            (128, 128),
+        )
+        .unwrap();
+    let haired = r.render_to_image(&p, (128, 128)).unwrap();
+    let (mut changed, mut black) = (0, 0);
+    for (a, b) in bare.pixels().zip(haired.pixels()) {
+        if a.0[..3]
+            .iter()
+            .zip(&b.0[..3])
+            .any(|(x, y)| x.abs_diff(*y) > 8)
+        {
+            changed += 1;
+            black += usize::from(b.0[..3].iter().all(|&c| c == 0));
+        }
+    }
+    eprintln!("{changed} pixels under hair, {black} black");
+    assert!(changed > 200, "{changed}");
+    assert!(black * 10 < changed, "{black} of {changed}");
 }
 
 #[test]

@@ -110,6 +110,17 @@ impl Pipelines {
             write_mask: wgpu::ColorWrites::ALL,
         })];
 
+        // A float target that cannot blend (the tests' Rgba32Float) draws opaque strands.
+        let blendable = colour_format
+            .guaranteed_format_features(device.features())
+            .flags
+            .contains(wgpu::TextureFormatFeatureFlags::BLENDABLE);
+        let hair_target = [Some(wgpu::ColorTargetState {
+            format: colour_format,
+            blend: blendable.then_some(wgpu::BlendState::ALPHA_BLENDING),
+            write_mask: wgpu::ColorWrites::COLOR,
+        })];
+
         let skin_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("agesim skin.wgsl"),
             source: wgpu::ShaderSource::Wgsl(shaders::SKIN_WGSL.into()),
@@ -274,12 +285,18 @@ impl Pipelines {
                     cull_mode: None,
                     ..Default::default()
                 },
-                depth_stencil: Some(depth_stencil.clone()),
+                // Blended strands over the skin's depth, writing none: hair of one head
+                // is about one colour, so its order does not show, and a strand behind
+                // another still adds its share.
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    depth_write_enabled: Some(false),
+                    ..depth_stencil.clone()
+                }),
                 multisample: wgpu::MultisampleState::default(),
                 fragment: Some(wgpu::FragmentState {
                     module: &hair_module,
                     entry_point: Some("fs_main"),
-                    targets: &colour_target,
+                    targets: &hair_target,
                     compilation_options: wgpu::PipelineCompilationOptions::default(),
                 }),
                 multiview_mask: None,

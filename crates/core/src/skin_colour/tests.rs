@@ -327,7 +327,7 @@ fn the_old_brow_is_salt_and_pepper_in_streaks_and_bushier() {
     let cancel = CancelToken::never();
     let n = 1024usize;
     scene.bake_colour(n as u32, 0.0, &cancel).unwrap();
-    let (ly, _) = (luminance(scene.aged_colour().unwrap()), ());
+    let ly = luminance(scene.aged_colour().unwrap());
     scene.bake_colour(n as u32, 1.0, &cancel).unwrap();
     let lo = luminance(scene.aged_colour().unwrap());
     let texels = default_head_texels(&scene, n as u32);
@@ -367,7 +367,7 @@ fn the_old_brow_is_salt_and_pepper_in_streaks_and_bushier() {
             // height above the brow's middle line.
             let mut a = p + Vec3::new(0.002, 0.0, 0.0);
             a.y -= (r.brow_coords(a).y - r.brow_coords(p).y) * 1e-3;
-            let draw = |q: Vec3| value3(brow_streak(&r, q), 5);
+            let draw = |q: Vec3| value3(brow_streak(r, q), 5);
             along += (draw(a) - draw(p)).abs();
             across += (draw(p + Vec3::new(0.0, 0.002, 0.0)) - draw(p)).abs();
         }

@@ -77,6 +77,8 @@ fn bad_arguments_are_rejected_before_rendering() {
         &["render", "--age", "1.5", "--out", "x.png"][..],
         &["render", "--compare", "0.1", "--out", "x.png"][..],
         &["render", "--pom", "sideways", "--out", "x.png"][..],
+        &["render", "--supersample", "0", "--out", "x.png"][..],
+        &["render", "--supersample", "5", "--out", "x.png"][..],
     ] {
         let out = agesim(args);
         assert!(!out.status.success(), "{args:?} was accepted");

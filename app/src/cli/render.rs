@@ -52,6 +52,11 @@ pub struct RenderArgs {
     /// Image size, WxH pixels.
     #[arg(long, default_value = "800x800", value_parser = super::parse_size)]
     pub size: (u32, u32),
+    /// Samples per pixel along each axis (1–4): the frame drawn this many times larger and
+    /// averaged down, so silhouettes (the lids' seam, the ear's rim) and hair strands are
+    /// antialiased.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
+    pub supersample: u32,
     /// Camera yaw, degrees (0 = from the front, positive = from the subject's left).
     #[arg(long, allow_hyphen_values = true)]
     pub yaw: Option<f32>,
@@ -253,7 +258,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         let mut images = Vec::new();
         for t in [t0, t1] {
             let params = shown.at(&mut renderer, t)?;
-            let img = renderer.render_to_image(&params, args.size)?;
+            let img =
+                view::render_supersampled(&mut renderer, &params, args.size, args.supersample)?;
             images.push((format!("T={t:.2} {:.0}Y", mapping.years(t)), img));
         }
         save(&view::side_by_side(images), out)?;
@@ -272,7 +278,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     for (i, &t) in ages.iter().enumerate() {
         let params = shown.at(&mut renderer, t)?;
         let start = Instant::now();
-        let img = renderer.render_to_image(&params, args.size)?;
+        let img = view::render_supersampled(&mut renderer, &params, args.size, args.supersample)?;
         let render_ms = start.elapsed().as_secs_f64() * 1e3;
         let path = if ages.len() > 1 {
             view::numbered(out, i)

@@ -42,6 +42,75 @@ pub fn side_by_side(images: Vec<(String, image::RgbaImage)>) -> image::RgbaImage
     side
 }
 
+/// Draws `params` at `size` with `factor`² samples per pixel: the frame at `factor` times
+/// the size (the hair's strands `factor` times wider, so they cover what they cover at
+/// one sample), each `factor`×`factor` block averaged in linear light. Antialiasing for
+/// still pictures (`agesim render`): the renderer's passes are not multisampled, so a
+/// silhouette (the closed lids' seam, the ear's rim, a strand) steps from pixel to pixel
+/// at one sample.
+pub fn render_supersampled(
+    renderer: &mut agesim_render::Renderer,
+    params: &agesim_render::FrameParams,
+    size: (u32, u32),
+    factor: u32,
+) -> Result<image::RgbaImage, agesim_render::RenderError> {
+    let factor = factor.max(1);
+    if factor == 1 {
+        return renderer.render_to_image(params, size);
+    }
+    let mut big = *params;
+    big.hair.width_px *= factor as f32;
+    let img = renderer.render_to_image(
+        &big,
+        (size.0.saturating_mul(factor), size.1.saturating_mul(factor)),
+    )?;
+    Ok(box_downsample(&img, factor))
+}
+
+/// Each `factor`×`factor` block of an sRGB image averaged in linear light (alpha as it
+/// is).
+pub fn box_downsample(img: &image::RgbaImage, factor: u32) -> image::RgbaImage {
+    let to_linear: Vec<f32> = (0..256)
+        .map(|c| {
+            let c = c as f32 / 255.0;
+            if c <= 0.04045 {
+                c / 12.92
+            } else {
+                ((c + 0.055) / 1.055).powf(2.4)
+            }
+        })
+        .collect();
+    let to_srgb = |c: f32| {
+        let c = c.clamp(0.0, 1.0);
+        let s = if c <= 0.003_130_8 {
+            c * 12.92
+        } else {
+            1.055 * c.powf(1.0 / 2.4) - 0.055
+        };
+        (s * 255.0).round() as u8
+    };
+    let (w, h) = (img.width() / factor, img.height() / factor);
+    let n = (factor * factor) as f32;
+    image::RgbaImage::from_fn(w, h, |x, y| {
+        let mut sum = [0f32; 4];
+        for dy in 0..factor {
+            for dx in 0..factor {
+                let p = img.get_pixel(x * factor + dx, y * factor + dy).0;
+                for c in 0..3 {
+                    sum[c] += to_linear[usize::from(p[c])];
+                }
+                sum[3] += f32::from(p[3]);
+            }
+        }
+        image::Rgba([
+            to_srgb(sum[0] / n),
+            to_srgb(sum[1] / n),
+            to_srgb(sum[2] / n),
+            (sum[3] / n).round() as u8,
+        ])
+    })
+}
+
 /// FILE.png → FILE_0003.png.
 pub fn numbered(out: &Path, i: usize) -> PathBuf {
     let stem = out
@@ -51,4 +120,31 @@ pub fn numbered(out: &Path, i: usize) -> PathBuf {
         .extension()
         .map_or_else(|| "png".into(), |e| e.to_string_lossy().into_owned());
     out.with_file_name(format!("{stem}_{i:04}.{ext}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A block of black and white averages to the middle of the light (sRGB 188), not of
+    /// the bytes (128); the image shrinks by the factor.
+    #[test]
+    fn the_box_downsample_averages_in_linear_light() {
+        let img = image::RgbaImage::from_fn(4, 2, |x, _| {
+            let c = if x % 2 == 0 { 0 } else { 255 };
+            image::Rgba([c, c, c, 255])
+        });
+        let small = box_downsample(&img, 2);
+        assert_eq!(small.dimensions(), (2, 1));
+        for p in small.pixels() {
+            assert_eq!(p.0, [188, 188, 188, 255]);
+        }
+        // An even colour stays itself.
+        let even = image::RgbaImage::from_pixel(6, 6, image::Rgba([90, 140, 200, 255]));
+        assert!(
+            box_downsample(&even, 3)
+                .pixels()
+                .all(|p| p.0 == [90, 140, 200, 255])
+        );
+    }
 }

@@ -136,13 +136,13 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "cheeks",
         what: "cheeks descending over the nasolabial fold",
         // The malar fat pad, and a chain hugging the nasolabial fold's cheek side from
-        // the nose wing to the mouth corner: the cheek rolls over the fold (blind
+        // the nose wing to above the mouth corner (one more at the corner hooked the fold
+        // in under it, read as "a bracket"): the cheek rolls over the fold (blind
         // ratings read the fold without it as "a thin engraved crescent").
         blobs: &[
             Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]),
             Blob::new([0.55, -0.88, 0.5], [0.18, 0.26, 0.4]),
             Blob::new([0.61, -1.08, 0.47], [0.18, 0.26, 0.4]),
-            Blob::new([0.66, -1.26, 0.44], [0.15, 0.2, 0.4]),
         ],
         motions: &[(Descent, 5.0), (Bulge, 2.5)],
         curve: curve(35.0, 75.0),

@@ -37,11 +37,26 @@ pub enum Motion {
 pub struct Blob {
     pub centre: [f32; 3],
     pub radii: [f32; 3],
+    /// How much of the region's bulge this blob carries (1: all of it): a region whose
+    /// parts descend alike but bulge differently.
+    pub bulge: f32,
 }
 
 impl Blob {
     const fn new(centre: [f32; 3], radii: [f32; 3]) -> Self {
-        Self { centre, radii }
+        Self {
+            centre,
+            radii,
+            bulge: 1.0,
+        }
+    }
+
+    /// The blob carrying `share` of its region's bulge.
+    const fn bulging(self, share: f32) -> Self {
+        Self {
+            bulge: share,
+            ..self
+        }
     }
 
     /// 1 inside its inner third, falling smoothly to 0 at its surface.
@@ -79,6 +94,14 @@ impl ShapeRegion {
     pub fn weight(&self, q: Vec3) -> f32 {
         self.blobs.iter().map(|b| b.weight(q)).fold(0.0, f32::max)
     }
+
+    /// The weight of its bulge: the largest of its blobs' weights times their share.
+    pub fn bulge_weight(&self, q: Vec3) -> f32 {
+        self.blobs
+            .iter()
+            .map(|b| b.weight(q) * b.bulge)
+            .fold(0.0, f32::max)
+    }
 }
 
 const fn curve(onset: f32, full: f32) -> AgeCurve {
@@ -113,7 +136,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
     },
     ShapeRegion {
         name: "tear_trough",
-        what: "tear trough, upper-lid sulcus and mid-cheek hollowing",
+        what: "tear trough, upper-lid sulcus, mid-cheek and submalar hollowing",
         // The tear trough; the sulcus between the upper lid's fold and the brow (the
         // orbit's rim shows); the malar fat of the mid-cheek, deflating as it descends
         // (blind ratings read the face without them as keeping its young volume).
@@ -121,6 +144,8 @@ pub const REGIONS: [ShapeRegion; 11] = [
             Blob::new([0.4, -0.42, 0.42], [0.32, 0.14, 0.4]),
             Blob::new([0.55, 0.3, 0.2], [0.4, 0.15, 0.35]),
             Blob::new([0.78, -0.55, 0.4], [0.38, 0.26, 0.42]),
+            // Below the cheekbone, lateral to the fold's cheek: the buccal hollow.
+            Blob::new([1.08, -1.05, 0.05], [0.3, 0.32, 0.45]),
         ],
         motions: &[(Deflate, 4.0)],
         curve: curve(35.0, 70.0),
@@ -128,19 +153,20 @@ pub const REGIONS: [ShapeRegion; 11] = [
     ShapeRegion {
         name: "temples",
         what: "temples hollowing",
-        blobs: &[Blob::new([1.32, 0.45, -0.4], [0.55, 0.62, 0.7])],
-        motions: &[(Deflate, 7.0)],
+        blobs: &[Blob::new([1.35, 0.5, -0.45], [0.6, 0.7, 0.75])],
+        motions: &[(Deflate, 10.0)],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
         name: "cheeks",
         what: "cheeks descending over the nasolabial fold",
-        // The malar fat pad, and a chain hugging the nasolabial fold's cheek side from
+        // The malar fat pad (descending, barely fuller: blind ratings read a bulging
+        // one as "fuller rather than thinned"), and a chain hugging the nasolabial fold's cheek side from
         // the nose wing to above the mouth corner (one more at the corner hooked the fold
         // in under it, read as "a bracket"): the cheek rolls over the fold (blind
         // ratings read the fold without it as "a thin engraved crescent").
         blobs: &[
-            Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]),
+            Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]).bulging(0.2),
             Blob::new([0.55, -0.88, 0.5], [0.18, 0.26, 0.4]),
             Blob::new([0.61, -1.08, 0.47], [0.18, 0.26, 0.4]),
         ],
@@ -247,10 +273,12 @@ impl ShapeField {
                     let Some(t) = template_point(s as usize) else {
                         continue;
                     };
-                    let weight = region.weight(frame.relative(t));
+                    let q = frame.relative(t);
+                    let weight = region.weight(q);
                     if weight <= 0.0 {
                         continue;
                     }
+                    let bulge = region.bulge_weight(q) / weight;
                     let normal = mesh.normals()[s as usize];
                     let d: Vec3 = region
                         .motions
@@ -260,7 +288,7 @@ impl ShapeField {
                                 * match motion {
                                     Descent => Vec3::NEG_Y,
                                     Deflate => -normal,
-                                    Bulge => normal,
+                                    Bulge => normal * bulge,
                                 }
                         })
                         .sum();

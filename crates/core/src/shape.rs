@@ -131,7 +131,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "bags",
         what: "bags under the eyes",
         blobs: &[Blob::new([0.62, -0.26, 0.3], [0.45, 0.18, 0.45])],
-        motions: &[(Bulge, 4.0), (Descent, 1.5)],
+        motions: &[(Bulge, 5.0), (Descent, 1.5)],
         curve: curve(40.0, 75.0),
     },
     ShapeRegion {
@@ -147,7 +147,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             // Below the cheekbone, lateral to the fold's cheek: the buccal hollow.
             Blob::new([1.08, -1.05, 0.05], [0.3, 0.32, 0.45]),
         ],
-        motions: &[(Deflate, 4.0)],
+        motions: &[(Deflate, 5.0)],
         curve: curve(35.0, 70.0),
     },
     ShapeRegion {
@@ -205,8 +205,14 @@ pub const REGIONS: [ShapeRegion; 11] = [
     },
     ShapeRegion {
         name: "neck",
-        what: "submental laxity under the chin",
-        blobs: &[Blob::new([0.0, -2.75, 0.05], [0.85, 0.45, 0.7])],
+        what: "submental laxity under the chin, platysmal bands down the neck",
+        // Under the chin; and the two platysmal bands, vertical cords from under the chin
+        // down the front of the neck (a chain each side), standing out 1.5 mm.
+        blobs: &[
+            Blob::new([0.0, -2.75, 0.05], [0.85, 0.45, 0.7]),
+            Blob::new([0.3, -2.9, -0.75], [0.1, 0.3, 0.45]).bulging(3.0),
+            Blob::new([0.32, -3.25, -0.96], [0.1, 0.3, 0.45]).bulging(3.0),
+        ],
         motions: &[(Descent, 5.0), (Bulge, 0.5)],
         curve: curve(40.0, 80.0),
     },

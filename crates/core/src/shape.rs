@@ -167,8 +167,8 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // ratings read the fold without it as "a thin engraved crescent").
         blobs: &[
             Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]).bulging(0.2),
-            Blob::new([0.55, -0.88, 0.5], [0.18, 0.26, 0.4]),
-            Blob::new([0.61, -1.08, 0.47], [0.18, 0.26, 0.4]),
+            Blob::new([0.62, -0.88, 0.47], [0.17, 0.26, 0.4]),
+            Blob::new([0.67, -1.08, 0.44], [0.17, 0.26, 0.4]),
         ],
         motions: &[(Descent, 5.0), (Bulge, 2.5)],
         curve: curve(35.0, 75.0),

@@ -75,6 +75,11 @@ const BROW_GRAY_BRIGHTNESS: f32 = 0.8;
 /// The brows' gray fraction relative to the scalp hair's: brows gray later.
 const BROW_GRAY_LAG: f32 = 0.6;
 
+/// Age spots gather over patches of about this size, mm, tried up to this many times each
+/// ([`place_spots`]).
+const SPOT_CLUSTER_MM: f32 = 35.0;
+const SPOT_CLUSTER_TRIES: usize = 8;
+
 /// One brow hair's draw in the salt-and-pepper graying and the bushier old brow: a streak
 /// this long along the brow's arch and this wide, mm.
 const BROW_STRAND_MM: (f32, f32) = (5.0, 0.9);
@@ -87,8 +92,9 @@ const BROW_GROWN_DARKNESS: f32 = 0.45;
 /// (beyond the young brow's own hair).
 const BROW_BUSHY: f32 = 0.55;
 
-/// Gray brow hair is a little warmer than the hair's gray: yellowed, as old white hair.
-const BROW_GRAY_TINT: [f32; 3] = [1.0, 0.96, 0.88];
+/// Gray brow hair is warmer than the hair's gray: yellowed, as old white hair (the plain
+/// gray read, blind, as blue-gray on the aged skin).
+const BROW_GRAY_TINT: [f32; 3] = [1.0, 0.92, 0.8];
 
 /// Side of the coarse grid of the local skin tone (the reference brows and lips fade to).
 const TONE_GRID: usize = 32;
@@ -413,8 +419,9 @@ impl Spot {
     }
 }
 
-/// The age spots of a head: drawn by area over its skin, weighted by sun exposure, each
-/// with its own appearance, size and darkness (docs/models.md "Skin colour").
+/// The age spots of a head: drawn by area over its skin, weighted by sun exposure,
+/// gathered in patches, each with its own appearance, size and darkness (docs/models.md
+/// "Skin colour").
 pub fn place_spots(
     mesh: &Mesh,
     template_point: &dyn Fn(usize) -> Option<Vec3>,
@@ -422,6 +429,27 @@ pub fn place_spots(
     regions: &Regions,
     spots_per_cm2: f32,
     seed: u64,
+) -> Vec<Spot> {
+    place_spots_gathered(
+        mesh,
+        template_point,
+        metres_per_unit,
+        regions,
+        spots_per_cm2,
+        seed,
+        SPOT_CLUSTER_TRIES,
+    )
+}
+
+/// [`place_spots`] with `tries` draws per spot for the gathering (1: spread evenly).
+fn place_spots_gathered(
+    mesh: &Mesh,
+    template_point: &dyn Fn(usize) -> Option<Vec3>,
+    metres_per_unit: f32,
+    regions: &Regions,
+    spots_per_cm2: f32,
+    seed: u64,
+    tries: usize,
 ) -> Vec<Spot> {
     let positions = mesh.positions();
     let idx = mesh.skin_indices();
@@ -432,7 +460,12 @@ pub fn place_spots(
         let [a, b, c] = [0, 1, 2].map(|i| positions[tri[i] as usize] * metres_per_unit);
         let area = 0.5 * (b - a).cross(c - a).length();
         let points: Option<Vec<Vec3>> = tri.iter().map(|&v| template_point(v as usize)).collect();
-        let sun = points.map_or(0.0, |p| regions.sun((p[0] + p[1] + p[2]) / 3.0));
+        // No spots on the lids nor in the brows (shaded; a dark fleck there read, blind,
+        // as a speck of dirt once the lid hooded over it).
+        let sun = points.map_or(0.0, |p| {
+            let c = (p[0] + p[1] + p[2]) / 3.0;
+            regions.sun(c) * (1.0 - regions.eyes(c)) * (1.0 - regions.brows(c))
+        });
         if area.is_finite() {
             total += f64::from(area * sun);
         }
@@ -447,18 +480,37 @@ pub fn place_spots(
     let count = expected.floor() as usize + usize::from(rng.next_f64() < expected.fract());
     let count = count.min(100_000);
     let (lo, hi) = SPOT_DIAMETER_MM;
+    let cluster_key = (mix64(seed ^ 0x5907_c1) & 0xffff_ffff) as u32;
     (0..count)
         .map(|_| {
-            let x = rng.next_f64() * total;
-            let k = cumulative
-                .partition_point(|&c| c <= x)
-                .min(cumulative.len() - 1);
-            let tri = &idx[3 * k..3 * k + 3];
-            let [a, b, c] = [0, 1, 2].map(|i| positions[tri[i] as usize] * metres_per_unit);
-            let (mut u, mut v) = (rng.next_f32(), rng.next_f32());
-            if u + v > 1.0 {
-                (u, v) = (1.0 - u, 1.0 - v);
+            // Spots gather: a place is kept with a chance that follows a noise of
+            // SPOT_CLUSTER_MM (up to SPOT_CLUSTER_TRIES draws), so there are clusters and
+            // bare patches (an even spread read, blind, as "stamped on").
+            let mut place = || {
+                let x = rng.next_f64() * total;
+                let k = cumulative
+                    .partition_point(|&c| c <= x)
+                    .min(cumulative.len() - 1);
+                let tri = &idx[3 * k..3 * k + 3];
+                let [a, b, c] = [0, 1, 2].map(|i| positions[tri[i] as usize] * metres_per_unit);
+                let (mut u, mut v) = (rng.next_f32(), rng.next_f32());
+                if u + v > 1.0 {
+                    (u, v) = (1.0 - u, 1.0 - v);
+                }
+                let keep = rng.next_f32();
+                (a, b, c, u, v, keep)
+            };
+            let mut drawn = place();
+            for _ in 1..tries {
+                let (a, b, c, u, v, keep) = drawn;
+                let at_mm = (a + (b - a) * u + (c - a) * v) * 1000.0;
+                let gather = 0.5 + 0.5 * value3(at_mm / SPOT_CLUSTER_MM, cluster_key);
+                if keep < gather * gather * gather {
+                    break;
+                }
+                drawn = place();
             }
+            let (a, b, c, u, v, _) = drawn;
             // Small spots are common, large ones rare: d = lo·(hi/lo)^(x³) (a blind
             // rating read x² as "a few large soft smudges").
             let size = rng.next_f32();

@@ -128,6 +128,47 @@ fn spots_are_2_to_14_mm_and_appear_one_by_one_from_the_onset() {
     assert_eq!(s.diameter_at(1.0).max(s.diameter_mm), s.diameter_mm);
 }
 
+/// Spots gather in patches: counted in 3 cm cells, their counts vary more than an even
+/// spread's (whose variance is about its mean), on the same head and seed.
+#[test]
+fn age_spots_gather_in_patches() {
+    let scene = Scene::new(Project::default()).unwrap();
+    let mesh = scene.mesh().clone();
+    let regions = Regions::template().unwrap();
+    let dispersion = |tries: usize| {
+        let spots = place_spots_gathered(
+            &mesh,
+            &|v| mesh.positions().get(v).copied(),
+            1.0,
+            regions,
+            2.0,
+            1,
+            tries,
+        );
+        let mut cells = std::collections::HashMap::new();
+        for s in &spots {
+            *cells
+                .entry((s.centre / 0.03).floor().as_ivec3().to_array())
+                .or_insert(0u32) += 1;
+        }
+        let n = cells.len() as f64;
+        let mean = cells.values().map(|&c| f64::from(c)).sum::<f64>() / n;
+        let var = cells
+            .values()
+            .map(|&c| (f64::from(c) - mean).powi(2))
+            .sum::<f64>()
+            / n;
+        (spots.len(), var / mean)
+    };
+    let (even_n, even) = dispersion(1);
+    let (gathered_n, gathered) = dispersion(SPOT_CLUSTER_TRIES);
+    eprintln!(
+        "variance / mean per 3 cm cell: {even:.2} even ({even_n}), {gathered:.2} gathered ({gathered_n})"
+    );
+    assert_eq!(even_n, gathered_n, "the same number of spots");
+    assert!(gathered > 1.5 * even, "{gathered} vs {even}");
+}
+
 #[test]
 fn a_baked_spot_measures_its_diameter_in_millimetres() {
     // The 5 cm skin patch, in metres, all of it on the template's forehead.

@@ -480,7 +480,7 @@ fn place_spots_gathered(
     let count = expected.floor() as usize + usize::from(rng.next_f64() < expected.fract());
     let count = count.min(100_000);
     let (lo, hi) = SPOT_DIAMETER_MM;
-    let cluster_key = (mix64(seed ^ 0x5907_c1) & 0xffff_ffff) as u32;
+    let cluster_key = (mix64(seed ^ 0x0059_07c1) & 0xffff_ffff) as u32;
     (0..count)
         .map(|_| {
             // Spots gather: a place is kept with a chance that follows a noise of

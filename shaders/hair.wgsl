@@ -124,9 +124,9 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     var out: VertexOut;
     out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
     out.tangent = tangent;
-    // Each gray hair its own shade (0.62–1.12 of C_gray, from the spare random number's
+    // Each gray hair its own shade (0.45–1.10 of C_gray, from the spare random number's
     // other digits): a gray mass reads as strands, not a slab.
-    let gray = frame.hair_gray.rgb * (0.62 + 0.5 * fract(random * 7.0));
+    let gray = frame.hair_gray.rgb * (0.45 + 0.65 * fract(random * 7.0));
     // C_k(t) = (1 − y_k)·C_base + y_k·C_gray, darker toward the root (the light the
     // hairs around it keep from it: 55 % at the root), so the mass has depth and its
     // edge against the skin is soft.
@@ -136,7 +136,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // strands pile up in a pixel: each covers less there and is darker (the light the
     // strands in front keep from it), so the outline is not a hard bright rim.
     let face_on = smoothstep(0.1, 0.8, abs(dot(dir, normalize(frame.camera_pos.xyz - p))));
-    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.7, y) * mix(0.08, 1.0, face_on);
+    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * mix(0.08, 1.0, face_on);
     out.colour *= mix(0.5, 1.0, face_on);
     return out;
 }

@@ -216,17 +216,19 @@ const OUTER_HAIRLINE_M: &[(f32, f32)] = &[
 
 /// Upper edge (y, metres) of the hair that stays at old age: a horseshoe from the
 /// sideburns over the ears and around the back, lowest in front of the ears and rising
-/// toward the back of the head (a straight, level edge read as a pasted-on slab); nothing
-/// on top (receded temples and crown).
+/// toward the back of the head (a straight, level edge read as a pasted-on slab), about
+/// 3 cm of hair above the ears (1 cm read as "bare above the ears, a shell behind them");
+/// nothing on top (receded temples and crown).
 const INNER_TOP_M: &[(f32, f32)] = &[
     (0.0, -1.0),
     (58.0, -1.0),
-    (63.0, -0.004),
-    (72.0, 0.026),
-    (90.0, 0.038),
-    (120.0, 0.05),
-    (150.0, 0.06),
-    (180.0, 0.064),
+    (62.0, 0.0),
+    (68.0, 0.03),
+    (75.0, 0.045),
+    (90.0, 0.055),
+    (120.0, 0.062),
+    (150.0, 0.068),
+    (180.0, 0.07),
 ];
 
 /// Piecewise-linear table lookup (`table` sorted by its first column).

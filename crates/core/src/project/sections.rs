@@ -432,9 +432,9 @@ impl Default for SkinSection {
             // Duller and a little sallower rather than lighter: de Rigal et al. 2010
             // measured faces darkening and yellowing with age (docs/models.md "Age").
             pale_albedo: Colour([0xd9, 0xb8, 0xa4]),
-            pale_amount: 0.4,
+            pale_amount: 0.25,
             spots_per_cm2: 0.35,
-            spot_strength: 0.85,
+            spot_strength: 0.7,
             mottle: 0.3,
             redness: 0.5,
             yellowing: 0.6,

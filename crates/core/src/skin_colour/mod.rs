@@ -70,7 +70,7 @@ const CONTRAST_LIPS: f32 = 0.6;
 
 /// Brightness of gray brow hair relative to the hair's gray colour (brows are coarser and
 /// sparser than scalp hair: they read a little darker than it).
-const BROW_GRAY_BRIGHTNESS: f32 = 0.8;
+const BROW_GRAY_BRIGHTNESS: f32 = 1.05;
 
 /// The brows' gray fraction relative to the scalp hair's: brows gray later.
 const BROW_GRAY_LAG: f32 = 0.6;
@@ -94,7 +94,7 @@ const BROW_BUSHY: f32 = 0.55;
 
 /// Gray brow hair is warmer than the hair's gray: yellowed, as old white hair (the plain
 /// gray read, blind, as blue-gray on the aged skin).
-const BROW_GRAY_TINT: [f32; 3] = [1.0, 0.92, 0.8];
+const BROW_GRAY_TINT: [f32; 3] = [1.0, 0.96, 0.9];
 
 /// Side of the coarse grid of the local skin tone (the reference brows and lips fade to).
 const TONE_GRID: usize = 32;
@@ -127,9 +127,9 @@ impl Default for ColourSettings {
         Self {
             albedo: [0.69, 0.35, 0.24],
             pale_albedo: [0.69, 0.48, 0.37],
-            pale_amount: 0.4,
+            pale_amount: 0.25,
             spots_per_cm2: 0.35,
-            spot_strength: 0.85,
+            spot_strength: 0.7,
             mottle: 0.3,
             redness: 0.5,
             yellowing: 0.6,

@@ -404,7 +404,10 @@ fn shade(s: Surface) -> vec4<f32> {
             let present = smoothstep(t - 0.05, t + 0.05, a) * smoothstep(t, t + 0.5, a)
                 * smoothstep(0.3, 1.0, byte);
             let hair = mix(frame.hair_base.rgb, frame.hair_gray.rgb, frame.scalp.y);
-            albedo = mix(albedo, hair, frame.scalp.x * present);
+            // Pigmented roots darken the scalp; gray ones barely show on it (a white scalp
+            // under a white fringe read, blind, as a painted band with a hard edge).
+            let roots = 1.0 - 0.75 * frame.scalp.y;
+            albedo = mix(albedo, hair, frame.scalp.x * present * roots);
         }
     }
 

@@ -142,7 +142,9 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // (blind ratings read the face without them as keeping its young volume).
         blobs: &[
             Blob::new([0.4, -0.42, 0.42], [0.32, 0.14, 0.4]),
-            Blob::new([0.55, 0.3, 0.2], [0.4, 0.15, 0.35]),
+            // The sulcus above the lid's fold, not the lid over the eyeball (which stays:
+            // a deeper lid let the eye show through it as a dark fleck).
+            Blob::new([0.55, 0.38, 0.2], [0.4, 0.12, 0.35]),
             Blob::new([0.78, -0.55, 0.4], [0.38, 0.26, 0.42]),
             // Below the cheekbone, lateral to the fold's cheek: the buccal hollow.
             Blob::new([1.08, -1.05, 0.05], [0.3, 0.32, 0.45]),
@@ -153,7 +155,8 @@ pub const REGIONS: [ShapeRegion; 11] = [
     ShapeRegion {
         name: "temples",
         what: "temples hollowing",
-        blobs: &[Blob::new([1.35, 0.5, -0.45], [0.6, 0.7, 0.75])],
+        // Behind the orbit's outer rim, not reaching the eye's corner (the eye stays).
+        blobs: &[Blob::new([1.45, 0.5, -0.45], [0.5, 0.7, 0.75])],
         motions: &[(Deflate, 10.0)],
         curve: curve(40.0, 80.0),
     },

@@ -156,3 +156,43 @@ fn the_cheek_rolls_over_the_nasolabial_fold() {
     assert!(mean(&lateral) > 1.0, "{}", mean(&lateral));
     assert!(mean(&medial) < 0.5 * mean(&lateral), "{}", mean(&medial));
 }
+
+/// The lids do not sink into the eyes, which stay: skin within 5 mm of an eye's surface
+/// moves inward by less than 1.5 mm (a deeper upper-lid sulcus once let an eyeball show
+/// through the lid as a dark fleck).
+#[test]
+fn the_lids_do_not_sink_into_the_eyes() {
+    let (mesh, field) = default_head();
+    let full = field.full();
+    let mut skin = vec![false; mesh.vertex_count()];
+    for &i in mesh.skin_indices().iter() {
+        skin[i as usize] = true;
+    }
+    let eye: Vec<Vec3> = mesh
+        .positions()
+        .iter()
+        .zip(&skin)
+        .filter(|(p, s)| !**s && p.z > 0.0)
+        .map(|(p, _)| *p)
+        .collect();
+    assert!(!eye.is_empty(), "the default head has eyes");
+    let mut deepest = 0.0f32;
+    for (((p, d), n), s) in mesh
+        .positions()
+        .iter()
+        .zip(&full)
+        .zip(mesh.normals())
+        .zip(&skin)
+    {
+        if !s
+            || !eye
+                .iter()
+                .any(|e| e.distance(*p) < 0.005 && e.distance(*p) > 1e-6)
+        {
+            continue;
+        }
+        deepest = deepest.max(-d.dot(*n) * 1000.0);
+    }
+    eprintln!("the skin round the eyes moves inward {deepest:.2} mm at most");
+    assert!(deepest < 1.5, "{deepest} mm");
+}

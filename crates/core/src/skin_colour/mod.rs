@@ -70,10 +70,10 @@ const CONTRAST_LIPS: f32 = 0.6;
 
 /// Brightness of gray brow hair relative to the hair's gray colour (brows are coarser and
 /// sparser than scalp hair: they read a little darker than it).
-const BROW_GRAY_BRIGHTNESS: f32 = 1.05;
+const BROW_GRAY_BRIGHTNESS: f32 = 0.9;
 
 /// The brows' gray fraction relative to the scalp hair's: brows gray later.
-const BROW_GRAY_LAG: f32 = 0.6;
+const BROW_GRAY_LAG: f32 = 0.5;
 
 /// Age spots gather over patches of about this size, mm, tried up to this many times each
 /// ([`place_spots`]).
@@ -608,8 +608,13 @@ impl Fields {
             } else {
                 128
             },
+            // The old brow's longer hair grows from the brow, not on the lid below it
+            // (where a dark one read as a speck once the lid hooded).
             brow_strand: if brows > 0.0 {
-                signed_byte(value3(brow_streak(regions, t), keys[4] ^ 0x5bd1_e995))
+                signed_byte(
+                    value3(brow_streak(regions, t), keys[4] ^ 0x5bd1_e995)
+                        * (1.0 - w(Regions::eyes)),
+                )
             } else {
                 128
             },
@@ -988,7 +993,7 @@ impl Look<'_> {
             let gray_hair = smoothstep(-0.08, 0.08, BROW_GRAY_LAG * a.brow_gray - draw);
             c = c.lerp(
                 self.gray * (0.75 + 0.25 * draw),
-                (0.85 * hair * gray_hair).clamp(0.0, 1.0),
+                (0.75 * hair * gray_hair).clamp(0.0, 1.0),
             );
         }
         // Every skin mottles some; sun-exposed skin most. Darker blotches and lighter skin

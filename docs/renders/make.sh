@@ -18,7 +18,7 @@ done
 convert \( "$T"/front-25.png "$T"/front-45.png "$T"/front-65.png "$T"/front-85.png +append \) \
         \( "$T"/side-25.png "$T"/side-45.png "$T"/side-65.png "$T"/side-85.png +append \) \
         -append docs/renders/ages.png
-$A render $P --age-years 75 --no-hair --map-size 4096 --distance 0.2 --yaw 45 --pitch 5 --size 400x400 --out "$T/eye.png"
+$A render $P --age-years 75 --no-hair --map-size 4096 --distance 0.2 --yaw 50 --pitch 20 --size 400x400 --out "$T/eye.png"
 $A render $P --age-years 75 --no-hair --map-size 4096 --distance 0.2 --yaw 15 --pitch -12 --size 400x400 --out "$T/fold.png"
 convert "$T/eye.png" "$T/fold.png" +append docs/renders/close-up-75.png
 $A render --compare 0.1,0.95 --size 360x360 --out docs/renders/compare.png

@@ -410,7 +410,7 @@ impl Default for HairSection {
             max_deviation_deg: crate::hair::DEFAULT_MAX_DEVIATION_RAD.to_degrees(),
             length_mm: 16.0,
             base_colour: Colour([0x5a, 0x3d, 0x28]),
-            gray_colour: Colour([0xd9, 0xd6, 0xcf]),
+            gray_colour: Colour([0xbd, 0xba, 0xb4]),
             graying_onset_min_years: 30.0,
             graying_onset_max_years: 65.0,
             graying_ramp: GrayingRamp::default(),

@@ -70,7 +70,7 @@ const CONTRAST_LIPS: f32 = 0.6;
 
 /// Brightness of gray brow hair relative to the hair's gray colour (brows are coarser and
 /// sparser than scalp hair: they read a little darker than it).
-const BROW_GRAY_BRIGHTNESS: f32 = 0.9;
+const BROW_GRAY_BRIGHTNESS: f32 = 1.2;
 
 /// The brows' gray fraction relative to the scalp hair's: brows gray later.
 const BROW_GRAY_LAG: f32 = 0.5;
@@ -135,7 +135,7 @@ impl Default for ColourSettings {
             yellowing: 0.6,
             contrast_loss: 0.5,
             under_eye: 0.65,
-            gray_hair: [0.69, 0.67, 0.62],
+            gray_hair: [0.51, 0.49, 0.46],
             seed: 1,
         }
     }

@@ -70,25 +70,9 @@ pub fn render_supersampled(
 /// Each `factor`×`factor` block of an sRGB image averaged in linear light (alpha as it
 /// is).
 pub fn box_downsample(img: &image::RgbaImage, factor: u32) -> image::RgbaImage {
-    let to_linear: Vec<f32> = (0..256)
-        .map(|c| {
-            let c = c as f32 / 255.0;
-            if c <= 0.04045 {
-                c / 12.92
-            } else {
-                ((c + 0.055) / 1.055).powf(2.4)
-            }
-        })
-        .collect();
-    let to_srgb = |c: f32| {
-        let c = c.clamp(0.0, 1.0);
-        let s = if c <= 0.003_130_8 {
-            c * 12.92
-        } else {
-            1.055 * c.powf(1.0 / 2.4) - 0.055
-        };
-        (s * 255.0).round() as u8
-    };
+    use agesim_core::mask::{linear_to_srgb, srgb_to_linear};
+    let to_linear: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
+    let to_srgb = |c: f32| (linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0).round() as u8;
     let (w, h) = (img.width() / factor, img.height() / factor);
     let n = (factor * factor) as f32;
     image::RgbaImage::from_fn(w, h, |x, y| {

@@ -81,27 +81,11 @@ fn main() {
 /// Bilinear resample of an sRGB RGBA8 picture to `size`², through linear light, on all
 /// cores: what the aged bake does for a texel with nothing to age.
 fn plain_resample(map: &agesim_core::mask::HeadImage, size: u32) -> Vec<u8> {
+    use agesim_core::mask::{linear_to_srgb, srgb_to_linear};
     use rayon::prelude::*;
-    let lin: Vec<f32> = (0..256)
-        .map(|c| {
-            let c = c as f32 / 255.0;
-            if c <= 0.04045 {
-                c / 12.92
-            } else {
-                ((c + 0.055) / 1.055).powf(2.4)
-            }
-        })
-        .collect();
+    let lin: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
     let enc: Vec<u8> = (0..4096)
-        .map(|i| {
-            let l = i as f32 / 4095.0;
-            let s = if l <= 0.003_130_8 {
-                l * 12.92
-            } else {
-                1.055 * l.powf(1.0 / 2.4) - 0.055
-            };
-            (s * 255.0).round() as u8
-        })
+        .map(|i| (linear_to_srgb(i as f32 / 4095.0) * 255.0).round() as u8)
         .collect();
     let n = size as usize;
     let (w, h) = (map.width_px as usize, map.height_px as usize);

@@ -99,7 +99,8 @@ impl HeadImage {
     }
 }
 
-pub(crate) fn srgb_to_linear(c: f32) -> f32 {
+/// The sRGB transfer function undone: an encoded value in [0, 1] to linear light.
+pub fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 {
         c / 12.92
     } else {
@@ -107,7 +108,8 @@ pub(crate) fn srgb_to_linear(c: f32) -> f32 {
     }
 }
 
-pub(crate) fn linear_to_srgb(l: f32) -> f32 {
+/// The sRGB transfer function: linear light in [0, 1] to its encoded value.
+pub fn linear_to_srgb(l: f32) -> f32 {
     if l <= 0.003_130_8 {
         l * 12.92
     } else {

@@ -142,10 +142,13 @@ impl Face {
     /// Hair that remains at t = 1 (white): sides and back below the horseshoe line.
     pub fn hair_inner(&self, p: Vec3) -> f32 {
         let lon = self.longitude_deg(p);
-        // The edge wanders a few mm (a fringe is not cut level).
+        // The edge wanders up to a centimetre (a fringe is not cut level; ±6 mm read, blind,
+        // as "a hard, even top edge").
         let a = lon.to_radians();
-        let top =
-            lerp_table(INNER_TOP_M, lon) + 0.004 * (9.0 * a).sin() + 0.002 * (23.0 * a + 1.0).sin();
+        let top = lerp_table(INNER_TOP_M, lon)
+            + 0.006 * (9.0 * a).sin()
+            + 0.004 * (23.0 * a + 1.0).sin()
+            + 0.002 * (47.0 * a + 2.0).sin();
         self.hair_outer(p) * smoothstep(-EDGE_M, EDGE_M, top - p.y)
     }
 

@@ -717,7 +717,7 @@ pub const TAPER_SHORTEST: f32 = 0.2;
 /// How far (a fraction of the taper) hair thins toward bare skin.
 const SPARSE_REACH: f32 = 1.0 / 3.0;
 /// How far (a fraction of the taper) the hair that stays fades toward the hair that goes.
-const FRINGE_REACH: f32 = 0.6;
+const FRINGE_REACH: f32 = 1.0;
 
 /// smoothstep(0, 1, x).
 fn smooth01(x: f32) -> f32 {

@@ -79,7 +79,9 @@ fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32, random: f32) -> HairCur
     // Most hair lies flat (stands 5 % of its length); about one in six stands up to 30 %
     // (flyaways, from the random number's other digits), so the silhouette of the hair
     // is broken into strands instead of a solid band.
-    let stand = mix(0.05, 0.3, pow(fract(random * 29.0), 6.0));
+    let r = fract(random * 29.0);
+    let r3 = r * r * r;
+    let stand = mix(0.05, 0.3, r3 * r3);
     let p1 = root + dir * (len * mix(0.5, stand, droop));
     // The tip bends back toward the scalp (as far as a head's curvature takes it from a
     // straight hair), so hair lies on it instead of flaring where the head curves away.

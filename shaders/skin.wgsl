@@ -323,8 +323,8 @@ fn fs_shade(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
 }
 
 // The skin's depth from the stored surface, into a depth buffer cleared to 1: the hair and
-// the wireframe are then tested against the skin, and write their own depth, without
-// touching the stored surface.
+// the wireframe are then tested against the skin (the wireframe writes its own depth,
+// blended hair none) without touching the stored surface.
 @fragment
 fn fs_depth(@builtin(position) pos: vec4<f32>) -> @builtin(frag_depth) f32 {
     let s0 = textureLoad(surface0, vec2<i32>(pos.xy), 0);

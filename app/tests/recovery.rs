@@ -88,12 +88,9 @@ fn an_autosaved_edit_is_offered_back_after_a_crash() {
 fn a_clean_exit_during_an_autosave_leaves_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let rec = dir.path().join("recovery");
-    // A slow disk: the write starts half a second after the autosave does.
-    let mut h = harness_with(
-        &rec,
-        Some("noise.strength=0.75"),
-        Duration::from_millis(500),
-    );
+    // A slow disk: the write starts two seconds after the autosave does (longer than a
+    // frame of this harness takes, so the exit meets the write still running).
+    let mut h = harness_with(&rec, Some("noise.strength=0.75"), Duration::from_secs(2));
     let start = Instant::now();
     while !h.state().autosaving() {
         assert!(start.elapsed() < Duration::from_secs(60), "no autosave");
@@ -102,7 +99,7 @@ fn a_clean_exit_during_an_autosave_leaves_nothing() {
     eframe::App::on_exit(h.state_mut());
     assert!(!h.state().autosaving());
     // Whatever the thread was still doing, it is done: the folder stays empty.
-    std::thread::sleep(Duration::from_millis(700));
+    std::thread::sleep(Duration::from_millis(2500));
     let left = std::fs::read_dir(&rec).map_or(0, |d| d.count());
     assert_eq!(left, 0, "{}", rec.display());
 }

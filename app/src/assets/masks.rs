@@ -142,8 +142,8 @@ impl Face {
     /// Hair that remains at t = 1 (white): sides and back below the horseshoe line.
     pub fn hair_inner(&self, p: Vec3) -> f32 {
         let lon = self.longitude_deg(p);
-        // The edge wanders up to a centimetre (a fringe is not cut level; ±6 mm read, blind,
-        // as "a hard, even top edge").
+        // The edge wanders up to ±12 mm (a fringe is not cut level; ±6 mm read, blind, as
+        // "a hard, even top edge").
         let a = lon.to_radians();
         let top = lerp_table(INNER_TOP_M, lon)
             + 0.006 * (9.0 * a).sin()

@@ -253,6 +253,17 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         bail!("--out is required");
     };
     let mapping = project.age.mapping();
+    let factor = view::supersample_factor(renderer.max_target_side(), args.size, args.supersample);
+    if factor < args.supersample {
+        println!(
+            "--supersample {} lowered to {factor}: {}×{} × {} is beyond the device's {} px target limit",
+            args.supersample,
+            args.size.0,
+            args.size.1,
+            args.supersample,
+            renderer.max_target_side()
+        );
+    }
 
     if let &[t0, t1] = args.compare.as_slice() {
         let mut images = Vec::new();

@@ -307,7 +307,9 @@ impl Io {
 
     /// Waits (at most `timeout`) for the first result `wanted` picks, and returns it with
     /// the results that came before it. Only for the exit, where a write still running
-    /// must finish before the folder it writes is removed.
+    /// must finish before the folder it writes is removed: the other results are
+    /// dropped (a failed save's error is not shown), and a task that panicked sends
+    /// nothing, so the wait runs its full time.
     pub fn wait_for(
         &mut self,
         timeout: std::time::Duration,

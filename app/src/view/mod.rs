@@ -42,10 +42,18 @@ pub fn side_by_side(images: Vec<(String, image::RgbaImage)>) -> image::RgbaImage
     side
 }
 
-/// Draws `params` at `size` with `factor`² samples per pixel: the frame at `factor` times
-/// the size (the hair's strands `factor` times wider, so they cover what they cover at
-/// one sample), each `factor`×`factor` block averaged in linear light. Antialiasing for
-/// still pictures (`agesim render`): the renderer's passes are not multisampled, so a
+/// The samples per pixel along each axis [`render_supersampled`] uses for `wanted` at
+/// `size`: at least 1, and no more than the largest target side allows.
+pub fn supersample_factor(max_side: u32, size: (u32, u32), wanted: u32) -> u32 {
+    let largest = size.0.max(size.1).max(1);
+    wanted.min(max_side / largest).max(1)
+}
+
+/// Draws `params` at `size` with `factor`² samples per pixel (fewer where the device's
+/// target limit allows no more: [`supersample_factor`]): the frame at `factor` times the
+/// size (the hair's strands `factor` times wider, so they cover what they cover at one
+/// sample), each `factor`×`factor` block averaged in linear light. Antialiasing for still
+/// pictures (`agesim render`): the renderer's passes are not multisampled, so a
 /// silhouette (the closed lids' seam, the ear's rim, a strand) steps from pixel to pixel
 /// at one sample.
 pub fn render_supersampled(
@@ -54,22 +62,21 @@ pub fn render_supersampled(
     size: (u32, u32),
     factor: u32,
 ) -> Result<image::RgbaImage, agesim_render::RenderError> {
-    let factor = factor.max(1);
+    let factor = supersample_factor(renderer.max_target_side(), size, factor);
     if factor == 1 {
         return renderer.render_to_image(params, size);
     }
     let mut big = *params;
     big.hair.width_px *= factor as f32;
-    let img = renderer.render_to_image(
-        &big,
-        (size.0.saturating_mul(factor), size.1.saturating_mul(factor)),
-    )?;
+    let img = renderer.render_to_image(&big, (size.0 * factor, size.1 * factor))?;
     Ok(box_downsample(&img, factor))
 }
 
-/// Each `factor`×`factor` block of an sRGB image averaged in linear light (alpha as it
-/// is).
+/// Each `factor`×`factor` block of an sRGB image averaged in linear light (alpha
+/// averaged as it is; the colour is not weighted by it). Rows and columns beyond the
+/// last whole block are dropped; a factor of 0 counts as 1.
 pub fn box_downsample(img: &image::RgbaImage, factor: u32) -> image::RgbaImage {
+    let factor = factor.max(1);
     use agesim_core::mask::{linear_to_srgb, srgb_to_linear};
     let to_linear: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
     let to_srgb = |c: f32| (linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0).round() as u8;

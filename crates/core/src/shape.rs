@@ -37,8 +37,8 @@ pub enum Motion {
 pub struct Blob {
     pub centre: [f32; 3],
     pub radii: [f32; 3],
-    /// How much of the region's bulge this blob carries (1: all of it): a region whose
-    /// parts descend alike but bulge differently.
+    /// What this blob's bulge is, as a factor of its region's (1: the region's; 0.2 a
+    /// fifth; 3 three times): a region whose parts descend alike but bulge differently.
     pub bulge: f32,
 }
 
@@ -51,10 +51,10 @@ impl Blob {
         }
     }
 
-    /// The blob carrying `share` of its region's bulge.
-    const fn bulging(self, share: f32) -> Self {
+    /// The blob with `factor` times its region's bulge.
+    const fn bulging(self, factor: f32) -> Self {
         Self {
-            bulge: share,
+            bulge: factor,
             ..self
         }
     }
@@ -95,7 +95,8 @@ impl ShapeRegion {
         self.blobs.iter().map(|b| b.weight(q)).fold(0.0, f32::max)
     }
 
-    /// The weight of its bulge: the largest of its blobs' weights times their share.
+    /// The weight of its bulge: the largest of its blobs' weights times their bulge
+    /// factors.
     pub fn bulge_weight(&self, q: Vec3) -> f32 {
         self.blobs
             .iter()

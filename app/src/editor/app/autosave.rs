@@ -114,7 +114,13 @@ impl EditorApp {
                 .io
                 .wait_for(std::time::Duration::from_secs(10), autosaved);
             if !waited.iter().any(autosaved) {
-                eprintln!("agesim: the autosave being written at exit did not finish in 10 s");
+                // Still writing: removing the folder now could leave half of it, or the
+                // write could put it back. It stays, offered back at the next start.
+                eprintln!(
+                    "agesim: the autosave being written at exit did not finish in 10 s; \
+                     the recovery folder is kept"
+                );
+                return;
             }
         }
         self.autosave.in_flight = false;

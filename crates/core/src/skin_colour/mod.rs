@@ -68,8 +68,9 @@ const YELLOW_TINT: [f32; 3] = [0.0, 0.06, 0.22];
 const CONTRAST_BROWS: f32 = 0.2;
 const CONTRAST_LIPS: f32 = 0.6;
 
-/// Brightness of gray brow hair relative to the hair's gray colour (brows are coarser and
-/// sparser than scalp hair: they read a little darker than it).
+/// Brightness of gray brow hair relative to the hair's gray colour: coarse white brow
+/// hair over the skin reads lighter than the silver of the scalp's (at the scalp's
+/// brightness the brows read, blind, as "gray putty").
 const BROW_GRAY_BRIGHTNESS: f32 = 1.2;
 
 /// The brows' gray fraction relative to the scalp hair's: brows gray later.
@@ -285,11 +286,7 @@ impl Regions {
             // 0 at the inner corner, 1 at the outer one, along x.
             let s = (q.x - inner.x) / (outer.x - inner.x);
             let along = smoothstep(-0.35, -0.1, s) * (1.0 - smoothstep(1.05, 1.3, s));
-            let corners_y = inner.y + (outer.y - inner.y) * s.clamp(0.0, 1.0);
-            // The arch: lowest at the inner end, highest two-thirds out.
-            let centre =
-                corners_y + 0.34 + 0.14 * (std::f32::consts::PI * (s + 0.1) / 1.3).sin().max(0.0);
-            let across = 1.0 - smoothstep(0.16, 0.3, (q.y - centre).abs());
+            let across = 1.0 - smoothstep(0.16, 0.3, (q.y - brow_middle(inner, outer, s)).abs());
             w = w.max(along * across);
         }
         w * front(q.z, self.ear_z)
@@ -307,10 +304,7 @@ impl Regions {
             self.eyes[1]
         };
         let s = (q.x - inner.x) / (outer.x - inner.x);
-        let corners_y = inner.y + (outer.y - inner.y) * s.clamp(0.0, 1.0);
-        let centre =
-            corners_y + 0.34 + 0.14 * (std::f32::consts::PI * (s + 0.1) / 1.3).sin().max(0.0);
-        Vec2::new(q.x, q.y - centre) * self.unit * 1000.0
+        Vec2::new(q.x, q.y - brow_middle(inner, outer, s)) * self.unit * 1000.0
     }
 
     /// The beard: below the nose to under the chin, out along the jaw toward the ears; not
@@ -1271,8 +1265,13 @@ fn alpha_at(img: &HeadImage, x: usize, y: usize, n: usize) -> u8 {
     img.rgba[(sy * w + sx) * 4 + 3]
 }
 
-/// Smooth 3D value noise in [−1, 1]: hashed values at the integer lattice, joined by
-/// smoothstep; one stream per `key`.
+/// The height (face frame) of a brow's arched middle line at `s` along its eye (0 at the
+/// inner corner, 1 at the outer): lowest at the inner end, highest two-thirds out.
+fn brow_middle(inner: Vec3, outer: Vec3, s: f32) -> f32 {
+    let corners_y = inner.y + (outer.y - inner.y) * s.clamp(0.0, 1.0);
+    corners_y + 0.34 + 0.14 * (std::f32::consts::PI * (s + 0.1) / 1.3).sin().max(0.0)
+}
+
 /// The point `t` (template metres) in brow-hair streak units: its place on the brow
 /// ([`Regions::brow_coords`]) over [`BROW_STRAND_MM`].
 fn brow_streak(regions: &Regions, t: Vec3) -> Vec3 {
@@ -1280,6 +1279,8 @@ fn brow_streak(regions: &Regions, t: Vec3) -> Vec3 {
     Vec3::new(b.x / BROW_STRAND_MM.0, b.y / BROW_STRAND_MM.1, 0.0)
 }
 
+/// Smooth 3D value noise in [−1, 1]: hashed values at the integer lattice, joined by
+/// smoothstep; one stream per `key`.
 fn value3(p: Vec3, key: u32) -> f32 {
     let i = p.floor();
     let f = p - i;

@@ -438,8 +438,9 @@ impl Renderer {
         if !wire && hair.is_none() {
             return Ok(());
         }
-        // The hair and the wireframe are tested against the skin's depth and write their
-        // own: the skin's depth is restored from the stored surface into the depth target
+        // The hair and the wireframe are tested against the skin's depth (the wireframe,
+        // and hair on a target that cannot blend, write their own; blended hair does
+        // not): the skin's depth is restored from the stored surface into the depth target
         // (a draw, not a depth-texture copy, which OpenGL backends cannot do).
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

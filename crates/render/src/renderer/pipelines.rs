@@ -285,11 +285,13 @@ impl Pipelines {
                     cull_mode: None,
                     ..Default::default()
                 },
-                // Blended strands over the skin's depth, writing none: hair of one head
-                // is about one colour, so its order does not show, and a strand behind
-                // another still adds its share.
+                // Blended strands over the skin's depth, writing none: unsorted (hair of
+                // one head is close to one colour, so the order shows little, and the
+                // draw order is fixed, so it does not flicker), and a strand behind another
+                // still adds its share. Opaque strands (a target that cannot blend) write
+                // depth, so a nearer one is not overdrawn by a farther one.
                 depth_stencil: Some(wgpu::DepthStencilState {
-                    depth_write_enabled: Some(false),
+                    depth_write_enabled: Some(!blendable),
                     ..depth_stencil.clone()
                 }),
                 multisample: wgpu::MultisampleState::default(),

@@ -17,11 +17,17 @@ pub(super) struct Targets {
     /// The surface pass's depth test.
     pub(super) surface_depth_view: wgpu::TextureView,
     /// The skin's depth restored from the stored surface each frame (`fs_depth`), which
-    /// the hair and the wireframe test and write.
+    /// the hair and the wireframe test against (the wireframe writes it; blended hair
+    /// does not).
     pub(super) depth_view: wgpu::TextureView,
 }
 
 impl Renderer {
+    /// The largest side of a render target (the device's 2D texture limit).
+    pub fn max_target_side(&self) -> u32 {
+        self.device.limits().max_texture_dimension_2d
+    }
+
     /// Makes sure view `vi`'s targets are `size_px`, recreating them if needed.
     pub(super) fn ensure_targets(
         &mut self,

@@ -148,7 +148,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             Blob::new([0.55, 0.38, 0.2], [0.4, 0.12, 0.35]),
             Blob::new([0.78, -0.55, 0.4], [0.38, 0.26, 0.42]),
             // Below the cheekbone, lateral to the fold's cheek: the buccal hollow.
-            Blob::new([1.08, -1.05, 0.05], [0.3, 0.32, 0.45]),
+            Blob::new([1.08, -1.05, 0.05], [0.38, 0.38, 0.5]),
         ],
         motions: &[(Deflate, 5.0)],
         curve: curve(35.0, 70.0),

@@ -204,9 +204,9 @@ fn haired_head_at(gpu: &Gpu, density: f32) -> Renderer {
     r
 }
 
-/// The pixels the hair pass changes (vs the same frame without hair), and their mean
-/// chroma and brightness.
-fn hair_pixels(r: &mut Renderer, p: &FrameParams, size: u32) -> (u32, f64, f64) {
+/// The colours (with hair) of the pixels the hair pass changes, vs the same frame without
+/// hair.
+fn under_hair(r: &mut Renderer, p: &FrameParams, size: u32) -> Vec<[u8; 3]> {
     let bare = r
         .render_to_image(
             &FrameParams {
@@ -220,21 +220,30 @@ fn hair_pixels(r: &mut Renderer, p: &FrameParams, size: u32) -> (u32, f64, f64) 
         )
         .unwrap();
     let haired = r.render_to_image(p, (size, size)).unwrap();
-    let (mut count, mut sat, mut lum) = (0u32, 0f64, 0f64);
-    for (a, b) in bare.pixels().zip(haired.pixels()) {
-        if a.0[..3]
-            .iter()
-            .zip(&b.0[..3])
-            .any(|(x, y)| x.abs_diff(*y) > 8)
-        {
-            count += 1;
-            let [r, g, b] = [b.0[0], b.0[1], b.0[2]].map(f64::from);
-            sat += r.max(g).max(b) - r.min(g).min(b);
-            lum += (r + g + b) / 3.0;
-        }
+    bare.pixels()
+        .zip(haired.pixels())
+        .filter(|(a, b)| {
+            a.0[..3]
+                .iter()
+                .zip(&b.0[..3])
+                .any(|(x, y)| x.abs_diff(*y) > 8)
+        })
+        .map(|(_, b)| [b.0[0], b.0[1], b.0[2]])
+        .collect()
+}
+
+/// The pixels the hair pass changes (vs the same frame without hair), and their mean
+/// chroma and brightness.
+fn hair_pixels(r: &mut Renderer, p: &FrameParams, size: u32) -> (u32, f64, f64) {
+    let changed = under_hair(r, p, size);
+    let (mut sat, mut lum) = (0f64, 0f64);
+    for c in &changed {
+        let [r, g, b] = c.map(f64::from);
+        sat += r.max(g).max(b) - r.min(g).min(b);
+        lum += (r + g + b) / 3.0;
     }
-    let n = f64::from(count.max(1));
-    (count, sat / n, lum / n)
+    let n = changed.len().max(1) as f64;
+    (changed.len() as u32, sat / n, lum / n)
 }
 
 /// From behind and above, where the scalp recedes.
@@ -281,30 +290,9 @@ fn strands_are_blended_over_the_skin() {
     let mut p = behind(0.0);
     p.hair.base_colour = Vec3::ZERO;
     p.hair.k_amb = 0.0;
-    let bare = r
-        .render_to_image(
-            &FrameParams {
-                hair: HairShading {
-                    enabled: false,
-                    ..p.hair
-                },
-                ..p
-            },
-            (128, 128),
-        )
-        .unwrap();
-    let haired = r.render_to_image(&p, (128, 128)).unwrap();
-    let (mut changed, mut black) = (0, 0);
-    for (a, b) in bare.pixels().zip(haired.pixels()) {
-        if a.0[..3]
-            .iter()
-            .zip(&b.0[..3])
-            .any(|(x, y)| x.abs_diff(*y) > 8)
-        {
-            changed += 1;
-            black += usize::from(b.0[..3].iter().all(|&c| c == 0));
-        }
-    }
+    let under = under_hair(&mut r, &p, 128);
+    let changed = under.len();
+    let black = under.iter().filter(|c| c.iter().all(|&v| v == 0)).count();
     eprintln!("{changed} pixels under hair, {black} black");
     assert!(changed > 200, "{changed}");
     assert!(black * 10 < changed, "{black} of {changed}");

@@ -143,6 +143,46 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     return out;
 }
 
+// `agesim_core::brows::BrowStrand`, 48 bytes: an eyebrow hair at the view's age, its curve
+// made on the CPU (docs/models.md §9 "Eyebrows").
+struct BrowInstance {
+    @location(0) root: vec3<f32>,
+    @location(1) gray: f32,
+    @location(2) middle: vec3<f32>,
+    @location(3) shade: f32,
+    @location(4) tip: vec3<f32>,
+    @location(5) coverage: f32,
+}
+
+// How dark a brow hair is against the hair's base colour (`agesim_core::brows::DARKNESS`).
+const BROW_DARKNESS: f32 = 0.7;
+
+@vertex
+fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut {
+    let curve = HairCurve(inst.root, inst.middle, inst.tip);
+    let s = f32(vertex / 2u) / f32(SEGMENTS);
+    let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
+    let p = curve_point(curve, s);
+    let tangent = curve_tangent(curve, s);
+    let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
+    let clip_ahead = frame.clip_from_world * vec4<f32>(p + tangent * 1e-3, 1.0);
+    let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
+    let screen_dir = (clip_ahead.xy / clip_ahead.w - clip.xy / clip.w) * viewport;
+    let perp = normalize(vec2<f32>(-screen_dir.y, screen_dir.x) + vec2<f32>(1e-6, 0.0));
+    // Brow hair is coarser than the scalp's: 1.3 × its width, tapering to a third.
+    let width_px = 1.3 * frame.hair_gray.w * (1.0 - 0.65 * s);
+    let offset_ndc = perp * (width_px / viewport);
+    var out: VertexOut;
+    out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
+    out.tangent = tangent;
+    let base = frame.hair_base.rgb * BROW_DARKNESS * inst.shade;
+    let gray = frame.hair_gray.rgb * (0.55 + 0.5 * inst.shade);
+    out.colour = mix(base, gray, inst.gray) * mix(0.6, 1.0, s);
+    out.world_pos = p;
+    out.alpha = mix(0.95, 0.45, s) * inst.coverage;
+    return out;
+}
+
 fn aces(x: vec3<f32>) -> vec3<f32> {
     return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
 }

@@ -1,8 +1,8 @@
 //! The default head, converted from the Lee Perry-Smith scan in `assets/heads/lee-perry-smith/`
 //! ("Infinite, 3D Head Scan by Lee Perry-Smith, licensed under CC BY 3.0, based on a work at
 //! triplegangers.com"). `agesim gen-assets` writes the result to
-//! `assets/meshes/default-head.glb` (with the scan's colour and normal maps embedded, as
-//! they are) and `assets/meshes/default-head.landmarks.json`; the engine reads those
+//! `assets/meshes/default-head.glb` (with the scan's colour map, its ears corrected, and
+//! normal map embedded) and `assets/meshes/default-head.landmarks.json`; the engine reads those
 //! (`agesim_core::head`), never this.
 //!
 //! What the conversion does to the scan, and nothing more:
@@ -21,7 +21,9 @@
 //! - **landmarks**: the hand-placed points of `landmarks.json` moved into the new frame, with
 //!   the right tragion (missing: the scan's right ear is half hidden) the left one mirrored,
 //!   each then moved to the nearest point of the surface;
-//! - tangents: MikkTSpace on the converted UVs, the frame the maps are sampled in.
+//! - tangents: MikkTSpace on the converted UVs, the frame the maps are sampled in;
+//! - **ears**: the colour map's yellow-orange cast in the ears' bowls taken out
+//!   ([`neutralise_ears`]); the rest of the map is the scan's, re-encoded.
 
 use std::path::Path;
 
@@ -45,7 +47,7 @@ pub struct DefaultHead {
     pub mesh: Mesh,
     /// Its landmarks, metres, in its frame.
     pub landmarks: Landmarks,
-    /// The scan's colour map (JPEG, as shipped).
+    /// The scan's colour map (JPEG), its ears' cast taken out.
     pub colour_jpeg: Vec<u8>,
     /// The scan's tangent-space normal map (JPEG, as shipped).
     pub normal_jpeg: Vec<u8>,
@@ -244,12 +246,83 @@ pub fn convert_scan(assets: &Path) -> anyhow::Result<DefaultHead> {
     let read = |name: &str| -> Result<Vec<u8>, Error> {
         agesim_core::limits::read_file(&dir.join(name), agesim_core::limits::MAX_IMAGE_FILE_BYTES)
     };
+    let colour_jpeg = neutralise_ears(&read("Map-COL.jpg")?, &mesh, &landmarks)?;
     Ok(DefaultHead {
         mesh,
         landmarks,
-        colour_jpeg: read("Map-COL.jpg")?,
+        colour_jpeg,
         normal_jpeg: read("Infinite-Level_02_Tangent_SmoothUV.jpg")?,
     })
+}
+
+/// Where the ear's bowl lies from its tragion (metres, the head's frame): behind it and a
+/// little below, and the radii of the ellipsoid round it that takes the correction.
+const EAR_FROM_TRAGION_M: Vec3 = Vec3::new(0.0, -0.005, -0.015);
+const EAR_RADII_M: Vec3 = Vec3::new(0.03, 0.035, 0.025);
+
+/// The scan's colour map with its ears' ochre cast taken out: the scan's conchae are
+/// yellow-orange (sRGB ≈ (186, 135, 105) against the skin round the ear's (195, 150,
+/// 135)), which read, blind, as "a different material" on the head. Within an ellipsoid
+/// round each ear ([`EAR_FROM_TRAGION_M`], [`EAR_RADII_M`], fading over its outer fifth),
+/// each texel's green and blue, relative to its red, move to the skin's round the ear (the
+/// mean over 45–70 mm from the ear's centre); its red, and so its light, stays. Re-encoded as
+/// JPEG at quality 95.
+fn neutralise_ears(jpeg: &[u8], mesh: &Mesh, landmarks: &Landmarks) -> anyhow::Result<Vec<u8>> {
+    let mut image = image::load_from_memory(jpeg)
+        .context("cannot decode the scan's colour map")?
+        .to_rgb8();
+    let (w, h) = image.dimensions();
+    anyhow::ensure!(w == h, "the scan's colour map is {w}×{h}, not square");
+    let surface = crate::assets::masks::Surface::new(mesh, w)?;
+    let ears: Vec<Vec3> = ["tragion_l", "tragion_r"]
+        .iter()
+        .filter_map(|n| landmarks.get(n))
+        .map(|t| t + EAR_FROM_TRAGION_M)
+        .collect();
+    let ellipsoid = |p: Vec3| {
+        ears.iter()
+            .map(|&c| ((p - c) / EAR_RADII_M).length())
+            .fold(f32::INFINITY, f32::min)
+    };
+    let ratios = |px: &image::Rgb<u8>| {
+        let [r, g, b] = px.0.map(|v| f32::from(v).max(1.0));
+        Vec2::new(g / r, b / r)
+    };
+    let (mut sum, mut count) = (Vec2::ZERO, 0u32);
+    for (k, px) in image.pixels().enumerate() {
+        let p = surface.points[k];
+        let d = ears
+            .iter()
+            .map(|c| p.distance(*c))
+            .fold(f32::INFINITY, f32::min);
+        if (0.045..0.07).contains(&d) && ellipsoid(p) > 1.0 {
+            sum += ratios(px);
+            count += 1;
+        }
+    }
+    anyhow::ensure!(count > 0, "no skin found round the scan's ears");
+    let skin = sum / count as f32;
+    for (k, px) in image.pixels_mut().enumerate() {
+        let weight = 1.0 - smooth01((ellipsoid(surface.points[k]) - 0.8) / 0.2);
+        if weight <= 0.0 {
+            continue;
+        }
+        let now = ratios(px);
+        let to = now + (skin - now) * weight;
+        let r = f32::from(px.0[0]);
+        px.0[1] = (r * to.x).round().clamp(0.0, 255.0) as u8;
+        px.0[2] = (r * to.y).round().clamp(0.0, 255.0) as u8;
+    }
+    let mut out = Vec::new();
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut out, 95)
+        .encode_image(&image)
+        .context("cannot encode the corrected colour map")?;
+    Ok(out)
+}
+
+fn smooth01(x: f32) -> f32 {
+    let t = x.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
 }
 
 #[cfg(test)]

@@ -57,6 +57,7 @@ impl HeadlessView {
             .bake_colour(colour_px, t, &CancelToken::never())?;
         self.scene.prepare_shown_colour();
         self.scene.bake_shape(t);
+        self.scene.bake_brows(t);
         self.layers.refresh(&self.scene, &changed, false);
         self.uploaded.upload(renderer, &self.layers)?;
         Ok(())

@@ -36,6 +36,8 @@ pub struct Layers {
     pub aged: Option<Arc<HeadImage>>,
     /// The shape of this bake's age ([`Scene::aged_shape`]), per view like the colour.
     pub shape: Option<Arc<agesim_core::scene::AgedShape>>,
+    /// The brow hairs of this bake's age ([`Scene::aged_brows`]), per view.
+    pub brows: Option<Arc<Vec<agesim_core::brows::BrowStrand>>>,
     /// The head's normal map ([`Scene::normal_map`]).
     pub normal: Option<Arc<HeadImage>>,
 }
@@ -55,6 +57,7 @@ impl Default for Layers {
             colour: None,
             aged: None,
             shape: None,
+            brows: None,
             normal: None,
         }
     }
@@ -87,6 +90,7 @@ impl Layers {
         // tint); exports take `Scene::aged_colour` itself.
         self.aged = scene.shown_colour().cloned();
         self.shape = scene.aged_shape().cloned();
+        self.brows = scene.aged_brows().cloned();
         self.normal = scene.normal_map().cloned();
         let metres_per_unit = scene.metres_per_unit();
         // Measured over the mesh: only when the mesh or its units change.
@@ -130,6 +134,7 @@ pub struct Uploaded {
     colour: usize,
     aged: usize,
     shape: usize,
+    brows: usize,
     normal: usize,
 }
 
@@ -178,7 +183,7 @@ impl Uploaded {
     }
 
     /// Uploads the layers that differ between two ages (the large-wrinkle map, the
-    /// micro-relief tile, the aged colour, the shape) to `view` of `renderer`: a second view (the compare age) shares
+    /// micro-relief tile, the aged colour, the shape, the brows) to `view` of `renderer`: a second view (the compare age) shares
     /// the mesh, the fine tile and the hair of the first.
     pub fn upload_age_layers(
         &mut self,
@@ -206,6 +211,11 @@ impl Uploaded {
                 .map(|s| (s.delta.as_slice(), s.normals.as_slice()));
             result = result.and(renderer.upload_shape_to(view, shape));
             self.shape = stamp(&layers.shape);
+        }
+        if stamp(&layers.brows) != self.brows {
+            result = result
+                .and(renderer.upload_brows_to(view, layers.brows.as_deref().map(Vec::as_slice)));
+            self.brows = stamp(&layers.brows);
         }
         if stamp(&layers.aged) != self.aged {
             result = result.and(renderer.upload_colour_map_to(view, picture(&layers.aged)));

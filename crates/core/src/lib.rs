@@ -5,6 +5,7 @@
 //! ((x + 0.5)/W, 1 − (y + 0.5)/H), heights in signed height units, age t ∈ [0,1].
 
 pub mod age;
+pub mod brows;
 pub mod cancel;
 pub mod compose;
 pub mod defaults;

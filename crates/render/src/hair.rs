@@ -27,6 +27,19 @@ pub(crate) const INSTANCE_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_
 /// Stride of one instance, bytes.
 pub(crate) const INSTANCE_STRIDE: u64 = 32;
 
+/// `agesim_core::brows::BrowStrand` (48 bytes) as vertex attributes.
+pub(crate) const BROW_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
+    0 => Float32x3, // root
+    1 => Float32,   // gray
+    2 => Float32x3, // middle
+    3 => Float32,   // shade
+    4 => Float32x3, // tip
+    5 => Float32,   // coverage
+];
+
+/// Stride of one brow strand, bytes.
+pub(crate) const BROW_STRIDE: u64 = 48;
+
 /// count(t) from the cumulative table (the same rule as `HairInstances::count`: hairs
 /// with a_k ≥ t), kept here so the renderer needs only the table, not the instances.
 pub(crate) fn count_at(levels: &[AgeLevel], t: f32) -> u32 {
@@ -50,6 +63,19 @@ mod tests {
             .map(|a| a.offset + a.format.size())
             .max();
         assert_eq!(end, Some(INSTANCE_STRIDE));
+    }
+
+    #[test]
+    fn brow_layout_matches_core() {
+        assert_eq!(
+            std::mem::size_of::<agesim_core::brows::BrowStrand>() as u64,
+            BROW_STRIDE
+        );
+        let end = BROW_ATTRIBUTES
+            .iter()
+            .map(|a| a.offset + a.format.size())
+            .max();
+        assert_eq!(end, Some(BROW_STRIDE));
     }
 
     #[test]

@@ -6,7 +6,9 @@
 //! missing adapter is a broken CI image and fails.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use agesim_core::brows::BrowHairs;
 use agesim_core::hair::{HairInstances, HairParams, SurfaceRef};
+use agesim_core::skin_colour::ColourFactors;
 use agesim_core::transition::{DistanceMetric, TransitionTexture};
 use agesim_core::{HeightMap, Mask, Mesh, defaults, head};
 use agesim_render::{
@@ -296,6 +298,53 @@ fn strands_are_blended_over_the_skin() {
     eprintln!("{changed} pixels under hair, {black} black");
     assert!(changed > 200, "{changed}");
     assert!(black * 10 < changed, "{black} of {changed}");
+}
+
+/// Face on, close to the brows.
+fn at_the_brows() -> FrameParams {
+    let mut p = FrameParams::default();
+    p.camera.distance = 0.25;
+    p.camera.pitch_rad = 0.1;
+    p
+}
+
+#[test]
+fn brow_hairs_are_drawn_and_gray_with_age() {
+    let Some(gpu) = gpu_or_skip("brow_hairs_are_drawn_and_gray_with_age") else {
+        return;
+    };
+    let mesh = head::default_head();
+    let regions = agesim_core::skin_colour::Regions::template().unwrap();
+    let positions = mesh.positions();
+    let brows = BrowHairs::generate(&mesh, &|v| Some(positions[v]), regions, 1.0, 0);
+    let mut r = head_renderer(&gpu, &mesh);
+    let p = at_the_brows();
+    let age = |brow_gray: f32| ColourFactors {
+        brow_gray,
+        contrast: brow_gray,
+        ..ColourFactors::default()
+    };
+    let mut drawn = |brow_gray: f32| {
+        let strands = brows.strands(&mesh, &age(brow_gray), None);
+        r.upload_brows_to(ViewId::MAIN, Some(&strands)).unwrap();
+        let changed = under_hair(&mut r, &p, 256);
+        let lum = changed
+            .iter()
+            .map(|c| c.iter().map(|&v| f64::from(v)).sum::<f64>() / 3.0)
+            .sum::<f64>()
+            / changed.len().max(1) as f64;
+        (changed.len(), lum)
+    };
+    let (young_px, young_lum) = drawn(0.0);
+    let (old_px, old_lum) = drawn(1.0);
+    eprintln!("brow pixels {young_px} → {old_px}, brightness {young_lum:.1} → {old_lum:.1}");
+    assert!(young_px > 300, "{young_px} pixels of brow hair");
+    // The old brow is bushier and grayer.
+    assert!(old_px > young_px, "{old_px} against {young_px}");
+    assert!(old_lum > young_lum + 20.0, "{old_lum} against {young_lum}");
+    // None uploaded: none drawn.
+    r.upload_brows_to(ViewId::MAIN, None).unwrap();
+    assert!(under_hair(&mut r, &p, 256).is_empty());
 }
 
 #[test]

@@ -364,6 +364,7 @@ fn bake(
     s.bake_colour(colour_px, job.request.t, cancel)?;
     s.prepare_shown_colour();
     s.bake_shape(job.request.t);
+    s.bake_brows(job.request.t);
     changed.mesh |= baked.mesh;
     let merged = if refresh_all {
         Changed {

@@ -127,6 +127,7 @@ slots! {
     "hair.thinning" => hair.thinning;
     "hair.taper_mm" => hair.taper_mm;
     "hair.scalp_tint" => hair.scalp_tint;
+    "hair.brows" => hair.brows;
     "hair.k_diff" => hair.k_diff;
     "hair.k_spec" => hair.k_spec;
     "hair.shininess" => hair.shininess;

@@ -202,6 +202,8 @@ pub struct HairSection {
     pub taper_mm: f32,
     /// How far the scalp under the hair takes the hair's colour in the 3D view, 0–1.
     pub scalp_tint: f32,
+    /// Draw eyebrow hairs in the 3D view (docs/models.md §9 "Eyebrows"; a fitted head).
+    pub brows: bool,
     pub k_diff: f32,
     pub k_spec: f32,
     pub shininess: f32,
@@ -417,6 +419,7 @@ impl Default for HairSection {
             thinning: crate::hair::DEFAULT_THINNING,
             taper_mm: crate::hair::DEFAULT_TAPER_MM,
             scalp_tint: 0.6,
+            brows: true,
             k_diff: 0.7,
             k_spec: 0.35,
             shininess: 40.0,

@@ -254,6 +254,12 @@ pub struct Scene {
     shape: Option<(ShapeKey, Arc<crate::shape::ShapeField>)>,
     /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
     shape_aged: Option<((usize, u32), Arc<AgedShape>)>,
+    /// The brow hairs placed on the head, keyed by mesh and layout generations, metres per
+    /// unit (bits) and seed.
+    brows: Option<(BrowHairsKey, Arc<crate::brows::BrowHairs>)>,
+    /// The brow hairs at the last [`Scene::bake_brows`]'s age, keyed by the hairs, the
+    /// shape and the factors it was made from.
+    brows_aged: Option<(BrowsKey, Arc<Vec<crate::brows::BrowStrand>>)>,
     /// The aged colour as the 3D view shows it ([`Scene::shown_colour`]), with the aged
     /// colour and the transition generation it was made from.
     shown: Option<(ShownKey, Arc<crate::mask::HeadImage>)>,
@@ -291,6 +297,14 @@ pub struct AgedShape {
     pub years: f32,
 }
 
+/// What brow hairs are placed from: mesh and layout generations, metres per unit (bits),
+/// seed.
+type BrowHairsKey = (u64, u64, u32, u64);
+
+/// What the brow strands of an age are made from: the brow hairs and the shape (their
+/// addresses), the brows' gray fraction and growth (bits).
+type BrowsKey = (usize, usize, u32, u32);
+
 /// What a shape field is made from: mesh and layout generations, metres per unit (bits),
 /// each region's strength (bits).
 type ShapeKey = (u64, u64, u32, [u32; crate::shape::REGIONS.len()]);
@@ -326,6 +340,8 @@ impl Scene {
             colour: colour::ColourStage::default(),
             shape: None,
             shape_aged: None,
+            brows: None,
+            brows_aged: None,
             shown: None,
             hair_alpha: None,
             layout_generation: 1,
@@ -360,6 +376,8 @@ impl Scene {
             colour: self.colour.clone(),
             shape: self.shape.clone(),
             shape_aged: self.shape_aged.clone(),
+            brows: self.brows.clone(),
+            brows_aged: self.brows_aged.clone(),
             shown: self.shown.clone(),
             hair_alpha: self.hair_alpha.clone(),
             layout_generation: self.layout_generation,
@@ -989,6 +1007,77 @@ impl Scene {
             }),
         ));
         true
+    }
+
+    /// Makes the brow hairs at age `t` (docs/models.md §9 "Eyebrows": their curves on the
+    /// shape of the last [`Scene::bake_shape`], their gray; [`Scene::aged_brows`]). None
+    /// when the hair or the brows are off, or on a head read at its own UVs (no fit: no
+    /// brow on it). Redone only when something they are made from changed; returns
+    /// whether it was.
+    pub fn bake_brows(&mut self, t: f32) -> bool {
+        let h = &self.project.hair;
+        let hairs = if h.enabled && h.brows {
+            self.brow_hairs()
+        } else {
+            None
+        };
+        let Some(hairs) = hairs else {
+            let changed = self.brows_aged.is_some();
+            self.brows_aged = None;
+            return changed;
+        };
+        let factors = self.project.colour_factors(t);
+        let shape = self.aged_shape().cloned();
+        let key = (
+            Arc::as_ptr(&hairs) as usize,
+            shape.as_ref().map_or(0, |s| Arc::as_ptr(s) as usize),
+            factors.brow_gray_fraction().to_bits(),
+            factors.contrast.to_bits(),
+        );
+        if self.brows_aged.as_ref().is_some_and(|(k, _)| *k == key) {
+            return false;
+        }
+        let strands = hairs.strands(
+            &self.inputs.mesh,
+            &factors,
+            shape
+                .as_deref()
+                .map(|s| (s.delta.as_slice(), s.normals.as_slice())),
+        );
+        self.brows_aged = Some((key, Arc::new(strands)));
+        true
+    }
+
+    /// The brow strands of the last [`Scene::bake_brows`].
+    pub fn aged_brows(&self) -> Option<&Arc<Vec<crate::brows::BrowStrand>>> {
+        self.brows_aged.as_ref().map(|(_, b)| b)
+    }
+
+    /// The brow hairs on this head, placed once per head and seed; `None` when it has no
+    /// template points (a head read at its own UVs) or none land on a brow.
+    fn brow_hairs(&mut self) -> Option<Arc<crate::brows::BrowHairs>> {
+        let key = (
+            self.mesh_generation,
+            self.layout_generation,
+            self.metres_per_unit().to_bits(),
+            self.project.hair.seed,
+        );
+        if let Some((k, b)) = &self.brows
+            && *k == key
+        {
+            return (!b.is_empty()).then(|| b.clone());
+        }
+        let regions = crate::skin_colour::Regions::template()?;
+        let points = self.template_points();
+        let hairs = Arc::new(crate::brows::BrowHairs::generate(
+            &self.inputs.mesh,
+            &|v| points.get(v).copied().flatten(),
+            regions,
+            self.metres_per_unit(),
+            key.3,
+        ));
+        self.brows = Some((key, hairs.clone()));
+        (!hairs.is_empty()).then_some(hairs)
     }
 
     /// The shape of the last [`Scene::bake_shape`].

@@ -159,6 +159,12 @@ pub struct ColourFactors {
 }
 
 impl ColourFactors {
+    /// The share of brow hairs that are gray: the brows gray later than the scalp
+    /// ([`BROW_GRAY_LAG`]).
+    pub fn brow_gray_fraction(&self) -> f32 {
+        BROW_GRAY_LAG * self.brow_gray
+    }
+
     /// Whether nothing ages: the bake is then the base colour itself.
     pub fn is_young(&self) -> bool {
         [
@@ -172,6 +178,19 @@ impl ColourFactors {
         .iter()
         .all(|&f| f <= 0.0)
     }
+}
+
+/// A point's place on the nearer brow ([`Regions::brow_place`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BrowPlace {
+    /// Along the brow: 0 over the eye's inner corner, 1 over its outer one.
+    pub s: f32,
+    /// Out from the face's middle, mm (template).
+    pub out_mm: f32,
+    /// Above the brow's arched middle line, mm (template).
+    pub across_mm: f32,
+    /// Which brow: +1 on the +x side, −1 on the other.
+    pub side: i8,
 }
 
 /// The regions of the aged colour on the template, from its landmarks (template metres,
@@ -297,14 +316,36 @@ impl Regions {
     /// arch.
     pub fn brow_coords(&self, p: Vec3) -> Vec2 {
         let q = self.rel(p);
+        let (inner, outer) = self.nearer_eye(q);
+        let s = (q.x - inner.x) / (outer.x - inner.x);
+        Vec2::new(q.x, q.y - brow_middle(inner, outer, s)) * self.unit * 1000.0
+    }
+
+    /// Where `p` lies on the nearer brow ([`BrowPlace`]); `None` behind the face (toward
+    /// the ears), where no brow is.
+    pub fn brow_place(&self, p: Vec3) -> Option<BrowPlace> {
+        let q = self.rel(p);
+        if front(q.z, self.ear_z) <= 0.0 {
+            return None;
+        }
+        let (inner, outer) = self.nearer_eye(q);
+        let s = (q.x - inner.x) / (outer.x - inner.x);
+        Some(BrowPlace {
+            s,
+            out_mm: q.x.abs() * self.unit * 1000.0,
+            across_mm: (q.y - brow_middle(inner, outer, s)) * self.unit * 1000.0,
+            side: if outer.x >= 0.0 { 1 } else { -1 },
+        })
+    }
+
+    /// The inner and outer corners of the eye on `q`'s side (face units).
+    fn nearer_eye(&self, q: Vec3) -> (Vec3, Vec3) {
         let near = |(inner, outer): (Vec3, Vec3)| (q.x - 0.5 * (inner.x + outer.x)).abs();
-        let (inner, outer) = if near(self.eyes[0]) < near(self.eyes[1]) {
+        if near(self.eyes[0]) < near(self.eyes[1]) {
             self.eyes[0]
         } else {
             self.eyes[1]
-        };
-        let s = (q.x - inner.x) / (outer.x - inner.x);
-        Vec2::new(q.x, q.y - brow_middle(inner, outer, s)) * self.unit * 1000.0
+        }
     }
 
     /// The beard: below the nose to under the chin, out along the jaw toward the ears; not
@@ -984,7 +1025,7 @@ impl Look<'_> {
             // Value noise gathers near 0: spread to about even over [0, 1], so the gray
             // fraction is the share of gray hair.
             let draw = 0.5 + 0.5 * (2.2 * from_signed(f.brow_draw)).clamp(-1.0, 1.0);
-            let gray_hair = smoothstep(-0.08, 0.08, BROW_GRAY_LAG * a.brow_gray - draw);
+            let gray_hair = smoothstep(-0.08, 0.08, a.brow_gray_fraction() - draw);
             c = c.lerp(
                 self.gray * (0.75 + 0.25 * draw),
                 (0.75 * hair * gray_hair).clamp(0.0, 1.0),

@@ -333,6 +333,28 @@ impl Renderer {
         });
     }
 
+    /// Uploads the brow hairs of `view`'s age (docs/models.md §9 "Eyebrows"), drawn
+    /// with the hair; none (or an empty slice) draws no brow hairs.
+    pub fn upload_brows_to(
+        &mut self,
+        view: ViewId,
+        brows: Option<&[agesim_core::brows::BrowStrand]>,
+    ) -> Result<(), RenderError> {
+        let vi = self.view_index(view)?;
+        let brows = brows.filter(|b| !b.is_empty()).map(|b| {
+            let buffer = self
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("agesim brow strands"),
+                    contents: bytemuck::cast_slice(b),
+                    usage: wgpu::BufferUsages::VERTEX,
+                });
+            (buffer, b.len() as u32)
+        });
+        self.views[vi].brows = brows;
+        Ok(())
+    }
+
     fn create_layer(&self, label: &str, layer: &PreparedLayer) -> Result<Layer, RenderError> {
         let max = self.device.limits().max_texture_dimension_2d;
         let (w, h) = layer.size_px();

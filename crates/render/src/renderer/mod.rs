@@ -435,7 +435,8 @@ impl Renderer {
                 _ => (hair, &self.pipelines.hair_pipeline, count, SEGMENTS),
             })
         });
-        if !wire && hair.is_none() {
+        let brows = v.brows.as_ref().filter(|_| params.hair.enabled);
+        if !wire && hair.is_none() && brows.is_none() {
             return Ok(());
         }
         // The hair and the wireframe are tested against the skin's depth (the wireframe,
@@ -500,6 +501,12 @@ impl Renderer {
             pass.set_bind_group(0, hair_bind_group, &[]);
             pass.set_vertex_buffer(0, hair.instances.slice(..));
             pass.draw(0..vertices_per_hair(segments), 0..drawn);
+        }
+        if let Some((strands, count)) = brows {
+            pass.set_pipeline(&self.pipelines.brow_pipeline);
+            pass.set_bind_group(0, hair_bind_group, &[]);
+            pass.set_vertex_buffer(0, strands.slice(..));
+            pass.draw(0..vertices_per_hair(SEGMENTS), 0..*count);
         }
         Ok(())
     }

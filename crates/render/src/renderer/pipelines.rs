@@ -1,7 +1,9 @@
 //! The pipelines, bind group layouts, samplers and shader modules, made once by
 //! [`Renderer::new`](super::Renderer::new).
 
-use crate::hair::{INSTANCE_ATTRIBUTES, INSTANCE_STRIDE, SEGMENTS, SPARSE_SEGMENTS};
+use crate::hair::{
+    BROW_ATTRIBUTES, BROW_STRIDE, INSTANCE_ATTRIBUTES, INSTANCE_STRIDE, SEGMENTS, SPARSE_SEGMENTS,
+};
 use crate::mesh::{VERTEX_ATTRIBUTES, Vertex};
 use crate::params::SPARSE_HAIR_STRIDE;
 use crate::shaders;
@@ -34,6 +36,8 @@ pub(super) struct Pipelines {
     /// The hair pipeline reading every `sparse_hair_stride`-th instance (None where the
     /// device allows no wider stride than one instance).
     pub(super) sparse_hair_pipeline: Option<wgpu::RenderPipeline>,
+    /// Draws the brow hairs (`vs_brow`: one quadratic curve per instance).
+    pub(super) brow_pipeline: wgpu::RenderPipeline,
     /// [`SPARSE_HAIR_STRIDE`], or less where the device's vertex stride limit is lower.
     ///
     /// [`SPARSE_HAIR_STRIDE`]: crate::SPARSE_HAIR_STRIDE
@@ -263,17 +267,21 @@ impl Pipelines {
         // Two pipelines over the same instance buffer: every hair, and every
         // SPARSE_HAIR_STRIDE-th (a wider instance stride reads one record in that many)
         // as a ribbon of fewer quads.
-        let hair_pipeline_with = |label: &str, stride: u64, segments: u32| {
+        let hair_pipeline_with = |label: &str,
+                                  entry: &str,
+                                  stride: u64,
+                                  attributes: &[wgpu::VertexAttribute],
+                                  segments: u32| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
                 layout: Some(&hair_pipeline_layout),
                 vertex: wgpu::VertexState {
                     module: &hair_module,
-                    entry_point: Some("vs_main"),
+                    entry_point: Some(entry),
                     buffers: &[Some(wgpu::VertexBufferLayout {
                         array_stride: stride,
                         step_mode: wgpu::VertexStepMode::Instance,
-                        attributes: &INSTANCE_ATTRIBUTES,
+                        attributes,
                     })],
                     compilation_options: wgpu::PipelineCompilationOptions {
                         constants: &[("SEGMENTS", f64::from(segments))],
@@ -305,7 +313,20 @@ impl Pipelines {
                 cache: None,
             })
         };
-        let hair_pipeline = hair_pipeline_with("agesim hair pipeline", INSTANCE_STRIDE, SEGMENTS);
+        let hair_pipeline = hair_pipeline_with(
+            "agesim hair pipeline",
+            "vs_main",
+            INSTANCE_STRIDE,
+            &INSTANCE_ATTRIBUTES,
+            SEGMENTS,
+        );
+        let brow_pipeline = hair_pipeline_with(
+            "agesim brow pipeline",
+            "vs_brow",
+            BROW_STRIDE,
+            &BROW_ATTRIBUTES,
+            SEGMENTS,
+        );
         // The device bounds the instance stride (WebGL2-level limits, as eframe asks for
         // on OpenGL, allow 255 bytes: one hair in 7 there).
         let sparse_hair_stride = (u64::from(device.limits().max_vertex_buffer_array_stride)
@@ -314,7 +335,9 @@ impl Pipelines {
         let sparse_hair_pipeline = (sparse_hair_stride > 1).then(|| {
             hair_pipeline_with(
                 "agesim sparse hair pipeline",
+                "vs_main",
                 INSTANCE_STRIDE * u64::from(sparse_hair_stride),
+                &INSTANCE_ATTRIBUTES,
                 SPARSE_SEGMENTS,
             )
         });
@@ -349,6 +372,7 @@ impl Pipelines {
             wire_pipeline,
             hair_pipeline,
             sparse_hair_pipeline,
+            brow_pipeline,
             sparse_hair_stride,
             hair_layout,
             surface_sampler,

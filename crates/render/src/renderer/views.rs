@@ -30,6 +30,8 @@ pub(super) struct View {
     pub(super) colour: Option<Layer>,
     /// The shape of this view's age (`None`: the mesh as it is).
     pub(super) shape: Option<ViewShape>,
+    /// The brow hairs of this view's age, and how many.
+    pub(super) brows: Option<(wgpu::Buffer, u32)>,
     /// Bumped on every shape upload (the surface is drawn again).
     pub(super) shape_generation: u64,
     /// Bumped on every large-wrinkle upload (displacement moves the surface with it).
@@ -82,6 +84,7 @@ impl View {
             micro: flat("agesim micro-relief tile (placeholder)", 0.0),
             colour: None,
             shape: None,
+            brows: None,
             shape_generation: 0,
             large_generation: 0,
             skin_bind_group: None,

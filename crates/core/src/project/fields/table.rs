@@ -594,6 +594,11 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             1.0,
             "how far the scalp under the hair takes the hair's colour in the 3D view (the roots of short hair; not exported)",
         ),
+        k(
+            "hair.brows",
+            Kind::Bool,
+            "draw eyebrow hairs over the brows in the 3D view, graying and growing bushier with age (a fitted head; not exported)",
+        ),
         f("hair.k_diff", "", 0.0, 4.0, "Kajiya–Kay diffuse weight"),
         f("hair.k_spec", "", 0.0, 4.0, "Kajiya–Kay specular weight"),
         f(

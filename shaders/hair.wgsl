@@ -76,12 +76,12 @@ fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32, random: f32) -> HairCur
     // ±20°) static.
     let turn = (fract(random * 13.0) - 0.5) * 0.42;
     comb = comb * cos(turn) + cross(dir, comb) * sin(turn);
-    // Most hair lies flat (stands 5 % of its length); about one in six stands up to 30 %
+    // Most hair lies flat (stands 5 % of its length); about one in six stands up to 18 %
     // (flyaways, from the random number's other digits), so the silhouette of the hair
     // is broken into strands instead of a solid band.
     let r = fract(random * 29.0);
     let r3 = r * r * r;
-    let stand = mix(0.05, 0.3, r3 * r3);
+    let stand = mix(0.05, 0.18, r3 * r3);
     let p1 = root + dir * (len * mix(0.5, stand, droop));
     // The tip bends back toward the scalp (as far as a head's curvature takes it from a
     // straight hair), so hair lies on it instead of flaring where the head curves away.
@@ -138,8 +138,8 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // strands pile up in a pixel: each covers less there and is darker (the light the
     // strands in front keep from it), so the outline is not a hard bright rim.
     let face_on = smoothstep(0.1, 0.8, abs(dot(dir, normalize(frame.camera_pos.xyz - p))));
-    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * mix(0.08, 1.0, face_on);
-    out.colour *= mix(0.5, 1.0, face_on);
+    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * mix(0.25, 1.0, face_on);
+    out.colour *= mix(0.4, 1.0, face_on);
     return out;
 }
 

@@ -14,6 +14,9 @@
 // The same as `agesim_core::compose::CAVITY` (and 0.7, 0.005 below: CAVITY_MAX,
 // CAVITY_REFERENCE_DISP), which the exported GLB's occlusion texture uses.
 const CAVITY: f32 = 0.55;
+// How much of the sky and of the light a full hollow of the aged shape loses.
+const HOLLOW_AMBIENT: f32 = 0.6;
+const HOLLOW_LIGHT: f32 = 0.45;
 const MODE_LINEAR: u32 = 0u;
 const MODE_BINARY: u32 = 1u;
 const MODE_COMBINED: u32 = 2u;
@@ -48,6 +51,8 @@ struct VertexIn {
     // units) and its displaced normal (zero: keep `normal`).
     @location(4) shape_delta: vec3<f32>,
     @location(5) shape_normal: vec3<f32>,
+    // How hollowed the shape left it, 0–1 (crates/render/src/mesh.rs `hollow_occlusion`).
+    @location(6) shape_hollow: f32,
 }
 
 struct VertexOut {
@@ -56,6 +61,7 @@ struct VertexOut {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) tangent: vec4<f32>,
+    @location(4) hollow: f32,
 }
 
 @vertex
@@ -82,6 +88,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.normal = n;
     out.uv = in.uv;
     out.tangent = t;
+    out.hollow = in.shape_hollow;
     return out;
 }
 
@@ -238,6 +245,8 @@ struct Surface {
     b_sign: f32,
     // Unit vector toward the eye.
     to_eye: vec3<f32>,
+    // How hollowed the aged shape left the skin here, 0–1.
+    hollow: f32,
 }
 
 // Octahedral encoding of a unit vector (Cigolle et al. 2014), two numbers in [−1, 1].
@@ -258,12 +267,13 @@ fn oct_decode(e: vec2<f32>) -> vec3<f32> {
 }
 
 // The surface in three targets (32 bytes, the smallest per-sample limit wgpu allows):
-// uv in f32, since POM marches it; the derivatives and the frame in f16. The direction to
+// uv in f32, since POM marches it; the derivatives and the frame in f16. The hollow rides
+// on the bitangent sign: ±(1 + hollow). The direction to
 // the eye is not stored: the shading pass has it from the pixel's view ray. The depth is
 // kept too (in [0, 1]; the renderer clears it to 2, the background), so a frame can
 // restore the depth buffer from it without copying a depth texture.
 struct SurfaceOut {
-    // uv, bitangent sign, depth.
+    // uv, bitangent sign × (1 + hollow), depth.
     @location(0) s0: vec4<f32>,
     // dpdx(uv), dpdy(uv).
     @location(1) s1: vec4<f32>,
@@ -277,7 +287,8 @@ fn fs_surface(in: VertexOut) -> SurfaceOut {
     // Gram-Schmidt: interpolation bends the tangent away from the normal.
     let t = normalize(in.tangent.xyz - n * dot(n, in.tangent.xyz));
     var out: SurfaceOut;
-    out.s0 = vec4<f32>(in.uv, select(-1.0, 1.0, in.tangent.w >= 0.0), in.clip.z);
+    let hollow = clamp(in.hollow, 0.0, 0.999);
+    out.s0 = vec4<f32>(in.uv, select(-1.0, 1.0, in.tangent.w >= 0.0) * (1.0 + hollow), in.clip.z);
     out.s1 = vec4<f32>(dpdx(in.uv), dpdy(in.uv));
     out.s2 = vec4<f32>(oct_encode(n), oct_encode(t));
     return out;
@@ -317,7 +328,8 @@ fn fs_shade(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     s.ddy = s1.zw;
     s.n = oct_decode(s2.xy);
     s.t = oct_decode(s2.zw);
-    s.b_sign = s0.z;
+    s.b_sign = sign(s0.z);
+    s.hollow = abs(s0.z) - 1.0;
     s.to_eye = normalize(frame.camera_pos.xyz - on_ray.xyz / on_ray.w);
     return shade(s);
 }
@@ -425,9 +437,13 @@ fn shade(s: Surface) -> vec4<f32> {
     // and of the light than the skin beside it. The map's depth at the hit, scaled by the
     // drawn relief (0 with no relief; full at the default 0.005).
     let depth01 = clamp(1.0 - large_height(uv, ddx, ddy), 0.0, 1.0);
-    let cavity = 1.0 - clamp(CAVITY * depth01 * frame.disp.x / 0.005, 0.0, 0.7);
-    let ambient = frame.light_colour.w * sky * cavity;
-    let colour = albedo * (diffuse * light * mix(1.0, cavity, 0.5) + vec3<f32>(ambient))
+    let cavity = 1.0 - clamp(CAVITY * sqrt(depth01 * frame.disp.x / 0.005), 0.0, 0.7);
+    // A hollow of the aged shape (temples, tear trough, below the cheekbone) sees less of
+    // the sky and of the light (docs/models.md §13 "Hollows").
+    let hollow = clamp(s.hollow, 0.0, 1.0);
+    let ambient = frame.light_colour.w * sky * cavity * (1.0 - HOLLOW_AMBIENT * hollow);
+    let direct = mix(1.0, cavity, 0.5) * (1.0 - HOLLOW_LIGHT * hollow);
+    let colour = albedo * (diffuse * light * direct + vec3<f32>(ambient))
         + vec3<f32>(spec) * light * cavity;
     return output_colour(colour);
 }

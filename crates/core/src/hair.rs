@@ -619,10 +619,13 @@ fn triangle_hairs(
                 continue;
             }
             if texture_age >= 1.0
-                && let Some((d, earliest)) =
-                    nearest_ring(transition, uv_k, mm_per_texel, taper_mm, |a| {
-                        a > 0.0 && a < 1.0
-                    })
+                && let Some((d, earliest)) = nearest_ring(
+                    transition,
+                    uv_k,
+                    mm_per_texel,
+                    FRINGE_REACH * taper_mm,
+                    |a| a > 0.0 && a < 1.0,
+                )
             {
                 length = length.min(taper(d, taper_mm));
                 let goes = 0.85 * (1.0 - smooth01(d / (FRINGE_REACH * taper_mm)));
@@ -716,8 +719,10 @@ pub const DEFAULT_TAPER_MM: f32 = 18.0;
 pub const TAPER_SHORTEST: f32 = 0.2;
 /// How far (a fraction of the taper) hair thins toward bare skin.
 const SPARSE_REACH: f32 = 1.0 / 3.0;
-/// How far (a fraction of the taper) the hair that stays fades toward the hair that goes.
-const FRINGE_REACH: f32 = 1.0;
+/// How far (a fraction of the taper) the hair that stays fades toward the hair that goes:
+/// 2.5 × 18 mm, so the fringe's top thins over 45 mm (over the taper alone it read, blind,
+/// as "a hard, straight diagonal top edge").
+const FRINGE_REACH: f32 = 2.5;
 
 /// smoothstep(0, 1, x).
 fn smooth01(x: f32) -> f32 {
@@ -1360,7 +1365,7 @@ mod tests {
         );
         // The hair that stays (v < 0.25) fades out toward the hair that goes: at t = 1
         // fewer and shorter hairs within 5 mm of v = 0.25 than 20–25 mm below it (and as
-        // far inside the disc: the taper's reach is 18 mm).
+        // far inside the disc: the taper's reach is 18 mm, the fringe's thinning 45 mm).
         let band = |lo: f32, hi: f32| {
             let hs: Vec<&HairInstance> = tapered
                 .instances()
@@ -1377,7 +1382,10 @@ mod tests {
         let (near_stay, near_length) = band(0.0, 5.0);
         let (far_stay, far_length) = band(20.0, 25.0);
         eprintln!("stays at t = 1: {near_stay} near the fringe's edge, {far_stay} below it");
-        assert!(near_stay < 0.5 && far_stay == 1.0, "{near_stay} {far_stay}");
+        assert!(
+            near_stay < 0.5 && far_stay > near_stay + 0.3 && far_stay < 1.0,
+            "{near_stay} {far_stay}"
+        );
         assert!(
             near_length < 0.45 && far_length > 0.99,
             "{near_length} {far_length}"

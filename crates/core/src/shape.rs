@@ -157,7 +157,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "temples",
         what: "temples hollowing",
         // Behind the orbit's outer rim, not reaching the eye's corner (the eye stays).
-        blobs: &[Blob::new([1.45, 0.5, -0.45], [0.5, 0.7, 0.75])],
+        blobs: &[Blob::new([1.5, 0.45, -0.75], [0.5, 0.7, 0.8])],
         motions: &[(Deflate, 10.0)],
         curve: curve(40.0, 80.0),
     },

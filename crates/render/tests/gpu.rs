@@ -737,6 +737,35 @@ fn a_shape_moves_the_surface_as_the_moved_mesh_does() {
 }
 
 #[test]
+fn a_hollowed_shape_is_darker_than_a_raised_one() {
+    let Some(gpu) = gpu_or_skip("a_hollowed_shape_is_darker_than_a_raised_one") else {
+        return;
+    };
+    let mesh = head::default_head();
+    let normals = mesh.normals().to_vec();
+    let p = FrameParams::default();
+    let size = (128, 128);
+    let mut r = head_renderer(&gpu, &mesh);
+    // 4 mm in or out along the normals: about the same silhouette, one hollowed half way.
+    let mut luminance = |mm: f32| {
+        let delta: Vec<Vec3> = normals.iter().map(|n| *n * (mm * 1e-3)).collect();
+        r.upload_shape_to(ViewId::MAIN, Some((&delta, &normals)))
+            .unwrap();
+        let img = r.render_to_image(&p, size).unwrap();
+        let skin: Vec<f64> = img
+            .pixels()
+            .filter(|px| px.0[0] > 100)
+            .map(|px| px.0[..3].iter().map(|&v| f64::from(v)).sum::<f64>() / 3.0)
+            .collect();
+        skin.iter().sum::<f64>() / skin.len() as f64
+    };
+    let (hollow, raised) = (luminance(-4.0), luminance(4.0));
+    eprintln!("mean skin brightness {hollow:.1} hollowed, {raised:.1} raised");
+    // Half a full hollow: about 0.77 of the light in linear terms, 0.89 once encoded.
+    assert!(hollow < 0.93 * raised, "{hollow} against {raised}");
+}
+
+#[test]
 fn the_scalp_under_the_hair_takes_the_hairs_colour() {
     let Some(gpu) = gpu_or_skip("the_scalp_under_the_hair_takes_the_hairs_colour") else {
         return;

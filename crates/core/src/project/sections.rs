@@ -436,12 +436,12 @@ impl Default for SkinSection {
             // measured faces darkening and yellowing with age (docs/models.md "Age").
             pale_albedo: Colour([0xd9, 0xb8, 0xa4]),
             pale_amount: 0.25,
-            spots_per_cm2: 0.35,
+            spots_per_cm2: 0.6,
             spot_strength: 0.7,
             mottle: 0.3,
             redness: 0.5,
             yellowing: 0.6,
-            contrast_loss: 0.5,
+            contrast_loss: 0.7,
             under_eye: 0.65,
             colour_seed: 1,
             // With `wrap` 0.35: red wraps 0.45, green 0.22, blue 0.15 (docs/models.md
@@ -695,12 +695,14 @@ impl Default for FurrowSection {
     fn default() -> Self {
         Self {
             enabled: true,
-            links_per_pore: 4,
+            // Two links a pore: a broken network of lines between the pores. Four closed
+            // every pore in a polygon, read blind at 75 as "crocodile leather".
+            links_per_pore: 2,
             max_count: None,
             // Narrow, shallow lines (a blind rating read [P]'s 0.6 deep, 0.3 mm half-wide
             // network as cracked vinyl at a face's distance): skin furrows are 20–200 µm
             // deep and about a tenth of a millimetre wide.
-            depth: MeanSpread::new(0.3, 0.1),
+            depth: MeanSpread::new(0.2, 0.08),
             width_mm: MeanSpread::new(0.12, 0.03),
             direction_deg: 30.0,
             direction_strength: 0.5,

@@ -32,7 +32,7 @@ use crate::transition::TransitionTexture;
 
 /// Smallest and largest age-spot diameter, mm (solar lentigines: docs/models.md
 /// "Skin colour").
-pub const SPOT_DIAMETER_MM: (f32, f32) = (2.0, 14.0);
+pub const SPOT_DIAMETER_MM: (f32, f32) = (2.0, 10.0);
 
 /// A spot's size when it first shows, as a fraction of its final size.
 const SPOT_FIRST_SIZE: f32 = 0.4;

@@ -155,12 +155,18 @@ impl Renderer {
                         normals.len()
                     )));
                 }
+                let metres_per_unit = self.metres_per_unit;
                 let data: Vec<ShapeVertex> = delta
                     .iter()
                     .zip(normals)
                     .map(|(d, n)| ShapeVertex {
                         delta: d.to_array(),
                         normal: n.to_array(),
+                        hollow: crate::mesh::hollow_occlusion(
+                            *d,
+                            n.normalize_or_zero(),
+                            metres_per_unit,
+                        ),
                     })
                     .collect();
                 let base = self.shape_buffer("agesim shape", &data);

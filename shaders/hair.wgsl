@@ -169,17 +169,18 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
     let screen_dir = (clip_ahead.xy / clip_ahead.w - clip.xy / clip.w) * viewport;
     let perp = normalize(vec2<f32>(-screen_dir.y, screen_dir.x) + vec2<f32>(1e-6, 0.0));
-    // Brow hair is coarser than the scalp's: 1.3 × its width, tapering to a third.
-    let width_px = 1.3 * frame.hair_gray.w * (1.0 - 0.65 * s);
+    // As fine as the scalp's, tapering to a third (1.3 × its width read, blind, as "a
+    // bottle brush").
+    let width_px = frame.hair_gray.w * (1.0 - 0.65 * s);
     let offset_ndc = perp * (width_px / viewport);
     var out: VertexOut;
     out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
     out.tangent = tangent;
     let base = frame.hair_base.rgb * BROW_DARKNESS * inst.shade;
     let gray = frame.hair_gray.rgb * (0.55 + 0.5 * inst.shade);
-    out.colour = mix(base, gray, inst.gray) * mix(0.6, 1.0, s);
+    out.colour = mix(base, gray, inst.gray) * mix(0.8, 1.0, s);
     out.world_pos = p;
-    out.alpha = mix(0.95, 0.45, s) * inst.coverage;
+    out.alpha = mix(0.8, 0.3, s) * inst.coverage;
     return out;
 }
 

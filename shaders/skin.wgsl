@@ -437,7 +437,7 @@ fn shade(s: Surface) -> vec4<f32> {
     // and of the light than the skin beside it. The map's depth at the hit, scaled by the
     // drawn relief (0 with no relief; full at the default 0.005).
     let depth01 = clamp(1.0 - large_height(uv, ddx, ddy), 0.0, 1.0);
-    let cavity = 1.0 - clamp(CAVITY * sqrt(depth01 * frame.disp.x / 0.005), 0.0, 0.7);
+    let cavity = 1.0 - clamp(CAVITY * depth01 * frame.disp.x / 0.005, 0.0, 0.7);
     // A hollow of the aged shape (temples, tear trough, below the cheekbone) sees less of
     // the sky and of the light (docs/models.md §13 "Hollows").
     let hollow = clamp(s.hollow, 0.0, 1.0);

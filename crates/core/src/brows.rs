@@ -41,11 +41,11 @@ const LENGTH_MM: [f32; 3] = [5.0, 9.0, 7.0];
 /// The share of brow hairs that grow long with age, and how much longer they get at
 /// full age (the bushy brow of old men).
 const BUSHY_SHARE: f32 = 0.3;
-const BUSHY_LENGTHENING: f32 = 0.7;
+const BUSHY_LENGTHENING: f32 = 0.5;
 
 /// How far a hair rises off the skin at its root, degrees (a young brow lies flat; the
 /// grown hairs stand out).
-const ELEVATION_DEG: f32 = 8.0;
+const ELEVATION_DEG: f32 = 5.0;
 const BUSHY_ELEVATION_DEG: f32 = 6.0;
 
 /// How dark a brow hair is against the hair's base colour (brows are darker than the
@@ -79,6 +79,8 @@ struct Root {
     up: Vec3,
     /// The growth direction's angle from `lateral` toward `up`, radians.
     angle: f32,
+    /// How far the hair curls in the skin's plane by its tip, radians.
+    curl: f32,
     /// Young length, mm.
     length_mm: f32,
     elevation: f32,
@@ -240,11 +242,13 @@ impl BrowHairs {
                 let along = r.lateral * r.angle.cos() + r.up * r.angle.sin();
                 let along = (along - normal * along.dot(normal)).normalize_or_zero();
                 let out = along * elevation.cos() + normal * elevation.sin();
-                // Out of the skin along `out`, then curving back toward it: the tip lies a
-                // third of the way up the straight hair's rise.
+                // Out of the skin along `out`, then curving back down onto it (the tip at a
+                // sixth of the straight hair's rise) and to one side.
+                let side = normal.cross(along);
+                let tip_along = along * r.curl.cos() + side * r.curl.sin();
                 let middle = root + out * (0.55 * length);
                 let tip =
-                    root + along * (0.95 * length) + normal * (0.35 * length * elevation.sin());
+                    root + tip_along * (0.95 * length) + normal * (0.15 * length * elevation.sin());
                 let gray = smooth01((gray_fraction - r.gray_draw) / 0.08);
                 BrowStrand {
                     root: root.to_array(),
@@ -284,9 +288,9 @@ fn root(
         LENGTH_MM[1] + (LENGTH_MM[2] - LENGTH_MM[1]) * smooth01((s - 0.7) / 0.4)
     };
     let bushy = (draws[3] < BUSHY_SHARE).then(|| 0.5 + draws[4]);
-    // The grown hairs are unruly: up to ±18° more.
+    // The grown hairs are unruly: up to ±12° more.
     let unruly = if bushy.is_some() {
-        (draws[5] - 0.5) * 36.0
+        (draws[5] - 0.5) * 24.0
     } else {
         0.0
     };
@@ -296,6 +300,9 @@ fn root(
         lateral,
         up,
         angle: (angle + unruly).to_radians(),
+        // ±12° (from the angle's draw's other digits): straight hairs read, blind, as
+        // "stiff spiky needles".
+        curl: ((draws[1] * 7.0).fract() - 0.5) * 24f32.to_radians(),
         length_mm: head_body_tail * (0.8 + 0.4 * draws[2]),
         elevation: (ELEVATION_DEG + (draws[5] - 0.5) * 8.0).to_radians(),
         bushy,

@@ -28,13 +28,10 @@ pub const CAVITY_MAX: f32 = 0.7;
 pub const CAVITY_REFERENCE_DISP: f32 = 0.005;
 
 /// The ambient occlusion of a wrinkle's `depth` (normalised, 0–1) drawn `disp_scale` deep:
-/// 1 − min(CAVITY · √(depth · disp_scale / 0.005), 0.7), as the skin pass darkens it. The
-/// root darkens a shallow crease nearly as much as a deep one (a narrow groove sees little
-/// of the sky however shallow): linear in the depth, the fine lines of the upper lip read,
-/// blind, as "pale streaks like stubble".
+/// 1 − min(CAVITY · depth · disp_scale / 0.005, 0.7), as the skin pass darkens it.
 pub fn cavity(depth: f32, disp_scale: f32) -> f32 {
     let d = depth.clamp(0.0, 1.0) * disp_scale.max(0.0) / CAVITY_REFERENCE_DISP;
-    1.0 - (CAVITY * d.sqrt()).clamp(0.0, CAVITY_MAX)
+    1.0 - (CAVITY * d).clamp(0.0, CAVITY_MAX)
 }
 
 /// The occlusion map of a large-wrinkle depth map, 8-bit grey (255 = open skin): the
@@ -299,8 +296,8 @@ mod tests {
         assert!((cavity(1.0, 1.0) - (1.0 - CAVITY_MAX)).abs() < 1e-6);
         // A fold's raised side is open skin.
         assert_eq!(cavity(-0.4, 0.005), 1.0);
-        // A quarter of the depth darkens half as much.
-        assert!((1.0 - cavity(0.25, 0.005) - 0.5 * CAVITY).abs() < 1e-6);
+        // Half the depth darkens half as much.
+        assert!((1.0 - cavity(0.5, 0.005) - 0.5 * CAVITY).abs() < 1e-6);
         let map = HeightMap::from_vec(2, 1, vec![0.0, 1.0]).unwrap();
         assert_eq!(occlusion_map(&map, 0.005), [255, 115]);
     }

@@ -180,6 +180,9 @@ impl EditorApp {
                     _ => Value::from(fraction > 0.5),
                 };
                 run.in_edit = true;
+                if !dragging && sizes_the_caches(f.path) {
+                    run.soak.capacity_changed();
+                }
                 self.apply(f.path, value, dragging);
                 if let Some(run) = &mut self.soak {
                     run.in_edit = false;
@@ -297,4 +300,15 @@ impl EditorApp {
             run.soak.observe(latest, reported);
         }
     }
+}
+
+/// Whether a field sets how much the editor holds (hair counts, map and tile sizes, feature
+/// counts): memory may grow with it without a leak, so the soak measures growth from after
+/// its last change.
+fn sizes_the_caches(path: &str) -> bool {
+    path.ends_with("density_per_cm2")
+        || path.ends_with("size_px")
+        || path.ends_with(".count")
+        || path.ends_with("max_count")
+        || path.ends_with("links_per_pore")
 }

@@ -32,7 +32,7 @@ pub enum Motion {
 
 /// An ellipsoid of the face frame ([`Regions::relative`]: half the outer eye corners'
 /// distance as the unit, the eye corners' midpoint as the origin), mirrored to both sides
-/// when its centre is off the midline.
+/// when its centre is off the midline (unless made for one side, [`Blob::one_side`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Blob {
     pub centre: [f32; 3],
@@ -40,6 +40,8 @@ pub struct Blob {
     /// What this blob's bulge is, as a factor of its region's (1: the region's; 0.2 a
     /// fifth; 3 three times): a region whose parts descend alike but bulge differently.
     pub bulge: f32,
+    /// Whether it is mirrored to the other side of the midline.
+    pub mirrored: bool,
 }
 
 impl Blob {
@@ -48,6 +50,17 @@ impl Blob {
             centre,
             radii,
             bulge: 1.0,
+            mirrored: true,
+        }
+    }
+
+    /// A blob on its centre's side only: for what follows the template's own asymmetric
+    /// features (its nasolabial folds lie 7 mm further out on its right than on its left
+    /// from the eyes' midline, symmetric about its nose and mouth, which are off it).
+    const fn one_side(centre: [f32; 3], radii: [f32; 3]) -> Self {
+        Self {
+            mirrored: false,
+            ..Self::new(centre, radii)
         }
     }
 
@@ -63,12 +76,15 @@ impl Blob {
     fn weight(&self, q: Vec3) -> f32 {
         let c = Vec3::from(self.centre);
         // Both sides: the x distance to the nearer of the centre and its mirror.
-        let q = if c.x != 0.0 {
-            Vec3::new(q.x.abs(), q.y, q.z)
+        let (q, c) = if c.x != 0.0 && self.mirrored {
+            (
+                Vec3::new(q.x.abs(), q.y, q.z),
+                Vec3::new(c.x.abs(), c.y, c.z),
+            )
         } else {
-            q
+            (q, c)
         };
-        let d = ((q - Vec3::new(c.x.abs(), c.y, c.z)) / Vec3::from(self.radii)).length();
+        let d = ((q - c) / Vec3::from(self.radii)).length();
         1.0 - smoothstep(0.35, 1.0, d)
     }
 }
@@ -165,16 +181,21 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "cheeks",
         what: "cheeks descending over the nasolabial fold",
         // The malar fat pad (descending, barely fuller: blind ratings read a bulging
-        // one as "fuller rather than thinned"), and a chain hugging the nasolabial fold's cheek side from
-        // the nose wing to above the mouth corner (one more at the corner hooked the fold
-        // in under it, read as "a bracket"): the cheek rolls over the fold (blind
-        // ratings read the fold without it as "a thin engraved crescent").
+        // one as "fuller rather than thinned"), and a chain hugging each nasolabial fold's
+        // cheek side from the nose wing to above the mouth corner, 0.17 out from the fold
+        // of the wrinkle file (measured on the template: its folds are not mirror images
+        // about the eyes' midline; mirrored blobs lay on its right fold and hid it, read
+        // blind as "lopsided"). One more at the corner hooked the fold in under it, read
+        // as "a bracket". The cheek rolls over the fold (blind ratings read the fold
+        // without it as "a thin engraved crescent").
         blobs: &[
             Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]).bulging(0.2),
-            Blob::new([0.62, -0.88, 0.47], [0.17, 0.26, 0.4]),
-            Blob::new([0.67, -1.08, 0.44], [0.17, 0.26, 0.4]),
+            Blob::one_side([0.59, -0.88, 0.44], [0.17, 0.26, 0.4]),
+            Blob::one_side([0.68, -1.08, 0.46], [0.17, 0.26, 0.4]),
+            Blob::one_side([-0.76, -0.88, 0.4], [0.17, 0.26, 0.4]),
+            Blob::one_side([-0.83, -1.08, 0.43], [0.17, 0.26, 0.4]),
         ],
-        motions: &[(Descent, 5.0), (Bulge, 2.5)],
+        motions: &[(Descent, 5.0), (Bulge, 3.0)],
         curve: curve(35.0, 75.0),
     },
     ShapeRegion {

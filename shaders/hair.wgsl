@@ -154,7 +154,8 @@ struct BrowInstance {
     @location(5) coverage: f32,
 }
 
-// How dark a brow hair is against the hair's base colour (`agesim_core::brows::DARKNESS`).
+// How dark a brow hair is against the hair's base colour: brows are darker than the
+// scalp's hair (docs/models.md §9 "Eyebrows").
 const BROW_DARKNESS: f32 = 0.7;
 
 @vertex
@@ -165,7 +166,10 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     let p = curve_point(curve, s);
     let tangent = curve_tangent(curve, s);
     let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
-    let clip_ahead = frame.clip_from_world * vec4<f32>(p + tangent * 1e-3, 1.0);
+    // A tenth of the hair ahead (mesh units: a fixed step would be a micrometre on a head
+    // in millimetres).
+    let ahead = 0.1 * distance(inst.root, inst.tip);
+    let clip_ahead = frame.clip_from_world * vec4<f32>(p + tangent * ahead, 1.0);
     let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
     let screen_dir = (clip_ahead.xy / clip_ahead.w - clip.xy / clip.w) * viewport;
     let perp = normalize(vec2<f32>(-screen_dir.y, screen_dir.x) + vec2<f32>(1e-6, 0.0));

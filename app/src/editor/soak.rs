@@ -308,7 +308,12 @@ impl Soak {
 
     /// The script changed a setting that sizes the caches (the hair's density, a map's
     /// size): growth is measured again from once the bakes have caught up after it.
+    /// Once the actions have stopped (the last drag released while settling), nothing
+    /// restarts it: the growth since the warm point is measured.
     pub fn capacity_changed(&mut self) {
+        if self.stopped.is_some() {
+            return;
+        }
         self.rss_warm = None;
         self.capacity_changes += 1;
     }

@@ -40,7 +40,8 @@ const COMPARE: usize = Shown::Compare as usize;
 struct Pane {
     view: ViewId,
     /// The compare pane tracks only its own layers (the large-wrinkle map, the
-    /// micro-relief tile); the main pane also the shared mesh, fine tile and hair.
+    /// micro-relief tile, the aged colour, the shape, the brows); the main pane also the
+    /// shared mesh, fine tile and hair.
     uploaded: Uploaded,
     last: Option<(FrameParams, [u32; 2], Uploaded, Uploaded)>,
     shown: Option<(u64, eframe::wgpu::BindGroup)>,

@@ -205,10 +205,13 @@ impl Uploaded {
             self.large = stamp(&layers.large);
         }
         if stamp(&layers.shape) != self.shape {
-            let shape = layers
-                .shape
-                .as_deref()
-                .map(|s| (s.delta.as_slice(), s.normals.as_slice()));
+            let shape = layers.shape.as_deref().map(|s| {
+                (
+                    s.delta.as_slice(),
+                    s.normals.as_slice(),
+                    s.hollow_mm.as_slice(),
+                )
+            });
             result = result.and(renderer.upload_shape_to(view, shape));
             self.shape = stamp(&layers.shape);
         }

@@ -24,8 +24,8 @@ use crate::skin_colour::{BrowPlace, ColourFactors, Regions};
 /// 250–300 hairs in about 2.5 cm²).
 pub const DENSITY_PER_CM2: f32 = 130.0;
 
-/// Half the brow's height at its head and at its tail, mm (about 12 mm tall at the head
-/// over the eye's inner corner, tapering to 4 mm).
+/// Half the brow's height at its head and at its tail, mm (about 9 mm tall at the head
+/// over the eye's inner corner, tapering to 3.6 mm).
 const HALF_HEIGHT_MM: (f32, f32) = (4.5, 1.8);
 
 /// How far below the brow's arched middle line (of the colour's regions) its roots are
@@ -47,10 +47,6 @@ const BUSHY_LENGTHENING: f32 = 0.5;
 /// grown hairs stand out).
 const ELEVATION_DEG: f32 = 5.0;
 const BUSHY_ELEVATION_DEG: f32 = 6.0;
-
-/// How dark a brow hair is against the hair's base colour (brows are darker than the
-/// scalp's hair).
-pub const DARKNESS: f32 = 0.7;
 
 /// One brow hair at an age, as the renderer draws it (48 bytes): a quadratic Bézier from
 /// the root through `middle` to the tip, mesh units, with its gray fraction and shade.
@@ -77,8 +73,10 @@ struct Root {
     /// across it.
     lateral: Vec3,
     up: Vec3,
-    /// The growth direction's angle from `lateral` toward `up`, radians.
+    /// The growth direction's angle from `lateral` toward `up`, radians (young).
     angle: f32,
+    /// How far a hair that grows with age turns from `angle` at full growth, radians.
+    unruly: f32,
     /// How far the hair curls in the skin's plane by its tip, radians.
     curl: f32,
     /// Young length, mm.
@@ -102,9 +100,10 @@ impl BrowHairs {
     /// Places the brow hairs on `mesh` (its skin triangles): `template_point` gives each
     /// vertex's template point (metres; `None`: not fitted), `regions` the template's brow
     /// regions, `metres_per_unit` the mesh's units. Per triangle, [`DENSITY_PER_CM2`] ×
-    /// its area on the template's brow seen from the front hairs are drawn at uniform barycentric coordinates and kept with the brow's
-    /// density profile there (full along its middle, fading to nothing at its top and
-    /// bottom edges and past its ends). Deterministic in `seed`.
+    /// (its area on the template's brow seen from the front) hairs are drawn at uniform
+    /// barycentric coordinates and kept with the brow's density profile there (full along
+    /// its middle, fading to nothing at its top and bottom edges and past its ends).
+    /// Deterministic in `seed`.
     pub fn generate(
         mesh: &Mesh,
         template_point: &dyn Fn(usize) -> Option<Vec3>,
@@ -124,11 +123,14 @@ impl BrowHairs {
             };
             let places = [a, b, c];
             // The two brows' hair meet nowhere: a triangle across the midline has none; nor
-            // has one wholly above or below a brow.
+            // has one wholly beyond one edge of a brow (above, below, inside or past it).
             let across = places.map(|q| q.across_mm);
+            let beyond = |f: &dyn Fn(&BrowPlace) -> bool| places.iter().all(f);
             if places.iter().any(|q| q.side != places[0].side)
-                || places.iter().all(|q| density(q) <= 0.0)
-                    && (across.iter().all(|&y| y > 0.0) || across.iter().all(|&y| y < 0.0))
+                || beyond(&|q| q.across_mm + ROOTS_BELOW_MM > half_height(q.s))
+                || beyond(&|q| q.across_mm + ROOTS_BELOW_MM < -half_height(q.s))
+                || beyond(&|q| q.s < SPAN.0)
+                || beyond(&|q| q.s > SPAN.1)
             {
                 continue;
             }
@@ -145,7 +147,7 @@ impl BrowHairs {
                 )
             };
             let area_cm2 = 0.5 * d(1).perp_dot(d(2)).abs() / 100.0;
-            if area_cm2.is_nan() || area_cm2 <= 0.0 || !area_cm2.is_finite() || n == Vec3::ZERO {
+            if !area_cm2.is_finite() || area_cm2 <= 0.0 || n == Vec3::ZERO {
                 continue;
             }
             // Gradients of the brow's coordinates over the triangle (in its plane).
@@ -168,7 +170,7 @@ impl BrowHairs {
                 if r1 + r2 > 1.0 {
                     (r1, r2) = (1.0 - r1, 1.0 - r2);
                 }
-                let draws = [(); 7].map(|_| rng.next_f32());
+                let draws = [(); 9].map(|_| rng.next_f32());
                 let bary = [1.0 - r1 - r2, r1, r2];
                 let at = |f: fn(&BrowPlace) -> f32| {
                     bary[0] * f(&places[0]) + bary[1] * f(&places[1]) + bary[2] * f(&places[2])
@@ -239,7 +241,8 @@ impl BrowHairs {
                 let length = r.length_mm * (1.0 + BUSHY_LENGTHENING * grown) * self.units_per_mm;
                 let elevation = r.elevation + BUSHY_ELEVATION_DEG.to_radians() * grown;
                 // Along the skin in the growth direction (kept in the aged tangent plane).
-                let along = r.lateral * r.angle.cos() + r.up * r.angle.sin();
+                let angle = r.angle + r.unruly * grown;
+                let along = r.lateral * angle.cos() + r.up * angle.sin();
                 let along = (along - normal * along.dot(normal)).normalize_or_zero();
                 let out = along * elevation.cos() + normal * elevation.sin();
                 // Out of the skin along `out`, then curving back down onto it (the tip at a
@@ -271,7 +274,7 @@ fn root(
     lateral: Vec3,
     up: Vec3,
     place: &BrowPlace,
-    draws: &[f32; 7],
+    draws: &[f32; 9],
 ) -> Root {
     let s = place.s;
     let y = (place.across_mm + ROOTS_BELOW_MM) / half_height(s);
@@ -288,9 +291,9 @@ fn root(
         LENGTH_MM[1] + (LENGTH_MM[2] - LENGTH_MM[1]) * smooth01((s - 0.7) / 0.4)
     };
     let bushy = (draws[3] < BUSHY_SHARE).then(|| 0.5 + draws[4]);
-    // The grown hairs are unruly: up to ±12° more.
+    // The grown hairs are unruly: up to ±12° more at full growth.
     let unruly = if bushy.is_some() {
-        (draws[5] - 0.5) * 24.0
+        (draws[7] - 0.5) * 24.0
     } else {
         0.0
     };
@@ -299,7 +302,8 @@ fn root(
         bary,
         lateral,
         up,
-        angle: (angle + unruly).to_radians(),
+        angle: angle.to_radians(),
+        unruly: unruly.to_radians(),
         // ±12° (from the angle's draw's other digits): straight hairs read, blind, as
         // "stiff spiky needles".
         curl: ((draws[1] * 7.0).fract() - 0.5) * 24f32.to_radians(),
@@ -312,7 +316,7 @@ fn root(
         } else {
             draws[6]
         },
-        shade: 0.8 + 0.4 * draws[4],
+        shade: 0.8 + 0.4 * draws[8],
     }
 }
 

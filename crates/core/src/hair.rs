@@ -627,7 +627,15 @@ fn triangle_hairs(
                     |a| a > 0.0 && a < 1.0,
                 )
             {
-                length = length.min(taper(d, taper_mm));
+                // The length within the taper from the taper's own rings (the fringe's are
+                // 2.5 × as far apart).
+                if d <= taper_mm {
+                    let near = nearest_ring(transition, uv_k, mm_per_texel, taper_mm, |a| {
+                        a > 0.0 && a < 1.0
+                    })
+                    .map_or(d, |(near, _)| near);
+                    length = length.min(taper(near, taper_mm));
+                }
                 let goes = 0.85 * (1.0 - smooth01(d / (FRINGE_REACH * taper_mm)));
                 if fringe_u < goes {
                     age = age.min((earliest + (1.0 - earliest) * fringe_u / goes).max(1e-3));

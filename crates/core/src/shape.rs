@@ -248,6 +248,9 @@ pub const REGIONS: [ShapeRegion; 11] = [
 pub struct ShapeField {
     /// Per region (in [`REGIONS`] order), per vertex.
     full: Vec<Vec<Vec3>>,
+    /// Per region, per vertex: how far its deflation takes the vertex in at full age, mm
+    /// (the hollow the region makes; a descent or a bulge makes none).
+    hollow: Vec<Vec<f32>>,
     /// The smooth normals of the undisplaced positions, for [`ShapeField::normals`].
     smooth: Vec<Vec3>,
 }
@@ -280,21 +283,29 @@ impl ShapeField {
             }
         }
         let mm = 1e-3 / metres_per_unit.max(1e-12);
-        let full = REGIONS
+        let (full, hollow) = REGIONS
             .iter()
             .enumerate()
             .map(|(r, region)| {
                 let strength = strengths.get(r).copied().unwrap_or(1.0);
                 let mut out = vec![Vec3::ZERO; n];
+                let mut hollow = vec![0.0f32; n];
                 let (Some(frame), true) = (regions, strength > 0.0) else {
-                    return out;
+                    return (out, hollow);
                 };
+                let deflate_mm: f32 = region
+                    .motions
+                    .iter()
+                    .filter(|(motion, _)| *motion == Deflate)
+                    .map(|(_, amount)| amount)
+                    .sum();
                 for v in 0..n {
                     // The first vertex at a position computes it (welded[v] ≤ v); the
                     // others copy it, whatever part they belong to.
                     let w = welded[v] as usize;
                     if w != v {
                         out[v] = out[w];
+                        hollow[v] = hollow[w];
                         continue;
                     }
                     let s = skin_at[v];
@@ -324,14 +335,34 @@ impl ShapeField {
                         })
                         .sum();
                     out[v] = d * (weight * strength * mm);
+                    hollow[v] = deflate_mm * weight * strength;
                 }
-                out
+                (out, hollow)
             })
-            .collect();
+            .unzip();
         Self {
             full,
+            hollow,
             smooth: smooth_normals(mesh.positions(), mesh.indices()),
         }
+    }
+
+    /// How hollowed each vertex is at `years`, mm: the deflating regions' inward movement
+    /// there (not a descent's or a bulge's), each times its curve (docs/models.md §13
+    /// "Hollows").
+    pub fn hollow_at(&self, years: f32) -> Vec<f32> {
+        let n = self.smooth.len();
+        let mut out = vec![0.0f32; n];
+        for (field, region) in self.hollow.iter().zip(&REGIONS) {
+            let f = region.curve.factor(years);
+            if f == 0.0 {
+                continue;
+            }
+            for (o, h) in out.iter_mut().zip(field) {
+                *o += h * f;
+            }
+        }
+        out
     }
 
     /// The displacement per vertex at `years`: each region's full displacement times its

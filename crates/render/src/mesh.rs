@@ -35,16 +35,15 @@ pub(crate) const SHAPE_ATTRIBUTES: [wgpu::VertexAttribute; 3] = wgpu::vertex_att
     4 => Float32x3, 5 => Float32x3, 6 => Float32
 ];
 
-/// How far in a vertex moves for its hollow to be full, mm.
+/// How deep a hollow is for its darkening to be full, mm.
 pub(crate) const HOLLOW_FULL_MM: f32 = 8.0;
 
-/// How hollowed a vertex displaced by `delta` (mesh units) is, 0–1: its inward movement
-/// along `normal` (its displaced normal; unit) over [`HOLLOW_FULL_MM`]. A hollow sees less of
-/// the sky and the light (skin.wgsl darkens it): a 10 mm temple hollow drawn without it
-/// read, blind, as "temples full", under the frontal light it changed nothing.
-pub(crate) fn hollow_occlusion(delta: Vec3, normal: Vec3, metres_per_unit: f32) -> f32 {
-    let inward_mm = -delta.dot(normal) * metres_per_unit * 1e3;
-    (inward_mm / HOLLOW_FULL_MM).clamp(0.0, 1.0)
+/// How hollowed a vertex that the shape's deflating regions took `hollow_mm` in is, 0–1
+/// (over [`HOLLOW_FULL_MM`]). A hollow sees less of the sky and the light (skin.wgsl darkens
+/// it): a 10 mm temple hollow drawn without it read, blind, as "temples full", under the
+/// frontal light it changed nothing.
+pub(crate) fn hollow_occlusion(hollow_mm: f32) -> f32 {
+    (hollow_mm / HOLLOW_FULL_MM).clamp(0.0, 1.0)
 }
 
 /// Geometry ready to upload: vertices and u32 triangle indices, and for a subdivided mesh

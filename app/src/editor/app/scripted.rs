@@ -302,13 +302,9 @@ impl EditorApp {
     }
 }
 
-/// Whether a field sets how much the editor holds (hair counts, map and tile sizes, feature
-/// counts): memory may grow with it without a leak, so the soak measures growth from after
-/// its last change.
+/// Whether a field the soak drags (a number or a switch) sets how much the editor holds:
+/// the hair's and the spots' densities. Memory may grow with them without a leak, so the
+/// soak measures growth from after their last change.
 fn sizes_the_caches(path: &str) -> bool {
-    path.ends_with("density_per_cm2")
-        || path.ends_with("size_px")
-        || path.ends_with(".count")
-        || path.ends_with("max_count")
-        || path.ends_with("links_per_pore")
+    matches!(path, "hair.density_per_cm2" | "skin.spots_per_cm2")
 }

@@ -117,9 +117,10 @@ fn the_old_brow_grows_longer_and_grays_hair_by_hair() {
     let old = hairs.strands(mesh, &factors(1.0, 1.0), None);
     let mean = |v: &[BrowStrand]| v.iter().map(length).sum::<f32>() / v.len() as f32;
     let (young_mm, old_mm) = (mean(&young) * 1e3, mean(&old) * 1e3);
-    // A young hair ≈ 7–8 mm; a third of them about twice that when old.
+    // A young hair ≈ 7–8 mm; a third of them half as long again when old (the mean
+    // 15 % longer).
     assert!((6.0..10.0).contains(&young_mm), "{young_mm} mm");
-    assert!(old_mm > 1.2 * young_mm, "{old_mm} against {young_mm} mm");
+    assert!(old_mm > 1.1 * young_mm, "{old_mm} against {young_mm} mm");
     assert!(young.iter().all(|s| s.gray == 0.0));
     // The brows' gray fraction is the share of gray hairs (each all gray or none, but
     // for the few on the edge of the draw).

@@ -294,6 +294,8 @@ const PAST_INPUTS: usize = 8;
 pub struct AgedShape {
     pub delta: Vec<glam::Vec3>,
     pub normals: Vec<glam::Vec3>,
+    /// How hollowed each vertex is, mm ([`crate::shape::ShapeField::hollow_at`]).
+    pub hollow_mm: Vec<f32>,
     pub years: f32,
 }
 
@@ -1001,6 +1003,7 @@ impl Scene {
         self.shape_aged = Some((
             key,
             Arc::new(AgedShape {
+                hollow_mm: field.hollow_at(years),
                 delta,
                 normals,
                 years,

@@ -202,3 +202,41 @@ fn the_lids_do_not_sink_into_the_eyes() {
     eprintln!("the skin round the eyes moves inward {deepest:.2} mm at most");
     assert!(deepest < 1.5, "{deepest} mm");
 }
+
+/// Only the deflating regions hollow the skin (a descent on a slanted forehead moves it in
+/// too, but makes no hollow): none at 25, up to the temples' 10 mm at 80, and nowhere
+/// outside a deflating region.
+#[test]
+fn only_deflations_make_hollows() {
+    let (mesh, field) = default_head();
+    let frame = Regions::template().unwrap();
+    assert!(field.hollow_at(25.0).iter().all(|&h| h == 0.0));
+    let old = field.hollow_at(80.0);
+    let deepest = old.iter().copied().fold(0.0, f32::max);
+    assert!((8.0..=10.0).contains(&deepest), "{deepest} mm");
+    let deflating: Vec<&ShapeRegion> = REGIONS
+        .iter()
+        .filter(|r| r.motions.iter().any(|(m, _)| *m == Motion::Deflate))
+        .collect();
+    let mut hollowed = 0;
+    for (p, h) in mesh.positions().iter().zip(&old) {
+        if *h > 0.0 {
+            hollowed += 1;
+            let q = frame.relative(*p);
+            assert!(deflating.iter().any(|r| r.weight(q) > 0.0), "{h} mm at {q}");
+        }
+    }
+    // The brows descend 5 mm: their vertices move in along the normal, unhollowed.
+    let brows = &REGIONS[0];
+    let descended_only = mesh
+        .positions()
+        .iter()
+        .zip(&old)
+        .filter(|(p, h)| {
+            let q = frame.relative(**p);
+            brows.weight(q) > 0.5 && !deflating.iter().any(|r| r.weight(q) > 0.0) && **h == 0.0
+        })
+        .count();
+    eprintln!("{hollowed} vertices hollowed; {descended_only} of the brows' descend unhollowed");
+    assert!(hollowed > 100 && descended_only > 5);
+}

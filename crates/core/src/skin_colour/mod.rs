@@ -1,7 +1,7 @@
 //! The aged base colour (docs/models.md "Skin colour"): the head's own colour map (or the
 //! skin colour when it has none) baked at an age, in its own UV layout, with
 //!
-//! - **age spots** (solar lentigines), 2–14 mm across, placed on the head's surface in
+//! - **age spots** (solar lentigines), 2–10 mm across, placed on the head's surface in
 //!   metres, on sun-exposed skin (forehead, temples, cheeks, nose, ears, a bald scalp),
 //!   appearing one after another from the onset of their curve and growing;
 //! - **uneven tone**: mottled melanin on sun-exposed skin, and redness with thread veins
@@ -129,12 +129,12 @@ impl Default for ColourSettings {
             albedo: [0.69, 0.35, 0.24],
             pale_albedo: [0.69, 0.48, 0.37],
             pale_amount: 0.25,
-            spots_per_cm2: 0.35,
+            spots_per_cm2: 0.6,
             spot_strength: 0.7,
             mottle: 0.3,
             redness: 0.5,
             yellowing: 0.6,
-            contrast_loss: 0.5,
+            contrast_loss: 0.7,
             under_eye: 0.65,
             gray_hair: [0.51, 0.49, 0.46],
             seed: 1,

@@ -70,9 +70,10 @@ impl Renderer {
         ));
         self.displaced_mesh = None;
         self.mesh_to_subdivide = Some(data);
-        // A shape is per vertex of the mesh it was made for.
+        // A shape is per vertex of the mesh it was made for, brow strands lie on its head.
         for v in &mut self.views {
             v.shape = None;
+            v.brows = None;
             v.shape_generation += 1;
         }
         self.mesh_generation += 1;
@@ -131,42 +132,40 @@ impl Renderer {
             })
     }
 
-    /// Uploads the shape of `view`'s age (docs/models.md §13: the regions' displacement of
-    /// each vertex of the uploaded mesh, mesh units, and the displaced normals), drawn by
-    /// moving the vertices in the surface pass; `None` draws the mesh as it is. The view's
-    /// stored surface is drawn again.
+    /// Uploads the shape of `view`'s age (docs/models.md §13): per vertex of the uploaded
+    /// mesh, the regions' displacement (mesh units), the displaced normal and how far its
+    /// deflating regions took it in (mm, the hollow the skin pass darkens), drawn by moving
+    /// the vertices in the surface pass; `None` draws the mesh as it is. The view's stored
+    /// surface is drawn again.
     pub fn upload_shape_to(
         &mut self,
         view: ViewId,
-        shape: Option<(&[glam::Vec3], &[glam::Vec3])>,
+        shape: Option<(&[glam::Vec3], &[glam::Vec3], &[f32])>,
     ) -> Result<(), RenderError> {
         let vi = self.view_index(view)?;
         let shape = match shape {
             None => None,
-            Some((delta, normals)) => {
+            Some((delta, normals, hollow_mm)) => {
                 let count = self
                     .mesh
                     .as_ref()
                     .map_or(0, |m| m.vertex_count_of() as usize);
-                if delta.len() != count || normals.len() != count {
+                if delta.len() != count || normals.len() != count || hollow_mm.len() != count {
                     return Err(RenderError::InvalidMesh(format!(
-                        "a shape of {} displacements and {} normals for a mesh of {count} vertices",
+                        "a shape of {} displacements, {} normals and {} hollows for a mesh of {count} vertices",
                         delta.len(),
-                        normals.len()
+                        normals.len(),
+                        hollow_mm.len()
                     )));
                 }
-                let metres_per_unit = self.metres_per_unit;
                 let data: Vec<ShapeVertex> = delta
                     .iter()
                     .zip(normals)
-                    .map(|(d, n)| ShapeVertex {
+                    .zip(hollow_mm)
+                    .map(|((d, n), h)| ShapeVertex {
                         delta: d.to_array(),
                         normal: n.to_array(),
-                        hollow: crate::mesh::hollow_occlusion(
-                            *d,
-                            n.normalize_or_zero(),
-                            metres_per_unit,
-                        ),
+                        hollow: crate::mesh::hollow_occlusion(*h),
                     })
                     .collect();
                 let base = self.shape_buffer("agesim shape", &data);

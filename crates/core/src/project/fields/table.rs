@@ -627,7 +627,7 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             "/cm²",
             0.0,
             2.0,
-            "age spots (solar lentigines, 2–14 mm) per cm² of sun-exposed skin at full age",
+            "age spots (solar lentigines, 2–10 mm) per cm² of sun-exposed skin at full age",
         ),
         f(
             "skin.spot_strength",

@@ -48,6 +48,10 @@ const BUSHY_LENGTHENING: f32 = 0.5;
 const ELEVATION_DEG: f32 = 5.0;
 const BUSHY_ELEVATION_DEG: f32 = 6.0;
 
+/// How far below the root's tangent plane a hair's tip lies, a fraction of its length:
+/// where a convex brow has curved away (the skin hides what dips into it on a flat one).
+const TIP_DROP: f32 = 0.08;
+
 /// One brow hair at an age, as the renderer draws it (48 bytes): a quadratic Bézier from
 /// the root through `middle` to the tip, mesh units, with its gray fraction and shade.
 #[repr(C)]
@@ -245,13 +249,14 @@ impl BrowHairs {
                 let along = r.lateral * angle.cos() + r.up * angle.sin();
                 let along = (along - normal * along.dot(normal)).normalize_or_zero();
                 let out = along * elevation.cos() + normal * elevation.sin();
-                // Out of the skin along `out`, then curving back down onto it (the tip at a
-                // sixth of the straight hair's rise) and to one side.
+                // Out of the skin along `out`, then curving back down onto it and to one
+                // side: the tip [`TIP_DROP`] below the root's tangent plane, where a convex
+                // brow (radius ≈ 3 cm) has curved away from it (a tip above the plane stood
+                // off the far brow's outline, read blind as "a flat fan of bristles").
                 let side = normal.cross(along);
                 let tip_along = along * r.curl.cos() + side * r.curl.sin();
                 let middle = root + out * (0.55 * length);
-                let tip =
-                    root + tip_along * (0.95 * length) + normal * (0.15 * length * elevation.sin());
+                let tip = root + tip_along * (0.95 * length) - normal * (TIP_DROP * length);
                 let gray = smooth01((gray_fraction - r.gray_draw) / 0.08);
                 BrowStrand {
                     root: root.to_array(),

@@ -132,12 +132,14 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // C_k(t) = (1 − y_k)·C_base + y_k·C_gray, darker toward the root (the light the
     // hairs around it keep from it: 55 % at the root), so the mass has depth and its
     // edge against the skin is soft.
-    out.colour = mix(base, gray, y) * mix(0.55, 1.0, s);
     out.world_pos = p;
     // Seen edge on (its root direction across the view, at the head's silhouette), many
     // strands pile up in a pixel: each covers less there and is darker (the light the
-    // strands in front keep from it), so the outline is not a hard bright rim.
+    // strands in front keep from it), so the outline is not a hard bright rim; and there
+    // its tip is no brighter than its root (bright tips beyond darker roots drew the
+    // outline as a pale arc standing off the skull, read blind as "a detached shell").
     let face_on = smoothstep(0.1, 0.8, abs(dot(dir, normalize(frame.camera_pos.xyz - p))));
+    out.colour = mix(base, gray, y) * mix(0.55, mix(0.55, 1.0, face_on), s);
     out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * mix(0.25, 1.0, face_on);
     out.colour *= mix(0.4, 1.0, face_on);
     return out;

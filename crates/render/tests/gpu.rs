@@ -369,9 +369,12 @@ fn a_sparse_frame_draws_a_thinned_share_of_the_same_hair() {
         f64::from(sparse_px) < 0.7 * f64::from(full_px),
         "a sparse frame is not thinner: {sparse_px} of {full_px} px"
     );
-    // The same hairs (young, dark): not another colour.
+    // The same hairs (young, dark): not another colour. A thinned frame lets more skin
+    // through the blended strands, so its hair pixels are lighter (by 25 of 255 here, the
+    // edge-on strands at the outline being dark); gray hair is 55 lighter than young hair
+    // (`hair_thins_and_grays_with_age`: 42.8 → 98.0).
     assert!(
-        (sparse_lum - full_lum).abs() < 25.0,
+        (sparse_lum - full_lum).abs() < 32.0,
         "{sparse_lum} vs {full_lum}"
     );
 }

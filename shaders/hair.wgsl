@@ -99,6 +99,21 @@ fn curve_tangent(c: HairCurve, s: f32) -> vec3<f32> {
     return normalize((c.p1 - c.p0) * (1.0 - s) + (c.p2 - c.p1) * s);
 }
 
+// One vertex of a hair's ribbon: the curve's point `p` (tangent `tangent`, `s` along it)
+// widened in screen space, perpendicular to the projected hair (its direction taken
+// `ahead` mesh units along it), to the `side` (±1), by a pixel width that tapers to a
+// third at the tip.
+fn ribbon_vertex(p: vec3<f32>, tangent: vec3<f32>, ahead: f32, s: f32, side: f32) -> vec4<f32> {
+    let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
+    let clip_ahead = frame.clip_from_world * vec4<f32>(p + tangent * ahead, 1.0);
+    let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
+    let screen_dir = (clip_ahead.xy / clip_ahead.w - clip.xy / clip.w) * viewport;
+    let perp = normalize(vec2<f32>(-screen_dir.y, screen_dir.x) + vec2<f32>(1e-6, 0.0));
+    let width_px = frame.hair_gray.w * (1.0 - 0.65 * s);
+    let offset_ndc = perp * (width_px / viewport);
+    return vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
+}
+
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let dir = oct_decode(inst.direction_oct);
@@ -111,20 +126,10 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let p = curve_point(curve, s);
     let tangent = curve_tangent(curve, s);
 
-    // Widen in screen space, perpendicular to the projected hair, by a pixel width that
-    // tapers to a third at the tip.
-    let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
-    let clip_ahead = frame.clip_from_world * vec4<f32>(p + tangent * (len * 0.1), 1.0);
-    let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
-    let screen_dir = (clip_ahead.xy / clip_ahead.w - clip.xy / clip.w) * viewport;
-    let perp = normalize(vec2<f32>(-screen_dir.y, screen_dir.x) + vec2<f32>(1e-6, 0.0));
-    let width_px = frame.hair_gray.w * (1.0 - 0.65 * s);
-    let offset_ndc = perp * (width_px / viewport);
-
     let base = frame.hair_base.rgb * (0.8 + 0.4 * random);
     let y = gray_fraction(frame.disp.w, inst.graying_onset);
     var out: VertexOut;
-    out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
+    out.clip = ribbon_vertex(p, tangent, len * 0.1, s, side);
     out.tangent = tangent;
     // Each gray hair its own shade (0.45–1.10 of C_gray, from the spare random number's
     // other digits): a gray mass reads as strands, not a slab.
@@ -167,20 +172,11 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
     let p = curve_point(curve, s);
     let tangent = curve_tangent(curve, s);
-    let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
-    // A tenth of the hair ahead (mesh units: a fixed step would be a micrometre on a head
-    // in millimetres).
-    let ahead = 0.1 * distance(inst.root, inst.tip);
-    let clip_ahead = frame.clip_from_world * vec4<f32>(p + tangent * ahead, 1.0);
-    let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
-    let screen_dir = (clip_ahead.xy / clip_ahead.w - clip.xy / clip.w) * viewport;
-    let perp = normalize(vec2<f32>(-screen_dir.y, screen_dir.x) + vec2<f32>(1e-6, 0.0));
-    // As fine as the scalp's, tapering to a third (1.3 × its width read, blind, as "a
-    // bottle brush").
-    let width_px = frame.hair_gray.w * (1.0 - 0.65 * s);
-    let offset_ndc = perp * (width_px / viewport);
     var out: VertexOut;
-    out.clip = vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
+    // A tenth of the hair ahead (mesh units: a fixed step would be a micrometre on a head
+    // in millimetres); as fine as the scalp's (1.3 × its width read, blind, as "a bottle
+    // brush").
+    out.clip = ribbon_vertex(p, tangent, 0.1 * distance(inst.root, inst.tip), s, side);
     out.tangent = tangent;
     let base = frame.hair_base.rgb * BROW_DARKNESS * inst.shade;
     let gray = frame.hair_gray.rgb * (0.55 + 0.5 * inst.shade);

@@ -145,7 +145,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // outline as a pale arc standing off the skull, read blind as "a detached shell").
     let face_on = smoothstep(0.1, 0.8, abs(dot(dir, normalize(frame.camera_pos.xyz - p))));
     out.colour = mix(base, gray, y) * mix(0.55, mix(0.55, 1.0, face_on), s);
-    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * mix(0.25, 1.0, face_on);
+    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * mix(0.1, 1.0, face_on);
     out.colour *= mix(0.4, 1.0, face_on);
     return out;
 }

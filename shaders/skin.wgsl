@@ -17,6 +17,10 @@ const CAVITY: f32 = 0.55;
 // How much of the sky and of the light a full hollow of the aged shape loses.
 const HOLLOW_AMBIENT: f32 = 0.6;
 const HOLLOW_LIGHT: f32 = 0.45;
+// How much the hair present over the scalp darkens it (its shadow), per unit of
+// `hair.scalp_tint`: a white fringe over pale skin with no shadow under it read, blind, as
+// "a flat painted layer".
+const HAIR_SHADOW: f32 = 0.35;
 const MODE_LINEAR: u32 = 0u;
 const MODE_BINARY: u32 = 1u;
 const MODE_COMBINED: u32 = 2u;
@@ -420,6 +424,8 @@ fn shade(s: Surface) -> vec4<f32> {
             // under a white fringe read, blind, as a painted band with a hard edge).
             let roots = 1.0 - 0.75 * frame.scalp.y;
             albedo = mix(albedo, hair, frame.scalp.x * present * roots);
+            // The strands' shadow on it, whatever their colour.
+            albedo *= 1.0 - HAIR_SHADOW * frame.scalp.x * present;
         }
     }
 

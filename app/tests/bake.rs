@@ -523,7 +523,8 @@ fn older_bakes_are_deeper() {
     };
     let (a, b, c) = (range("30"), range("50"), range("80"));
     assert!(a < b && b < c, "{a} {b} {c}");
-    assert_eq!(c, 1.0);
+    // The deepest fold at full depth (to the float's last bit: the map is stored in f32).
+    assert!((c - 1.0).abs() < 1e-6, "{c}");
     let o = agesim(&[
         "bake",
         "--age",

@@ -39,7 +39,7 @@ pub fn camera(project: &Project, metres_per_unit: f32, target: Vec3) -> Camera {
 
 /// Wrap lighting per channel: `wrap` scaled so 0.35 wraps the subsurface colour's
 /// strongest channel by 0.45, the others in proportion to the colour (sRGB values; the
-/// default #ff7d55 gives 0.45, 0.22, 0.15).
+/// default #ff9a78 gives 0.45, 0.27, 0.21).
 pub fn wrap_rgb(wrap: f32, subsurface: Colour) -> Vec3 {
     let c = Vec3::from(subsurface.0.map(f32::from)) / 255.0;
     let c = c / c.max_element().max(1e-6);

@@ -35,7 +35,7 @@ pub const DEFAULT_GRAYING_ONSET_MAX: f32 = 0.9;
 /// (the fringe that stays too) lost by t = 1, hair by hair, evenly over t ∈
 /// [[`THINNING_FROM`], 1] (docs/models.md §9 "Thinning": scalp hair density falls by about
 /// a third to a half into old age). [`HairParams`] start with none ([T]'s model).
-pub const DEFAULT_THINNING: f32 = 0.55;
+pub const DEFAULT_THINNING: f32 = 0.45;
 /// The age t from which hair thins.
 pub const THINNING_FROM: f32 = 0.3;
 /// How far (in t) the project spreads each receding hair's disappearance age about the
@@ -636,7 +636,15 @@ fn triangle_hairs(
                     .map_or(d, |(near, _)| near);
                     length = length.min(taper(near, taper_mm));
                 }
-                let goes = 0.85 * (1.0 - smooth01(d / (FRINGE_REACH * taper_mm)));
+                // Over the top of the band only: a band narrower than twice the reach
+                // (the ~3 cm over the ears) fades over its upper half and keeps its lower
+                // half (a fade over the whole reach left the ears bare, a sideburn-less
+                // "shell" behind them, read blind as "clipper-shaved sides").
+                let reach = FRINGE_REACH * taper_mm;
+                let below = nearest_ring(transition, uv_k, mm_per_texel, reach, |a| a <= 0.0)
+                    .map_or(reach, |(b, _)| b);
+                let fade = reach.min(0.5 * (d + below)).max(1e-3);
+                let goes = 0.85 * (1.0 - smooth01(d / fade));
                 if fringe_u < goes {
                     age = age.min((earliest + (1.0 - earliest) * fringe_u / goes).max(1e-3));
                 }

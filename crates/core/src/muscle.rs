@@ -69,8 +69,10 @@ pub enum Profile {
 /// between wrinkles and flat skin the rest.
 pub const CREASE_HALF_WIDTH: f32 = 0.15;
 
-/// Height of a [`Profile::Fold`]'s raised side, relative to its crease's depth.
-pub const FOLD_RAISE: f32 = 0.45;
+/// Height of a [`Profile::Fold`]'s raised side, relative to its crease's depth (0.45 read,
+/// blind, as "a thin raised cord" beside the nasolabial crease: the shape's cheek does the
+/// overhang).
+pub const FOLD_RAISE: f32 = 0.3;
 
 /// Half-width of a [`Profile::Fold`]'s crease, in periods (wider than a line's: a fold is
 /// a valley under the cheek, not a line).
@@ -124,13 +126,19 @@ impl Profile {
             Profile::Crease => crease(x - x.floor() - 0.5),
             Profile::Fold => {
                 let xc = x - x.floor() - 0.5;
-                // The hump: a smooth bump of half-width 0.25 just beside the crease's
-                // wall, rising from nothing at the crease's centre.
-                let bump = {
-                    let s = ((xc + 0.25) / 0.25).abs();
-                    if s < 1.0 { (1.0 - s * s).powi(2) } else { 0.0 }
+                // The raised side: rising from nothing at the crease's centre to its top at
+                // the crease's edge, then falling slowly to the period's end (a shelf
+                // that overhangs the crease, not a ridge beside it).
+                let s = -xc;
+                let wall = if xc < 0.0 {
+                    smoothstep((s / FOLD_HALF_WIDTH).min(1.0))
+                        * (1.0
+                            - smoothstep(
+                                ((s - FOLD_HALF_WIDTH) / (0.5 - FOLD_HALF_WIDTH)).clamp(0.0, 1.0),
+                            ))
+                } else {
+                    0.0
                 };
-                let wall = if xc < 0.0 { bump } else { 0.0 };
                 crease_of_width(xc, FOLD_HALF_WIDTH) - FOLD_RAISE * wall
             }
         }

@@ -40,6 +40,8 @@ pub struct Blob {
     /// What this blob's bulge is, as a factor of its region's (1: the region's; 0.2 a
     /// fifth; 3 three times): a region whose parts descend alike but bulge differently.
     pub bulge: f32,
+    /// The same for its descent.
+    pub descent: f32,
     /// Whether it is mirrored to the other side of the midline.
     pub mirrored: bool,
 }
@@ -50,6 +52,7 @@ impl Blob {
             centre,
             radii,
             bulge: 1.0,
+            descent: 1.0,
             mirrored: true,
         }
     }
@@ -68,6 +71,14 @@ impl Blob {
     const fn bulging(self, factor: f32) -> Self {
         Self {
             bulge: factor,
+            ..self
+        }
+    }
+
+    /// The blob with `factor` times its region's descent.
+    const fn descending(self, factor: f32) -> Self {
+        Self {
+            descent: factor,
             ..self
         }
     }
@@ -119,6 +130,14 @@ impl ShapeRegion {
             .map(|b| b.weight(q) * b.bulge)
             .fold(0.0, f32::max)
     }
+
+    /// The weight of its descent, likewise.
+    pub fn descent_weight(&self, q: Vec3) -> f32 {
+        self.blobs
+            .iter()
+            .map(|b| b.weight(q) * b.descent)
+            .fold(0.0, f32::max)
+    }
 }
 
 const fn curve(onset: f32, full: f32) -> AgeCurve {
@@ -162,7 +181,9 @@ pub const REGIONS: [ShapeRegion; 11] = [
             // The sulcus above the lid's fold, not the lid over the eyeball (which stays:
             // a deeper lid let the eye show through it as a dark fleck).
             Blob::new([0.55, 0.38, 0.2], [0.4, 0.12, 0.35]),
-            Blob::new([0.78, -0.55, 0.4], [0.38, 0.26, 0.42]),
+            // Broad: a blob 12 mm tall drew its lower edge, under the side light, as "a
+            // pinched dent in mid-cheek" on the far side.
+            Blob::new([0.8, -0.6, 0.4], [0.6, 0.45, 0.5]),
             // Below the cheekbone, lateral to the fold's cheek: the buccal hollow.
             Blob::new([1.08, -1.05, 0.05], [0.38, 0.38, 0.5]),
         ],
@@ -190,10 +211,13 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // without it as "a thin engraved crescent").
         blobs: &[
             Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]).bulging(0.2),
-            Blob::one_side([0.59, -0.88, 0.44], [0.17, 0.26, 0.4]),
-            Blob::one_side([0.68, -1.08, 0.46], [0.17, 0.26, 0.4]),
-            Blob::one_side([-0.76, -0.88, 0.4], [0.17, 0.26, 0.4]),
-            Blob::one_side([-0.83, -1.08, 0.43], [0.17, 0.26, 0.4]),
+            // The chain rolls out, barely down: its full 5 mm descent over blobs 8 mm wide
+            // sheared the cheek by the mouth's corner into "a fin" on the far outline in
+            // three-quarter.
+            Blob::one_side([0.59, -0.88, 0.44], [0.17, 0.26, 0.4]).descending(0.3),
+            Blob::one_side([0.68, -1.08, 0.46], [0.17, 0.26, 0.4]).descending(0.3),
+            Blob::one_side([-0.76, -0.88, 0.4], [0.17, 0.26, 0.4]).descending(0.3),
+            Blob::one_side([-0.83, -1.08, 0.43], [0.17, 0.26, 0.4]).descending(0.3),
         ],
         motions: &[(Descent, 5.0), (Bulge, 3.0)],
         curve: curve(35.0, 75.0),
@@ -321,6 +345,7 @@ impl ShapeField {
                         continue;
                     }
                     let bulge = region.bulge_weight(q) / weight;
+                    let descent = region.descent_weight(q) / weight;
                     let normal = mesh.normals()[s as usize];
                     let d: Vec3 = region
                         .motions
@@ -328,7 +353,7 @@ impl ShapeField {
                         .map(|&(motion, amount)| {
                             amount
                                 * match motion {
-                                    Descent => Vec3::NEG_Y,
+                                    Descent => Vec3::NEG_Y * descent,
                                     Deflate => -normal,
                                     Bulge => normal * bulge,
                                 }

@@ -189,7 +189,7 @@ impl Default for SkinParams {
             pale_albedo: Vec3::new(0.69, 0.48, 0.37),
             pale: 0.0,
             head_normal_green_down: false,
-            wrap: Vec3::new(0.45, 0.22, 0.15),
+            wrap: Vec3::new(0.45, 0.27, 0.21),
             roughness: 0.42,
             f0: 0.028,
             micro_relief: true,

@@ -444,9 +444,11 @@ impl Default for SkinSection {
             contrast_loss: 0.7,
             under_eye: 0.65,
             colour_seed: 1,
-            // With `wrap` 0.35: red wraps 0.45, green 0.22, blue 0.15 (docs/models.md
-            // "Rendering"): red light scatters farthest under the skin.
-            subsurface_colour: Colour([0xff, 0x7d, 0x55]),
+            // With `wrap` 0.35: red wraps 0.45, green 0.27, blue 0.21 (docs/models.md
+            // "Rendering"): red light scatters farthest under the skin. (#ff7d55, green
+            // 0.22 and blue 0.15, drew the terminator on the neck and round the nape as
+            // an orange-red band, read blind as "a reddish edge" under the fringe.)
+            subsurface_colour: Colour([0xff, 0x9a, 0x78]),
             wrap: 0.35,
             // GGX roughness and F0 = 0.08 · specular = 0.028, d'Eon & Luebke's skin fit.
             roughness: 0.42,

@@ -67,6 +67,8 @@ const YELLOW_TINT: [f32; 3] = [0.0, 0.06, 0.22];
 /// thin and gray more than they fade).
 const CONTRAST_BROWS: f32 = 0.2;
 const CONTRAST_LIPS: f32 = 0.6;
+/// How much more than the rest of the lips their outer part (`Regions::lip_rim`) fades.
+const LIP_THINNING: f32 = 0.8;
 
 /// Brightness of gray brow hair relative to the hair's gray colour: coarse white brow
 /// hair over the skin reads lighter than the silver of the scalp's (at the scalp's
@@ -371,6 +373,17 @@ impl Regions {
         (1.0 - smoothstep(0.75, 1.05, d.length())) * front(q.z, self.ear_z)
     }
 
+    /// The outer part of the lips (their red's border, away from the mouth's line): what
+    /// fades first as the lips thin (docs/models.md §12 "Lips").
+    pub fn lip_rim(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        let d = Vec2::new(
+            (q.x - self.mouth.x) / (self.mouth_half_width + 0.05),
+            (q.y - self.mouth.y + 0.02) / 0.22,
+        );
+        smoothstep(0.35, 0.7, d.length()) * self.lips(p)
+    }
+
     /// Cheeks and nose, where redness and thread veins come.
     pub fn redness(&self, p: Vec3) -> f32 {
         let q = self.rel(p);
@@ -579,6 +592,7 @@ struct Fields {
     sun: u8,
     brows: u8,
     lips: u8,
+    lip_rim: u8,
     red: u8,
     blotch: u8,
     grain: u8,
@@ -625,6 +639,7 @@ impl Fields {
             sun: unit_byte(sun),
             brows: unit_byte(brows),
             lips: unit_byte(w(Regions::lips)),
+            lip_rim: unit_byte(w(Regions::lip_rim)),
             red: unit_byte(red),
             blotch: signed_byte(fbm(mm / MOTTLE_MM.0, keys[0])),
             grain: signed_byte(value3(mm / MOTTLE_MM.1, keys[1])),
@@ -998,8 +1013,10 @@ impl Look<'_> {
             hair = grown;
         }
         // Lips and brows fade toward the skin around them.
-        let fade =
-            s.contrast_loss * a.contrast * (CONTRAST_BROWS * brows).max(CONTRAST_LIPS * lips);
+        // The lips' outer part fades further (their red narrows toward the mouth's line:
+        // thinner lips; faded evenly they read, blind, as "paler but barely thinner").
+        let lips = CONTRAST_LIPS * lips + LIP_THINNING * from_unit(f.lip_rim);
+        let fade = s.contrast_loss * a.contrast * (CONTRAST_BROWS * brows).max(lips);
         c = c.lerp(reference, fade.clamp(0.0, 1.0));
         // The stubble grays with the hair: gray stubble on pale skin casts no shadow, so
         // the beard's darker texels lighten toward the skin around them, a little lighter

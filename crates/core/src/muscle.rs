@@ -69,10 +69,9 @@ pub enum Profile {
 /// between wrinkles and flat skin the rest.
 pub const CREASE_HALF_WIDTH: f32 = 0.15;
 
-/// Height of a [`Profile::Fold`]'s raised side, relative to its crease's depth (0.45 read,
-/// blind, as "a thin raised cord" beside the nasolabial crease: the shape's cheek does the
-/// overhang).
-pub const FOLD_RAISE: f32 = 0.3;
+/// Height of a [`Profile::Fold`]'s raised side, relative to its crease's depth (0.3 read,
+/// blind, as "a faint shading line, no cheek over it").
+pub const FOLD_RAISE: f32 = 0.45;
 
 /// Half-width of a [`Profile::Fold`]'s crease, in periods (wider than a line's: a fold is
 /// a valley under the cheek, not a line).

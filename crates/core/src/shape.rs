@@ -40,8 +40,9 @@ pub struct Blob {
     /// What this blob's bulge is, as a factor of its region's (1: the region's; 0.2 a
     /// fifth; 3 three times): a region whose parts descend alike but bulge differently.
     pub bulge: f32,
-    /// The same for its descent.
+    /// The same for its descent and its deflation.
     pub descent: f32,
+    pub deflate: f32,
     /// Whether it is mirrored to the other side of the midline.
     pub mirrored: bool,
 }
@@ -53,6 +54,7 @@ impl Blob {
             radii,
             bulge: 1.0,
             descent: 1.0,
+            deflate: 1.0,
             mirrored: true,
         }
     }
@@ -79,6 +81,14 @@ impl Blob {
     const fn descending(self, factor: f32) -> Self {
         Self {
             descent: factor,
+            ..self
+        }
+    }
+
+    /// The blob with `factor` times its region's deflation.
+    const fn deflating(self, factor: f32) -> Self {
+        Self {
+            deflate: factor,
             ..self
         }
     }
@@ -138,6 +148,14 @@ impl ShapeRegion {
             .map(|b| b.weight(q) * b.descent)
             .fold(0.0, f32::max)
     }
+
+    /// The weight of its deflation, likewise.
+    pub fn deflate_weight(&self, q: Vec3) -> f32 {
+        self.blobs
+            .iter()
+            .map(|b| b.weight(q) * b.deflate)
+            .fold(0.0, f32::max)
+    }
 }
 
 const fn curve(onset: f32, full: f32) -> AgeCurve {
@@ -184,8 +202,10 @@ pub const REGIONS: [ShapeRegion; 11] = [
             // Broad: a blob 12 mm tall drew its lower edge, under the side light, as "a
             // pinched dent in mid-cheek" on the far side.
             Blob::new([0.8, -0.6, 0.4], [0.6, 0.45, 0.5]),
-            // Below the cheekbone, lateral to the fold's cheek: the buccal hollow.
-            Blob::new([1.08, -1.05, 0.05], [0.38, 0.38, 0.5]),
+            // Below the cheekbone, lateral to the fold's cheek: the buccal hollow, broad
+            // and 3 mm (18 mm across and 5 mm deep, its edge on the far side of the light
+            // read, blind, as "a dark pit in the cheek").
+            Blob::new([1.08, -1.05, 0.05], [0.5, 0.5, 0.6]).deflating(0.6),
         ],
         motions: &[(Deflate, 5.0)],
         curve: curve(35.0, 70.0),
@@ -214,10 +234,11 @@ pub const REGIONS: [ShapeRegion; 11] = [
             // The chain rolls out, barely down: its full 5 mm descent over blobs 8 mm wide
             // sheared the cheek by the mouth's corner into "a fin" on the far outline in
             // three-quarter.
-            Blob::one_side([0.59, -0.88, 0.44], [0.17, 0.26, 0.4]).descending(0.3),
-            Blob::one_side([0.68, -1.08, 0.46], [0.17, 0.26, 0.4]).descending(0.3),
-            Blob::one_side([-0.76, -0.88, 0.4], [0.17, 0.26, 0.4]).descending(0.3),
-            Blob::one_side([-0.83, -1.08, 0.43], [0.17, 0.26, 0.4]).descending(0.3),
+            // Broad: blobs 8 mm wide stood off the far outline as a pointed bump.
+            Blob::one_side([0.62, -0.88, 0.44], [0.24, 0.32, 0.4]).descending(0.3),
+            Blob::one_side([0.71, -1.08, 0.46], [0.24, 0.32, 0.4]).descending(0.3),
+            Blob::one_side([-0.79, -0.88, 0.4], [0.24, 0.32, 0.4]).descending(0.3),
+            Blob::one_side([-0.86, -1.08, 0.43], [0.24, 0.32, 0.4]).descending(0.3),
         ],
         motions: &[(Descent, 5.0), (Bulge, 3.0)],
         curve: curve(35.0, 75.0),
@@ -231,11 +252,13 @@ pub const REGIONS: [ShapeRegion; 11] = [
     },
     ShapeRegion {
         name: "lips",
-        what: "upper lip lengthening",
-        // The whole mouth descends together: a deflation along the normals parts the
-        // lips (their normals at the slit point at each other).
-        blobs: &[Blob::new([0.0, -1.2, 0.5], [0.6, 0.3, 0.45])],
-        motions: &[(Descent, 1.5)],
+        what: "upper lip lengthening and flattening",
+        // The upper lip's skin, above the slit (the mouth's line at −1.34): it descends
+        // over the red of the lip (which narrows) and flattens (blind ratings read it
+        // unchanged as "puffy, sticking out past the lower lip in profile"). Nothing at
+        // the slit: a deflation there parts the lips (their normals point at each other).
+        blobs: &[Blob::new([0.0, -1.1, 0.5], [0.6, 0.24, 0.45])],
+        motions: &[(Descent, 1.5), (Deflate, 1.5)],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
@@ -346,6 +369,7 @@ impl ShapeField {
                     }
                     let bulge = region.bulge_weight(q) / weight;
                     let descent = region.descent_weight(q) / weight;
+                    let deflate = region.deflate_weight(q) / weight;
                     let normal = mesh.normals()[s as usize];
                     let d: Vec3 = region
                         .motions
@@ -354,13 +378,13 @@ impl ShapeField {
                             amount
                                 * match motion {
                                     Descent => Vec3::NEG_Y * descent,
-                                    Deflate => -normal,
+                                    Deflate => -normal * deflate,
                                     Bulge => normal * bulge,
                                 }
                         })
                         .sum();
                     out[v] = d * (weight * strength * mm);
-                    hollow[v] = deflate_mm * weight * strength;
+                    hollow[v] = deflate_mm * deflate * weight * strength;
                 }
                 (out, hollow)
             })

@@ -626,7 +626,13 @@ fn pores_stretch_along_the_tension_lines_with_age() {
         p.pores.count = 150;
         p.pores.radius_mm = crate::project::MeanSpread::new(0.6, 0.1);
     };
-    let theta = Project::default().furrows.direction_deg;
+    // The tension lines curve over the patch: each pore is measured against their
+    // direction at its centre.
+    let settings = {
+        let mut p = Project::default();
+        pores_only(&mut p);
+        p.micro_settings().unwrap()
+    };
     let mut medians = Vec::new();
     for years in [25.0, 75.0] {
         let (h, size, pores) = micro_at(years, pores_only);
@@ -641,7 +647,13 @@ fn pores_stretch_along_the_tension_lines_with_age() {
                 });
                 clear && c.iter().all(|&v| v > 3.0 && v < size - 3.0)
             })
-            .map(|p| depression_shape(&h, size, p.centre_mm, 2.2 * p.radius_mm))
+            .map(|p| {
+                let (aspect, angle) = depression_shape(&h, size, p.centre_mm, 2.2 * p.radius_mm);
+                (
+                    aspect,
+                    angle - settings.tension_at(p.centre_mm).to_degrees(),
+                )
+            })
             .collect();
         assert!(shapes.len() > 20, "{} isolated pores", shapes.len());
         shapes.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -649,7 +661,7 @@ fn pores_stretch_along_the_tension_lines_with_age() {
         let mut off: Vec<f32> = shapes
             .iter()
             .map(|s| {
-                let d = (s.1 - theta).rem_euclid(180.0);
+                let d = s.1.rem_euclid(180.0);
                 d.min(180.0 - d)
             })
             .collect();
@@ -657,7 +669,7 @@ fn pores_stretch_along_the_tension_lines_with_age() {
         medians.push((aspect, off[off.len() / 2]));
     }
     eprintln!(
-        "pore aspect, median angle off θ: 25 years {:?}, 75 years {:?}",
+        "pore aspect, median angle off the local tension lines: 25 years {:?}, 75 years {:?}",
         medians[0], medians[1]
     );
     assert!(medians[0].0 < 1.15, "young pores round: {:?}", medians[0]);

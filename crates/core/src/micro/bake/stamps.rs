@@ -111,8 +111,8 @@ impl<'a> Context<'a> {
         let beta = p.overlap_beta;
         let mut stamps = Vec::new();
         if parts.features {
-            // The tension lines: the furrows' preferred direction θ.
-            let theta = p.tension_deg.to_radians();
+            // The tension lines: the furrows' preferred direction θ, curving over the
+            // patch (`MicroSettings::tension_at`).
             let aspect = relief.pore_aspect;
             for (k, pore) in relief.pores.iter().enumerate() {
                 // Exact for the default scale 1 (x·1 = x): the project's own bytes.
@@ -121,7 +121,7 @@ impl<'a> Context<'a> {
                 let jitter = (crate::rng::mix64(p.seed ^ 0x504f_5245 ^ k as u64) >> 40) as f32
                     / (1u64 << 24) as f32
                     - 0.5;
-                let angle = theta + jitter * 30f32.to_radians();
+                let angle = p.tension_at(pore.centre_mm) + jitter * 30f32.to_radians();
                 stamps.push(Stamp::Pore {
                     centre: pore.centre_mm,
                     inv_r2: 1.0 / (radius * radius),
@@ -136,10 +136,11 @@ impl<'a> Context<'a> {
                     },
                 });
             }
-            let (ct, st) = (theta.cos(), theta.sin());
             let a = relief.furrow_anisotropy;
             for f in &relief.furrows {
                 let d = [f.end_mm[0] - f.start_mm[0], f.end_mm[1] - f.start_mm[1]];
+                let theta = p.tension_at([f.start_mm[0] + 0.5 * d[0], f.start_mm[1] + 0.5 * d[1]]);
+                let (ct, st) = (theta.cos(), theta.sin());
                 let len = (d[0] * d[0] + d[1] * d[1]).sqrt().max(1e-6);
                 // Along the tension lines deeper, across them fading (exactly 1 at a = 0).
                 let along = if a == 0.0 {

@@ -783,7 +783,7 @@ impl BaseColour {
                     a[x] = base.map_or(255, |img| alpha_at(img, x, y, n));
                 }
             });
-        let tone = local_tone(n, &texels.position, &base_at);
+        let tone = local_tone(n, &texels.position, &texels.fields, &base_at);
         Self {
             size: texels.size,
             colour,
@@ -1207,10 +1207,12 @@ impl SpotGrid {
 /// The local skin tone per texel: the base colour averaged over a coarse grid of the UV
 /// layout (only covered texels count, so the background does not darken island edges),
 /// blurred, read back bilinearly. What lips and brows fade toward, and what brow hair is
-/// darker than.
+/// darker than. The lips do not count: the skin round them is what they fade toward (with
+/// their own red in the average they kept much of it, and read blind as "barely thinner").
 fn local_tone(
     n: usize,
     position: &[Vec3],
+    fields: &[Fields],
     base_at: &(dyn Fn(usize, usize) -> Vec3 + Sync),
 ) -> Vec<Vec3> {
     let g = TONE_GRID;
@@ -1224,8 +1226,9 @@ fn local_tone(
                 continue;
             }
             let k = (y * g / n) * g + x * g / n;
-            sum[k] += base_at(x, y);
-            weight[k] += 1.0;
+            let w = 1.0 - from_unit(fields[y * n + x].lips);
+            sum[k] += base_at(x, y) * w;
+            weight[k] += w;
         }
     }
     // Two passes of a 3×3 box blur of the sums and the weights (normalised convolution).

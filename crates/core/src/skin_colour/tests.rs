@@ -344,6 +344,29 @@ fn brows_gray_lips_fade_and_a_shadow_comes_under_the_eyes() {
         redness(&young),
         redness(&old)
     );
+    // And they thin: their outer part (the red's border) keeps less of its redness than
+    // their middle (by the mouth's line).
+    let kept = |part: &dyn Fn(&Fields) -> bool| {
+        let idx: Vec<usize> = lips
+            .iter()
+            .copied()
+            .filter(|&i| part(&texels.fields[i]))
+            .collect();
+        let r = |img: &HeadImage| {
+            idx.iter()
+                .map(|&i| (img.rgba[4 * i] as f32 - img.rgba[4 * i + 1] as f32) / 255.0)
+                .sum::<f32>()
+                / idx.len().max(1) as f32
+        };
+        (r(&old) / r(&young), idx.len())
+    };
+    let (rim, n_rim) = kept(&|f| from_unit(f.lip_rim) > 0.8);
+    let (middle, n_middle) = kept(&|f| from_unit(f.lip_rim) < 0.1);
+    eprintln!(
+        "lips' redness kept: {rim:.2} at the rim ({n_rim} texels), {middle:.2} in the middle ({n_middle})"
+    );
+    assert!(n_rim > 20 && n_middle > 20, "{n_rim} {n_middle}");
+    assert!(rim < middle - 0.05, "rim {rim}, middle {middle}");
     // Under the eyes: darker with age, and not without the shadow.
     let under = in_region(|f| f.under_eye);
     assert!(under.len() > 50, "{} under-eye texels", under.len());

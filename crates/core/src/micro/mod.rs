@@ -50,16 +50,12 @@ pub struct MicroSettings {
     pub normal: NormalSettings,
 }
 
-/// How far (radians) the tension lines turn over the patch from `tension_deg`, at most:
-/// the sum of two waves' amplitudes (docs/models.md §4 "Age").
-pub const TENSION_SWIRL_RAD: f32 = 0.35 + 0.25;
-
 impl MicroSettings {
     /// The tension lines' direction at `c` (mm on the patch; radians, counter-clockwise
-    /// from +u): `tension_deg` turned by up to ±[`TENSION_SWIRL_RAD`] (34°) by two smooth
-    /// waves that wrap with the patch, so they curve over the skin as Langer's lines do
-    /// (one direction over the whole patch, repeated over the head, drew the old pores,
-    /// blind, as "dashes all pointing the same way, like hatching").
+    /// from +u): `tension_deg` turned by up to ±0.6 rad (34°) by two smooth waves that
+    /// wrap with the patch, so they curve over the skin as Langer's lines do (one
+    /// direction over the whole patch, repeated over the head, drew the old pores, blind,
+    /// as "dashes all pointing the same way, like hatching"; docs/models.md §4 "Age").
     pub fn tension_at(&self, c: [f32; 2]) -> f32 {
         let k = std::f32::consts::TAU / self.map_size_mm.max(1e-6);
         let (x, y) = (c[0] * k, c[1] * k);
@@ -67,9 +63,7 @@ impl MicroSettings {
             + 0.35 * (2.0 * x + y + 0.7).sin()
             + 0.25 * (x - 2.0 * y + 2.1).sin()
     }
-}
 
-impl MicroSettings {
     /// Whether the pores and furrows of `self` and `other` are the same (the same seed,
     /// patch, tiling, pore and furrow settings): then only the bake has to be redone.
     pub fn same_features(&self, other: &Self) -> bool {

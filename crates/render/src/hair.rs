@@ -52,30 +52,29 @@ pub(crate) fn count_at(levels: &[AgeLevel], t: f32) -> u32 {
 mod tests {
     use super::*;
 
+    /// A core struct of `size` bytes is exactly `stride` bytes of vertex attributes.
+    fn assert_layout(size: usize, stride: u64, attributes: &[wgpu::VertexAttribute]) {
+        assert_eq!(size as u64, stride);
+        let end = attributes.iter().map(|a| a.offset + a.format.size()).max();
+        assert_eq!(end, Some(stride));
+    }
+
     #[test]
     fn instance_layout_matches_core() {
-        assert_eq!(
-            std::mem::size_of::<agesim_core::hair::HairInstance>() as u64,
-            INSTANCE_STRIDE
+        assert_layout(
+            std::mem::size_of::<agesim_core::hair::HairInstance>(),
+            INSTANCE_STRIDE,
+            &INSTANCE_ATTRIBUTES,
         );
-        let end = INSTANCE_ATTRIBUTES
-            .iter()
-            .map(|a| a.offset + a.format.size())
-            .max();
-        assert_eq!(end, Some(INSTANCE_STRIDE));
     }
 
     #[test]
     fn brow_layout_matches_core() {
-        assert_eq!(
-            std::mem::size_of::<agesim_core::brows::BrowStrand>() as u64,
-            BROW_STRIDE
+        assert_layout(
+            std::mem::size_of::<agesim_core::brows::BrowStrand>(),
+            BROW_STRIDE,
+            &BROW_ATTRIBUTES,
         );
-        let end = BROW_ATTRIBUTES
-            .iter()
-            .map(|a| a.offset + a.format.size())
-            .max();
-        assert_eq!(end, Some(BROW_STRIDE));
     }
 
     #[test]

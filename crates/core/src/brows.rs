@@ -139,8 +139,6 @@ impl BrowHairs {
                 continue;
             }
             let p = v.map(|i| positions[i as usize]);
-            let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
-            let n = e1.cross(e2);
             // The triangle's area on the template's brow seen from the front (out × up,
             // template mm): the same hairs on any head, whatever its triangles' slant or
             // size.
@@ -151,19 +149,12 @@ impl BrowHairs {
                 )
             };
             let area_cm2 = 0.5 * d(1).perp_dot(d(2)).abs() / 100.0;
-            if !area_cm2.is_finite() || area_cm2 <= 0.0 || n == Vec3::ZERO {
+            if !area_cm2.is_finite() || area_cm2 <= 0.0 {
                 continue;
             }
-            // Gradients of the brow's coordinates over the triangle (in its plane).
-            let grad = |f: [f32; 3]| {
-                ((f[1] - f[0]) * e2.cross(n) + (f[2] - f[0]) * n.cross(e1)) / n.length_squared()
+            let Some((lateral, up)) = tangent_frame(p, places.map(|q| q.s), across) else {
+                continue;
             };
-            let lateral = grad([places[0].s, places[1].s, places[2].s]).normalize_or_zero();
-            let across = grad(across);
-            let up = (across - lateral * across.dot(lateral)).normalize_or_zero();
-            if lateral == Vec3::ZERO || up == Vec3::ZERO {
-                continue;
-            }
             let mut rng = Rng::for_stream(seed ^ 0xb40f_5eed, t as u64);
             let expected = area_cm2 * DENSITY_PER_CM2;
             let whole = expected.floor();
@@ -220,27 +211,7 @@ impl BrowHairs {
         self.roots
             .iter()
             .map(|r| {
-                let vertex = |k: usize| {
-                    let i = r.vertices[k] as usize;
-                    match shape {
-                        Some((delta, shaped)) if i < delta.len() && i < shaped.len() => {
-                            let n = if shaped[i] == Vec3::ZERO {
-                                normals[i]
-                            } else {
-                                shaped[i]
-                            };
-                            (positions[i] + delta[i], n)
-                        }
-                        _ => (positions[i], normals[i]),
-                    }
-                };
-                let (mut root, mut normal) = (Vec3::ZERO, Vec3::ZERO);
-                for k in 0..3 {
-                    let (p, n) = vertex(k);
-                    root += p * r.bary[k];
-                    normal += n * r.bary[k];
-                }
-                let normal = normal.normalize_or_zero();
+                let (root, normal) = rooted(positions, normals, shape, r.vertices, r.bary);
                 let grown = r.bushy.map_or(0.0, |g| g * growth);
                 let length = r.length_mm * (1.0 + BUSHY_LENGTHENING * grown) * self.units_per_mm;
                 let elevation = r.elevation + BUSHY_ELEVATION_DEG.to_radians() * grown;
@@ -269,6 +240,61 @@ impl BrowHairs {
             })
             .collect()
     }
+}
+
+/// Unit directions in the plane of the triangle `p` along which the coordinates `along`
+/// and `across` (one per corner) grow, `across` made square to `along`; `None` on a
+/// degenerate triangle or where either does not change over it.
+pub(crate) fn tangent_frame(
+    p: [Vec3; 3],
+    along: [f32; 3],
+    across: [f32; 3],
+) -> Option<(Vec3, Vec3)> {
+    let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
+    let n = e1.cross(e2);
+    if n == Vec3::ZERO {
+        return None;
+    }
+    let grad = |f: [f32; 3]| {
+        ((f[1] - f[0]) * e2.cross(n) + (f[2] - f[0]) * n.cross(e1)) / n.length_squared()
+    };
+    let lateral = grad(along).normalize_or_zero();
+    let across = grad(across);
+    let up = (across - lateral * across.dot(lateral)).normalize_or_zero();
+    (lateral != Vec3::ZERO && up != Vec3::ZERO).then_some((lateral, up))
+}
+
+/// A root's point and unit normal on the triangle `vertices` at `bary`: on the mesh as it
+/// is, or displaced by `shape` (per vertex: the displacement and the displaced normal,
+/// zero where it has none).
+pub(crate) fn rooted(
+    positions: &[Vec3],
+    normals: &[Vec3],
+    shape: Option<(&[Vec3], &[Vec3])>,
+    vertices: [u32; 3],
+    bary: [f32; 3],
+) -> (Vec3, Vec3) {
+    let vertex = |k: usize| {
+        let i = vertices[k] as usize;
+        match shape {
+            Some((delta, shaped)) if i < delta.len() && i < shaped.len() => {
+                let n = if shaped[i] == Vec3::ZERO {
+                    normals[i]
+                } else {
+                    shaped[i]
+                };
+                (positions[i] + delta[i], n)
+            }
+            _ => (positions[i], normals[i]),
+        }
+    };
+    let (mut root, mut normal) = (Vec3::ZERO, Vec3::ZERO);
+    for (k, &b) in bary.iter().enumerate() {
+        let (p, n) = vertex(k);
+        root += p * b;
+        normal += n * b;
+    }
+    (root, normal.normalize_or_zero())
 }
 
 /// A hair rooted at `bary` on the triangle `vertices`, grown by the brow's pattern at
@@ -340,7 +366,7 @@ fn density(p: &BrowPlace) -> f32 {
     across * along
 }
 
-fn smooth01(x: f32) -> f32 {
+pub(crate) fn smooth01(x: f32) -> f32 {
     let t = x.clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
 }

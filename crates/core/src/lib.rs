@@ -19,6 +19,7 @@ pub mod head;
 pub mod heightmap;
 pub mod landmarks;
 pub mod large_layer;
+pub mod lashes;
 pub mod limits;
 pub mod mask;
 pub mod mesh;

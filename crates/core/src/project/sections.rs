@@ -202,7 +202,8 @@ pub struct HairSection {
     pub taper_mm: f32,
     /// How far the scalp under the hair takes the hair's colour in the 3D view, 0–1.
     pub scalp_tint: f32,
-    /// Draw eyebrow hairs in the 3D view (docs/models.md §9 "Eyebrows"; a fitted head).
+    /// Draw eyebrow hairs and eyelashes in the 3D view (docs/models.md §9 "Eyebrows",
+    /// "Eyelashes"; a fitted head).
     pub brows: bool,
     pub k_diff: f32,
     pub k_spec: f32,

@@ -254,11 +254,11 @@ pub struct Scene {
     shape: Option<(ShapeKey, Arc<crate::shape::ShapeField>)>,
     /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
     shape_aged: Option<((usize, u32), Arc<AgedShape>)>,
-    /// The brow hairs placed on the head, keyed by mesh and layout generations, metres per
-    /// unit (bits) and seed.
-    brows: Option<(BrowHairsKey, Arc<crate::brows::BrowHairs>)>,
-    /// The brow hairs at the last [`Scene::bake_brows`]'s age, keyed by the hairs, the
-    /// shape and the factors it was made from.
+    /// The brow hairs and lashes placed on the head, keyed by mesh and layout
+    /// generations, metres per unit (bits) and seed.
+    brows: Option<(BrowHairsKey, Arc<EyeHairs>)>,
+    /// The brow hairs and lashes at the last [`Scene::bake_brows`]'s age, keyed by the
+    /// hairs, the shape and the factors they were made from.
     brows_aged: Option<(BrowsKey, Arc<Vec<crate::brows::BrowStrand>>)>,
     /// The aged colour as the 3D view shows it ([`Scene::shown_colour`]), with the aged
     /// colour and the transition generation it was made from.
@@ -302,6 +302,19 @@ pub struct AgedShape {
 /// What brow hairs are placed from: mesh and layout generations, metres per unit (bits),
 /// seed.
 type BrowHairsKey = (u64, u64, u32, u64);
+
+/// The hairs around the eyes, placed once per head: the brows and the upper lids' lashes.
+#[derive(Debug)]
+struct EyeHairs {
+    brows: crate::brows::BrowHairs,
+    lashes: crate::lashes::Lashes,
+}
+
+impl EyeHairs {
+    fn is_empty(&self) -> bool {
+        self.brows.is_empty() && self.lashes.is_empty()
+    }
+}
 
 /// What the brow strands of an age are made from: the brow hairs and the shape (their
 /// addresses), the brows' gray fraction and growth (bits).
@@ -1040,25 +1053,24 @@ impl Scene {
         if self.brows_aged.as_ref().is_some_and(|(k, _)| *k == key) {
             return false;
         }
-        let strands = hairs.strands(
-            &self.inputs.mesh,
-            &factors,
-            shape
-                .as_deref()
-                .map(|s| (s.delta.as_slice(), s.normals.as_slice())),
-        );
+        let shape = shape
+            .as_deref()
+            .map(|s| (s.delta.as_slice(), s.normals.as_slice()));
+        let mut strands = hairs.brows.strands(&self.inputs.mesh, &factors, shape);
+        strands.extend(hairs.lashes.strands(&self.inputs.mesh, &factors, shape));
         self.brows_aged = Some((key, Arc::new(strands)));
         true
     }
 
-    /// The brow strands of the last [`Scene::bake_brows`].
+    /// The brow strands and then the lashes of the last [`Scene::bake_brows`].
     pub fn aged_brows(&self) -> Option<&Arc<Vec<crate::brows::BrowStrand>>> {
         self.brows_aged.as_ref().map(|(_, b)| b)
     }
 
-    /// The brow hairs on this head, placed once per head and seed; `None` when it has no
-    /// template points (a head read at its own UVs) or none land on a brow.
-    fn brow_hairs(&mut self) -> Option<Arc<crate::brows::BrowHairs>> {
+    /// The brow hairs and lashes on this head, placed once per head and seed; `None` when
+    /// it has no template points (a head read at its own UVs) or none land on a brow or a
+    /// lid.
+    fn brow_hairs(&mut self) -> Option<Arc<EyeHairs>> {
         let key = (
             self.mesh_generation,
             self.layout_generation,
@@ -1072,13 +1084,12 @@ impl Scene {
         }
         let regions = crate::skin_colour::Regions::template()?;
         let points = self.template_points();
-        let hairs = Arc::new(crate::brows::BrowHairs::generate(
-            &self.inputs.mesh,
-            &|v| points.get(v).copied().flatten(),
-            regions,
-            self.metres_per_unit(),
-            key.3,
-        ));
+        let point = |v: usize| points.get(v).copied().flatten();
+        let (mesh, metres_per_unit) = (&self.inputs.mesh, self.metres_per_unit());
+        let hairs = Arc::new(EyeHairs {
+            brows: crate::brows::BrowHairs::generate(mesh, &point, regions, metres_per_unit, key.3),
+            lashes: crate::lashes::Lashes::generate(mesh, &point, regions, metres_per_unit, key.3),
+        });
         self.brows = Some((key, hairs.clone()));
         (!hairs.is_empty()).then_some(hairs)
     }

@@ -195,6 +195,24 @@ pub struct BrowPlace {
     pub side: i8,
 }
 
+/// How far the slit between the template's closed lids sags below the line through the
+/// eye's corners at its middle, mm (measured on the scan: 1.7–2.0 mm at 0.5–0.7 of the
+/// way out, under 1 mm within a fifth of either corner).
+const SLIT_SAG_MM: f32 = 1.9;
+
+/// A point's place on the nearer eye's closed lids ([`Regions::lid_place`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LidPlace {
+    /// Along the eye: 0 at its inner corner, 1 at its outer one.
+    pub s: f32,
+    /// Above the slit between the lids, mm (template).
+    pub across_mm: f32,
+    /// The eye's width, corner to corner, mm (template).
+    pub length_mm: f32,
+    /// Which eye: +1 on the +x side, −1 on the other.
+    pub side: i8,
+}
+
 /// The regions of the aged colour on the template, from its landmarks (template metres,
 /// +Y up, +Z forward): each a weight in [0, 1] of a template point.
 #[derive(Clone, Debug, PartialEq)]
@@ -336,6 +354,26 @@ impl Regions {
             s,
             out_mm: q.x.abs() * self.unit * 1000.0,
             across_mm: (q.y - brow_middle(inner, outer, s)) * self.unit * 1000.0,
+            side: if outer.x >= 0.0 { 1 } else { -1 },
+        })
+    }
+
+    /// Where `p` lies on the nearer eye's closed lids ([`LidPlace`]): along the slit
+    /// between them and above it, mm; `None` behind the face.
+    pub fn lid_place(&self, p: Vec3) -> Option<LidPlace> {
+        let q = self.rel(p);
+        if front(q.z, self.ear_z) <= 0.0 {
+            return None;
+        }
+        let (inner, outer) = self.nearer_eye(q);
+        let s = (q.x - inner.x) / (outer.x - inner.x);
+        let corners_y = inner.y + (outer.y - inner.y) * s.clamp(0.0, 1.0);
+        let mm = self.unit * 1000.0;
+        let slit = corners_y * mm - SLIT_SAG_MM * (std::f32::consts::PI * s.clamp(0.0, 1.0)).sin();
+        Some(LidPlace {
+            s,
+            across_mm: q.y * mm - slit,
+            length_mm: inner.distance(outer) * mm,
             side: if outer.x >= 0.0 { 1 } else { -1 },
         })
     }

@@ -597,7 +597,7 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
         k(
             "hair.brows",
             Kind::Bool,
-            "draw eyebrow hairs over the brows in the 3D view, graying and growing bushier with age (a fitted head; not exported)",
+            "draw eyebrow hairs over the brows and lashes on the upper lids in the 3D view, the brows graying and growing bushier with age, the lashes thinning (a fitted head; not exported)",
         ),
         f("hair.k_diff", "", 0.0, 4.0, "Kajiya–Kay diffuse weight"),
         f("hair.k_spec", "", 0.0, 4.0, "Kajiya–Kay specular weight"),

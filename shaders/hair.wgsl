@@ -144,11 +144,12 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // its tip is no brighter than its root (bright tips beyond darker roots drew the
     // outline as a pale arc standing off the skull, read blind as "a detached shell").
     let face_on = smoothstep(0.1, 0.8, abs(dot(dir, normalize(frame.camera_pos.xyz - p))));
-    // The flyaways (those `hair_curve` stands up most) stay at the outline: its fuzz,
-    // where the flat strands, faded there, would pile up into a pale shell.
+    // At the outline every strand keeps a quarter of its cover and the flyaways (those
+    // `hair_curve` stands up most) more: a fuzz that grows from the mass (the flyaways
+    // alone, all near their full stand, drew a pale line off the skull over a dark gap).
     let lifted = pow(fract(random * 29.0), 6.0);
     out.colour = mix(base, gray, y) * mix(0.55, mix(0.55, 1.0, face_on), s);
-    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * max(face_on, 0.6 * lifted);
+    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * max(face_on, 0.25 + 0.35 * lifted);
     out.colour *= mix(0.4, 1.0, face_on);
     return out;
 }

@@ -246,7 +246,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
     ShapeRegion {
         name: "jowls",
         what: "jowls below the jaw line",
-        blobs: &[Blob::new([0.95, -2.0, 0.0], [0.5, 0.45, 0.65])],
+        blobs: &[Blob::new([0.95, -2.1, 0.0], [0.55, 0.62, 0.65])],
         motions: &[(Descent, 7.0), (Bulge, 1.0)],
         curve: curve(40.0, 80.0),
     },

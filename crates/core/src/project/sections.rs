@@ -413,7 +413,7 @@ impl Default for HairSection {
             max_deviation_deg: crate::hair::DEFAULT_MAX_DEVIATION_RAD.to_degrees(),
             length_mm: 16.0,
             base_colour: Colour([0x5a, 0x3d, 0x28]),
-            gray_colour: Colour([0xbd, 0xba, 0xb4]),
+            gray_colour: Colour([0xc6, 0xc3, 0xbc]),
             graying_onset_min_years: 30.0,
             graying_onset_max_years: 65.0,
             graying_ramp: GrayingRamp::default(),
@@ -684,12 +684,13 @@ impl Default for PoreSection {
             density_per_cm2: None,
             placement: Placement::BlueNoise,
             radius_mm: MeanSpread::new(0.3, 0.08),
-            depth: MeanSpread::new(1.0, 0.3),
+            // 1.0 ± 0.3 with furrows of 0.2 read, blind, at 75 as "fish scales".
+            depth: MeanSpread::new(0.7, 0.25),
             falloff: MeanSpread::new(1.0, 0.2),
             profile: PoreProfile::Gaussian,
             rim: Rim::Smooth,
             // docs/models.md "Micro-relief with age": ≈ 1 young, ≥ 1.5 by the 60s.
-            elongation: 1.7,
+            elongation: 1.6,
         }
     }
 }
@@ -705,7 +706,7 @@ impl Default for FurrowSection {
             // Narrow, shallow lines (a blind rating read [P]'s 0.6 deep, 0.3 mm half-wide
             // network as cracked vinyl at a face's distance): skin furrows are 20–200 µm
             // deep and about a tenth of a millimetre wide.
-            depth: MeanSpread::new(0.2, 0.08),
+            depth: MeanSpread::new(0.14, 0.06),
             width_mm: MeanSpread::new(0.12, 0.03),
             direction_deg: 30.0,
             direction_strength: 0.5,

@@ -150,7 +150,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let lifted = pow(fract(random * 29.0), 6.0);
     out.colour = mix(base, gray, y) * mix(0.55, mix(0.55, 1.0, face_on), s);
     out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * max(face_on, 0.25 + 0.35 * lifted);
-    out.colour *= mix(0.4, 1.0, face_on);
+    out.colour *= mix(0.75, 1.0, face_on);
     return out;
 }
 

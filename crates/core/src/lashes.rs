@@ -46,13 +46,14 @@ const FAN_DEG: f32 = 50.0;
 const FAN_CENTRE: f32 = 0.45;
 
 /// The share of lashes lost, and how much shorter the rest are, at full age (the
-/// lashes' thinning, milphosis, with age).
-const LOSS: f32 = 0.35;
-const SHORTENING: f32 = 0.2;
+/// lashes thin with age; a third lost and a fifth shorter read, blind, at 80 as "dark,
+/// lush, young lashes, like mascara").
+const LOSS: f32 = 0.5;
+const SHORTENING: f32 = 0.3;
 
 /// The lashes gray this much later than the brows: a lash is gray when its draw is under
 /// this × the brows' gray fraction.
-const GRAY_LAG: f32 = 0.35;
+const GRAY_LAG: f32 = 0.7;
 
 /// One lash: where it is rooted and its draws.
 #[derive(Clone, Debug, PartialEq)]

@@ -102,7 +102,7 @@ fn old_lashes_are_fewer_shorter_and_a_few_gray() {
     let gray = old.iter().filter(|s| s.gray > 0.5).count() as f32 / old.len() as f32;
     let brows = factors(1.0, 1.0).brow_gray_fraction();
     assert!(
-        gray > 0.0 && gray < 0.6 * brows,
+        gray > 0.0 && gray < brows,
         "{gray} of the lashes gray, brows {brows}"
     );
 }

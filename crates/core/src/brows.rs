@@ -155,18 +155,8 @@ impl BrowHairs {
             let Some((lateral, up)) = tangent_frame(p, places.map(|q| q.s), across) else {
                 continue;
             };
-            let mut rng = Rng::for_stream(seed ^ 0xb40f_5eed, t as u64);
             let expected = area_cm2 * DENSITY_PER_CM2;
-            let whole = expected.floor();
-            let count = whole as u32 + u32::from(rng.next_f32() < expected - whole);
-            for _ in 0..count {
-                // The same draws for every candidate, kept or not.
-                let (mut r1, mut r2) = (rng.next_f32(), rng.next_f32());
-                if r1 + r2 > 1.0 {
-                    (r1, r2) = (1.0 - r1, 1.0 - r2);
-                }
-                let draws = [(); 9].map(|_| rng.next_f32());
-                let bary = [1.0 - r1 - r2, r1, r2];
+            for (bary, draws) in candidates::<9>(seed ^ 0xb40f_5eed, t as u64, expected) {
                 let at = |f: fn(&BrowPlace) -> f32| {
                     bary[0] * f(&places[0]) + bary[1] * f(&places[1]) + bary[2] * f(&places[2])
                 };
@@ -240,6 +230,30 @@ impl BrowHairs {
             })
             .collect()
     }
+}
+
+/// The candidate roots of one triangle expected to hold `expected` of them (its whole part,
+/// and one more with the chance of its fraction): per candidate its uniform barycentric
+/// coordinates and `N` draws in [0, 1), the same whether it is kept or not. Seeded by
+/// `seed` and the triangle's `stream`.
+pub(crate) fn candidates<const N: usize>(
+    seed: u64,
+    stream: u64,
+    expected: f32,
+) -> Vec<([f32; 3], [f32; N])> {
+    let mut rng = Rng::for_stream(seed, stream);
+    let whole = expected.floor();
+    let count = whole as u32 + u32::from(rng.next_f32() < expected - whole);
+    (0..count)
+        .map(|_| {
+            let (mut r1, mut r2) = (rng.next_f32(), rng.next_f32());
+            if r1 + r2 > 1.0 {
+                (r1, r2) = (1.0 - r1, 1.0 - r2);
+            }
+            let draws = [(); N].map(|_| rng.next_f32());
+            ([1.0 - r1 - r2, r1, r2], draws)
+        })
+        .collect()
 }
 
 /// Unit directions in the plane of the triangle `p` along which the coordinates `along`

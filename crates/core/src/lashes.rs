@@ -13,9 +13,8 @@
 
 use glam::Vec3;
 
-use crate::brows::{BrowStrand, rooted, smooth01, tangent_frame};
+use crate::brows::{BrowStrand, candidates, rooted, smooth01, tangent_frame};
 use crate::mesh::Mesh;
-use crate::rng::Rng;
 use crate::skin_colour::{ColourFactors, LidPlace, Regions};
 
 /// Lashes per cm² of the root band (an upper lid carries 90–160 lashes in two or three
@@ -145,18 +144,8 @@ impl Lashes {
             else {
                 continue;
             };
-            let mut rng = Rng::for_stream(seed ^ 0x1a5_4e55, t as u64);
             let expected = area_cm2 * DENSITY_PER_CM2;
-            let whole = expected.floor();
-            let count = whole as u32 + u32::from(rng.next_f32() < expected - whole);
-            for _ in 0..count {
-                // The same draws for every candidate, kept or not.
-                let (mut r1, mut r2) = (rng.next_f32(), rng.next_f32());
-                if r1 + r2 > 1.0 {
-                    (r1, r2) = (1.0 - r1, 1.0 - r2);
-                }
-                let draws = [(); 7].map(|_| rng.next_f32());
-                let bary = [1.0 - r1 - r2, r1, r2];
+            for (bary, draws) in candidates::<7>(seed ^ 0x1a5_4e55, t as u64, expected) {
                 let at = |f: fn(&LidPlace) -> f32| {
                     bary[0] * f(&places[0]) + bary[1] * f(&places[1]) + bary[2] * f(&places[2])
                 };

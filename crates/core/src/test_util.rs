@@ -27,3 +27,20 @@ pub fn worst_relative_error(
         if e > worst.0 { (e, x) } else { worst }
     })
 }
+
+/// The aged colour's factors with only the brows' gray and the contrast curve set (what
+/// the brow hairs and lashes age by).
+pub fn eye_hair_factors(brow_gray: f32, contrast: f32) -> crate::skin_colour::ColourFactors {
+    crate::skin_colour::ColourFactors {
+        contrast,
+        brow_gray,
+        ..Default::default()
+    }
+}
+
+/// A brow hair's or lash's length along its curve's control polygon, mesh units.
+pub fn strand_length(s: &crate::brows::BrowStrand) -> f32 {
+    use glam::Vec3;
+    let (r, m, t) = (Vec3::from(s.root), Vec3::from(s.middle), Vec3::from(s.tip));
+    r.distance(m) + m.distance(t)
+}

@@ -1,4 +1,5 @@
 use super::*;
+use crate::test_util::{eye_hair_factors as factors, strand_length as length};
 
 /// The default head (the template, in metres) and its lashes.
 fn default_lashes(seed: u64) -> (&'static Mesh, Lashes) {
@@ -8,19 +9,6 @@ fn default_lashes(seed: u64) -> (&'static Mesh, Lashes) {
     let positions = mesh.positions();
     let lashes = Lashes::generate(mesh, &|v| Some(positions[v]), regions, 1.0, seed);
     (mesh, lashes)
-}
-
-fn factors(brow_gray: f32, contrast: f32) -> ColourFactors {
-    ColourFactors {
-        contrast,
-        brow_gray,
-        ..ColourFactors::default()
-    }
-}
-
-fn length(s: &BrowStrand) -> f32 {
-    let (r, m, t) = (Vec3::from(s.root), Vec3::from(s.middle), Vec3::from(s.tip));
-    r.distance(m) + m.distance(t)
 }
 
 #[test]

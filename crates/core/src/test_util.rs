@@ -44,3 +44,28 @@ pub fn strand_length(s: &crate::brows::BrowStrand) -> f32 {
     let (r, m, t) = (Vec3::from(s.root), Vec3::from(s.middle), Vec3::from(s.tip));
     r.distance(m) + m.distance(t)
 }
+
+/// Asserts that strands grown on the default head in centimetres are 100 × as long as on
+/// it in metres: `young_strands(mesh, template_point, metres_per_unit)` places them (the
+/// template points stay in metres) and gives them young.
+pub fn assert_strands_in_heads_units(
+    young_strands: impl Fn(
+        &crate::mesh::Mesh,
+        &dyn Fn(usize) -> Option<glam::Vec3>,
+        f32,
+    ) -> Vec<crate::brows::BrowStrand>,
+) {
+    let template = crate::fit::template();
+    let positions = template.mesh.positions();
+    let point = |v: usize| Some(positions[v]);
+    let cm = template.mesh.scaled(100.0);
+    let (a, b) = (
+        young_strands(&template.mesh, &point, 1.0),
+        young_strands(&cm, &point, 0.01),
+    );
+    assert!(!a.is_empty());
+    assert_eq!(a.len(), b.len());
+    for (a, b) in a.iter().zip(&b) {
+        assert!((strand_length(b) / strand_length(a) - 100.0).abs() < 0.01);
+    }
+}

@@ -142,22 +142,14 @@ fn the_hairs_move_with_the_aged_shape() {
 
 #[test]
 fn hairs_are_in_the_heads_own_units() {
-    let template = crate::fit::template();
     let regions = Regions::template().unwrap();
-    let positions = template.mesh.positions();
-    // The same head in centimetres: its template points are still in metres.
-    let cm = template.mesh.scaled(100.0);
-    let in_m = BrowHairs::generate(&template.mesh, &|v| Some(positions[v]), regions, 1.0, 0);
-    let in_cm = BrowHairs::generate(&cm, &|v| Some(positions[v]), regions, 0.01, 0);
-    let f = factors(0.0, 0.0);
-    let (a, b) = (
-        in_m.strands(&template.mesh, &f, None),
-        in_cm.strands(&cm, &f, None),
-    );
-    assert_eq!(a.len(), b.len());
-    for (a, b) in a.iter().zip(&b) {
-        assert!((length(b) / length(a) - 100.0).abs() < 0.01);
-    }
+    crate::test_util::assert_strands_in_heads_units(|mesh, point, metres_per_unit| {
+        BrowHairs::generate(mesh, point, regions, metres_per_unit, 0).strands(
+            mesh,
+            &factors(0.0, 0.0),
+            None,
+        )
+    });
 }
 
 #[test]

@@ -42,9 +42,10 @@ pub struct Cli {
     #[arg(long)]
     pub bench_ui: bool,
 
-    /// Editor: drive the editor at random for SECONDS (slider and fibre drags, age scrubs,
-    /// undo/redo, wrinkle files rewritten on disk), print its figures (bake requests
-    /// answered, memory) and quit; exits with an error when a check failed.
+    /// Editor: once the first maps are up, drive the editor at random for SECONDS (slider
+    /// and fibre drags, age scrubs, undo/redo, wrinkle files rewritten on disk), print its
+    /// figures (bake requests answered, memory) and quit; exits with an error when a check
+    /// failed.
     #[arg(long, value_name = "SECONDS")]
     pub soak: Option<f64>,
 

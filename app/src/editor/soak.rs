@@ -11,9 +11,12 @@
 //!   the end (and each minute);
 //! - no error but those of the broken file was shown.
 //!
+//! The SECONDS of actions count from the moment the first maps are up: on a slow machine
+//! (a debug build on a loaded CI runner) the startup bake alone can take longer than a short
+//! run, which then did nothing.
+//!
 //! A panic ends the process (the run fails). Growth over [`MAX_GROWTH_MIB`] from the warm
-//! point to the end (before it the caches fill: on a slow machine the first bake alone can
-//! take most of a short run), a request not answered 60 s after the last action, or an
+//! point to the end (before it the caches fill), a request not answered 60 s after the last action, or an
 //! unexpected error fails the run: `agesim` then exits with an error ([`failed`]).
 
 use std::collections::VecDeque;
@@ -82,6 +85,8 @@ pub struct Soak {
     seconds: f64,
     fields: usize,
     start: Instant,
+    /// When the first maps were up and the script started.
+    script_start: Option<Instant>,
     rng: u64,
     set_up: bool,
     episode: Option<(Episode, u32, u32)>,
@@ -118,6 +123,7 @@ impl Soak {
             seconds,
             fields,
             start: Instant::now(),
+            script_start: None,
             rng: seed ^ 0x9e37_79b9_7f4a_7c15,
             set_up: false,
             episode: None,
@@ -193,9 +199,10 @@ impl Soak {
                 return Action::None;
             }
             self.set_up = true;
+            self.script_start = Some(now);
             return Action::Setup;
         }
-        let elapsed = (now - self.start).as_secs_f64();
+        let elapsed = self.script_elapsed(now);
         if let Some(stopped) = self.stopped {
             if self.pending.is_empty() || now - stopped > SETTLE {
                 self.done = true;
@@ -341,14 +348,20 @@ impl Soak {
         // answered. (A short run's first full-size bake can land after its half: on a
         // loaded machine, at 16 s of a 20 s run, one was still to come, and its maps read
         // as 400–600 MiB of growth.)
-        let elapsed = (now - self.start).as_secs_f64();
+        let elapsed = self.script_elapsed(now);
         if self.rss_warm.is_none()
             && elapsed > self.seconds * 0.5
             && !self.answer_ms.is_empty()
             && self.pending.is_empty()
         {
-            self.rss_warm = Some((rss, elapsed));
+            self.rss_warm = Some((rss, (now - self.start).as_secs_f64()));
         }
+    }
+
+    /// Seconds since the script started (0 before the first maps are up).
+    fn script_elapsed(&self, now: Instant) -> f64 {
+        self.script_start
+            .map_or(0.0, |start| (now - start).as_secs_f64())
     }
 
     fn report(&mut self, now: Instant) {
@@ -368,8 +381,11 @@ impl Soak {
             .unwrap_or(f64::NAN);
         let worst = self.answer_ms.last().copied().unwrap_or(f64::NAN);
         let a = self.actions;
+        let first_maps = self
+            .script_start
+            .map_or(f64::NAN, |start| (start - self.start).as_secs_f64());
         println!(
-            "| soak ({seconds:.0} s, {} frames) | measured |",
+            "| soak ({seconds:.0} s, {} frames; the first maps up after {first_maps:.0} s) | measured |",
             self.frames
         );
         println!("|---|---|");

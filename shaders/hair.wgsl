@@ -32,6 +32,8 @@ struct VertexOut {
     // Coverage: strands are finer than a pixel and thin toward the tip, gray hair finer
     // than pigmented hair; blended over what is behind (no depth write).
     @location(3) alpha: f32,
+    // How much of the direct light reaches the strand past the head under it (1: all).
+    @location(4) lit: f32,
 }
 
 fn oct_decode(e: vec2<f32>) -> vec3<f32> {
@@ -151,6 +153,11 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     out.colour = mix(base, gray, y) * mix(0.55, mix(0.55, 1.0, face_on), s);
     out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * max(face_on, 0.25 + 0.35 * lifted);
     out.colour *= mix(0.75, 1.0, face_on);
+    // The head shadows its own hair: a strand whose root faces away from the light gets
+    // none of it directly (Kajiya–Kay alone lights it from any side, so in profile the
+    // hair over the unlit back of the skull drew a bright rim over the skin's dark
+    // terminator, read blind as "a shell standing off the skull").
+    out.lit = smoothstep(-0.3, 0.35, dot(dir, frame.light_dir.xyz));
     return out;
 }
 
@@ -187,6 +194,7 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     out.colour = mix(base, gray, inst.gray) * mix(0.8, 1.0, s);
     out.world_pos = p;
     out.alpha = mix(0.8, 0.3, s) * inst.coverage;
+    out.lit = 1.0;
     return out;
 }
 
@@ -215,7 +223,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let t_spec = pow(sqrt(max(1.0 - h_t * h_t, 0.0)), frame.hair_k.z);
     let k = frame.hair_k;
     let light = frame.light_colour.rgb * frame.light_dir.w;
-    let c = (k.x * t_diff + k.y * t_spec) * in.colour * light + k.w * in.colour;
+    let c = (k.x * t_diff + k.y * t_spec) * in.lit * in.colour * light + k.w * in.colour;
     let mapped = aces(c);
     if frame.camera_pos.w > 0.5 {
         return vec4<f32>(srgb_encode(mapped), in.alpha);

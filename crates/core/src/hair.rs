@@ -609,6 +609,13 @@ fn triangle_hairs(
         // fades out (miniaturised hairs) instead of ending in a cut edge.
         let mut length = 1.0;
         let taper_mm = params.taper_mm;
+        // How far the fringe's edge moves here, mm (see below).
+        let ragged = if taper_mm > 0.0 {
+            let mm = (p[0] * b0 + p[1] * r1 + p[2] * r2) * (params.metres_per_unit * 1e3);
+            RAGGED_MM * ragged_noise(mm, params.seed)
+        } else {
+            0.0
+        };
         if taper_mm > 0.0 {
             let bare = nearest_ring(transition, uv_k, mm_per_texel, taper_mm, |a| a <= 0.0)
                 .map_or(taper_mm, |(d, _)| d);
@@ -644,10 +651,31 @@ fn triangle_hairs(
                 let below = nearest_ring(transition, uv_k, mm_per_texel, reach, |a| a <= 0.0)
                     .map_or(reach, |(b, _)| b);
                 let fade = reach.min(0.5 * (d + below)).max(1e-3);
-                let goes = 0.85 * (1.0 - smooth01(d / fade));
+                // Ragged along the edge: the edge moves by up to ±RAGGED_MM, varying over
+                // a few centimetres of scalp (bays and tufts; one edge all along read,
+                // blind, as "a straight band top edge").
+                let d = d + ragged;
+                let goes = if d <= 0.0 {
+                    1.0
+                } else {
+                    0.85 * (1.0 - smooth01(d / fade))
+                };
                 if fringe_u < goes {
                     age = age.min((earliest + (1.0 - earliest) * fringe_u / goes).max(1e-3));
                 }
+            }
+        }
+        // Where the edge moves up, receding hair within `ragged` of the hair that stays
+        // stays too, thinned as the fringe's top is.
+        if ragged > 0.0
+            && texture_age < 1.0
+            && let Some((e, _)) =
+                nearest_ring(transition, uv_k, mm_per_texel, RAGGED_MM, |a| a >= 1.0)
+            && e < ragged
+        {
+            let goes = 0.85 * (1.0 - smooth01((ragged - e) / (FRINGE_REACH * taper_mm)));
+            if fringe_u >= goes {
+                age = disappearance(1.0, spread, thin, params);
             }
         }
         // A soft edge (with the receding fringe): near bare skin fewer hairs, and next to
@@ -739,6 +767,44 @@ const SPARSE_REACH: f32 = 1.0 / 3.0;
 /// 2.5 × 18 mm, so the fringe's top thins over 45 mm (over the taper alone it read, blind,
 /// as "a hard, straight diagonal top edge").
 const FRINGE_REACH: f32 = 2.5;
+
+/// How far the fringe's edge moves along its length, each way, mm.
+const RAGGED_MM: f32 = 16.0;
+/// The wavelengths (mm) of [`ragged_noise`]'s two octaves.
+const RAGGED_WAVES_MM: [f32; 2] = [38.0, 14.0];
+
+/// Smooth value noise in [−1, 1] at a point of the head in millimetres (so the same on
+/// both sides of a UV seam), two octaves of [`RAGGED_WAVES_MM`], seeded.
+fn ragged_noise(mm: Vec3, seed: u64) -> f32 {
+    let key = crate::rng::mix64(seed ^ 0x7261_6767_6564) as u32;
+    let a = value_noise_3d(mm / RAGGED_WAVES_MM[0], key);
+    let b = value_noise_3d(mm / RAGGED_WAVES_MM[1], key ^ 0x9e37_79b9);
+    (2.0 * (0.7 * a + 0.3 * b) - 1.0).clamp(-1.0, 1.0)
+}
+
+/// Trilinear value noise in [0, 1] (hashed lattice values, smoothstep between them).
+fn value_noise_3d(x: Vec3, key: u32) -> f32 {
+    let i = x.floor();
+    let f = x - i;
+    let w = f * f * (Vec3::splat(3.0) - 2.0 * f);
+    let at = |dx: i32, dy: i32, dz: i32| {
+        let mix = |h: u64, c: f32, d: i32| crate::rng::mix64(h ^ u64::from((c as i32 + d) as u32));
+        let h = mix(mix(mix(u64::from(key), i.x, dx), i.y, dy), i.z, dz);
+        (h >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
+    let x0 = lerp(
+        lerp(at(0, 0, 0), at(1, 0, 0), w.x),
+        lerp(at(0, 1, 0), at(1, 1, 0), w.x),
+        w.y,
+    );
+    let x1 = lerp(
+        lerp(at(0, 0, 1), at(1, 0, 1), w.x),
+        lerp(at(0, 1, 1), at(1, 1, 1), w.x),
+        w.y,
+    );
+    lerp(x0, x1, w.z)
+}
 
 /// smoothstep(0, 1, x).
 fn smooth01(x: f32) -> f32 {
@@ -1415,6 +1481,65 @@ mod tests {
         .unwrap();
         assert_eq!(again.as_bytes(), tapered.as_bytes());
         assert!(HairParams::default().with_taper_mm(f32::NAN).is_err());
+    }
+
+    #[test]
+    fn the_fringes_top_edge_moves_along_its_length() {
+        // The transition texture's edge between the hair that stays (v < 0.25) and the
+        // hair that goes is a straight line; at t = 1 the fringe's top wanders about it:
+        // tufts of hair that stays above it, bays below it, within [`RAGGED_MM`].
+        let g = grid(16, 0.3);
+        let params = HairParams::new(60.0, 1.0)
+            .unwrap()
+            .with_seed(5)
+            .with_taper_mm(DEFAULT_TAPER_MM)
+            .unwrap();
+        let hairs = HairInstances::generate(&g.surface(), &transition(), &params).unwrap();
+        // 10 mm columns across the edge, 20 mm or more inside the disc of hair; in each,
+        // the fringe's top: the highest 4 mm band where two in five of the hairs (of any
+        // age) stay at t = 1 (the fade makes the hair that stays sparse over 45 mm, so a
+        // lone hair is no edge).
+        let mut tops = Vec::new();
+        for c in 0..14 {
+            let (lo, hi) = (0.26 + c as f32 / 30.0, 0.26 + (c + 1) as f32 / 30.0);
+            let mut bands = [(0u32, 0u32); 20];
+            for h in hairs.instances() {
+                let above = (h.uv().y - 0.25) * 300.0;
+                if (lo..hi).contains(&h.uv().x) && (-60.0..20.0).contains(&above) {
+                    let band = &mut bands[((above + 60.0) / 4.0) as usize];
+                    band.0 += u32::from(h.disappear_age() >= 1.0);
+                    band.1 += 1;
+                }
+            }
+            let top = (0..20)
+                .rev()
+                .find(|&k| bands[k].1 > 0 && bands[k].0 as f32 >= 0.4 * bands[k].1 as f32)
+                .map_or(-60.0, |k| k as f32 * 4.0 - 58.0);
+            tops.push(top);
+        }
+        eprintln!("the fringe's top in 10 mm columns, mm above the texture's edge: {tops:?}");
+        let (low, high) = tops
+            .iter()
+            .fold((f32::MAX, f32::MIN), |(l, h), &t| (l.min(t), h.max(t)));
+        assert!(high - low >= 12.0, "a straight top: {tops:?}");
+        assert!(
+            low > -60.0 && high <= RAGGED_MM,
+            "moved further than the edge moves: {tops:?}"
+        );
+        // The noise: bounded, smooth (1 mm apart differ little), seeded.
+        let mut most = 0.0f32;
+        for k in 0..2000 {
+            let p = Vec3::new(k as f32 * 0.37, (k % 17) as f32 * 3.1, (k % 5) as f32 * 7.3);
+            let n = ragged_noise(p, 5);
+            assert!((-1.0..=1.0).contains(&n), "{n}");
+            most = most.max((ragged_noise(p + Vec3::X, 5) - n).abs());
+            assert_eq!(n, ragged_noise(p, 5));
+        }
+        assert!(most < 0.25, "{most}");
+        assert_ne!(
+            ragged_noise(Vec3::ONE * 10.0, 5),
+            ragged_noise(Vec3::ONE * 10.0, 6)
+        );
     }
 
     #[test]

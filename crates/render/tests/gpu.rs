@@ -248,13 +248,35 @@ fn hair_pixels(r: &mut Renderer, p: &FrameParams, size: u32) -> (u32, f64, f64) 
     (changed.len() as u32, sat / n, lum / n)
 }
 
-/// From behind and above, where the scalp recedes.
+/// From behind and above, where the scalp recedes, lit from behind the camera (the head
+/// shadows the hair on its unlit side).
 fn behind(t: f32) -> FrameParams {
     let mut p = FrameParams::default();
     p.camera.yaw_rad = 2.6;
     p.camera.pitch_rad = 0.5;
+    p.light.direction = Vec3::new(0.5, 0.6, -0.6);
     p.age = t;
     p
+}
+
+/// Kajiya–Kay alone lights a strand alike from a direction and its opposite (it sees only
+/// the strand's tangent); the head's shadow darkens the hair on its unlit side.
+#[test]
+fn the_head_shadows_its_own_hair() {
+    let Some(gpu) = gpu_or_skip("the_head_shadows_its_own_hair") else {
+        return;
+    };
+    let mut r = haired_head(&gpu);
+    let lit = behind(0.0);
+    let mut unlit = lit;
+    unlit.light.direction = -lit.light.direction;
+    let (lit_px, _, lit_lum) = hair_pixels(&mut r, &lit, 128);
+    let (unlit_px, _, unlit_lum) = hair_pixels(&mut r, &unlit, 128);
+    eprintln!(
+        "hair lit from the camera's side: {lit_lum:.1} ({lit_px} px), from the other: {unlit_lum:.1} ({unlit_px} px)"
+    );
+    assert!(lit_px > 500 && unlit_px > 500, "{lit_px} {unlit_px}");
+    assert!(unlit_lum < 0.6 * lit_lum, "{lit_lum} {unlit_lum}");
 }
 
 #[test]
@@ -353,14 +375,19 @@ fn a_sparse_frame_draws_a_thinned_share_of_the_same_hair() {
         return;
     };
     let mut r = haired_head(&gpu);
-    let full = behind(0.0);
-    let mut sparse = behind(0.0);
+    // The default key light (from the front: behind the head the skin under the thinned
+    // hair is dark, like the hair).
+    let full = FrameParams {
+        light: FrameParams::default().light,
+        ..behind(0.0)
+    };
+    let mut sparse = full;
     sparse.hair.sparse = true;
     // Large enough that single ribbons are told apart (at 128² the hair is a solid mass;
     // at 384² one hair in 8 covers ≈ 56 % of what all of them cover).
     let (full_px, _, full_lum) = hair_pixels(&mut r, &full, 384);
     let (sparse_px, _, sparse_lum) = hair_pixels(&mut r, &sparse, 384);
-    eprintln!("hair pixels: all {full_px}, sparse {sparse_px}");
+    eprintln!("hair pixels: all {full_px} ({full_lum:.1}), sparse {sparse_px} ({sparse_lum:.1})");
     assert!(
         sparse_px > 20,
         "a sparse frame shows no hair: {sparse_px} px"
@@ -370,9 +397,9 @@ fn a_sparse_frame_draws_a_thinned_share_of_the_same_hair() {
         "a sparse frame is not thinner: {sparse_px} of {full_px} px"
     );
     // The same hairs (young, dark): not another colour. A thinned frame lets more skin
-    // through the blended strands, so its hair pixels are lighter (by 25 of 255 here, the
-    // edge-on strands at the outline being dark); gray hair is 55 lighter than young hair
-    // (`hair_thins_and_grays_with_age`: 42.8 → 98.0).
+    // through the blended strands, so its hair pixels are lighter (by 24 of 255 here, the
+    // edge-on strands at the outline being dark); gray hair lit from the camera's side is
+    // 78 lighter than young hair (`hair_thins_and_grays_with_age`: 57.4 → 135.4).
     assert!(
         (sparse_lum - full_lum).abs() < 32.0,
         "{sparse_lum} vs {full_lum}"

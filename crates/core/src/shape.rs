@@ -45,6 +45,9 @@ pub struct Blob {
     pub deflate: f32,
     /// Whether it is mirrored to the other side of the midline.
     pub mirrored: bool,
+    /// Whether its weight falls from its centre on (a dish), not from a plateau over its
+    /// inner third (the plateau's rim draws a line where a hollow's slope ends).
+    pub soft: bool,
 }
 
 impl Blob {
@@ -56,6 +59,7 @@ impl Blob {
             descent: 1.0,
             deflate: 1.0,
             mirrored: true,
+            soft: false,
         }
     }
 
@@ -85,6 +89,11 @@ impl Blob {
         }
     }
 
+    /// The blob as a dish: its weight falls from its centre on ([`Blob::soft`]).
+    const fn soft(self) -> Self {
+        Self { soft: true, ..self }
+    }
+
     /// The blob with `factor` times its region's deflation.
     const fn deflating(self, factor: f32) -> Self {
         Self {
@@ -93,7 +102,8 @@ impl Blob {
         }
     }
 
-    /// 1 inside its inner third, falling smoothly to 0 at its surface.
+    /// 1 inside its inner third (at its centre when soft), falling smoothly to 0 at its
+    /// surface.
     fn weight(&self, q: Vec3) -> f32 {
         let c = Vec3::from(self.centre);
         // Both sides: the x distance to the nearer of the centre and its mirror.
@@ -106,7 +116,8 @@ impl Blob {
             (q, c)
         };
         let d = ((q - c) / Vec3::from(self.radii)).length();
-        1.0 - smoothstep(0.35, 1.0, d)
+        let inner = if self.soft { 0.0 } else { 0.35 };
+        1.0 - smoothstep(inner, 1.0, d)
     }
 }
 
@@ -203,9 +214,12 @@ pub const REGIONS: [ShapeRegion; 11] = [
             // pinched dent in mid-cheek" on the far side.
             Blob::new([0.8, -0.6, 0.4], [0.6, 0.45, 0.5]),
             // Below the cheekbone, lateral to the fold's cheek: the buccal hollow, broad
-            // and 3 mm (18 mm across and 5 mm deep, its edge on the far side of the light
-            // read, blind, as "a dark pit in the cheek").
-            Blob::new([1.08, -1.05, 0.05], [0.5, 0.5, 0.6]).deflating(0.6),
+            // and 3 mm at its centre (18 mm across and 5 mm deep, its edge on the far side
+            // of the light read, blind, as "a dark pit in the cheek"), a dish (a plateau's
+            // rim drew a second fold out on the cheek on the side away from the light).
+            Blob::new([1.08, -1.05, 0.05], [0.5, 0.5, 0.6])
+                .deflating(0.6)
+                .soft(),
         ],
         motions: &[(Deflate, 5.0)],
         curve: curve(35.0, 70.0),
@@ -214,7 +228,9 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "temples",
         what: "temples hollowing",
         // Behind the orbit's outer rim, not reaching the eye's corner (the eye stays).
-        blobs: &[Blob::new([1.5, 0.45, -0.75], [0.5, 0.7, 0.8])],
+        // A dish (its plateau's rim drew, blind, "a hard vertical ridge" in the front
+        // outline), a little larger for it.
+        blobs: &[Blob::new([1.5, 0.45, -0.75], [0.6, 0.8, 0.9]).soft()],
         motions: &[(Deflate, 10.0)],
         curve: curve(40.0, 80.0),
     },

@@ -419,7 +419,7 @@ impl Regions {
             (q.x - self.mouth.x) / (self.mouth_half_width + 0.05),
             (q.y - self.mouth.y + 0.02) / 0.22,
         );
-        smoothstep(0.35, 0.7, d.length()) * self.lips(p)
+        smoothstep(0.45, 0.8, d.length()) * self.lips(p)
     }
 
     /// Cheeks and nose, where redness and thread veins come.

@@ -56,7 +56,7 @@ const BEARD_GRAY: f32 = 0.8;
 const BEARD_LIFT: f32 = 0.35;
 /// How much a full under-eye shadow takes from each linear channel (red least: a brown-grey
 /// shadow; a violet one read as bruises).
-const UNDER_EYE_TINT: [f32; 3] = [0.28, 0.33, 0.33];
+const UNDER_EYE_TINT: [f32; 3] = [0.26, 0.34, 0.31];
 /// Feature size of the redness and of the thread veins, mm.
 const REDNESS_MM: (f32, f32) = (6.0, 3.0);
 
@@ -308,9 +308,12 @@ impl Regions {
             let s = (q.x - inner.x) / (outer.x - inner.x);
             let along = smoothstep(-0.25, 0.05, s) * (1.0 - smoothstep(0.8, 1.15, s));
             let corners_y = inner.y + (outer.y - inner.y) * s.clamp(0.0, 1.0);
-            // The crescent's middle sags below the corners' line; deepest inside.
-            let centre = corners_y - 0.3 - 0.08 * (std::f32::consts::PI * s.clamp(0.0, 1.0)).sin();
-            let across = 1.0 - smoothstep(0.06, 0.2, (q.y - centre).abs());
+            // The crescent's middle sags below the corners' line; deepest inside. From
+            // under the lashes to the tear trough (a crescent only over the trough left
+            // the lower lid over the bags paler than the cheek, read blind as "a whitish
+            // rim, lit rather than aged").
+            let centre = corners_y - 0.25 - 0.08 * (std::f32::consts::PI * s.clamp(0.0, 1.0)).sin();
+            let across = 1.0 - smoothstep(0.07, 0.22, (q.y - centre).abs());
             w = w.max(along * across * (1.0 - 0.45 * s.clamp(0.0, 1.0)));
         }
         w * front(q.z, self.ear_z) * (1.0 - 0.7 * self.eyes(p))

@@ -777,33 +777,9 @@ const RAGGED_WAVES_MM: [f32; 2] = [38.0, 14.0];
 /// both sides of a UV seam), two octaves of [`RAGGED_WAVES_MM`], seeded.
 fn ragged_noise(mm: Vec3, seed: u64) -> f32 {
     let key = crate::rng::mix64(seed ^ 0x7261_6767_6564) as u32;
-    let a = value_noise_3d(mm / RAGGED_WAVES_MM[0], key);
-    let b = value_noise_3d(mm / RAGGED_WAVES_MM[1], key ^ 0x9e37_79b9);
-    (2.0 * (0.7 * a + 0.3 * b) - 1.0).clamp(-1.0, 1.0)
-}
-
-/// Trilinear value noise in [0, 1] (hashed lattice values, smoothstep between them).
-fn value_noise_3d(x: Vec3, key: u32) -> f32 {
-    let i = x.floor();
-    let f = x - i;
-    let w = f * f * (Vec3::splat(3.0) - 2.0 * f);
-    let at = |dx: i32, dy: i32, dz: i32| {
-        let mix = |h: u64, c: f32, d: i32| crate::rng::mix64(h ^ u64::from((c as i32 + d) as u32));
-        let h = mix(mix(mix(u64::from(key), i.x, dx), i.y, dy), i.z, dz);
-        (h >> 40) as f32 / (1u64 << 24) as f32
-    };
-    let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
-    let x0 = lerp(
-        lerp(at(0, 0, 0), at(1, 0, 0), w.x),
-        lerp(at(0, 1, 0), at(1, 1, 0), w.x),
-        w.y,
-    );
-    let x1 = lerp(
-        lerp(at(0, 0, 1), at(1, 0, 1), w.x),
-        lerp(at(0, 1, 1), at(1, 1, 1), w.x),
-        w.y,
-    );
-    lerp(x0, x1, w.z)
+    let a = crate::rng::value3(mm / RAGGED_WAVES_MM[0], key);
+    let b = crate::rng::value3(mm / RAGGED_WAVES_MM[1], key ^ 0x9e37_79b9);
+    (0.7 * a + 0.3 * b).clamp(-1.0, 1.0)
 }
 
 /// smoothstep(0, 1, x).

@@ -4,6 +4,8 @@
 //! `(seed, stream)` by hashing, so parallel code can give every item its own generator
 //! (e.g. one per pore or per triangle) and stay byte-identical on any thread count.
 
+use glam::Vec3;
+
 /// A SplitMix64 generator. Not cryptographic.
 #[derive(Clone, Debug)]
 pub struct Rng {
@@ -65,6 +67,34 @@ pub fn mix64(mut x: u64) -> u64 {
     x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     x ^ (x >> 31)
+}
+
+/// Smooth 3D value noise in [−1, 1]: hashed values at the integer lattice, joined by
+/// smoothstep; one stream per `key`.
+pub fn value3(p: Vec3, key: u32) -> f32 {
+    let i = p.floor();
+    let f = p - i;
+    let f = f * f * (Vec3::splat(3.0) - 2.0 * f);
+    let (x, y, z) = (i.x as i32 as u32, i.y as i32 as u32, i.z as i32 as u32);
+    let h = |dx: u32, dy: u32, dz: u32| {
+        let k = u64::from(key) << 32
+            ^ u64::from(x.wrapping_add(dx).wrapping_mul(0x8DA6_B343))
+            ^ u64::from(y.wrapping_add(dy).wrapping_mul(0xD816_3841)) << 16
+            ^ u64::from(z.wrapping_add(dz).wrapping_mul(0xCB1A_B31F)) << 8;
+        (mix64(k) >> 40) as f32 / (1u64 << 23) as f32 - 1.0
+    };
+    let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
+    let x0 = lerp(
+        lerp(h(0, 0, 0), h(1, 0, 0), f.x),
+        lerp(h(0, 1, 0), h(1, 1, 0), f.x),
+        f.y,
+    );
+    let x1 = lerp(
+        lerp(h(0, 0, 1), h(1, 0, 1), f.x),
+        lerp(h(0, 1, 1), h(1, 1, 1), f.x),
+        f.y,
+    );
+    lerp(x0, x1, f.z)
 }
 
 #[cfg(test)]

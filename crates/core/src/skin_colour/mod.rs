@@ -27,7 +27,7 @@ use crate::fit::raster_uv;
 use crate::landmarks::Landmarks;
 use crate::mask::{HeadImage, linear_to_srgb, srgb_to_linear};
 use crate::mesh::Mesh;
-use crate::rng::{Rng, mix64};
+use crate::rng::{Rng, mix64, value3};
 use crate::transition::TransitionTexture;
 
 /// Smallest and largest age-spot diameter, mm (solar lentigines: docs/models.md
@@ -1379,34 +1379,6 @@ fn brow_middle(inner: Vec3, outer: Vec3, s: f32) -> f32 {
 fn brow_streak(regions: &Regions, t: Vec3) -> Vec3 {
     let b = regions.brow_coords(t);
     Vec3::new(b.x / BROW_STRAND_MM.0, b.y / BROW_STRAND_MM.1, 0.0)
-}
-
-/// Smooth 3D value noise in [−1, 1]: hashed values at the integer lattice, joined by
-/// smoothstep; one stream per `key`.
-fn value3(p: Vec3, key: u32) -> f32 {
-    let i = p.floor();
-    let f = p - i;
-    let f = f * f * (Vec3::splat(3.0) - 2.0 * f);
-    let (x, y, z) = (i.x as i32 as u32, i.y as i32 as u32, i.z as i32 as u32);
-    let h = |dx: u32, dy: u32, dz: u32| {
-        let k = u64::from(key) << 32
-            ^ u64::from(x.wrapping_add(dx).wrapping_mul(0x8DA6_B343))
-            ^ u64::from(y.wrapping_add(dy).wrapping_mul(0xD816_3841)) << 16
-            ^ u64::from(z.wrapping_add(dz).wrapping_mul(0xCB1A_B31F)) << 8;
-        (mix64(k) >> 40) as f32 / (1u64 << 23) as f32 - 1.0
-    };
-    let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
-    let x0 = lerp(
-        lerp(h(0, 0, 0), h(1, 0, 0), f.x),
-        lerp(h(0, 1, 0), h(1, 1, 0), f.x),
-        f.y,
-    );
-    let x1 = lerp(
-        lerp(h(0, 0, 1), h(1, 0, 1), f.x),
-        lerp(h(0, 1, 1), h(1, 1, 1), f.x),
-        f.y,
-    );
-    lerp(x0, x1, f.z)
 }
 
 /// Three octaves of [`value3`], in about [−1, 1].

@@ -63,28 +63,10 @@ impl Blob {
         }
     }
 
-    /// A blob on its centre's side only: for what follows the template's own asymmetric
-    /// features (its nasolabial folds lie 7 mm further out on its right than on its left
-    /// from the eyes' midline, symmetric about its nose and mouth, which are off it).
-    const fn one_side(centre: [f32; 3], radii: [f32; 3]) -> Self {
-        Self {
-            mirrored: false,
-            ..Self::new(centre, radii)
-        }
-    }
-
     /// The blob with `factor` times its region's bulge.
     const fn bulging(self, factor: f32) -> Self {
         Self {
             bulge: factor,
-            ..self
-        }
-    }
-
-    /// The blob with `factor` times its region's descent.
-    const fn descending(self, factor: f32) -> Self {
-        Self {
-            descent: factor,
             ..self
         }
     }
@@ -121,6 +103,134 @@ impl Blob {
     }
 }
 
+/// A roll of skin along a line, raised on one side over a crease on the line: the cheek
+/// over the nasolabial fold, a bag over the lid–cheek junction, a jowl beside the
+/// marionette groove. A blob swells evenly on all sides; a roll's edge is steep on one
+/// side only, which is what draws the shadow a fold casts under a light from above.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Roll {
+    /// The line in the face frame, end to end: x, y as seen from the front, z how far
+    /// forward the skin is there (to tell the face from what lies behind it).
+    pub line: &'static [[f32; 3]],
+    /// Toward the raised side, in x, y ([1, 0]: toward +x).
+    pub raised: [f32; 2],
+    /// From the line to the crest, and to where the roll has fallen back to the skin,
+    /// face units.
+    pub crest: f32,
+    pub reach: f32,
+    /// The crest's height at full age and full strength, mm.
+    pub height_mm: f32,
+    /// The crease on the line: its depth at full age and full strength, mm, and its
+    /// half-width, face units.
+    pub crease_mm: f32,
+    pub crease_half: f32,
+    /// Whether it is mirrored to the other side of the midline (its line on the +x side).
+    pub mirrored: bool,
+}
+
+/// The part of a roll's length over which each end fades in.
+const ROLL_END_FADE: f32 = 0.25;
+
+impl Roll {
+    /// Where `q` lies from the roll: its signed distance from the line (positive on the
+    /// raised side), and the fade of the ends and of the depth gate there (0–1); `None`
+    /// when the roll does not reach it.
+    fn place(&self, q: Vec3) -> Option<(f32, f32)> {
+        let q = if self.mirrored {
+            Vec3::new(q.x.abs(), q.y, q.z)
+        } else {
+            q
+        };
+        let p = glam::Vec2::new(q.x, q.y);
+        let raised = glam::Vec2::from(self.raised);
+        let points = self.line;
+        let length: f32 = points
+            .windows(2)
+            .map(|w| glam::Vec2::new(w[1][0] - w[0][0], w[1][1] - w[0][1]).length())
+            .sum();
+        if length <= 0.0 {
+            return None;
+        }
+        // The nearest point of the line: (distance², arc length there, signed side, z).
+        let mut best = (f32::INFINITY, 0.0, 0.0, 0.0);
+        let mut along = 0.0;
+        for w in points.windows(2) {
+            let a = glam::Vec2::new(w[0][0], w[0][1]);
+            let b = glam::Vec2::new(w[1][0], w[1][1]);
+            let ab = b - a;
+            let len = ab.length();
+            if len <= 0.0 {
+                continue;
+            }
+            let f = ((p - a).dot(ab) / (len * len)).clamp(0.0, 1.0);
+            let near = a + ab * f;
+            let d2 = p.distance_squared(near);
+            if d2 < best.0 {
+                let left = glam::Vec2::new(-ab.y, ab.x);
+                let side = if left.dot(raised) >= 0.0 { 1.0 } else { -1.0 };
+                let sign = if (p - near).dot(left) * side >= 0.0 {
+                    1.0
+                } else {
+                    -1.0
+                };
+                best = (d2, along + f * len, sign, w[0][2] + (w[1][2] - w[0][2]) * f);
+            }
+            along += len;
+        }
+        let (d2, at, sign, z) = best;
+        let s = sign * d2.sqrt();
+        if s >= self.reach || s <= -self.crease_half {
+            return None;
+        }
+        let t = at / length;
+        let ends = smoothstep(0.0, ROLL_END_FADE, t) * smoothstep(0.0, ROLL_END_FADE, 1.0 - t);
+        let depth = 1.0 - smoothstep(0.2, 0.4, (q.z - z).abs());
+        let fade = ends * depth;
+        (fade > 0.0).then_some((s, fade))
+    }
+
+    /// How far the roll moves the skin at `q` out along its normal at full age, mm
+    /// (negative: into the crease).
+    pub fn height_mm(&self, q: Vec3) -> f32 {
+        let Some((s, fade)) = self.place(q) else {
+            return 0.0;
+        };
+        let roll = if s > 0.0 {
+            smoothstep(0.0, self.crest, s) * (1.0 - smoothstep(self.crest, self.reach, s))
+        } else {
+            0.0
+        };
+        let c = (1.0 - s.abs() / self.crease_half).max(0.0);
+        fade * (self.height_mm * roll - self.crease_mm * c * c)
+    }
+
+    /// How much of a hollow the crease makes at `q`, mm: the roll's crest and crease
+    /// together over the crease's width (the skin under an overhang sees less of the sky
+    /// and of the light, like a hollow's; docs/models.md §13 "Hollows").
+    pub fn hollow_mm(&self, q: Vec3) -> f32 {
+        let Some((s, fade)) = self.place(q) else {
+            return 0.0;
+        };
+        let c = (1.0 - s.abs() / self.crease_half).max(0.0);
+        fade * (self.height_mm + self.crease_mm) * c * c
+    }
+
+    /// Its weight at `q` (for showing where it acts): 1 on the line and up to its crest,
+    /// falling to 0 where it ends.
+    pub fn weight(&self, q: Vec3) -> f32 {
+        let Some((s, fade)) = self.place(q) else {
+            return 0.0;
+        };
+        let w = if s >= 0.0 {
+            1.0 - smoothstep(self.crest, self.reach, s)
+        } else {
+            let c = 1.0 - s.abs() / self.crease_half;
+            c * c
+        };
+        fade * w
+    }
+}
+
 fn smoothstep(lo: f32, hi: f32, x: f32) -> f32 {
     let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
@@ -135,11 +245,22 @@ pub struct ShapeRegion {
     pub what: &'static str,
     pub blobs: &'static [Blob],
     pub motions: &'static [(Motion, f32)],
+    /// Rolls of skin, each with its own millimetres (the region's motions move its blobs).
+    pub rolls: &'static [Roll],
     pub curve: AgeCurve,
 }
 
 impl ShapeRegion {
+    /// Where it acts: the largest of its blobs' and rolls' weights.
     pub fn weight(&self, q: Vec3) -> f32 {
+        self.rolls
+            .iter()
+            .map(|r| r.weight(q))
+            .fold(self.blob_weight(q), f32::max)
+    }
+
+    /// Where its motions move the skin: the largest of its blobs' weights.
+    pub fn blob_weight(&self, q: Vec3) -> f32 {
         self.blobs.iter().map(|b| b.weight(q)).fold(0.0, f32::max)
     }
 
@@ -175,6 +296,82 @@ const fn curve(onset: f32, full: f32) -> AgeCurve {
 
 use Motion::{Bulge, Deflate, Descent};
 
+/// The lid–cheek junction under each eye (its +x side; mirrored): from beside the inner
+/// corner down and out under the eye's middle and up to below the outer corner.
+const LID_CHEEK_JUNCTION: [[f32; 3]; 5] = [
+    [0.28, -0.2, 0.37],
+    [0.4, -0.3, 0.32],
+    [0.6, -0.36, 0.26],
+    [0.8, -0.32, 0.22],
+    [0.97, -0.2, 0.07],
+];
+
+/// The nasolabial folds of `nasolabial.wrk` on the template, from the nose wing down past
+/// the mouth corner (measured: they are not mirror images about the eyes' midline, nor
+/// are the nose and mouth on it), one per side.
+const NASOLABIAL_R: [[f32; 3]; 8] = [
+    [-0.49, -0.64, 0.38],
+    [-0.543, -0.767, 0.385],
+    [-0.59, -0.876, 0.4],
+    [-0.637, -0.995, 0.416],
+    [-0.662, -1.106, 0.43],
+    [-0.655, -1.213, 0.44],
+    [-0.677, -1.327, 0.42],
+    [-0.7, -1.42, 0.4],
+];
+const NASOLABIAL_L: [[f32; 3]; 8] = [
+    [0.31, -0.688, 0.418],
+    [0.367, -0.798, 0.421],
+    [0.425, -0.892, 0.438],
+    [0.487, -1.011, 0.459],
+    [0.524, -1.11, 0.468],
+    [0.537, -1.2, 0.473],
+    [0.602, -1.301, 0.435],
+    [0.68, -1.4, 0.41],
+];
+
+/// The cheek over a nasolabial fold: a crest 3 mm from the crease, falling back over
+/// 18 mm (the fold's "cheek sagging over it").
+const CHEEK_ROLL: Roll = Roll {
+    line: &[],
+    raised: [1.0, 0.0],
+    crest: 0.06,
+    reach: 0.4,
+    height_mm: 6.5,
+    crease_mm: 1.5,
+    crease_half: 0.06,
+    mirrored: false,
+};
+
+/// The marionette grooves of `marionette.wrk` on the template, from the mouth corner down
+/// toward the jaw.
+const MARIONETTE_R: [[f32; 3]; 5] = [
+    [-0.5, -1.37, 0.43],
+    [-0.59, -1.48, 0.39],
+    [-0.64, -1.66, 0.37],
+    [-0.64, -1.85, 0.34],
+    [-0.64, -1.98, 0.31],
+];
+const MARIONETTE_L: [[f32; 3]; 5] = [
+    [0.43, -1.35, 0.45],
+    [0.56, -1.44, 0.41],
+    [0.66, -1.59, 0.35],
+    [0.72, -1.74, 0.28],
+    [0.75, -1.84, 0.23],
+];
+
+/// The jowl beside a marionette groove.
+const JOWL_ROLL: Roll = Roll {
+    line: &[],
+    raised: [1.0, 0.0],
+    crest: 0.07,
+    reach: 0.4,
+    height_mm: 2.5,
+    crease_mm: 0.8,
+    crease_half: 0.06,
+    mirrored: false,
+};
+
 /// The default regions (docs/models.md §13, each with its source). Millimetres at full
 /// age; the face frame's unit is about 47 mm on an adult.
 pub const REGIONS: [ShapeRegion; 11] = [
@@ -183,6 +380,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         what: "brow descent, most at its tail",
         blobs: &[Blob::new([0.75, 0.45, 0.25], [0.65, 0.35, 0.6])],
         motions: &[(Descent, 5.0)],
+        rolls: &[],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
@@ -190,13 +388,27 @@ pub const REGIONS: [ShapeRegion; 11] = [
         what: "upper lids hooding",
         blobs: &[Blob::new([0.62, 0.14, 0.3], [0.5, 0.17, 0.45])],
         motions: &[(Descent, 2.5), (Bulge, 1.0)],
+        rolls: &[],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
         name: "bags",
         what: "bags under the eyes",
+        // The fat bulging under the lid, and its lower edge: a roll over the lid–cheek
+        // junction, steep below (a blob alone, 5 mm, caught the frontal light as "a pale
+        // crescent with no shadow under it", blind).
         blobs: &[Blob::new([0.62, -0.26, 0.3], [0.45, 0.18, 0.45])],
-        motions: &[(Bulge, 5.0), (Descent, 1.5)],
+        motions: &[(Bulge, 2.5), (Descent, 1.5)],
+        rolls: &[Roll {
+            line: &LID_CHEEK_JUNCTION,
+            raised: [0.0, 1.0],
+            crest: 0.08,
+            reach: 0.26,
+            height_mm: 4.5,
+            crease_mm: 1.0,
+            crease_half: 0.06,
+            mirrored: true,
+        }],
         curve: curve(40.0, 75.0),
     },
     ShapeRegion {
@@ -222,6 +434,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
                 .soft(),
         ],
         motions: &[(Deflate, 5.0)],
+        rolls: &[],
         curve: curve(35.0, 70.0),
     },
     ShapeRegion {
@@ -232,31 +445,31 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // outline), a little larger for it.
         blobs: &[Blob::new([1.5, 0.45, -0.75], [0.6, 0.8, 0.9]).soft()],
         motions: &[(Deflate, 10.0)],
+        rolls: &[],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
         name: "cheeks",
         what: "cheeks descending over the nasolabial fold",
         // The malar fat pad (descending, barely fuller: blind ratings read a bulging
-        // one as "fuller rather than thinned"), and a chain hugging each nasolabial fold's
-        // cheek side from the nose wing to above the mouth corner, 0.17 out from the fold
-        // of the wrinkle file (measured on the template: its folds are not mirror images
-        // about the eyes' midline; mirrored blobs lay on its right fold and hid it, read
-        // blind as "lopsided"). One more at the corner hooked the fold in under it, read
-        // as "a bracket". The cheek rolls over the fold (blind ratings read the fold
-        // without it as "a thin engraved crescent").
-        blobs: &[
-            Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]).bulging(0.2),
-            // The chain rolls out, barely down: its full 5 mm descent over blobs 8 mm wide
-            // sheared the cheek by the mouth's corner into "a fin" on the far outline in
-            // three-quarter.
-            // Broad: blobs 8 mm wide stood off the far outline as a pointed bump.
-            Blob::one_side([0.62, -0.88, 0.44], [0.24, 0.32, 0.4]).descending(0.3),
-            Blob::one_side([0.71, -1.08, 0.46], [0.24, 0.32, 0.4]).descending(0.3),
-            Blob::one_side([-0.79, -0.88, 0.4], [0.24, 0.32, 0.4]).descending(0.3),
-            Blob::one_side([-0.86, -1.08, 0.43], [0.24, 0.32, 0.4]).descending(0.3),
-        ],
+        // one as "fuller rather than thinned"), and the cheek rolling over each
+        // nasolabial fold of the wrinkle file (blind ratings read the fold without it as
+        // "a thin engraved crescent"; with a chain of blobs beside it, which swelled
+        // evenly on all sides, as "a pencil line, no cheek hanging over it").
+        blobs: &[Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]).bulging(0.2)],
         motions: &[(Descent, 5.0), (Bulge, 3.0)],
+        rolls: &[
+            Roll {
+                line: &NASOLABIAL_R,
+                raised: [-1.0, 0.0],
+                ..CHEEK_ROLL
+            },
+            Roll {
+                line: &NASOLABIAL_L,
+                raised: [1.0, 0.0],
+                ..CHEEK_ROLL
+            },
+        ],
         curve: curve(35.0, 75.0),
     },
     ShapeRegion {
@@ -264,6 +477,18 @@ pub const REGIONS: [ShapeRegion; 11] = [
         what: "jowls below the jaw line",
         blobs: &[Blob::new([0.95, -2.1, 0.0], [0.55, 0.62, 0.65])],
         motions: &[(Descent, 7.0), (Bulge, 1.0)],
+        rolls: &[
+            Roll {
+                line: &MARIONETTE_R,
+                raised: [-1.0, 0.0],
+                ..JOWL_ROLL
+            },
+            Roll {
+                line: &MARIONETTE_L,
+                raised: [1.0, 0.0],
+                ..JOWL_ROLL
+            },
+        ],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
@@ -275,20 +500,25 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // the slit: a deflation there parts the lips (their normals point at each other).
         blobs: &[Blob::new([0.0, -1.1, 0.5], [0.6, 0.24, 0.45])],
         motions: &[(Descent, 1.5), (Deflate, 1.5)],
+        rolls: &[],
         curve: curve(40.0, 80.0),
     },
     ShapeRegion {
         name: "nose",
         what: "nose tip drooping",
         blobs: &[Blob::new([0.0, -0.65, 0.95], [0.28, 0.28, 0.35])],
-        motions: &[(Descent, 2.0)],
+        motions: &[(Descent, 3.5)],
+        rolls: &[],
         curve: curve(45.0, 85.0),
     },
     ShapeRegion {
         name: "ears",
         what: "earlobes lengthening",
-        blobs: &[Blob::new([1.7, -0.95, -1.3], [0.3, 0.35, 0.35])],
-        motions: &[(Descent, 3.0)],
+        // The lower half of the ear, most at the lobe: the ear lengthens (a blob on the lobe
+        // alone, 3 mm, read blind as "ears identical to the 25-year-old's").
+        blobs: &[Blob::new([1.72, -1.0, -1.45], [0.35, 0.6, 0.45])],
+        motions: &[(Descent, 6.0)],
+        rolls: &[],
         curve: curve(40.0, 85.0),
     },
     ShapeRegion {
@@ -300,8 +530,12 @@ pub const REGIONS: [ShapeRegion; 11] = [
             Blob::new([0.0, -2.75, 0.05], [0.85, 0.45, 0.7]),
             Blob::new([0.3, -2.9, -0.75], [0.1, 0.3, 0.45]).bulging(3.0),
             Blob::new([0.32, -3.25, -0.96], [0.1, 0.3, 0.45]).bulging(3.0),
+            // The wattle: the skin below the angle of chin and neck hangs out (blind:
+            // "in profile the neck is long, smooth and taut, no wattle").
+            Blob::new([0.0, -2.95, -0.55], [0.55, 0.6, 0.55]).bulging(18.0),
         ],
         motions: &[(Descent, 5.0), (Bulge, 0.5)],
+        rolls: &[],
         curve: curve(40.0, 80.0),
     },
 ];
@@ -379,14 +613,20 @@ impl ShapeField {
                         continue;
                     };
                     let q = frame.relative(t);
-                    let weight = region.weight(q);
+                    let normal = mesh.normals()[s as usize];
+                    let rolled: f32 = region.rolls.iter().map(|r| r.height_mm(q)).sum();
+                    let rolled = normal * (rolled * strength * mm);
+                    let creased: f32 = region.rolls.iter().map(|r| r.hollow_mm(q)).sum();
+                    let creased = creased * strength;
+                    let weight = region.blob_weight(q);
                     if weight <= 0.0 {
+                        out[v] = rolled;
+                        hollow[v] = creased;
                         continue;
                     }
                     let bulge = region.bulge_weight(q) / weight;
                     let descent = region.descent_weight(q) / weight;
                     let deflate = region.deflate_weight(q) / weight;
-                    let normal = mesh.normals()[s as usize];
                     let d: Vec3 = region
                         .motions
                         .iter()
@@ -399,8 +639,8 @@ impl ShapeField {
                                 }
                         })
                         .sum();
-                    out[v] = d * (weight * strength * mm);
-                    hollow[v] = deflate_mm * deflate * weight * strength;
+                    out[v] = d * (weight * strength * mm) + rolled;
+                    hollow[v] = deflate_mm * deflate * weight * strength + creased;
                 }
                 (out, hollow)
             })

@@ -203,11 +203,11 @@ fn the_lids_do_not_sink_into_the_eyes() {
     assert!(deepest < 1.5, "{deepest} mm");
 }
 
-/// Only the deflating regions hollow the skin (a descent on a slanted forehead moves it in
-/// too, but makes no hollow): none at 25, up to the temples' 10 mm at 80, and nowhere
-/// outside a deflating region.
+/// Only the deflating regions and the creases under rolls hollow the skin (a descent on a
+/// slanted forehead moves it in too, but makes no hollow): none at 25, up to the temples'
+/// 10 mm at 80, and nowhere outside a deflating region or a roll.
 #[test]
-fn only_deflations_make_hollows() {
+fn only_deflations_and_creases_make_hollows() {
     let (mesh, field) = default_head();
     let frame = Regions::template().unwrap();
     assert!(field.hollow_at(25.0).iter().all(|&h| h == 0.0));
@@ -216,7 +216,7 @@ fn only_deflations_make_hollows() {
     assert!((8.0..=10.0).contains(&deepest), "{deepest} mm");
     let deflating: Vec<&ShapeRegion> = REGIONS
         .iter()
-        .filter(|r| r.motions.iter().any(|(m, _)| *m == Motion::Deflate))
+        .filter(|r| r.motions.iter().any(|(m, _)| *m == Motion::Deflate) || !r.rolls.is_empty())
         .collect();
     let mut hollowed = 0;
     for (p, h) in mesh.positions().iter().zip(&old) {
@@ -239,4 +239,82 @@ fn only_deflations_make_hollows() {
         .count();
     eprintln!("{hollowed} vertices hollowed; {descended_only} of the brows' descend unhollowed");
     assert!(hollowed > 100 && descended_only > 5);
+}
+
+/// A roll's cross-section: a crease on its line, its crest `crest` out on the raised side,
+/// steep from the line up to it and falling gently to nothing at `reach`; nothing beyond
+/// the crease on the other side, nor beyond its ends, nor far behind its line; the same
+/// on the other side of the midline when mirrored.
+#[test]
+fn a_roll_rises_steeply_from_its_crease_and_falls_gently_beyond_its_crest() {
+    let roll = Roll {
+        line: &[[0.5, 1.0, 0.0], [0.5, -1.0, 0.0]],
+        raised: [1.0, 0.0],
+        crest: 0.1,
+        reach: 0.5,
+        height_mm: 4.0,
+        crease_mm: 1.0,
+        crease_half: 0.05,
+        mirrored: true,
+    };
+    let at = |x: f32, y: f32| roll.height_mm(Vec3::new(x, y, 0.0));
+    assert!((at(0.5, 0.0) + 1.0).abs() < 1e-5, "{}", at(0.5, 0.0));
+    assert!((at(0.6, 0.0) - 4.0).abs() < 1e-5, "{}", at(0.6, 0.0));
+    let wall = (at(0.6, 0.0) - at(0.5, 0.0)) / 0.1;
+    let fall = (at(0.6, 0.0) - at(0.9, 0.0)) / 0.3;
+    assert!(wall > 3.0 * fall, "wall {wall} mm per unit, fall {fall}");
+    assert!(at(0.8, 0.0) > 0.0 && at(0.8, 0.0) < at(0.7, 0.0));
+    assert_eq!(at(1.0, 0.0), 0.0);
+    assert_eq!(at(0.44, 0.0), 0.0);
+    assert_eq!(at(0.6, 1.05), 0.0);
+    assert!(at(0.6, 0.9) > 0.0 && at(0.6, 0.9) < 0.5 * at(0.6, 0.0));
+    assert_eq!(at(-0.6, 0.0), at(0.6, 0.0));
+    assert_eq!(roll.height_mm(Vec3::new(0.6, 0.0, -1.0)), 0.0);
+    // Its crease hollows the skin on the line; the crest does not.
+    assert!(roll.hollow_mm(Vec3::new(0.5, 0.0, 0.0)) > 4.0);
+    assert_eq!(roll.hollow_mm(Vec3::new(0.6, 0.0, 0.0)), 0.0);
+}
+
+/// The bags under the eyes have a lower edge: under each eye the bags' region stands the
+/// skin just above the lid–cheek junction out 4.5 mm more than just below it (its blob
+/// alone, 2.5 mm; a bag without an edge read, blind, as "a pale crescent with no shadow
+/// under it").
+#[test]
+fn the_bags_under_the_eyes_end_in_an_edge() {
+    let (mesh, _) = default_head();
+    let bags: Vec<f32> = REGIONS
+        .iter()
+        .map(|r| if r.name == "bags" { 1.0 } else { 0.0 })
+        .collect();
+    let m = mesh.clone();
+    let field = ShapeField::new(&mesh, &|v| m.positions().get(v).copied(), &bags, 1.0);
+    let full = field.full();
+    let frame = Regions::template().unwrap();
+    // Per side: out along the normal above and below the junction, mm.
+    let mut sides = [[Vec::new(), Vec::new()], [Vec::new(), Vec::new()]];
+    for ((p, d), n) in mesh.positions().iter().zip(&full).zip(mesh.normals()) {
+        let q = frame.relative(*p);
+        if q.z < 0.0 || !(0.45..0.8).contains(&q.x.abs()) {
+            continue;
+        }
+        let side = usize::from(q.x < 0.0);
+        let out = d.dot(*n) * 1000.0;
+        if (-0.3..-0.22).contains(&q.y) {
+            sides[side][0].push(out);
+        } else if (-0.56..-0.42).contains(&q.y) {
+            sides[side][1].push(out);
+        }
+    }
+    let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len().max(1) as f32;
+    for [above, below] in &sides {
+        eprintln!(
+            "the bag: {:.2} mm out above its edge ({} vertices), {:.2} mm below ({})",
+            mean(above),
+            above.len(),
+            mean(below),
+            below.len()
+        );
+        assert!(above.len() > 3 && below.len() > 3);
+        assert!(mean(above) > mean(below) + 4.5);
+    }
 }

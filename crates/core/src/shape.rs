@@ -523,18 +523,22 @@ pub const REGIONS: [ShapeRegion; 11] = [
     },
     ShapeRegion {
         name: "neck",
-        what: "submental laxity under the chin, platysmal bands down the neck",
-        // Under the chin; and the two platysmal bands, vertical cords from under the chin
-        // down the front of the neck (a chain each side), standing out 1.5 mm.
+        what: "submental laxity under the chin, platysmal bands and a wattle down the neck",
+        // Under the chin (3 mm down: 5 mm, with the wattle, pinched the skin under the jaw
+        // into a dark slit, read blind as "a gash under the chin"); the two platysmal
+        // bands, vertical cords from under the chin down the front of the neck (a chain
+        // each side), standing out 1.5 mm.
         blobs: &[
             Blob::new([0.0, -2.75, 0.05], [0.85, 0.45, 0.7]),
             Blob::new([0.3, -2.9, -0.75], [0.1, 0.3, 0.45]).bulging(3.0),
             Blob::new([0.32, -3.25, -0.96], [0.1, 0.3, 0.45]).bulging(3.0),
-            // The wattle: the skin below the angle of chin and neck hangs out (blind:
-            // "in profile the neck is long, smooth and taut, no wattle").
-            Blob::new([0.0, -2.95, -0.55], [0.55, 0.6, 0.55]).bulging(18.0),
+            // The wattle: the throat's skin below the angle of chin and neck hangs out
+            // 9 mm (blind: "in profile the neck is long, smooth and taut, no wattle");
+            // narrow and low, clear of the jaw (a wider one, reaching up to the angle,
+            // opened the scan's crease under the jaw into a dark slit).
+            Blob::new([0.0, -3.2, -0.78], [0.36, 0.5, 0.45]).bulging(18.0),
         ],
-        motions: &[(Descent, 5.0), (Bulge, 0.5)],
+        motions: &[(Descent, 3.0), (Bulge, 0.5)],
         rolls: &[],
         curve: curve(40.0, 80.0),
     },

@@ -485,7 +485,7 @@ pub struct Spot {
     pub diameter_mm: f32,
     /// The spot curve's factor at which it appears, [0, 1).
     pub appears: f32,
-    /// Darkness, 0–1 (times the project's strength).
+    /// Darkness, 0.3–1.3 (times the project's strength, then at most 1).
     pub strength: f32,
     /// Phases of its outline's wobble.
     phases: [f32; 3],
@@ -603,12 +603,15 @@ fn place_spots_gathered(
             // Small spots are common, large ones rare: d = lo·(hi/lo)^(x³) (a blind
             // rating read x² as "a few large soft smudges").
             let size = rng.next_f32();
+            // Most faint, a few dark: 0.3 + x² (0.5–1 read, blind, as "same-coloured flat
+            // decals").
+            let dark = rng.next_f32();
             Spot {
                 centre: a + (b - a) * u + (c - a) * v,
                 normal: (b - a).cross(c - a).normalize_or(Vec3::Z),
                 diameter_mm: lo * (hi / lo).powf(size * size * size),
                 appears: rng.next_f32(),
-                strength: rng.range_f32(0.5, 1.0),
+                strength: 0.3 + dark * dark,
                 phases: [0; 3].map(|_| rng.range_f32(0.0, std::f32::consts::TAU)),
             }
         })

@@ -331,12 +331,13 @@ const NASOLABIAL_L: [[f32; 3]; 8] = [
 ];
 
 /// The cheek over a nasolabial fold: a crest 3 mm from the crease, falling back over
-/// 18 mm (the fold's "cheek sagging over it").
+/// 33 mm (the fold's "cheek sagging over it"; falling back over 16 mm, its foot drew a
+/// second line out on the cheek, read blind as "a dent beside the mouth").
 const CHEEK_ROLL: Roll = Roll {
     line: &[],
     raised: [1.0, 0.0],
     crest: 0.06,
-    reach: 0.4,
+    reach: 0.75,
     height_mm: 6.5,
     crease_mm: 1.5,
     crease_half: 0.06,
@@ -402,8 +403,8 @@ pub const REGIONS: [ShapeRegion; 11] = [
         rolls: &[Roll {
             line: &LID_CHEEK_JUNCTION,
             raised: [0.0, 1.0],
-            crest: 0.08,
-            reach: 0.26,
+            crest: 0.07,
+            reach: 0.2,
             height_mm: 4.5,
             crease_mm: 1.0,
             crease_half: 0.06,
@@ -429,8 +430,8 @@ pub const REGIONS: [ShapeRegion; 11] = [
             // and 3 mm at its centre (18 mm across and 5 mm deep, its edge on the far side
             // of the light read, blind, as "a dark pit in the cheek"), a dish (a plateau's
             // rim drew a second fold out on the cheek on the side away from the light).
-            Blob::new([1.08, -1.05, 0.05], [0.5, 0.5, 0.6])
-                .deflating(0.6)
+            Blob::new([1.2, -1.05, 0.05], [0.5, 0.5, 0.6])
+                .deflating(0.4)
                 .soft(),
         ],
         motions: &[(Deflate, 5.0)],
@@ -529,7 +530,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // bands, vertical cords from under the chin down the front of the neck (a chain
         // each side), standing out 1.5 mm.
         blobs: &[
-            Blob::new([0.0, -2.75, 0.05], [0.85, 0.45, 0.7]),
+            Blob::new([0.0, -2.75, 0.05], [1.1, 0.5, 0.7]),
             Blob::new([0.3, -2.9, -0.75], [0.1, 0.3, 0.45]).bulging(3.0),
             Blob::new([0.32, -3.25, -0.96], [0.1, 0.3, 0.45]).bulging(3.0),
             // The wattle: the throat's skin below the angle of chin and neck hangs out

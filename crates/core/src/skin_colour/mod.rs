@@ -312,11 +312,13 @@ impl Regions {
             // under the lashes to the tear trough (a crescent only over the trough left
             // the lower lid over the bags paler than the cheek, read blind as "a whitish
             // rim, lit rather than aged").
-            let centre = corners_y - 0.25 - 0.08 * (std::f32::consts::PI * s.clamp(0.0, 1.0)).sin();
+            let centre = corners_y - 0.22 - 0.08 * (std::f32::consts::PI * s.clamp(0.0, 1.0)).sin();
             let across = 1.0 - smoothstep(0.07, 0.22, (q.y - centre).abs());
             w = w.max(along * across * (1.0 - 0.45 * s.clamp(0.0, 1.0)));
         }
-        w * front(q.z, self.ear_z) * (1.0 - 0.7 * self.eyes(p))
+        // The lower lid keeps most of it (sparing it by 70 % left a pale band under the
+        // lashes over the bag, read blind as "a white crescent, like concealer").
+        w * front(q.z, self.ear_z) * (1.0 - 0.3 * self.eyes(p))
     }
 
     /// The brows: an arched band above each eye from its inner corner to past its outer

@@ -32,7 +32,8 @@ pub enum Motion {
 
 /// An ellipsoid of the face frame ([`Regions::relative`]: half the outer eye corners'
 /// distance as the unit, the eye corners' midpoint as the origin), mirrored to both sides
-/// when its centre is off the midline (unless made for one side, [`Blob::one_side`]).
+/// when its centre is off the midline (what follows the template's own asymmetric folds is
+/// a [`Roll`], one per side).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Blob {
     pub centre: [f32; 3],
@@ -43,8 +44,6 @@ pub struct Blob {
     /// The same for its descent and its deflation.
     pub descent: f32,
     pub deflate: f32,
-    /// Whether it is mirrored to the other side of the midline.
-    pub mirrored: bool,
     /// Whether its weight falls from its centre on (a dish), not from a plateau over its
     /// inner third (the plateau's rim draws a line where a hollow's slope ends).
     pub soft: bool,
@@ -58,7 +57,6 @@ impl Blob {
             bulge: 1.0,
             descent: 1.0,
             deflate: 1.0,
-            mirrored: true,
             soft: false,
         }
     }
@@ -89,7 +87,7 @@ impl Blob {
     fn weight(&self, q: Vec3) -> f32 {
         let c = Vec3::from(self.centre);
         // Both sides: the x distance to the nearer of the centre and its mirror.
-        let (q, c) = if c.x != 0.0 && self.mirrored {
+        let (q, c) = if c.x != 0.0 {
             (
                 Vec3::new(q.x.abs(), q.y, q.z),
                 Vec3::new(c.x.abs(), c.y, c.z),

@@ -397,13 +397,13 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // junction, steep below (a blob alone, 5 mm, caught the frontal light as "a pale
         // crescent with no shadow under it", blind).
         blobs: &[Blob::new([0.62, -0.26, 0.3], [0.45, 0.18, 0.45])],
-        motions: &[(Bulge, 2.5), (Descent, 1.5)],
+        motions: &[(Bulge, 1.5), (Descent, 1.5)],
         rolls: &[Roll {
             line: &LID_CHEEK_JUNCTION,
             raised: [0.0, 1.0],
             crest: 0.07,
             reach: 0.2,
-            height_mm: 4.5,
+            height_mm: 2.2,
             crease_mm: 1.0,
             crease_half: 0.06,
             mirrored: true,
@@ -506,7 +506,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "nose",
         what: "nose tip drooping",
         blobs: &[Blob::new([0.0, -0.65, 0.95], [0.28, 0.28, 0.35])],
-        motions: &[(Descent, 3.5)],
+        motions: &[(Descent, 4.5)],
         rolls: &[],
         curve: curve(45.0, 85.0),
     },
@@ -516,7 +516,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // The lower half of the ear, most at the lobe: the ear lengthens (a blob on the lobe
         // alone, 3 mm, read blind as "ears identical to the 25-year-old's").
         blobs: &[Blob::new([1.72, -1.0, -1.45], [0.35, 0.6, 0.45])],
-        motions: &[(Descent, 6.0)],
+        motions: &[(Descent, 8.0)],
         rolls: &[],
         curve: curve(40.0, 85.0),
     },
@@ -531,11 +531,11 @@ pub const REGIONS: [ShapeRegion; 11] = [
             Blob::new([0.0, -2.75, 0.05], [1.1, 0.5, 0.7]),
             Blob::new([0.3, -2.9, -0.75], [0.1, 0.3, 0.45]).bulging(3.0),
             Blob::new([0.32, -3.25, -0.96], [0.1, 0.3, 0.45]).bulging(3.0),
-            // The wattle: the throat's skin below the angle of chin and neck hangs out
-            // 9 mm (blind: "in profile the neck is long, smooth and taut, no wattle");
-            // narrow and low, clear of the jaw (a wider one, reaching up to the angle,
-            // opened the scan's crease under the jaw into a dark slit).
-            Blob::new([0.0, -3.2, -0.78], [0.36, 0.5, 0.45]).bulging(18.0),
+            // The wattle: the throat's skin at the angle of chin and neck hangs out 9 mm
+            // (blind: "in profile the neck is long, smooth and taut, no wattle"), rounding
+            // the angle into an old throat's sagging line (hung 12 mm lower, under a
+            // sharp angle, it read blind as "a ledge under the jaw").
+            Blob::new([0.0, -2.95, -0.6], [0.6, 0.6, 0.5]).bulging(18.0),
         ],
         motions: &[(Descent, 3.0), (Bulge, 0.5)],
         rolls: &[],

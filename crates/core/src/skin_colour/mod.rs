@@ -49,14 +49,15 @@ const MOTTLE_TINT: [f32; 3] = [0.30, 0.40, 0.50];
 /// Feature sizes of the mottling, mm: blotches and a finer grain.
 const MOTTLE_MM: (f32, f32) = (9.0, 2.6);
 
-/// How far the beard's darkest texels go toward the skin around them when all the hair is
-/// gray, and how far every beard texel does.
+/// How far the beard's darkest texels go toward the bare skin round the beard when all the
+/// hair is gray, and how far every beard texel does.
 const BEARD_GRAY: f32 = 0.8;
 /// See [`BEARD_GRAY`].
-const BEARD_LIFT: f32 = 0.35;
-/// How much a full under-eye shadow takes from each linear channel (red least: a brown-grey
-/// shadow; a violet one read as bruises).
-const UNDER_EYE_TINT: [f32; 3] = [0.26, 0.34, 0.31];
+const BEARD_LIFT: f32 = 0.5;
+/// How much a full under-eye shadow takes from each linear channel (red least, blue most:
+/// a brown-grey shadow; a violet one, and one taking a third from green, read blind as
+/// "bruise paint").
+const UNDER_EYE_TINT: [f32; 3] = [0.16, 0.2, 0.22];
 /// Feature size of the redness and of the thread veins, mm.
 const REDNESS_MM: (f32, f32) = (6.0, 3.0);
 
@@ -68,7 +69,7 @@ const YELLOW_TINT: [f32; 3] = [0.0, 0.06, 0.22];
 const CONTRAST_BROWS: f32 = 0.2;
 const CONTRAST_LIPS: f32 = 0.6;
 /// How much more than the rest of the lips their outer part (`Regions::lip_rim`) fades.
-const LIP_THINNING: f32 = 0.8;
+const LIP_THINNING: f32 = 0.9;
 
 /// Brightness of gray brow hair relative to the hair's gray colour: coarse white brow
 /// hair over the skin reads lighter than the silver of the scalp's (at the scalp's
@@ -101,6 +102,10 @@ const BROW_GRAY_TINT: [f32; 3] = [1.0, 0.96, 0.9];
 
 /// Side of the coarse grid of the local skin tone (the reference brows and lips fade to).
 const TONE_GRID: usize = 32;
+
+/// Blur passes (3×3 cells of [`TONE_GRID`]) of the bare skin's tone: about a quarter of
+/// the UV layout's side, enough to reach across a beard.
+const BARE_TONE_PASSES: usize = 8;
 
 /// The artist's settings of the aged colour: the project's `skin` fields of the same
 /// names (their meaning, units and ranges: `project::fields`), colours in linear RGB, and
@@ -313,12 +318,20 @@ impl Regions {
             // the lower lid over the bags paler than the cheek, read blind as "a whitish
             // rim, lit rather than aged").
             let centre = corners_y - 0.22 - 0.08 * (std::f32::consts::PI * s.clamp(0.0, 1.0)).sin();
-            let across = 1.0 - smoothstep(0.07, 0.22, (q.y - centre).abs());
+            // Up to the lashes over the bag's lit upper slope (stopping short of them, the
+            // slope read blind as "a white crescent"), down over the tear trough.
+            let d = q.y - centre;
+            let across = if d > 0.0 {
+                1.0 - smoothstep(0.1, 0.24, d)
+            } else {
+                1.0 - smoothstep(0.07, 0.22, -d)
+            };
             w = w.max(along * across * (1.0 - 0.45 * s.clamp(0.0, 1.0)));
         }
-        // The lower lid keeps most of it (sparing it by 70 % left a pale band under the
-        // lashes over the bag, read blind as "a white crescent, like concealer").
-        w * front(q.z, self.ear_z) * (1.0 - 0.3 * self.eyes(p))
+        // The lower lid keeps most of it (sparing it by 70 %, then 30 %, left a pale band
+        // under the lashes over the bag, read blind as "a white crescent, like
+        // concealer").
+        w * front(q.z, self.ear_z) * (1.0 - 0.1 * self.eyes(p))
     }
 
     /// The brows: an arched band above each eye from its inner corner to past its outer
@@ -403,7 +416,26 @@ impl Regions {
         // Under the chin it fades onto the neck.
         let above_neck = smoothstep(self.chin_y - 1.0, self.chin_y - 0.5, q.y);
         let width = 1.0 - smoothstep(1.5, 1.9, q.x.abs());
-        below_top * above_neck * width * front(q.z, self.ear_z) * (1.0 - self.lips(p))
+        // The stubble reaches back to the ear, and below the ears it wraps round the
+        // jaw's angle and under its border onto the neck's sides (cut at the face's plane,
+        // a scan's gray stubble there stayed gray beside an aged jaw: "a dark seam under
+        // the jaw", "a gray sideburn").
+        let below_ears = smoothstep(-1.2, -1.6, q.y);
+        let depth = smoothstep(self.ear_z, self.ear_z + 0.3, q.z)
+            .max(below_ears * smoothstep(self.ear_z - 0.6, self.ear_z - 0.2, q.z));
+        below_top * above_neck * width * depth * (1.0 - self.lips(p))
+    }
+
+    /// The skin the beard grays toward: the face in front of the ears from under the eyes
+    /// down, inside the jaw's angles, and the neck all round below the chin (not the
+    /// scalp's hair, the sideburns or the ears, which a scan's colour map paints
+    /// gray-brown). The beard's own texels are left out by [`bare_tone`].
+    pub fn bare_skin(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        let below_eyes = 1.0 - smoothstep(-0.5, -0.3, q.y);
+        let inside = 1.0 - smoothstep(1.2, 1.5, q.x.abs());
+        let neck = 1.0 - smoothstep(self.chin_y - 0.9, self.chin_y - 0.5, q.y);
+        (below_eyes * inside * front(q.z, self.ear_z)).max(neck)
     }
 
     /// The lips: an ellipse round the mouth corners' line.
@@ -460,9 +492,12 @@ impl Regions {
         let top = smoothstep(1.6, 2.3, q.y);
         // The underside of the chin and the neck below it are shaded, the lower face
         // less exposed than the forehead, cheekbones and nose (the brow and the head's
-        // tilt shade it less than the jaw's angle does): 0.4 at the chin.
+        // tilt shade it less than the jaw's angle does): 0.3 at the mouth and the chin,
+        // full from the nose's tip up (with 0.4 at the chin rising from the mouth, a
+        // patch of spots by the mouth's corner read blind as "a dirty smudge in the
+        // nasolabial fold").
         let below_chin = smoothstep(self.chin_y - 1.2, self.chin_y + 0.1, q.y);
-        let lower = 0.4 + 0.6 * smoothstep(self.chin_y + 0.2, self.mouth.y + 0.4, q.y);
+        let lower = 0.3 + 0.7 * smoothstep(self.mouth.y, self.nose_tip.y, q.y);
         face.max(top) * below_chin * lower * (1.0 - self.lips(p)) * (1.0 - self.eyes(p))
     }
 }
@@ -648,6 +683,7 @@ struct Fields {
     brow_strand: u8,
     under_eye: u8,
     beard: u8,
+    bare: u8,
 }
 
 fn unit_byte(x: f32) -> u8 {
@@ -674,8 +710,9 @@ fn noise_keys(seed: u64) -> [u32; 6] {
 impl Fields {
     fn at(p: Vec3, t: Vec3, regions: &Regions, keys: &[u32; 6]) -> Self {
         let on_template = !t.x.is_nan();
-        // Behind the face (the scalp, the back of the head) only the sun exposure can be
-        // non-zero: the face's regions are skipped there.
+        // Behind the face (the scalp, the back of the head) only the sun exposure, the
+        // beard and the bare skin (the neck) can be non-zero: the face's other regions
+        // are skipped there.
         let face = on_template && front(regions.relative(t).z, regions.ear_z) > 0.0;
         let w = |g: fn(&Regions, Vec3) -> f32| if face { g(regions, t) } else { 0.0 };
         let sun = if on_template { regions.sun(t) } else { 0.0 };
@@ -715,7 +752,17 @@ impl Fields {
                 128
             },
             under_eye: unit_byte(w(Regions::under_eye)),
-            beard: unit_byte(w(Regions::beard)),
+            // The beard wraps round the jaw's angle, behind the face's plane.
+            beard: if on_template {
+                unit_byte(regions.beard(t))
+            } else {
+                0
+            },
+            bare: if on_template {
+                unit_byte(regions.bare_skin(t))
+            } else {
+                0
+            },
         }
     }
 }
@@ -790,14 +837,15 @@ impl SurfaceTexels {
 }
 
 /// What the aged colour starts from at each texel, kept between ages: the base colour
-/// (the head's colour map resampled, or the skin colour), in linear light, its alpha, and
-/// the local skin tone around it.
+/// (the head's colour map resampled, or the skin colour), in linear light, its alpha, the
+/// local skin tone around it, and the bare skin's tone round the beard.
 #[derive(Clone, Debug)]
 pub struct BaseColour {
     size: u32,
     colour: Vec<Vec3>,
     alpha: Vec<u8>,
     tone: Vec<Vec3>,
+    bare: ToneCells,
 }
 
 impl BaseColour {
@@ -830,11 +878,13 @@ impl BaseColour {
                 }
             });
         let tone = local_tone(n, &texels.position, &texels.fields, &base_at);
+        let bare = bare_tone(n, &texels.position, &texels.fields, &base_at);
         Self {
             size: texels.size,
             colour,
             alpha,
             tone,
+            bare,
         }
     }
 }
@@ -911,7 +961,13 @@ pub fn bake_from(
                 let mut c = base.colour[i];
                 let p = texels.position[i];
                 if !young && !p.x.is_nan() {
-                    c = look.age(c, p, &texels.fields[i], base.tone[i]);
+                    let f = &texels.fields[i];
+                    let bare = if f.beard > 0 {
+                        base.bare.at(x, y)
+                    } else {
+                        Vec3::ZERO
+                    };
+                    c = look.age(c, p, f, base.tone[i], bare);
                 }
                 px[0] = encode(c.x);
                 px[1] = encode(c.y);
@@ -1035,8 +1091,9 @@ struct Look<'a> {
 
 impl Look<'_> {
     /// One texel aged (linear RGB in, linear RGB out): `p` its point (head metres), `f`
-    /// its regions and noise, `reference` the skin tone around it.
-    fn age(&self, mut c: Vec3, p: Vec3, f: &Fields, reference: Vec3) -> Vec3 {
+    /// its regions and noise, `reference` the skin tone around it, `bare` the tone of the
+    /// bare skin round the beard (used only in the beard).
+    fn age(&self, mut c: Vec3, p: Vec3, f: &Fields, reference: Vec3, bare: Vec3) -> Vec3 {
         let (s, a) = (self.settings, self.factors);
         let (sun, brows, lips, red) = (
             from_unit(f.sun),
@@ -1065,13 +1122,15 @@ impl Look<'_> {
         let fade = s.contrast_loss * a.contrast * (CONTRAST_BROWS * brows).max(lips);
         c = c.lerp(reference, fade.clamp(0.0, 1.0));
         // The stubble grays with the hair: gray stubble on pale skin casts no shadow, so
-        // the beard's darker texels lighten toward the skin around them, a little lighter
-        // than its tone (which the dark stubble pulls down): no "moustache" shadow at 80.
+        // the beard's texels go toward the bare skin round the beard, its darker texels
+        // most: no "moustache" shadow at 80, and no grey jaw over a pink neck (toward the
+        // beard's own tone, which the dark stubble pulls down and grays, the jaw read,
+        // blind, as "a colour seam" where it met the neck).
         let beard = from_unit(f.beard) * a.brow_gray;
         if beard > 0.0 {
             let dark = smoothstep(0.0, 0.25, 1.0 - lum(c) / lum(reference).max(1e-4));
             let lift = beard * (BEARD_GRAY * dark + BEARD_LIFT);
-            c = c.lerp(reference * 1.1, lift.clamp(0.0, 1.0));
+            c = c.lerp(bare, lift.clamp(0.0, 1.0));
         }
         // The under-eye shadow (thinner lid skin over the orbicularis, the tear trough's
         // hollow): a brown-grey darkening on the contrast curve.
@@ -1251,91 +1310,145 @@ impl SpotGrid {
 }
 
 /// The local skin tone per texel: the base colour averaged over a coarse grid of the UV
-/// layout (only covered texels count, so the background does not darken island edges),
-/// blurred, read back bilinearly. What lips and brows fade toward, and what brow hair is
-/// darker than. The lips do not count: the skin round them is what they fade toward (with
-/// their own red in the average they kept much of it, and read blind as "barely thinner").
+/// layout ([`ToneCells`]), read back bilinearly. What lips and brows fade toward, and
+/// what brow hair is darker than. The lips do not count: the skin round them is what they
+/// fade toward (with their own red in the average they kept much of it, and read blind as
+/// "barely thinner").
 fn local_tone(
     n: usize,
     position: &[Vec3],
     fields: &[Fields],
     base_at: &(dyn Fn(usize, usize) -> Vec3 + Sync),
 ) -> Vec<Vec3> {
-    let g = TONE_GRID;
-    let mut sum = vec![Vec3::ZERO; g * g];
-    let mut weight = vec![0.0f32; g * g];
-    // A sparse sample is enough for a coarse average.
-    let step = (n / 256).max(1);
-    for y in (0..n).step_by(step) {
-        for x in (0..n).step_by(step) {
-            if position[y * n + x].x.is_nan() {
-                continue;
-            }
-            let k = (y * g / n) * g + x * g / n;
-            let w = 1.0 - from_unit(fields[y * n + x].lips);
-            sum[k] += base_at(x, y) * w;
-            weight[k] += w;
-        }
-    }
-    // Two passes of a 3×3 box blur of the sums and the weights (normalised convolution).
-    for _ in 0..2 {
-        let (s0, w0) = (sum.clone(), weight.clone());
-        for y in 0..g {
-            for x in 0..g {
-                let (mut s, mut w) = (Vec3::ZERO, 0.0);
-                for dy in -1i32..=1 {
-                    for dx in -1i32..=1 {
-                        let (xx, yy) = (x as i32 + dx, y as i32 + dy);
-                        if xx < 0 || yy < 0 || xx >= g as i32 || yy >= g as i32 {
-                            continue;
-                        }
-                        let k = yy as usize * g + xx as usize;
-                        s += s0[k];
-                        w += w0[k];
-                    }
-                }
-                sum[y * g + x] = s;
-                weight[y * g + x] = w;
-            }
-        }
-    }
-    let cells: Vec<Vec3> = sum
-        .iter()
-        .zip(&weight)
-        .map(|(s, &w)| {
-            if w > 0.0 {
-                *s / w
-            } else {
-                Vec3::splat(f32::NAN)
-            }
-        })
-        .collect();
+    let cells = ToneCells::new(n, position, base_at, 2, |i| 1.0 - from_unit(fields[i].lips));
     let mut out = vec![Vec3::ZERO; n * n];
     out.par_chunks_mut(n).enumerate().for_each(|(y, row)| {
-        let fy = ((y as f32 + 0.5) * g as f32 / n as f32 - 0.5).clamp(0.0, (g - 1) as f32);
         for (x, o) in row.iter_mut().enumerate() {
-            let fx = ((x as f32 + 0.5) * g as f32 / n as f32 - 0.5).clamp(0.0, (g - 1) as f32);
-            let (x0, y0) = (fx.floor() as usize, fy.floor() as usize);
-            let (x1, y1) = ((x0 + 1).min(g - 1), (y0 + 1).min(g - 1));
-            let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
-            let mut acc = Vec3::ZERO;
-            let mut w = 0.0;
-            for (cx, cy, cw) in [
-                (x0, y0, (1.0 - tx) * (1.0 - ty)),
-                (x1, y0, tx * (1.0 - ty)),
-                (x0, y1, (1.0 - tx) * ty),
-                (x1, y1, tx * ty),
-            ] {
-                let v = cells[cy * g + cx];
-                if !v.x.is_nan() && cw > 0.0 {
-                    acc += v * cw;
-                    w += cw;
-                }
-            }
-            *o = if w > 0.0 { acc / w } else { Vec3::splat(0.5) };
+            *o = cells.at(x, y);
         }
     });
     out
+}
+
+/// The bare skin's tone round the beard: the base colour of [`Regions::bare_skin`] away
+/// from the beard, the lips, the redness and the eyes, blurred far enough ([`BARE_TONE_PASSES`]) to
+/// reach across the beard from the skin round it (the cheeks above, the neck below).
+fn bare_tone(
+    n: usize,
+    position: &[Vec3],
+    fields: &[Fields],
+    base_at: &(dyn Fn(usize, usize) -> Vec3 + Sync),
+) -> ToneCells {
+    ToneCells::new(n, position, base_at, BARE_TONE_PASSES, |i| {
+        let f = &fields[i];
+        [f.beard, f.lips, f.red, f.under_eye]
+            .iter()
+            .map(|&b| 1.0 - from_unit(b))
+            .product::<f32>()
+            * from_unit(f.bare)
+    })
+}
+
+/// A skin tone over the UV layout: the base colour averaged over a [`TONE_GRID`]² grid
+/// (only covered texels count, each with its weight, so the background does not darken
+/// island edges), blurred by a number of 3×3 box passes (normalised convolution).
+#[derive(Clone, Debug)]
+struct ToneCells {
+    /// The bake's side, texels.
+    n: usize,
+    /// Mean colour per cell; NaN where nothing counted within the blur's reach.
+    cells: Vec<Vec3>,
+}
+
+impl ToneCells {
+    fn new(
+        n: usize,
+        position: &[Vec3],
+        base_at: &(dyn Fn(usize, usize) -> Vec3 + Sync),
+        passes: usize,
+        weight_of: impl Fn(usize) -> f32,
+    ) -> Self {
+        let g = TONE_GRID;
+        let mut sum = vec![Vec3::ZERO; g * g];
+        let mut weight = vec![0.0f32; g * g];
+        // A sparse sample is enough for a coarse average.
+        let step = (n / 256).max(1);
+        for y in (0..n).step_by(step) {
+            for x in (0..n).step_by(step) {
+                let i = y * n + x;
+                if position[i].x.is_nan() {
+                    continue;
+                }
+                let w = weight_of(i);
+                if w <= 0.0 {
+                    continue;
+                }
+                let k = (y * g / n) * g + x * g / n;
+                sum[k] += base_at(x, y) * w;
+                weight[k] += w;
+            }
+        }
+        for _ in 0..passes {
+            let (s0, w0) = (sum.clone(), weight.clone());
+            for y in 0..g {
+                for x in 0..g {
+                    let (mut s, mut w) = (Vec3::ZERO, 0.0);
+                    for dy in -1i32..=1 {
+                        for dx in -1i32..=1 {
+                            let (xx, yy) = (x as i32 + dx, y as i32 + dy);
+                            if xx < 0 || yy < 0 || xx >= g as i32 || yy >= g as i32 {
+                                continue;
+                            }
+                            let k = yy as usize * g + xx as usize;
+                            s += s0[k];
+                            w += w0[k];
+                        }
+                    }
+                    sum[y * g + x] = s;
+                    weight[y * g + x] = w;
+                }
+            }
+        }
+        let cells = sum
+            .iter()
+            .zip(&weight)
+            .map(|(s, &w)| {
+                if w > 0.0 {
+                    *s / w
+                } else {
+                    Vec3::splat(f32::NAN)
+                }
+            })
+            .collect();
+        Self { n, cells }
+    }
+
+    /// The tone at texel (x, y), bilinear over the cells that have one (mid-gray where
+    /// none near has).
+    fn at(&self, x: usize, y: usize) -> Vec3 {
+        let (g, n) = (TONE_GRID, self.n);
+        let cell =
+            |t: usize| ((t as f32 + 0.5) * g as f32 / n as f32 - 0.5).clamp(0.0, (g - 1) as f32);
+        let (fx, fy) = (cell(x), cell(y));
+        let (x0, y0) = (fx.floor() as usize, fy.floor() as usize);
+        let (x1, y1) = ((x0 + 1).min(g - 1), (y0 + 1).min(g - 1));
+        let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+        let mut acc = Vec3::ZERO;
+        let mut w = 0.0;
+        for (cx, cy, cw) in [
+            (x0, y0, (1.0 - tx) * (1.0 - ty)),
+            (x1, y0, tx * (1.0 - ty)),
+            (x0, y1, (1.0 - tx) * ty),
+            (x1, y1, tx * ty),
+        ] {
+            let v = self.cells[cy * g + cx];
+            if !v.x.is_nan() && cw > 0.0 {
+                acc += v * cw;
+                w += cw;
+            }
+        }
+        if w > 0.0 { acc / w } else { Vec3::splat(0.5) }
+    }
 }
 
 /// Bilinear linear-light colour of an sRGB picture at (u, v) (v up, u wrapping, v clamped).

@@ -545,7 +545,7 @@ impl Spot {
     }
 }
 
-/// The age spots of a head: drawn by area over its skin, weighted by sun exposure,
+/// The age spots of a head: drawn by area over its skin, weighted by sun exposure squared,
 /// gathered in patches, each with its own appearance, size and darkness (docs/models.md
 /// "Skin colour").
 pub fn place_spots(
@@ -587,10 +587,12 @@ fn place_spots_gathered(
         let area = 0.5 * (b - a).cross(c - a).length();
         let points: Option<Vec<Vec3>> = tri.iter().map(|&v| template_point(v as usize)).collect();
         // No spots on the lids nor in the brows (shaded; a dark fleck there read, blind,
-        // as a speck of dirt once the lid hooded over it).
+        // as a speck of dirt once the lid hooded over it). Lentigines follow the lifetime's
+        // dose, so the exposure counts squared: few where it is partial (by the mouth, a
+        // patch of them read, blind, as "a dirty smudge in the fold").
         let sun = points.map_or(0.0, |p| {
             let c = (p[0] + p[1] + p[2]) / 3.0;
-            regions.sun(c) * (1.0 - regions.eyes(c)) * (1.0 - regions.brows(c))
+            regions.sun(c).powi(2) * (1.0 - regions.eyes(c)) * (1.0 - regions.brows(c))
         });
         if area.is_finite() {
             total += f64::from(area * sun);
@@ -606,7 +608,6 @@ fn place_spots_gathered(
     let count = expected.floor() as usize + usize::from(rng.next_f64() < expected.fract());
     let count = count.min(100_000);
     let (lo, hi) = SPOT_DIAMETER_MM;
-    let cluster_key = (mix64(seed ^ 0x0059_07c1) & 0xffff_ffff) as u32;
     (0..count)
         .map(|_| {
             // Spots gather: a place is kept with a chance that follows a noise of
@@ -629,9 +630,7 @@ fn place_spots_gathered(
             let mut drawn = place();
             for _ in 1..tries {
                 let (a, b, c, u, v, keep) = drawn;
-                let at_mm = (a + (b - a) * u + (c - a) * v) * 1000.0;
-                let gather = 0.5 + 0.5 * value3(at_mm / SPOT_CLUSTER_MM, cluster_key);
-                if keep < gather * gather * gather {
+                if keep < spot_gathering(a + (b - a) * u + (c - a) * v, seed) {
                     break;
                 }
                 drawn = place();
@@ -653,6 +652,14 @@ fn place_spots_gathered(
             }
         })
         .collect()
+}
+
+/// The chance that a spot drawn at `p` (head metres) is kept ([`place_spots`]): (0.5 +
+/// 0.5 n)³, n a value noise of [`SPOT_CLUSTER_MM`] seeded by `seed`.
+fn spot_gathering(p: Vec3, seed: u64) -> f32 {
+    let key = (mix64(seed ^ 0x0059_07c1) & 0xffff_ffff) as u32;
+    let g = 0.5 + 0.5 * value3(p * 1000.0 / SPOT_CLUSTER_MM, key);
+    g * g * g
 }
 
 /// The head's surface per texel of its UV layout: the point (head metres) each texel

@@ -47,6 +47,17 @@ fn default_head_texels(scene: &Scene, size: u32) -> SurfaceTexels {
     texels_of(&mesh, &|v| mesh.positions().get(v).copied(), size)
 }
 
+/// The default project's colour at 25 and at 80, and the default head's texels, at `n`².
+fn young_and_old(n: usize) -> (HeadImage, HeadImage, SurfaceTexels) {
+    let mut scene = Scene::new(Project::default()).unwrap();
+    let cancel = CancelToken::never();
+    scene.bake_colour(n as u32, 0.0, &cancel).unwrap();
+    let young = scene.aged_colour().unwrap().as_ref().clone();
+    scene.bake_colour(n as u32, 1.0, &cancel).unwrap();
+    let old = scene.aged_colour().unwrap().as_ref().clone();
+    (young, old, default_head_texels(&scene, n as u32))
+}
+
 #[test]
 fn the_regions_lie_where_the_face_has_them() {
     let r = Regions::template().expect("the template's landmarks");
@@ -310,14 +321,9 @@ fn young_skin_is_its_own_colour_and_old_skin_is_uneven() {
 
 #[test]
 fn brows_gray_lips_fade_and_a_shadow_comes_under_the_eyes() {
-    let mut scene = Scene::new(Project::default()).unwrap();
     let cancel = CancelToken::never();
     let n = 512usize;
-    scene.bake_colour(n as u32, 0.0, &cancel).unwrap();
-    let young = scene.aged_colour().unwrap().clone();
-    scene.bake_colour(n as u32, 1.0, &cancel).unwrap();
-    let old = scene.aged_colour().unwrap().clone();
-    let texels = default_head_texels(&scene, n as u32);
+    let (young, old, texels) = young_and_old(n);
     let (ly, lo) = (luminance(&young), luminance(&old));
     let in_region = |f: fn(&Fields) -> u8| -> Vec<usize> {
         (0..n * n)
@@ -525,14 +531,8 @@ fn the_shown_colour_carries_the_hair_ages_in_its_alpha_with_a_soft_edge() {
 /// beard's own tone, the jaw stayed gray over a pink neck: "a colour seam", blind).
 #[test]
 fn the_gray_beard_takes_the_colour_of_the_bare_skin_round_it() {
-    let mut scene = Scene::new(Project::default()).unwrap();
-    let cancel = CancelToken::never();
     let n = 512usize;
-    scene.bake_colour(n as u32, 0.0, &cancel).unwrap();
-    let young = scene.aged_colour().unwrap().clone();
-    scene.bake_colour(n as u32, 1.0, &cancel).unwrap();
-    let old = scene.aged_colour().unwrap().clone();
-    let texels = default_head_texels(&scene, n as u32);
+    let (young, old, texels) = young_and_old(n);
     let pick = |keep: &dyn Fn(&Fields) -> bool| -> Vec<usize> {
         (0..n * n).filter(|&i| keep(&texels.fields[i])).collect()
     };

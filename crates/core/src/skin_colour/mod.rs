@@ -722,7 +722,10 @@ impl Fields {
         // are skipped there.
         let face = on_template && front(regions.relative(t).z, regions.ear_z) > 0.0;
         let w = |g: fn(&Regions, Vec3) -> f32| if face { g(regions, t) } else { 0.0 };
-        let sun = if on_template { regions.sun(t) } else { 0.0 };
+        let anywhere = |g: fn(&Regions, Vec3) -> f32| {
+            if on_template { g(regions, t) } else { 0.0 }
+        };
+        let sun = anywhere(Regions::sun);
         let (brows, red) = (w(Regions::brows), w(Regions::redness));
         let mm = p * 1000.0;
         Self {
@@ -760,16 +763,8 @@ impl Fields {
             },
             under_eye: unit_byte(w(Regions::under_eye)),
             // The beard wraps round the jaw's angle, behind the face's plane.
-            beard: if on_template {
-                unit_byte(regions.beard(t))
-            } else {
-                0
-            },
-            bare: if on_template {
-                unit_byte(regions.bare_skin(t))
-            } else {
-                0
-            },
+            beard: unit_byte(anywhere(Regions::beard)),
+            bare: unit_byte(anywhere(Regions::bare_skin)),
         }
     }
 }

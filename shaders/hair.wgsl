@@ -73,10 +73,15 @@ fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32, random: f32) -> HairCur
     let along = g - dir * dot(g, dir);
     // Where the comb is parallel to the hair there is no combing direction: stay straight.
     var comb = select(dir, normalize(along), length(along) > 1e-3);
-    // Each hair its own way, up to ±12° about its root direction from the comb (from its
-    // random number's other digits): a combed mass, neither parallel streaks nor (at
-    // ±20°) static.
-    let turn = (fract(random * 13.0) - 0.5) * 0.42;
+    // The comb's way wanders over the scalp, up to ±20° over a few centimetres (a smooth
+    // field of the root's position in hair lengths, so the same on any head's units):
+    // hair lies in locks that flow (combed all one way, the fringe read, blind, as "a
+    // flat, streaky painted band"); and each hair its own way within that, up to ±7°
+    // (from its random number's other digits; ±20° each read as static).
+    let q = root / max(frame.hair_base.w, 1e-9);
+    let flow = 0.22 * sin(dot(q, vec3<f32>(0.61, 0.37, -0.52)) + 1.7)
+        + 0.13 * sin(dot(q, vec3<f32>(-0.29, 0.83, 0.47)) * 1.9 + 0.4);
+    let turn = flow + (fract(random * 13.0) - 0.5) * 0.25;
     comb = comb * cos(turn) + cross(dir, comb) * sin(turn);
     // Most hair lies flat (stands 5 % of its length); about one in six stands up to 18 %
     // (flyaways, from the random number's other digits), so the silhouette of the hair

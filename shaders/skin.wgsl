@@ -17,6 +17,8 @@ const CAVITY: f32 = 0.55;
 // How much of the sky and of the light a full hollow of the aged shape loses.
 const HOLLOW_AMBIENT: f32 = 0.6;
 const HOLLOW_LIGHT: f32 = 0.45;
+// Steps of the occlusion ratio per unit in the stored surface (its quantum: 0.5 %).
+const OCCLUSION_STEPS: f32 = 200.0;
 // How much the hair present over the scalp darkens it (its shadow), per unit of
 // `hair.scalp_tint`: a white fringe over pale skin with no shadow under it read, blind, as
 // "a flat painted layer".
@@ -57,6 +59,9 @@ struct VertexIn {
     @location(5) shape_normal: vec3<f32>,
     // How hollowed the shape left it, 0–1 (crates/render/src/mesh.rs `hollow_occlusion`).
     @location(6) shape_hollow: f32,
+    // How much of the sky it lost to the shape around it: 1 − the occlusion ratio
+    // (docs/models.md §13 "Occlusion"; negative for sky gained).
+    @location(7) shape_sky_lost: f32,
 }
 
 struct VertexOut {
@@ -66,6 +71,7 @@ struct VertexOut {
     @location(2) uv: vec2<f32>,
     @location(3) tangent: vec4<f32>,
     @location(4) hollow: f32,
+    @location(5) sky_lost: f32,
 }
 
 @vertex
@@ -93,6 +99,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.uv = in.uv;
     out.tangent = t;
     out.hollow = in.shape_hollow;
+    out.sky_lost = in.shape_sky_lost;
     return out;
 }
 
@@ -251,6 +258,8 @@ struct Surface {
     to_eye: vec3<f32>,
     // How hollowed the aged shape left the skin here, 0–1.
     hollow: f32,
+    // The sky it sees over the sky it saw undisplaced (docs/models.md §13 "Occlusion").
+    occlusion: f32,
 }
 
 // Octahedral encoding of a unit vector (Cigolle et al. 2014), two numbers in [−1, 1].
@@ -271,13 +280,15 @@ fn oct_decode(e: vec2<f32>) -> vec3<f32> {
 }
 
 // The surface in three targets (32 bytes, the smallest per-sample limit wgpu allows):
-// uv in f32, since POM marches it; the derivatives and the frame in f16. The hollow rides
-// on the bitangent sign: ±(1 + hollow). The direction to
+// uv in f32, since POM marches it; the derivatives and the frame in f16. The hollow and
+// the occlusion ride on the bitangent sign: ±(1 + hollow + 2·k), the hollow in [0, 1) and
+// k the occlusion ratio in steps of 1/OCCLUSION_STEPS (an integer of at most 9 bits: an
+// f32 keeps the hollow to 2⁻¹⁴ beside it). The direction to
 // the eye is not stored: the shading pass has it from the pixel's view ray. The depth is
 // kept too (in [0, 1]; the renderer clears it to 2, the background), so a frame can
 // restore the depth buffer from it without copying a depth texture.
 struct SurfaceOut {
-    // uv, bitangent sign × (1 + hollow), depth.
+    // uv, bitangent sign × (1 + hollow + 2·occlusion steps), depth.
     @location(0) s0: vec4<f32>,
     // dpdx(uv), dpdy(uv).
     @location(1) s1: vec4<f32>,
@@ -292,7 +303,9 @@ fn fs_surface(in: VertexOut) -> SurfaceOut {
     let t = normalize(in.tangent.xyz - n * dot(n, in.tangent.xyz));
     var out: SurfaceOut;
     let hollow = clamp(in.hollow, 0.0, 0.999);
-    out.s0 = vec4<f32>(in.uv, select(-1.0, 1.0, in.tangent.w >= 0.0) * (1.0 + hollow), in.clip.z);
+    let occlusion = round(clamp(1.0 - in.sky_lost, 0.0, 2.0) * OCCLUSION_STEPS);
+    let packed = 1.0 + hollow + 2.0 * occlusion;
+    out.s0 = vec4<f32>(in.uv, select(-1.0, 1.0, in.tangent.w >= 0.0) * packed, in.clip.z);
     out.s1 = vec4<f32>(dpdx(in.uv), dpdy(in.uv));
     out.s2 = vec4<f32>(oct_encode(n), oct_encode(t));
     return out;
@@ -333,7 +346,10 @@ fn fs_shade(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     s.n = oct_decode(s2.xy);
     s.t = oct_decode(s2.zw);
     s.b_sign = sign(s0.z);
-    s.hollow = abs(s0.z) - 1.0;
+    let packed = abs(s0.z) - 1.0;
+    let steps = floor(packed * 0.5);
+    s.hollow = packed - 2.0 * steps;
+    s.occlusion = steps / OCCLUSION_STEPS;
     s.to_eye = normalize(frame.camera_pos.xyz - on_ray.xyz / on_ray.w);
     return shade(s);
 }
@@ -449,8 +465,10 @@ fn shade(s: Surface) -> vec4<f32> {
     let hollow = clamp(s.hollow, 0.0, 1.0);
     let ambient = frame.light_colour.w * sky * cavity * (1.0 - HOLLOW_AMBIENT * hollow);
     let direct = mix(1.0, cavity, 0.5) * (1.0 - HOLLOW_LIGHT * hollow);
-    let colour = albedo * (diffuse * light * direct + vec3<f32>(ambient))
-        + vec3<f32>(spec) * light * cavity;
+    // What the aged shape hides of the sky that the skin saw undisplaced (the scan's colour
+    // holds the rest's occlusion): the whole of the skin's light times the ratio.
+    let colour = (albedo * (diffuse * light * direct + vec3<f32>(ambient))
+        + vec3<f32>(spec) * light * cavity) * s.occlusion;
     return output_colour(colour);
 }
 

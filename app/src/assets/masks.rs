@@ -194,7 +194,9 @@ impl Face {
 }
 
 /// Height (y, metres, 0 = the eyes) of the full hairline at each longitude: forehead,
-/// temples, in front of the ear, over the ear, down to the nape.
+/// temples, in front of the ear, over the ear (a few millimetres above its top: 1.5 cm read,
+/// blind, as "a bald crescent between the fringe and the ear"), down behind it to the nape
+/// (7 cm below the eyes: 6 cm read as "no nape hair").
 const OUTER_HAIRLINE_M: &[(f32, f32)] = &[
     (0.0, 0.075),
     (25.0, 0.072),
@@ -205,16 +207,16 @@ const OUTER_HAIRLINE_M: &[(f32, f32)] = &[
     (71.0, -0.004),
     (74.0, -0.012),
     (79.0, -0.01),
-    (82.0, 0.004),
-    (85.0, 0.017),
-    (90.0, 0.025),
-    (100.0, 0.028),
-    (108.0, 0.024),
-    (115.0, 0.01),
-    (122.0, -0.008),
-    (140.0, -0.04),
-    (160.0, -0.056),
-    (180.0, -0.062),
+    (82.0, 0.002),
+    (85.0, 0.012),
+    (90.0, 0.018),
+    (100.0, 0.021),
+    (108.0, 0.017),
+    (115.0, 0.002),
+    (122.0, -0.016),
+    (140.0, -0.048),
+    (160.0, -0.066),
+    (180.0, -0.072),
 ];
 
 /// Upper edge (y, metres) of the hair that stays at old age: a horseshoe from the

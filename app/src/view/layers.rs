@@ -9,7 +9,7 @@ use agesim_core::hair::HairInstances;
 use agesim_core::mask::HeadImage;
 use agesim_core::scene::{Changed, Scene};
 use agesim_core::{HeightMap, Mesh};
-use agesim_render::{PreparedLayer, RenderError, Renderer, TileLayer, Upload, ViewId};
+use agesim_render::{PreparedLayer, RenderError, Renderer, ShapeUpload, TileLayer, Upload, ViewId};
 
 /// Every uploaded input of the renderer, each shared: a layer that a bake did not change
 /// is the same allocation as before, so its address says whether to upload it again.
@@ -205,12 +205,11 @@ impl Uploaded {
             self.large = stamp(&layers.large);
         }
         if stamp(&layers.shape) != self.shape {
-            let shape = layers.shape.as_deref().map(|s| {
-                (
-                    s.delta.as_slice(),
-                    s.normals.as_slice(),
-                    s.hollow_mm.as_slice(),
-                )
+            let shape = layers.shape.as_deref().map(|s| ShapeUpload {
+                delta: &s.delta,
+                normals: &s.normals,
+                hollow_mm: &s.hollow_mm,
+                occlusion: &s.occlusion,
             });
             result = result.and(renderer.upload_shape_to(view, shape));
             self.shape = stamp(&layers.shape);

@@ -429,7 +429,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             // of the light read, blind, as "a dark pit in the cheek"), a dish (a plateau's
             // rim drew a second fold out on the cheek on the side away from the light).
             Blob::new([1.2, -1.05, 0.05], [0.5, 0.5, 0.6])
-                .deflating(0.4)
+                .deflating(0.7)
                 .soft(),
         ],
         motions: &[(Deflate, 5.0)],
@@ -443,7 +443,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // A dish (its plateau's rim drew, blind, "a hard vertical ridge" in the front
         // outline), a little larger for it.
         blobs: &[Blob::new([1.5, 0.45, -0.75], [0.6, 0.8, 0.9]).soft()],
-        motions: &[(Deflate, 10.0)],
+        motions: &[(Deflate, 12.0)],
         rolls: &[],
         curve: curve(40.0, 80.0),
     },
@@ -456,7 +456,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // "a thin engraved crescent"; with a chain of blobs beside it, which swelled
         // evenly on all sides, as "a pencil line, no cheek hanging over it").
         blobs: &[Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]).bulging(0.2)],
-        motions: &[(Descent, 5.0), (Bulge, 3.0)],
+        motions: &[(Descent, 5.0), (Bulge, 1.5)],
         rolls: &[
             Roll {
                 line: &NASOLABIAL_R,
@@ -475,7 +475,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "jowls",
         what: "jowls below the jaw line",
         blobs: &[Blob::new([0.95, -2.1, 0.0], [0.55, 0.62, 0.65])],
-        motions: &[(Descent, 7.0), (Bulge, 1.0)],
+        motions: &[(Descent, 6.0), (Bulge, 1.0)],
         rolls: &[
             Roll {
                 line: &MARIONETTE_R,
@@ -553,6 +553,11 @@ pub struct ShapeField {
     hollow: Vec<Vec<f32>>,
     /// The smooth normals of the undisplaced positions, for [`ShapeField::normals`].
     smooth: Vec<Vec3>,
+    /// The head's unit, metres.
+    metres_per_unit: f32,
+    /// The full shape's occlusion ratio per vertex, made at the first
+    /// [`ShapeField::occlusion_at`].
+    full_occlusion: std::sync::OnceLock<Vec<f32>>,
 }
 
 impl ShapeField {
@@ -652,7 +657,34 @@ impl ShapeField {
             full,
             hollow,
             smooth: smooth_normals(mesh.positions(), mesh.indices()),
+            metres_per_unit,
+            full_occlusion: std::sync::OnceLock::new(),
         }
+    }
+
+    /// How much of the sky each vertex of `mesh` sees at `years` over how much it saw
+    /// undisplaced (docs/models.md §13 "Occlusion"): what the skin pass multiplies the skin
+    /// by. The full shape's ratio ([`occlusion::ratio`]), made once, toward 1 by
+    /// [`Self::weight_at`] (exact young and at full age; between them the sky follows the
+    /// movement's size). All 1 when nothing moves.
+    pub fn occlusion_at(&self, mesh: &Mesh, years: f32) -> Vec<f32> {
+        let n = mesh.vertex_count();
+        let w = self.weight_at(years);
+        if n != self.smooth.len() || w <= 0.0 {
+            return vec![1.0; n];
+        }
+        let full = self.full_occlusion.get_or_init(|| {
+            let (positions, indices) = (mesh.positions(), mesh.indices());
+            let mpu = self.metres_per_unit;
+            let full = self.full();
+            // Only the skin near a movement can lose or gain sky.
+            let near = occlusion::near_movement(positions, &full, mpu);
+            let rest = occlusion::sky_visibility(positions, indices, mpu, &|v| near[v]);
+            let moved: Vec<Vec3> = positions.iter().zip(&full).map(|(p, d)| *p + *d).collect();
+            let aged = occlusion::sky_visibility(&moved, indices, mpu, &|v| near[v]);
+            occlusion::ratio(&aged, &rest)
+        });
+        full.iter().map(|r| 1.0 + (r - 1.0) * w).collect()
     }
 
     /// How hollowed each vertex is at `years`, mm: the deflating regions' inward movement
@@ -739,6 +771,7 @@ impl ShapeField {
     }
 }
 
+pub mod occlusion;
 #[cfg(test)]
 mod tests;
 

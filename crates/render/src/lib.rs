@@ -33,6 +33,6 @@ pub use params::{
     Light, PomMode, SPARSE_HAIR_STRIDE, SkinParams, TilePlacement,
 };
 pub use renderer::{
-    COLOUR_FORMAT, DEPTH_FORMAT, PreparedLayer, Renderer, TileLayer, Upload, ViewId,
+    COLOUR_FORMAT, DEPTH_FORMAT, PreparedLayer, Renderer, ShapeUpload, TileLayer, Upload, ViewId,
 };
 pub use uniforms::FrameUniform;

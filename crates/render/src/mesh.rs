@@ -21,18 +21,21 @@ pub(crate) const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_at
 ];
 
 /// How the shape of an age moves one vertex (docs/models.md §13): its displacement (mesh
-/// units), its displaced normal (zero: keep the mesh's own) and how hollowed it is (0–1,
-/// [`hollow_occlusion`]). 28 bytes, a second vertex buffer beside the mesh's.
+/// units), its displaced normal (zero: keep the mesh's own), how hollowed it is (0–1,
+/// [`hollow_occlusion`]) and how much of the sky it lost to the shape around it (1 − the
+/// occlusion ratio: 0 none, negative for sky gained). 32 bytes, a second vertex buffer
+/// beside the mesh's; all zero is the mesh as it is.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub(crate) struct ShapeVertex {
     pub delta: [f32; 3],
     pub normal: [f32; 3],
     pub hollow: f32,
+    pub sky_lost: f32,
 }
 
-pub(crate) const SHAPE_ATTRIBUTES: [wgpu::VertexAttribute; 3] = wgpu::vertex_attr_array![
-    4 => Float32x3, 5 => Float32x3, 6 => Float32
+pub(crate) const SHAPE_ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+    4 => Float32x3, 5 => Float32x3, 6 => Float32, 7 => Float32
 ];
 
 /// How deep a hollow is for its darkening to be full, mm.
@@ -72,6 +75,7 @@ pub(crate) fn subdivide_shape(base: &[ShapeVertex], parents: &[(u32, u32)]) -> V
             delta: delta.to_array(),
             normal: normal.to_array(),
             hollow: 0.5 * (va.hollow + vb.hollow),
+            sky_lost: 0.5 * (va.sky_lost + vb.sky_lost),
         }
     }));
     out

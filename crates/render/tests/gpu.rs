@@ -12,7 +12,7 @@ use agesim_core::skin_colour::ColourFactors;
 use agesim_core::transition::{DistanceMetric, TransitionTexture};
 use agesim_core::{HeightMap, Mask, Mesh, defaults, head};
 use agesim_render::{
-    FrameParams, Gpu, HairShading, PomMode, PreparedLayer, Renderer, Upload, ViewId,
+    FrameParams, Gpu, HairShading, PomMode, PreparedLayer, Renderer, ShapeUpload, Upload, ViewId,
 };
 use glam::Vec3;
 
@@ -745,8 +745,14 @@ fn a_shape_moves_the_surface_as_the_moved_mesh_does() {
         let mut r = head_renderer(&gpu, &mesh);
         let still = r.render_to_image(&p, size).unwrap();
         let flat = vec![0.0; delta.len()];
-        r.upload_shape_to(ViewId::MAIN, Some((&delta, &normals, &flat)))
-            .unwrap();
+        let open = vec![1.0; delta.len()];
+        let shape = |k: usize| ShapeUpload {
+            delta: &delta[k..],
+            normals: &normals[k..],
+            hollow_mm: &flat[k..],
+            occlusion: &open[k..],
+        };
+        r.upload_shape_to(ViewId::MAIN, Some(shape(0))).unwrap();
         let shaped = r.render_to_image(&p, size).unwrap();
         assert!(shaped != still, "{mode:?}: the shape changed nothing");
         let mut m = head_renderer(&gpu, &moved);
@@ -754,10 +760,7 @@ fn a_shape_moves_the_surface_as_the_moved_mesh_does() {
         let diff = mean_abs_diff(&shaped, &reference);
         assert!(diff < 0.5, "{mode:?}: {diff} from the moved mesh");
         // A shape for another mesh: refused, the view keeps its shape.
-        assert!(
-            r.upload_shape_to(ViewId::MAIN, Some((&delta[1..], &normals[1..], &flat[1..])))
-                .is_err()
-        );
+        assert!(r.upload_shape_to(ViewId::MAIN, Some(shape(1))).is_err());
         assert!(r.render_to_image(&p, size).unwrap() == shaped);
         r.upload_shape_to(ViewId::MAIN, None).unwrap();
         assert!(
@@ -780,10 +783,16 @@ fn a_hollow_of_the_shape_is_darker() {
     // The same shape (nothing moves), hollowed by 0 or 4 mm everywhere: only the hollow
     // differs.
     let still = vec![Vec3::ZERO; normals.len()];
+    let open = vec![1.0; normals.len()];
     let mut luminance = |mm: f32| {
         let hollow = vec![mm; normals.len()];
-        r.upload_shape_to(ViewId::MAIN, Some((&still, &normals, &hollow)))
-            .unwrap();
+        let shape = ShapeUpload {
+            delta: &still,
+            normals: &normals,
+            hollow_mm: &hollow,
+            occlusion: &open,
+        };
+        r.upload_shape_to(ViewId::MAIN, Some(shape)).unwrap();
         let img = r.render_to_image(&p, size).unwrap();
         let skin: Vec<f64> = img
             .pixels()

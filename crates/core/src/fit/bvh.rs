@@ -135,6 +135,78 @@ impl Bvh {
     }
 }
 
+impl Bvh {
+    /// The nearest distance along the ray from `origin` in the unit direction `dir` at
+    /// which it meets a triangle, within (`near`, `far`); `None` when it meets none.
+    pub fn ray(&self, origin: Vec3, dir: Vec3, near: f32, far: f32) -> Option<f32> {
+        if self.is_empty() || !origin.is_finite() || !dir.is_finite() {
+            return None;
+        }
+        let inv = dir.recip();
+        let mut best = far;
+        let mut found = false;
+        let mut stack = [0u32; 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let node = self.nodes[stack[top] as usize];
+            if !ray_meets_box(origin, inv, node.min, node.max, near, best) {
+                continue;
+            }
+            if node.count > 0 {
+                for slot in node.start..node.start + node.count {
+                    if let Some(t) = ray_triangle(origin, dir, self.corners[slot as usize])
+                        && t > near
+                        && t < best
+                    {
+                        best = t;
+                        found = true;
+                    }
+                }
+            } else if top + 2 <= stack.len() {
+                stack[top] = node.start;
+                stack[top + 1] = node.start + 1;
+                top += 2;
+            }
+        }
+        found.then_some(best)
+    }
+}
+
+/// Whether the ray (origin, 1/direction `inv`) passes through the box within (`near`, `far`)
+/// (the slab test; an axis-parallel ray's infinities compare as they should).
+fn ray_meets_box(origin: Vec3, inv: Vec3, min: Vec3, max: Vec3, near: f32, far: f32) -> bool {
+    let a = (min - origin) * inv;
+    let b = (max - origin) * inv;
+    let enter = a.min(b).max_element().max(near);
+    let leave = a.max(b).min_element().min(far);
+    // NaN (0 · ∞: the origin on a slab's face) lets the box through.
+    enter <= leave || enter.is_nan() || leave.is_nan()
+}
+
+/// The distance along the ray at which it crosses the triangle, either side facing
+/// (Möller–Trumbore); `None` when it misses or runs along its plane.
+fn ray_triangle(origin: Vec3, dir: Vec3, [a, b, c]: [Vec3; 3]) -> Option<f32> {
+    let (e1, e2) = (b - a, c - a);
+    let p = dir.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-20 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = origin - a;
+    let u = s.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = dir.dot(q) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    Some(e2.dot(q) * inv)
+}
+
 fn build(nodes: &mut Vec<Node>, at: usize, tris: &mut [(u32, [Vec3; 3])], lo: usize, hi: usize) {
     let (mut min, mut max) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
     for (_, t) in &tris[lo..hi] {
@@ -266,5 +338,55 @@ mod tests {
             assert!((hit.bary.element_sum() - 1.0).abs() < 1e-5);
         }
         assert!(bvh.closest(Vec3::new(0.0, 0.0, 0.5), 0.1).is_none());
+    }
+
+    #[test]
+    fn a_ray_meets_what_a_scan_of_every_triangle_meets() {
+        let mesh = crate::head::skin_patch();
+        let p = mesh.positions();
+        let bvh = Bvh::new(p, mesh.indices());
+        let mut rng = crate::rng::Rng::new(11);
+        let (mut met, mut missed) = (0, 0);
+        for k in 0..300 {
+            let origin = Vec3::new(
+                rng.next_f32() * 0.06 - 0.03,
+                rng.next_f32() * 0.06 - 0.03,
+                if k % 2 == 0 { 0.02 } else { -0.02 },
+            );
+            // Straight down or up (an axis-parallel ray: infinite slabs) every third ray.
+            let dir = if k % 3 == 0 {
+                Vec3::Z * -origin.z.signum()
+            } else {
+                Vec3::new(
+                    rng.next_f32() - 0.5,
+                    rng.next_f32() - 0.5,
+                    -origin.z.signum(),
+                )
+                .normalize()
+            };
+            let brute = mesh
+                .triangles()
+                .filter_map(|t| ray_triangle(origin, dir, t.map(|i| p[i as usize])))
+                .filter(|&t| t > 0.0 && t < 1.0)
+                .fold(None, |m: Option<f32>, t| Some(m.map_or(t, |m| m.min(t))));
+            let got = bvh.ray(origin, dir, 0.0, 1.0);
+            match (got, brute) {
+                (Some(a), Some(b)) => {
+                    assert!((a - b).abs() < 1e-6, "{origin} {dir}: {a} vs {b}");
+                    met += 1;
+                }
+                (None, None) => missed += 1,
+                other => panic!("{origin} {dir}: {other:?}"),
+            }
+        }
+        assert!(met > 100 && missed > 10, "{met} met, {missed} missed");
+        // Within the range only.
+        let down = bvh
+            .ray(Vec3::new(0.0, 0.0, 0.02), Vec3::NEG_Z, 0.0, 1.0)
+            .unwrap();
+        assert!(
+            bvh.ray(Vec3::new(0.0, 0.0, 0.02), Vec3::NEG_Z, 0.0, 0.9 * down)
+                .is_none()
+        );
     }
 }

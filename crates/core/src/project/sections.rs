@@ -424,7 +424,7 @@ impl Default for HairSection {
             k_diff: 0.7,
             k_spec: 0.35,
             shininess: 40.0,
-            k_amb: 0.05,
+            k_amb: 0.15,
         }
     }
 }

@@ -296,6 +296,9 @@ pub struct AgedShape {
     pub normals: Vec<glam::Vec3>,
     /// How hollowed each vertex is, mm ([`crate::shape::ShapeField::hollow_at`]).
     pub hollow_mm: Vec<f32>,
+    /// How much of the sky each vertex sees over how much it saw undisplaced
+    /// ([`crate::shape::ShapeField::occlusion_at`]).
+    pub occlusion: Vec<f32>,
     pub years: f32,
 }
 
@@ -1017,6 +1020,7 @@ impl Scene {
             key,
             Arc::new(AgedShape {
                 hollow_mm: field.hollow_at(years),
+                occlusion: field.occlusion_at(&self.inputs.mesh, years),
                 delta,
                 normals,
                 years,

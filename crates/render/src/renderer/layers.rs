@@ -30,6 +30,18 @@ fn edge_indices(indices: &[u32]) -> Vec<u32> {
     edges.into_iter().flat_map(|(a, b)| [a, b]).collect()
 }
 
+/// The shape of one age, per vertex of the uploaded mesh (docs/models.md §13): the
+/// regions' displacement (mesh units), the displaced normal, how far the deflating regions
+/// took it in (mm, the hollow the skin pass darkens) and how much of the sky it sees over
+/// how much it saw undisplaced (the skin pass multiplies the skin by it).
+#[derive(Clone, Copy, Debug)]
+pub struct ShapeUpload<'a> {
+    pub delta: &'a [glam::Vec3],
+    pub normals: &'a [glam::Vec3],
+    pub hollow_mm: &'a [f32],
+    pub occlusion: &'a [f32],
+}
+
 impl Renderer {
     /// Uploads the head (positions, normals, UVs, tangents with sign; docs/models.md §1, §4) —
     /// its once-subdivided copy for [`PomMode::Displacement`] follows on the first frame
@@ -132,40 +144,40 @@ impl Renderer {
             })
     }
 
-    /// Uploads the shape of `view`'s age (docs/models.md §13): per vertex of the uploaded
-    /// mesh, the regions' displacement (mesh units), the displaced normal and how far its
-    /// deflating regions took it in (mm, the hollow the skin pass darkens), drawn by moving
-    /// the vertices in the surface pass; `None` draws the mesh as it is. The view's stored
-    /// surface is drawn again.
+    /// Uploads the shape of `view`'s age (docs/models.md §13, [`ShapeUpload`]), drawn by
+    /// moving the vertices in the surface pass; `None` draws the mesh as it is. The view's
+    /// stored surface is drawn again.
     pub fn upload_shape_to(
         &mut self,
         view: ViewId,
-        shape: Option<(&[glam::Vec3], &[glam::Vec3], &[f32])>,
+        shape: Option<ShapeUpload<'_>>,
     ) -> Result<(), RenderError> {
         let vi = self.view_index(view)?;
         let shape = match shape {
             None => None,
-            Some((delta, normals, hollow_mm)) => {
+            Some(s) => {
                 let count = self
                     .mesh
                     .as_ref()
                     .map_or(0, |m| m.vertex_count_of() as usize);
-                if delta.len() != count || normals.len() != count || hollow_mm.len() != count {
+                let lens = [
+                    s.delta.len(),
+                    s.normals.len(),
+                    s.hollow_mm.len(),
+                    s.occlusion.len(),
+                ];
+                if lens.iter().any(|&l| l != count) {
                     return Err(RenderError::InvalidMesh(format!(
-                        "a shape of {} displacements, {} normals and {} hollows for a mesh of {count} vertices",
-                        delta.len(),
-                        normals.len(),
-                        hollow_mm.len()
+                        "a shape of {} displacements, {} normals, {} hollows and {} occlusions for a mesh of {count} vertices",
+                        lens[0], lens[1], lens[2], lens[3]
                     )));
                 }
-                let data: Vec<ShapeVertex> = delta
-                    .iter()
-                    .zip(normals)
-                    .zip(hollow_mm)
-                    .map(|((d, n), h)| ShapeVertex {
-                        delta: d.to_array(),
-                        normal: n.to_array(),
-                        hollow: crate::mesh::hollow_occlusion(*h),
+                let data: Vec<ShapeVertex> = (0..count)
+                    .map(|v| ShapeVertex {
+                        delta: s.delta[v].to_array(),
+                        normal: s.normals[v].to_array(),
+                        hollow: crate::mesh::hollow_occlusion(s.hollow_mm[v]),
+                        sky_lost: 1.0 - s.occlusion[v],
                     })
                     .collect();
                 let base = self.shape_buffer("agesim shape", &data);

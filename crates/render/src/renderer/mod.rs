@@ -26,7 +26,7 @@ use crate::mesh::{MeshData, subdivide};
 use crate::params::{FrameParams, PomMode};
 use crate::uniforms::{FrameContext, FrameUniform};
 
-pub use layers::PreparedLayer;
+pub use layers::{PreparedLayer, ShapeUpload};
 pub use views::ViewId;
 
 use layers::{FLAT_NORMAL, Layer, create_r16f, create_rgba8, prepare_r16f};

@@ -9,6 +9,7 @@
 
 use std::time::Instant;
 
+use agesim_core::fit::bvh::ray_triangle;
 use agesim_core::project::Project;
 use agesim_core::scene::Scene;
 use agesim_core::shape::{REGIONS, ShapeField, occlusion};
@@ -32,21 +33,6 @@ fn time_ms(mut f: impl FnMut()) -> f64 {
             })
             .collect(),
     )
-}
-
-/// Möller–Trumbore, either side facing.
-fn ray_triangle(o: Vec3, d: Vec3, [a, b, c]: [Vec3; 3]) -> Option<f32> {
-    let (e1, e2) = (b - a, c - a);
-    let p = d.cross(e2);
-    let det = e1.dot(p);
-    if det.abs() < 1e-20 {
-        return None;
-    }
-    let s = o - a;
-    let u = s.dot(p) / det;
-    let q = s.cross(e1);
-    let v = d.dot(q) / det;
-    (u >= 0.0 && v >= 0.0 && u + v <= 1.0).then(|| e2.dot(q) / det)
 }
 
 fn main() {

@@ -184,9 +184,10 @@ fn ray_meets_box(origin: Vec3, inv: Vec3, min: Vec3, max: Vec3, near: f32, far: 
     enter <= leave || enter.is_nan() || leave.is_nan()
 }
 
-/// The distance along the ray at which it crosses the triangle, either side facing
-/// (Möller–Trumbore); `None` when it misses or runs along its plane.
-fn ray_triangle(origin: Vec3, dir: Vec3, [a, b, c]: [Vec3; 3]) -> Option<f32> {
+/// The distance along the ray (`origin`, unit `dir`) at which it crosses the triangle,
+/// either side facing (Möller–Trumbore), negative behind the origin; `None` when it misses
+/// or runs along its plane.
+pub fn ray_triangle(origin: Vec3, dir: Vec3, [a, b, c]: [Vec3; 3]) -> Option<f32> {
     let (e1, e2) = (b - a, c - a);
     let p = dir.cross(e2);
     let det = e1.dot(p);

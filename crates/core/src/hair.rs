@@ -595,6 +595,7 @@ fn triangle_hairs(
         let (spread, thin) = (rng.next_f32(), rng.next_f32());
         let edge_u = rng.next_f32();
         let fringe_u = rng.next_f32();
+        let stray_u = rng.next_f32();
 
         let b0 = 1.0 - r1 - r2;
         let uv_k = uv[0] * b0 + uv[1] * r1 + uv[2] * r2;
@@ -667,6 +668,7 @@ fn triangle_hairs(
         }
         // Where the edge moves up, receding hair within `ragged` of the hair that stays
         // stays too, thinned as the fringe's top is.
+        let mut tuft = false;
         if ragged > 0.0
             && texture_age < 1.0
             && let Some((e, _)) =
@@ -676,7 +678,23 @@ fn triangle_hairs(
             let goes = 0.85 * (1.0 - smooth01((ragged - e) / (FRINGE_REACH * taper_mm)));
             if fringe_u >= goes {
                 age = disappearance(1.0, spread, thin, params);
+                tuft = true;
             }
+        }
+        // Strays: a few receding hairs beyond the fringe's top stay too, fewer farther out
+        // (the bald scalp above an old man's fringe keeps sparse single hairs; without them
+        // the fringe read, blind, as "a flat painted band with a hard top edge").
+        let mut stray = false;
+        if taper_mm > 0.0
+            && texture_age < 1.0
+            && !tuft
+            && let Some((e, _)) =
+                nearest_ring(transition, uv_k, mm_per_texel, STRAY_REACH_MM, |a| a >= 1.0)
+            && stray_u < STRAY_SHARE * (1.0 - smooth01(e / STRAY_REACH_MM))
+        {
+            age = disappearance(1.0, spread, thin, params);
+            length = length.min(STRAY_LENGTH);
+            stray = true;
         }
         // A soft edge (with the receding fringe): near bare skin fewer hairs, and next to
         // hair that goes earlier some go as early, at random between the two ages.
@@ -685,7 +703,7 @@ fn triangle_hairs(
             if taper_mm <= 0.0 && edge_u < 0.8 * bare {
                 continue;
             }
-            if earliest < age && edge_u < 0.5 {
+            if earliest < age && edge_u < 0.5 && !stray {
                 age = (earliest + (age - earliest) * 2.0 * edge_u).max(1e-3);
             }
         }
@@ -767,6 +785,13 @@ const SPARSE_REACH: f32 = 1.0 / 3.0;
 /// 2.5 × 18 mm, so the fringe's top thins over 45 mm (over the taper alone it read, blind,
 /// as "a hard, straight diagonal top edge").
 const FRINGE_REACH: f32 = 2.5;
+
+/// How far above the hair that stays strays are found, mm, the share of the receding
+/// hairs that stay as strays next to it (falling smoothly to none at the reach), and their
+/// length factor (miniaturised).
+const STRAY_REACH_MM: f32 = 35.0;
+const STRAY_SHARE: f32 = 0.3;
+const STRAY_LENGTH: f32 = 0.7;
 
 /// How far the fringe's edge moves along its length, each way, mm.
 const RAGGED_MM: f32 = 16.0;
@@ -1515,6 +1540,65 @@ mod tests {
         assert_ne!(
             ragged_noise(Vec3::ONE * 10.0, 5),
             ragged_noise(Vec3::ONE * 10.0, 6)
+        );
+    }
+
+    #[test]
+    fn strays_thin_out_over_the_bald_scalp_above_the_fringe() {
+        // Above the fringe's top (the texture's edge at v = 0.25, tufts reaching
+        // [`RAGGED_MM`] above it), a few of the hairs that go stay at t = 1, fewer farther
+        // up, none beyond the strays' reach.
+        let g = grid(16, 0.3);
+        let params = HairParams::new(60.0, 1.0)
+            .unwrap()
+            .with_seed(5)
+            .with_taper_mm(DEFAULT_TAPER_MM)
+            .unwrap();
+        let hairs = HairInstances::generate(&g.surface(), &transition(), &params).unwrap();
+        // The share that stays at t = 1 among the hairs `lo`–`hi` mm above the edge, 20 mm
+        // or more inside the disc of hair.
+        let share = |lo: f32, hi: f32| {
+            let hs: Vec<&HairInstance> = hairs
+                .instances()
+                .iter()
+                .filter(|h| {
+                    let above = (h.uv().y - 0.25) * 300.0;
+                    let inside = (0.4 - (h.uv() - Vec2::splat(0.5)).length()) * 300.0;
+                    (lo..hi).contains(&above) && inside > 20.0
+                })
+                .collect();
+            let stay = hs.iter().filter(|h| h.disappear_age() >= 1.0).count();
+            (stay as f32 / hs.len() as f32, hs.len())
+        };
+        // (The distance to the hair that stays is read on rings, the outer two at 65 and
+        // 100 % of the reach: 23 and 35 mm.)
+        let (near, n_near) = share(RAGGED_MM + 2.0, RAGGED_MM + 6.0);
+        let (far, _) = share(RAGGED_MM + 10.0, RAGGED_MM + STRAY_REACH_MM);
+        let (beyond, n_beyond) = share(RAGGED_MM + STRAY_REACH_MM + 2.0, 150.0);
+        eprintln!("strays: {near} of {n_near} near, {far} farther, {beyond} of {n_beyond} beyond");
+        assert!(near > 0.02 && near < STRAY_SHARE, "{near}");
+        assert!(far < near, "{far} {near}");
+        assert!(beyond == 0.0 && n_beyond > 100, "{beyond} {n_beyond}");
+        // Miniaturised: no stray has the full length (stored as 16 bits).
+        assert!(
+            hairs
+                .instances()
+                .iter()
+                .filter(|h| (h.uv().y - 0.25) * 300.0 > RAGGED_MM + 2.0 && h.disappear_age() >= 1.0)
+                .all(|h| h.length_factor() <= STRAY_LENGTH + 1e-4)
+        );
+        // [T]'s model (no taper) keeps none.
+        let plain = HairInstances::generate(
+            &g.surface(),
+            &transition(),
+            &HairParams::new(60.0, 1.0).unwrap().with_seed(5),
+        )
+        .unwrap();
+        assert!(
+            plain
+                .instances()
+                .iter()
+                .all(|h| h.uv().y <= 0.26 || h.disappear_age() < 1.0)
         );
     }
 

@@ -74,6 +74,14 @@ impl Blob {
         Self { soft: true, ..self }
     }
 
+    /// The blob with `factor` times its region's descent.
+    const fn descending(self, factor: f32) -> Self {
+        Self {
+            descent: factor,
+            ..self
+        }
+    }
+
     /// The blob with `factor` times its region's deflation.
     const fn deflating(self, factor: f32) -> Self {
         Self {
@@ -531,11 +539,16 @@ pub const REGIONS: [ShapeRegion; 11] = [
             Blob::new([0.0, -2.75, 0.05], [1.1, 0.5, 0.7]),
             Blob::new([0.3, -2.9, -0.75], [0.1, 0.3, 0.45]).bulging(3.0),
             Blob::new([0.32, -3.25, -0.96], [0.1, 0.3, 0.45]).bulging(3.0),
-            // The wattle: the throat's skin at the angle of chin and neck hangs out 9 mm
-            // (blind: "in profile the neck is long, smooth and taut, no wattle"), rounding
-            // the angle into an old throat's sagging line (hung 12 mm lower, under a
-            // sharp angle, it read blind as "a ledge under the jaw").
-            Blob::new([0.0, -2.95, -0.6], [0.6, 0.6, 0.5]).bulging(18.0),
+            // The wattle: the throat's skin at the angle of chin and neck hangs down 12 mm
+            // and out 2 mm (blind: "in profile the neck is long, smooth and taut, no
+            // wattle"), rounding the angle into an old throat's sagging line. A dish, and
+            // mostly down: bulging 9 mm along the normals, it pushed the neck's sides out
+            // too, a shaded edge read blind as "a dark diagonal slash" from the front (and
+            // hung 12 mm lower under a sharp angle, as "a ledge under the jaw").
+            Blob::new([0.0, -2.9, -0.6], [0.8, 0.7, 0.5])
+                .bulging(4.0)
+                .descending(4.0)
+                .soft(),
         ],
         motions: &[(Descent, 3.0), (Bulge, 0.5)],
         rolls: &[],

@@ -134,6 +134,10 @@ pub struct Roll {
     pub mirrored: bool,
 }
 
+/// How far a roll's shadow reaches up its wall and down from its crease, face units.
+const SHADE_UP: f32 = 0.04;
+const SHADE_DOWN: f32 = 0.09;
+
 /// The part of a roll's length over which each end fades in.
 const ROLL_END_FADE: f32 = 0.25;
 
@@ -219,6 +223,21 @@ impl Roll {
         };
         let c = (1.0 - s.abs() / self.crease_half).max(0.0);
         fade * (self.height_mm + self.crease_mm) * c * c
+    }
+
+    /// The shadow under the roll at `q` (0–1): 1 on the crease's line, falling to 0 a
+    /// little up the roll's wall and farther out on the lower side ([`SHADE_UP`],
+    /// [`SHADE_DOWN`]), times the ends' fade.
+    pub fn shade(&self, q: Vec3) -> f32 {
+        let Some((s, fade)) = self.place(q) else {
+            return 0.0;
+        };
+        let w = if s >= 0.0 {
+            1.0 - smoothstep(0.0, SHADE_UP, s)
+        } else {
+            1.0 - smoothstep(0.0, SHADE_DOWN, -s)
+        };
+        fade * w
     }
 
     /// Its weight at `q` (for showing where it acts): 1 on the line and up to its crest,
@@ -555,6 +574,21 @@ pub const REGIONS: [ShapeRegion; 11] = [
         curve: curve(40.0, 80.0),
     },
 ];
+
+/// The bags' place in [`REGIONS`].
+pub const BAGS: usize = 2;
+
+/// The shadow under the bags at `q` (face frame, 0–1, at full age and strength): along
+/// the lid–cheek junction, their roll's crease ([`Roll::shade`]). The skin colour draws
+/// it, as the crease is narrower than a mesh's triangles (the nasolabial and marionette
+/// rolls' creases are drawn by their wrinkle files).
+pub fn drawn_crease(q: Vec3) -> f32 {
+    REGIONS[BAGS]
+        .rolls
+        .iter()
+        .map(|r| r.shade(q))
+        .fold(0.0, f32::max)
+}
 
 /// Every region's full displacement per vertex of one head, in its units.
 #[derive(Clone, Debug, PartialEq)]

@@ -429,6 +429,10 @@ impl Project {
             redness: a.redness.factor(years),
             contrast: a.contrast.factor(years),
             brow_gray,
+            bags: self.shape.strengths()[crate::shape::BAGS]
+                * crate::shape::REGIONS[crate::shape::BAGS]
+                    .curve
+                    .factor(years),
         }
     }
 

@@ -364,3 +364,22 @@ fn the_aged_shape_hides_sky_in_its_folds_and_nowhere_else() {
         assert!((m - (1.0 + (o - 1.0) * w)).abs() < 1e-5, "{m} {o} {w}");
     }
 }
+
+/// The shadow the colour draws under the bags lies on their roll's crease: 1 on the
+/// lid–cheek junction under each eye's middle, less up the bag's wall than down the cheek
+/// at the same distance, 0 away from it.
+#[test]
+fn the_bags_shadow_lies_on_their_crease() {
+    assert_eq!(REGIONS[BAGS].name, "bags");
+    for side in [-1.0f32, 1.0] {
+        let on = Vec3::new(0.6 * side, -0.36, 0.26);
+        assert!(drawn_crease(on) > 0.95, "{}", drawn_crease(on));
+        let (up, down) = (
+            drawn_crease(on + Vec3::Y * 0.03),
+            drawn_crease(on - Vec3::Y * 0.03),
+        );
+        assert!(up < down && up > 0.0, "{up} {down}");
+        assert_eq!(drawn_crease(on - Vec3::Y * 0.2), 0.0);
+        assert_eq!(drawn_crease(Vec3::new(0.6 * side, 0.3, 0.3)), 0.0);
+    }
+}

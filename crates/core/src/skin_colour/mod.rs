@@ -58,6 +58,10 @@ const BEARD_LIFT: f32 = 0.5;
 /// a brown-grey shadow; a violet one, and one taking a third from green, read blind as
 /// "bruise paint").
 const UNDER_EYE_TINT: [f32; 3] = [0.16, 0.2, 0.22];
+/// How much the shadow under the bags darkens the skin at the crease, at full age and
+/// strength (0.45 read as "a bruise"), and its tint per channel.
+const CREASE_SHADE: f32 = 0.36;
+const CREASE_TINT: [f32; 3] = [0.8, 1.0, 0.95];
 /// Feature size of the redness and of the thread veins, mm.
 const REDNESS_MM: (f32, f32) = (6.0, 3.0);
 
@@ -163,6 +167,9 @@ pub struct ColourFactors {
     pub contrast: f32,
     /// The brows' gray fraction.
     pub brow_gray: f32,
+    /// The bags' shape at this age (their region's strength times its curve): the
+    /// shadow of the lid–cheek junction under them ([`crate::shape::drawn_crease`]).
+    pub bags: f32,
 }
 
 impl ColourFactors {
@@ -181,6 +188,7 @@ impl ColourFactors {
             self.redness,
             self.contrast,
             self.brow_gray,
+            self.bags,
         ]
         .iter()
         .all(|&f| f <= 0.0)
@@ -689,6 +697,7 @@ struct Fields {
     brow_draw: u8,
     brow_strand: u8,
     under_eye: u8,
+    crease: u8,
     beard: u8,
     bare: u8,
 }
@@ -762,6 +771,9 @@ impl Fields {
                 128
             },
             under_eye: unit_byte(w(Regions::under_eye)),
+            crease: unit_byte(w(|r: &Regions, t: Vec3| {
+                crate::shape::drawn_crease(r.relative(t))
+            })),
             // The beard wraps round the jaw's angle, behind the face's plane.
             beard: unit_byte(anywhere(Regions::beard)),
             bare: unit_byte(anywhere(Regions::bare_skin)),
@@ -1139,6 +1151,14 @@ impl Look<'_> {
         let shadow = s.under_eye * a.contrast * from_unit(f.under_eye);
         if shadow > 0.0 {
             c *= Vec3::ONE - Vec3::from(UNDER_EYE_TINT) * shadow.min(1.0);
+        }
+        // The shadow under the bags, along the lid–cheek junction: the aged shape's crease
+        // there is narrower than the mesh's triangles, so its shading cannot come from
+        // the shape's normals (docs/models.md §13 "Hollows"); a warm shadow (the skin's
+        // red scatters back out).
+        let crease = CREASE_SHADE * a.bags.min(1.5) * from_unit(f.crease);
+        if crease > 0.0 {
+            c *= Vec3::ONE - Vec3::from(CREASE_TINT) * crease;
         }
         // Paling and yellowing: a tint, so what is darker stays darker.
         c *= self.pale_tint * self.yellow;

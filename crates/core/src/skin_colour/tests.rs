@@ -562,3 +562,54 @@ fn the_gray_beard_takes_the_colour_of_the_bare_skin_round_it() {
     assert!(at_25 > 0.05, "{at_25}");
     assert!(at_80.abs() < 0.4 * at_25, "{at_25} → {at_80}");
 }
+
+/// The bags cast a shadow along the lid–cheek junction, narrower than the mesh's
+/// triangles, so the colour draws it: darker there at 80 with the bags' shape, the same
+/// without it (strength 0 or the shape off), and nowhere else.
+#[test]
+fn the_bags_shadow_the_lid_cheek_junction_with_their_shape() {
+    let cancel = CancelToken::never();
+    let n = 512usize;
+    let (_, old, texels) = young_and_old(n);
+    let lo = luminance(&old);
+    let junction: Vec<usize> = (0..n * n)
+        .filter(|&i| from_unit(texels.fields[i].crease) > 0.9)
+        .collect();
+    let elsewhere: Vec<usize> = (0..n * n)
+        .filter(|&i| texels.fields[i].crease == 0 && !texels.position[i].x.is_nan())
+        .collect();
+    assert!(junction.len() > 20, "{} junction texels", junction.len());
+    let mean = |v: &[f32], idx: &[usize]| idx.iter().map(|&i| v[i]).sum::<f32>() / idx.len() as f32;
+    let without = |edit: fn(&mut Project)| {
+        let mut project = Project::default();
+        edit(&mut project);
+        let mut scene = Scene::new(project).unwrap();
+        scene.bake_colour(n as u32, 1.0, &cancel).unwrap();
+        luminance(scene.aged_colour().unwrap())
+    };
+    for plain in [
+        without(|p| p.shape.bags = 0.0),
+        without(|p| p.shape.enabled = false),
+    ] {
+        let (shadowed, unshadowed) = (mean(&lo, &junction), mean(&plain, &junction));
+        eprintln!("the junction's luminance at 80 {shadowed:.3}, {unshadowed:.3} without the bags");
+        assert!(shadowed < 0.8 * unshadowed, "{shadowed} vs {unshadowed}");
+        assert_eq!(mean(&lo, &elsewhere), mean(&plain, &elsewhere));
+    }
+    // Under each eye, a band a few millimetres tall.
+    let frame = Regions::template().unwrap();
+    for side in [-1.0f32, 1.0] {
+        let q = junction
+            .iter()
+            .filter_map(|&i| {
+                let q = frame.relative(texels.position[i]);
+                (q.x * side > 0.0).then_some(q)
+            })
+            .collect::<Vec<_>>();
+        assert!(q.len() > 10, "{side}: {}", q.len());
+        assert!(
+            q.iter()
+                .all(|q| (0.2..1.1).contains(&q.x.abs()) && (-0.5..-0.1).contains(&q.y))
+        );
+    }
+}

@@ -223,13 +223,16 @@ const OUTER_HAIRLINE_M: &[(f32, f32)] = &[
 /// sideburns over the ears and around the back, lowest in front of the ears and rising
 /// toward the back of the head (a straight, level edge read as a pasted-on slab), about
 /// 3 cm of hair above the ears (1 cm read as "bare above the ears, a shell behind them");
-/// nothing on top (receded temples and crown).
+/// nothing on top (receded temples and crown). Its front edge slants up and back from the
+/// sideburn over 20° of longitude (rising 3 cm over 6°, it read, blind, as "a hard,
+/// straight vertical front edge above the ear").
 const INNER_TOP_M: &[(f32, f32)] = &[
     (0.0, -1.0),
-    (58.0, -1.0),
-    (62.0, 0.0),
-    (68.0, 0.03),
-    (75.0, 0.045),
+    (56.0, -1.0),
+    (60.0, -0.01),
+    (66.0, 0.01),
+    (72.0, 0.028),
+    (80.0, 0.045),
     (90.0, 0.055),
     (120.0, 0.062),
     (150.0, 0.068),

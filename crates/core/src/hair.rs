@@ -789,8 +789,8 @@ const FRINGE_REACH: f32 = 2.5;
 /// How far above the hair that stays strays are found, mm, the share of the receding
 /// hairs that stay as strays next to it (falling smoothly to none at the reach), and their
 /// length factor (miniaturised).
-const STRAY_REACH_MM: f32 = 35.0;
-const STRAY_SHARE: f32 = 0.3;
+const STRAY_REACH_MM: f32 = 30.0;
+const STRAY_SHARE: f32 = 0.25;
 const STRAY_LENGTH: f32 = 0.7;
 
 /// How far the fringe's edge moves along its length, each way, mm.

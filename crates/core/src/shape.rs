@@ -144,8 +144,9 @@ const ROLL_END_FADE: f32 = 0.25;
 impl Roll {
     /// Where `q` lies from the roll: its signed distance from the line (positive on the
     /// raised side), and the fade of the ends and of the depth gate there (0–1); `None`
-    /// when the roll does not reach it.
-    fn place(&self, q: Vec3) -> Option<(f32, f32)> {
+    /// when the roll does not reach it (beyond its reach, or `below` or more on the other
+    /// side).
+    fn place(&self, q: Vec3, below: f32) -> Option<(f32, f32)> {
         let q = if self.mirrored {
             Vec3::new(q.x.abs(), q.y, q.z)
         } else {
@@ -189,7 +190,7 @@ impl Roll {
         }
         let (d2, at, sign, z) = best;
         let s = sign * d2.sqrt();
-        if s >= self.reach || s <= -self.crease_half {
+        if s >= self.reach || s <= -below {
             return None;
         }
         let t = at / length;
@@ -202,7 +203,7 @@ impl Roll {
     /// How far the roll moves the skin at `q` out along its normal at full age, mm
     /// (negative: into the crease).
     pub fn height_mm(&self, q: Vec3) -> f32 {
-        let Some((s, fade)) = self.place(q) else {
+        let Some((s, fade)) = self.place(q, self.crease_half) else {
             return 0.0;
         };
         let roll = if s > 0.0 {
@@ -218,7 +219,7 @@ impl Roll {
     /// together over the crease's width (the skin under an overhang sees less of the sky
     /// and of the light, like a hollow's; docs/models.md §13 "Hollows").
     pub fn hollow_mm(&self, q: Vec3) -> f32 {
-        let Some((s, fade)) = self.place(q) else {
+        let Some((s, fade)) = self.place(q, self.crease_half) else {
             return 0.0;
         };
         let c = (1.0 - s.abs() / self.crease_half).max(0.0);
@@ -229,7 +230,7 @@ impl Roll {
     /// little up the roll's wall and farther out on the lower side ([`SHADE_UP`],
     /// [`SHADE_DOWN`]), times the ends' fade.
     pub fn shade(&self, q: Vec3) -> f32 {
-        let Some((s, fade)) = self.place(q) else {
+        let Some((s, fade)) = self.place(q, SHADE_DOWN) else {
             return 0.0;
         };
         let w = if s >= 0.0 {
@@ -243,7 +244,7 @@ impl Roll {
     /// Its weight at `q` (for showing where it acts): 1 on the line and up to its crest,
     /// falling to 0 where it ends.
     pub fn weight(&self, q: Vec3) -> f32 {
-        let Some((s, fade)) = self.place(q) else {
+        let Some((s, fade)) = self.place(q, self.crease_half) else {
             return 0.0;
         };
         let w = if s >= 0.0 {
@@ -355,16 +356,18 @@ const NASOLABIAL_L: [[f32; 3]; 8] = [
     [0.68, -1.4, 0.41],
 ];
 
-/// The cheek over a nasolabial fold: a crest 3 mm from the crease, falling back over
-/// 33 mm (the fold's "cheek sagging over it"; falling back over 16 mm, its foot drew a
-/// second line out on the cheek, read blind as "a dent beside the mouth").
+/// The cheek over a nasolabial fold: a crest 4.5 mm high 5 mm from the crease, falling
+/// back over 42 mm (the fold's "cheek sagging over it"; falling back over 16 mm, its foot
+/// drew a second line out on the cheek, read blind as "a dent beside the mouth"; 6.5 mm
+/// high 3 mm from the crease, its slope on the side away from the light as "a dark grimy
+/// blob by the mouth corner, the folds lopsided").
 const CHEEK_ROLL: Roll = Roll {
     line: &[],
     raised: [1.0, 0.0],
-    crest: 0.06,
-    reach: 0.75,
-    height_mm: 6.5,
-    crease_mm: 1.5,
+    crest: 0.1,
+    reach: 0.9,
+    height_mm: 4.5,
+    crease_mm: 1.0,
     crease_half: 0.06,
     mirrored: false,
 };
@@ -385,6 +388,16 @@ const MARIONETTE_L: [[f32; 3]; 5] = [
     [0.72, -1.74, 0.28],
     [0.75, -1.84, 0.23],
 ];
+
+/// A marionette groove from its second point on: the jowl's roll starts below the mouth
+/// corner, where the cheek's roll over the nasolabial fold ends (from the corner, the two
+/// rolls' ends met in a pit, read blind as "a dark grimy blob by the mouth corner").
+const fn below_the_mouth(line: &'static [[f32; 3]]) -> &'static [[f32; 3]] {
+    match line.split_first() {
+        Some((_, rest)) => rest,
+        None => line,
+    }
+}
 
 /// The jowl beside a marionette groove.
 const JOWL_ROLL: Roll = Roll {
@@ -505,12 +518,12 @@ pub const REGIONS: [ShapeRegion; 11] = [
         motions: &[(Descent, 6.0), (Bulge, 1.0)],
         rolls: &[
             Roll {
-                line: &MARIONETTE_R,
+                line: below_the_mouth(&MARIONETTE_R),
                 raised: [-1.0, 0.0],
                 ..JOWL_ROLL
             },
             Roll {
-                line: &MARIONETTE_L,
+                line: below_the_mouth(&MARIONETTE_L),
                 raised: [1.0, 0.0],
                 ..JOWL_ROLL
             },

@@ -356,7 +356,7 @@ fn the_aged_shape_hides_sky_in_its_folds_and_nowhere_else() {
     };
     let (left, right) = (mean_near(NASOLABIAL_L[3]), mean_near(NASOLABIAL_R[3]));
     eprintln!("sky kept in the nasolabial creases: {left:.3} left, {right:.3} right");
-    assert!(left < 0.95 && right < 0.95, "{left} {right}");
+    assert!(left < 0.97 && right < 0.97, "{left} {right}");
     // Part of the movement, that part of the change.
     let w = field.weight_at(60.0) / field.weight_at(80.0);
     let mid = field.occlusion_at(&mesh, 60.0);
@@ -379,6 +379,12 @@ fn the_bags_shadow_lies_on_their_crease() {
             drawn_crease(on - Vec3::Y * 0.03),
         );
         assert!(up < down && up > 0.0, "{up} {down}");
+        // Past the crease's own half-width (0.06), it fades on: no edge there.
+        let (inside, past) = (
+            drawn_crease(on - Vec3::Y * 0.055),
+            drawn_crease(on - Vec3::Y * 0.065),
+        );
+        assert!(past > 0.05 && inside - past < 0.2, "{inside} {past}");
         assert_eq!(drawn_crease(on - Vec3::Y * 0.2), 0.0);
         assert_eq!(drawn_crease(Vec3::new(0.6 * side, 0.3, 0.3)), 0.0);
     }

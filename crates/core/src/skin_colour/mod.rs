@@ -60,8 +60,8 @@ const BEARD_LIFT: f32 = 0.5;
 const UNDER_EYE_TINT: [f32; 3] = [0.16, 0.2, 0.22];
 /// How much the shadow under the bags darkens the skin at the crease, at full age and
 /// strength (0.45 read as "a bruise"), and its tint per channel.
-const CREASE_SHADE: f32 = 0.36;
-const CREASE_TINT: [f32; 3] = [0.8, 1.0, 0.95];
+const CREASE_SHADE: f32 = 0.3;
+const CREASE_TINT: [f32; 3] = [0.7, 0.85, 1.0];
 /// Feature size of the redness and of the thread veins, mm.
 const REDNESS_MM: (f32, f32) = (6.0, 3.0);
 

@@ -566,20 +566,29 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // Under the chin (3 mm down: 5 mm, with the wattle, pinched the skin under the jaw
         // into a dark slit, read blind as "a gash under the chin"); the two platysmal
         // bands, vertical cords from under the chin down the front of the neck (a chain
-        // each side), standing out 1.5 mm.
+        // each side), standing out 1.5 mm, not descending (narrower and descending with
+        // the rest, their edges sheared the skin into "a sharp diagonal fold under the
+        // chin", blind).
         blobs: &[
             Blob::new([0.0, -2.75, 0.05], [1.1, 0.5, 0.7]),
-            Blob::new([0.3, -2.9, -0.75], [0.1, 0.3, 0.45]).bulging(3.0),
-            Blob::new([0.32, -3.25, -0.96], [0.1, 0.3, 0.45]).bulging(3.0),
-            // The wattle: the throat's skin at the angle of chin and neck hangs down 12 mm
+            Blob::new([0.3, -2.9, -0.75], [0.15, 0.35, 0.45])
+                .bulging(3.0)
+                .descending(0.0)
+                .soft(),
+            Blob::new([0.32, -3.25, -0.96], [0.15, 0.35, 0.45])
+                .bulging(3.0)
+                .descending(0.0)
+                .soft(),
+            // The wattle: the throat's skin at the angle of chin and neck hangs down 9 mm
             // and out 2 mm (blind: "in profile the neck is long, smooth and taut, no
-            // wattle"), rounding the angle into an old throat's sagging line. A dish, and
-            // mostly down: bulging 9 mm along the normals, it pushed the neck's sides out
-            // too, a shaded edge read blind as "a dark diagonal slash" from the front (and
-            // hung 12 mm lower under a sharp angle, as "a ledge under the jaw").
-            Blob::new([0.0, -2.9, -0.6], [0.8, 0.7, 0.5])
+            // wattle"), rounding the angle into an old throat's sagging line. A broad
+            // dish, and mostly down: bulging 9 mm along the normals, it pushed the neck's
+            // sides out too, and 12 mm down over a narrower dish sheared them, each read
+            // blind as "a dark diagonal slash" from the front (and hung 12 mm lower under
+            // a sharp angle, as "a ledge under the jaw").
+            Blob::new([0.0, -2.9, -0.6], [1.3, 0.7, 0.5])
                 .bulging(4.0)
-                .descending(4.0)
+                .descending(3.0)
                 .soft(),
         ],
         motions: &[(Descent, 3.0), (Bulge, 0.5)],

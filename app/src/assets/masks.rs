@@ -167,12 +167,17 @@ impl Face {
         0.1 + 0.85 * (1.0 - crown.max(temple))
     }
 
-    /// Where large wrinkles may appear (white): the face and the front of the neck, fading
-    /// under the hairline, toward the ears and the back; not on the eyes, weaker on the
-    /// lips.
+    /// Where large wrinkles may appear (white): the face and the front and sides of the
+    /// neck, fading under the hairline, toward the ears and the back; not on the eyes,
+    /// weaker on the lips.
     pub fn wrinkle_region(&self, p: Vec3) -> f32 {
         let lon = self.longitude_deg(p);
-        let front = 1.0 - smoothstep(70.0, 95.0, lon);
+        // The neck's lines go round its sides too (ending at the ears' plane, they read,
+        // blind, as "the sides of the neck smooth and young"): 25° farther back below the
+        // chin.
+        let neck = smoothstep(self.mouth.y - 0.04, self.mouth.y - 0.07, p.y);
+        let back = 25.0 * neck;
+        let front = 1.0 - smoothstep(70.0 + back, 95.0 + back, lon);
         let below_hair = 1.0 - smoothstep(-0.004, 0.006, p.y - lerp_table(OUTER_HAIRLINE_M, lon));
         // The eye (closed lids on the scan) is 0; the skin around it full from just
         // beyond the lids, so the lines under the lower lid can show.

@@ -688,6 +688,8 @@ fn triangle_hairs(
         if taper_mm > 0.0
             && texture_age < 1.0
             && !tuft
+            // (None stays beyond the share: no search for them.)
+            && stray_u < STRAY_SHARE
             && let Some((e, _)) =
                 nearest_ring(transition, uv_k, mm_per_texel, STRAY_REACH_MM, |a| a >= 1.0)
             && stray_u < STRAY_SHARE * (1.0 - smooth01(e / STRAY_REACH_MM))

@@ -481,8 +481,9 @@ pub const REGIONS: [ShapeRegion; 11] = [
         what: "temples hollowing",
         // Behind the orbit's outer rim, not reaching the eye's corner (the eye stays).
         // A dish (its plateau's rim drew, blind, "a hard vertical ridge" in the front
-        // outline), a little larger for it.
-        blobs: &[Blob::new([1.5, 0.45, -0.75], [0.6, 0.8, 0.9]).soft()],
+        // outline), a little larger for it, and not reaching the forehead's side (where
+        // its edge read as "a hard vertical step").
+        blobs: &[Blob::new([1.6, 0.5, -0.8], [0.55, 0.95, 1.0]).soft()],
         motions: &[(Deflate, 12.0)],
         rolls: &[],
         curve: curve(40.0, 80.0),

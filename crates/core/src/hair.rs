@@ -1486,11 +1486,9 @@ mod tests {
         assert!(HairParams::default().with_taper_mm(f32::NAN).is_err());
     }
 
-    #[test]
-    fn the_fringes_top_edge_moves_along_its_length() {
-        // The transition texture's edge between the hair that stays (v < 0.25) and the
-        // hair that goes is a straight line; at t = 1 the fringe's top wanders about it:
-        // tufts of hair that stays above it, bays below it, within [`RAGGED_MM`].
+    /// The 300 mm grid and the disc of hair of [`transition`], 60 hairs/cm², tapered (the
+    /// project's taper, with its ragged fringe and strays).
+    fn dense_tapered_hairs() -> (Grid, HairInstances) {
         let g = grid(16, 0.3);
         let params = HairParams::new(60.0, 1.0)
             .unwrap()
@@ -1498,6 +1496,15 @@ mod tests {
             .with_taper_mm(DEFAULT_TAPER_MM)
             .unwrap();
         let hairs = HairInstances::generate(&g.surface(), &transition(), &params).unwrap();
+        (g, hairs)
+    }
+
+    #[test]
+    fn the_fringes_top_edge_moves_along_its_length() {
+        // The transition texture's edge between the hair that stays (v < 0.25) and the
+        // hair that goes is a straight line; at t = 1 the fringe's top wanders about it:
+        // tufts of hair that stays above it, bays below it, within [`RAGGED_MM`].
+        let (_, hairs) = dense_tapered_hairs();
         // 10 mm columns across the edge, 20 mm or more inside the disc of hair; in each,
         // the fringe's top: the highest 4 mm band where two in five of the hairs (of any
         // age) stay at t = 1 (the fade makes the hair that stays sparse over 45 mm, so a
@@ -1550,13 +1557,7 @@ mod tests {
         // Above the fringe's top (the texture's edge at v = 0.25, tufts reaching
         // [`RAGGED_MM`] above it), a few of the hairs that go stay at t = 1, fewer farther
         // up, none beyond the strays' reach.
-        let g = grid(16, 0.3);
-        let params = HairParams::new(60.0, 1.0)
-            .unwrap()
-            .with_seed(5)
-            .with_taper_mm(DEFAULT_TAPER_MM)
-            .unwrap();
-        let hairs = HairInstances::generate(&g.surface(), &transition(), &params).unwrap();
+        let (g, hairs) = dense_tapered_hairs();
         // The share that stays at t = 1 among the hairs `lo`–`hi` mm above the edge, 20 mm
         // or more inside the disc of hair.
         let share = |lo: f32, hi: f32| {

@@ -59,7 +59,8 @@ const BEARD_LIFT: f32 = 0.5;
 /// "bruise paint").
 const UNDER_EYE_TINT: [f32; 3] = [0.16, 0.2, 0.22];
 /// How much the shadow under the bags darkens the skin at the crease, at full age and
-/// strength (0.45 read as "a bruise"), and its tint per channel.
+/// strength, and its tint per channel: blue taken most (0.36 taking green most, a magenta,
+/// read blind as "a purple bruise").
 const CREASE_SHADE: f32 = 0.3;
 const CREASE_TINT: [f32; 3] = [0.7, 0.85, 1.0];
 /// Feature size of the redness and of the thread veins, mm.

@@ -59,6 +59,7 @@ fn main() {
             packed: false,
             one_off: true,
             micro_normals: false,
+            shape_relief: true,
         };
         scene.bake(&request, &never).unwrap();
         let large = scene.large().unwrap().height.clone();

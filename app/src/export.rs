@@ -353,6 +353,7 @@ fn export_glb(
         packed: false,
         one_off: true,
         micro_normals: false,
+        shape_relief: true,
     };
     scene.bake(&request, cancel)?;
     progress(0.5, "composing the normal map");

@@ -94,6 +94,7 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
         packed: false,
         one_off: true,
         micro_normals: false,
+        shape_relief: false,
     };
     scene.bake(&request, &CancelToken::never())?;
     let bake_ms = ms(start);

@@ -385,6 +385,7 @@ impl EditorApp {
             packed: self.persisted.map_view.kind == MapKind::LargeNormal,
             one_off: false,
             micro_normals: self.persisted.map_view.kind == MapKind::MicroNormal,
+            shape_relief: true,
         };
         let shape_pictures = self.persisted.map_view.kind == MapKind::Shape;
         self.session.worker.submit(Job {

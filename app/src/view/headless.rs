@@ -33,6 +33,7 @@ impl HeadlessView {
                 packed: false,
                 one_off: true,
                 micro_normals: false,
+                shape_relief: true,
             },
             layers: Layers::default(),
             uploaded: Uploaded::default(),

@@ -152,7 +152,24 @@ impl Roll {
         } else {
             q
         };
-        let p = glam::Vec2::new(q.x, q.y);
+        let (s, ends, z) = self.locate(glam::Vec2::new(q.x, q.y))?;
+        if s >= self.reach || s <= -below {
+            return None;
+        }
+        let fade = ends * Self::depth_gate(q.z - z);
+        (fade > 0.0).then_some((s, fade))
+    }
+
+    /// How much of the roll reaches skin `dz` in front of (or behind) its line: all within
+    /// 0.2 face units, none beyond 0.4.
+    fn depth_gate(dz: f32) -> f32 {
+        1.0 - smoothstep(0.2, 0.4, dz.abs())
+    }
+
+    /// Where the point `p` (x, y of the face frame, on the line's side when mirrored)
+    /// lies from the line: its signed distance (positive on the raised side), the ends'
+    /// fade and the line's z there; `None` for a line of no length.
+    fn locate(&self, p: glam::Vec2) -> Option<(f32, f32, f32)> {
         let raised = glam::Vec2::from(self.raised);
         let points = self.line;
         let length: f32 = points
@@ -162,9 +179,8 @@ impl Roll {
         if length <= 0.0 {
             return None;
         }
-        // The nearest point of the line: (distance², arc length there, signed side, z).
-        let mut best = (f32::INFINITY, 0.0, 0.0, 0.0);
-        let mut along = 0.0;
+        // The nearest point of the line: (distance², signed side).
+        let mut best = (f32::INFINITY, 0.0);
         for w in points.windows(2) {
             let a = glam::Vec2::new(w[0][0], w[0][1]);
             let b = glam::Vec2::new(w[1][0], w[1][1]);
@@ -184,20 +200,50 @@ impl Roll {
                 } else {
                     -1.0
                 };
-                best = (d2, along + f * len, sign, w[0][2] + (w[1][2] - w[0][2]) * f);
+                best = (d2, sign);
             }
-            along += len;
         }
-        let (d2, at, sign, z) = best;
-        let s = sign * d2.sqrt();
-        if s >= self.reach || s <= -below {
-            return None;
-        }
-        let t = at / length;
+        let (d2, sign) = best;
+        // Where along the line, and the line's depth there, from the point's projection on
+        // the chord from end to end: continuous everywhere (the nearest segment's arc
+        // length jumps where two segments are equally near, and a jump in the ends' fade
+        // drew, in the relief finer than the triangles, a hairline "crack" on the cheek).
+        let (first, last) = (points[0], points[points.len() - 1]);
+        let chord = glam::Vec2::new(last[0] - first[0], last[1] - first[1]);
+        let t = ((p - glam::Vec2::new(first[0], first[1])).dot(chord)
+            / chord.length_squared().max(1e-12))
+        .clamp(0.0, 1.0);
+        let z = {
+            let target = t * length;
+            let mut along = 0.0;
+            let mut z = last[2];
+            for w in points.windows(2) {
+                let len = glam::Vec2::new(w[1][0] - w[0][0], w[1][1] - w[0][1]).length();
+                if along + len >= target && len > 0.0 {
+                    z = w[0][2] + (w[1][2] - w[0][2]) * ((target - along) / len);
+                    break;
+                }
+                along += len;
+            }
+            z
+        };
         let ends = smoothstep(0.0, ROLL_END_FADE, t) * smoothstep(0.0, ROLL_END_FADE, 1.0 - t);
-        let depth = 1.0 - smoothstep(0.2, 0.4, (q.z - z).abs());
-        let fade = ends * depth;
-        (fade > 0.0).then_some((s, fade))
+        Some((sign * d2.sqrt(), ends, z))
+    }
+
+    /// The roll's height across it at signed distance `s` from its line, mm, before the
+    /// fades: its crest on the raised side less its crease on the line.
+    fn profile_mm(&self, s: f32) -> f32 {
+        if s >= self.reach || s <= -self.crease_half {
+            return 0.0;
+        }
+        let roll = if s > 0.0 {
+            smoothstep(0.0, self.crest, s) * (1.0 - smoothstep(self.crest, self.reach, s))
+        } else {
+            0.0
+        };
+        let c = (1.0 - s.abs() / self.crease_half).max(0.0);
+        self.height_mm * roll - self.crease_mm * c * c
     }
 
     /// How far the roll moves the skin at `q` out along its normal at full age, mm
@@ -206,13 +252,7 @@ impl Roll {
         let Some((s, fade)) = self.place(q, self.crease_half) else {
             return 0.0;
         };
-        let roll = if s > 0.0 {
-            smoothstep(0.0, self.crest, s) * (1.0 - smoothstep(self.crest, self.reach, s))
-        } else {
-            0.0
-        };
-        let c = (1.0 - s.abs() / self.crease_half).max(0.0);
-        fade * (self.height_mm * roll - self.crease_mm * c * c)
+        fade * self.profile_mm(s)
     }
 
     /// How much of a hollow the crease makes at `q`, mm: the roll's crest and crease
@@ -366,8 +406,8 @@ const CHEEK_ROLL: Roll = Roll {
     raised: [1.0, 0.0],
     crest: 0.1,
     reach: 0.9,
-    height_mm: 4.5,
-    crease_mm: 1.0,
+    height_mm: 3.5,
+    crease_mm: 0.3,
     crease_half: 0.06,
     mirrored: false,
 };
@@ -403,10 +443,10 @@ const fn below_the_mouth(line: &'static [[f32; 3]]) -> &'static [[f32; 3]] {
 const JOWL_ROLL: Roll = Roll {
     line: &[],
     raised: [1.0, 0.0],
-    crest: 0.07,
-    reach: 0.4,
-    height_mm: 2.5,
-    crease_mm: 0.8,
+    crest: 0.12,
+    reach: 0.5,
+    height_mm: 1.5,
+    crease_mm: 0.6,
     crease_half: 0.06,
     mirrored: false,
 };
@@ -444,8 +484,8 @@ pub const REGIONS: [ShapeRegion; 11] = [
             crest: 0.07,
             reach: 0.2,
             height_mm: 2.2,
-            crease_mm: 1.0,
-            crease_half: 0.06,
+            crease_mm: 0.5,
+            crease_half: 0.08,
             mirrored: true,
         }],
         curve: curve(40.0, 75.0),
@@ -842,6 +882,7 @@ impl ShapeField {
 }
 
 pub mod occlusion;
+pub mod relief;
 #[cfg(test)]
 mod tests;
 

@@ -76,6 +76,9 @@ fn project_for(head: &Head, landmarks: bool) -> Project {
     p.pores.enabled = false;
     p.furrows.enabled = false;
     p.noise.strength = 0.0;
+    // The wrinkles' own places: without the shape's relief, which the large map also
+    // carries (crate::shape::relief has its own tests).
+    p.shape.enabled = false;
     if head.file.is_empty() {
         return p;
     }

@@ -14,6 +14,7 @@ use crate::mask::Mask;
 use crate::muscle::{Fibre, MaskValues};
 use crate::normal_map::{self, NormalSettings};
 use crate::project::Project;
+use crate::shape::relief::ShapeRelief;
 
 /// The keys each kept output was made from (see the module table).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -30,6 +31,20 @@ pub(super) struct LargeKey {
     packed: bool,
     /// The head layout's generation, when read through a correspondence.
     layout: Option<(u64, u32)>,
+    /// The shape's relief added to it: its identity, the regions' factors and the relief
+    /// depth (bits).
+    relief: Option<(usize, Vec<u32>, u32)>,
+}
+
+/// The shape's relief finer than the head's triangles ([`crate::shape::relief`]) at an
+/// age: added to the map in the head's layout.
+#[derive(Clone, Copy)]
+pub(super) struct ReliefAt<'a> {
+    pub(super) relief: &'a std::sync::Arc<ShapeRelief>,
+    /// The regions' curves at the age, in [`crate::shape::REGIONS`] order.
+    pub(super) factors: &'a [f32],
+    /// The depth of a normalised height of 1, UV units (the default view's relief depth).
+    pub(super) depth_uv: f32,
 }
 
 /// The large-wrinkle stage: fibre stamps, the map at an age, its packing.
@@ -79,6 +94,7 @@ impl LargeStage {
         layout: HeadLayoutMap<'_>,
         request: &BakeRequest,
         normal: &NormalSettings,
+        relief: Option<ReliefAt<'_>>,
         cancel: &CancelToken,
     ) -> Result<Changed, Error> {
         let mut changed = Changed::default();
@@ -96,6 +112,13 @@ impl LargeStage {
             normal: request.packed.then_some(*normal),
             packed: request.packed,
             layout: layout.correspondence.map(|c| (layout.generation, c.size())),
+            relief: relief.map(|r| {
+                (
+                    std::sync::Arc::as_ptr(r.relief) as usize,
+                    r.factors.iter().map(|f| f.to_bits()).collect(),
+                    r.depth_uv.to_bits(),
+                )
+            }),
         };
         if self.key.as_ref() == Some(&key) && self.map.is_some() {
             return Ok(changed);
@@ -147,13 +170,23 @@ impl LargeStage {
             self.spare = Some(height);
             return Err(e);
         }
-        self.keep(height, layout, p.large.depth, request, normal, key, cancel)?;
+        self.keep(
+            height,
+            layout,
+            p.large.depth,
+            request,
+            normal,
+            relief,
+            key,
+            cancel,
+        )?;
         changed.large = true;
         Ok(changed)
     }
 
     /// Packs a finished (normalised) map if asked, scaled by the depth, reads it into the
-    /// head's layout through the correspondence (a fitted head), and keeps it.
+    /// head's layout through the correspondence (a fitted head), adds the shape's relief
+    /// there (the packed map, the wrinkles' own, has none), and keeps it.
     #[allow(clippy::too_many_arguments)]
     fn keep(
         &mut self,
@@ -162,6 +195,7 @@ impl LargeStage {
         depth: f32,
         request: &BakeRequest,
         normal: &NormalSettings,
+        relief: Option<ReliefAt<'_>>,
         key: LargeKey,
         cancel: &CancelToken,
     ) -> Result<(), Error> {
@@ -172,7 +206,7 @@ impl LargeStage {
             Vec::new()
         };
         cancel.check()?;
-        let (height, template) = match layout.correspondence {
+        let (mut height, template) = match layout.correspondence {
             Some(c) => {
                 let (w, h) = (height.width_px(), height.height_px());
                 let head =
@@ -181,6 +215,9 @@ impl LargeStage {
             }
             None => (height, None),
         };
+        if let Some(r) = relief {
+            r.relief.apply(&mut height, r.factors, r.depth_uv);
+        }
         cancel.check()?;
         let previous = self.map.replace(LargeMap {
             height,

@@ -53,6 +53,7 @@ use crate::micro::MicroRelief;
 use crate::muscle::Fibre;
 use crate::normal_map::{self, NormalSettings};
 use crate::project::Project;
+use crate::shape::relief::ShapeRelief;
 use crate::transition::TransitionTexture;
 use crate::wrinkle_file::WrinkleFile;
 
@@ -101,6 +102,10 @@ pub struct BakeRequest {
     /// Without it the editor's tiles (up to 1024²) leave `normal_rgb` empty; larger tiles
     /// always have it.
     pub micro_normals: bool,
+    /// Also add the shape's relief finer than the head's triangles to the large map
+    /// ([`crate::shape::relief`]): what the view and the exported head show. `agesim
+    /// bake`'s maps are the wrinkles' alone (normalised: a full-depth wrinkle spans 1).
+    pub shape_relief: bool,
 }
 
 impl BakeRequest {
@@ -117,6 +122,7 @@ impl BakeRequest {
             packed: false,
             one_off: false,
             micro_normals: false,
+            shape_relief: true,
         }
     }
 
@@ -134,6 +140,7 @@ impl BakeRequest {
             one_off: true,
             // The exports make their normal map from the summed heights.
             micro_normals: false,
+            shape_relief: false,
         }
     }
 }
@@ -254,6 +261,9 @@ pub struct Scene {
     shape: Option<(ShapeKey, Arc<crate::shape::ShapeField>)>,
     /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
     shape_aged: Option<((usize, u32), Arc<AgedShape>)>,
+    /// The shape's relief finer than the head's triangles, added to the large-wrinkle
+    /// map ([`crate::shape::relief`]), keyed like the field and by its map size.
+    relief: Option<((ShapeKey, u32), Arc<ShapeRelief>)>,
     /// The brow hairs and lashes placed on the head, keyed by mesh and layout
     /// generations, metres per unit (bits) and seed.
     brows: Option<(BrowHairsKey, Arc<EyeHairs>)>,
@@ -358,6 +368,7 @@ impl Scene {
             colour: colour::ColourStage::default(),
             shape: None,
             shape_aged: None,
+            relief: None,
             brows: None,
             brows_aged: None,
             shown: None,
@@ -394,6 +405,7 @@ impl Scene {
             colour: self.colour.clone(),
             shape: self.shape.clone(),
             shape_aged: self.shape_aged.clone(),
+            relief: self.relief.clone(),
             brows: self.brows.clone(),
             brows_aged: self.brows_aged.clone(),
             shown: self.shown.clone(),
@@ -717,6 +729,24 @@ impl Scene {
         } else {
             None
         };
+        let relief = match &correspondence {
+            _ if !self.project.large.enabled || !request.shape_relief => None,
+            Some(c) => self.shape_relief(c.size(), cancel)?,
+            None => self.shape_relief(request.large_size_px, cancel)?,
+        };
+        let years = self.project.age.mapping().years(request.t);
+        let shape_factors = crate::shape::REGIONS.map(|r| r.curve.factor(years));
+        // The relief depth of the default view and wrinkle depth: the relief has its
+        // millimetres there, and deepens with the wrinkles when either is turned up (a
+        // slider that redraws without a bake stays so).
+        let depth_uv = crate::project::ViewSection::default().disp_scale
+            * crate::project::LargeSection::default().depth
+            * self.relief_scale();
+        let relief_at = relief.as_ref().map(|relief| large::ReliefAt {
+            relief,
+            factors: &shape_factors,
+            depth_uv,
+        });
         let layout_generation = self.layout_generation;
         let (large, micro) = (&mut self.large, &mut self.micro);
         let (project, inputs, factors) = (&self.project, &self.inputs, &self.factors);
@@ -746,7 +776,8 @@ impl Scene {
                         generation: layout_generation,
                     };
                     large.bake(
-                        project, &fibres, factors, mask, layout, request, &normal, cancel,
+                        project, &fibres, factors, mask, layout, request, &normal, relief_at,
+                        cancel,
                     )
                 } else {
                     Ok(large.clear())
@@ -1130,6 +1161,45 @@ impl Scene {
         ));
         self.shape = Some((key, field.clone()));
         Some(field)
+    }
+
+    /// The shape's relief finer than the head's triangles at `size`² in the head's layout
+    /// ([`crate::shape::relief`]), made once per head, strengths and size; `None` when the
+    /// shape layer is off or every strength is 0.
+    fn shape_relief(
+        &mut self,
+        size: u32,
+        cancel: &CancelToken,
+    ) -> Result<Option<Arc<ShapeRelief>>, Error> {
+        let strengths = self.project.shape.strengths();
+        if strengths.iter().all(|&s| s <= 0.0) {
+            return Ok(None);
+        }
+        let key = (
+            (
+                self.mesh_generation,
+                self.layout_generation,
+                self.metres_per_unit().to_bits(),
+                strengths.map(f32::to_bits),
+            ),
+            size,
+        );
+        if let Some((k, r)) = &self.relief
+            && *k == key
+        {
+            return Ok(Some(r.clone()));
+        }
+        let points = self.template_points();
+        let relief = Arc::new(ShapeRelief::new(
+            &self.inputs.mesh,
+            &|v| points.get(v).copied().flatten(),
+            &strengths,
+            self.metres_per_unit(),
+            size,
+            cancel,
+        )?);
+        self.relief = Some((key, relief.clone()));
+        Ok(Some(relief))
     }
 
     /// The aged base colour of the last [`Scene::bake_colour`] (RGBA8, sRGB, in the head's

@@ -11,12 +11,16 @@ fn small(t: f32) -> BakeRequest {
         packed: true,
         one_off: false,
         micro_normals: true,
+        shape_relief: false,
     }
 }
 
+/// The wrinkle layer's and the micro-relief's project: without the shape, whose relief
+/// the large map also carries (it has its own tests, here and in crate::shape::relief).
 fn project() -> Project {
     let mut p = Project::default();
     p.pores.count = 200;
+    p.shape.enabled = false;
     p
 }
 
@@ -721,4 +725,63 @@ fn furrows_grow_deeper_and_follow_the_tension_lines_with_age() {
     assert!(ao > ay + 0.15, "anisotropy {ay:.3} → {ao:.3}");
     assert!(co > cy, "across θ {cy:.3} → {co:.3}");
     assert!(ro > 1.3 * ry, "deeper: rms {ry:.3} → {ro:.3}");
+}
+
+/// The shape's relief finer than the head's triangles ([`crate::shape::relief`]) reaches
+/// the large map: nothing young (before the rolled regions' onsets), on a few per cent of
+/// the map at 80, gone with the shape off, not in the wrinkles' own maps; a depth change
+/// leaves it as it is in the normalised map (it deepens with the wrinkles, as drawn).
+#[test]
+fn the_shapes_relief_reaches_the_large_map_at_its_age() {
+    let mut off = project();
+    off.pores.enabled = false;
+    off.furrows.enabled = false;
+    let on = Project {
+        shape: crate::project::ShapeSection {
+            enabled: true,
+            ..off.shape.clone()
+        },
+        ..off.clone()
+    };
+    let request = |t| BakeRequest {
+        large_size_px: 256,
+        shape_relief: true,
+        ..small(t)
+    };
+    let relief = |p: &Project, t: f32| -> Vec<f32> {
+        let with = scene_large(&fresh(p, &request(t)));
+        let without = scene_large(&fresh(&off, &request(t)));
+        with.iter().zip(&without).map(|(a, b)| a - b).collect()
+    };
+    assert!(relief(&on, 0.0).iter().all(|&d| d == 0.0), "young");
+    let old = relief(&on, 1.0);
+    let touched = old.iter().filter(|&&d| d != 0.0).count();
+    eprintln!("relief on {touched} of {} texels at 80", old.len());
+    assert!(touched > 200 && touched < old.len() / 10, "{touched}");
+    assert!(old.iter().any(|&d| d < 0.0) && old.iter().any(|&d| d > 0.0));
+    // Not in the wrinkles' own maps (`agesim bake`).
+    let maps = BakeRequest {
+        shape_relief: false,
+        ..request(1.0)
+    };
+    assert_eq!(
+        scene_large(&fresh(&on, &maps)),
+        scene_large(&fresh(&off, &maps))
+    );
+    let deeper = Project {
+        large: crate::project::LargeSection {
+            depth: 2.5,
+            ..on.large.clone()
+        },
+        ..on.clone()
+    };
+    let off_deeper = Project {
+        large: deeper.large.clone(),
+        ..off.clone()
+    };
+    let with = scene_large(&fresh(&deeper, &request(1.0)));
+    let without = scene_large(&fresh(&off_deeper, &request(1.0)));
+    for ((a, b), d) in with.iter().zip(&without).zip(&old) {
+        assert!((a - b - d).abs() < 1e-5, "{} at depth 2.5, {d} at 1", a - b);
+    }
 }

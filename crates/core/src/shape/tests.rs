@@ -356,7 +356,9 @@ fn the_aged_shape_hides_sky_in_its_folds_and_nowhere_else() {
     };
     let (left, right) = (mean_near(NASOLABIAL_L[3]), mean_near(NASOLABIAL_R[3]));
     eprintln!("sky kept in the nasolabial creases: {left:.3} left, {right:.3} right");
-    assert!(left < 0.97 && right < 0.97, "{left} {right}");
+    // (A roll 3.5 mm high over a 0.3 mm crease: the relief finer than the triangles draws
+    // the rest of it, and the wrinkle file the crease; 4.5 over 1 mm kept < 0.97.)
+    assert!(left < 0.985 && right < 0.985, "{left} {right}");
     // Part of the movement, that part of the change.
     let w = field.weight_at(60.0) / field.weight_at(80.0);
     let mid = field.occlusion_at(&mesh, 60.0);

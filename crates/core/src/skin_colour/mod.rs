@@ -60,8 +60,9 @@ const BEARD_LIFT: f32 = 0.5;
 const UNDER_EYE_TINT: [f32; 3] = [0.16, 0.2, 0.22];
 /// How much the shadow under the bags darkens the skin at the crease, at full age and
 /// strength, and its tint per channel: blue taken most (0.36 taking green most, a magenta,
-/// read blind as "a purple bruise").
-const CREASE_SHADE: f32 = 0.3;
+/// read blind as "a purple bruise"). Half what it was (0.3) since the shape's relief draws
+/// the crease's shape (`shape::relief`).
+const CREASE_SHADE: f32 = 0.15;
 const CREASE_TINT: [f32; 3] = [0.7, 0.85, 1.0];
 /// Feature size of the redness and of the thread veins, mm.
 const REDNESS_MM: (f32, f32) = (6.0, 3.0);
@@ -1154,9 +1155,9 @@ impl Look<'_> {
             c *= Vec3::ONE - Vec3::from(UNDER_EYE_TINT) * shadow.min(1.0);
         }
         // The shadow under the bags, along the lid–cheek junction: the aged shape's crease
-        // there is narrower than the mesh's triangles, so its shading cannot come from
-        // the shape's normals (docs/models.md §13 "Hollows"); a warm shadow (the skin's
-        // red scatters back out).
+        // there is narrower than the mesh's triangles, so the shape's normals do not shade
+        // it (the relief finer than the triangles draws its shape; docs/models.md §13
+        // "Hollows"); a warm shadow (the skin's red scatters back out).
         let crease = CREASE_SHADE * a.bags.min(1.5) * from_unit(f.crease);
         if crease > 0.0 {
             c *= Vec3::ONE - Vec3::from(CREASE_TINT) * crease;

@@ -7,33 +7,17 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::time::Instant;
+#[path = "common/timing.rs"]
+mod timing;
 
 use agesim_core::fit::bvh::ray_triangle;
 use agesim_core::project::Project;
 use agesim_core::scene::Scene;
 use agesim_core::shape::{REGIONS, ShapeField, occlusion};
 use glam::Vec3;
+use timing::time_ms;
 
 const RUNS: usize = 5;
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-fn time_ms(mut f: impl FnMut()) -> f64 {
-    f();
-    median(
-        (0..RUNS)
-            .map(|_| {
-                let t = Instant::now();
-                f();
-                t.elapsed().as_secs_f64() * 1e3
-            })
-            .collect(),
-    )
-}
 
 fn main() {
     let scene = Scene::new(Project::default()).unwrap();
@@ -48,10 +32,10 @@ fn main() {
         )
     };
     let vertices = mesh.vertex_count();
-    let fresh = time_ms(|| {
+    let fresh = time_ms(RUNS, || {
         std::hint::black_box(field());
     });
-    let with_occlusion = time_ms(|| {
+    let with_occlusion = time_ms(RUNS, || {
         std::hint::black_box(field().occlusion_at(&mesh, 80.0));
     });
     let ours = with_occlusion - fresh;
@@ -65,7 +49,7 @@ fn main() {
         .collect();
     let sample: Vec<usize> = (0..vertices).step_by(32).collect();
     let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
-    let baseline_sample = time_ms(|| {
+    let baseline_sample = time_ms(RUNS, || {
         let mut sum = 0.0f32;
         for &v in &sample {
             let (t, b) = normals[v].any_orthonormal_pair();

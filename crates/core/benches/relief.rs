@@ -8,7 +8,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::time::Instant;
+#[path = "common/timing.rs"]
+mod timing;
 
 use agesim_core::cancel::CancelToken;
 use agesim_core::project::Project;
@@ -17,26 +18,9 @@ use agesim_core::shape::REGIONS;
 use agesim_core::shape::relief::ShapeRelief;
 use agesim_core::skin_colour::Regions;
 use glam::{Vec2, Vec3};
+use timing::time_ms;
 
 const RUNS: usize = 5;
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-fn time_ms(mut f: impl FnMut()) -> f64 {
-    f();
-    median(
-        (0..RUNS)
-            .map(|_| {
-                let t = Instant::now();
-                f();
-                t.elapsed().as_secs_f64() * 1e3
-            })
-            .collect(),
-    )
-}
 
 fn main() {
     let scene = Scene::new(Project::default()).unwrap();
@@ -44,7 +28,7 @@ fn main() {
     let strengths = [1.0; REGIONS.len()];
     let never = CancelToken::never();
     let ours = |size: u32| {
-        time_ms(|| {
+        time_ms(RUNS, || {
             let m = mesh.clone();
             std::hint::black_box(
                 ShapeRelief::new(
@@ -69,7 +53,7 @@ fn main() {
         .map(|p| frame.relative(*p))
         .collect();
     let size = 1024u32;
-    let baseline_1024 = time_ms(|| {
+    let baseline_1024 = time_ms(RUNS, || {
         let mut out = vec![0.0f32; (size * size) as usize];
         for region in REGIONS.iter().filter(|r| !r.rolls.is_empty()) {
             let h = |q: Vec3| region.rolls.iter().map(|l| l.height_mm(q)).sum::<f32>();

@@ -141,6 +141,15 @@ const SHADE_DOWN: f32 = 0.09;
 /// The part of a roll's length over which each end fades in.
 const ROLL_END_FADE: f32 = 0.25;
 
+/// How much more of a roll's length its ends fade over per face unit out on its raised
+/// side, up to half of it each (the same share at every distance cut the cheek's broad roll off along a line
+/// across the cheek: a 2 mm drop over 6 mm, read blind as "a pinched pit in mid-cheek").
+const END_FADE_WIDENING: f32 = 1.25;
+
+/// How much a roll's depth gate widens per face unit out on its raised side: where it
+/// starts to fade and where nothing is left ([`Roll::depth_gate`]).
+const GATE_WIDENING: [f32; 2] = [0.5, 0.8];
+
 impl Roll {
     /// Where `q` lies from the roll: its signed distance from the line (positive on the
     /// raised side), and the fade of the ends and of the depth gate there (0–1); `None`
@@ -156,14 +165,23 @@ impl Roll {
         if s >= self.reach || s <= -below {
             return None;
         }
-        let fade = ends * Self::depth_gate(q.z - z);
+        let fade = ends * Self::depth_gate(q.z - z, s);
         (fade > 0.0).then_some((s, fade))
     }
 
-    /// How much of the roll reaches skin `dz` in front of (or behind) its line: all within
-    /// 0.2 face units, none beyond 0.4.
-    fn depth_gate(dz: f32) -> f32 {
-        1.0 - smoothstep(0.2, 0.4, dz.abs())
+    /// How much of the roll reaches skin `dz` in front of (or behind) its line, `s` out
+    /// from it (face units): all within 0.2 face units of the line's depth, none beyond
+    /// 0.4, each widened farther out on the raised side, where the face turns away from
+    /// the line (the cheek beside a nasolabial fold is 0.25 behind it 0.35 out; a gate of
+    /// the same width everywhere cut the cheek's roll off there, a drop read blind as "a
+    /// pinched pit in mid-cheek, cut off from the nose wing").
+    fn depth_gate(dz: f32, s: f32) -> f32 {
+        let out = s.max(0.0);
+        1.0 - smoothstep(
+            0.2 + GATE_WIDENING[0] * out,
+            0.4 + GATE_WIDENING[1] * out,
+            dz.abs(),
+        )
     }
 
     /// Where the point `p` (x, y of the face frame, on the line's side when mirrored)
@@ -227,8 +245,12 @@ impl Roll {
             }
             z
         };
-        let ends = smoothstep(0.0, ROLL_END_FADE, t) * smoothstep(0.0, ROLL_END_FADE, 1.0 - t);
-        Some((sign * d2.sqrt(), ends, z))
+        // Out on the raised side the ends fade over more of the line, so the roll's skirt
+        // falls back as gently at its ends as across it ([`END_FADE_WIDENING`]).
+        let s = sign * d2.sqrt();
+        let fade = (ROLL_END_FADE + END_FADE_WIDENING * s.max(0.0)).min(0.5);
+        let ends = smoothstep(0.0, fade, t) * smoothstep(0.0, fade, 1.0 - t);
+        Some((s, ends, z))
     }
 
     /// The roll's height across it at signed distance `s` from its line, mm, before the
@@ -519,12 +541,18 @@ pub const REGIONS: [ShapeRegion; 11] = [
     ShapeRegion {
         name: "temples",
         what: "temples hollowing",
-        // Behind the orbit's outer rim, not reaching the eye's corner (the eye stays).
-        // A dish (its plateau's rim drew, blind, "a hard vertical ridge" in the front
-        // outline), a little larger for it, and not reaching the forehead's side (where
-        // its edge read as "a hard vertical step").
-        blobs: &[Blob::new([1.6, 0.5, -0.8], [0.55, 0.95, 1.0]).soft()],
-        motions: &[(Deflate, 12.0)],
+        // The temporal fossa behind the orbit's outer rim, not reaching the eye's corner
+        // (the eye stays), and the side of the head behind it, so the outline from the
+        // front dips between the forehead and the cheekbone (the side alone read, blind,
+        // as "full temples"; the fossa alone as "only darkened, not hollowed"; the
+        // fossa's dish narrower, its edge as "a hard vertical ridge"). Dishes (a
+        // plateau's rim drew, blind, "a hard vertical ridge" in the front outline), not
+        // reaching the forehead's side (where an edge read as "a hard vertical step").
+        blobs: &[
+            Blob::new([1.45, 0.45, -0.55], [0.6, 0.8, 0.75]).soft(),
+            Blob::new([1.6, 0.5, -0.8], [0.55, 0.95, 1.0]).soft(),
+        ],
+        motions: &[(Deflate, 11.0)],
         rolls: &[],
         curve: curve(40.0, 80.0),
     },

@@ -142,13 +142,10 @@ const SHADE_DOWN: f32 = 0.09;
 const ROLL_END_FADE: f32 = 0.25;
 
 /// How much more of a roll's length its ends fade over per face unit out on its raised
-/// side, up to half of it each (the same share at every distance cut the cheek's broad roll off along a line
-/// across the cheek: a 2 mm drop over 6 mm, read blind as "a pinched pit in mid-cheek").
+/// side, up to half of it each (the same share at every distance cut the cheek's broad
+/// roll off along a line across the cheek: a 2 mm drop over 6 mm, read blind as "a pinched
+/// pit in mid-cheek").
 const END_FADE_WIDENING: f32 = 1.25;
-
-/// How much a roll's depth gate widens per face unit out on its raised side: where it
-/// starts to fade and where nothing is left ([`Roll::depth_gate`]).
-const GATE_WIDENING: [f32; 2] = [0.5, 0.8];
 
 impl Roll {
     /// Where `q` lies from the roll: its signed distance from the line (positive on the
@@ -165,23 +162,14 @@ impl Roll {
         if s >= self.reach || s <= -below {
             return None;
         }
-        let fade = ends * Self::depth_gate(q.z - z, s);
+        let fade = ends * Self::depth_gate(q.z - z);
         (fade > 0.0).then_some((s, fade))
     }
 
-    /// How much of the roll reaches skin `dz` in front of (or behind) its line, `s` out
-    /// from it (face units): all within 0.2 face units of the line's depth, none beyond
-    /// 0.4, each widened farther out on the raised side, where the face turns away from
-    /// the line (the cheek beside a nasolabial fold is 0.25 behind it 0.35 out; a gate of
-    /// the same width everywhere cut the cheek's roll off there, a drop read blind as "a
-    /// pinched pit in mid-cheek, cut off from the nose wing").
-    fn depth_gate(dz: f32, s: f32) -> f32 {
-        let out = s.max(0.0);
-        1.0 - smoothstep(
-            0.2 + GATE_WIDENING[0] * out,
-            0.4 + GATE_WIDENING[1] * out,
-            dz.abs(),
-        )
+    /// How much of the roll reaches skin `dz` in front of (or behind) its line: all within
+    /// 0.2 face units, none beyond 0.4.
+    fn depth_gate(dz: f32) -> f32 {
+        1.0 - smoothstep(0.2, 0.4, dz.abs())
     }
 
     /// Where the point `p` (x, y of the face frame, on the line's side when mirrored)
@@ -418,16 +406,18 @@ const NASOLABIAL_L: [[f32; 3]; 8] = [
     [0.68, -1.4, 0.41],
 ];
 
-/// The cheek over a nasolabial fold: a crest 4.5 mm high 5 mm from the crease, falling
-/// back over 42 mm (the fold's "cheek sagging over it"; falling back over 16 mm, its foot
-/// drew a second line out on the cheek, read blind as "a dent beside the mouth"; 6.5 mm
-/// high 3 mm from the crease, its slope on the side away from the light as "a dark grimy
-/// blob by the mouth corner, the folds lopsided").
+/// The cheek over a nasolabial fold: a crest 3.5 mm high 5 mm from the crease, falling
+/// back over 19 mm (the fold's "cheek sagging over it"; falling back over 16 mm, before
+/// the relief drew its crest, its foot drew a second line out on the cheek, read blind as
+/// "a dent beside the mouth"; over 42 mm it was still 2.6 mm high where the cheek turns
+/// away, 0.2 face units behind the fold, and its depth gate cut it off there in a dimple;
+/// 6.5 mm high 3 mm from the crease, its slope on the side away from the light read as "a
+/// dark grimy blob by the mouth corner, the folds lopsided").
 const CHEEK_ROLL: Roll = Roll {
     line: &[],
     raised: [1.0, 0.0],
     crest: 0.1,
-    reach: 0.9,
+    reach: 0.5,
     height_mm: 3.5,
     crease_mm: 0.3,
     crease_half: 0.06,

@@ -312,8 +312,8 @@ struct RollGrid<'a> {
     origin: glam::Vec2,
     columns: usize,
     rows: usize,
-    /// (height, the line's z, the signed distance from the line) per node, row by row.
-    nodes: Vec<(f32, f32, f32)>,
+    /// (height, z) per node, row by row.
+    nodes: Vec<(f32, f32)>,
 }
 
 impl<'a> RollGrid<'a> {
@@ -328,8 +328,8 @@ impl<'a> RollGrid<'a> {
                 let p = origin
                     + glam::Vec2::new((k % columns) as f32, (k / columns) as f32) * GRID_STEP;
                 match roll.locate(p) {
-                    Some((s, ends, z)) => (strength * ends * roll.profile_mm(s), z, s),
-                    None => (0.0, f32::NAN, 0.0),
+                    Some((s, ends, z)) => (strength * ends * roll.profile_mm(s), z),
+                    None => (0.0, f32::NAN),
                 }
             })
             .collect();
@@ -342,10 +342,9 @@ impl<'a> RollGrid<'a> {
         }
     }
 
-    /// The height before the depth gate, the line's z and the distance from the line at
-    /// `(x, y)`, bilinearly; no height off the grid (its z and distance the nearest
-    /// node's).
-    fn at(&self, x: f32, y: f32) -> (f32, f32, f32) {
+    /// The height before the depth gate and the line's z at `(x, y)`, bilinearly; no
+    /// height off the grid (its z the nearest node's).
+    fn at(&self, x: f32, y: f32) -> (f32, f32) {
         let x = if self.roll.mirrored { x.abs() } else { x };
         let f = (glam::Vec2::new(x, y) - self.origin) / GRID_STEP;
         let inside = f.x >= 0.0
@@ -364,17 +363,16 @@ impl<'a> RollGrid<'a> {
         let (a, b, c, d) = (n(0, 0), n(1, 0), n(0, 1), n(1, 1));
         let lerp = |p: f32, q: f32, t: f32| p + (q - p) * t;
         let z = lerp(lerp(a.1, b.1, tx), lerp(c.1, d.1, tx), ty);
-        let s = lerp(lerp(a.2, b.2, tx), lerp(c.2, d.2, tx), ty);
         if !inside {
-            return (0.0, z, s);
+            return (0.0, z);
         }
-        (lerp(lerp(a.0, b.0, tx), lerp(c.0, d.0, tx), ty), z, s)
+        (lerp(lerp(a.0, b.0, tx), lerp(c.0, d.0, tx), ty), z)
     }
 
     /// The roll's height at face point `q`, mm.
     fn height(&self, q: Vec3) -> f32 {
-        let (h, z, s) = self.at(q.x, q.y);
-        let gate = Roll::depth_gate(q.z - z, s);
+        let (h, z) = self.at(q.x, q.y);
+        let gate = Roll::depth_gate(q.z - z);
         if h == 0.0 || gate.is_nan() || gate <= 0.0 {
             return 0.0;
         }
@@ -391,8 +389,8 @@ impl<'a> RollGrid<'a> {
     /// Its mean over the blur's taps of width `sigma` round `q` (at `q`'s own depth
     /// gate), mm.
     fn blurred(&self, q: Vec3, sigma: f32) -> f32 {
-        let (_, z, s) = self.at(q.x, q.y);
-        let gate = Roll::depth_gate(q.z - z, s);
+        let (_, z) = self.at(q.x, q.y);
+        let gate = Roll::depth_gate(q.z - z);
         if gate.is_nan() || gate <= 0.0 {
             return 0.0;
         }

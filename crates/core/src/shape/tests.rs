@@ -432,10 +432,11 @@ fn a_rolls_skirt_fades_gently_at_its_ends() {
                 "{}: steepest {steepest:.3} at {place:?} (the fall beyond the crest {fall:.3})",
                 region.name
             );
-            // Its ends fading over up to half its length add their own (0.36 mm per mm
-            // on the cheek; 0.53 when they faded over a quarter at every distance).
+            // Its ends fading over up to half its length add a little of their own (at most
+            // 1.44 × the fall, the jowls'; faded over a quarter of it at every distance, the
+            // cheeks' reached 1.76 × and the jowls' 2.67 ×).
             assert!(
-                steepest < 3.0 * fall,
+                steepest < 1.6 * fall,
                 "{}: {steepest} at {place:?}",
                 region.name
             );

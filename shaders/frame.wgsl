@@ -48,6 +48,9 @@ struct Frame {
     // colour map's alpha is each texel's hair disappearance age, 0 = never hair, else
     // 1 + 254·a over 255); y: the hair's mean gray fraction at this age.
     scalp: vec4<f32>,
+    // xyz: unit direction toward the fill light (world), the key's mirror image low on
+    // the other side; w: its intensity (in `light_colour` units, 0 = none).
+    fill_dir: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -34,6 +34,8 @@ struct VertexOut {
     @location(3) alpha: f32,
     // How much of the direct light reaches the strand past the head under it (1: all).
     @location(4) lit: f32,
+    // The same for the fill light.
+    @location(5) lit_fill: f32,
 }
 
 fn oct_decode(e: vec2<f32>) -> vec3<f32> {
@@ -163,6 +165,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // hair over the unlit back of the skull drew a bright rim over the skin's dark
     // terminator, read blind as "a shell standing off the skull").
     out.lit = smoothstep(-0.3, 0.35, dot(dir, frame.light_dir.xyz));
+    out.lit_fill = smoothstep(-0.3, 0.35, dot(dir, frame.fill_dir.xyz));
     return out;
 }
 
@@ -200,6 +203,7 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     out.world_pos = p;
     out.alpha = mix(0.8, 0.3, s) * inst.coverage;
     out.lit = 1.0;
+    out.lit_fill = 1.0;
     return out;
 }
 
@@ -228,7 +232,12 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let t_spec = pow(sqrt(max(1.0 - h_t * h_t, 0.0)), frame.hair_k.z);
     let k = frame.hair_k;
     let light = frame.light_colour.rgb * frame.light_dir.w;
-    let c = (k.x * t_diff + k.y * t_spec) * in.lit * in.colour * light + k.w * in.colour;
+    // The fill light: diffuse only, and only where the head does not hide it either.
+    let f_t = dot(frame.fill_dir.xyz, t);
+    let f_diff = sqrt(max(1.0 - f_t * f_t, 0.0));
+    let fill = frame.light_colour.rgb * frame.fill_dir.w;
+    let c = (k.x * t_diff + k.y * t_spec) * in.lit * in.colour * light + k.w * in.colour
+        + k.x * f_diff * in.lit_fill * in.colour * fill;
     let mapped = aces(c);
     if frame.camera_pos.w > 0.5 {
         return vec4<f32>(srgb_encode(mapped), in.alpha);

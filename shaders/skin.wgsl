@@ -13,12 +13,16 @@
 // How much a full-depth wrinkle's bottom is darkened (ambient; half of it for the light).
 // The same as `agesim_core::compose::CAVITY` (and 0.7, 0.005 below: CAVITY_MAX,
 // CAVITY_REFERENCE_DISP), which the exported GLB's occlusion texture uses.
-const CAVITY: f32 = 0.55;
+const CAVITY: f32 = 0.8;
 // How much of the sky and of the light a full hollow of the aged shape loses.
 const HOLLOW_AMBIENT: f32 = 0.6;
 const HOLLOW_LIGHT: f32 = 0.45;
 // Steps of the occlusion ratio per unit in the stored surface (its quantum: 0.5 %).
 const OCCLUSION_STEPS: f32 = 200.0;
+// The fill light's colour over the key's: a little cooler (a sky-lit bounce).
+const FILL_TINT: vec3<f32> = vec3<f32>(0.92, 0.96, 1.0);
+// How much less of the light an occlusion takes from the channel that scatters farthest.
+const OCCLUSION_TINT: f32 = 0.45;
 // How much the hair present over the scalp darkens it (its shadow), per unit of
 // `hair.scalp_tint`: a white fringe over pale skin with no shadow under it read, blind, as
 // "a flat painted layer".
@@ -366,6 +370,13 @@ fn fs_depth(@builtin(position) pos: vec4<f32>) -> @builtin(frag_depth) f32 {
     return s0.w;
 }
 
+// How much of each channel an occlusion takes (1 = all of it): red least, in proportion to
+// how far the skin's wrap lighting carries it (docs/models.md §10 "Occlusion tint").
+fn occlusion_tint() -> vec3<f32> {
+    let w = frame.skin_wrap.rgb / max(max(frame.skin_wrap.r, max(frame.skin_wrap.g, frame.skin_wrap.b)), 1e-3);
+    return vec3<f32>(1.0) - OCCLUSION_TINT * w;
+}
+
 // The skin's colour at a surface point (docs/models.md §10).
 fn shade(s: Surface) -> vec4<f32> {
     let ddx = s.ddx;
@@ -459,16 +470,26 @@ fn shade(s: Surface) -> vec4<f32> {
     // and of the light than the skin beside it. The map's depth at the hit, scaled by the
     // drawn relief (0 with no relief; full at the default 0.005).
     let depth01 = clamp(1.0 - large_height(uv, ddx, ddy), 0.0, 1.0);
-    let cavity = 1.0 - clamp(CAVITY * depth01 * frame.disp.x / 0.005, 0.0, 0.7);
+    let cavity_loss = clamp(CAVITY * depth01 * frame.disp.x / 0.005, 0.0, 0.7);
     // A hollow of the aged shape (temples, tear trough, below the cheekbone) sees less of
     // the sky and of the light (docs/models.md §13 "Hollows").
     let hollow = clamp(s.hollow, 0.0, 1.0);
-    let ambient = frame.light_colour.w * sky * cavity * (1.0 - HOLLOW_AMBIENT * hollow);
-    let direct = mix(1.0, cavity, 0.5) * (1.0 - HOLLOW_LIGHT * hollow);
+    // Light lost in a fold is partly given back under the skin, red most (it scatters
+    // farthest): each loss is scaled per channel, red least.
+    let keep = occlusion_tint();
+    let cavity = vec3<f32>(1.0) - cavity_loss * keep;
+    let ambient = frame.light_colour.w * sky * cavity * (vec3<f32>(1.0) - HOLLOW_AMBIENT * hollow * keep);
+    let direct = mix(vec3<f32>(1.0), cavity, 0.5) * (vec3<f32>(1.0) - HOLLOW_LIGHT * hollow * keep);
     // What the aged shape hides of the sky that the skin saw undisplaced (the scan's colour
     // holds the rest's occlusion): the whole of the skin's light times the ratio.
-    let colour = (albedo * (diffuse * light * direct + vec3<f32>(ambient))
-        + vec3<f32>(spec) * light * cavity) * s.occlusion;
+    let occlusion = vec3<f32>(1.0) - (1.0 - s.occlusion) * keep;
+    // The fill light: a large soft source on the other side (diffuse only), a little
+    // cooler than the key, so the side away from the key keeps its shape.
+    let f_l = dot(n, frame.fill_dir.xyz);
+    let fill = clamp((vec3<f32>(f_l) + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0))
+        * frame.light_colour.rgb * frame.fill_dir.w * FILL_TINT;
+    let colour = (albedo * ((diffuse * light + fill) * direct + ambient)
+        + vec3<f32>(spec) * light * cavity) * occlusion;
     return output_colour(colour);
 }
 

@@ -37,6 +37,9 @@ pub fn camera(project: &Project, metres_per_unit: f32, target: Vec3) -> Camera {
     }
 }
 
+/// The fill light's elevation, radians.
+const FILL_PITCH: f32 = 0.087;
+
 /// Wrap lighting per channel: `wrap` scaled so 0.35 wraps the subsurface colour's
 /// strongest channel by 0.45, the others in proportion to the colour (sRGB values; the
 /// default #ff9a78 gives 0.45, 0.27, 0.21).
@@ -122,6 +125,13 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
         camera,
         light: Light {
             direction: Vec3::new(lp.cos() * ly.sin(), lp.sin(), lp.cos() * ly.cos()),
+            // The key's mirror image across the face's midline, 5 degrees up.
+            fill_direction: Vec3::new(
+                -FILL_PITCH.cos() * ly.sin(),
+                FILL_PITCH.sin(),
+                FILL_PITCH.cos() * ly.cos(),
+            ),
+            fill: v.fill_light,
             ..Light::default()
         },
         skin: SkinParams {

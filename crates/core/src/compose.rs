@@ -21,7 +21,7 @@ use crate::normal_map::encode_unorm8;
 
 /// How much a full-depth wrinkle's bottom is darkened (docs/models.md §10 "Cavity
 /// occlusion"; the skin shader's `CAVITY`).
-pub const CAVITY: f32 = 0.55;
+pub const CAVITY: f32 = 0.8;
 /// The most a cavity darkens.
 pub const CAVITY_MAX: f32 = 0.7;
 /// The relief depth (UV units) at which [`CAVITY`] applies in full.

@@ -113,7 +113,7 @@ impl Camera {
     }
 }
 
-/// One directional light and a hemisphere ambient.
+/// A key light, a fill light from the other side and a hemisphere ambient.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light {
     /// Direction toward the light (world), normalised by the renderer.
@@ -124,6 +124,11 @@ pub struct Light {
     pub intensity: f32,
     /// Ambient intensity, ≥ 0 (white, brighter from above).
     pub ambient: f32,
+    /// Direction toward the fill light (world), normalised by the renderer.
+    pub fill_direction: Vec3,
+    /// The fill light's intensity as a fraction of the key's, 0–1 (diffuse only, no
+    /// highlight: a large soft source).
+    pub fill: f32,
 }
 
 impl Default for Light {
@@ -134,6 +139,8 @@ impl Default for Light {
             colour: Vec3::new(1.0, 0.97, 0.92),
             intensity: 1.5,
             ambient: 0.22,
+            fill_direction: Vec3::new(-0.55, 0.1, 0.6),
+            fill: 0.0,
         }
     }
 }

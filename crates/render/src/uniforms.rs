@@ -5,7 +5,7 @@
 
 use crate::params::{FrameOutput, FrameParams, GrayingRampParam};
 
-/// `struct Frame` of `shaders/frame.wgsl` (see the member comments there). 368 bytes.
+/// `struct Frame` of `shaders/frame.wgsl` (see the member comments there). 384 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniform {
@@ -26,6 +26,7 @@ pub struct FrameUniform {
     pub skin_wrap: [f32; 4],
     pub skin_spec: [f32; 4],
     pub scalp: [f32; 4],
+    pub fill_dir: [f32; 4],
 }
 
 macro_rules! members {
@@ -55,6 +56,7 @@ impl FrameUniform {
         skin_wrap,
         skin_spec,
         scalp,
+        fill_dir,
     );
 }
 
@@ -166,6 +168,10 @@ impl FrameUniform {
                 0.0,
                 0.0,
             ],
+            fill_dir: v3(
+                p.light.fill_direction.normalize_or(glam::Vec3::Y),
+                non_negative(p.light.intensity) * unit(p.light.fill),
+            ),
         }
     }
 }

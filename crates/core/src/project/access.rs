@@ -171,6 +171,7 @@ slots! {
     "view.disp_scale" => view.disp_scale;
     "view.light_yaw_deg" => view.light_yaw_deg;
     "view.light_pitch_deg" => view.light_pitch_deg;
+    "view.fill_light" => view.fill_light;
     "view.camera_yaw_deg" => view.camera_yaw_deg;
     "view.camera_pitch_deg" => view.camera_pitch_deg;
     "view.camera_distance_m" => view.camera_distance_m;

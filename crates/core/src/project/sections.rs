@@ -286,6 +286,9 @@ pub struct ViewSection {
     pub disp_scale: f32,
     pub light_yaw_deg: f32,
     pub light_pitch_deg: f32,
+    /// The fill light, a fraction of the key light's intensity, 0–1: diffuse light from
+    /// the key's mirror image across the face's midline, near eye level.
+    pub fill_light: f32,
     pub camera_yaw_deg: f32,
     pub camera_pitch_deg: f32,
     /// Camera distance from the head's centre, m.
@@ -489,6 +492,10 @@ impl Default for ViewSection {
             disp_scale: 0.0035,
             light_yaw_deg: 35.0,
             light_pitch_deg: 30.0,
+            // A portrait's key-to-fill ratio of about 4:1 (with the ambient): without it
+            // the side away from the light lost its folds and its hair against the
+            // background (blind: "the fringe shows on one side only").
+            fill_light: 0.25,
             camera_yaw_deg: 20.0,
             camera_pitch_deg: 5.0,
             camera_distance_m: 0.9,

@@ -853,6 +853,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             "light elevation",
         ),
         f(
+            "view.fill_light",
+            "",
+            0.0,
+            1.0,
+            "fill light from the other side, a fraction of the key light",
+        ),
+        f(
             "view.camera_yaw_deg",
             "degrees",
             -360.0,

@@ -51,6 +51,10 @@ struct Frame {
     // xyz: unit direction toward the fill light (world), the key's mirror image low on
     // the other side; w: its intensity (in `light_colour` units, 0 = none).
     fill_dir: vec4<f32>,
+    // The key light's contact shadows, traced in the stored surface (skin.wgsl
+    // `key_shadow`): x: how far toward the light a ray looks (mesh units, 0 = none);
+    // y: how thick an occluder is taken to be (mesh units); zw: unused.
+    shadow: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

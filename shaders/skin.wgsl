@@ -264,6 +264,8 @@ struct Surface {
     hollow: f32,
     // The sky it sees over the sky it saw undisplaced (docs/models.md §13 "Occlusion").
     occlusion: f32,
+    // How much of the key light reaches it past the surface in view (1: all of it).
+    key_light: f32,
 }
 
 // Octahedral encoding of a unit vector (Cigolle et al. 2014), two numbers in [−1, 1].
@@ -355,7 +357,97 @@ fn fs_shade(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     s.hollow = packed - 2.0 * steps;
     s.occlusion = steps / OCCLUSION_STEPS;
     s.to_eye = normalize(frame.camera_pos.xyz - on_ray.xyz / on_ray.w);
+    s.key_light = key_shadow(pos.xy, size, ndc, s0.w, s.n);
     return shade(s);
+}
+
+// The contact shadows' rays (toward points spread over the light, so the shadow's edge is
+// soft: a face lit by a window, not the sun), the steps along each, and how far the first
+// step starts (of the reach).
+const SHADOW_RAYS: u32 = 4u;
+const SHADOW_STEPS: u32 = 8u;
+const SHADOW_START: f32 = 0.02;
+// The light's angular radius seen from the skin, radians.
+const SHADOW_SPREAD: f32 = 0.12;
+// How much of the key light a point every ray finds blocked still gets (the skin's own
+// scattering and the penumbra's floor).
+const SHADOW_FLOOR: f32 = 0.15;
+
+// The world position seen at a pixel's NDC with the stored depth `depth`.
+fn world_at(ndc: vec2<f32>, depth: f32) -> vec3<f32> {
+    let p = frame.world_from_clip * vec4<f32>(ndc, depth, 1.0);
+    return p.xyz / p.w;
+}
+
+// Interleaved gradient noise (Jimenez 2014) at a pixel, in [0, 1).
+fn ign(px: vec2<f32>) -> f32 {
+    return fract(52.9829189 * fract(dot(px, vec2<f32>(0.06711056, 0.00583715))));
+}
+
+// Whether the ray from `p` along `dir` meets the stored surface within `reach`.
+fn shadow_ray(p: vec3<f32>, dir: vec3<f32>, n: vec3<f32>, size: vec2<f32>, reach: f32, jitter: f32) -> bool {
+    let eye = frame.camera_pos.xyz;
+    for (var i = 0u; i < SHADOW_STEPS; i = i + 1u) {
+        let f = (f32(i) + jitter) / f32(SHADOW_STEPS);
+        // Denser near the point: the small occluders (a fold, the lid's rim) are close.
+        let along = reach * mix(SHADOW_START, 1.0, f * f);
+        let q = p + dir * along + n * (0.02 * along);
+        let c = frame.clip_from_world * vec4<f32>(q, 1.0);
+        if c.w <= 0.0 {
+            return false;
+        }
+        let q_ndc = c.xy / c.w;
+        let q_px = vec2<f32>(0.5 * (q_ndc.x + 1.0) * size.x, 0.5 * (1.0 - q_ndc.y) * size.y);
+        if any(q_px < vec2<f32>(0.0)) || any(q_px >= size) {
+            return false;
+        }
+        let seen_depth = textureLoad(surface0, vec2<i32>(q_px), 0).w;
+        if seen_depth > 1.5 {
+            // Background: nothing there.
+            continue;
+        }
+        // Distances from the eye: the surface seen there against the ray's point.
+        let in_front = distance(q, eye) - distance(world_at(q_ndc, seen_depth), eye);
+        if in_front > 0.0 && in_front < frame.shadow.y {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Contact shadows of the key light (docs/models.md §10 "Shadows"): from the surface point
+// seen at this pixel, rays toward the light are marched through the stored surface; where
+// the surface seen along one lies in front of it (nearer the eye) by less than an
+// occluder's thickness, that ray is blocked. Only what is in view casts, and only within
+// `frame.shadow.x`: the nose on the cheek, the brow over the lid, the cheek over its fold,
+// the jaw on the neck.
+fn key_shadow(px: vec2<f32>, size: vec2<f32>, ndc: vec2<f32>, depth: f32, n: vec3<f32>) -> f32 {
+    let reach = frame.shadow.x;
+    let l = frame.light_dir.xyz;
+    if reach <= 0.0 || dot(n, l) <= 0.0 {
+        return 1.0;
+    }
+    let p = world_at(ndc, depth);
+    // Two axes across the light, turned per pixel so the rays' offsets differ from pixel
+    // to pixel (equal steps and offsets everywhere drew the shadow's edge as stripes and
+    // the mesh's facets; they average out over the supersampled pixel).
+    let a = normalize(cross(l, vec3<f32>(0.3, 1.0, 0.0)));
+    let b = cross(l, a);
+    let turn = 6.2831853 * ign(px);
+    let ca = cos(turn);
+    let sa = sin(turn);
+    let jitter = ign(px + vec2<f32>(17.0, 31.0));
+    var blocked = 0.0;
+    for (var k = 0u; k < SHADOW_RAYS; k = k + 1u) {
+        // Points over the light's disc: a ring of SHADOW_RAYS at 0.7 of its radius.
+        let phi = 6.2831853 * f32(k) / f32(SHADOW_RAYS);
+        let o = vec2<f32>(cos(phi) * ca - sin(phi) * sa, sin(phi) * ca + cos(phi) * sa) * (0.7 * SHADOW_SPREAD);
+        let dir = normalize(l + a * o.x + b * o.y);
+        if shadow_ray(p, dir, n, size, reach, fract(jitter + 0.25 * f32(k))) {
+            blocked = blocked + 1.0;
+        }
+    }
+    return 1.0 - (1.0 - SHADOW_FLOOR) * blocked / f32(SHADOW_RAYS);
 }
 
 // The skin's depth from the stored surface, into a depth buffer cleared to 1: the hair and
@@ -462,8 +554,11 @@ fn shade(s: Surface) -> vec4<f32> {
     // terminator wraps widest (GPU Gems 1 ch. 16, a cheap stand-in for [P]'s SSS).
     let wrap = frame.skin_wrap.rgb;
     let n_l = dot(n, l);
-    let diffuse = clamp((vec3<f32>(n_l) + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0));
-    let spec = skin_specular(n, to_eye, l, frame.skin_wrap.w, frame.skin_spec.x);
+    // The key's contact shadow takes its light, the red least (it scatters on under the
+    // shadow's edge).
+    let key = vec3<f32>(1.0) - (1.0 - s.key_light) * occlusion_tint();
+    let diffuse = key * clamp((vec3<f32>(n_l) + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0));
+    let spec = s.key_light * skin_specular(n, to_eye, l, frame.skin_wrap.w, frame.skin_spec.x);
     // Hemisphere ambient through the perturbed normal, so micro-relief shows in shadow.
     let sky = 0.6 + 0.4 * n.y;
     // Cavity occlusion (docs/models.md §10): the bottom of a wrinkle sees less of the sky

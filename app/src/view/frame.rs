@@ -39,6 +39,9 @@ pub fn camera(project: &Project, metres_per_unit: f32, target: Vec3) -> Camera {
 
 /// The fill light's elevation, radians.
 const FILL_PITCH: f32 = 0.087;
+/// How far the skin looks toward the key light for what shadows it, metres: farther than
+/// the nose stands off the cheek.
+const SHADOW_REACH_M: f32 = 0.04;
 
 /// Wrap lighting per channel: `wrap` scaled so 0.35 wraps the subsurface colour's
 /// strongest channel by 0.45, the others in proportion to the colour (sRGB values; the
@@ -132,6 +135,11 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
                 FILL_PITCH.cos() * ly.cos(),
             ),
             fill: v.fill_light,
+            shadow_reach: if v.shadows {
+                SHADOW_REACH_M / metres_per_unit.max(1e-9)
+            } else {
+                0.0
+            },
             ..Light::default()
         },
         skin: SkinParams {

@@ -291,7 +291,8 @@ mod tests {
     #[test]
     fn cavities_darken_with_depth_and_relief_only() {
         assert_eq!(cavity(0.0, 0.005), 1.0);
-        assert!((cavity(1.0, 0.005) - (1.0 - CAVITY)).abs() < 1e-6);
+        // Unclamped below CAVITY_MAX (0.8 × 0.8 = 0.64).
+        assert!((cavity(0.8, 0.005) - (1.0 - 0.8 * CAVITY)).abs() < 1e-6);
         assert_eq!(cavity(1.0, 0.0), 1.0, "no relief, no cavity");
         assert!((cavity(1.0, 1.0) - (1.0 - CAVITY_MAX)).abs() < 1e-6);
         // A fold's raised side is open skin.
@@ -299,7 +300,8 @@ mod tests {
         // Half the depth darkens half as much.
         assert!((1.0 - cavity(0.5, 0.005) - 0.5 * CAVITY).abs() < 1e-6);
         let map = HeightMap::from_vec(2, 1, vec![0.0, 1.0]).unwrap();
-        assert_eq!(occlusion_map(&map, 0.005), [255, 115]);
+        // A full-depth crease at the reference relief: 1 − CAVITY_MAX (0.8 is past the cap).
+        assert_eq!(occlusion_map(&map, 0.005), [255, 77]);
     }
 
     #[test]

@@ -384,8 +384,12 @@ const LID_CHEEK_JUNCTION: [[f32; 3]; 5] = [
 
 /// The nasolabial folds of `nasolabial.wrk` on the template, from the nose wing down past
 /// the mouth corner (measured: they are not mirror images about the eyes' midline, nor
-/// are the nose and mouth on it), one per side.
-const NASOLABIAL_R: [[f32; 3]; 8] = [
+/// are the nose and mouth on it), one per side. Each starts about 5 mm above the wing's
+/// lateral point (alare), so the roll's faded end lies beside the wing and its crease
+/// shows from the wing down (starting at alare, the fold read, blind, as "starting away
+/// from the nose wing").
+const NASOLABIAL_R: [[f32; 3]; 9] = [
+    [-0.47, -0.54, 0.39],
     [-0.49, -0.64, 0.38],
     [-0.543, -0.767, 0.385],
     [-0.59, -0.876, 0.4],
@@ -395,7 +399,8 @@ const NASOLABIAL_R: [[f32; 3]; 8] = [
     [-0.677, -1.327, 0.42],
     [-0.7, -1.42, 0.4],
 ];
-const NASOLABIAL_L: [[f32; 3]; 8] = [
+const NASOLABIAL_L: [[f32; 3]; 9] = [
+    [0.285, -0.59, 0.425],
     [0.31, -0.688, 0.418],
     [0.367, -0.798, 0.421],
     [0.425, -0.892, 0.438],
@@ -488,16 +493,20 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // The fat bulging under the lid, and its lower edge: a roll over the lid–cheek
         // junction, steep below (a blob alone, 5 mm, caught the frontal light as "a pale
         // crescent with no shadow under it", blind).
+        // Two thirds of what they were (1.5 mm out and down, a 2.2 mm roll over a 0.5 mm
+        // crease 3.8 mm to each side): with the contact shadows and the tear trough's
+        // hollow under them, their lower edge read, blind, as "a hard dark arc painted low
+        // on the cheek".
         blobs: &[Blob::new([0.62, -0.26, 0.3], [0.45, 0.18, 0.45])],
-        motions: &[(Bulge, 1.5), (Descent, 1.5)],
+        motions: &[(Bulge, 1.0), (Descent, 1.0)],
         rolls: &[Roll {
             line: &LID_CHEEK_JUNCTION,
             raised: [0.0, 1.0],
             crest: 0.07,
             reach: 0.2,
-            height_mm: 2.2,
-            crease_mm: 0.5,
-            crease_half: 0.08,
+            height_mm: 1.4,
+            crease_mm: 0.3,
+            crease_half: 0.11,
             mirrored: true,
         }],
         curve: curve(40.0, 75.0),

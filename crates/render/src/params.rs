@@ -129,6 +129,10 @@ pub struct Light {
     /// The fill light's intensity as a fraction of the key's, 0–1 (diffuse only, no
     /// highlight: a large soft source).
     pub fill: f32,
+    /// How far (mesh units) the skin looks toward the key light for what shadows it (the
+    /// nose on the cheek, the brow over the lid, the jowl on the neck): traced through the
+    /// stored surface, so only what is in view casts. 0: no shadows.
+    pub shadow_reach: f32,
 }
 
 impl Default for Light {
@@ -141,6 +145,7 @@ impl Default for Light {
             ambient: 0.22,
             fill_direction: Vec3::new(-0.55, 0.1, 0.6),
             fill: 0.0,
+            shadow_reach: 0.0,
         }
     }
 }

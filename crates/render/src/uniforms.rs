@@ -5,7 +5,7 @@
 
 use crate::params::{FrameOutput, FrameParams, GrayingRampParam};
 
-/// `struct Frame` of `shaders/frame.wgsl` (see the member comments there). 384 bytes.
+/// `struct Frame` of `shaders/frame.wgsl` (see the member comments there). 400 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniform {
@@ -27,6 +27,7 @@ pub struct FrameUniform {
     pub skin_spec: [f32; 4],
     pub scalp: [f32; 4],
     pub fill_dir: [f32; 4],
+    pub shadow: [f32; 4],
 }
 
 macro_rules! members {
@@ -57,6 +58,7 @@ impl FrameUniform {
         skin_spec,
         scalp,
         fill_dir,
+        shadow,
     );
 }
 
@@ -172,6 +174,14 @@ impl FrameUniform {
                 p.light.fill_direction.normalize_or(glam::Vec3::Y),
                 non_negative(p.light.intensity) * unit(p.light.fill),
             ),
+            shadow: [
+                non_negative(p.light.shadow_reach),
+                // An occluder's thickness: a quarter of the reach (a nose, a brow, an ear
+                // or a fold of the cheek, not the head behind them).
+                0.25 * non_negative(p.light.shadow_reach),
+                0.0,
+                0.0,
+            ],
         }
     }
 }

@@ -279,6 +279,91 @@ fn the_head_shadows_its_own_hair() {
     assert!(unlit_lum < 0.6 * lit_lum, "{lit_lum} {unlit_lum}");
 }
 
+/// The fill light lights what the key leaves dark, the skin and the hair alike: with the
+/// key behind the head, the side seen is lit by the ambient alone until a fill from the
+/// camera's side is turned on; with the fill at 0 its direction changes nothing.
+#[test]
+fn the_fill_light_lights_the_side_away_from_the_key() {
+    let Some(gpu) = gpu_or_skip("the_fill_light_lights_the_side_away_from_the_key") else {
+        return;
+    };
+    let mut r = haired_head(&gpu);
+    let mut dark = behind(0.0);
+    dark.light.direction = -behind(0.0).light.direction;
+    dark.light.fill_direction = behind(0.0).light.direction;
+    dark.light.fill = 0.0;
+    let mut turned = dark;
+    turned.light.fill_direction = -dark.light.fill_direction;
+    let mut filled = dark;
+    filled.light.fill = 0.5;
+    let (_, _, dark_hair) = hair_pixels(&mut r, &dark, 128);
+    let (_, _, filled_hair) = hair_pixels(&mut r, &filled, 128);
+    let mut skin = |p: &FrameParams| {
+        let mut p = *p;
+        p.hair.enabled = false;
+        let img = r.render_to_image(&p, (128, 128)).unwrap();
+        let bg = background(&p);
+        let px: Vec<f64> = img
+            .pixels()
+            .filter(|px| !is_background(px, bg))
+            .map(|px| px.0[..3].iter().map(|&v| f64::from(v)).sum::<f64>() / 3.0)
+            .collect();
+        (img, px.iter().sum::<f64>() / px.len().max(1) as f64)
+    };
+    let ((dark_img, dark_skin), (turned_img, _), (_, filled_skin)) =
+        (skin(&dark), skin(&turned), skin(&filled));
+    eprintln!(
+        "key behind: skin {dark_skin:.1} → {filled_skin:.1}, hair {dark_hair:.1} → {filled_hair:.1} with a fill of 0.5"
+    );
+    assert_eq!(dark_img, turned_img, "a fill of 0 changed the frame");
+    assert!(filled_skin > dark_skin + 15.0, "{dark_skin} {filled_skin}");
+    assert!(filled_hair > dark_hair + 10.0, "{dark_hair} {filled_hair}");
+}
+
+/// The key light's contact shadows: lit from the subject's left and low, the nose shadows
+/// the cheek on its right (the image's left) and nothing gets brighter; with no reach
+/// nothing changes.
+#[test]
+fn the_nose_shadows_the_cheek_away_from_the_light() {
+    let Some(gpu) = gpu_or_skip("the_nose_shadows_the_cheek_away_from_the_light") else {
+        return;
+    };
+    let mesh = head::default_head();
+    let mut r = head_renderer(&gpu, &mesh);
+    let mut p = FrameParams::default();
+    p.hair.enabled = false;
+    p.camera.yaw_rad = 0.0;
+    p.camera.pitch_rad = 0.0;
+    // From the subject's left (+x), a little above.
+    p.light.direction = Vec3::new(0.8, 0.25, 0.55);
+    let size = (160, 160);
+    let plain = r.render_to_image(&p, size).unwrap();
+    let mut shadowed = p;
+    // 4 cm on the default head (metres).
+    shadowed.light.shadow_reach = 0.04;
+    let shadow = r.render_to_image(&shadowed, size).unwrap();
+    let lum = |px: &image::Rgba<u8>| px.0[..3].iter().map(|&v| f64::from(v)).sum::<f64>() / 3.0;
+    let (mut darker, mut darker_left, mut brighter) = (0u32, 0u32, 0u32);
+    for ((x, _, a), b) in plain.enumerate_pixels().zip(shadow.pixels()) {
+        let d = lum(b) - lum(a);
+        if d < -8.0 {
+            darker += 1;
+            darker_left += u32::from(x < 80);
+        }
+        brighter += u32::from(d > 0.5);
+    }
+    eprintln!("{darker} pixels shadowed ({darker_left} on the image's left), {brighter} brighter");
+    assert!(darker > 30, "no shadow: {darker}");
+    assert!(
+        darker_left * 10 > darker * 8,
+        "{darker_left} of {darker} on the left"
+    );
+    assert_eq!(brighter, 0);
+    let mut none = p;
+    none.light.shadow_reach = 0.0;
+    assert_eq!(r.render_to_image(&none, size).unwrap(), plain);
+}
+
 #[test]
 fn hair_thins_and_grays_with_age() {
     let Some(gpu) = gpu_or_skip("hair_thins_and_grays_with_age") else {

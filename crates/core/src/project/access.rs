@@ -172,6 +172,7 @@ slots! {
     "view.light_yaw_deg" => view.light_yaw_deg;
     "view.light_pitch_deg" => view.light_pitch_deg;
     "view.fill_light" => view.fill_light;
+    "view.shadows" => view.shadows;
     "view.camera_yaw_deg" => view.camera_yaw_deg;
     "view.camera_pitch_deg" => view.camera_pitch_deg;
     "view.camera_distance_m" => view.camera_distance_m;

@@ -289,6 +289,8 @@ pub struct ViewSection {
     /// The fill light, a fraction of the key light's intensity, 0–1: diffuse light from
     /// the key's mirror image across the face's midline, near eye level.
     pub fill_light: f32,
+    /// The key light's contact shadows (the nose on the cheek, the brow over the lids).
+    pub shadows: bool,
     pub camera_yaw_deg: f32,
     pub camera_pitch_deg: f32,
     /// Camera distance from the head's centre, m.
@@ -496,6 +498,7 @@ impl Default for ViewSection {
             // the side away from the light lost its folds and its hair against the
             // background (blind: "the fringe shows on one side only").
             fill_light: 0.25,
+            shadows: true,
             camera_yaw_deg: 20.0,
             camera_pitch_deg: 5.0,
             camera_distance_m: 0.9,

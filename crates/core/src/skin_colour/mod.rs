@@ -60,9 +60,10 @@ const BEARD_LIFT: f32 = 0.5;
 const UNDER_EYE_TINT: [f32; 3] = [0.16, 0.2, 0.22];
 /// How much the shadow under the bags darkens the skin at the crease, at full age and
 /// strength, and its tint per channel: blue taken most (0.36 taking green most, a magenta,
-/// read blind as "a purple bruise"). Half what it was (0.3) since the shape's relief draws
-/// the crease's shape (`shape::relief`).
-const CREASE_SHADE: f32 = 0.15;
+/// read blind as "a purple bruise"). A quarter of what it was (0.3): the shape's relief
+/// draws the crease's shape (`shape::relief`), and at 0.15, with the contact shadows, the
+/// crease read as "brownish streaks across the upper cheeks, painted on".
+const CREASE_SHADE: f32 = 0.07;
 const CREASE_TINT: [f32; 3] = [0.7, 0.85, 1.0];
 /// Feature size of the redness and of the thread veins, mm.
 const REDNESS_MM: (f32, f32) = (6.0, 3.0);

@@ -594,8 +594,9 @@ fn the_bags_shadow_the_lid_cheek_junction_with_their_shape() {
         let (shadowed, unshadowed) = (mean(&lo, &junction), mean(&plain, &junction));
         eprintln!("the junction's luminance at 80 {shadowed:.3}, {unshadowed:.3} without the bags");
         // (Half the shadow it drew before the shape's relief drew the bags' crease
-        // itself: 0.88 of the luminance, was 0.77.)
-        assert!(shadowed < 0.92 * unshadowed, "{shadowed} vs {unshadowed}");
+        // itself: 0.88 of the luminance, was 0.77; halved again with the contact shadows
+        // and the softer crease: 0.945.)
+        assert!(shadowed < 0.97 * unshadowed, "{shadowed} vs {unshadowed}");
         assert_eq!(mean(&lo, &elsewhere), mean(&plain, &elsewhere));
     }
     // Under each eye, a band a few millimetres tall.

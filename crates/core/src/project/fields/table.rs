@@ -859,6 +859,11 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             1.0,
             "fill light from the other side, a fraction of the key light",
         ),
+        k(
+            "view.shadows",
+            Kind::Bool,
+            "the key light's contact shadows (nose, brows, folds, jaw)",
+        ),
         f(
             "view.camera_yaw_deg",
             "degrees",

@@ -407,6 +407,11 @@ impl Viewport {
         // While the view moves or the age plays (drawn at a lower resolution), one hair in
         // SPARSE_HAIR_STRIDE: the still frame that follows draws them all.
         params.hair.sparse = self.scale < 1.0;
+        // Nor the contact shadows (their 32 taps a pixel cost about 2 fps while
+        // scrubbing on llvmpipe): the still frame draws them.
+        if self.scale < 1.0 {
+            params.light.shadow_reach = 0.0;
+        }
         // The pixels egui's paint callback covers (its viewport rounds the rectangle's
         // edges to pixels): at full resolution one texel lands on one pixel.
         let ppp = ctx.pixels_per_point();

@@ -66,16 +66,21 @@ fn head_renderer(gpu: &Gpu, mesh: &Mesh) -> Renderer {
     r
 }
 
+/// The default head without its hair, and a frame of it from the front.
+fn bare_head_from_the_front(gpu: &Gpu) -> (Renderer, FrameParams) {
+    let r = head_renderer(gpu, &head::default_head());
+    let mut p = FrameParams::default();
+    p.hair.enabled = false;
+    p.camera.yaw_rad = 0.0;
+    (r, p)
+}
+
 #[test]
 fn head_is_lit_and_where_expected() {
     let Some(gpu) = gpu_or_skip("head_is_lit_and_where_expected") else {
         return;
     };
-    let mesh = head::default_head();
-    let mut r = head_renderer(&gpu, &mesh);
-    let mut p = FrameParams::default();
-    p.hair.enabled = false;
-    p.camera.yaw_rad = 0.0;
+    let (mut r, p) = bare_head_from_the_front(&gpu);
     let img = r.render_to_image(&p, (128, 128)).unwrap();
     let bg = background(&p);
     let (mut count, mut sum, mut min_x, mut max_x, mut min_y, mut max_y) =
@@ -328,11 +333,7 @@ fn the_nose_shadows_the_cheek_away_from_the_light() {
     let Some(gpu) = gpu_or_skip("the_nose_shadows_the_cheek_away_from_the_light") else {
         return;
     };
-    let mesh = head::default_head();
-    let mut r = head_renderer(&gpu, &mesh);
-    let mut p = FrameParams::default();
-    p.hair.enabled = false;
-    p.camera.yaw_rad = 0.0;
+    let (mut r, mut p) = bare_head_from_the_front(&gpu);
     p.camera.pitch_rad = 0.0;
     // From the subject's left (+x), a little above.
     p.light.direction = Vec3::new(0.8, 0.25, 0.55);

@@ -248,7 +248,11 @@ impl Roll {
             return 0.0;
         }
         let roll = if s > 0.0 {
-            smoothstep(0.0, self.crest, s) * (1.0 - smoothstep(self.crest, self.reach, s))
+            // Squared, so the skirt meets the skin with no bend (its foot drew a second
+            // line out on the cheek beside the nasolabial fold, read blind as "extra
+            // parallel lines on the cheek").
+            let fall = 1.0 - smoothstep(self.crest, self.reach, s);
+            smoothstep(0.0, self.crest, s) * fall * fall
         } else {
             0.0
         };

@@ -372,6 +372,11 @@ const SHADOW_SPREAD: f32 = 0.12;
 // How much of the key light a point every ray finds blocked still gets (the skin's own
 // scattering and the penumbra's floor).
 const SHADOW_FLOOR: f32 = 0.15;
+// How much nearer than a ray's point the surface must be, per unit of the ray's length,
+// to block it.
+const SHADOW_BIAS: f32 = 0.1;
+// Over what n·l past the terminator the shadows fade in.
+const SHADOW_TERMINATOR: f32 = 0.3;
 
 // The world position seen at a pixel's NDC with the stored depth `depth`.
 fn world_at(ndc: vec2<f32>, depth: f32) -> vec3<f32> {
@@ -408,7 +413,10 @@ fn shadow_ray(p: vec3<f32>, dir: vec3<f32>, n: vec3<f32>, size: vec2<f32>, reach
         }
         // Distances from the eye: the surface seen there against the ray's point.
         let in_front = distance(q, eye) - distance(world_at(q_ndc, seen_depth), eye);
-        if in_front > 0.0 && in_front < frame.shadow.y {
+        // Nearer than the ray by more than a share of the way it has come: on a convex
+        // surface seen obliquely the skin just beside the point lies a little in front of
+        // the ray and is no occluder.
+        if in_front > SHADOW_BIAS * along && in_front < frame.shadow.y {
             return true;
         }
     }
@@ -431,7 +439,9 @@ fn key_shadow(px: vec2<f32>, size: vec2<f32>, ndc: vec2<f32>, depth: f32, n: vec
     // Two axes across the light, turned per pixel so the rays' offsets differ from pixel
     // to pixel (equal steps and offsets everywhere drew the shadow's edge as stripes and
     // the mesh's facets; they average out over the supersampled pixel).
-    let a = normalize(cross(l, vec3<f32>(0.3, 1.0, 0.0)));
+    // (Any axis well off the light: up, unless the light is nearly overhead.)
+    let helper = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(l.y) < 0.9);
+    let a = normalize(cross(l, helper));
     let b = cross(l, a);
     let turn = 6.2831853 * ign(px);
     let ca = cos(turn);
@@ -447,7 +457,11 @@ fn key_shadow(px: vec2<f32>, size: vec2<f32>, ndc: vec2<f32>, depth: f32, n: vec
             blocked = blocked + 1.0;
         }
     }
-    return 1.0 - (1.0 - SHADOW_FLOOR) * blocked / f32(SHADOW_RAYS);
+    // Faded out toward the terminator, where the light grazes the skin and the wrap
+    // lighting carries on past it unshadowed (a shadow ending at n·l = 0 drew streaks
+    // along a low-poly head's cheek).
+    let shadow = (1.0 - SHADOW_FLOOR) * blocked / f32(SHADOW_RAYS);
+    return 1.0 - shadow * smoothstep(0.0, SHADOW_TERMINATOR, dot(n, l));
 }
 
 // The skin's depth from the stored surface, into a depth buffer cleared to 1: the hair and
@@ -460,6 +474,11 @@ fn fs_depth(@builtin(position) pos: vec4<f32>) -> @builtin(frag_depth) f32 {
         discard;
     }
     return s0.w;
+}
+
+// Wrap diffuse per channel, D = clamp((n·l + w) / (1 + w)², 0, 1) (docs/models.md §10).
+fn wrap_diffuse(n_l: f32, wrap: vec3<f32>) -> vec3<f32> {
+    return clamp((vec3<f32>(n_l) + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
 // How much of each channel an occlusion takes (1 = all of it): red least, in proportion to
@@ -553,11 +572,12 @@ fn shade(s: Surface) -> vec4<f32> {
     // Wrap lighting per channel: red light scatters farthest under the skin, so its
     // terminator wraps widest (GPU Gems 1 ch. 16, a cheap stand-in for [P]'s SSS).
     let wrap = frame.skin_wrap.rgb;
-    let n_l = dot(n, l);
-    // The key's contact shadow takes its light, the red least (it scatters on under the
-    // shadow's edge).
-    let key = vec3<f32>(1.0) - (1.0 - s.key_light) * occlusion_tint();
-    let diffuse = key * clamp((vec3<f32>(n_l) + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0));
+    // Light lost in a fold or a shadow is partly given back under the skin, red most (it
+    // scatters farthest): each loss is scaled per channel, red least.
+    let keep = occlusion_tint();
+    // The key's contact shadow takes its light.
+    let key = vec3<f32>(1.0) - (1.0 - s.key_light) * keep;
+    let diffuse = key * wrap_diffuse(dot(n, l), wrap);
     let spec = s.key_light * skin_specular(n, to_eye, l, frame.skin_wrap.w, frame.skin_spec.x);
     // Hemisphere ambient through the perturbed normal, so micro-relief shows in shadow.
     let sky = 0.6 + 0.4 * n.y;
@@ -569,9 +589,6 @@ fn shade(s: Surface) -> vec4<f32> {
     // A hollow of the aged shape (temples, tear trough, below the cheekbone) sees less of
     // the sky and of the light (docs/models.md §13 "Hollows").
     let hollow = clamp(s.hollow, 0.0, 1.0);
-    // Light lost in a fold is partly given back under the skin, red most (it scatters
-    // farthest): each loss is scaled per channel, red least.
-    let keep = occlusion_tint();
     let cavity = vec3<f32>(1.0) - cavity_loss * keep;
     let ambient = frame.light_colour.w * sky * cavity * (vec3<f32>(1.0) - HOLLOW_AMBIENT * hollow * keep);
     let direct = mix(vec3<f32>(1.0), cavity, 0.5) * (vec3<f32>(1.0) - HOLLOW_LIGHT * hollow * keep);
@@ -580,9 +597,8 @@ fn shade(s: Surface) -> vec4<f32> {
     let occlusion = vec3<f32>(1.0) - (1.0 - s.occlusion) * keep;
     // The fill light: a large soft source on the other side (diffuse only), a little
     // cooler than the key, so the side away from the key keeps its shape.
-    let f_l = dot(n, frame.fill_dir.xyz);
-    let fill = clamp((vec3<f32>(f_l) + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0))
-        * frame.light_colour.rgb * frame.fill_dir.w * FILL_TINT;
+    let fill = wrap_diffuse(dot(n, frame.fill_dir.xyz), wrap) * frame.light_colour.rgb
+        * frame.fill_dir.w * FILL_TINT;
     let colour = (albedo * ((diffuse * light + fill) * direct + ambient)
         + vec3<f32>(spec) * light * cavity) * occlusion;
     return output_colour(colour);

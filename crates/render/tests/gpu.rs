@@ -365,6 +365,34 @@ fn the_nose_shadows_the_cheek_away_from_the_light() {
     assert_eq!(r.render_to_image(&none, size).unwrap(), plain);
 }
 
+/// No false contact shadows on a convex surface: the bald back of the skull, nothing
+/// standing in front of it, lit grazing from behind and above, keeps every pixel of its
+/// upper half (a shadow test with no bias and ending at the terminator streaked a
+/// low-poly head's cheek).
+#[test]
+fn a_convex_skull_casts_no_shadow_on_itself() {
+    let Some(gpu) = gpu_or_skip("a_convex_skull_casts_no_shadow_on_itself") else {
+        return;
+    };
+    let (mut r, mut p) = bare_head_from_the_front(&gpu);
+    p.camera.yaw_rad = std::f32::consts::PI;
+    p.camera.pitch_rad = 0.5;
+    p.light.direction = Vec3::new(0.3, 0.35, -1.0);
+    let size = (160, 160);
+    let plain = r.render_to_image(&p, size).unwrap();
+    let mut shadowed = p;
+    shadowed.light.shadow_reach = 0.04;
+    let shadow = r.render_to_image(&shadowed, size).unwrap();
+    let lum = |px: &image::Rgba<u8>| px.0[..3].iter().map(|&v| f64::from(v)).sum::<f64>() / 3.0;
+    let darker = plain
+        .enumerate_pixels()
+        .zip(shadow.pixels())
+        .filter(|((_, y, a), b)| *y < 80 && lum(b) < lum(a) - 4.0)
+        .count();
+    eprintln!("{darker} pixels of the skull's upper half shadowed");
+    assert!(darker < 10, "{darker}");
+}
+
 #[test]
 fn hair_thins_and_grays_with_age() {
     let Some(gpu) = gpu_or_skip("hair_thins_and_grays_with_age") else {

@@ -325,6 +325,27 @@ fn the_fill_light_lights_the_side_away_from_the_key() {
     assert!(filled_hair > dark_hair + 10.0, "{dark_hair} {filled_hair}");
 }
 
+/// Each pixel's change in brightness (mean of the channels) when `p` is drawn with the
+/// key light's contact shadows reaching 4 cm (the default head is in metres), in the
+/// order of `plain`'s pixels, with their x and y; and the frame without them.
+fn shadows_change(
+    r: &mut Renderer,
+    p: &FrameParams,
+    size: (u32, u32),
+) -> (Vec<(u32, u32, f64)>, image::RgbaImage) {
+    let plain = r.render_to_image(p, size).unwrap();
+    let mut shadowed = *p;
+    shadowed.light.shadow_reach = 0.04;
+    let shadow = r.render_to_image(&shadowed, size).unwrap();
+    let lum = |px: &image::Rgba<u8>| px.0[..3].iter().map(|&v| f64::from(v)).sum::<f64>() / 3.0;
+    let change = plain
+        .enumerate_pixels()
+        .zip(shadow.pixels())
+        .map(|((x, y, a), b)| (x, y, lum(b) - lum(a)))
+        .collect();
+    (change, plain)
+}
+
 /// The key light's contact shadows: lit from the subject's left and low, the nose shadows
 /// the cheek on its right (the image's left) and nothing gets brighter; with no reach
 /// nothing changes.
@@ -338,15 +359,9 @@ fn the_nose_shadows_the_cheek_away_from_the_light() {
     // From the subject's left (+x), a little above.
     p.light.direction = Vec3::new(0.8, 0.25, 0.55);
     let size = (160, 160);
-    let plain = r.render_to_image(&p, size).unwrap();
-    let mut shadowed = p;
-    // 4 cm on the default head (metres).
-    shadowed.light.shadow_reach = 0.04;
-    let shadow = r.render_to_image(&shadowed, size).unwrap();
-    let lum = |px: &image::Rgba<u8>| px.0[..3].iter().map(|&v| f64::from(v)).sum::<f64>() / 3.0;
+    let (change, plain) = shadows_change(&mut r, &p, size);
     let (mut darker, mut darker_left, mut brighter) = (0u32, 0u32, 0u32);
-    for ((x, _, a), b) in plain.enumerate_pixels().zip(shadow.pixels()) {
-        let d = lum(b) - lum(a);
+    for (x, _, d) in change {
         if d < -8.0 {
             darker += 1;
             darker_left += u32::from(x < 80);
@@ -378,16 +393,10 @@ fn a_convex_skull_casts_no_shadow_on_itself() {
     p.camera.yaw_rad = std::f32::consts::PI;
     p.camera.pitch_rad = 0.5;
     p.light.direction = Vec3::new(0.3, 0.35, -1.0);
-    let size = (160, 160);
-    let plain = r.render_to_image(&p, size).unwrap();
-    let mut shadowed = p;
-    shadowed.light.shadow_reach = 0.04;
-    let shadow = r.render_to_image(&shadowed, size).unwrap();
-    let lum = |px: &image::Rgba<u8>| px.0[..3].iter().map(|&v| f64::from(v)).sum::<f64>() / 3.0;
-    let darker = plain
-        .enumerate_pixels()
-        .zip(shadow.pixels())
-        .filter(|((_, y, a), b)| *y < 80 && lum(b) < lum(a) - 4.0)
+    let (change, _) = shadows_change(&mut r, &p, (160, 160));
+    let darker = change
+        .iter()
+        .filter(|&&(_, y, d)| y < 80 && d < -4.0)
         .count();
     eprintln!("{darker} pixels of the skull's upper half shadowed");
     assert!(darker < 10, "{darker}");

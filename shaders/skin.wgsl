@@ -11,9 +11,24 @@
 
 
 // How much a full-depth wrinkle's bottom is darkened (ambient; half of it for the light).
-// The same as `agesim_core::compose::CAVITY` (and 0.7, 0.005 below: CAVITY_MAX,
-// CAVITY_REFERENCE_DISP), which the exported GLB's occlusion texture uses.
-const CAVITY: f32 = 0.8;
+// The same as `agesim_core::compose::CAVITY` and `CAVITY_RING` (and 0.7, 0.005 below:
+// CAVITY_MAX, CAVITY_REFERENCE_DISP), which the exported GLB's occlusion texture uses.
+const CAVITY: f32 = 2.0;
+const CAVITY_RING: f32 = 0.5;
+// How far the red light travels under the skin, in relief depths (`disp.x`, 1.7 mm on the
+// default head): ≈ 1.5 mm.
+const SSS_RADIUS: f32 = 0.9;
+// The ring's eight directions, 45° apart from +u (compose.rs `RING`).
+const RING: array<vec2<f32>, 8> = array<vec2<f32>, 8>(
+    vec2<f32>(1.0, 0.0),
+    vec2<f32>(0.70710677, 0.70710677),
+    vec2<f32>(0.0, 1.0),
+    vec2<f32>(-0.70710677, 0.70710677),
+    vec2<f32>(-1.0, 0.0),
+    vec2<f32>(-0.70710677, -0.70710677),
+    vec2<f32>(0.0, -1.0),
+    vec2<f32>(0.70710677, -0.70710677),
+);
 // How much of the sky and of the light a full hollow of the aged shape loses.
 const HOLLOW_AMBIENT: f32 = 0.6;
 const HOLLOW_LIGHT: f32 = 0.45;
@@ -478,7 +493,22 @@ fn fs_depth(@builtin(position) pos: vec4<f32>) -> @builtin(frag_depth) f32 {
 
 // Wrap diffuse per channel, D = clamp((n·l + w) / (1 + w)², 0, 1) (docs/models.md §10).
 fn wrap_diffuse(n_l: f32, wrap: vec3<f32>) -> vec3<f32> {
-    return clamp((vec3<f32>(n_l) + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0));
+    return wrap_diffuse3(vec3<f32>(n_l), wrap);
+}
+
+// The same with each channel's own n·l (its own normal: see SSS_RADIUS).
+fn wrap_diffuse3(n_l: vec3<f32>, wrap: vec3<f32>) -> vec3<f32> {
+    return clamp((n_l + wrap) / ((1.0 + wrap) * (1.0 + wrap)), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+// The large wrinkles' normal from the slope between points `r` UV units to each side: the
+// relief averaged over about 2r (the red channel's, docs/models.md §10 "Subsurface").
+fn wide_normal(uv: vec2<f32>, r: f32, strength: f32, ddx: vec2<f32>, ddy: vec2<f32>) -> vec3<f32> {
+    let du = vec2<f32>(r, 0.0);
+    let dv = vec2<f32>(0.0, r);
+    let hu = large_height(uv + du, ddx, ddy) - large_height(uv - du, ddx, ddy);
+    let hv = large_height(uv + dv, ddx, ddy) - large_height(uv - dv, ddx, ddy);
+    return normalize(vec3<f32>(-strength * vec2<f32>(hu, hv) / (2.0 * r), 1.0));
 }
 
 // How much of each channel an occlusion takes (1 = all of it): red least, in proportion to
@@ -526,6 +556,11 @@ fn shade(s: Surface) -> vec4<f32> {
         let n_micro = height_normal(micro_map, tile_sampler, micro_uv0 + offset * frame.tiling.xy, frame.layers.x, ddx_micro, ddy_micro);
         n_ts = rnm(n_ts, n_micro);
     }
+    // The light that enters the skin leaves it up to millimetres away, red farthest
+    // (docs/models.md §10 "Subsurface"): red is lit by the large wrinkles' relief averaged
+    // over SSS_RADIUS relief depths around the point (and none of the finer layers), blue
+    // by the full relief, green by their mean.
+    var n_soft_ts = wide_normal(uv, SSS_RADIUS * frame.disp.x, frame.disp.x, ddx, ddy);
     let head_maps = u32(frame.hair_misc.w);
     if (head_maps & 2u) != 0u {
         // The head's own relief is the base the layers lie on.
@@ -534,11 +569,15 @@ fn shade(s: Surface) -> vec4<f32> {
             n_head.y = -n_head.y;
         }
         n_ts = rnm(normalize(n_head), n_ts);
+        n_soft_ts = rnm(normalize(n_head), n_soft_ts);
     }
     if frame.hair_misc.z > 1.5 {
         return vec4<f32>(n_ts, 1.0);
     }
     let n = normalize(t_geo * n_ts.x + b_geo * n_ts.y + n_geo * n_ts.z);
+    let n_soft = normalize(t_geo * n_soft_ts.x + b_geo * n_soft_ts.y + n_geo * n_soft_ts.z);
+    // Per channel: red, green, blue.
+    let n_green = normalize(3.0 * n + n_soft);
 
     // The albedo arrives with the age's paling applied (docs/models.md "Age"); a head's
     // own colour map pales the same way.
@@ -577,27 +616,35 @@ fn shade(s: Surface) -> vec4<f32> {
     let keep = occlusion_tint();
     // The key's contact shadow takes its light.
     let key = vec3<f32>(1.0) - (1.0 - s.key_light) * keep;
-    let diffuse = key * wrap_diffuse(dot(n, l), wrap);
+    let diffuse = key * wrap_diffuse3(vec3<f32>(dot(n_soft, l), dot(n_green, l), dot(n, l)), wrap);
     let spec = s.key_light * skin_specular(n, to_eye, l, frame.skin_wrap.w, frame.skin_spec.x);
     // Hemisphere ambient through the perturbed normal, so micro-relief shows in shadow.
     let sky = 0.6 + 0.4 * n.y;
-    // Cavity occlusion (docs/models.md §10): the bottom of a wrinkle sees less of the sky
-    // and of the light than the skin beside it. The map's depth at the hit, scaled by the
-    // drawn relief (0 with no relief; full at the default 0.005).
+    // Cavity occlusion (docs/models.md §10): the bottom of a crease sees less of the sky
+    // and of the light than the skin around it. How much deeper the map is at the hit than
+    // on a ring CAVITY_RING relief depths around it (a narrow crease: its whole depth; a
+    // wide hollow or a fold's wall: little), scaled by the drawn relief (0 with none).
     let depth01 = clamp(1.0 - large_height(uv, ddx, ddy), 0.0, 1.0);
-    let cavity_loss = clamp(CAVITY * depth01 * frame.disp.x / 0.005, 0.0, 0.7);
+    var ring = 0.0;
+    for (var i = 0; i < 8; i++) {
+        let at = uv + CAVITY_RING * frame.disp.x * RING[i];
+        ring += clamp(1.0 - large_height(at, ddx, ddy), 0.0, 1.0);
+    }
+    let local = max(depth01 - ring / 8.0, 0.0);
+    let cavity_loss = clamp(CAVITY * local * frame.disp.x / 0.005, 0.0, 0.7);
     // A hollow of the aged shape (temples, tear trough, below the cheekbone) sees less of
     // the sky and of the light (docs/models.md §13 "Hollows").
     let hollow = clamp(s.hollow, 0.0, 1.0);
     let cavity = vec3<f32>(1.0) - cavity_loss * keep;
     let ambient = frame.light_colour.w * sky * cavity * (vec3<f32>(1.0) - HOLLOW_AMBIENT * hollow * keep);
-    let direct = mix(vec3<f32>(1.0), cavity, 0.5) * (vec3<f32>(1.0) - HOLLOW_LIGHT * hollow * keep);
+    let direct = cavity * (vec3<f32>(1.0) - HOLLOW_LIGHT * hollow * keep);
     // What the aged shape hides of the sky that the skin saw undisplaced (the scan's colour
     // holds the rest's occlusion): the whole of the skin's light times the ratio.
     let occlusion = vec3<f32>(1.0) - (1.0 - s.occlusion) * keep;
     // The fill light: a large soft source on the other side (diffuse only), a little
     // cooler than the key, so the side away from the key keeps its shape.
-    let fill = wrap_diffuse(dot(n, frame.fill_dir.xyz), wrap) * frame.light_colour.rgb
+    let f = frame.fill_dir.xyz;
+    let fill = wrap_diffuse3(vec3<f32>(dot(n_soft, f), dot(n_green, f), dot(n, f)), wrap) * frame.light_colour.rgb
         * frame.fill_dir.w * FILL_TINT;
     let colour = (albedo * ((diffuse * light + fill) * direct + ambient)
         + vec3<f32>(spec) * light * cavity) * occlusion;

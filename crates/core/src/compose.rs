@@ -19,29 +19,85 @@ use crate::cancel::CancelToken;
 use crate::heightmap::{self, HeightMap};
 use crate::normal_map::encode_unorm8;
 
-/// How much a full-depth wrinkle's bottom is darkened (docs/models.md §10 "Cavity
-/// occlusion"; the skin shader's `CAVITY`).
-pub const CAVITY: f32 = 0.8;
+/// How much a crease's bottom is darkened per unit of depth below the skin around it
+/// (docs/models.md §10 "Cavity occlusion"; the skin shader's `CAVITY`).
+pub const CAVITY: f32 = 2.0;
 /// The most a cavity darkens.
 pub const CAVITY_MAX: f32 = 0.7;
 /// The relief depth (UV units) at which [`CAVITY`] applies in full.
 pub const CAVITY_REFERENCE_DISP: f32 = 0.005;
+/// The radius of the ring of skin a point's depth is compared with, in relief depths
+/// (`disp_scale`; about 1.5 mm on the default head): a crease narrower than it is a
+/// cavity over its whole width, a wider hollow or fold only along its sharp bottom.
+pub const CAVITY_RING: f32 = 0.5;
+/// The ring's eight directions, 45° apart, starting along +u (the shader's order).
+const RING: [[f32; 2]; 8] = [
+    [1.0, 0.0],
+    [
+        std::f32::consts::FRAC_1_SQRT_2,
+        std::f32::consts::FRAC_1_SQRT_2,
+    ],
+    [0.0, 1.0],
+    [
+        -std::f32::consts::FRAC_1_SQRT_2,
+        std::f32::consts::FRAC_1_SQRT_2,
+    ],
+    [-1.0, 0.0],
+    [
+        -std::f32::consts::FRAC_1_SQRT_2,
+        -std::f32::consts::FRAC_1_SQRT_2,
+    ],
+    [0.0, -1.0],
+    [
+        std::f32::consts::FRAC_1_SQRT_2,
+        -std::f32::consts::FRAC_1_SQRT_2,
+    ],
+];
 
-/// The ambient occlusion of a wrinkle's `depth` (normalised, 0–1) drawn `disp_scale` deep:
-/// 1 − min(CAVITY · depth · disp_scale / 0.005, 0.7), as the skin pass darkens it.
-pub fn cavity(depth: f32, disp_scale: f32) -> f32 {
-    let d = depth.clamp(0.0, 1.0) * disp_scale.max(0.0) / CAVITY_REFERENCE_DISP;
+/// The ambient occlusion of a point `local` deeper than the mean of the ring around it
+/// (normalised depths, see [`local_depth`]) drawn `disp_scale` deep:
+/// 1 − min(CAVITY · local · disp_scale / 0.005, 0.7), as the skin pass darkens it.
+pub fn cavity(local: f32, disp_scale: f32) -> f32 {
+    let d = local.max(0.0) * disp_scale.max(0.0) / CAVITY_REFERENCE_DISP;
     1.0 - (CAVITY * d).clamp(0.0, CAVITY_MAX)
+}
+
+/// How much deeper texel (`x`, `y`) of the normalised depth map `large` lies than the
+/// mean of the eight points [`CAVITY_RING`] · `disp_scale` UV units around it, each depth
+/// clamped to [0, 1] (a fold's raised side counts as open skin) and sampled bilinearly as
+/// the view's sampler does (u wraps, v clamps). 0 or more.
+pub fn local_depth(large: &HeightMap, x: u32, y: u32, disp_scale: f32) -> f32 {
+    let (w, h) = (large.width_px(), large.height_px());
+    let depth = |x: u32, y: u32| large.get(x, y).clamp(0.0, 1.0);
+    let r = CAVITY_RING * disp_scale.max(0.0);
+    let mut ring = 0.0;
+    for [du, dv] in RING {
+        // Texel space: u to the right, v up (row 0 at v = 1).
+        let fx = x as f32 + du * r * w as f32;
+        let fy = y as f32 - dv * r * h as f32;
+        let (x0, y0) = (fx.floor(), fy.floor());
+        let (tx, ty) = (fx - x0, fy - y0);
+        let wrap = |i: f32| (i as i64).rem_euclid(i64::from(w)) as u32;
+        let clamp = |j: f32| (j as i64).clamp(0, i64::from(h) - 1) as u32;
+        let (xa, xb, ya, yb) = (wrap(x0), wrap(x0 + 1.0), clamp(y0), clamp(y0 + 1.0));
+        let top = depth(xa, ya) * (1.0 - tx) + depth(xb, ya) * tx;
+        let bottom = depth(xa, yb) * (1.0 - tx) + depth(xb, yb) * tx;
+        ring += top * (1.0 - ty) + bottom * ty;
+    }
+    (depth(x, y) - ring / 8.0).max(0.0)
 }
 
 /// The occlusion map of a large-wrinkle depth map, 8-bit grey (255 = open skin): the
 /// exported GLB's `occlusionTexture`, so the exported head darkens its creases as the view
 /// does.
 pub fn occlusion_map(large: &HeightMap, disp_scale: f32) -> Vec<u8> {
-    large
-        .data()
-        .par_iter()
-        .map(|&d| (cavity(d, disp_scale) * 255.0).round() as u8)
+    let w = large.width_px() as usize;
+    (0..large.data().len())
+        .into_par_iter()
+        .map(|i| {
+            let local = local_depth(large, (i % w) as u32, (i / w) as u32, disp_scale);
+            (cavity(local, disp_scale) * 255.0).round() as u8
+        })
         .collect()
 }
 
@@ -289,19 +345,76 @@ mod tests {
     }
 
     #[test]
-    fn cavities_darken_with_depth_and_relief_only() {
+    fn cavities_darken_with_local_depth_and_relief_only() {
         assert_eq!(cavity(0.0, 0.005), 1.0);
-        // Unclamped below CAVITY_MAX (0.8 × 0.8 = 0.64).
-        assert!((cavity(0.8, 0.005) - (1.0 - 0.8 * CAVITY)).abs() < 1e-6);
+        // Unclamped below CAVITY_MAX (0.3 × 2 = 0.6).
+        assert!((cavity(0.3, 0.005) - (1.0 - 0.3 * CAVITY)).abs() < 1e-6);
         assert_eq!(cavity(1.0, 0.0), 1.0, "no relief, no cavity");
         assert!((cavity(1.0, 1.0) - (1.0 - CAVITY_MAX)).abs() < 1e-6);
-        // A fold's raised side is open skin.
-        assert_eq!(cavity(-0.4, 0.005), 1.0);
         // Half the depth darkens half as much.
-        assert!((1.0 - cavity(0.5, 0.005) - 0.5 * CAVITY).abs() < 1e-6);
-        let map = HeightMap::from_vec(2, 1, vec![0.0, 1.0]).unwrap();
-        // A full-depth crease at the reference relief: 1 − CAVITY_MAX (0.8 is past the cap).
-        assert_eq!(occlusion_map(&map, 0.005), [255, 77]);
+        assert!((1.0 - cavity(0.15, 0.005) - 0.15 * CAVITY).abs() < 1e-6);
+    }
+
+    /// A 64² map, open skin, with `groove` (its depth by distance from the column x = 32,
+    /// in texels) cut along v.
+    fn groove(depth: impl Fn(f32) -> f32) -> HeightMap {
+        let data = (0..64 * 64)
+            .map(|i| depth(((i % 64) as f32 - 32.0).abs()))
+            .collect();
+        HeightMap::from_vec(64, 64, data).unwrap()
+    }
+
+    #[test]
+    fn a_narrow_crease_is_a_cavity_and_a_wide_hollow_is_not() {
+        // A relief whose ring lies 3 texels out.
+        let disp = 3.0 / 64.0 / CAVITY_RING;
+        let narrow = groove(|d| (1.0 - d / 2.0).max(0.0));
+        let wide = groove(|d| (1.0 - d / 30.0).max(0.0));
+        let flat = HeightMap::from_vec(64, 64, vec![0.6; 64 * 64]).unwrap();
+        // The narrow crease's bottom is deeper than all of the ring but the two points
+        // along the crease: three quarters of its depth.
+        assert!((local_depth(&narrow, 32, 10, disp) - 0.75).abs() < 1e-6);
+        // The wide hollow's bottom, 1 deep too, is only a little deeper than the ring.
+        let open = local_depth(&wide, 32, 10, disp);
+        assert!(open > 0.0 && open < 0.12, "{open}");
+        // An even depth, however deep, and the open skin beside a crease: no cavity.
+        assert!(local_depth(&flat, 20, 20, disp) < 1e-6);
+        assert_eq!(local_depth(&narrow, 40, 10, disp), 0.0);
+        let ao = occlusion_map(&narrow, 0.005);
+        let at = |x: usize| ao[10 * 64 + x];
+        // At the reference relief the ring is a fraction of a texel: the bottom is deeper
+        // than its ring by the slope over that distance, and it is the darkest texel.
+        assert!(
+            at(32) < 255 && at(32) < at(31) && at(31) <= at(30),
+            "{:?}",
+            &ao[640 + 28..640 + 37]
+        );
+        assert_eq!(at(0), 255);
+        // No relief, no cavity.
+        assert!(occlusion_map(&narrow, 0.0).iter().all(|&a| a == 255));
+    }
+
+    #[test]
+    fn the_ring_wraps_in_u_and_clamps_in_v() {
+        // A crease along v at u's seam (columns 0 and 63): the ring of a texel at column
+        // 0 reads column 63 across the seam, as the view's sampler does.
+        let data = (0..64 * 64)
+            .map(|i| {
+                if i % 64 == 0 || i % 64 == 63 {
+                    1.0
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let seam = HeightMap::from_vec(64, 64, data).unwrap();
+        let disp = 1.0 / 64.0 / CAVITY_RING;
+        let a = local_depth(&seam, 0, 30, disp);
+        let b = local_depth(&seam, 63, 30, disp);
+        assert!((a - b).abs() < 1e-6, "{a} {b}");
+        // At the top row the ring's points above the map read the top row.
+        let flat = HeightMap::from_vec(64, 64, vec![0.5; 64 * 64]).unwrap();
+        assert!(local_depth(&flat, 10, 0, disp) < 1e-6);
     }
 
     #[test]

@@ -32,6 +32,7 @@ pub mod scene;
 pub mod shape;
 mod simd;
 pub mod skin_colour;
+pub mod surface_warp;
 #[cfg(test)]
 mod test_util;
 pub mod transition;

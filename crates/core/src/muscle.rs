@@ -224,6 +224,34 @@ pub struct Fibre {
     waviness: f32,
     /// Seed of the irregularity and waviness.
     seed: u32,
+    /// Whether the group is straight in UV or on the surface (docs/models.md §3 `space`).
+    space: Space,
+    /// The warp that lays a `Space::Surface` group on the head's surface, attached by the
+    /// scene for the layout the layer is baked in; `None`: evaluated in UV.
+    warp: Option<std::sync::Arc<crate::surface_warp::SurfaceWarp>>,
+}
+
+/// Where a wrinkle group is straight (docs/models.md §3 `space`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Space {
+    /// Straight in the UV layout ([T]'s model).
+    #[default]
+    Uv,
+    /// Straight on the head's surface: its tangent plane, mapped to UV by the affine map
+    /// that best fits the layout over the group ([`crate::surface_warp`]).
+    Surface,
+}
+
+impl Space {
+    pub const ALL: [Space; 2] = [Space::Uv, Space::Surface];
+
+    /// The wrinkle file's value.
+    pub fn name(self) -> &'static str {
+        match self {
+            Space::Uv => "uv",
+            Space::Surface => "surface",
+        }
+    }
 }
 
 /// Irregularity's share that varies the depth *between* the wrinkles of a group; the rest
@@ -344,7 +372,33 @@ impl Fibre {
             irregularity: 0.0,
             waviness: 0.0,
             seed: 0,
+            space: Space::Uv,
+            warp: None,
         })
+    }
+
+    /// Sets where the group is straight: in UV or on the surface.
+    pub fn with_space(mut self, space: Space) -> Self {
+        self.space = space;
+        self
+    }
+
+    /// Attaches (or removes) the warp that lays the group on a head's surface; only a
+    /// `Space::Surface` group takes one.
+    pub fn with_warp(
+        mut self,
+        warp: Option<std::sync::Arc<crate::surface_warp::SurfaceWarp>>,
+    ) -> Self {
+        self.warp = warp.filter(|_| self.space == Space::Surface);
+        self
+    }
+
+    /// The same fibre without its warp (what a wrinkle file holds).
+    pub fn unwarped(&self) -> Self {
+        Self {
+            warp: None,
+            ..self.clone()
+        }
     }
 
     /// Sets the irregularity in [0, 1]: each wrinkle's depth varies along it and between
@@ -403,6 +457,7 @@ impl Fibre {
         Fibre::new(ma, mb, self.n).map(|f| Self {
             ma: f.ma,
             mb: f.mb,
+            warp: None,
             ..self.clone()
         })
     }
@@ -449,6 +504,12 @@ impl Fibre {
     pub fn seed(&self) -> u32 {
         self.seed
     }
+    pub fn space(&self) -> Space {
+        self.space
+    }
+    pub fn warp(&self) -> Option<&crate::surface_warp::SurfaceWarp> {
+        self.warp.as_deref()
+    }
 
     /// Length L = ‖mB − mA‖ in UV units.
     pub fn length_uv(&self) -> f32 {
@@ -457,8 +518,16 @@ impl Fibre {
     }
 
     /// The UV rectangle `[u0, v0, u1, v1]` outside which the fibre is exactly 0: the
-    /// bounding box of the capsule of radius W·L around the segment.
+    /// bounding box of the capsule of radius W·L around the segment, or its warp's grid.
     pub fn bounds_uv(&self) -> [f32; 4] {
+        match &self.warp {
+            Some(w) => w.bounds_uv(),
+            None => self.capsule_bounds_uv(),
+        }
+    }
+
+    /// The bounding box of the capsule of radius W·L around the segment, in UV.
+    pub fn capsule_bounds_uv(&self) -> [f32; 4] {
         let r = self.rel_width * self.length_uv();
         [
             self.ma[0].min(self.mb[0]) - r,
@@ -472,6 +541,15 @@ impl Fibre {
     /// outside the region where At(d)·Aα > 0.
     #[inline]
     pub fn height_at(&self, u: f32, v: f32) -> f32 {
+        // Laid on the surface: evaluated at the point the layout would give it were it
+        // affine over the group.
+        let (u, v) = match &self.warp {
+            None => (u, v),
+            Some(w) => match w.at(u, v) {
+                Some([u, v]) => (u, v),
+                None => return 0.0,
+            },
+        };
         let (ex, ey) = (self.mb[0] - self.ma[0], self.mb[1] - self.ma[1]);
         let len2 = ex * ex + ey * ey;
         let len = len2.sqrt();

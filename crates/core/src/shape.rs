@@ -257,7 +257,12 @@ impl Roll {
             // line out on the cheek beside the nasolabial fold, read blind as "extra
             // parallel lines on the cheek").
             let fall = 1.0 - smoothstep(self.crest, self.reach, s);
-            smoothstep(0.0, self.crest, s) * fall * fall
+            // Steepest at the crease, level at the crest: a fold's skin turns down into
+            // its crease (risen as a smoothstep, level at the crease, the wall's middle
+            // drew a band of its own under the light from the other side, "a brown
+            // painted stripe" beside the crease).
+            let rise = 1.0 - (1.0 - (s / self.crest).min(1.0)).powi(2);
+            rise * fall * fall
         } else {
             0.0
         };
@@ -420,8 +425,11 @@ const NASOLABIAL_L: [[f32; 3]; 9] = [
     [0.68, -1.4, 0.41],
 ];
 
-/// The cheek over a nasolabial fold: a crest 3.5 mm high 5 mm from the crease, falling
-/// back over 19 mm (the fold's "cheek sagging over it"; falling back over 16 mm, before
+/// The cheek over a nasolabial fold: a crest 4 mm high 8.5 mm from the crease, falling
+/// back over 15 mm (the fold's "cheek sagging over it"; 3.5 mm high 5 mm from the crease,
+/// its wall lit from the other side read, blind, as "a narrow dark slit", "a brown painted
+/// stripe"; 5 mm high 9.5 mm out, falling back over 16.5 mm, it raised the skirt where
+/// the cheek turns away; falling back over 16 mm, before
 /// the relief drew its crest, its foot drew a second line out on the cheek, read blind as
 /// "a dent beside the mouth"; over 42 mm it was still 2.6 mm high where the cheek turns
 /// away, 0.2 face units behind the fold, and its depth gate cut it off there in a dimple;
@@ -430,11 +438,11 @@ const NASOLABIAL_L: [[f32; 3]; 9] = [
 const CHEEK_ROLL: Roll = Roll {
     line: &[],
     raised: [1.0, 0.0],
-    crest: 0.1,
+    crest: 0.18,
     reach: 0.5,
-    height_mm: 3.5,
+    height_mm: 4.0,
     crease_mm: 0.3,
-    crease_half: 0.06,
+    crease_half: 0.03,
     mirrored: false,
 };
 
@@ -484,7 +492,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "brows",
         what: "brow descent, most at its tail",
         blobs: &[Blob::new([0.75, 0.45, 0.25], [0.65, 0.35, 0.6])],
-        motions: &[(Descent, 5.0)],
+        motions: &[(Descent, 6.0)],
         rolls: &[],
         curve: curve(40.0, 80.0),
     },
@@ -556,11 +564,15 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // fossa's dish narrower, its edge as "a hard vertical ridge"). Dishes (a
         // plateau's rim drew, blind, "a hard vertical ridge" in the front outline), not
         // reaching the forehead's side (where an edge read as "a hard vertical step").
+        // The fossa's dish just behind the rim, where the hollow shows from the front
+        // and at three-quarter (centred 68 mm out and 26 mm behind the eyes, and 11 mm
+        // deep, every blind rater read "temples not hollow"), 15 mm deep: more than an
+        // old temple loses, so that it shows at a portrait's size.
         blobs: &[
-            Blob::new([1.45, 0.45, -0.55], [0.6, 0.8, 0.75]).soft(),
+            Blob::new([1.3, 0.45, -0.35], [0.42, 0.55, 0.45]).soft(),
             Blob::new([1.6, 0.5, -0.8], [0.55, 0.95, 1.0]).soft(),
         ],
-        motions: &[(Deflate, 11.0)],
+        motions: &[(Deflate, 15.0)],
         rolls: &[],
         curve: curve(40.0, 80.0),
     },

@@ -18,6 +18,8 @@
 //!   the wrinkles of the group by up to this fraction; `waviness` — in [0, 0.5] periods of
 //!   the spacing, default 0: each wrinkle line wanders across; `seed` — an integer, default
 //!   the group's number in the file (docs/models.md §2 "Irregularity");
+//! - `space` — `uv` (default) or `surface`: the group's lines are straight in the UV
+//!   layout, or on the head's surface where the layout bends (docs/models.md §3);
 //! - `ageOnset`, `ageFull` — the fibre's age curve (`docs/models.md` "Age"): the age in
 //!   years at which its wrinkles start to show and at which they reach full depth, both in
 //!   [0, 150], given together, `ageFull ≥ ageOnset`; `ageShape` — `smoothstep` (default)
@@ -32,6 +34,7 @@ use crate::age::{AgeCurve, CurveShape};
 use crate::error::Error;
 use crate::muscle::{
     self, DEFAULT_DEPTH, DEFAULT_MAX_ANGLE, DEFAULT_OMEGA_LOW, DEFAULT_REL_WIDTH, Fibre, Profile,
+    Space,
 };
 
 /// One wrinkle group: a fibre and the comment lines written just before its `!`.
@@ -76,13 +79,14 @@ enum Key {
     Irregularity,
     Waviness,
     Seed,
+    Space,
     AgeOnset,
     AgeFull,
     AgeShape,
 }
 
 impl Key {
-    const ALL: [Key; 14] = [
+    const ALL: [Key; 15] = [
         Key::Ma,
         Key::Mb,
         Key::N,
@@ -94,6 +98,7 @@ impl Key {
         Key::Irregularity,
         Key::Waviness,
         Key::Seed,
+        Key::Space,
         Key::AgeOnset,
         Key::AgeFull,
         Key::AgeShape,
@@ -112,6 +117,7 @@ impl Key {
             Key::Irregularity => "irregularity",
             Key::Waviness => "waviness",
             Key::Seed => "seed",
+            Key::Space => "space",
             Key::AgeOnset => "ageOnset",
             Key::AgeFull => "ageFull",
             Key::AgeShape => "ageShape",
@@ -146,6 +152,7 @@ struct PendingGroup {
     irregularity: Option<f32>,
     waviness: Option<f32>,
     seed: Option<u32>,
+    space: Option<Space>,
     /// The group's number in the file, from 1: its seed unless `seed` says otherwise.
     number: u32,
     age_onset: Option<f32>,
@@ -343,6 +350,19 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
                     false
                 }
             },
+            Key::Space => match Space::ALL
+                .into_iter()
+                .find(|s| s.name().eq_ignore_ascii_case(value_text))
+            {
+                Some(space) => {
+                    group.space = Some(space);
+                    true
+                }
+                None => {
+                    bad(DiagnosticKind::MalformedValue, "one of uv, surface");
+                    false
+                }
+            },
             Key::Seed => match value_text.parse::<u32>() {
                 Ok(seed) => {
                     group.seed = Some(seed);
@@ -534,6 +554,7 @@ fn finish_group(
         .map(|f| {
             f.with_profile(g.profile.unwrap_or_default())
                 .with_seed(g.seed.unwrap_or(g.number))
+                .with_space(g.space.unwrap_or_default())
         });
     match built {
         Ok(fibre) => Some(WrinkleGroup {
@@ -591,6 +612,9 @@ pub fn write(file: &WrinkleFile) -> String {
         }
         if f.seed() != i as u32 + 1 {
             let _ = writeln!(out, "seed={}", f.seed());
+        }
+        if f.space() != Space::default() {
+            let _ = writeln!(out, "space={}", f.space().name());
         }
         if let Some(age) = &g.age {
             let _ = writeln!(out, "ageOnset={}", age.onset_years);

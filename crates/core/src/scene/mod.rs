@@ -279,9 +279,14 @@ pub struct Scene {
     /// Bumped when the head's layout (its fit) changes.
     layout_generation: u64,
     /// The warps that lay the `space=surface` wrinkle groups on the surface of the layout
-    /// the large-wrinkle layer is baked in, each with the group it was made for and
-    /// whether that layout was the template's (see [`Scene::laid_on_surface`]).
-    surface_warps: Vec<(Fibre, bool, Option<Arc<crate::surface_warp::SurfaceWarp>>)>,
+    /// the large-wrinkle layer is baked in, each with the group it was made for and that
+    /// layout (`None`: the template's; else the head's mesh generation; see
+    /// [`Scene::laid_on_surface`]).
+    surface_warps: Vec<(
+        Fibre,
+        Option<u64>,
+        Option<Arc<crate::surface_warp::SurfaceWarp>>,
+    )>,
     /// The correspondence maps of the current layout, by size (the large map's and the
     /// transition texture's).
     correspondences: Vec<Arc<Correspondence>>,
@@ -540,10 +545,10 @@ impl Scene {
             self.surface_warps.clear();
             return fibres;
         }
-        let mesh: &Mesh = if template {
-            &crate::fit::template().mesh
+        let (mesh, layout): (&Mesh, _) = if template {
+            (&crate::fit::template().mesh, None)
         } else {
-            &self.inputs.mesh
+            (&self.inputs.mesh, Some(self.mesh_generation))
         };
         let mut kept = std::mem::take(&mut self.surface_warps);
         let mut laid = Vec::with_capacity(fibres.len());
@@ -554,13 +559,13 @@ impl Scene {
             }
             let found = kept
                 .iter()
-                .position(|(f, t, _)| *t == template && *f == fibre);
+                .position(|(f, l, _)| *l == layout && *f == fibre);
             let warp = match found {
                 Some(i) => kept.swap_remove(i).2,
                 None => SurfaceWarp::new(&fibre, mesh).map(Arc::new),
             };
             self.surface_warps
-                .push((fibre.clone(), template, warp.clone()));
+                .push((fibre.clone(), layout, warp.clone()));
             laid.push(fibre.with_warp(warp));
         }
         laid

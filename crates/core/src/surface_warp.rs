@@ -92,8 +92,13 @@ impl SurfaceWarp {
             if hi[0] < 0.0 || hi[1] < 0.0 || lo[0] >= cols as f32 || lo[1] >= rows as f32 {
                 continue;
             }
-            // A triangle across the layout's seam spans most of the square: not here.
-            if (hi[0] - lo[0]) as usize > cols || (hi[1] - lo[1]) as usize > rows {
+            // A triangle across the layout's seam spans half the square or more: not a
+            // piece of the surface here.
+            let span = [a, b, c].map(|p| p.x);
+            if span.iter().cloned().fold(f32::MIN, f32::max)
+                - span.iter().cloned().fold(f32::MAX, f32::min)
+                >= 0.5
+            {
                 continue;
             }
             let area = (b - a).perp_dot(c - a);
@@ -324,5 +329,33 @@ mod tests {
         // A group wider than the grid allows.
         let wide = Fibre::new([0.1, 0.5], [0.9, 0.5], 1).unwrap();
         assert!(SurfaceWarp::new(&wide, &mesh).is_none());
+        // A coarse mesh: two triangles far larger than the group still carry it.
+        let coarse = Mesh::build(
+            RawMesh {
+                positions: vec![
+                    Vec3::ZERO,
+                    Vec3::new(0.2, 0.0, 0.0),
+                    Vec3::new(0.2, 0.2, 0.0),
+                    Vec3::new(0.0, 0.2, 0.0),
+                ],
+                uvs: Some(vec![
+                    Vec2::new(0.25, 0.25),
+                    Vec2::new(0.65, 0.25),
+                    Vec2::new(0.65, 0.65),
+                    Vec2::new(0.25, 0.65),
+                ]),
+                indices: vec![0, 1, 2, 0, 2, 3],
+                ..RawMesh::default()
+            },
+            "coarse square",
+        )
+        .unwrap();
+        let w = SurfaceWarp::new(&crease(Space::Surface), &coarse).expect("a warp");
+        // Affine there already: the warp is the identity.
+        let p = w.at(0.4, 0.41).unwrap();
+        assert!(
+            (p[0] - 0.4).abs() < 1e-4 && (p[1] - 0.41).abs() < 1e-4,
+            "{p:?}"
+        );
     }
 }

@@ -164,6 +164,35 @@ struct PendingGroup {
     broken: bool,
 }
 
+/// Reads a value named by one of `all` (`name`, case-insensitive) into `slot`, or reports
+/// "one of …" through `bad`. Whether it was read.
+fn read_named<T: Copy>(
+    all: &[T],
+    name: fn(T) -> &'static str,
+    text: &str,
+    slot: &mut Option<T>,
+    bad: &mut dyn FnMut(DiagnosticKind, &str),
+) -> bool {
+    match all
+        .iter()
+        .copied()
+        .find(|&x| name(x).eq_ignore_ascii_case(text))
+    {
+        Some(x) => {
+            *slot = Some(x);
+            true
+        }
+        None => {
+            let names: Vec<&str> = all.iter().map(|&x| name(x)).collect();
+            bad(
+                DiagnosticKind::MalformedValue,
+                &format!("one of {}", names.join(", ")),
+            );
+            false
+        }
+    }
+}
+
 /// Reads and parses a wrinkle file from disk.
 pub fn load(path: &Path) -> Result<WrinkleFile, Error> {
     let bytes = crate::limits::read_file(path, crate::limits::MAX_TEXT_FILE_BYTES)?;
@@ -336,33 +365,20 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
                     }
                 },
             },
-            Key::Profile => match Profile::from_name(value_text) {
-                Some(p) => {
-                    group.profile = Some(p);
-                    true
-                }
-                None => {
-                    let names: Vec<&str> = Profile::ALL.iter().map(|p| p.name()).collect();
-                    bad(
-                        DiagnosticKind::MalformedValue,
-                        &format!("one of {}", names.join(", ")),
-                    );
-                    false
-                }
-            },
-            Key::Space => match Space::ALL
-                .into_iter()
-                .find(|s| s.name().eq_ignore_ascii_case(value_text))
-            {
-                Some(space) => {
-                    group.space = Some(space);
-                    true
-                }
-                None => {
-                    bad(DiagnosticKind::MalformedValue, "one of uv, surface");
-                    false
-                }
-            },
+            Key::Profile => read_named(
+                &Profile::ALL,
+                Profile::name,
+                value_text,
+                &mut group.profile,
+                &mut bad,
+            ),
+            Key::Space => read_named(
+                &Space::ALL,
+                Space::name,
+                value_text,
+                &mut group.space,
+                &mut bad,
+            ),
             Key::Seed => match value_text.parse::<u32>() {
                 Ok(seed) => {
                     group.seed = Some(seed);
@@ -376,19 +392,13 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
                     false
                 }
             },
-            Key::AgeShape => match CurveShape::ALL
-                .into_iter()
-                .find(|c| c.name().eq_ignore_ascii_case(value_text))
-            {
-                Some(c) => {
-                    group.age_shape = Some(c);
-                    true
-                }
-                None => {
-                    bad(DiagnosticKind::MalformedValue, "one of smoothstep, linear");
-                    false
-                }
-            },
+            Key::AgeShape => read_named(
+                &CurveShape::ALL,
+                CurveShape::name,
+                value_text,
+                &mut group.age_shape,
+                &mut bad,
+            ),
             Key::RelWidth
             | Key::MaxAngle
             | Key::OmegaLow

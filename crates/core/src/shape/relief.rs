@@ -71,6 +71,7 @@ impl ShapeRelief {
             .map(|v| template_point(v).map_or(Vec3::NAN, |t| frame.relative(t)))
             .collect();
         let uv_per_mm = uv_per_mm(mesh, metres_per_unit);
+        let edges = mean_edges(mesh, &q);
         let mut patches = Vec::new();
         for (r, region) in REGIONS.iter().enumerate() {
             let strength = strengths.get(r).copied().unwrap_or(1.0);
@@ -147,12 +148,11 @@ impl ShapeRelief {
                     continue;
                 }
                 let qs = v.map(|i| q[i]);
-                // The triangle's edge in the face frame: what its corners can carry.
-                let edge = [(0, 1), (1, 2), (2, 0)]
-                    .map(|(a, b)| qs[a].distance(qs[b]))
-                    .iter()
-                    .sum::<f32>()
-                    / 3.0;
+                // What the corners can carry: the triangles' edge round each, in the face
+                // frame, interpolated (each triangle's own made the relief step along the
+                // edges between a large and a small triangle: straight-edged facets beside
+                // the nasolabial crease).
+                let edge = v.map(|i| edges[i]);
                 crate::fit::raster_uv(uv, size, GUARD_PX, |x, y, w, outside| {
                     let (Some(x), Some(y)) =
                         (x.checked_sub(x0 as usize), y.checked_sub(y0 as usize))
@@ -170,7 +170,7 @@ impl ShapeRelief {
                     texels[i] = Texel {
                         q: qs[0] * w[0] + qs[1] * w[1] + qs[2] * w[2],
                         density: uv_per_mm[0] * w[0] + uv_per_mm[1] * w[1] + uv_per_mm[2] * w[2],
-                        sigma: BLUR_SIGMA * edge,
+                        sigma: BLUR_SIGMA * (edge[0] * w[0] + edge[1] * w[1] + edge[2] * w[2]),
                     };
                 });
             }
@@ -264,6 +264,30 @@ fn uv_per_mm(mesh: &Mesh, metres_per_unit: f32) -> Vec<f32> {
         .collect()
 }
 
+/// Each vertex's mean skin-triangle edge in the face frame `q` (face units; 0 where it
+/// has none, or off the template).
+fn mean_edges(mesh: &Mesh, q: &[Vec3]) -> Vec<f32> {
+    let mut sums = vec![(0.0f32, 0u32); mesh.vertex_count()];
+    for tri in mesh.skin_indices().chunks_exact(3) {
+        let v = [0, 1, 2].map(|i| tri[i] as usize);
+        let edge = [(0, 1), (1, 2), (2, 0)]
+            .map(|(a, b)| q[v[a]].distance(q[v[b]]))
+            .iter()
+            .sum::<f32>()
+            / 3.0;
+        if !edge.is_finite() {
+            continue;
+        }
+        for i in v {
+            sums[i].0 += edge;
+            sums[i].1 += 1;
+        }
+    }
+    sums.iter()
+        .map(|&(sum, n)| if n > 0 { sum / n as f32 } else { 0.0 })
+        .collect()
+}
+
 /// One texel of a patch: its face point, UV units per millimetre and blur (0 density:
 /// no triangle there).
 #[derive(Clone, Copy, Debug, Default)]
@@ -275,18 +299,27 @@ struct Texel {
 
 /// What the displaced mesh draws of a relief: its mean over a Gaussian as wide as the
 /// triangles (their corners sample it; their smooth normals blur it between them), of σ
-/// half the triangles' mean edge (face units), taken on a 5 × 5 grid to ±2σ across the
-/// face's plane.
+/// half the triangles' mean edge (face units), taken on a 9 × 9 grid to ±2σ across the
+/// face's plane (σ / 2 apart: a crease narrower than σ fell between taps σ apart, so the
+/// mean rose and fell as a point moved across it).
 const BLUR_SIGMA: f32 = 0.5;
 
+/// The blur's taps per side, σ / 2 apart.
+const BLUR_SIDE: usize = 9;
+
 /// The blur's taps for σ = 1: offsets and weights (summing to 1).
-fn blur_taps() -> &'static [(glam::Vec2, f32); 25] {
-    static TAPS: std::sync::OnceLock<[(glam::Vec2, f32); 25]> = std::sync::OnceLock::new();
+fn blur_taps() -> &'static [(glam::Vec2, f32); BLUR_SIDE * BLUR_SIDE] {
+    static TAPS: std::sync::OnceLock<[(glam::Vec2, f32); BLUR_SIDE * BLUR_SIDE]> =
+        std::sync::OnceLock::new();
     TAPS.get_or_init(|| {
-        let mut taps = [(glam::Vec2::ZERO, 0.0); 25];
+        let mut taps = [(glam::Vec2::ZERO, 0.0); BLUR_SIDE * BLUR_SIDE];
         let mut total = 0.0;
+        let half = (BLUR_SIDE / 2) as f32;
         for (k, tap) in taps.iter_mut().enumerate() {
-            let (i, j) = ((k % 5) as f32 - 2.0, (k / 5) as f32 - 2.0);
+            let (i, j) = (
+                ((k % BLUR_SIDE) as f32 - half) * 2.0 / half,
+                ((k / BLUR_SIDE) as f32 - half) * 2.0 / half,
+            );
             let w = (-0.5 * (i * i + j * j)).exp();
             *tap = (glam::Vec2::new(i, j), w);
             total += w;

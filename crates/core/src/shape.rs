@@ -434,7 +434,11 @@ const NASOLABIAL_L: [[f32; 3]; 9] = [
 /// "a dent beside the mouth"; over 42 mm it was still 2.6 mm high where the cheek turns
 /// away, 0.2 face units behind the fold, and its depth gate cut it off there in a dimple;
 /// 6.5 mm high 3 mm from the crease, its slope on the side away from the light read as "a
-/// dark grimy blob by the mouth corner, the folds lopsided").
+/// dark grimy blob by the mouth corner, the folds lopsided"; also tried, each rated blind
+/// by eight, none better: its crease 0.2 mm over 2 mm, "a thin tinted slash"; 5.5 mm high
+/// 7 mm out with half its relief finer than the triangles, "a brownish slit", the nose-to-
+/// lip outline "kinked"; with none of that relief and rising as a cube, "shallow, no cheek
+/// over it", the bags' roll rising so "stamped crescents").
 const CHEEK_ROLL: Roll = Roll {
     line: &[],
     raised: [1.0, 0.0],

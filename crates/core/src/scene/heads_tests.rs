@@ -710,3 +710,38 @@ fn landmarks_written_in_the_project_fit_as_their_file_does() {
         "{e}"
     );
 }
+
+/// The crow's feet are laid on the surface through each head's own layout: a second head
+/// read at its own UVs gets its own warps, not the last head's (they are kept per mesh),
+/// so its map is the one a fresh scene bakes for it, byte for byte; and a head whose
+/// layout is squeezed toward the middle has another map.
+#[test]
+fn each_head_read_at_its_own_uvs_has_its_own_surface_warps() {
+    let dir = tempfile::tempdir().unwrap();
+    let squeezed = recut_scan(dir.path(), "squeezed", |uv, _| uv * 0.9 + Vec2::splat(0.05));
+    let scan = recut_scan(dir.path(), "scan", |uv, _| uv);
+    let project = |path: &std::path::Path| {
+        let mut p = Project::default();
+        p.mesh.path = Some(path.to_owned());
+        p.mesh.layout = crate::project::Layout::OwnUvs;
+        p.pores.enabled = false;
+        p.furrows.enabled = false;
+        p.noise.strength = 0.0;
+        p
+    };
+    let request = BakeRequest::maps(256, 1.0, false);
+    let never = CancelToken::never();
+    let map = |scene: &Scene| scene.large().unwrap().height.data().to_vec();
+    let mut fresh = Scene::new(project(&scan)).unwrap();
+    fresh.bake(&request, &never).unwrap();
+    let mut scene = Scene::new(project(&squeezed)).unwrap();
+    scene.bake(&request, &never).unwrap();
+    let first = map(&scene);
+    scene.set_project(project(&scan)).unwrap();
+    scene.bake(&request, &never).unwrap();
+    assert!(
+        map(&scene) == map(&fresh),
+        "the second head's map is a fresh scene's"
+    );
+    assert!(first != map(&fresh), "the squeezed layout has another map");
+}

@@ -1,6 +1,6 @@
 // Hair pass (docs/models.md §9): one instanced draw, one hair per instance, the first
 // count(t) instances of the a_k-sorted buffer; graying C_k(t) and Kajiya–Kay shading here.
-// `Frame` and its binding come from frame.wgsl.
+// `Frame` and its binding come from frame.wgsl, the shared helpers from common.wgsl.
 // Each hair is a camera-facing ribbon of SEGMENTS quads (a triangle strip): lavapipe and
 // most GPUs draw lines one pixel wide at most, too thin to read at editor zoom levels,
 // while a ribbon keeps a chosen pixel width and can taper toward the tip.
@@ -36,25 +36,6 @@ struct VertexOut {
     @location(4) lit: f32,
     // The same for the fill light.
     @location(5) lit_fill: f32,
-}
-
-fn oct_decode(e: vec2<f32>) -> vec3<f32> {
-    var v = vec3<f32>(e.x, e.y, 1.0 - abs(e.x) - abs(e.y));
-    if v.z < 0.0 {
-        let s = vec2<f32>(select(-1.0, 1.0, v.x >= 0.0), select(-1.0, 1.0, v.y >= 0.0));
-        let xy = (vec2<f32>(1.0) - abs(v.yx)) * s;
-        v = vec3<f32>(xy.x, xy.y, v.z);
-    }
-    return normalize(v);
-}
-
-// docs/models.md §9 "Graying": y_k(t) = clamp((t − t_k)/(1 − t_k), 0, 1), optionally smoothstep.
-fn gray_fraction(t: f32, onset: f32) -> f32 {
-    let y = clamp((t - onset) / max(1.0 - onset, 1e-6), 0.0, 1.0);
-    if frame.pom.w == 1u {
-        return y * y * (3.0 - 2.0 * y);
-    }
-    return y;
 }
 
 // The hair as a quadratic Bézier: out of the scalp along its direction for up to half of
@@ -136,7 +117,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let tangent = curve_tangent(curve, s);
 
     let base = frame.hair_base.rgb * (0.8 + 0.4 * random);
-    let y = gray_fraction(frame.disp.w, inst.graying_onset);
+    let y = gray_fraction(frame.disp.w, inst.graying_onset, frame.pom.w == 1u);
     var out: VertexOut;
     out.clip = ribbon_vertex(p, tangent, len * 0.1, s, side);
     out.tangent = tangent;
@@ -205,16 +186,6 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     out.lit = 1.0;
     out.lit_fill = 1.0;
     return out;
-}
-
-fn aces(x: vec3<f32>) -> vec3<f32> {
-    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
-}
-
-fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
-    let lo = c * 12.92;
-    let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
-    return select(hi, lo, c <= vec3<f32>(0.0031308));
 }
 
 @fragment

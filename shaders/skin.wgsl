@@ -6,15 +6,11 @@
 // Two passes: `vs_main` + `fs_surface` rasterise the mesh into a G-buffer (`Surface`),
 // `vs_fullscreen` + `fs_shade` shade it. The second alone redraws an age step or a new map.
 //
-// `Frame` and its binding come from frame.wgsl, put in front of this file when it is
+// `Frame` and its binding come from frame.wgsl, and the shared helpers (tone curve, sRGB,
+// octahedral packing, cavity) from common.wgsl, both put in front of this file when it is
 // loaded (crates/render/src/shaders.rs).
 
 
-// How much a full-depth wrinkle's bottom is darkened (ambient; half of it for the light).
-// The same as `agesim_core::compose::CAVITY` and `CAVITY_RING` (and 0.7, 0.005 below:
-// CAVITY_MAX, CAVITY_REFERENCE_DISP), which the exported GLB's occlusion texture uses.
-const CAVITY: f32 = 2.0;
-const CAVITY_RING: f32 = 0.5;
 // How far the red light travels under the skin, in relief depths (`disp.x`, 1.7 mm on the
 // default head): ≈ 1.5 mm.
 const SSS_RADIUS: f32 = 0.9;
@@ -226,17 +222,6 @@ fn in_large_frame(n_large: vec3<f32>, fine: vec3<f32>) -> vec3<f32> {
     return normalize(t * fine.x + b * fine.y + n_large * fine.z);
 }
 
-// Narkowicz's fit of the ACES filmic curve.
-fn aces(x: vec3<f32>) -> vec3<f32> {
-    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
-}
-
-fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
-    let lo = c * 12.92;
-    let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
-    return select(hi, lo, c <= vec3<f32>(0.0031308));
-}
-
 fn output_colour(linear: vec3<f32>) -> vec4<f32> {
     let mapped = aces(linear);
     if frame.camera_pos.w > 0.5 {
@@ -281,23 +266,6 @@ struct Surface {
     occlusion: f32,
     // How much of the key light reaches it past the surface in view (1: all of it).
     key_light: f32,
-}
-
-// Octahedral encoding of a unit vector (Cigolle et al. 2014), two numbers in [−1, 1].
-fn oct_encode(n: vec3<f32>) -> vec2<f32> {
-    let p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
-    if n.z >= 0.0 {
-        return p;
-    }
-    return (1.0 - abs(p.yx)) * select(vec2<f32>(-1.0), vec2<f32>(1.0), p >= vec2<f32>(0.0));
-}
-
-fn oct_decode(e: vec2<f32>) -> vec3<f32> {
-    var n = vec3<f32>(e, 1.0 - abs(e.x) - abs(e.y));
-    let t = max(-n.z, 0.0);
-    n.x = n.x + select(t, -t, n.x >= 0.0);
-    n.y = n.y + select(t, -t, n.y >= 0.0);
-    return normalize(n);
 }
 
 // The surface in three targets (32 bytes, the smallest per-sample limit wgpu allows):
@@ -629,7 +597,7 @@ fn shade(s: Surface) -> vec4<f32> {
         ring += clamp(1.0 - large_height(at, ddx, ddy), 0.0, 1.0);
     }
     let local = max(depth01 - ring / 8.0, 0.0);
-    let cavity_loss = clamp(CAVITY * local * frame.disp.x / 0.005, 0.0, 0.7);
+    let cavity_loss = cavity_loss(local, frame.disp.x);
     // A hollow of the aged shape (temples, tear trough, below the cheekbone) sees less of
     // the sky and of the light (docs/models.md §13 "Hollows").
     let hollow = clamp(s.hollow, 0.0, 1.0);

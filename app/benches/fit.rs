@@ -10,10 +10,10 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use agesim_core::Mesh;
-use agesim_core::cancel::CancelToken;
-use agesim_core::fit::{self, Correspondence};
-use agesim_core::landmarks::Landmarks;
-use agesim_core::mesh::RawMesh;
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::head::fit::{self, Correspondence};
+use agesim_core::head::landmarks::Landmarks;
+use agesim_core::head::mesh::RawMesh;
 use glam::{Vec2, Vec3};
 
 mod common;

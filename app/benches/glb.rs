@@ -10,8 +10,8 @@
 use std::time::Instant;
 
 use agesim::export::{ExportRequest, GlbOut, head_normal_map};
-use agesim_core::cancel::CancelToken;
-use agesim_core::normal_map::{self, NormalSettings};
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::maps::normal_map::{self, NormalSettings};
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Scene};
 

@@ -9,7 +9,7 @@
 
 use agesim::assets::scan;
 use agesim_core::Mesh;
-use agesim_core::head;
+use agesim_core::head::default as head;
 
 mod common;
 use common::{ms, time};
@@ -34,13 +34,13 @@ fn main() {
     // What the conversion spends on the frame.
     let m = head::default_head();
     let normals = time(7, || {
-        std::hint::black_box(agesim_core::mesh::normals::smooth_normals(
+        std::hint::black_box(agesim_core::head::mesh::normals::smooth_normals(
             m.positions(),
             m.indices(),
         ));
     });
     let mikk = time(7, || {
-        std::hint::black_box(agesim_core::mesh::tangents::mikktspace(
+        std::hint::black_box(agesim_core::head::mesh::tangents::mikktspace(
             m.positions(),
             m.normals(),
             m.uvs(),

@@ -8,7 +8,7 @@ use glam::Vec3;
 fn main() {
     let dir = std::env::args().nth(1).unwrap_or_else(|| "/tmp".into());
     let t = std::time::Instant::now();
-    let head = agesim_core::head::default_head();
+    let head = agesim_core::head::default::default_head();
     println!(
         "{} vertices, {} triangles, {:?} in {:?}; size {:?}",
         head.vertex_count(),

@@ -2,20 +2,20 @@
 //! (height as 16-bit PNG and 32-bit EXR, normal PNG), renders (one image, an age sequence,
 //! a young | old comparison) and the aged head as GLB.
 //!
-//! Everything one request writes is one output set (`agesim_core::export::OutputSet`):
+//! Everything one request writes is one output set (`agesim_core::output::export::OutputSet`):
 //! each file goes to a temporary first, and only when every file is written are they all
 //! renamed into place. An error or a cancel leaves the old files whole and no temporary.
 
 use std::path::{Path, PathBuf};
 
-use agesim_core::cancel::CancelToken;
-use agesim_core::export::OutputSet;
-use agesim_core::mesh::gltf::{GlbMaterial, GlbMorph, write_glb_with_morph};
-use agesim_core::mesh::udim::Udim;
-use agesim_core::normal_map::Convention;
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::head::mesh::gltf::{GlbMaterial, GlbMorph, write_glb_with_morph};
+use agesim_core::head::mesh::udim::Udim;
+use agesim_core::maps::normal_map::Convention;
+use agesim_core::output::export::OutputSet;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Scene, WrinkleSource};
-use agesim_core::{HeightMap, compose, export as out, heightmap};
+use agesim_core::{HeightMap, maps::heightmap, output::compose, output::export as out};
 use anyhow::{Context as _, bail};
 use glam::Vec3;
 
@@ -34,7 +34,7 @@ pub struct MapsOut {
     /// Bake the micro-relief periodic, so the maps tile (the skin patch).
     pub tileable: bool,
     /// The height EXR's (lossless) compression.
-    pub exr_compression: agesim_core::export::ExrCompression,
+    pub exr_compression: agesim_core::output::export::ExrCompression,
 }
 
 impl MapsOut {
@@ -373,7 +373,7 @@ fn export_glb(
     let occlusion = scene
         .large()
         .filter(|l| l.height.width_px() == atlas_px)
-        .map(|l| agesim_core::compose::occlusion_map(&l.height, params.skin.disp_scale));
+        .map(|l| agesim_core::output::compose::occlusion_map(&l.height, params.skin.disp_scale));
     // The aged base colour (docs/models.md "Skin colour"): the head's own colour map, or
     // the skin colour, with its spots, uneven tone and paling at this age, at the colour
     // map's own size (`view::colour_px`; 1024² even for smaller GLB textures).
@@ -507,7 +507,7 @@ fn export_glb(
 
 /// The head's tangent-space normal map of `scene` at age `t`, `size_px`² over the head's
 /// UV square: the layers composed as the renderer's skin pass does
-/// ([`agesim_core::compose`]), with the same relief depth, tiles and fine blend as the
+/// ([`agesim_core::output::compose`]), with the same relief depth, tiles and fine blend as the
 /// 3D view ([`view::frame_params`]).
 pub fn head_normal_map(
     scene: &Scene,

@@ -4,7 +4,7 @@ use clap::Parser as _;
 
 fn main() -> std::process::ExitCode {
     // Ctrl-C or a kill during an export removes its temporaries; the old files stay whole.
-    agesim_core::export::remove_temporaries_on_signals();
+    agesim_core::output::export::remove_temporaries_on_signals();
     let args = agesim::cli::Cli::parse();
     match agesim::cli::run(args) {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -351,7 +351,10 @@ fn a_wrinkle_file_dropped_on_the_window_is_added_and_undo_removes_it() {
     let mut h = scripted(&dialogs, dir.path());
     let fibres = fibre_count(&h);
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/wrinkles/thesis-forehead.wrk");
-    let added = agesim_core::wrinkle_file::load(&file).unwrap().groups.len();
+    let added = agesim_core::layers::wrinkles::wrinkle_file::load(&file)
+        .unwrap()
+        .groups
+        .len();
     h.input_mut()
         .dropped_files
         .push(Arc::new(Dropped(file.clone())));
@@ -376,8 +379,12 @@ fn a_head_in_centimetres_imported_is_measured_and_undo_takes_it_back() {
     let mut h = scripted(&dialogs, dir.path());
     let hairs_m = h.state().snapshot().hair.as_ref().unwrap().len();
     let mesh = dir.path().join("head-cm.obj");
-    let head = agesim_core::head::default_head();
-    std::fs::write(&mesh, agesim_core::mesh::obj::to_obj(&head, |p| p * 100.0)).unwrap();
+    let head = agesim_core::head::default::default_head();
+    std::fs::write(
+        &mesh,
+        agesim_core::head::mesh::obj::to_obj(&head, |p| p * 100.0),
+    )
+    .unwrap();
     h.input_mut()
         .dropped_files
         .push(Arc::new(Dropped(mesh.clone())));
@@ -633,7 +640,7 @@ fn the_guided_landmark_mode_corrects_places_and_fits() {
         app.project().mesh.landmark_file() == Some(written.as_path()) && app.idle()
     });
     settle(&mut h);
-    let file = agesim_core::landmarks::Landmarks::load(&written).unwrap();
+    let file = agesim_core::head::landmarks::Landmarks::load(&written).unwrap();
     assert_eq!(file.len(), 16);
     assert!(!h.state().snapshot().landmarks_found);
     assert!(

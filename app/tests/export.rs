@@ -7,7 +7,7 @@ mod cli;
 use cli::{agesim, stderr};
 
 use agesim::export::{ExportRequest, GlbOut, MapsOut};
-use agesim_core::cancel::CancelToken;
+use agesim_core::base::cancel::CancelToken;
 use agesim_core::project::Project;
 
 #[test]
@@ -108,7 +108,7 @@ fn a_colour_map_is_exported_aged_as_the_base_colour_texture() {
         .save(&map)
         .unwrap();
     let head = dir.path().join("head.glb");
-    std::fs::write(&head, agesim_core::head::DEFAULT_HEAD_GLB).unwrap();
+    std::fs::write(&head, agesim_core::head::default::DEFAULT_HEAD_GLB).unwrap();
     let mut project = Project::default();
     project.mesh.path = Some(head);
     project.mesh.colour_map = Some(map);
@@ -304,9 +304,13 @@ fn a_bad_request_or_a_cancel_leaves_the_old_files_and_no_temporary() {
 #[test]
 fn the_glb_is_in_metres_for_a_head_in_centimetres() {
     let dir = tempfile::tempdir().unwrap();
-    let head = agesim_core::head::default_head();
+    let head = agesim_core::head::default::default_head();
     let obj = dir.path().join("head-cm.obj");
-    std::fs::write(&obj, agesim_core::mesh::obj::to_obj(&head, |p| p * 100.0)).unwrap();
+    std::fs::write(
+        &obj,
+        agesim_core::head::mesh::obj::to_obj(&head, |p| p * 100.0),
+    )
+    .unwrap();
     let mut project = Project::default();
     project.mesh.path = Some(obj);
     let project_file = dir.path().join("p.agesim.json");
@@ -346,8 +350,8 @@ fn the_glb_is_in_metres_for_a_head_in_centimetres() {
 /// tile 1002. Written as OBJ.
 fn udim_head(dir: &std::path::Path) -> std::path::PathBuf {
     use glam::Vec2;
-    let head = agesim_core::head::default_head();
-    let mut raw = agesim_core::mesh::RawMesh::default();
+    let head = agesim_core::head::default::default_head();
+    let mut raw = agesim_core::head::mesh::RawMesh::default();
     let mut uvs = Vec::new();
     let mut copies = std::collections::HashMap::new();
     for [a, b, c] in head.triangles() {
@@ -364,10 +368,10 @@ fn udim_head(dir: &std::path::Path) -> std::path::PathBuf {
         }
     }
     raw.uvs = Some(uvs);
-    let mesh = agesim_core::mesh::Mesh::build(raw, "udim head").unwrap();
+    let mesh = agesim_core::head::mesh::Mesh::build(raw, "udim head").unwrap();
     assert_eq!(mesh.udim().unwrap().numbers(), [1001, 1002]);
     let path = dir.join("udim.obj");
-    std::fs::write(&path, agesim_core::mesh::obj::to_obj(&mesh, |p| p)).unwrap();
+    std::fs::write(&path, agesim_core::head::mesh::obj::to_obj(&mesh, |p| p)).unwrap();
     path
 }
 

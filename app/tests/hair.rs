@@ -100,8 +100,8 @@ fn custom_mesh_and_masks_of_different_sizes() {
     // at most 0.85 × 18 / 50 of it gone).
     assert!((4800..=5200).contains(&c[0].1), "{c:?}");
     let kept = c[4].1 as f64 / c[0].1 as f64;
-    let thinned = 0.5 * f64::from(1.0 - agesim_core::hair::DEFAULT_THINNING);
-    let faded = 0.85 * f64::from(agesim_core::hair::DEFAULT_TAPER_MM) / 50.0;
+    let thinned = 0.5 * f64::from(1.0 - agesim_core::layers::hair::DEFAULT_THINNING);
+    let faded = 0.85 * f64::from(agesim_core::layers::hair::DEFAULT_TAPER_MM) / 50.0;
     assert!(
         kept > thinned * (1.0 - faded) - 0.01 && kept < thinned,
         "{kept}: {c:?}"
@@ -185,7 +185,7 @@ fn an_empty_outer_mask_is_an_error_naming_it() {
 
 /// The default head written as OBJ, its positions × `scale` (100: centimetres).
 fn default_head_obj(scale: f32) -> String {
-    agesim_core::mesh::obj::to_obj(&agesim_core::head::default_head(), |p| p * scale)
+    agesim_core::head::mesh::obj::to_obj(&agesim_core::head::default::default_head(), |p| p * scale)
 }
 
 /// A head in centimetres or millimetres is measured, not taken for metres: the same

@@ -163,12 +163,16 @@ fn mesh_info_prints_the_units_and_how_they_were_decided() {
     // The default head in centimetres, with its own landmarks: the units from the eye
     // corners, the axes from the face, the template fitted by the file.
     let dir = tempfile::tempdir().unwrap();
-    let head = agesim_core::head::default_head();
+    let head = agesim_core::head::default::default_head();
     let obj = dir.path().join("head.obj");
-    std::fs::write(&obj, agesim_core::mesh::obj::to_obj(&head, |p| p * 100.0)).unwrap();
-    let mut marks = agesim_core::landmarks::Landmarks::default();
-    let template = &agesim_core::fit::template().landmarks;
-    for name in agesim_core::landmarks::NAMES {
+    std::fs::write(
+        &obj,
+        agesim_core::head::mesh::obj::to_obj(&head, |p| p * 100.0),
+    )
+    .unwrap();
+    let mut marks = agesim_core::head::landmarks::Landmarks::default();
+    let template = &agesim_core::head::fit::template().landmarks;
+    for name in agesim_core::head::landmarks::NAMES {
         marks
             .set(name, template.get(name).unwrap() * 100.0)
             .unwrap();

@@ -98,7 +98,7 @@ fn a_colour_map_colours_the_head() {
         .unwrap();
     // The default head written as a file, so it takes a --mesh's flags.
     let head = dir.path().join("head.glb");
-    std::fs::write(&head, agesim_core::head::DEFAULT_HEAD_GLB).unwrap();
+    std::fs::write(&head, agesim_core::head::default::DEFAULT_HEAD_GLB).unwrap();
     let mean = |args: &[&str]| -> Option<[f64; 3]> {
         let out = dir.path().join("h.png");
         let mut all = vec![

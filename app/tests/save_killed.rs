@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use agesim::editor::files::save_project;
-use agesim_core::landmarks::Landmarks;
+use agesim_core::head::landmarks::Landmarks;
+use agesim_core::layers::wrinkles::wrinkle_file::{self, WrinkleFile};
 use agesim_core::project::Project;
 use agesim_core::scene::WrinkleSource;
-use agesim_core::wrinkle_file::{self, WrinkleFile};
 
 /// The three wrinkle files of version `v` (each file's fibres say which version it is).
 fn wrinkles(v: u32) -> Vec<WrinkleSource> {
@@ -83,7 +83,7 @@ fn a_save_killed_at_any_point_leaves_the_old_set_or_the_new_one() {
         let dir = PathBuf::from(dir);
         let step: u32 = std::env::var(CHILD_STEP).unwrap().parse().unwrap();
         save(&dir, 1);
-        agesim_core::export::kill_at_step_for_tests(Some(step));
+        agesim_core::output::export::kill_at_step_for_tests(Some(step));
         save(&dir, 2);
         return;
     }

@@ -11,9 +11,9 @@
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-use agesim_core::heightmap::check_size;
-use agesim_core::landmarks::Landmarks;
-use agesim_core::mask::Mask;
+use agesim_core::head::landmarks::Landmarks;
+use agesim_core::maps::heightmap::check_size;
+use agesim_core::maps::mask::Mask;
 use agesim_core::{Error, Mesh};
 
 /// Width of the soft edge of every region, metres.
@@ -43,7 +43,7 @@ impl Surface {
                 positions[corner(1)],
                 positions[corner(2)],
             ];
-            agesim_core::fit::raster_uv(uv, size_px, 1.5, |x, y, w, outside| {
+            agesim_core::maps::raster::raster_uv(uv, size_px, 1.5, |x, y, w, outside| {
                 let i = y * n + x;
                 if outside < distance[i] {
                     distance[i] = outside;
@@ -52,7 +52,7 @@ impl Surface {
             });
         }
         let filled: Vec<bool> = distance.iter().map(|d| d.is_finite()).collect();
-        agesim_core::fit::pad(&mut points, &filled, n);
+        agesim_core::head::fit::pad(&mut points, &filled, n);
         Ok(Self { size_px, points })
     }
 
@@ -268,7 +268,7 @@ fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
 
 /// The UV of the skin point of `mesh` nearest to `p` (for drawing landmarks on the layout).
 pub fn uv_near(mesh: &Mesh, p: Vec3) -> Option<Vec2> {
-    let bvh = agesim_core::fit::bvh::Bvh::new(mesh.positions(), &mesh.skin_indices());
+    let bvh = agesim_core::head::fit::bvh::Bvh::new(mesh.positions(), &mesh.skin_indices());
     let hit = bvh.closest(p, f32::INFINITY)?;
     let idx = mesh.skin_indices();
     let t = hit.triangle as usize * 3;
@@ -288,8 +288,8 @@ mod tests {
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets")
     }
 
-    fn template() -> &'static agesim_core::fit::Template {
-        agesim_core::fit::template()
+    fn template() -> &'static agesim_core::head::fit::Template {
+        agesim_core::head::fit::template()
     }
 
     /// The shipped mask at the surface point nearest `p`.
@@ -407,7 +407,8 @@ mod tests {
         let mask = Mask::load(&assets().join("masks/wrinkles.png")).unwrap();
         for name in names {
             let path = assets().join(format!("wrinkles/{name}.wrk"));
-            let file = agesim_core::wrinkle_file::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            let file = agesim_core::layers::wrinkles::wrinkle_file::load(&path)
+                .unwrap_or_else(|e| panic!("{e}"));
             assert!(!file.groups.is_empty(), "{name} has no group");
             for fibre in file.fibres() {
                 // The middle (where a one-wrinkle fibre's line runs) on the face; the ends

@@ -115,7 +115,7 @@ mod tests {
 
     #[test]
     fn a_patch_seen_from_the_front_fills_the_middle_and_its_back_is_culled() {
-        let patch = agesim_core::head::skin_patch();
+        let patch = agesim_core::head::default::skin_patch();
         let img = render(&patch, View::FRONT, 64, |_| Vec3::ONE);
         let bg = img.get_pixel(0, 0).0;
         let mid = img.get_pixel(32, 32).0;

@@ -3,7 +3,7 @@
 //! triplegangers.com"). `agesim gen-assets` writes the result to
 //! `assets/meshes/default-head.glb` (with the scan's colour map, its ears corrected, and
 //! normal map embedded) and `assets/meshes/default-head.landmarks.json`; the engine reads those
-//! (`agesim_core::head`), never this.
+//! (`agesim_core::head::default`), never this.
 //!
 //! What the conversion does to the scan, and nothing more:
 //! - **frame**: metres at 95 mm between the outer eye corners (docs/models.md §7a), +Y up,
@@ -28,8 +28,8 @@
 use std::path::Path;
 
 use agesim_core::Error;
-use agesim_core::landmarks::Landmarks;
-use agesim_core::mesh::{Mesh, MeshPart, RawMesh, gltf};
+use agesim_core::head::landmarks::Landmarks;
+use agesim_core::head::mesh::{Mesh, MeshPart, RawMesh, gltf};
 use anyhow::Context as _;
 use glam::{Mat3, Vec2, Vec3};
 
@@ -129,7 +129,7 @@ pub fn convert_scan(assets: &Path) -> anyhow::Result<DefaultHead> {
 
     // Scale: 95 mm between the outer eye corners.
     let eye_span = get("exocanthion_r")?.distance(get("exocanthion_l")?);
-    let scale = agesim_core::landmarks::EXOCANTHION_DISTANCE_M / eye_span;
+    let scale = agesim_core::head::landmarks::EXOCANTHION_DISTANCE_M / eye_span;
     // Rotation: the pairs' right → left direction onto +X, the scan's up kept near +Y.
     let mut across = Vec3::ZERO;
     let mut mid = Vec3::ZERO;
@@ -149,7 +149,7 @@ pub fn convert_scan(assets: &Path) -> anyhow::Result<DefaultHead> {
     let to_head = |p: Vec3| (rotation * p - origin) * scale;
 
     let mut landmarks = Landmarks::default();
-    for name in agesim_core::landmarks::NAMES {
+    for name in agesim_core::head::landmarks::NAMES {
         if let Some(p) = scan_landmarks.get(name) {
             landmarks.set(name, to_head(p))?;
         }
@@ -232,9 +232,9 @@ pub fn convert_scan(assets: &Path) -> anyhow::Result<DefaultHead> {
     let mesh = Mesh::build(raw, "default head (converted scan)")?;
     // The landmarks on the surface (picked by hand, a few mm off; the mirrored tragion
     // wherever the right ear is).
-    let bvh = agesim_core::fit::bvh::Bvh::new(mesh.positions(), &mesh.skin_indices());
+    let bvh = agesim_core::head::fit::bvh::Bvh::new(mesh.positions(), &mesh.skin_indices());
     let mut on_surface = Landmarks::default();
-    for name in agesim_core::landmarks::NAMES {
+    for name in agesim_core::head::landmarks::NAMES {
         if let Some(p) = landmarks.get(name) {
             let hit = bvh
                 .closest(p, f32::INFINITY)
@@ -244,7 +244,10 @@ pub fn convert_scan(assets: &Path) -> anyhow::Result<DefaultHead> {
     }
     let landmarks = on_surface;
     let read = |name: &str| -> Result<Vec<u8>, Error> {
-        agesim_core::limits::read_file(&dir.join(name), agesim_core::limits::MAX_IMAGE_FILE_BYTES)
+        agesim_core::base::limits::read_file(
+            &dir.join(name),
+            agesim_core::base::limits::MAX_IMAGE_FILE_BYTES,
+        )
     };
     let colour_jpeg = neutralise_ears(&read("Map-COL.jpg")?, &mesh, &landmarks)?;
     Ok(DefaultHead {
@@ -344,7 +347,7 @@ mod tests {
         // Guards assets/meshes/default-head.glb and its landmarks against going stale:
         // rerun `cargo run -p agesim -- gen-assets --out assets` when this fails.
         let fresh = convert_scan(&assets()).unwrap();
-        let shipped = agesim_core::head::shipped_default_head().unwrap();
+        let shipped = agesim_core::head::default::shipped_default_head().unwrap();
         // The file gives each part its own vertices (the rim between the skin and the eye
         // sockets is doubled): compared corner by corner.
         assert_eq!(
@@ -379,12 +382,12 @@ mod tests {
         assert!(normal_rad <= 1e-5, "normals differ by {normal_rad} rad");
         assert!(tangent_rad <= 1e-5, "tangents differ by {tangent_rad} rad");
         assert_eq!(
-            agesim_core::fit::template().landmarks,
+            agesim_core::head::fit::template().landmarks,
             fresh.landmarks,
             "the template's landmarks"
         );
         // The maps are the scan's files, byte for byte.
-        let textures = agesim_core::mesh::textures::default_head();
+        let textures = agesim_core::head::default::default_head_textures();
         let colour = textures.colour.as_ref().expect("a colour map");
         assert_eq!((colour.width_px, colour.height_px), (1024, 1024));
         assert!(textures.normal.is_some(), "a normal map");

@@ -9,11 +9,11 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use agesim_core::cancel::CancelToken;
-use agesim_core::mesh::udim::Udim;
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::head::mesh::udim::Udim;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Scene};
-use agesim_core::{defaults, export, heightmap};
+use agesim_core::{defaults, maps::heightmap, output::export};
 use anyhow::{Context as _, bail};
 use serde_json::json;
 
@@ -118,7 +118,7 @@ pub enum ConventionArg {
     Directx,
 }
 
-impl From<ConventionArg> for agesim_core::normal_map::Convention {
+impl From<ConventionArg> for agesim_core::maps::normal_map::Convention {
     fn from(c: ConventionArg) -> Self {
         match c {
             ConventionArg::Opengl => Self::OpenGl,

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use agesim_core::cancel::CancelToken;
+use agesim_core::base::cancel::CancelToken;
 use anyhow::bail;
 
 use crate::export::{ExportRequest, GlbOut, MapsOut, RendersOut};

@@ -5,8 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
-use agesim_core::export::{write_grey8_png, write_height_png16, write_rgb8_png};
-use agesim_core::{HeightMap, Mask, fine_wrinkles, head, muscle, wrinkle_file};
+use agesim_core::output::export::{write_grey8_png, write_height_png16, write_rgb8_png};
+use agesim_core::{
+    HeightMap, Mask, head, layers::wrinkles::fine_wrinkles, layers::wrinkles::muscle,
+    layers::wrinkles::wrinkle_file,
+};
 use anyhow::Context as _;
 
 use crate::assets::masks as head_assets;
@@ -48,10 +51,10 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
     }
     // The default head, converted from the scan; built into agesim-core (include_bytes!).
     let head = scan::convert_scan(out)?;
-    let glb = out.join(head::DEFAULT_HEAD_ASSET);
+    let glb = out.join(head::default::DEFAULT_HEAD_ASSET);
     std::fs::write(&glb, default_head_glb(&head))
         .with_context(|| format!("cannot write {}", glb.display()))?;
-    let landmarks_path = out.join(head::DEFAULT_HEAD_LANDMARKS_ASSET);
+    let landmarks_path = out.join(head::default::DEFAULT_HEAD_LANDMARKS_ASSET);
     std::fs::write(&landmarks_path, head.landmarks.to_json_pretty() + "\n")
         .with_context(|| format!("cannot write {}", landmarks_path.display()))?;
     let mesh = &head.mesh;
@@ -73,20 +76,21 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
     write_height_png16(&out.join("tiles/fine-wrinkles.png"), &tile)?;
 
     // Pictures: the layout is the scan's colour map, with the landmarks on it.
-    let colour = agesim_core::mask::HeadImage::decode(&head.colour_jpeg, Path::new("Map-COL.jpg"))?;
+    let colour =
+        agesim_core::maps::mask::HeadImage::decode(&head.colour_jpeg, Path::new("Map-COL.jpg"))?;
     let albedo = |uv: Vec2| colour_at(&colour, uv);
     let n = (DOC_PX * DOC_PX) as usize;
     let layout: Vec<Vec3> = (0..n)
         .map(|k| {
             let (x, y) = (k as u32 % DOC_PX, k as u32 / DOC_PX);
             albedo(Vec2::new(
-                agesim_core::heightmap::pixel_to_u(x, DOC_PX),
-                agesim_core::heightmap::pixel_to_v(y, DOC_PX),
+                agesim_core::maps::heightmap::pixel_to_u(x, DOC_PX),
+                agesim_core::maps::heightmap::pixel_to_v(y, DOC_PX),
             ))
         })
         .collect();
     let mut pixels = layout.clone();
-    for name in agesim_core::landmarks::NAMES {
+    for name in agesim_core::head::landmarks::NAMES {
         if let Some(uv) = head
             .landmarks
             .get(name)
@@ -183,7 +187,7 @@ pub fn run(args: &GenAssetsArgs) -> anyhow::Result<()> {
 
 /// The default head as GLB, with the scan's maps embedded as its material.
 pub fn default_head_glb(head: &scan::DefaultHead) -> Vec<u8> {
-    let material = agesim_core::mesh::gltf::GlbMaterial {
+    let material = agesim_core::head::mesh::gltf::GlbMaterial {
         name: "skin (Lee Perry-Smith scan, CC BY 3.0)".to_owned(),
         base_colour: [1.0; 4],
         base_colour_png: Some(head.colour_jpeg.clone()),
@@ -195,11 +199,11 @@ pub fn default_head_glb(head: &scan::DefaultHead) -> Vec<u8> {
             "credit": "Infinite, 3D Head Scan by Lee Perry-Smith, licensed under CC BY 3.0, based on a work at triplegangers.com"
         }),
     };
-    agesim_core::mesh::gltf::write_glb_with_material(&head.mesh, Some(&material))
+    agesim_core::head::mesh::gltf::write_glb_with_material(&head.mesh, Some(&material))
 }
 
 /// The colour map at `uv` (linear, nearest texel; v up).
-fn colour_at(image: &agesim_core::mask::HeadImage, uv: Vec2) -> Vec3 {
+fn colour_at(image: &agesim_core::maps::mask::HeadImage, uv: Vec2) -> Vec3 {
     let (w, h) = (image.width_px as f32, image.height_px as f32);
     let x = ((uv.x * w) as u32).min(image.width_px - 1);
     let y = (((1.0 - uv.y) * h) as u32).min(image.height_px - 1);

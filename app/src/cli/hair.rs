@@ -1,18 +1,18 @@
 //! `agesim hair`: the hair transition texture and hair instances of a head (docs/models.md §9).
 //!
 //! Writes `DIR/transition.png` (16-bit grey: the disappearance age a per texel, white =
-//! inner hair that never goes, black = no hair; see `agesim_core::transition`) and
+//! inner hair that never goes, black = no hair; see `agesim_core::layers::hair::transition`) and
 //! `DIR/hair.json` (the inputs, the hair counts at t = 0, 0.25, 0.5, 0.75, 1 and timings).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use agesim_core::cancel::CancelToken;
+use agesim_core::base::cancel::CancelToken;
 use agesim_core::defaults;
-use agesim_core::hair::{DEFAULT_DENSITY_PER_CM2, HairInstances};
+use agesim_core::layers::hair::transition::{DistanceMetric, TransitionTexture};
+use agesim_core::layers::hair::{DEFAULT_DENSITY_PER_CM2, HairInstances};
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Scene};
-use agesim_core::transition::{DistanceMetric, TransitionTexture};
 use anyhow::Context as _;
 
 /// The ages at which `hair.json` reports the number of hairs present.
@@ -139,7 +139,7 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
         write_uv_preview(&args.out.join("hair-uv.png"), transition, hairs)?;
     }
     let json = serde_json::to_vec_pretty(&report)?;
-    agesim_core::export::write_atomically(&args.out.join("hair.json"), |w| {
+    agesim_core::output::export::write_atomically(&args.out.join("hair.json"), |w| {
         std::io::Write::write_all(w, &json)
     })?;
     println!(
@@ -187,7 +187,7 @@ fn write_uv_preview(
         let y = (((1.0 - uv.y) * n as f32) as usize).min(n - 1);
         rgb[(y * n + x) * 3..][..3].copy_from_slice(&age_colour(h.disappear_age()));
     }
-    agesim_core::export::write_rgb8_png(path, PREVIEW_PX, PREVIEW_PX, &rgb)?;
+    agesim_core::output::export::write_rgb8_png(path, PREVIEW_PX, PREVIEW_PX, &rgb)?;
     Ok(())
 }
 

@@ -1,11 +1,11 @@
 //! `agesim landmarks --mesh FILE --out L.json`: the head's facial landmarks found
-//! automatically (the template aligned to it, `agesim_core::fit::auto`), written as a
+//! automatically (the template aligned to it, `agesim_core::head::fit::auto`), written as a
 //! landmark file in the mesh file's own coordinates, to check, correct and pass back with
 //! `--landmarks`.
 
 use std::path::PathBuf;
 
-use agesim_core::landmarks::{Landmarks, NAMES};
+use agesim_core::head::landmarks::{Landmarks, NAMES};
 use agesim_core::project::Project;
 use agesim_core::scene::Scene;
 use anyhow::Context as _;
@@ -46,7 +46,7 @@ pub fn run(args: &LandmarksArgs) -> anyhow::Result<()> {
         }
     }
     let text = file.to_json_pretty();
-    let outputs = agesim_core::export::OutputSet::new();
+    let outputs = agesim_core::output::export::OutputSet::new();
     outputs
         .stage(&args.out, |w| std::io::Write::write_all(w, text.as_bytes()))
         .with_context(|| format!("cannot write {}", args.out.display()))?;

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use agesim_core::Mesh;
-use agesim_core::mesh::TangentSource;
+use agesim_core::head::mesh::TangentSource;
 use agesim_core::project::Project;
 use agesim_core::scene::Scene;
 
@@ -26,7 +26,7 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
         Some(path) if !args.default_head => (path.display().to_string(), Mesh::load(path)?),
         _ => (
             "assets/meshes/default-head.glb (built in)".to_owned(),
-            agesim_core::head::default_head(),
+            agesim_core::head::default::default_head(),
         ),
     };
     print!("{}", describe(&name, &mesh));

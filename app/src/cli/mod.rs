@@ -216,7 +216,7 @@ impl MeshArgs {
             println!("layout: {}", scene.layout().how);
         }
         let axes = scene.axes();
-        if axes != agesim_core::mesh::units::Axes::STANDARD {
+        if axes != agesim_core::head::mesh::units::Axes::STANDARD {
             println!(
                 "axes: up {}, forward {} (turned to +Y up, +Z forward)",
                 axes.up.name(),

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use agesim_core::HeightMap;
-use agesim_core::hair::DEFAULT_DENSITY_PER_CM2;
+use agesim_core::layers::hair::DEFAULT_DENSITY_PER_CM2;
 use agesim_core::project::{BuiltinMesh, Project, ViewSection};
 use agesim_core::scene::Scene;
 use agesim_render::{FrameParams, Gpu, PomMode, Renderer};
@@ -153,9 +153,9 @@ fn patch_wrinkles(size_px: u32) -> anyhow::Result<HeightMap> {
     let n = size_px as usize;
     let mut data = Vec::with_capacity(n * n);
     for y in 0..size_px {
-        let v = agesim_core::heightmap::pixel_to_v(y, size_px);
+        let v = agesim_core::maps::heightmap::pixel_to_v(y, size_px);
         for x in 0..size_px {
-            let u = agesim_core::heightmap::pixel_to_u(x, size_px);
+            let u = agesim_core::maps::heightmap::pixel_to_u(x, size_px);
             // 5 creases over 5 cm, gently waving; crest = 1, valley floor = 0.
             let phase = (v * 5.0 + 0.04 * (u * 9.0).sin()) * std::f32::consts::TAU;
             data.push((0.5 + 0.5 * phase.cos()).powf(0.4));

@@ -6,8 +6,8 @@ use std::path::PathBuf;
 use std::sync::mpsc::{Receiver, channel};
 use std::sync::{Arc, Mutex};
 
-use agesim_core::cancel::CancelToken;
-use agesim_core::normal_map::Convention;
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::maps::normal_map::Convention;
 use agesim_core::project::Project;
 use agesim_core::scene::WrinkleSource;
 
@@ -26,7 +26,7 @@ pub struct ExportSettings {
     pub size_px: u32,
     pub height_png: bool,
     pub height_exr: bool,
-    pub exr_compression: agesim_core::export::ExrCompression,
+    pub exr_compression: agesim_core::output::export::ExrCompression,
     pub normal_png: bool,
     pub directx: bool,
     pub tileable: bool,
@@ -50,7 +50,7 @@ impl Default for ExportSettings {
             size_px: 2048,
             height_png: true,
             height_exr: false,
-            exr_compression: agesim_core::export::ExrCompression::Rle,
+            exr_compression: agesim_core::output::export::ExrCompression::Rle,
             normal_png: true,
             directx: false,
             tileable: false,
@@ -265,7 +265,7 @@ pub fn export_ui(
                 ui.vertical(|ui| {
                     ui.checkbox(&mut s.height_png, "height, 16-bit PNG");
                     ui.horizontal(|ui| {
-                        use agesim_core::export::ExrCompression as C;
+                        use agesim_core::output::export::ExrCompression as C;
                         ui.checkbox(&mut s.height_exr, "height, 32-bit float EXR");
                         for (c, name) in [(C::Rle, "RLE"), (C::None, "none"), (C::Zip, "ZIP")] {
                             ui.radio_value(&mut s.exr_compression, c, name);

@@ -8,9 +8,9 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 use std::sync::{Arc, Mutex};
 
 use agesim_core::defaults;
+use agesim_core::layers::wrinkles::wrinkle_file::{self, WrinkleFile};
 use agesim_core::project::Project;
 use agesim_core::scene::WrinkleSource;
-use agesim_core::wrinkle_file::{self, WrinkleFile};
 
 /// What a dialog was opened for.
 #[derive(Clone, Debug, PartialEq)]
@@ -384,7 +384,7 @@ pub fn save_project(
     path: &Path,
     project: &Project,
     wrinkles: Option<&[WrinkleSource]>,
-    found: Option<&agesim_core::landmarks::Landmarks>,
+    found: Option<&agesim_core::head::landmarks::Landmarks>,
 ) -> Result<(Project, Option<Vec<WrinkleSource>>), String> {
     let mut project = project.clone();
     let dir = path.parent().unwrap_or(Path::new("")).to_owned();
@@ -399,7 +399,7 @@ pub fn save_project(
         .to_owned();
     // One set: the wrinkle files, the mask and the project are staged, then put in place
     // all or none (a failure or a kill leaves the previous set whole).
-    let set = agesim_core::export::OutputSet::new();
+    let set = agesim_core::output::export::OutputSet::new();
     let mut saved = None;
     if let Some(wrinkles) = wrinkles {
         let builtin = project.large.wrinkles.is_empty();
@@ -501,7 +501,7 @@ mod tests {
     #[test]
     fn found_landmarks_are_saved_beside_the_project() {
         let dir = tempfile::tempdir().unwrap();
-        let mut found = agesim_core::landmarks::Landmarks::default();
+        let mut found = agesim_core::head::landmarks::Landmarks::default();
         found
             .set("pronasale", glam::Vec3::new(0.0, 1.0, 2.0))
             .unwrap();
@@ -512,7 +512,7 @@ mod tests {
         let written = saved.mesh.landmark_file().unwrap().to_owned();
         assert_eq!(written, dir.path().join("p-landmarks.json"));
         assert_eq!(
-            agesim_core::landmarks::Landmarks::load(&written).unwrap(),
+            agesim_core::head::landmarks::Landmarks::load(&written).unwrap(),
             found
         );
         assert_eq!(

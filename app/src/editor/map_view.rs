@@ -3,7 +3,7 @@
 //! whole fibre (square), select it for the inspector. Scroll to zoom, drag with the right
 //! or middle button to pan; double-click the background to reset the view.
 
-use agesim_core::muscle::Fibre;
+use agesim_core::layers::wrinkles::muscle::Fibre;
 use agesim_core::scene::WrinkleSource;
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Vec2, pos2, vec2};
 

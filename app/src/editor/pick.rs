@@ -90,7 +90,7 @@ mod tests {
 
     #[test]
     fn a_ray_and_a_uv_find_the_same_point_on_the_skin_patch() {
-        let patch = agesim_core::head::skin_patch();
+        let patch = agesim_core::head::default::skin_patch();
         let b = patch.bounds();
         let c = b.centre();
         // From in front of the patch (it faces +z), straight at its centre.
@@ -112,7 +112,7 @@ mod head_tests {
 
     #[test]
     fn a_ray_from_the_front_hits_the_default_head() {
-        let head = agesim_core::head::default_head();
+        let head = agesim_core::head::default::default_head();
         let b = head.bounds();
         let c = b.centre();
         let eye = c + Vec3::new(0.2, 0.05, 0.56);

@@ -97,7 +97,7 @@ pub fn write(
         "pid": std::process::id(),
         "original": original.map(|p| p.display().to_string()),
     });
-    let set = agesim_core::export::OutputSet::new();
+    let set = agesim_core::output::export::OutputSet::new();
     set.stage(&dir.join(INFO_FILE), |w| {
         std::io::Write::write_all(w, info.to_string().as_bytes())
     })

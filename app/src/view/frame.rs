@@ -1,8 +1,8 @@
 //! The renderer's per-frame numbers from a project at an age: the camera, the light, the
 //! skin (relief mode, depth, fine blend, paling, tiles) and the hair.
 
-use agesim_core::hair::GrayingRamp;
-use agesim_core::normal_map::Convention;
+use agesim_core::layers::hair::GrayingRamp;
+use agesim_core::maps::normal_map::Convention;
 use agesim_core::project::{Colour, PomMode as ProjectPom, Project};
 use agesim_render::{
     Camera, FrameParams, GrayingRampParam, HairShading, Light, PomMode, SkinParams, TilePlacement,
@@ -183,8 +183,8 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
             scalp_tint: h.scalp_tint
                 * (1.0
                     - h.thinning
-                        * ((factors.t - agesim_core::hair::THINNING_FROM)
-                            / (1.0 - agesim_core::hair::THINNING_FROM))
+                        * ((factors.t - agesim_core::layers::hair::THINNING_FROM)
+                            / (1.0 - agesim_core::layers::hair::THINNING_FROM))
                             .clamp(0.0, 1.0)),
             gray_fraction: project.colour_factors(factors.t).brow_gray,
             ..HairShading::default()

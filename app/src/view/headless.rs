@@ -1,7 +1,7 @@
 //! A scene drawn by a headless renderer, age after age: `agesim render` and the renders
 //! of an export. The same [`Layers`] and [`Uploaded`] as the editor's 3D view.
 
-use agesim_core::cancel::CancelToken;
+use agesim_core::base::cancel::CancelToken;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Scene};
 use agesim_render::{FrameParams, Renderer};

@@ -5,8 +5,8 @@
 use std::sync::Arc;
 
 use super::HeadScale;
-use agesim_core::hair::HairInstances;
-use agesim_core::mask::HeadImage;
+use agesim_core::layers::hair::HairInstances;
+use agesim_core::maps::mask::HeadImage;
 use agesim_core::scene::{Changed, Scene};
 use agesim_core::{HeightMap, Mesh};
 use agesim_render::{PreparedLayer, RenderError, Renderer, ShapeUpload, TileLayer, Upload, ViewId};
@@ -28,7 +28,7 @@ pub struct Layers {
     /// The head's relief depth per template UV unit ([`Scene::relief_scale`]).
     pub relief_scale: f32,
     /// The head's UV density over its face ([`Scene::surface_scale`]).
-    pub surface_scale: Option<agesim_core::mesh::SurfaceScale>,
+    pub surface_scale: Option<agesim_core::head::mesh::SurfaceScale>,
     /// The head's base colour map ([`Scene::colour_map`]).
     pub colour: Option<Arc<HeadImage>>,
     /// The aged base colour of this bake's age ([`Scene::aged_colour`]): shown instead of
@@ -37,7 +37,7 @@ pub struct Layers {
     /// The shape of this bake's age ([`Scene::aged_shape`]), per view like the colour.
     pub shape: Option<Arc<agesim_core::scene::AgedShape>>,
     /// The brow hairs of this bake's age ([`Scene::aged_brows`]), per view.
-    pub brows: Option<Arc<Vec<agesim_core::brows::BrowStrand>>>,
+    pub brows: Option<Arc<Vec<agesim_core::layers::hair::brows::BrowStrand>>>,
     /// The head's normal map ([`Scene::normal_map`]).
     pub normal: Option<Arc<HeadImage>>,
 }

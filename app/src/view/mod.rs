@@ -77,7 +77,7 @@ pub fn render_supersampled(
 /// last whole block are dropped; a factor of 0 counts as 1.
 pub fn box_downsample(img: &image::RgbaImage, factor: u32) -> image::RgbaImage {
     let factor = factor.max(1);
-    use agesim_core::mask::{linear_to_srgb, srgb_to_linear};
+    use agesim_core::maps::mask::{linear_to_srgb, srgb_to_linear};
     let to_linear: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
     let to_srgb = |c: f32| (linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0).round() as u8;
     let (w, h) = (img.width() / factor, img.height() / factor);

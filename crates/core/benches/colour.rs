@@ -9,7 +9,7 @@
 
 use std::time::Instant;
 
-use agesim_core::cancel::CancelToken;
+use agesim_core::base::cancel::CancelToken;
 use agesim_core::project::Project;
 use agesim_core::scene::Scene;
 
@@ -80,8 +80,8 @@ fn main() {
 
 /// Bilinear resample of an sRGB RGBA8 picture to `size`², through linear light, on all
 /// cores: what the aged bake does for a texel with nothing to age.
-fn plain_resample(map: &agesim_core::mask::HeadImage, size: u32) -> Vec<u8> {
-    use agesim_core::mask::{linear_to_srgb, srgb_to_linear};
+fn plain_resample(map: &agesim_core::maps::mask::HeadImage, size: u32) -> Vec<u8> {
+    use agesim_core::maps::mask::{linear_to_srgb, srgb_to_linear};
     use rayon::prelude::*;
     let lin: Vec<f32> = (0..256).map(|c| srgb_to_linear(c as f32 / 255.0)).collect();
     let enc: Vec<u8> = (0..4096)

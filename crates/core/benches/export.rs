@@ -16,8 +16,8 @@ use std::path::Path;
 use std::time::Instant;
 
 use agesim_core::HeightMap;
-use agesim_core::export::{self, ExrCompression, MapPaths, OutputSet};
-use agesim_core::normal_map::{self, NormalSettings};
+use agesim_core::maps::normal_map::{self, NormalSettings};
+use agesim_core::output::export::{self, ExrCompression, MapPaths, OutputSet};
 use image::ImageEncoder as _;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 

@@ -7,10 +7,10 @@
 use std::time::{Duration, Instant};
 
 use agesim_core::Mask;
-use agesim_core::hair::{self, HairInstances, HairParams, SurfaceRef};
-use agesim_core::transition::{
+use agesim_core::layers::hair::transition::{
     DistanceMetric, HairRegions, TransitionTexture, generations_by_dilation, geodesic_distances,
 };
+use agesim_core::layers::hair::{self, HairInstances, HairParams, SurfaceRef};
 use glam::{Vec2, Vec3};
 
 fn median(mut f: impl FnMut() -> Duration, runs: usize) -> Duration {

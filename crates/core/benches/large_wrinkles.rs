@@ -7,8 +7,8 @@
 use std::time::Instant;
 
 use agesim_core::HeightMap;
-use agesim_core::muscle::{self, Fibre, LargeWrinkleSettings};
-use agesim_core::normal_map::{self, NormalSettings};
+use agesim_core::layers::wrinkles::muscle::{self, Fibre, LargeWrinkleSettings};
+use agesim_core::maps::normal_map::{self, NormalSettings};
 
 /// 20 fibres laid out like a face's wrinkle groups: forehead, frown, crow's feet, folds.
 fn fibres() -> Vec<Fibre> {

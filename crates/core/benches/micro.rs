@@ -10,9 +10,9 @@
 
 use std::time::Instant;
 
-use agesim_core::micro::MicroRelief;
-use agesim_core::micro::bake::Parts;
-use agesim_core::normal_map::{self, NormalSettings};
+use agesim_core::layers::micro::MicroRelief;
+use agesim_core::layers::micro::bake::Parts;
+use agesim_core::maps::normal_map::{self, NormalSettings};
 use noise::MultiFractal as _;
 use rayon::prelude::*;
 

@@ -10,10 +10,10 @@
 #[path = "common/timing.rs"]
 mod timing;
 
-use agesim_core::fit::bvh::ray_triangle;
+use agesim_core::head::fit::bvh::ray_triangle;
+use agesim_core::layers::shape::{REGIONS, ShapeField, occlusion};
 use agesim_core::project::Project;
 use agesim_core::scene::Scene;
-use agesim_core::shape::{REGIONS, ShapeField, occlusion};
 use glam::Vec3;
 use timing::time_ms;
 
@@ -42,7 +42,7 @@ fn main() {
 
     // Baseline: every ray of every 32nd vertex against every triangle.
     let (p, idx) = (mesh.positions(), mesh.indices());
-    let normals = agesim_core::mesh::normals::smooth_normals(p, idx);
+    let normals = agesim_core::head::mesh::normals::smooth_normals(p, idx);
     let triangles: Vec<[Vec3; 3]> = idx
         .chunks_exact(3)
         .map(|t| [p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]])

@@ -11,12 +11,12 @@
 #[path = "common/timing.rs"]
 mod timing;
 
-use agesim_core::cancel::CancelToken;
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::head::frame::Regions;
+use agesim_core::layers::shape::REGIONS;
+use agesim_core::layers::shape::relief::ShapeRelief;
 use agesim_core::project::Project;
 use agesim_core::scene::Scene;
-use agesim_core::shape::REGIONS;
-use agesim_core::shape::relief::ShapeRelief;
-use agesim_core::skin_colour::Regions;
 use glam::{Vec2, Vec3};
 use timing::time_ms;
 
@@ -62,7 +62,7 @@ fn main() {
                 let uv = v.map(|i| mesh.uvs()[i]);
                 let qs = v.map(|i| q[i]);
                 let sigma = 0.5 * (qs[0].distance(qs[1]) + qs[1].distance(qs[2])) * 0.5;
-                agesim_core::fit::raster_uv(uv, size, 1.5, |x, y, w, _| {
+                agesim_core::maps::raster::raster_uv(uv, size, 1.5, |x, y, w, _| {
                     let here = qs[0] * w[0] + qs[1] * w[1] + qs[2] * w[2];
                     let mut mean = 0.0;
                     for k in 0..25 {

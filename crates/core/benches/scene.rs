@@ -11,8 +11,8 @@ mod common;
 
 use std::time::Instant;
 
-use agesim_core::cancel::CancelToken;
-use agesim_core::muscle::Fibre;
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::layers::wrinkles::muscle::Fibre;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Scene};
 

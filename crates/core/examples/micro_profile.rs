@@ -3,7 +3,7 @@
 //!
 //! `cargo run --release -p agesim-core --example micro_profile -- [SIZE] [ITERS] [cold]`
 #![allow(clippy::unwrap_used, clippy::expect_used)]
-use agesim_core::normal_map::NormalSettings;
+use agesim_core::maps::normal_map::NormalSettings;
 
 #[path = "../benches/common/workload.rs"]
 mod common;

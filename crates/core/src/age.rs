@@ -188,6 +188,53 @@ pub struct AgeFactors {
     pub paleness: f32,
 }
 
+/// The brows' gray fraction relative to the scalp hair's: brows gray later.
+const BROW_GRAY_LAG: f32 = 0.5;
+
+/// Each effect of the aged colour and the brows and lashes, its age factor 0–1 (the age
+/// model's curves at one age; the scene makes them from the project).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ColourFactors {
+    /// Paling and yellowing.
+    pub pale: f32,
+    /// Which spots show and how grown they are (a spot appears when this passes its own
+    /// draw in [0, 1)).
+    pub spots: f32,
+    pub mottle: f32,
+    pub redness: f32,
+    /// Lips and brows fading.
+    pub contrast: f32,
+    /// The brows' gray fraction.
+    pub brow_gray: f32,
+    /// The bags' shape at this age (their region's strength times its curve): the
+    /// shadow of the lid–cheek junction under them (the shape layer's `drawn_crease`,
+    /// which the aged colour draws).
+    pub bags: f32,
+}
+
+impl ColourFactors {
+    /// The share of brow hairs that are gray: the brows gray later than the scalp
+    /// ([`BROW_GRAY_LAG`]).
+    pub fn brow_gray_fraction(&self) -> f32 {
+        BROW_GRAY_LAG * self.brow_gray
+    }
+
+    /// Whether nothing ages: the bake is then the base colour itself.
+    pub fn is_young(&self) -> bool {
+        [
+            self.pale,
+            self.spots,
+            self.mottle,
+            self.redness,
+            self.contrast,
+            self.brow_gray,
+            self.bags,
+        ]
+        .iter()
+        .all(|&f| f <= 0.0)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

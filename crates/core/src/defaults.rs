@@ -94,10 +94,11 @@ pub const HAIR_ORDER_MASK: (&str, &[u8]) = (
 );
 
 /// [`HAIR_ORDER_MASK`] decoded (once); `None` should it not decode (the tests check it).
-pub fn hair_order_mask() -> Option<&'static crate::mask::Mask> {
-    static MASK: std::sync::OnceLock<Option<crate::mask::Mask>> = std::sync::OnceLock::new();
+pub fn hair_order_mask() -> Option<&'static crate::maps::mask::Mask> {
+    static MASK: std::sync::OnceLock<Option<crate::maps::mask::Mask>> = std::sync::OnceLock::new();
     MASK.get_or_init(|| {
-        crate::mask::Mask::decode(HAIR_ORDER_MASK.1, std::path::Path::new(HAIR_ORDER_MASK.0)).ok()
+        crate::maps::mask::Mask::decode(HAIR_ORDER_MASK.1, std::path::Path::new(HAIR_ORDER_MASK.0))
+            .ok()
     })
     .as_ref()
 }

@@ -30,8 +30,8 @@ pub fn worst_relative_error(
 
 /// The aged colour's factors with only the brows' gray and the contrast curve set (what
 /// the brow hairs and lashes age by).
-pub fn eye_hair_factors(brow_gray: f32, contrast: f32) -> crate::skin_colour::ColourFactors {
-    crate::skin_colour::ColourFactors {
+pub fn eye_hair_factors(brow_gray: f32, contrast: f32) -> crate::age::ColourFactors {
+    crate::age::ColourFactors {
         contrast,
         brow_gray,
         ..Default::default()
@@ -39,7 +39,7 @@ pub fn eye_hair_factors(brow_gray: f32, contrast: f32) -> crate::skin_colour::Co
 }
 
 /// A brow hair's or lash's length along its curve's control polygon, mesh units.
-pub fn strand_length(s: &crate::brows::BrowStrand) -> f32 {
+pub fn strand_length(s: &crate::layers::hair::brows::BrowStrand) -> f32 {
     use glam::Vec3;
     let (r, m, t) = (Vec3::from(s.root), Vec3::from(s.middle), Vec3::from(s.tip));
     r.distance(m) + m.distance(t)
@@ -50,12 +50,12 @@ pub fn strand_length(s: &crate::brows::BrowStrand) -> f32 {
 /// template points stay in metres) and gives them young.
 pub fn assert_strands_in_heads_units(
     young_strands: impl Fn(
-        &crate::mesh::Mesh,
+        &crate::head::mesh::Mesh,
         &dyn Fn(usize) -> Option<glam::Vec3>,
         f32,
-    ) -> Vec<crate::brows::BrowStrand>,
+    ) -> Vec<crate::layers::hair::brows::BrowStrand>,
 ) {
-    let template = crate::fit::template();
+    let template = crate::head::fit::template();
     let positions = template.mesh.positions();
     let point = |v: usize| Some(positions[v]);
     let cm = template.mesh.scaled(100.0);

@@ -14,10 +14,10 @@
 
 use std::path::Path;
 
-use agesim_core::landmarks::Landmarks;
-use agesim_core::mesh::{Mesh, gltf, obj, units};
+use agesim_core::head::landmarks::Landmarks;
+use agesim_core::head::mesh::{Mesh, gltf, obj, units};
+use agesim_core::layers::wrinkles::wrinkle_file;
 use agesim_core::project::Project;
-use agesim_core::wrinkle_file;
 use proptest::prelude::*;
 
 fn config() -> ProptestConfig {
@@ -50,7 +50,7 @@ const REAL_OBJ: &str = "# exported\nmtllib head.mtl\no Head\nv -1 0 0\nv 1 0 0\n
 
 /// A real GLB: two parts with normals, UVs and indices, a material with an embedded PNG.
 fn real_glb() -> Vec<u8> {
-    use agesim_core::mesh::{MeshPart, RawMesh};
+    use agesim_core::head::mesh::{MeshPart, RawMesh};
     use glam::{Vec2, Vec3};
     let n = 6u32;
     let mut raw = RawMesh::default();
@@ -146,7 +146,7 @@ fn load_glb(bytes: &[u8]) {
     DIR.with(|d| {
         let path = d.path().join("fuzz.glb");
         std::fs::write(&path, bytes).unwrap();
-        let _ = agesim_core::mesh::textures::load(&path);
+        let _ = agesim_core::head::mesh::textures::load(&path);
     });
 }
 
@@ -224,7 +224,7 @@ proptest! {
         if let Ok(l) = Landmarks::from_json_str(&text) {
             // What loads writes back the same, and gives units and axes or none.
             prop_assert_eq!(&Landmarks::from_json_str(&l.to_json_pretty()).unwrap(), &l);
-            let _ = units::detect(&agesim_core::head::default_head().bounds(), Some(&l));
+            let _ = units::detect(&agesim_core::head::default::default_head().bounds(), Some(&l));
             let _ = units::detect_axes(&l);
         }
     }
@@ -277,7 +277,7 @@ proptest! {
         ]
     ) {
         let _ = agesim_core::Mask::decode(&bytes, Path::new("fuzz.png"));
-        let _ = agesim_core::mask::HeadImage::decode(&bytes, Path::new("fuzz.png"));
+        let _ = agesim_core::maps::mask::HeadImage::decode(&bytes, Path::new("fuzz.png"));
     }
 }
 

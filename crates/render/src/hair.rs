@@ -1,7 +1,7 @@
-//! The hair instance buffer's layout: `agesim_core::hair::HairInstance` (32 bytes, docs/models.md
+//! The hair instance buffer's layout: `agesim_core::layers::hair::HairInstance` (32 bytes, docs/models.md
 //! §6) read directly as per-instance vertex attributes, so uploads are one memcpy.
 
-use agesim_core::hair::AgeLevel;
+use agesim_core::layers::hair::AgeLevel;
 
 /// Quads per hair ribbon (`SEGMENTS`, a pipeline constant of `shaders/hair.wgsl`).
 pub(crate) const SEGMENTS: u32 = 4;
@@ -27,7 +27,7 @@ pub(crate) const INSTANCE_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_
 /// Stride of one instance, bytes.
 pub(crate) const INSTANCE_STRIDE: u64 = 32;
 
-/// `agesim_core::brows::BrowStrand` (48 bytes) as vertex attributes.
+/// `agesim_core::layers::hair::brows::BrowStrand` (48 bytes) as vertex attributes.
 pub(crate) const BROW_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
     0 => Float32x3, // root
     1 => Float32,   // gray
@@ -62,7 +62,7 @@ mod tests {
     #[test]
     fn instance_layout_matches_core() {
         assert_layout(
-            std::mem::size_of::<agesim_core::hair::HairInstance>(),
+            std::mem::size_of::<agesim_core::layers::hair::HairInstance>(),
             INSTANCE_STRIDE,
             &INSTANCE_ATTRIBUTES,
         );
@@ -71,7 +71,7 @@ mod tests {
     #[test]
     fn brow_layout_matches_core() {
         assert_layout(
-            std::mem::size_of::<agesim_core::brows::BrowStrand>(),
+            std::mem::size_of::<agesim_core::layers::hair::brows::BrowStrand>(),
             BROW_STRIDE,
             &BROW_ATTRIBUTES,
         );

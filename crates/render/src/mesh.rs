@@ -148,7 +148,7 @@ pub(crate) fn subdivide(data: &MeshData) -> MeshData {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use agesim_core::mesh::SurfaceScale;
+    use agesim_core::head::mesh::SurfaceScale;
 
     #[test]
     fn subdivision_shares_edges() {

@@ -219,7 +219,7 @@ impl Default for SkinParams {
 
 /// A repeated tile's physical side and normal strength: the tile repeats a whole number
 /// of times across the mesh's UV square so that one tile covers about `size_m` of skin
-/// ([`agesim_core::mesh::SurfaceScale::repeats`]).
+/// ([`agesim_core::head::mesh::SurfaceScale::repeats`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TilePlacement {
     /// The tile's side on the skin, metres, > 0.
@@ -262,7 +262,7 @@ pub struct HairShading {
     pub droop: f32,
     /// How far the scalp under the hair present takes the hair's colour, in [0, 1] (the
     /// colour map's alpha holds each texel's hair disappearance age:
-    /// `agesim_core::skin_colour::hair_age_alpha`); 0 leaves the skin as it is.
+    /// `agesim_core::layers::skin_colour::hair_age_alpha`); 0 leaves the skin as it is.
     pub scalp_tint: f32,
     /// The hair's mean gray fraction at this age, in [0, 1]: the scalp's hair colour.
     pub gray_fraction: f32,
@@ -310,7 +310,7 @@ pub enum FrameOutput {
     PomHit,
     /// For tests and tools, on an `Rgba32Float` target: the composed tangent-space normal
     /// (large and fine wrinkles, micro-relief) in xyz, unshaded; w = 1. What
-    /// `agesim_core::compose` computes on the CPU for the exported normal map.
+    /// `agesim_core::output::compose` computes on the CPU for the exported normal map.
     TangentNormal,
 }
 

@@ -1,4 +1,4 @@
-//! The exported GLB's normal map is composed on the CPU (`agesim_core::compose`); the
+//! The exported GLB's normal map is composed on the CPU (`agesim_core::output::compose`); the
 //! 3D view composes the same layers in the skin shader. Both must agree: the flat skin
 //! patch, seen face on, drawn with `FrameOutput::TangentNormal` (the shader's composed
 //! tangent-space normal) and `FrameOutput::PomHit` (each pixel's UV), against the CPU map
@@ -8,10 +8,10 @@
 
 mod common;
 
-use agesim_core::cancel::CancelToken;
-use agesim_core::compose::{self, RepeatedTile};
-use agesim_core::mesh::SurfaceScale;
-use agesim_core::{HeightMap, head};
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::head::mesh::SurfaceScale;
+use agesim_core::output::compose::{self, RepeatedTile};
+use agesim_core::{HeightMap, head::default as head};
 use agesim_render::{FrameOutput, FrameParams, PomMode, Renderer, TileLayer, TilePlacement};
 use common::gpu_or_skip;
 use glam::{Vec2, Vec3};
@@ -81,7 +81,7 @@ fn the_glb_normal_composition_matches_the_skin_pass() {
             rgba.extend_from_slice(&[e(n.x), e(n.y), e(n.z), 255]);
         }
     }
-    let head_normal = agesim_core::mask::HeadImage {
+    let head_normal = agesim_core::maps::mask::HeadImage {
         width_px: side,
         height_px: side,
         rgba,

@@ -7,8 +7,8 @@
 
 use std::path::PathBuf;
 
-use agesim_core::fine_wrinkles::{self, DEFAULT_FINE_WRINKLES};
-use agesim_core::{HeightMap, head};
+use agesim_core::layers::wrinkles::fine_wrinkles::{self, DEFAULT_FINE_WRINKLES};
+use agesim_core::{HeightMap, head::default as head};
 use agesim_render::{FrameParams, PomMode, Renderer, TileLayer, TilePlacement};
 use glam::Vec3;
 
@@ -19,9 +19,13 @@ use common::gpu_or_skip;
 fn creases(size: u32) -> HeightMap {
     let mut data = Vec::new();
     for y in 0..size {
-        let v = agesim_core::heightmap::pixel_to_v(y, size);
+        let v = agesim_core::maps::heightmap::pixel_to_v(y, size);
         for _ in 0..size {
-            data.push(agesim_core::muscle::Profile::Crease.eval(v * 5.0).powf(0.7));
+            data.push(
+                agesim_core::layers::wrinkles::muscle::Profile::Crease
+                    .eval(v * 5.0)
+                    .powf(0.7),
+            );
         }
     }
     HeightMap::from_vec(size, size, data).unwrap()

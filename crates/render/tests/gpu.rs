@@ -6,11 +6,11 @@
 //! missing adapter is a broken CI image and fails.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use agesim_core::brows::BrowHairs;
-use agesim_core::hair::{HairInstances, HairParams, SurfaceRef};
-use agesim_core::skin_colour::ColourFactors;
-use agesim_core::transition::{DistanceMetric, TransitionTexture};
-use agesim_core::{HeightMap, Mask, Mesh, defaults, head};
+use agesim_core::age::ColourFactors;
+use agesim_core::layers::hair::brows::BrowHairs;
+use agesim_core::layers::hair::transition::{DistanceMetric, TransitionTexture};
+use agesim_core::layers::hair::{HairInstances, HairParams, SurfaceRef};
+use agesim_core::{HeightMap, Mask, Mesh, defaults, head::default as head};
 use agesim_render::{
     FrameParams, Gpu, HairShading, PomMode, PreparedLayer, Renderer, ShapeUpload, Upload, ViewId,
 };
@@ -24,8 +24,8 @@ fn map_from_fn(size: u32, f: impl Fn(f32, f32) -> f32) -> HeightMap {
     for y in 0..size {
         for x in 0..size {
             data.push(f(
-                agesim_core::heightmap::pixel_to_u(x, size),
-                agesim_core::heightmap::pixel_to_v(y, size),
+                agesim_core::maps::heightmap::pixel_to_u(x, size),
+                agesim_core::maps::heightmap::pixel_to_v(y, size),
             ));
         }
     }
@@ -459,7 +459,7 @@ fn brow_hairs_are_drawn_and_gray_with_age() {
         return;
     };
     let mesh = head::default_head();
-    let regions = agesim_core::skin_colour::Regions::template().unwrap();
+    let regions = agesim_core::head::frame::Regions::template().unwrap();
     let positions = mesh.positions();
     let brows = BrowHairs::generate(&mesh, &|v| Some(positions[v]), regions, 1.0, 0);
     let mut r = head_renderer(&gpu, &mesh);
@@ -847,7 +847,7 @@ fn a_shape_moves_the_surface_as_the_moved_mesh_does() {
         .collect();
     let normals = mesh.normals().to_vec();
     let moved = {
-        let raw = agesim_core::mesh::RawMesh {
+        let raw = agesim_core::head::mesh::RawMesh {
             positions: mesh
                 .positions()
                 .iter()

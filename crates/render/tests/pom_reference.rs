@@ -4,7 +4,7 @@
 //! filtered) height field, found on the CPU by a fine march and bisection.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use agesim_core::{HeightMap, head};
+use agesim_core::{HeightMap, head::default as head};
 use agesim_render::{FrameOutput, FrameParams, Gpu, PomMode, Renderer};
 use glam::{Vec2, Vec3};
 
@@ -34,8 +34,8 @@ impl Field {
         for y in 0..MAP_PX {
             for x in 0..MAP_PX {
                 values.push(height(
-                    agesim_core::heightmap::pixel_to_u(x, MAP_PX),
-                    agesim_core::heightmap::pixel_to_v(y, MAP_PX),
+                    agesim_core::maps::heightmap::pixel_to_u(x, MAP_PX),
+                    agesim_core::maps::heightmap::pixel_to_v(y, MAP_PX),
                 ));
             }
         }

@@ -23,9 +23,14 @@ fn every_shader_validates_and_every_file_is_embedded() {
         .iter()
         .filter_map(|(name, source)| parse_and_validate(name, source).err())
         .collect();
-    // frame.wgsl alone too: its errors then name its own lines.
-    if let Err(e) = parse_and_validate("frame.wgsl", shaders::FRAME_WGSL) {
-        failures.push(e);
+    // frame.wgsl and common.wgsl alone too: their errors then name their own lines.
+    for (name, source) in [
+        ("frame.wgsl", shaders::FRAME_WGSL),
+        ("common.wgsl", shaders::COMMON_WGSL),
+    ] {
+        if let Err(e) = parse_and_validate(name, source) {
+            failures.push(e);
+        }
     }
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders");
     let mut seen = 0;

@@ -217,8 +217,8 @@ impl EditorApp {
             .as_deref()
             .filter(|_| snapshot.landmarks_found && project.mesh.path.is_some())
             .map(|l| {
-                let mut file = agesim_core::landmarks::Landmarks::default();
-                for name in agesim_core::landmarks::NAMES {
+                let mut file = agesim_core::head::landmarks::Landmarks::default();
+                for name in agesim_core::head::landmarks::NAMES {
                     if let Some(p) = l.get(name) {
                         let _ = file.set(name, snapshot.file_from_scene * p);
                     }

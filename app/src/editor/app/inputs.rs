@@ -34,7 +34,7 @@ impl EditorApp {
         &mut self,
         path: PathBuf,
         add: bool,
-        file: agesim_core::wrinkle_file::WrinkleFile,
+        file: agesim_core::layers::wrinkles::wrinkle_file::WrinkleFile,
     ) {
         let fibres = file.groups.len();
         self.record(
@@ -107,7 +107,8 @@ impl EditorApp {
                 rebake = true;
             } else if wrinkles.contains(&path) {
                 self.io.spawn(move || IoResult::WrinklesReloaded {
-                    result: agesim_core::wrinkle_file::load(&path).map_err(|e| e.to_string()),
+                    result: agesim_core::layers::wrinkles::wrinkle_file::load(&path)
+                        .map_err(|e| e.to_string()),
                     path,
                 });
             } else {
@@ -143,7 +144,7 @@ impl EditorApp {
     pub(super) fn wrinkles_reloaded(
         &mut self,
         path: PathBuf,
-        file: agesim_core::wrinkle_file::WrinkleFile,
+        file: agesim_core::layers::wrinkles::wrinkle_file::WrinkleFile,
     ) {
         let name = path.display().to_string();
         self.notices.close_errors_about(&name);
@@ -187,7 +188,7 @@ impl EditorApp {
                         };
                         self.io.spawn(move || IoResult::Saved {
                             what: "wrinkle file".into(),
-                            result: agesim_core::wrinkle_file::save(&source.file, &path)
+                            result: agesim_core::layers::wrinkles::wrinkle_file::save(&source.file, &path)
                                 .map(|()| path)
                                 .map_err(|e| e.to_string()),
                         });

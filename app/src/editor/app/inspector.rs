@@ -8,10 +8,11 @@ impl EditorApp {
     pub fn add_fibre(&mut self) {
         let mut wrinkles = self.wrinkles().to_vec();
         let fi = self.persisted.map_view.selected.map_or(0, |(f, _)| f);
-        let Ok(fibre) = agesim_core::muscle::Fibre::new([0.45, 0.5], [0.55, 0.5], 3)
-            .and_then(|f| f.with_irregularity(0.5))
-            .and_then(|f| f.with_waviness(0.08))
-            .map(|f| f.with_profile(agesim_core::muscle::Profile::Crease))
+        let Ok(fibre) =
+            agesim_core::layers::wrinkles::muscle::Fibre::new([0.45, 0.5], [0.55, 0.5], 3)
+                .and_then(|f| f.with_irregularity(0.5))
+                .and_then(|f| f.with_waviness(0.08))
+                .map(|f| f.with_profile(agesim_core::layers::wrinkles::muscle::Profile::Crease))
         else {
             return;
         };
@@ -20,7 +21,7 @@ impl EditorApp {
         };
         file.file
             .groups
-            .push(agesim_core::wrinkle_file::WrinkleGroup {
+            .push(agesim_core::layers::wrinkles::wrinkle_file::WrinkleGroup {
                 fibre,
                 age: None,
                 comments: vec![" added in the editor".into()],
@@ -92,46 +93,48 @@ impl EditorApp {
         {
             changed = f.with_n(n).ok();
         }
-        type Setter = fn(
-            agesim_core::muscle::Fibre,
-            f32,
-        ) -> Result<agesim_core::muscle::Fibre, agesim_core::Error>;
+        type Setter =
+            fn(
+                agesim_core::layers::wrinkles::muscle::Fibre,
+                f32,
+            )
+                -> Result<agesim_core::layers::wrinkles::muscle::Fibre, agesim_core::Error>;
         let rows: [(&str, f32, std::ops::RangeInclusive<f32>, Setter); 6] = [
             (
                 "relWidth",
                 f.rel_width(),
                 0.01..=4.0,
-                agesim_core::muscle::Fibre::with_rel_width,
+                agesim_core::layers::wrinkles::muscle::Fibre::with_rel_width,
             ),
             (
                 "maxAngle",
                 f.max_angle(),
                 1.0..=2.0,
-                agesim_core::muscle::Fibre::with_max_angle,
+                agesim_core::layers::wrinkles::muscle::Fibre::with_max_angle,
             ),
             (
                 "omegaLow",
                 f.omega_low(),
                 0.0..=1.0,
-                agesim_core::muscle::Fibre::with_omega_low,
+                agesim_core::layers::wrinkles::muscle::Fibre::with_omega_low,
             ),
             (
                 "depth",
                 f.depth(),
                 0.0..=5.0,
-                agesim_core::muscle::Fibre::with_depth,
+                agesim_core::layers::wrinkles::muscle::Fibre::with_depth,
             ),
             (
                 "irregularity",
                 f.irregularity(),
                 0.0..=1.0,
-                agesim_core::muscle::Fibre::with_irregularity,
+                agesim_core::layers::wrinkles::muscle::Fibre::with_irregularity,
             ),
             (
                 "waviness",
                 f.waviness(),
                 0.0..=0.5,
-                agesim_core::muscle::Fibre::with_waviness,
+                agesim_core::layers::wrinkles::muscle::Fibre::with_waviness,
             ),
         ];
         for (label, mut value, range, set) in rows {
@@ -146,7 +149,7 @@ impl EditorApp {
         egui::ComboBox::from_label("profile")
             .selected_text(profile.name())
             .show_ui(ui, |ui| {
-                for p in agesim_core::muscle::Profile::ALL {
+                for p in agesim_core::layers::wrinkles::muscle::Profile::ALL {
                     ui.selectable_value(&mut profile, p, p.name());
                 }
             });

@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use agesim_core::landmarks::{Landmarks, NAMES};
+use agesim_core::head::landmarks::{Landmarks, NAMES};
 use agesim_core::project::LandmarkSource;
 use serde_json::Value;
 
@@ -107,7 +107,7 @@ impl EditorApp {
                     });
                 let placed = mode.points.len();
                 ui.horizontal(|ui| {
-                    let enough = placed >= agesim_core::fit::MIN_LANDMARKS;
+                    let enough = placed >= agesim_core::head::fit::MIN_LANDMARKS;
                     fit = ui
                         .add_enabled(enough, egui::Button::new("Fit"))
                         .on_hover_text(
@@ -206,7 +206,7 @@ fn landmark_path_for(mesh: &std::path::Path) -> PathBuf {
 
 fn write_landmarks(path: &std::path::Path, landmarks: &Landmarks) -> Result<(), String> {
     let text = landmarks.to_json_pretty();
-    let set = agesim_core::export::OutputSet::new();
+    let set = agesim_core::output::export::OutputSet::new();
     set.stage(path, |w| std::io::Write::write_all(w, text.as_bytes()))
         .and_then(|()| set.commit())
         .map_err(|e| e.to_string())

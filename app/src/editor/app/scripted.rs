@@ -240,7 +240,7 @@ impl EditorApp {
                 };
                 // What another program would write: the file on disk with its first
                 // fibre moved, or a line the parser refuses.
-                let result = agesim_core::wrinkle_file::load(path)
+                let result = agesim_core::layers::wrinkles::wrinkle_file::load(path)
                     .or_else(|_| {
                         // The file is the broken one: mend it from the document.
                         let w = self
@@ -263,14 +263,14 @@ impl EditorApp {
                         {
                             g.fibre = f;
                         }
-                        let mut text = agesim_core::wrinkle_file::write(&file);
+                        let mut text = agesim_core::layers::wrinkles::wrinkle_file::write(&file);
                         if broken {
                             text += "ma=not-a-number\n";
                         }
                         text
                     })
                     .and_then(|text| {
-                        agesim_core::export::write_atomically(path, |w| {
+                        agesim_core::output::export::write_atomically(path, |w| {
                             std::io::Write::write_all(w, text.as_bytes())
                         })
                     });
@@ -285,7 +285,7 @@ impl EditorApp {
                 if let Some(mask) = self.doc.project.large.mask.clone()
                     && let Ok(bytes) = std::fs::read(&mask)
                 {
-                    let _ = agesim_core::export::write_atomically(&mask, |w| {
+                    let _ = agesim_core::output::export::write_atomically(&mask, |w| {
                         std::io::Write::write_all(w, &bytes)
                     });
                 }

@@ -8,12 +8,12 @@ use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use std::time::Instant;
 
 use agesim_core::age::AgeFactors;
-use agesim_core::cancel::CancelToken;
-use agesim_core::hair::HairInstances;
-use agesim_core::mesh::units::Units;
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::head::mesh::units::Units;
+use agesim_core::layers::hair::HairInstances;
+use agesim_core::layers::hair::transition::TransitionTexture;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, Changed, LargeMap, MicroTile, Scene, WrinkleSource};
-use agesim_core::transition::TransitionTexture;
 use agesim_core::{Error, HeightMap, Mesh};
 
 use crate::view::Layers;
@@ -47,7 +47,11 @@ pub struct Job {
 
 /// The shape's movement picture, the field it shows (kept, so its address is not reused
 /// while compared) and its size.
-type ShapeMovement = (Arc<agesim_core::shape::ShapeField>, u32, Arc<Vec<f32>>);
+type ShapeMovement = (
+    Arc<agesim_core::layers::shape::ShapeField>,
+    u32,
+    Arc<Vec<f32>>,
+);
 
 /// What the UI shows of a finished bake. Each map is shared, not copied, between bakes
 /// that did not change it.
@@ -75,7 +79,7 @@ pub struct Snapshot {
     mask_stamp: usize,
     /// The aged colour tinted by the shape's movement (`images.shape` on the head): the
     /// 3D view's colour while the map view shows the shape.
-    pub shape_overlay: Option<Arc<agesim_core::mask::HeadImage>>,
+    pub shape_overlay: Option<Arc<agesim_core::maps::mask::HeadImage>>,
     /// What `shape_overlay` and `images.shape` were made from (field, aged colour).
     shape_stamps: (usize, usize),
     /// The shape's movement over the head's UVs (mm), kept while its field and size hold:
@@ -86,14 +90,14 @@ pub struct Snapshot {
     /// How the head's layout was decided (`Scene::layout`).
     pub layout_how: String,
     /// The landmarks the fit used (the project's file or found), scene coordinates.
-    pub landmarks: Option<Arc<agesim_core::landmarks::Landmarks>>,
+    pub landmarks: Option<Arc<agesim_core::head::landmarks::Landmarks>>,
     /// Whether `landmarks` were found automatically.
     pub landmarks_found: bool,
     /// The scene's coordinates back to the mesh file's (landmark files are in the file's).
     pub file_from_scene: glam::Mat3,
     /// A fitted head's correspondence (head UV → template UV) at the large map's size:
     /// a click on the head marks its template UV on the fibres' chart.
-    pub correspondence: Option<Arc<agesim_core::fit::Correspondence>>,
+    pub correspondence: Option<Arc<agesim_core::head::fit::Correspondence>>,
     /// The picture files the mesh file's material names (watched with the mesh).
     pub mesh_texture_files: Vec<std::path::PathBuf>,
 }
@@ -118,7 +122,7 @@ pub struct Report {
     pub ms: f64,
     pub outcome: Outcome,
     /// How the mesh's units were decided, when the job asked ([`Job::detect_units`]).
-    pub units: Option<agesim_core::mesh::units::Units>,
+    pub units: Option<agesim_core::head::mesh::units::Units>,
 }
 
 /// The UI side of the worker.
@@ -404,7 +408,7 @@ fn bake(
         let colour = s.colour_map().cloned();
         let colour = colour.as_deref();
         if fitted {
-            let template = &agesim_core::fit::template().mesh;
+            let template = &agesim_core::head::fit::template().mesh;
             // The head's own face on the template's chart, else the template's (through
             // the large map's correspondence, which the bake just made).
             let size = job.request.large_size_px;
@@ -412,7 +416,7 @@ fn bake(
                 (Some(image), Some(c)) => Some(colour_on_template(&c, image, 512)),
                 _ => None,
             };
-            let template_colour = agesim_core::mesh::textures::default_head();
+            let template_colour = agesim_core::head::default::default_head_textures();
             snapshot.images.uv_layout = Some(uv_layout_image(
                 template,
                 carried.as_ref().or(template_colour.colour.as_deref()),
@@ -429,7 +433,9 @@ fn bake(
     snapshot.landmarks = match (&s.layout().landmarks, s.project().mesh.path.is_some()) {
         (Some(l), _) => Some(l.clone()),
         // The template shows its own.
-        (None, false) => Some(Arc::new(agesim_core::fit::template().landmarks.clone())),
+        (None, false) => Some(Arc::new(
+            agesim_core::head::fit::template().landmarks.clone(),
+        )),
         (None, true) => None,
     };
     snapshot.landmarks_found = s.layout().found;
@@ -465,8 +471,13 @@ fn bake(
                         p.clone()
                     }
                     _ => {
-                        let mm = agesim_core::shape::movement_mm(&f.full(), s.metres_per_unit());
-                        let p = Arc::new(agesim_core::shape::uv_picture(s.mesh(), &mm, c.width_px));
+                        let mm =
+                            agesim_core::layers::shape::movement_mm(&f.full(), s.metres_per_unit());
+                        let p = Arc::new(agesim_core::layers::shape::uv_picture(
+                            s.mesh(),
+                            &mm,
+                            c.width_px,
+                        ));
                         snapshot.shape_movement = Some((f.clone(), c.width_px, p.clone()));
                         p
                     }

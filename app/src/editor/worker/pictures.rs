@@ -49,8 +49,11 @@ fn heat(w: f32) -> [u8; 3] {
 pub(super) fn shape_pictures(
     mm: &[f32],
     size: u32,
-    colour: &agesim_core::mask::HeadImage,
-) -> (Arc<egui::ColorImage>, Arc<agesim_core::mask::HeadImage>) {
+    colour: &agesim_core::maps::mask::HeadImage,
+) -> (
+    Arc<egui::ColorImage>,
+    Arc<agesim_core::maps::mask::HeadImage>,
+) {
     let n = size as usize;
     let step = n.div_ceil(IMAGE_MAX_PX as usize).max(1);
     let m = n / step;
@@ -86,7 +89,7 @@ pub(super) fn shape_pictures(
 /// worker.
 pub(super) fn uv_layout_image(
     mesh: &agesim_core::Mesh,
-    colour: Option<&agesim_core::mask::HeadImage>,
+    colour: Option<&agesim_core::maps::mask::HeadImage>,
     size: usize,
 ) -> Arc<egui::ColorImage> {
     let mut pixels = vec![egui::Color32::TRANSPARENT; size * size];
@@ -130,10 +133,10 @@ pub(super) fn uv_layout_image(
 /// reached take the nearest written one's. So the chart the fibres are edited on shows
 /// the artist's own face.
 pub(super) fn colour_on_template(
-    c: &agesim_core::fit::Correspondence,
-    colour: &agesim_core::mask::HeadImage,
+    c: &agesim_core::head::fit::Correspondence,
+    colour: &agesim_core::maps::mask::HeadImage,
     size: usize,
-) -> agesim_core::mask::HeadImage {
+) -> agesim_core::maps::mask::HeadImage {
     let mut rgba = vec![0u8; size * size * 4];
     let mut written = vec![false; size * size];
     let n = c.size();
@@ -163,8 +166,8 @@ pub(super) fn colour_on_template(
         .chunks_exact(4)
         .map(|p| [p[0], p[1], p[2], p[3]])
         .collect();
-    agesim_core::fit::pad(&mut texels, &written, size);
-    agesim_core::mask::HeadImage {
+    agesim_core::head::fit::pad(&mut texels, &written, size);
+    agesim_core::maps::mask::HeadImage {
         width_px: size as u32,
         height_px: size as u32,
         rgba: texels.into_iter().flatten().collect(),

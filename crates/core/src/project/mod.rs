@@ -21,10 +21,6 @@ pub mod fields;
 mod json;
 mod sections;
 
-/// A strict JSON parse (a repeated key is an error), for the other JSON inputs.
-pub(crate) fn parse_strict_json(text: &str) -> Result<serde_json::Value, String> {
-    json::parse_strict(text)
-}
 #[cfg(test)]
 mod tests;
 
@@ -32,10 +28,10 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::Error;
-use crate::micro::furrows::FurrowParams;
-use crate::micro::noise::FbmParams;
-use crate::micro::pores::{PoreProfile, PoreStats};
+use crate::base::error::Error;
+use crate::layers::micro::furrows::FurrowParams;
+use crate::layers::micro::noise::FbmParams;
+use crate::layers::micro::pores::{PoreProfile, PoreStats};
 
 pub use sections::*;
 
@@ -116,11 +112,11 @@ impl Project {
 
     /// Reads a `*.agesim.json` file. Relative paths are resolved against its directory.
     /// A save of it that was killed half way is finished first
-    /// ([`crate::export::finish_interrupted_commit`]), so the project and the files it
+    /// ([`crate::output::export::finish_interrupted_commit`]), so the project and the files it
     /// names are one set.
     pub fn load(path: &Path) -> Result<Self, Error> {
-        crate::export::finish_interrupted_commit(path)?;
-        let bytes = crate::limits::read_file(path, crate::limits::MAX_TEXT_FILE_BYTES)?;
+        crate::output::export::finish_interrupted_commit(path)?;
+        let bytes = crate::base::limits::read_file(path, crate::base::limits::MAX_TEXT_FILE_BYTES)?;
         let text = String::from_utf8(bytes).map_err(|e| Error::Project {
             source_name: path.display().to_string(),
             message: format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
@@ -135,7 +131,9 @@ impl Project {
     /// Writes the project to `path` (atomically), its paths relative to `path`'s folder.
     pub fn save(&self, path: &Path) -> Result<(), Error> {
         let text = self.file_text(path);
-        crate::export::write_atomically(path, |w| std::io::Write::write_all(w, text.as_bytes()))
+        crate::output::export::write_atomically(path, |w| {
+            std::io::Write::write_all(w, text.as_bytes())
+        })
     }
 
     /// The text of the project file at `path`: pretty JSON, its paths relative to
@@ -269,7 +267,7 @@ impl Project {
 
     /// [`Project::set`] with the name of what the user typed (e.g. `--gamma nan`) for errors.
     pub fn set_as(&self, path: &str, value_text: &str, typed: &str) -> Result<Self, Error> {
-        let source = crate::limits::shorten(typed, 120);
+        let source = crate::base::limits::shorten(typed, 120);
         let err = |message: String| Error::Project {
             source_name: source.clone(),
             message,
@@ -331,7 +329,7 @@ impl Project {
         }
         // exp(β·m) must stay finite (docs/models.md §4 "Overlaps"): β × the deepest possible feature.
         let deepest = self.deepest_feature();
-        if self.overlap.beta * deepest > crate::micro::overlap::MAX_BETA_TIMES_DEPTH {
+        if self.overlap.beta * deepest > crate::layers::micro::overlap::MAX_BETA_TIMES_DEPTH {
             out.push(format!(
                 "overlap.beta = {} is out of range: expected at most {:.3} for these depths (β × the deepest feature, {deepest:.3}, must be ≤ 80)",
                 self.overlap.beta,
@@ -377,7 +375,7 @@ impl Project {
         }
     }
 
-    /// The graying onset range as t values, clamped into [0, 1). [`crate::hair::HairParams`]
+    /// The graying onset range as t values, clamped into [0, 1). [`crate::layers::hair::HairParams`]
     /// takes it as fractions of each hair's disappearance age a_k (t_k = a_k·U[min, max)),
     /// so hair that never recedes (a_k = 1, most of it) starts graying between the two
     /// ages given in years, and receding hair proportionally earlier ([T] §6.2: t_k < a_k).
@@ -389,9 +387,9 @@ impl Project {
     }
 
     /// The aged colour's settings (`skin`, the hair's gray colour).
-    pub fn colour_settings(&self) -> crate::skin_colour::ColourSettings {
+    pub fn colour_settings(&self) -> crate::layers::skin_colour::ColourSettings {
         let s = &self.skin;
-        crate::skin_colour::ColourSettings {
+        crate::layers::skin_colour::ColourSettings {
             albedo: s.albedo.linear(),
             pale_albedo: s.pale_albedo.linear(),
             pale_amount: s.pale_amount,
@@ -410,7 +408,7 @@ impl Project {
     /// The aged colour's factors at age `t`: each effect's curve, and the brows' gray
     /// fraction — the mean of the hair's (onsets uniform over the graying range, the
     /// hair's ramp), as the brows gray with the hair.
-    pub fn colour_factors(&self, t: f32) -> crate::skin_colour::ColourFactors {
+    pub fn colour_factors(&self, t: f32) -> crate::age::ColourFactors {
         let a = &self.age;
         let years = a.mapping().years(t);
         let (lo, hi) = self.graying_onset_t();
@@ -418,38 +416,42 @@ impl Project {
         let brow_gray = (0..ONSETS)
             .map(|k| {
                 let onset = lo + (hi - lo) * (k as f32 + 0.5) / ONSETS as f32;
-                crate::hair::gray_fraction(a.mapping().t(years), onset, self.hair.graying_ramp)
+                crate::layers::hair::gray_fraction(
+                    a.mapping().t(years),
+                    onset,
+                    self.hair.graying_ramp,
+                )
             })
             .sum::<f32>()
             / ONSETS as f32;
-        crate::skin_colour::ColourFactors {
+        crate::age::ColourFactors {
             pale: a.pale.factor(years),
             spots: a.spots.factor(years),
             mottle: a.mottle.factor(years),
             redness: a.redness.factor(years),
             contrast: a.contrast.factor(years),
             brow_gray,
-            bags: self.shape.strengths()[crate::shape::BAGS]
-                * crate::shape::REGIONS[crate::shape::BAGS]
+            bags: self.shape.strengths()[crate::layers::shape::BAGS]
+                * crate::layers::shape::REGIONS[crate::layers::shape::BAGS]
                     .curve
                     .factor(years),
         }
     }
 
     /// The micro-relief settings of this project, after checking every field.
-    pub fn micro_settings(&self) -> Result<crate::micro::MicroSettings, Error> {
+    pub fn micro_settings(&self) -> Result<crate::layers::micro::MicroSettings, Error> {
         self.validate().map_err(|message| Error::Project {
             source_name: "project".into(),
             message,
         })?;
-        Ok(crate::micro::MicroSettings {
+        Ok(crate::layers::micro::MicroSettings {
             map_size_mm: self.map_size_mm,
             seed: self.seed,
             tile: self.tile,
             pore_count: self.pore_count(),
             pore_stats: self.pore_stats(),
             placement: self.pores.placement,
-            pore_shape: crate::micro::pores::PoreShape {
+            pore_shape: crate::layers::micro::pores::PoreShape {
                 profile: self.pores.profile,
                 rim: self.pores.rim,
             },
@@ -461,7 +463,7 @@ impl Project {
             warp_strength_mm: self.warp.strength_mm,
             overlap_beta: self.overlap.beta,
             overlap_n: self.overlap.n,
-            normal: crate::normal_map::NormalSettings {
+            normal: crate::maps::normal_map::NormalSettings {
                 strength: self.normal.strength,
                 convention: self.normal.convention,
                 tiling: self.tile,
@@ -470,8 +472,8 @@ impl Project {
     }
 
     /// This project's micro-relief (pores placed, furrows linked), ready to bake.
-    pub fn micro_relief(&self) -> Result<crate::micro::MicroRelief, Error> {
-        crate::micro::MicroRelief::new(&self.micro_settings()?)
+    pub fn micro_relief(&self) -> Result<crate::layers::micro::MicroRelief, Error> {
+        crate::layers::micro::MicroRelief::new(&self.micro_settings()?)
     }
 
     /// Whether the project has any micro-relief layer: pores, furrows, or noise with at

@@ -8,19 +8,19 @@ use serde::{Deserialize, Serialize};
 
 use super::DEFAULT_GAMMA;
 use crate::age::{AgeCurve, AgeFactors, AgeMapping, CurveShape};
-use crate::hair::GrayingRamp;
-use crate::micro::pores::{Placement, PoreProfile, Rim};
-use crate::normal_map::Convention;
-use crate::transition::DistanceMetric;
+use crate::layers::hair::GrayingRamp;
+use crate::layers::hair::transition::DistanceMetric;
+use crate::layers::micro::pores::{Placement, PoreProfile, Rim};
+use crate::maps::normal_map::Convention;
 
 /// Where a head's landmarks come from (`mesh.landmarks`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum LandmarkSource {
-    /// A landmark file ([`crate::landmarks::Landmarks::load`]).
+    /// A landmark file ([`crate::head::landmarks::Landmarks::load`]).
     File(PathBuf),
     /// The points themselves, `{name: [x, y, z]}` in the mesh file's units (the names of
-    /// [`crate::landmarks::NAMES`]).
+    /// [`crate::head::landmarks::NAMES`]).
     Points(BTreeMap<String, [f32; 3]>),
 }
 
@@ -65,7 +65,7 @@ pub struct MeshSection {
     /// Metres per mesh unit; `null` = measured from the mesh ([`crate::scene::Scene::units`]:
     /// 1 for the built-in meshes, a mesh file's from its landmarks or its size).
     pub metres_per_unit: Option<f32>,
-    /// The head's landmarks ([`crate::landmarks`], in the mesh file's units): a landmark
+    /// The head's landmarks ([`crate::head::landmarks`], in the mesh file's units): a landmark
     /// file, or the points themselves; `null` = none.
     pub landmarks: Option<LandmarkSource>,
     /// The mesh file's up axis; `auto` = from the landmarks, else +Y.
@@ -99,7 +99,7 @@ pub struct MeshSection {
 #[serde(rename_all = "kebab-case")]
 pub enum Layout {
     /// The template (the default head) fitted to the head by landmarks
-    /// ([`crate::fit`]); a built-in mesh is read at its own UVs.
+    /// ([`crate::head::fit`]); a built-in mesh is read at its own UVs.
     #[default]
     Template,
     /// The head's own UVs, read as the template's layout.
@@ -129,8 +129,8 @@ pub enum AxisChoice {
 
 impl AxisChoice {
     /// The axis named, `None` for `auto`.
-    pub fn axis(self) -> Option<crate::mesh::units::Axis> {
-        use crate::mesh::units::Axis;
+    pub fn axis(self) -> Option<crate::head::mesh::units::Axis> {
+        use crate::head::mesh::units::Axis;
         match self {
             Self::Auto => None,
             Self::PosX => Some(Axis::PosX),
@@ -388,7 +388,7 @@ impl Default for MeshSection {
 
 impl Default for FineSection {
     fn default() -> Self {
-        let d = crate::fine_wrinkles::DEFAULT_FINE_WRINKLES;
+        let d = crate::layers::wrinkles::fine_wrinkles::DEFAULT_FINE_WRINKLES;
         Self {
             enabled: true,
             tile: None,
@@ -411,19 +411,19 @@ impl Default for HairSection {
             enabled: true,
             outer_mask: None,
             inner_mask: None,
-            density_per_cm2: crate::hair::DEFAULT_DENSITY_PER_CM2,
+            density_per_cm2: crate::layers::hair::DEFAULT_DENSITY_PER_CM2,
             metric: DistanceMetric::default(),
             transition_size_px: None,
             seed: 0,
-            max_deviation_deg: crate::hair::DEFAULT_MAX_DEVIATION_RAD.to_degrees(),
+            max_deviation_deg: crate::layers::hair::DEFAULT_MAX_DEVIATION_RAD.to_degrees(),
             length_mm: 16.0,
             base_colour: Colour([0x5a, 0x3d, 0x28]),
             gray_colour: Colour([0xc6, 0xc3, 0xbc]),
             graying_onset_min_years: 30.0,
             graying_onset_max_years: 65.0,
             graying_ramp: GrayingRamp::default(),
-            thinning: crate::hair::DEFAULT_THINNING,
-            taper_mm: crate::hair::DEFAULT_TAPER_MM,
+            thinning: crate::layers::hair::DEFAULT_THINNING,
+            taper_mm: crate::layers::hair::DEFAULT_TAPER_MM,
             scalp_tint: 0.6,
             brows: true,
             k_diff: 0.7,
@@ -759,7 +759,7 @@ impl Default for OverlapSection {
 impl Default for NormalSection {
     fn default() -> Self {
         Self {
-            strength: crate::normal_map::DEFAULT_STRENGTH,
+            strength: crate::maps::normal_map::DEFAULT_STRENGTH,
             convention: Convention::OpenGl,
         }
     }
@@ -819,7 +819,7 @@ impl Default for ShapeSection {
 impl ShapeSection {
     /// Each region's strength (its own times the overall), in `shape::REGIONS` order; all
     /// 0 when the layer is off.
-    pub fn strengths(&self) -> [f32; crate::shape::REGIONS.len()] {
+    pub fn strengths(&self) -> [f32; crate::layers::shape::REGIONS.len()] {
         let on = if self.enabled { self.strength } else { 0.0 };
         [
             self.brows,

@@ -1,5 +1,5 @@
 use super::*;
-use crate::micro::pores::Placement;
+use crate::layers::micro::pores::Placement;
 
 #[test]
 fn empty_and_partial_files_load_with_defaults() {
@@ -229,7 +229,7 @@ fn the_default_graying_follows_the_population_curve() {
         (0..1000)
             .map(|k| {
                 let onset = lo + (hi - lo) * (k as f32 + 0.5) / 1000.0;
-                crate::hair::gray_fraction(t, onset, p.hair.graying_ramp)
+                crate::layers::hair::gray_fraction(t, onset, p.hair.graying_ramp)
             })
             .sum::<f32>()
             / 1000.0

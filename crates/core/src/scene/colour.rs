@@ -1,17 +1,17 @@
-//! The scene's aged-colour stage ([`crate::skin_colour`]): the surface per texel at a size,
+//! The scene's aged-colour stage ([`crate::layers::skin_colour`]): the surface per texel at a size,
 //! the age spots of the head and the aged colour map, each kept while its inputs hold.
 
 use std::sync::Arc;
 
 use glam::Vec3;
 
-use crate::cancel::CancelToken;
-use crate::error::Error;
-use crate::mask::HeadImage;
-use crate::mesh::Mesh;
-use crate::skin_colour::{
-    self, BaseColour, ColourFactors, ColourSettings, Regions, Spot, SurfaceTexels,
-};
+use crate::age::ColourFactors;
+use crate::base::cancel::CancelToken;
+use crate::base::error::Error;
+use crate::head::frame::Regions;
+use crate::head::mesh::Mesh;
+use crate::layers::skin_colour::{self, BaseColour, ColourSettings, Face, Spot, SurfaceTexels};
+use crate::maps::mask::HeadImage;
 
 /// What the surface and the spots are made from: the mesh, its fit and its units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -95,7 +95,10 @@ impl ColourStage {
                     template_point,
                     mpu,
                     size,
-                    regions,
+                    Face {
+                        regions,
+                        drawn_crease: &crate::layers::shape::drawn_crease,
+                    },
                     settings.seed,
                     cancel,
                 )?);

@@ -25,9 +25,14 @@ fn uv_positions(mesh: &Mesh, size: u32) -> Vec<Option<Vec3>> {
     let (p, uv) = (mesh.positions(), mesh.uvs());
     for t in mesh.skin_indices().chunks_exact(3) {
         let [a, b, c] = [t[0], t[1], t[2]].map(|i| i as usize);
-        crate::fit::raster_uv([uv[a], uv[b], uv[c]], size, 0.0, |x, y, [w0, w1, w2], _| {
-            out[y * n + x] = Some(p[a] * w0 + p[b] * w1 + p[c] * w2);
-        });
+        crate::maps::raster::raster_uv(
+            [uv[a], uv[b], uv[c]],
+            size,
+            0.0,
+            |x, y, [w0, w1, w2], _| {
+                out[y * n + x] = Some(p[a] * w0 + p[b] * w1 + p[c] * w2);
+            },
+        );
     }
     out
 }
@@ -61,11 +66,11 @@ const HEADS: [Head; 4] = [
     },
 ];
 
-fn reference_landmarks(head: &Head) -> crate::landmarks::Landmarks {
+fn reference_landmarks(head: &Head) -> crate::head::landmarks::Landmarks {
     if head.file.is_empty() {
-        crate::fit::template().landmarks.clone()
+        crate::head::fit::template().landmarks.clone()
     } else {
-        crate::landmarks::Landmarks::load(&heads_dir().join(head.name).join("landmarks.json"))
+        crate::head::landmarks::Landmarks::load(&heads_dir().join(head.name).join("landmarks.json"))
             .unwrap()
     }
 }
@@ -77,7 +82,7 @@ fn project_for(head: &Head, landmarks: bool) -> Project {
     p.furrows.enabled = false;
     p.noise.strength = 0.0;
     // The wrinkles' own places: without the shape's relief, which the large map also
-    // carries (crate::shape::relief has its own tests).
+    // carries (crate::layers::shape::relief has its own tests).
     p.shape.enabled = false;
     if head.file.is_empty() {
         return p;
@@ -307,19 +312,19 @@ fn copies_of_one_head_in_other_units_and_axes_give_the_same_maps() {
             let p = p * scale;
             if z_up { to_z_up * p } else { p }
         };
-        std::fs::write(&path, crate::mesh::obj::to_obj(&scan, place)).unwrap();
+        std::fs::write(&path, crate::head::mesh::obj::to_obj(&scan, place)).unwrap();
         // No landmarks: the Z-up copy's axes are found by fitting the template.
         let (scene, map) = default_map(&path, size);
         let axes = scene.axes();
         let want = if z_up {
             (
-                crate::mesh::units::Axis::PosZ,
-                crate::mesh::units::Axis::NegY,
+                crate::head::mesh::units::Axis::PosZ,
+                crate::head::mesh::units::Axis::NegY,
             )
         } else {
             (
-                crate::mesh::units::Axis::PosY,
-                crate::mesh::units::Axis::PosZ,
+                crate::head::mesh::units::Axis::PosY,
+                crate::head::mesh::units::Axis::PosZ,
             )
         };
         assert_eq!(
@@ -380,7 +385,7 @@ fn recut_scan(dir: &std::path::Path, name: &str, recut: impl Fn(Vec2, bool) -> V
             indices.push(v);
         }
     }
-    let raw = crate::mesh::RawMesh {
+    let raw = crate::head::mesh::RawMesh {
         positions,
         uvs: Some(uvs),
         indices,
@@ -388,7 +393,7 @@ fn recut_scan(dir: &std::path::Path, name: &str, recut: impl Fn(Vec2, bool) -> V
     };
     let recut = Mesh::build(raw, name).unwrap();
     let path = dir.join(format!("{name}.obj"));
-    std::fs::write(&path, crate::mesh::obj::to_obj(&recut, |p| p)).unwrap();
+    std::fs::write(&path, crate::head::mesh::obj::to_obj(&recut, |p| p)).unwrap();
     path
 }
 
@@ -588,8 +593,8 @@ fn a_head_files_own_textures_are_read_from_its_material() {
         bytes
     };
     let (colour, normal) = (png([200, 120, 90]), png([140, 128, 250]));
-    let head = crate::head::default_head();
-    let material = crate::mesh::gltf::GlbMaterial {
+    let head = crate::head::default::default_head();
+    let material = crate::head::mesh::gltf::GlbMaterial {
         name: "skin".into(),
         base_colour: [1.0; 4],
         base_colour_png: Some(colour.clone()),
@@ -602,14 +607,14 @@ fn a_head_files_own_textures_are_read_from_its_material() {
     let glb = dir.path().join("textured.glb");
     std::fs::write(
         &glb,
-        crate::mesh::gltf::write_glb_with_material(&head, Some(&material)),
+        crate::head::mesh::gltf::write_glb_with_material(&head, Some(&material)),
     )
     .unwrap();
     // The OBJ: its mtllib names the pictures beside it.
     let obj = dir.path().join("textured.obj");
     let text = format!(
         "mtllib textured.mtl\nusemtl skin\n{}",
-        crate::mesh::obj::to_obj(&head, |p| p)
+        crate::head::mesh::obj::to_obj(&head, |p| p)
     );
     std::fs::write(&obj, text).unwrap();
     std::fs::write(
@@ -681,7 +686,7 @@ fn landmarks_written_in_the_project_fit_as_their_file_does() {
     let from_file = project_for(head, true);
     let file = reference_landmarks(head);
     let mut inline = from_file.clone();
-    let points: std::collections::BTreeMap<String, [f32; 3]> = crate::landmarks::NAMES
+    let points: std::collections::BTreeMap<String, [f32; 3]> = crate::head::landmarks::NAMES
         .iter()
         .filter_map(|n| Some(((*n).to_owned(), file.get(n)?.to_array())))
         .collect();

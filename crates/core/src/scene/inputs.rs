@@ -5,15 +5,15 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::{FileVersions, WrinkleSource};
-use crate::error::Error;
-use crate::fit::Fit;
-use crate::heightmap::HeightMap;
-use crate::landmarks::Landmarks;
-use crate::mask::{HeadImage, Mask};
-use crate::mesh::Mesh;
-use crate::mesh::units::Axes;
+use crate::base::error::Error;
+use crate::head::fit::Fit;
+use crate::head::landmarks::Landmarks;
+use crate::head::mesh::Mesh;
+use crate::head::mesh::units::Axes;
+use crate::layers::wrinkles::wrinkle_file::{self, ParseErrors, WrinkleFile};
+use crate::maps::heightmap::HeightMap;
+use crate::maps::mask::{HeadImage, Mask};
 use crate::project::{AxisChoice, BuiltinMesh, LandmarkSource, Layout, Project};
-use crate::wrinkle_file::{self, ParseErrors, WrinkleFile};
 
 /// Everything loaded from files (or the built-in defaults), kept until a path changes.
 #[derive(Clone, Debug)]
@@ -48,7 +48,7 @@ pub(super) struct Inputs {
     /// The head's base colour map (`mesh.colour_map`), when the project names one.
     pub(super) colour_map: Option<Arc<HeadImage>>,
     /// The pictures the mesh file's own material names (read with the mesh).
-    pub(super) file_textures: Arc<crate::mesh::textures::MeshTextures>,
+    pub(super) file_textures: Arc<crate::head::mesh::textures::MeshTextures>,
     normal_map_key: (Option<PathBuf>, bool, u64),
     /// The head's normal map (`mesh.normal_map`), when the project names one.
     pub(super) normal_map: Option<Arc<HeadImage>>,
@@ -117,10 +117,10 @@ impl Inputs {
                 let mesh = load_mesh(project).map(Arc::new)?;
                 let textures = match (&project.mesh.path, project.mesh.builtin) {
                     (Some(path), _) => {
-                        Arc::new(crate::mesh::textures::load_tiled(path, mesh.udim())?)
+                        Arc::new(crate::head::mesh::textures::load_tiled(path, mesh.udim())?)
                     }
                     (None, crate::project::BuiltinMesh::Head) => {
-                        crate::mesh::textures::default_head()
+                        crate::head::default::default_head_textures()
                     }
                     (None, _) => Arc::default(),
                 };
@@ -356,7 +356,7 @@ pub struct HeadLayout {
     /// UVs (a built-in mesh, `own-uvs`, or no landmarks found).
     pub fit: Option<Arc<Fit>>,
     /// The landmarks the fit used, in the scene's coordinates (+Y up, +Z forward): the
-    /// project's file's, or found ([`crate::fit::auto`]).
+    /// project's file's, or found ([`crate::head::fit::auto`]).
     pub landmarks: Option<Arc<Landmarks>>,
     /// Whether `landmarks` were found automatically (not read from a file).
     pub found: bool,
@@ -400,11 +400,11 @@ impl HeadLayout {
                 "the head's own UVs (mesh.layout = own-uvs)",
             ));
         }
-        let template = crate::fit::template();
+        let template = crate::head::fit::template();
         let rotation = axes.to_standard().unwrap_or(glam::Mat3::IDENTITY);
         if let Some(file) = file_landmarks {
             let mut turned = Landmarks::default();
-            for name in crate::landmarks::NAMES {
+            for name in crate::head::landmarks::NAMES {
                 if let Some(p) = file.get(name) {
                     turned.set(name, rotation * p)?;
                 }
@@ -412,7 +412,7 @@ impl HeadLayout {
             // A file too thin to fit (two eye corners for the units) still gives the
             // units: the layers are then read at the head's own UVs, and the report says
             // why.
-            return Ok(match crate::fit::fit(mesh, &turned, template) {
+            return Ok(match crate::head::fit::fit(mesh, &turned, template) {
                 Ok(fit) => Self {
                     choice,
                     how: format!("the template fitted by the landmark file: {}", fit.report),
@@ -426,9 +426,9 @@ impl HeadLayout {
                 },
             });
         }
-        let guess = crate::mesh::units::detect(&mesh.bounds(), None).metres_per_unit;
+        let guess = crate::head::mesh::units::detect(&mesh.bounds(), None).metres_per_unit;
         let guess = project.mesh.metres_per_unit.unwrap_or(guess);
-        let found = match crate::fit::auto::landmarks(mesh, template, guess) {
+        let found = match crate::head::fit::auto::landmarks(mesh, template, guess) {
             Ok(f) => f,
             Err(e) => return Ok(Self::own(choice, format!("the head's own UVs: {e}"))),
         };
@@ -441,7 +441,7 @@ impl HeadLayout {
                 ),
             ));
         }
-        match crate::fit::fit(mesh, &found.landmarks, template) {
+        match crate::head::fit::fit(mesh, &found.landmarks, template) {
             Ok(fit) => Ok(Self {
                 choice,
                 how: format!(
@@ -467,7 +467,7 @@ fn axes_of(project: &Project, landmarks: Option<&Landmarks>, mesh: &Mesh) -> (Ax
     if let (Some(up), Some(forward)) = (up, forward) {
         return (Axes { up, forward }, "set in the project".into());
     }
-    if let Some(detected) = landmarks.and_then(crate::mesh::units::detect_axes) {
+    if let Some(detected) = landmarks.and_then(crate::head::mesh::units::detect_axes) {
         let axes = Axes {
             up: up.unwrap_or(detected.up),
             forward: forward.unwrap_or(detected.forward),
@@ -476,10 +476,10 @@ fn axes_of(project: &Project, landmarks: Option<&Landmarks>, mesh: &Mesh) -> (Ax
     }
     // No landmarks to read them from: the orientation the template fits best.
     if up.is_none() && forward.is_none() && project.mesh.layout == Layout::Template {
-        let guess = crate::mesh::units::detect(&mesh.bounds(), None).metres_per_unit;
+        let guess = crate::head::mesh::units::detect(&mesh.bounds(), None).metres_per_unit;
         let guess = project.mesh.metres_per_unit.unwrap_or(guess);
         if let Some((axes, mm)) =
-            crate::fit::auto::axes(mesh, crate::fit::template(), guess, AXES_GOOD_MM)
+            crate::head::fit::auto::axes(mesh, crate::head::fit::template(), guess, AXES_GOOD_MM)
             && mm <= AUTO_FIT_MAX_MEDIAN_MM
         {
             return (
@@ -505,8 +505,8 @@ const AXES_GOOD_MM: f32 = 5.0;
 fn load_mesh(project: &Project) -> Result<Mesh, Error> {
     match (&project.mesh.path, project.mesh.builtin) {
         (Some(path), _) => Mesh::load(path),
-        (None, BuiltinMesh::Head) => Ok(crate::head::default_head()),
-        (None, BuiltinMesh::SkinPatch) => Ok(crate::head::skin_patch()),
+        (None, BuiltinMesh::Head) => Ok(crate::head::default::default_head()),
+        (None, BuiltinMesh::SkinPatch) => Ok(crate::head::default::skin_patch()),
     }
 }
 
@@ -533,7 +533,8 @@ pub fn load_wrinkles(paths: &[PathBuf]) -> Result<Vec<WrinkleSource>, Error> {
         }
     } else {
         for path in paths {
-            let bytes = crate::limits::read_file(path, crate::limits::MAX_TEXT_FILE_BYTES)?;
+            let bytes =
+                crate::base::limits::read_file(path, crate::base::limits::MAX_TEXT_FILE_BYTES)?;
             push(
                 path.display().to_string(),
                 Some(path.clone()),

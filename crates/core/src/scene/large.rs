@@ -5,16 +5,16 @@ use std::sync::Arc;
 
 use super::{BakeRequest, Changed, LargeMap, scaled};
 use crate::age::AgeFactors;
-use crate::cancel::CancelToken;
-use crate::error::Error;
-use crate::fit::Correspondence;
-use crate::heightmap::HeightMap;
-use crate::large_layer::LargeLayer;
-use crate::mask::Mask;
-use crate::muscle::{Fibre, MaskValues};
-use crate::normal_map::{self, NormalSettings};
+use crate::base::cancel::CancelToken;
+use crate::base::error::Error;
+use crate::head::fit::Correspondence;
+use crate::layers::shape::relief::ShapeRelief;
+use crate::layers::wrinkles::large_layer::LargeLayer;
+use crate::layers::wrinkles::muscle::{Fibre, MaskValues};
+use crate::maps::heightmap::HeightMap;
+use crate::maps::mask::Mask;
+use crate::maps::normal_map::{self, NormalSettings};
 use crate::project::Project;
-use crate::shape::relief::ShapeRelief;
 
 /// The keys each kept output was made from (see the module table).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -36,12 +36,12 @@ pub(super) struct LargeKey {
     relief: Option<(usize, Vec<u32>, u32)>,
 }
 
-/// The shape's relief finer than the head's triangles ([`crate::shape::relief`]) at an
+/// The shape's relief finer than the head's triangles ([`crate::layers::shape::relief`]) at an
 /// age: added to the map in the head's layout.
 #[derive(Clone, Copy)]
 pub(super) struct ReliefAt<'a> {
     pub(super) relief: &'a std::sync::Arc<ShapeRelief>,
-    /// The regions' curves at the age, in [`crate::shape::REGIONS`] order.
+    /// The regions' curves at the age, in [`crate::layers::shape::REGIONS`] order.
     pub(super) factors: &'a [f32],
     /// The depth of a normalised height of 1, UV units (the default view's relief depth).
     pub(super) depth_uv: f32,
@@ -126,7 +126,7 @@ impl LargeStage {
         // A one-off bake samples the mask from its taps (no map-sized buffer kept); the
         // editor's bakes keep the samples for the next change.
         let columns = match (request.one_off, large_mask.mask) {
-            (true, Some(m)) => crate::muscle::mask_columns(m, size),
+            (true, Some(m)) => crate::layers::wrinkles::muscle::mask_columns(m, size),
             _ => Vec::new(),
         };
         let mask_samples = match (large_mask.mask, &self.mask_samples) {
@@ -136,7 +136,9 @@ impl LargeStage {
                 Some(v.clone())
             }
             (Some(mask), _) => {
-                let v = Arc::new(crate::muscle::sample_mask(mask, size, size));
+                let v = Arc::new(crate::layers::wrinkles::muscle::sample_mask(
+                    mask, size, size,
+                ));
                 self.mask_samples = Some((large_mask.generation, size, v.clone()));
                 Some(v)
             }
@@ -154,7 +156,7 @@ impl LargeStage {
         let gamma = p.large.gamma;
         let baked = if request.one_off {
             // One pass, no stamps (`large_layer::bake_direct`: the same bytes).
-            crate::large_layer::bake_direct(
+            crate::layers::wrinkles::large_layer::bake_direct(
                 fibres,
                 &factors.large,
                 gamma,

@@ -3,11 +3,11 @@
 
 use super::{BakeRequest, Changed, MicroTile};
 use crate::age::AgeFactors;
-use crate::cancel::CancelToken;
-use crate::error::Error;
-use crate::heightmap::HeightMap;
-use crate::micro::MicroRelief;
-use crate::normal_map::{self, NormalSettings};
+use crate::base::cancel::CancelToken;
+use crate::base::error::Error;
+use crate::layers::micro::MicroRelief;
+use crate::maps::heightmap::HeightMap;
+use crate::maps::normal_map::{self, NormalSettings};
 use crate::project::Project;
 
 /// Tiles up to this side keep their features and their noise as separate maps (the
@@ -100,7 +100,7 @@ impl MicroStage {
             Some(t) if t.height.width_px() == size => t,
             _ => MicroTile {
                 height: HeightMap::zeros(size, size)?,
-                normal_rgb: crate::heightmap::zeroed_vec(
+                normal_rgb: crate::maps::heightmap::zeroed_vec(
                     size as usize * size as usize * 3,
                     "normal map",
                 )?,
@@ -145,7 +145,7 @@ impl MicroStage {
         out: &mut MicroTile,
         cancel: &CancelToken,
     ) -> Result<(), Error> {
-        use crate::micro::bake::Parts;
+        use crate::layers::micro::bake::Parts;
         use rayon::prelude::*;
         let features_key = (features_relevant(project), scales, size);
         let features_valid = self
@@ -206,7 +206,7 @@ impl MicroStage {
                 Some(normal) => normal_map::encode_rgb8_into(
                     &out.height,
                     normal,
-                    crate::simd::Level::detect(),
+                    crate::base::simd::Level::detect(),
                     &mut out.normal_rgb,
                 ),
                 None => {

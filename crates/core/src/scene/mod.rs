@@ -8,7 +8,7 @@
 //! | stage | redone when |
 //! |---|---|
 //! | inputs (mesh, wrinkle files, masks, tile image) | their path changes ([`Scene::set_project`]) |
-//! | large-wrinkle fibre stamps ([`LargeLayer`](crate::large_layer::LargeLayer)) | a fibre changes: only that fibre is rasterised |
+//! | large-wrinkle fibre stamps ([`LargeLayer`](crate::layers::wrinkles::large_layer::LargeLayer)) | a fibre changes: only that fibre is rasterised |
 //! | large-wrinkle map at age t | the stamps, an age factor, γ, mask (and, for its RGBA packing, depth and normal strength) |
 //! | micro-relief features (pores, furrows) | seed, map size, tiling, `pores`, `furrows` |
 //! | micro-relief tile at age t | the features, noise, warp, overlap, normal, its age scales |
@@ -39,23 +39,23 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use crate::age::{AgeCurve, AgeFactors};
-use crate::cancel::CancelToken;
-use crate::error::Error;
-use crate::fine_wrinkles::{self, FineWrinkleSettings};
-use crate::fit::Correspondence;
-use crate::hair::{HairInstances, HairParams, SurfaceRef};
-use crate::heightmap::HeightMap;
-use crate::landmarks::Landmarks;
-use crate::mask::Mask;
-use crate::mesh::Mesh;
-use crate::mesh::units::Units;
-use crate::micro::MicroRelief;
-use crate::muscle::Fibre;
-use crate::normal_map::{self, NormalSettings};
+use crate::base::cancel::CancelToken;
+use crate::base::error::Error;
+use crate::head::fit::Correspondence;
+use crate::head::landmarks::Landmarks;
+use crate::head::mesh::Mesh;
+use crate::head::mesh::units::Units;
+use crate::layers::hair::transition::TransitionTexture;
+use crate::layers::hair::{HairInstances, HairParams, SurfaceRef};
+use crate::layers::micro::MicroRelief;
+use crate::layers::shape::relief::ShapeRelief;
+use crate::layers::wrinkles::fine_wrinkles::{self, FineWrinkleSettings};
+use crate::layers::wrinkles::muscle::Fibre;
+use crate::layers::wrinkles::wrinkle_file::WrinkleFile;
+use crate::maps::heightmap::HeightMap;
+use crate::maps::mask::Mask;
+use crate::maps::normal_map::{self, NormalSettings};
 use crate::project::Project;
-use crate::shape::relief::ShapeRelief;
-use crate::transition::TransitionTexture;
-use crate::wrinkle_file::WrinkleFile;
 
 use inputs::Inputs;
 use large::{LargeMask, LargeStage};
@@ -103,7 +103,7 @@ pub struct BakeRequest {
     /// always have it.
     pub micro_normals: bool,
     /// Also add the shape's relief finer than the head's triangles to the large map
-    /// ([`crate::shape::relief`]): what the view and the exported head show. `agesim
+    /// ([`crate::layers::shape::relief`]): what the view and the exported head show. `agesim
     /// bake`'s maps are the wrinkles' alone (normalised: a full-depth wrinkle spans 1).
     pub shape_relief: bool,
 }
@@ -226,7 +226,7 @@ type HairAlphaKey = (u64, u32, u32);
 /// What [`Scene::shown_colour`] was made from.
 #[derive(Clone, Debug)]
 struct ShownKey {
-    aged: Arc<crate::mask::HeadImage>,
+    aged: Arc<crate::maps::mask::HeadImage>,
     transition: Option<u64>,
 }
 
@@ -258,23 +258,23 @@ pub struct Scene {
     colour: colour::ColourStage,
     /// The shape field and what it was made from (mesh and layout generations, metres per
     /// unit, strengths).
-    shape: Option<(ShapeKey, Arc<crate::shape::ShapeField>)>,
+    shape: Option<(ShapeKey, Arc<crate::layers::shape::ShapeField>)>,
     /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
     shape_aged: Option<((usize, u32), Arc<AgedShape>)>,
     /// The shape's relief finer than the head's triangles, added to the large-wrinkle
-    /// map ([`crate::shape::relief`]), keyed like the field and by its map size.
+    /// map ([`crate::layers::shape::relief`]), keyed like the field and by its map size.
     relief: Option<((ShapeKey, u32), Arc<ShapeRelief>)>,
     /// The brow hairs and lashes placed on the head, keyed by mesh and layout
     /// generations, metres per unit (bits) and seed.
     brows: Option<(BrowHairsKey, Arc<EyeHairs>)>,
     /// The brow hairs and lashes at the last [`Scene::bake_brows`]'s age, keyed by the
     /// hairs, the shape and the factors they were made from.
-    brows_aged: Option<(BrowsKey, Arc<Vec<crate::brows::BrowStrand>>)>,
+    brows_aged: Option<(BrowsKey, Arc<Vec<crate::layers::hair::brows::BrowStrand>>)>,
     /// The aged colour as the 3D view shows it ([`Scene::shown_colour`]), with the aged
     /// colour and the transition generation it was made from.
-    shown: Option<(ShownKey, Arc<crate::mask::HeadImage>)>,
+    shown: Option<(ShownKey, Arc<crate::maps::mask::HeadImage>)>,
     /// The hair's ages as the shown colour's alpha
-    /// ([`crate::skin_colour::hair_age_alpha`]), per transition generation and size.
+    /// ([`crate::layers::hair::scalp::hair_age_alpha`]), per transition generation and size.
     hair_alpha: Option<(HairAlphaKey, Arc<Vec<u8>>)>,
     /// Bumped when the head's layout (its fit) changes.
     layout_generation: u64,
@@ -285,7 +285,7 @@ pub struct Scene {
     surface_warps: Vec<(
         Fibre,
         Option<u64>,
-        Option<Arc<crate::surface_warp::SurfaceWarp>>,
+        Option<Arc<crate::layers::wrinkles::surface_warp::SurfaceWarp>>,
     )>,
     /// The correspondence maps of the current layout, by size (the large map's and the
     /// transition texture's).
@@ -313,10 +313,10 @@ const PAST_INPUTS: usize = 8;
 pub struct AgedShape {
     pub delta: Vec<glam::Vec3>,
     pub normals: Vec<glam::Vec3>,
-    /// How hollowed each vertex is, mm ([`crate::shape::ShapeField::hollow_at`]).
+    /// How hollowed each vertex is, mm ([`crate::layers::shape::ShapeField::hollow_at`]).
     pub hollow_mm: Vec<f32>,
     /// How much of the sky each vertex sees over how much it saw undisplaced
-    /// ([`crate::shape::ShapeField::occlusion_at`]).
+    /// ([`crate::layers::shape::ShapeField::occlusion_at`]).
     pub occlusion: Vec<f32>,
     pub years: f32,
 }
@@ -328,8 +328,8 @@ type BrowHairsKey = (u64, u64, u32, u64);
 /// The hairs around the eyes, placed once per head: the brows and the upper lids' lashes.
 #[derive(Debug)]
 struct EyeHairs {
-    brows: crate::brows::BrowHairs,
-    lashes: crate::lashes::Lashes,
+    brows: crate::layers::hair::brows::BrowHairs,
+    lashes: crate::layers::hair::lashes::Lashes,
 }
 
 impl EyeHairs {
@@ -344,7 +344,7 @@ type BrowsKey = (usize, usize, u32, u32);
 
 /// What a shape field is made from: mesh and layout generations, metres per unit (bits),
 /// each region's strength (bits).
-type ShapeKey = (u64, u64, u32, [u32; crate::shape::REGIONS.len()]);
+type ShapeKey = (u64, u64, u32, [u32; crate::layers::shape::REGIONS.len()]);
 
 type FineWrinkleSettingsKey = (Option<PathBuf>, u32, u32, f32, f32, f32, f32, u64);
 
@@ -537,16 +537,16 @@ impl Scene {
     /// head, `template` true; the head's own otherwise). A warp is made once per group
     /// and layout; groups that cannot be laid (see [`SurfaceWarp::new`]) stay in UV.
     ///
-    /// [`SurfaceWarp::new`]: crate::surface_warp::SurfaceWarp::new
+    /// [`SurfaceWarp::new`]: crate::layers::wrinkles::surface_warp::SurfaceWarp::new
     fn laid_on_surface(&mut self, fibres: Vec<Fibre>, template: bool) -> Vec<Fibre> {
-        use crate::muscle::Space;
-        use crate::surface_warp::SurfaceWarp;
+        use crate::layers::wrinkles::muscle::Space;
+        use crate::layers::wrinkles::surface_warp::SurfaceWarp;
         if fibres.iter().all(|f| f.space() == Space::Uv) {
             self.surface_warps.clear();
             return fibres;
         }
         let (mesh, layout): (&Mesh, _) = if template {
-            (&crate::fit::template().mesh, None)
+            (&crate::head::fit::template().mesh, None)
         } else {
             (&self.inputs.mesh, Some(self.mesh_generation))
         };
@@ -562,7 +562,7 @@ impl Scene {
                 .position(|(f, l, _)| *l == layout && *f == fibre);
             let warp = match found {
                 Some(i) => kept.swap_remove(i).2,
-                None => SurfaceWarp::new(&fibre, mesh).map(Arc::new),
+                None => SurfaceWarp::new(fibre.capsule_bounds_uv(), mesh).map(Arc::new),
             };
             self.surface_warps
                 .push((fibre.clone(), layout, warp.clone()));
@@ -614,7 +614,7 @@ impl Scene {
 
     /// The mesh file's up and forward axes; the scene's mesh is turned to agesim's
     /// (+Y up, +Z forward).
-    pub fn axes(&self) -> crate::mesh::units::Axes {
+    pub fn axes(&self) -> crate::head::mesh::units::Axes {
         self.inputs.axes
     }
 
@@ -631,7 +631,7 @@ impl Scene {
 
     /// The head's base colour map (`mesh.colour_map`, else the one the mesh file's
     /// material names), over its own UVs.
-    pub fn colour_map(&self) -> Option<&Arc<crate::mask::HeadImage>> {
+    pub fn colour_map(&self) -> Option<&Arc<crate::maps::mask::HeadImage>> {
         self.inputs
             .colour_map
             .as_ref()
@@ -652,7 +652,7 @@ impl Scene {
 
     /// The head's tangent-space normal map (`mesh.normal_map`, else the one the mesh
     /// file's material names), over its own UVs.
-    pub fn normal_map(&self) -> Option<&Arc<crate::mask::HeadImage>> {
+    pub fn normal_map(&self) -> Option<&Arc<crate::maps::mask::HeadImage>> {
         self.inputs
             .normal_map
             .as_ref()
@@ -688,7 +688,7 @@ impl Scene {
 
     /// How long one unit of the mesh is: the project's `mesh.metres_per_unit`, else 1 for
     /// the built-in meshes, else measured from the mesh file's landmarks (the project's
-    /// file, else those found for the fit) or its size ([`crate::mesh::units::detect`]).
+    /// file, else those found for the fit) or its size ([`crate::head::mesh::units::detect`]).
     pub fn units(&self) -> Units {
         match (self.project.mesh.metres_per_unit, &self.project.mesh.path) {
             (Some(m), _) => Units {
@@ -699,7 +699,7 @@ impl Scene {
                 metres_per_unit: 1.0,
                 how: "metres: a built-in mesh".into(),
             },
-            (None, Some(_)) => crate::mesh::units::detect(
+            (None, Some(_)) => crate::head::mesh::units::detect(
                 &self.inputs.mesh.bounds(),
                 self.landmarks().or(self.inputs.layout.landmarks.as_deref()),
             ),
@@ -708,7 +708,7 @@ impl Scene {
 
     /// How deep, in the head's UV units, a relief one UV unit deep on the template is:
     /// the template's metres per UV unit over the head's (both measured over their skin,
-    /// [`crate::mesh::SurfaceScale`]), so the wrinkles read through a fit are as deep in
+    /// [`crate::head::mesh::SurfaceScale`]), so the wrinkles read through a fit are as deep in
     /// millimetres as on the template whatever the head's UV layout; 1 when the head reads
     /// the layers at its own UVs.
     pub fn relief_scale(&self) -> f32 {
@@ -719,7 +719,7 @@ impl Scene {
             .surface_scale()
             .map(|s| 0.5 * (s.units_per_u + s.units_per_v) * self.metres_per_unit());
         // The template's is measured once, with the template.
-        match (crate::fit::template().metres_per_uv, head) {
+        match (crate::head::fit::template().metres_per_uv, head) {
             (Some(t), Some(h)) if h > 0.0 && (t / h).is_finite() => t / h,
             _ => 1.0,
         }
@@ -730,16 +730,16 @@ impl Scene {
     /// skin ([`SurfaceScale::measure_face`]); it sizes the repeated tiles (micro-relief,
     /// fine wrinkles) and the relief depth. `None` when every UV triangle is degenerate.
     ///
-    /// [`SurfaceScale::measure_face`]: crate::mesh::SurfaceScale::measure_face
-    pub fn surface_scale(&self) -> Option<crate::mesh::SurfaceScale> {
+    /// [`SurfaceScale::measure_face`]: crate::head::mesh::SurfaceScale::measure_face
+    pub fn surface_scale(&self) -> Option<crate::head::mesh::SurfaceScale> {
         let builtin_head = self.project.mesh.path.is_none()
             && self.project.mesh.builtin == crate::project::BuiltinMesh::Head;
         let landmarks = if builtin_head {
-            Some(&crate::fit::template().landmarks)
+            Some(&crate::head::fit::template().landmarks)
         } else {
             self.landmarks().or(self.inputs.layout.landmarks.as_deref())
         };
-        crate::mesh::SurfaceScale::measure_face(&self.inputs.mesh, landmarks)
+        crate::head::mesh::SurfaceScale::measure_face(&self.inputs.mesh, landmarks)
     }
 
     /// [`Scene::units`]' metres per unit.
@@ -765,7 +765,7 @@ impl Scene {
     /// Bakes what `request` asks for at its age, redoing only what changed since the last
     /// bake. On error (or cancellation) every kept output stays as it was.
     pub fn bake(&mut self, request: &BakeRequest, cancel: &CancelToken) -> Result<Changed, Error> {
-        crate::heightmap::check_size(request.large_size_px, request.micro_size_px)?;
+        crate::maps::heightmap::check_size(request.large_size_px, request.micro_size_px)?;
         let (fibres, curves) = self.fibres();
         self.factors = self.project.age.factors(request.t, &curves);
         let mut changed = Changed::default();
@@ -786,7 +786,7 @@ impl Scene {
             None => self.shape_relief(request.large_size_px, cancel)?,
         };
         let years = self.project.age.mapping().years(request.t);
-        let shape_factors = crate::shape::REGIONS.map(|r| r.curve.factor(years));
+        let shape_factors = crate::layers::shape::REGIONS.map(|r| r.curve.factor(years));
         // The relief depth of the default view and wrinkle depth: the relief has its
         // millimetres there, and deepens with the wrinkles when either is turned up (a
         // slider that redraws without a bake stays so).
@@ -915,7 +915,7 @@ impl Scene {
             if outer
                 .values()
                 .iter()
-                .all(|&v| v < crate::transition::REGION_THRESHOLD)
+                .all(|&v| v < crate::layers::hair::transition::REGION_THRESHOLD)
             {
                 return Err(Error::InvalidValue {
                     what: format!(
@@ -984,7 +984,7 @@ impl Scene {
             .with_seed(h.seed)
             .with_max_deviation_rad(h.max_deviation_deg.to_radians())?
             .with_graying_onset_range(key.onset_t.0, key.onset_t.1)?
-            .with_thinning(h.thinning, crate::hair::RECESSION_SPREAD)?
+            .with_thinning(h.thinning, crate::layers::hair::RECESSION_SPREAD)?
             .with_taper_mm(h.taper_mm)?;
         let mesh = &self.inputs.mesh;
         // Hair grows on the skin, not on eyes, teeth or lashes that come with the head.
@@ -999,11 +999,11 @@ impl Scene {
 
     /// Bakes the aged base colour (docs/models.md "Skin colour") at `size`² and age `t`:
     /// the head's colour map (else the skin colour) with its age spots, uneven tone,
-    /// paling and faded lips and brows ([`crate::skin_colour`]); [`Scene::aged_colour`]
+    /// paling and faded lips and brows ([`crate::layers::skin_colour`]); [`Scene::aged_colour`]
     /// then holds it. Redone only when the head, the size, the colour settings or an
     /// effect's age factor changed; returns whether it was.
     pub fn bake_colour(&mut self, size: u32, t: f32, cancel: &CancelToken) -> Result<bool, Error> {
-        crate::heightmap::check_size(size, size)?;
+        crate::maps::heightmap::check_size(size, size)?;
         let settings = self.project.colour_settings();
         let factors = self.project.colour_factors(t);
         let key = colour::HeadKey {
@@ -1047,26 +1047,27 @@ impl Scene {
             match &self.hair_alpha {
                 Some((kept, a)) if *kept == k => a.clone(),
                 _ => {
-                    let a = Arc::new(crate::skin_colour::hair_age_alpha(&t, k.1, k.2));
+                    let a = Arc::new(crate::layers::hair::scalp::hair_age_alpha(&t, k.1, k.2));
                     self.hair_alpha = Some((k, a.clone()));
                     a
                 }
             }
         });
-        let image = crate::skin_colour::with_alpha(&aged, alpha.as_deref().map(Vec::as_slice));
+        let image =
+            crate::layers::skin_colour::with_alpha(&aged, alpha.as_deref().map(Vec::as_slice));
         self.shown = Some((key, Arc::new(image)));
     }
 
     /// The aged colour of the last [`Scene::prepare_shown_colour`] as the 3D view shows it: its
     /// alpha is the hair's disappearance age at each texel
-    /// ([`crate::skin_colour::hair_age_alpha`]), which the skin pass reads to tint the scalp
+    /// ([`crate::layers::hair::scalp::hair_age_alpha`]), which the skin pass reads to tint the scalp
     /// under the hair (docs/models.md §9 "The scalp under the hair"). Not for export.
-    pub fn shown_colour(&self) -> Option<&Arc<crate::mask::HeadImage>> {
+    pub fn shown_colour(&self) -> Option<&Arc<crate::maps::mask::HeadImage>> {
         self.shown.as_ref().map(|(_, s)| s)
     }
 
     /// Each vertex's template point (template metres): the fitted template's
-    /// ([`crate::fit::Fit::template_point`]), the vertex itself on the built-in head (the
+    /// ([`crate::head::fit::Fit::template_point`]), the vertex itself on the built-in head (the
     /// template), none on a head read at its own UVs.
     pub fn template_points(&self) -> Vec<Option<glam::Vec3>> {
         let mesh = &self.inputs.mesh;
@@ -1149,7 +1150,7 @@ impl Scene {
     }
 
     /// The brow strands and then the lashes of the last [`Scene::bake_brows`].
-    pub fn aged_brows(&self) -> Option<&Arc<Vec<crate::brows::BrowStrand>>> {
+    pub fn aged_brows(&self) -> Option<&Arc<Vec<crate::layers::hair::brows::BrowStrand>>> {
         self.brows_aged.as_ref().map(|(_, b)| b)
     }
 
@@ -1168,13 +1169,25 @@ impl Scene {
         {
             return (!b.is_empty()).then(|| b.clone());
         }
-        let regions = crate::skin_colour::Regions::template()?;
+        let regions = crate::head::frame::Regions::template()?;
         let points = self.template_points();
         let point = |v: usize| points.get(v).copied().flatten();
         let (mesh, metres_per_unit) = (&self.inputs.mesh, self.metres_per_unit());
         let hairs = Arc::new(EyeHairs {
-            brows: crate::brows::BrowHairs::generate(mesh, &point, regions, metres_per_unit, key.3),
-            lashes: crate::lashes::Lashes::generate(mesh, &point, regions, metres_per_unit, key.3),
+            brows: crate::layers::hair::brows::BrowHairs::generate(
+                mesh,
+                &point,
+                regions,
+                metres_per_unit,
+                key.3,
+            ),
+            lashes: crate::layers::hair::lashes::Lashes::generate(
+                mesh,
+                &point,
+                regions,
+                metres_per_unit,
+                key.3,
+            ),
         });
         self.brows = Some((key, hairs.clone()));
         (!hairs.is_empty()).then_some(hairs)
@@ -1187,7 +1200,7 @@ impl Scene {
 
     /// The shape regions' displacements on this head (docs/models.md §13), made once per
     /// head and strengths; `None` when the shape layer is off or every strength is 0.
-    pub fn shape_field(&mut self) -> Option<Arc<crate::shape::ShapeField>> {
+    pub fn shape_field(&mut self) -> Option<Arc<crate::layers::shape::ShapeField>> {
         let strengths = self.project.shape.strengths();
         if strengths.iter().all(|&s| s <= 0.0) {
             return None;
@@ -1204,7 +1217,7 @@ impl Scene {
             return Some(f.clone());
         }
         let points = self.template_points();
-        let field = Arc::new(crate::shape::ShapeField::new(
+        let field = Arc::new(crate::layers::shape::ShapeField::new(
             &self.inputs.mesh,
             &|v| points.get(v).copied().flatten(),
             &strengths,
@@ -1215,7 +1228,7 @@ impl Scene {
     }
 
     /// The shape's relief finer than the head's triangles at `size`² in the head's layout
-    /// ([`crate::shape::relief`]), made once per head, strengths and size; `None` when the
+    /// ([`crate::layers::shape::relief`]), made once per head, strengths and size; `None` when the
     /// shape layer is off or every strength is 0.
     fn shape_relief(
         &mut self,
@@ -1255,12 +1268,12 @@ impl Scene {
 
     /// The aged base colour of the last [`Scene::bake_colour`] (RGBA8, sRGB, in the head's
     /// UV layout).
-    pub fn aged_colour(&self) -> Option<&Arc<crate::mask::HeadImage>> {
+    pub fn aged_colour(&self) -> Option<&Arc<crate::maps::mask::HeadImage>> {
         self.colour.image.as_ref()
     }
 
     /// The age spots placed on the head by the last [`Scene::bake_colour`] (head metres).
-    pub fn age_spots(&self) -> Option<&Arc<Vec<crate::skin_colour::Spot>>> {
+    pub fn age_spots(&self) -> Option<&Arc<Vec<crate::layers::skin_colour::Spot>>> {
         self.colour.spots()
     }
 
@@ -1286,7 +1299,7 @@ impl Scene {
     }
 
     /// The exported height map of a one-off bake (`agesim bake`, exports; the normal map
-    /// is then streamed from it, [`crate::export::stage_normal_png`]): the kept maps are
+    /// is then streamed from it, [`crate::output::export::stage_normal_png`]): the kept maps are
     /// moved out, not copied (at 4096² a copy is 64 MB of fresh memory). The scene forgets
     /// them; a later bake makes them again. The same heights as [`Scene::export_maps`].
     pub fn take_height(&mut self) -> Result<HeightMap, Error> {

@@ -16,7 +16,7 @@ fn small(t: f32) -> BakeRequest {
 }
 
 /// The wrinkle layer's and the micro-relief's project: without the shape, whose relief
-/// the large map also carries (it has its own tests, here and in crate::shape::relief).
+/// the large map also carries (it has its own tests, here and in crate::layers::shape::relief).
 fn project() -> Project {
     let mut p = Project::default();
     p.pores.count = 200;
@@ -403,16 +403,16 @@ fn the_units_come_from_the_landmarks_else_the_size_else_the_project() {
 fn a_z_up_head_in_centimetres_is_measured_and_turned_by_its_landmarks() {
     use glam::{Mat3, Vec3};
     let dir = tempfile::tempdir().unwrap();
-    let head = crate::head::default_head();
+    let head = crate::head::default::default_head();
     // Y-up, +Z forward → Z-up, −Y forward: (x, y, z) → (x, −z, y).
     let to_z_up = Mat3::from_cols(Vec3::X, Vec3::Z, Vec3::NEG_Y);
     let file = |p: Vec3| to_z_up * (p * 100.0);
-    let obj = crate::mesh::obj::to_obj(&head, file);
+    let obj = crate::head::mesh::obj::to_obj(&head, file);
     std::fs::write(dir.path().join("head.obj"), obj).unwrap();
     // The built-in head's landmarks (metres, Y-up), written in the file's coordinates.
-    let mut marks = crate::landmarks::Landmarks::default();
-    let template = &crate::fit::template().landmarks;
-    for name in crate::landmarks::NAMES {
+    let mut marks = crate::head::landmarks::Landmarks::default();
+    let template = &crate::head::fit::template().landmarks;
+    for name in crate::head::landmarks::NAMES {
         marks.set(name, file(template.get(name).unwrap())).unwrap();
     }
     std::fs::write(dir.path().join("l.json"), marks.to_json_pretty()).unwrap();
@@ -425,8 +425,8 @@ fn a_z_up_head_in_centimetres_is_measured_and_turned_by_its_landmarks() {
     assert_eq!(
         (axes.up, axes.forward),
         (
-            crate::mesh::units::Axis::PosZ,
-            crate::mesh::units::Axis::NegY
+            crate::head::mesh::units::Axis::PosZ,
+            crate::head::mesh::units::Axis::NegY
         )
     );
     let (b, want) = (s.mesh().bounds(), head.bounds());
@@ -568,7 +568,7 @@ fn each_region_appears_at_its_age_and_in_the_literatures_order() {
 fn micro_at(
     years: f32,
     edit: impl Fn(&mut Project),
-) -> (HeightMap, f32, Vec<crate::micro::pores::Pore>) {
+) -> (HeightMap, f32, Vec<crate::layers::micro::pores::Pore>) {
     let mut p = Project::default();
     edit(&mut p);
     let t = p.age.mapping().t(years);
@@ -727,7 +727,7 @@ fn furrows_grow_deeper_and_follow_the_tension_lines_with_age() {
     assert!(ro > 1.3 * ry, "deeper: rms {ry:.3} → {ro:.3}");
 }
 
-/// The shape's relief finer than the head's triangles ([`crate::shape::relief`]) reaches
+/// The shape's relief finer than the head's triangles ([`crate::layers::shape::relief`]) reaches
 /// the large map: nothing young (before the rolled regions' onsets), on a few per cent of
 /// the map at 80, gone with the shape off, not in the wrinkles' own maps; a depth change
 /// leaves it as it is in the normalised map (it deepens with the wrinkles, as drawn).
@@ -811,12 +811,15 @@ fn the_crows_feet_are_laid_on_the_surface_and_only_they_change() {
     assert!(
         groups
             .iter()
-            .all(|g| g.fibre.space() == crate::muscle::Space::Surface),
+            .all(|g| g.fibre.space() == crate::layers::wrinkles::muscle::Space::Surface),
         "every crow's-feet group is laid on the surface"
     );
     let mut in_uv = files.clone();
     for g in &mut in_uv[crows].file.groups {
-        g.fibre = g.fibre.clone().with_space(crate::muscle::Space::Uv);
+        g.fibre = g
+            .fibre
+            .clone()
+            .with_space(crate::layers::wrinkles::muscle::Space::Uv);
     }
     s.set_wrinkles(in_uv);
     s.bake(&request, &never).unwrap();
@@ -838,8 +841,8 @@ fn the_crows_feet_are_laid_on_the_surface_and_only_they_change() {
         differing += 1;
         let (x, y) = ((i % 256) as u32, (i / 256) as u32);
         let (u, v) = (
-            crate::heightmap::pixel_to_u(x, 256),
-            crate::heightmap::pixel_to_v(y, 256),
+            crate::maps::heightmap::pixel_to_u(x, 256),
+            crate::maps::heightmap::pixel_to_v(y, 256),
         );
         assert!(
             bounds

@@ -15,10 +15,11 @@ mod layers;
 mod pipelines;
 mod readback;
 mod targets;
+mod textures;
 mod views;
 
-use agesim_core::hair::AgeLevel;
-use agesim_core::mesh::SurfaceScale;
+use agesim_core::head::mesh::SurfaceScale;
+use agesim_core::layers::hair::AgeLevel;
 
 use crate::RenderError;
 use crate::hair::{SEGMENTS, SPARSE_SEGMENTS, count_at, vertices_per_hair};
@@ -26,11 +27,12 @@ use crate::mesh::{MeshData, subdivide};
 use crate::params::{FrameParams, PomMode};
 use crate::uniforms::{FrameContext, FrameUniform};
 
-pub use layers::{PreparedLayer, ShapeUpload};
+pub use layers::ShapeUpload;
+pub use textures::PreparedLayer;
 pub use views::ViewId;
 
-use layers::{FLAT_NORMAL, Layer, create_r16f, create_rgba8, prepare_r16f};
 use pipelines::Pipelines;
+use textures::{FLAT_NORMAL, Layer, create_r16f, create_rgba8, prepare_r16f};
 use views::View;
 
 /// The colour format of headless renders ([`Renderer::render_to_image`]): 8-bit sRGB,

@@ -6,8 +6,8 @@
 use crate::RenderError;
 use crate::uniforms::FrameUniform;
 
-use super::layers::{Layer, create_r16f, prepare_r16f};
 use super::targets::Targets;
+use super::textures::{Layer, create_r16f, prepare_r16f};
 use super::{Renderer, SurfaceKey};
 
 /// A view of a [`Renderer`]: [`ViewId::MAIN`] always exists, [`Renderer::add_view`]

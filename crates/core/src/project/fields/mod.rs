@@ -66,7 +66,7 @@ pub fn find(path: &str) -> Result<&'static Field, String> {
     if let Some(field) = FIELDS.iter().find(|f| f.path == path) {
         return Ok(field);
     }
-    let shown = crate::limits::shorten(path, 80);
+    let shown = crate::base::limits::shorten(path, 80);
     let prefix = format!("{path}.");
     let below: Vec<&str> = FIELDS
         .iter()
@@ -158,7 +158,7 @@ impl Field {
     fn range_problem(&self, v: &Value) -> Option<String> {
         if let (Kind::Landmarks, Value::Object(points)) = (self.kind, v) {
             // Each point named as in a landmark file, three finite numbers.
-            return crate::landmarks::Landmarks::from_points(points)
+            return crate::head::landmarks::Landmarks::from_points(points)
                 .err()
                 .map(|e| format!("{}: {e}", self.path));
         }
@@ -219,7 +219,7 @@ impl Field {
                 self.path,
                 self.type_text(),
                 self.range_text(),
-                crate::limits::shorten(t, 60)
+                crate::base::limits::shorten(t, 60)
             )
         };
         let number = || {
@@ -262,7 +262,7 @@ impl Field {
 
 /// A value quoted for a message, cut to a readable length.
 fn quote(v: &Value) -> String {
-    crate::limits::shorten(&v.to_string(), 60)
+    crate::base::limits::shorten(&v.to_string(), 60)
 }
 
 /// Type errors of every field present in `doc` (a parsed, shape-checked document), and

@@ -1,0 +1,9 @@
+//! Wrinkles: the muscle-fibre model of large wrinkles (docs/models.md §2), the wrinkle
+//! description file (§3), a group laid straight on the surface, the large layer kept
+//! between bakes, and the tileable fine wrinkles (§10).
+
+pub mod fine_wrinkles;
+pub mod large_layer;
+pub mod muscle;
+pub mod surface_warp;
+pub mod wrinkle_file;

@@ -12,8 +12,10 @@ use crate::base::error::Error;
 pub const MAX_TEXT_FILE_BYTES: u64 = 16 << 20;
 /// Largest image file read (masks, tiles), bytes: 256 MiB.
 pub const MAX_IMAGE_FILE_BYTES: u64 = 256 << 20;
+/// Largest side of a map agesim makes, pixels (a 16384² f32 map is 1 GiB).
+pub const MAX_MAP_SIDE_PX: u32 = 16384;
 /// Largest side of a decoded image (mask, tile), pixels: the largest map agesim makes.
-pub const MAX_IMAGE_SIDE_PX: u32 = crate::maps::heightmap::MAX_SIZE_PX;
+pub const MAX_IMAGE_SIDE_PX: u32 = MAX_MAP_SIDE_PX;
 /// Largest memory an image decode may allocate, bytes: 2 GiB (a 16384² 16-bit RGBA image).
 pub const MAX_IMAGE_DECODE_BYTES: u64 = 2 << 30;
 /// Largest mesh file read, bytes: 1 GiB.

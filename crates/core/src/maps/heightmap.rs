@@ -8,7 +8,7 @@ use crate::base::error::Error;
 
 /// The largest map side agesim will allocate, in pixels (an issue-level limit: a
 /// 16384² f32 map is 1 GiB).
-pub const MAX_SIZE_PX: u32 = 16384;
+pub const MAX_SIZE_PX: u32 = crate::base::limits::MAX_MAP_SIDE_PX;
 
 /// A row-major grid of heights, `width_px × height_px`, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]

@@ -17,6 +17,7 @@
 use glam::Vec3;
 
 use crate::age::ColourFactors;
+use crate::base::math::smooth01;
 use crate::base::rng::Rng;
 use crate::head::frame::{BrowPlace, Regions};
 use crate::head::mesh::Mesh;
@@ -379,11 +380,6 @@ fn density(p: &BrowPlace) -> f32 {
     let across = 1.0 - smooth01(((p.across_mm + ROOTS_BELOW_MM).abs() - 0.6 * h) / (0.4 * h));
     let along = smooth01((p.s - SPAN.0) / 0.15) * (1.0 - smooth01((p.s - (SPAN.1 - 0.2)) / 0.2));
     across * along
-}
-
-pub(crate) fn smooth01(x: f32) -> f32 {
-    let t = x.clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
 }
 
 #[cfg(test)]

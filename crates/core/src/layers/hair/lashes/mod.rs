@@ -14,9 +14,10 @@
 use glam::Vec3;
 
 use crate::age::ColourFactors;
+use crate::base::math::smooth01;
 use crate::head::frame::{LidPlace, Regions};
 use crate::head::mesh::Mesh;
-use crate::layers::hair::brows::{BrowStrand, candidates, rooted, smooth01, tangent_frame};
+use crate::layers::hair::brows::{BrowStrand, candidates, rooted, tangent_frame};
 
 /// Lashes per cm² of the root band (an upper lid carries 90–160 lashes in two or three
 /// rows along about 3 cm of its margin: about 120 in a 3 cm × 1.2 mm band).

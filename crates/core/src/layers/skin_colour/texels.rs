@@ -1,0 +1,198 @@
+//! The head's surface per texel of its UV layout, with what does not change with age there:
+//! the regions of its template point and the noise (made once per head, size and seed).
+
+use super::*;
+
+/// The head's surface per texel of its UV layout: the point (head metres) each texel
+/// stands for (NaN where no skin triangle covers it), and what does not change with age
+/// there ([`Fields`]: the regions of its template point, the noise): made once per head, size and
+/// seed, so an age change only re-weights.
+#[derive(Clone, Debug)]
+pub struct SurfaceTexels {
+    pub(super) size: u32,
+    pub(super) position: Vec<Vec3>,
+    pub(super) fields: Vec<Fields>,
+}
+
+/// The regions' weights and the uneven tone's noise at one texel, as bytes (weights
+/// 0–1, noise −1–1 in 255 steps: far below what a colour shows).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Fields {
+    pub(super) sun: u8,
+    pub(super) brows: u8,
+    pub(super) lips: u8,
+    pub(super) lip_rim: u8,
+    pub(super) red: u8,
+    pub(super) blotch: u8,
+    pub(super) grain: u8,
+    pub(super) flush: u8,
+    pub(super) vein: u8,
+    pub(super) brow_draw: u8,
+    pub(super) brow_strand: u8,
+    pub(super) under_eye: u8,
+    pub(super) crease: u8,
+    pub(super) beard: u8,
+    pub(super) bare: u8,
+}
+
+pub(super) fn unit_byte(x: f32) -> u8 {
+    (x.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+pub(super) fn signed_byte(x: f32) -> u8 {
+    unit_byte(0.5 + 0.5 * x)
+}
+
+pub(super) fn from_unit(b: u8) -> f32 {
+    f32::from(b) / 255.0
+}
+
+pub(super) fn from_signed(b: u8) -> f32 {
+    f32::from(b) / 127.5 - 1.0
+}
+
+/// The noise streams of one seed: blotch, grain, flush, vein, brow hair, spot grain.
+pub(super) fn noise_keys(seed: u64) -> [u32; 6] {
+    [1, 2, 3, 4, 5, 6].map(|k| (mix64(seed ^ k) & 0xffff_ffff) as u32)
+}
+
+/// The face frame the aged colour is drawn in: the template's regions, and the crease the
+/// colour draws under the bags (a template point's weight, 0–1). The crease's line belongs
+/// to the shape layer (its bags' roll); the scene hands it in, so that no layer imports
+/// another.
+#[derive(Clone, Copy)]
+pub struct Face<'a> {
+    pub regions: &'a Regions,
+    /// The lid–cheek crease at a point of the face frame ([`Regions::relative`]).
+    pub drawn_crease: &'a (dyn Fn(Vec3) -> f32 + Sync),
+}
+
+impl Fields {
+    pub(super) fn at(p: Vec3, t: Vec3, face_frame: Face<'_>, keys: &[u32; 6]) -> Self {
+        let regions = face_frame.regions;
+        let on_template = !t.x.is_nan();
+        // Behind the face (the scalp, the back of the head) only the sun exposure, the
+        // beard and the bare skin (the neck) can be non-zero: the face's other regions
+        // are skipped there.
+        let face = on_template && regions.in_front(t) > 0.0;
+        let w = |g: fn(&Regions, Vec3) -> f32| if face { g(regions, t) } else { 0.0 };
+        let anywhere = |g: fn(&Regions, Vec3) -> f32| {
+            if on_template { g(regions, t) } else { 0.0 }
+        };
+        let sun = anywhere(Regions::sun);
+        let (brows, red) = (w(Regions::brows), w(Regions::redness));
+        let mm = p * 1000.0;
+        Self {
+            sun: unit_byte(sun),
+            brows: unit_byte(brows),
+            lips: unit_byte(w(Regions::lips)),
+            lip_rim: unit_byte(w(Regions::lip_rim)),
+            red: unit_byte(red),
+            blotch: signed_byte(fbm(mm / MOTTLE_MM.0, keys[0])),
+            grain: signed_byte(value3(mm / MOTTLE_MM.1, keys[1])),
+            flush: if red > 0.0 {
+                signed_byte(fbm(mm / REDNESS_MM.0, keys[2]))
+            } else {
+                128
+            },
+            vein: if red > 0.0 {
+                signed_byte(fbm(mm / REDNESS_MM.1, keys[3]))
+            } else {
+                128
+            },
+            brow_draw: if brows > 0.0 {
+                signed_byte(value3(brow_streak(regions, t), keys[4]))
+            } else {
+                128
+            },
+            // The old brow's longer hair grows from the brow, not on the lid below it
+            // (where a dark one read as a speck once the lid hooded).
+            brow_strand: if brows > 0.0 {
+                signed_byte(
+                    value3(brow_streak(regions, t), keys[4] ^ 0x5bd1_e995)
+                        * (1.0 - w(Regions::eyes)),
+                )
+            } else {
+                128
+            },
+            under_eye: unit_byte(w(Regions::under_eye)),
+            crease: if face {
+                unit_byte((face_frame.drawn_crease)(regions.relative(t)))
+            } else {
+                0
+            },
+            // The beard wraps round the jaw's angle, behind the face's plane.
+            beard: unit_byte(anywhere(Regions::beard)),
+            bare: unit_byte(anywhere(Regions::bare_skin)),
+        }
+    }
+}
+
+/// How far (pixels) beyond its triangle a texel still takes the triangle's surface: the
+/// bilinear and mip filtering of an island's edge read aged texels.
+pub(super) const GUARD_PX: f32 = 1.5;
+
+impl SurfaceTexels {
+    /// Rasterises the skin triangles of `mesh` in its UV layout at `size`², and each
+    /// covered texel's regions and noise (of `seed`).
+    pub fn new(
+        mesh: &Mesh,
+        template_point: &dyn Fn(usize) -> Option<Vec3>,
+        metres_per_unit: f32,
+        size: u32,
+        face: Face<'_>,
+        seed: u64,
+        cancel: &CancelToken,
+    ) -> Result<Self, Error> {
+        crate::maps::heightmap::check_size(size, size)?;
+        let n = size as usize;
+        let nan = Vec3::splat(f32::NAN);
+        let mut position = vec![nan; n * n];
+        let mut template = vec![nan; n * n];
+        let mut distance = vec![f32::INFINITY; n * n];
+        let (uvs, positions) = (mesh.uvs(), mesh.positions());
+        for (k, tri) in mesh.skin_indices().chunks_exact(3).enumerate() {
+            if k % 4096 == 0 {
+                cancel.check()?;
+            }
+            let v = [0, 1, 2].map(|i| tri[i] as usize);
+            let uv = v.map(|i| uvs.get(i).copied().unwrap_or(Vec2::NAN));
+            let p = v.map(|i| positions[i] * metres_per_unit);
+            let t = v.map(|i| template_point(i).unwrap_or(nan));
+            raster_uv(uv, size, GUARD_PX, |x, y, w, outside| {
+                let i = y * n + x;
+                if outside < distance[i] {
+                    distance[i] = outside;
+                    position[i] = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
+                    template[i] = t[0] * w[0] + t[1] * w[1] + t[2] * w[2];
+                }
+            });
+        }
+        let keys = noise_keys(seed);
+        let mut fields = vec![Fields::default(); n * n];
+        fields
+            .par_chunks_mut(n)
+            .enumerate()
+            .try_for_each(|(y, row)| -> Result<(), Error> {
+                if y % 64 == 0 {
+                    cancel.check()?;
+                }
+                for (x, f) in row.iter_mut().enumerate() {
+                    let p = position[y * n + x];
+                    if !p.x.is_nan() {
+                        *f = Fields::at(p, template[y * n + x], face, &keys);
+                    }
+                }
+                Ok(())
+            })?;
+        Ok(Self {
+            size,
+            position,
+            fields,
+        })
+    }
+
+    pub fn size(&self) -> u32 {
+        self.size
+    }
+}

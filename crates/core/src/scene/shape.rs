@@ -1,0 +1,126 @@
+//! The scene's shape (docs/models.md §13): the shape field of a head, the aged shape at an
+//! age and the relief the mesh cannot carry.
+
+use super::*;
+
+/// The head's shape at one age (docs/models.md §13): per vertex, its displacement (mesh
+/// units) and its displaced normal.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AgedShape {
+    pub delta: Vec<glam::Vec3>,
+    pub normals: Vec<glam::Vec3>,
+    /// How hollowed each vertex is, mm ([`crate::layers::shape::ShapeField::hollow_at`]).
+    pub hollow_mm: Vec<f32>,
+    /// How much of the sky each vertex sees over how much it saw undisplaced
+    /// ([`crate::layers::shape::ShapeField::occlusion_at`]).
+    pub occlusion: Vec<f32>,
+    pub years: f32,
+}
+
+/// What a shape field is made from: mesh and layout generations, metres per unit (bits),
+/// each region's strength (bits).
+pub(super) type ShapeKey = (u64, u64, u32, [u32; crate::layers::shape::REGIONS.len()]);
+
+impl Scene {
+    /// Makes the shape at age `t` (docs/models.md §13): every vertex's displacement and the
+    /// displaced normals ([`Scene::aged_shape`]; `None` when the shape layer is off).
+    /// Redone only when the age or the field changed; returns whether it was.
+    pub fn bake_shape(&mut self, t: f32) -> bool {
+        let years = self.project.age.mapping().years(t);
+        let Some(field) = self.shape_field() else {
+            let changed = self.shape_aged.is_some();
+            self.shape_aged = None;
+            return changed;
+        };
+        let key = (Arc::as_ptr(&field) as usize, years.to_bits());
+        if self.shape_aged.as_ref().is_some_and(|(k, _)| *k == key) {
+            return false;
+        }
+        let delta = field.at(years);
+        let normals = field.normals(&self.inputs.mesh, &delta);
+        self.shape_aged = Some((
+            key,
+            Arc::new(AgedShape {
+                hollow_mm: field.hollow_at(years),
+                occlusion: field.occlusion_at(&self.inputs.mesh, years),
+                delta,
+                normals,
+                years,
+            }),
+        ));
+        true
+    }
+
+    /// The shape of the last [`Scene::bake_shape`].
+    pub fn aged_shape(&self) -> Option<&Arc<AgedShape>> {
+        self.shape_aged.as_ref().map(|(_, s)| s)
+    }
+
+    /// The shape regions' displacements on this head (docs/models.md §13), made once per
+    /// head and strengths; `None` when the shape layer is off or every strength is 0.
+    pub fn shape_field(&mut self) -> Option<Arc<crate::layers::shape::ShapeField>> {
+        let strengths = self.project.shape.strengths();
+        if strengths.iter().all(|&s| s <= 0.0) {
+            return None;
+        }
+        let key = (
+            self.mesh_generation,
+            self.layout_generation,
+            self.metres_per_unit().to_bits(),
+            strengths.map(f32::to_bits),
+        );
+        if let Some((k, f)) = &self.shape
+            && *k == key
+        {
+            return Some(f.clone());
+        }
+        let points = self.template_points();
+        let field = Arc::new(crate::layers::shape::ShapeField::new(
+            &self.inputs.mesh,
+            &|v| points.get(v).copied().flatten(),
+            &strengths,
+            self.metres_per_unit(),
+        ));
+        self.shape = Some((key, field.clone()));
+        Some(field)
+    }
+
+    /// The shape's relief finer than the head's triangles at `size`² in the head's layout
+    /// ([`crate::layers::shape::relief`]), made once per head, strengths and size; `None` when the
+    /// shape layer is off or every strength is 0.
+    pub(super) fn shape_relief(
+        &mut self,
+        size: u32,
+        cancel: &CancelToken,
+    ) -> Result<Option<Arc<ShapeRelief>>, Error> {
+        let strengths = self.project.shape.strengths();
+        if strengths.iter().all(|&s| s <= 0.0) {
+            return Ok(None);
+        }
+        let key = (
+            (
+                self.mesh_generation,
+                self.layout_generation,
+                self.metres_per_unit().to_bits(),
+                strengths.map(f32::to_bits),
+            ),
+            size,
+        );
+        if let Some((k, r)) = &self.relief
+            && *k == key
+        {
+            return Ok(Some(r.clone()));
+        }
+        let points = self.template_points();
+        let relief = Arc::new(ShapeRelief::new(
+            &self.inputs.mesh,
+            &|v| points.get(v).copied().flatten(),
+            &strengths,
+            self.metres_per_unit(),
+            size,
+            cancel,
+        )?);
+        self.relief = Some((key, relief.clone()));
+        Ok(Some(relief))
+    }
+}

@@ -1,0 +1,102 @@
+//! The aged colour of the scene at an age, and the 3D view's colour map: the aged colour
+//! with the hair's age at each texel in its alpha (`layers::hair::scalp`).
+
+use super::*;
+
+/// The transition generation and the width and height of a kept hair-age alpha.
+pub(super) type HairAlphaKey = (u64, u32, u32);
+
+/// What [`Scene::shown_colour`] was made from.
+#[derive(Clone, Debug)]
+pub(super) struct ShownKey {
+    aged: Arc<crate::maps::mask::HeadImage>,
+    transition: Option<u64>,
+}
+
+impl PartialEq for ShownKey {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.aged, &other.aged) && self.transition == other.transition
+    }
+}
+
+impl Scene {
+    /// Bakes the aged base colour (docs/models.md "Skin colour") at `size`² and age `t`:
+    /// the head's colour map (else the skin colour) with its age spots, uneven tone,
+    /// paling and faded lips and brows ([`crate::layers::skin_colour`]); [`Scene::aged_colour`]
+    /// then holds it. Redone only when the head, the size, the colour settings or an
+    /// effect's age factor changed; returns whether it was.
+    pub fn bake_colour(&mut self, size: u32, t: f32, cancel: &CancelToken) -> Result<bool, Error> {
+        crate::maps::heightmap::check_size(size, size)?;
+        let settings = self.project.colour_settings();
+        let factors = self.project.colour_factors(t);
+        let key = colour::HeadKey {
+            mesh_generation: self.mesh_generation,
+            layout_generation: self.layout_generation,
+            metres_per_unit: self.metres_per_unit(),
+        };
+        let base = self.colour_map().cloned();
+        let points = self.template_points();
+        let template_point = |v: usize| points.get(v).copied().flatten();
+        let head = colour::Head {
+            key,
+            mesh: &self.inputs.mesh,
+            template_point: &template_point,
+            base: base.as_ref(),
+        };
+        self.colour.bake(&head, size, &settings, &factors, cancel)
+    }
+
+    /// Makes [`Scene::shown_colour`] from the last [`Scene::bake_colour`] and the hair's
+    /// transition texture, when either changed: what the 3D view shows (the worker and
+    /// `HeadlessView` call it; exports need only the aged colour).
+    pub fn prepare_shown_colour(&mut self) {
+        let Some(aged) = self.colour.image.clone() else {
+            self.shown = None;
+            return;
+        };
+        let transition = self
+            .transition
+            .clone()
+            .filter(|_| self.project.hair.enabled);
+        let key = ShownKey {
+            aged: aged.clone(),
+            transition: transition.as_ref().map(|_| self.transition_generation),
+        };
+        if self.shown.as_ref().is_some_and(|(k, _)| *k == key) {
+            return;
+        }
+        let alpha = transition.map(|t| {
+            let k = (self.transition_generation, aged.width_px, aged.height_px);
+            match &self.hair_alpha {
+                Some((kept, a)) if *kept == k => a.clone(),
+                _ => {
+                    let a = Arc::new(crate::layers::hair::scalp::hair_age_alpha(&t, k.1, k.2));
+                    self.hair_alpha = Some((k, a.clone()));
+                    a
+                }
+            }
+        });
+        let image =
+            crate::layers::skin_colour::with_alpha(&aged, alpha.as_deref().map(Vec::as_slice));
+        self.shown = Some((key, Arc::new(image)));
+    }
+
+    /// The aged colour of the last [`Scene::prepare_shown_colour`] as the 3D view shows it: its
+    /// alpha is the hair's disappearance age at each texel
+    /// ([`crate::layers::hair::scalp::hair_age_alpha`]), which the skin pass reads to tint the scalp
+    /// under the hair (docs/models.md §9 "The scalp under the hair"). Not for export.
+    pub fn shown_colour(&self) -> Option<&Arc<crate::maps::mask::HeadImage>> {
+        self.shown.as_ref().map(|(_, s)| s)
+    }
+
+    /// The aged base colour of the last [`Scene::bake_colour`] (RGBA8, sRGB, in the head's
+    /// UV layout).
+    pub fn aged_colour(&self) -> Option<&Arc<crate::maps::mask::HeadImage>> {
+        self.colour.image.as_ref()
+    }
+
+    /// The age spots placed on the head by the last [`Scene::bake_colour`] (head metres).
+    pub fn age_spots(&self) -> Option<&Arc<Vec<crate::layers::skin_colour::Spot>>> {
+        self.colour.spots()
+    }
+}

@@ -86,60 +86,41 @@ impl EditorApp {
             f.mb()[0],
             f.mb()[1]
         ));
+        // Every slider takes its range from the fibre's one table (docs/models.md §2).
+        use agesim_core::layers::wrinkles::fibre_params as params;
+        use agesim_core::layers::wrinkles::muscle::Fibre;
         let mut n = f.n();
+        let n_range = params::N.min as u32..=params::N.max as u32;
         if ui
-            .add(egui::Slider::new(&mut n, 1..=40).text("n (wrinkles)"))
+            .add(
+                egui::Slider::new(&mut n, n_range)
+                    .logarithmic(params::N.wide)
+                    .text("n (wrinkles)"),
+            )
             .changed()
         {
             changed = f.with_n(n).ok();
         }
-        type Setter =
-            fn(
-                agesim_core::layers::wrinkles::muscle::Fibre,
-                f32,
-            )
-                -> Result<agesim_core::layers::wrinkles::muscle::Fibre, agesim_core::Error>;
-        let rows: [(&str, f32, std::ops::RangeInclusive<f32>, Setter); 6] = [
+        type Setter = fn(Fibre, f32) -> Result<Fibre, agesim_core::Error>;
+        let rows: [(params::FibreParam, f32, Setter); 6] = [
+            (params::REL_WIDTH, f.rel_width(), Fibre::with_rel_width),
+            (params::MAX_ANGLE, f.max_angle(), Fibre::with_max_angle),
+            (params::OMEGA_LOW, f.omega_low(), Fibre::with_omega_low),
+            (params::DEPTH, f.depth(), Fibre::with_depth),
             (
-                "relWidth",
-                f.rel_width(),
-                0.01..=4.0,
-                agesim_core::layers::wrinkles::muscle::Fibre::with_rel_width,
-            ),
-            (
-                "maxAngle",
-                f.max_angle(),
-                1.0..=2.0,
-                agesim_core::layers::wrinkles::muscle::Fibre::with_max_angle,
-            ),
-            (
-                "omegaLow",
-                f.omega_low(),
-                0.0..=1.0,
-                agesim_core::layers::wrinkles::muscle::Fibre::with_omega_low,
-            ),
-            (
-                "depth",
-                f.depth(),
-                0.0..=5.0,
-                agesim_core::layers::wrinkles::muscle::Fibre::with_depth,
-            ),
-            (
-                "irregularity",
+                params::IRREGULARITY,
                 f.irregularity(),
-                0.0..=1.0,
-                agesim_core::layers::wrinkles::muscle::Fibre::with_irregularity,
+                Fibre::with_irregularity,
             ),
-            (
-                "waviness",
-                f.waviness(),
-                0.0..=0.5,
-                agesim_core::layers::wrinkles::muscle::Fibre::with_waviness,
-            ),
+            (params::WAVINESS, f.waviness(), Fibre::with_waviness),
         ];
-        for (label, mut value, range, set) in rows {
+        for (param, mut value, set) in rows {
             if ui
-                .add(egui::Slider::new(&mut value, range).text(label))
+                .add(
+                    egui::Slider::new(&mut value, param.range())
+                        .logarithmic(param.wide)
+                        .text(param.key),
+                )
                 .changed()
             {
                 changed = set(f.clone(), value).ok();

@@ -1,3 +1,4 @@
+use super::regions::{NASOLABIAL_L, NASOLABIAL_R};
 use super::*;
 use crate::project::Project;
 use crate::scene::Scene;

@@ -2,6 +2,7 @@
 //! description file (§3), a group laid straight on the surface, the large layer kept
 //! between bakes, and the tileable fine wrinkles (§10).
 
+pub mod fibre_params;
 pub mod fine_wrinkles;
 pub mod large_layer;
 pub mod muscle;

@@ -14,25 +14,15 @@ use crate::base::error::Error;
 use crate::maps::heightmap::{HeightMap, pixel_to_u, pixel_to_v};
 use crate::maps::mask::Mask;
 
-/// Default relative half-width `W` of the influence area (docs/models.md §2).
-pub const DEFAULT_REL_WIDTH: f32 = 0.5;
-/// Default end-angle limit αmax, in units of π/2 (docs/models.md §2, **Choice** 1.5).
-pub const DEFAULT_MAX_ANGLE: f32 = 1.5;
-/// Default relative frequency at the edge of the influence area (docs/models.md §2).
-pub const DEFAULT_OMEGA_LOW: f32 = 0.5;
-/// Default per-fibre amplitude `A` (an agesim extension; [T] has A = 1).
-pub const DEFAULT_DEPTH: f32 = 1.0;
+pub use super::fibre_params::{
+    DEFAULT_DEPTH, DEFAULT_MAX_ANGLE, DEFAULT_OMEGA_LOW, DEFAULT_REL_WIDTH, RangeError,
+    check_count, check_point,
+};
+use super::fibre_params::{DEPTH, IRREGULARITY, MAX_ANGLE, OMEGA_LOW, REL_WIDTH, WAVINESS};
+
 /// Default crest-flattening exponent γ (docs/models.md §2 "Blending").
 pub const DEFAULT_GAMMA: f32 = 0.4;
 
-/// Smallest allowed relative width (docs/models.md §2: W ≥ 1e-6).
-pub const MIN_REL_WIDTH: f32 = 1e-6;
-/// Largest allowed relative width (an agesim extension: [T] keeps W ≤ 1).
-pub const MAX_REL_WIDTH: f32 = 10.0;
-/// Largest wrinkle count per fibre we accept (beyond it a fibre is noise, not wrinkles).
-pub const MAX_WRINKLE_COUNT: u32 = 1000;
-/// Valid range of the per-fibre amplitude.
-pub const DEPTH_RANGE: (f32, f32) = (0.0, 100.0);
 /// Valid range of γ. γ < 1 flattens crests, γ > 1 sharpens them.
 pub const GAMMA_RANGE: (f32, f32) = (0.01, 10.0);
 
@@ -262,85 +252,6 @@ const BETWEEN_SHARE: f32 = 0.5;
 /// half-width W·L: a few swells along one wrinkle.
 const ALONG_SCALE: f32 = 0.35;
 
-/// Valid range of the waviness, in periods.
-pub const WAVINESS_RANGE: (f32, f32) = (0.0, 0.5);
-
-/// Why a fibre parameter is invalid: the value's expected form, for error messages.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct RangeError {
-    /// What a valid value looks like, e.g. "a number in [1, 2]".
-    pub expected: String,
-}
-
-fn check_range(v: f32, lo: f32, hi: f32, expected: &str) -> Result<f32, RangeError> {
-    if v.is_finite() && v >= lo && v <= hi {
-        Ok(v)
-    } else {
-        Err(RangeError {
-            expected: expected.to_owned(),
-        })
-    }
-}
-
-/// Validates an end point: two finite numbers.
-pub fn check_point(p: [f32; 2]) -> Result<[f32; 2], RangeError> {
-    if p.iter().all(|c| c.is_finite()) {
-        Ok(p)
-    } else {
-        Err(RangeError {
-            expected: "a UV point `u;v` of two finite numbers".into(),
-        })
-    }
-}
-
-/// Validates the wrinkle count: an integer in 1..=[`MAX_WRINKLE_COUNT`] ([T] asks n > 1;
-/// agesim also takes one wrinkle, a lone fold such as the nasolabial, docs/models.md §2).
-pub fn check_count(n: i64) -> Result<u32, RangeError> {
-    if (1..=MAX_WRINKLE_COUNT as i64).contains(&n) {
-        Ok(n as u32)
-    } else {
-        Err(RangeError {
-            expected: format!("an integer in 1..={MAX_WRINKLE_COUNT}"),
-        })
-    }
-}
-
-/// Validates W: [1e-6, 10] ([T] keeps W ≤ 1; agesim lets a one-wrinkle fibre reach
-/// further than its own length, a long line crossed by a short fibre, docs/models.md §2).
-pub fn check_rel_width(w: f32) -> Result<f32, RangeError> {
-    check_range(w, MIN_REL_WIDTH, MAX_REL_WIDTH, "a number in [1e-6, 10]")
-}
-
-/// Validates αmax: [1, 2] (units of π/2).
-pub fn check_max_angle(a: f32) -> Result<f32, RangeError> {
-    check_range(a, 1.0, 2.0, "a number in [1, 2]")
-}
-
-/// Validates fmin: [0, 1].
-pub fn check_omega_low(f: f32) -> Result<f32, RangeError> {
-    check_range(f, 0.0, 1.0, "a number in [0, 1]")
-}
-
-/// Validates the irregularity: [0, 1].
-pub fn check_irregularity(a: f32) -> Result<f32, RangeError> {
-    check_range(a, 0.0, 1.0, "a number in [0, 1]")
-}
-
-/// Validates the waviness: [0, 0.5] periods.
-pub fn check_waviness(w: f32) -> Result<f32, RangeError> {
-    check_range(
-        w,
-        WAVINESS_RANGE.0,
-        WAVINESS_RANGE.1,
-        "a number in [0, 0.5]",
-    )
-}
-
-/// Validates the per-fibre amplitude A: [0, 100].
-pub fn check_depth(a: f32) -> Result<f32, RangeError> {
-    check_range(a, DEPTH_RANGE.0, DEPTH_RANGE.1, "a number in [0, 100]")
-}
-
 impl Fibre {
     /// A fibre from `ma` to `mb` with `n` wrinkles and the docs/models.md §2 defaults.
     /// Fails when a point is not finite, `n` is outside 1..=1000 or `ma == mb`.
@@ -396,14 +307,16 @@ impl Fibre {
     /// Sets the irregularity in [0, 1]: each wrinkle's depth varies along it and between
     /// the wrinkles of the group by up to this fraction (docs/models.md §2).
     pub fn with_irregularity(mut self, a: f32) -> Result<Self, Error> {
-        self.irregularity = check_irregularity(a).map_err(|e| range_err("irregularity", a, e))?;
+        self.irregularity = IRREGULARITY
+            .check(a)
+            .map_err(|e| range_err("irregularity", a, e))?;
         Ok(self)
     }
 
     /// Sets the waviness: each wrinkle line wanders across by up to this many periods of
     /// the wrinkle spacing, in [0, 0.5].
     pub fn with_waviness(mut self, w: f32) -> Result<Self, Error> {
-        self.waviness = check_waviness(w).map_err(|e| range_err("waviness", w, e))?;
+        self.waviness = WAVINESS.check(w).map_err(|e| range_err("waviness", w, e))?;
         Ok(self)
     }
 
@@ -415,25 +328,31 @@ impl Fibre {
 
     /// Sets W, the half-width relative to the fibre length, in [1e-6, 10].
     pub fn with_rel_width(mut self, w: f32) -> Result<Self, Error> {
-        self.rel_width = check_rel_width(w).map_err(|e| range_err("relWidth", w, e))?;
+        self.rel_width = REL_WIDTH
+            .check(w)
+            .map_err(|e| range_err("relWidth", w, e))?;
         Ok(self)
     }
 
     /// Sets αmax in units of π/2, in [1, 2].
     pub fn with_max_angle(mut self, a: f32) -> Result<Self, Error> {
-        self.max_angle = check_max_angle(a).map_err(|e| range_err("maxAngle", a, e))?;
+        self.max_angle = MAX_ANGLE
+            .check(a)
+            .map_err(|e| range_err("maxAngle", a, e))?;
         Ok(self)
     }
 
     /// Sets fmin, the relative frequency at the edge of the influence area, in [0, 1].
     pub fn with_omega_low(mut self, f: f32) -> Result<Self, Error> {
-        self.omega_low = check_omega_low(f).map_err(|e| range_err("omegaLow", f, e))?;
+        self.omega_low = OMEGA_LOW
+            .check(f)
+            .map_err(|e| range_err("omegaLow", f, e))?;
         Ok(self)
     }
 
     /// Sets the per-fibre amplitude A, in [0, 100] (relative: the layer is normalised).
     pub fn with_depth(mut self, a: f32) -> Result<Self, Error> {
-        self.depth = check_depth(a).map_err(|e| range_err("depth", a, e))?;
+        self.depth = DEPTH.check(a).map_err(|e| range_err("depth", a, e))?;
         Ok(self)
     }
 
@@ -732,13 +651,10 @@ pub(crate) fn finish_impl(
     mask: MaskValues<'_>,
     cancel: &crate::base::cancel::CancelToken,
 ) -> Result<(), Error> {
-    let gamma = check_range(
-        gamma,
-        GAMMA_RANGE.0,
-        GAMMA_RANGE.1,
-        "a number in [0.01, 10]",
-    )
-    .map_err(|e| range_err("gamma", gamma, e))?;
+    if !(gamma.is_finite() && gamma >= GAMMA_RANGE.0 && gamma <= GAMMA_RANGE.1) {
+        let expected = format!("a number in [{}, {}]", GAMMA_RANGE.0, GAMMA_RANGE.1);
+        return Err(range_err("gamma", gamma, RangeError { expected }));
+    }
     let (w, h) = (map.width_px(), map.height_px());
     if h_max.is_nan() || h_max <= 0.0 {
         map.data_mut().fill(0.0);

@@ -32,6 +32,7 @@ use std::path::Path;
 
 use crate::age::{AgeCurve, CurveShape};
 use crate::base::error::Error;
+use crate::layers::wrinkles::fibre_params;
 use crate::layers::wrinkles::muscle::{
     self, DEFAULT_DEPTH, DEFAULT_MAX_ANGLE, DEFAULT_OMEGA_LOW, DEFAULT_REL_WIDTH, Fibre, Profile,
     Space,
@@ -408,14 +409,17 @@ pub fn parse(text: &str, file: &Path) -> Result<WrinkleFile, ParseErrors> {
             | Key::AgeOnset
             | Key::AgeFull => {
                 let (check, slot): (RangeCheck, &mut Option<f32>) = match key {
-                    Key::RelWidth => (muscle::check_rel_width, &mut group.rel_width),
-                    Key::MaxAngle => (muscle::check_max_angle, &mut group.max_angle),
-                    Key::OmegaLow => (muscle::check_omega_low, &mut group.omega_low),
+                    Key::RelWidth => (|v| fibre_params::REL_WIDTH.check(v), &mut group.rel_width),
+                    Key::MaxAngle => (|v| fibre_params::MAX_ANGLE.check(v), &mut group.max_angle),
+                    Key::OmegaLow => (|v| fibre_params::OMEGA_LOW.check(v), &mut group.omega_low),
                     Key::AgeOnset => (check_years, &mut group.age_onset),
                     Key::AgeFull => (check_years, &mut group.age_full),
-                    Key::Irregularity => (muscle::check_irregularity, &mut group.irregularity),
-                    Key::Waviness => (muscle::check_waviness, &mut group.waviness),
-                    _ => (muscle::check_depth, &mut group.depth),
+                    Key::Irregularity => (
+                        |v| fibre_params::IRREGULARITY.check(v),
+                        &mut group.irregularity,
+                    ),
+                    Key::Waviness => (|v| fibre_params::WAVINESS.check(v), &mut group.waviness),
+                    _ => (|v| fibre_params::DEPTH.check(v), &mut group.depth),
                 };
                 match parse_number(value_text) {
                     None => {

@@ -1,0 +1,333 @@
+//! The shape regions of the template (docs/models.md §13 table): where each descends,
+//! deflates or bulges, by how many millimetres at full age, from when, and the rolls and
+//! creases the old face forms (lid–cheek junction, nasolabial, marionette, jowl).
+
+use super::*;
+
+pub(super) const fn curve(onset: f32, full: f32) -> AgeCurve {
+    AgeCurve::new(onset, full, CurveShape::Smoothstep)
+}
+
+/// The lid–cheek junction under each eye (its +x side; mirrored): from beside the inner
+/// corner down and out under the eye's middle and up to below the outer corner.
+pub(super) const LID_CHEEK_JUNCTION: [[f32; 3]; 5] = [
+    [0.28, -0.2, 0.37],
+    [0.4, -0.3, 0.32],
+    [0.6, -0.36, 0.26],
+    [0.8, -0.32, 0.22],
+    [0.97, -0.2, 0.07],
+];
+
+/// The nasolabial folds of `nasolabial.wrk` on the template, from the nose wing down past
+/// the mouth corner (measured: they are not mirror images about the eyes' midline, nor
+/// are the nose and mouth on it), one per side. Each starts about 5 mm above the wing's
+/// lateral point (alare), so the roll's faded end lies beside the wing and its crease
+/// shows from the wing down (starting at alare, the fold read, blind, as "starting away
+/// from the nose wing").
+pub(super) const NASOLABIAL_R: [[f32; 3]; 9] = [
+    [-0.47, -0.54, 0.39],
+    [-0.49, -0.64, 0.38],
+    [-0.543, -0.767, 0.385],
+    [-0.59, -0.876, 0.4],
+    [-0.637, -0.995, 0.416],
+    [-0.662, -1.106, 0.43],
+    [-0.655, -1.213, 0.44],
+    [-0.677, -1.327, 0.42],
+    [-0.7, -1.42, 0.4],
+];
+
+pub(super) const NASOLABIAL_L: [[f32; 3]; 9] = [
+    [0.285, -0.59, 0.425],
+    [0.31, -0.688, 0.418],
+    [0.367, -0.798, 0.421],
+    [0.425, -0.892, 0.438],
+    [0.487, -1.011, 0.459],
+    [0.524, -1.11, 0.468],
+    [0.537, -1.2, 0.473],
+    [0.602, -1.301, 0.435],
+    [0.68, -1.4, 0.41],
+];
+
+/// The cheek over a nasolabial fold: a crest 5 mm high 12 mm from the line, falling back
+/// over 12 mm, with no crease of its own (the wrinkle file's fold draws the crease). Blind,
+/// this whole head scored 20.1 / 24 over sixteen raters, against 19.3 with the crest 4 mm
+/// high 8.5 mm out and a 0.3 mm crease, whose steep narrow start read, from every rater,
+/// as "a thin reddish cut or scar"; the fold itself still reads as "doubled brown-stained
+/// streaks", and on the subject's right as "a pinched notch" (the roll's skirt ends in a
+/// second line out on the cheek there, see [`relief`]).
+///
+/// Also tried: 3.5 mm high 5 mm from the crease, its wall lit from the other side read as
+/// "a narrow dark slit", "a brown painted stripe"; 5 mm high 9.5 mm out, falling back over
+/// 16.5 mm, it raised the skirt where the cheek turns away; over 42 mm it was still 2.6 mm
+/// high where the cheek turns away and its depth gate cut it off there in a dimple; 6.5 mm
+/// high 3 mm from the crease read as "a dark grimy blob by the mouth corner"; each rated
+/// by eight, none better: a 0.2 mm crease over 2 mm, "a thin tinted slash"; 5.5 mm high
+/// 7 mm out with half its relief finer than the triangles, "a brownish slit", the nose-to-
+/// lip outline "kinked"; none of that relief and rising as a cube, "shallow, no cheek over
+/// it" (the bags' roll rising so read as "stamped crescents").
+pub(super) const CHEEK_ROLL: Roll = Roll {
+    line: &[],
+    raised: [1.0, 0.0],
+    crest: 0.25,
+    reach: 0.5,
+    height_mm: 5.0,
+    crease_mm: 0.0,
+    crease_half: 0.03,
+    mirrored: false,
+};
+
+/// The marionette grooves of `marionette.wrk` on the template, from the mouth corner down
+/// toward the jaw.
+pub(super) const MARIONETTE_R: [[f32; 3]; 5] = [
+    [-0.5, -1.37, 0.43],
+    [-0.59, -1.48, 0.39],
+    [-0.64, -1.66, 0.37],
+    [-0.64, -1.85, 0.34],
+    [-0.64, -1.98, 0.31],
+];
+
+pub(super) const MARIONETTE_L: [[f32; 3]; 5] = [
+    [0.43, -1.35, 0.45],
+    [0.56, -1.44, 0.41],
+    [0.66, -1.59, 0.35],
+    [0.72, -1.74, 0.28],
+    [0.75, -1.84, 0.23],
+];
+
+/// A marionette groove from its second point on: the jowl's roll starts below the mouth
+/// corner, where the cheek's roll over the nasolabial fold ends (from the corner, the two
+/// rolls' ends met in a pit, read blind as "a dark grimy blob by the mouth corner").
+pub(super) const fn below_the_mouth(line: &'static [[f32; 3]]) -> &'static [[f32; 3]] {
+    match line.split_first() {
+        Some((_, rest)) => rest,
+        None => line,
+    }
+}
+
+/// The jowl beside a marionette groove.
+pub(super) const JOWL_ROLL: Roll = Roll {
+    line: &[],
+    raised: [1.0, 0.0],
+    crest: 0.12,
+    reach: 0.5,
+    height_mm: 1.5,
+    crease_mm: 0.6,
+    crease_half: 0.06,
+    mirrored: false,
+};
+
+/// The default regions (docs/models.md §13, each with its source). Millimetres at full
+/// age; the face frame's unit is about 47 mm on an adult.
+pub const REGIONS: [ShapeRegion; 11] = [
+    ShapeRegion {
+        name: "brows",
+        what: "brow descent, most at its tail",
+        blobs: &[Blob::new([0.75, 0.45, 0.25], [0.65, 0.35, 0.6])],
+        motions: &[(Descent, 6.0)],
+        rolls: &[],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "lids",
+        what: "upper lids hooding",
+        blobs: &[Blob::new([0.62, 0.14, 0.3], [0.5, 0.17, 0.45])],
+        motions: &[(Descent, 2.5), (Bulge, 1.0)],
+        rolls: &[],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "bags",
+        what: "bags under the eyes",
+        // The fat bulging under the lid, and its lower edge: a roll over the lid–cheek
+        // junction, steep below (a blob alone, 5 mm, caught the frontal light as "a pale
+        // crescent with no shadow under it", blind).
+        // Two thirds of what they were (1.5 mm out and down, a 2.2 mm roll over a 0.5 mm
+        // crease 3.8 mm to each side): with the contact shadows and the tear trough's
+        // hollow under them, their lower edge read, blind, as "a hard dark arc painted low
+        // on the cheek".
+        blobs: &[Blob::new([0.62, -0.26, 0.3], [0.45, 0.18, 0.45])],
+        motions: &[(Bulge, 1.0), (Descent, 1.0)],
+        rolls: &[Roll {
+            line: &LID_CHEEK_JUNCTION,
+            raised: [0.0, 1.0],
+            crest: 0.07,
+            reach: 0.2,
+            height_mm: 1.4,
+            crease_mm: 0.3,
+            crease_half: 0.11,
+            mirrored: true,
+        }],
+        curve: curve(40.0, 75.0),
+    },
+    ShapeRegion {
+        name: "tear_trough",
+        what: "tear trough, upper-lid sulcus, mid-cheek and submalar hollowing",
+        // The tear trough; the sulcus between the upper lid's fold and the brow (the
+        // orbit's rim shows); the malar fat of the mid-cheek, deflating as it descends
+        // (blind ratings read the face without them as keeping its young volume).
+        blobs: &[
+            Blob::new([0.4, -0.42, 0.42], [0.32, 0.14, 0.4]),
+            // The sulcus above the lid's fold, not the lid over the eyeball (which stays:
+            // a deeper lid let the eye show through it as a dark fleck).
+            Blob::new([0.55, 0.38, 0.2], [0.4, 0.12, 0.35]),
+            // Broad: a blob 12 mm tall drew its lower edge, under the side light, as "a
+            // pinched dent in mid-cheek" on the far side.
+            Blob::new([0.8, -0.6, 0.4], [0.6, 0.45, 0.5]),
+            // Below the cheekbone, lateral to the fold's cheek: the buccal hollow, broad
+            // and 3 mm at its centre (18 mm across and 5 mm deep, its edge on the far side
+            // of the light read, blind, as "a dark pit in the cheek"), a dish (a plateau's
+            // rim drew a second fold out on the cheek on the side away from the light).
+            Blob::new([1.2, -1.05, 0.05], [0.5, 0.5, 0.6])
+                .deflating(0.7)
+                .soft(),
+        ],
+        motions: &[(Deflate, 5.0)],
+        rolls: &[],
+        curve: curve(35.0, 70.0),
+    },
+    ShapeRegion {
+        name: "temples",
+        what: "temples hollowing",
+        // The temporal fossa behind the orbit's outer rim, not reaching the eye's corner
+        // (the eye stays), and the side of the head behind it, so the outline from the
+        // front dips between the forehead and the cheekbone (the side alone read, blind,
+        // as "full temples"; the fossa alone as "only darkened, not hollowed"; the
+        // fossa's dish narrower, its edge as "a hard vertical ridge"). Dishes (a
+        // plateau's rim drew, blind, "a hard vertical ridge" in the front outline), not
+        // reaching the forehead's side (where an edge read as "a hard vertical step").
+        // The fossa's dish just behind the rim, where the hollow shows from the front
+        // and at three-quarter (centred 68 mm out and 26 mm behind the eyes, and 11 mm
+        // deep, every blind rater read "temples not hollow"), 15 mm deep: more than an
+        // old temple loses, so that it shows at a portrait's size.
+        blobs: &[
+            Blob::new([1.3, 0.45, -0.35], [0.42, 0.55, 0.45]).soft(),
+            Blob::new([1.6, 0.5, -0.8], [0.55, 0.95, 1.0]).soft(),
+        ],
+        motions: &[(Deflate, 15.0)],
+        rolls: &[],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "cheeks",
+        what: "cheeks descending over the nasolabial fold",
+        // The malar fat pad (descending, barely fuller: blind ratings read a bulging
+        // one as "fuller rather than thinned"), and the cheek rolling over each
+        // nasolabial fold of the wrinkle file (blind ratings read the fold without it as
+        // "a thin engraved crescent"; with a chain of blobs beside it, which swelled
+        // evenly on all sides, as "a pencil line, no cheek hanging over it").
+        blobs: &[Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]).bulging(0.2)],
+        motions: &[(Descent, 5.0), (Bulge, 1.5)],
+        rolls: &[
+            Roll {
+                line: &NASOLABIAL_R,
+                raised: [-1.0, 0.0],
+                ..CHEEK_ROLL
+            },
+            Roll {
+                line: &NASOLABIAL_L,
+                raised: [1.0, 0.0],
+                ..CHEEK_ROLL
+            },
+        ],
+        curve: curve(35.0, 75.0),
+    },
+    ShapeRegion {
+        name: "jowls",
+        what: "jowls below the jaw line",
+        blobs: &[Blob::new([0.95, -2.1, 0.0], [0.55, 0.62, 0.65])],
+        motions: &[(Descent, 6.0), (Bulge, 1.0)],
+        rolls: &[
+            Roll {
+                line: below_the_mouth(&MARIONETTE_R),
+                raised: [-1.0, 0.0],
+                ..JOWL_ROLL
+            },
+            Roll {
+                line: below_the_mouth(&MARIONETTE_L),
+                raised: [1.0, 0.0],
+                ..JOWL_ROLL
+            },
+        ],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "lips",
+        what: "upper lip lengthening and flattening",
+        // The upper lip's skin, above the slit (the mouth's line at −1.34): it descends
+        // over the red of the lip (which narrows) and flattens (blind ratings read it
+        // unchanged as "puffy, sticking out past the lower lip in profile"). Nothing at
+        // the slit: a deflation there parts the lips (their normals point at each other).
+        blobs: &[Blob::new([0.0, -1.1, 0.5], [0.6, 0.24, 0.45])],
+        motions: &[(Descent, 1.5), (Deflate, 1.5)],
+        rolls: &[],
+        curve: curve(40.0, 80.0),
+    },
+    ShapeRegion {
+        name: "nose",
+        what: "nose tip drooping",
+        blobs: &[Blob::new([0.0, -0.65, 0.95], [0.28, 0.28, 0.35])],
+        motions: &[(Descent, 4.5)],
+        rolls: &[],
+        curve: curve(45.0, 85.0),
+    },
+    ShapeRegion {
+        name: "ears",
+        what: "earlobes lengthening",
+        // The lower half of the ear, most at the lobe: the ear lengthens (a blob on the lobe
+        // alone, 3 mm, read blind as "ears identical to the 25-year-old's").
+        blobs: &[Blob::new([1.72, -1.0, -1.45], [0.35, 0.6, 0.45])],
+        motions: &[(Descent, 8.0)],
+        rolls: &[],
+        curve: curve(40.0, 85.0),
+    },
+    ShapeRegion {
+        name: "neck",
+        what: "submental laxity under the chin, platysmal bands and a wattle down the neck",
+        // Under the chin (3 mm down: 5 mm, with the wattle, pinched the skin under the jaw
+        // into a dark slit, read blind as "a gash under the chin"); the two platysmal
+        // bands, vertical cords from under the chin down the front of the neck (a chain
+        // each side), standing out 1.5 mm, not descending (narrower and descending with
+        // the rest, their edges sheared the skin into "a sharp diagonal fold under the
+        // chin", blind).
+        blobs: &[
+            Blob::new([0.0, -2.75, 0.05], [1.1, 0.5, 0.7]),
+            Blob::new([0.3, -2.9, -0.75], [0.15, 0.35, 0.45])
+                .bulging(3.0)
+                .descending(0.0)
+                .soft(),
+            Blob::new([0.32, -3.25, -0.96], [0.15, 0.35, 0.45])
+                .bulging(3.0)
+                .descending(0.0)
+                .soft(),
+            // The wattle: the throat's skin at the angle of chin and neck hangs down 9 mm
+            // and out 2 mm (blind: "in profile the neck is long, smooth and taut, no
+            // wattle"), rounding the angle into an old throat's sagging line. A broad
+            // dish, and mostly down: bulging 9 mm along the normals, it pushed the neck's
+            // sides out too, and 12 mm down over a narrower dish sheared them, each read
+            // blind as "a dark diagonal slash" from the front (and hung 12 mm lower under
+            // a sharp angle, as "a ledge under the jaw").
+            Blob::new([0.0, -2.9, -0.6], [1.3, 0.7, 0.5])
+                .bulging(4.0)
+                .descending(3.0)
+                .soft(),
+        ],
+        motions: &[(Descent, 3.0), (Bulge, 0.5)],
+        rolls: &[],
+        curve: curve(40.0, 80.0),
+    },
+];
+
+/// The bags' place in [`REGIONS`].
+pub const BAGS: usize = 2;
+
+/// The shadow under the bags at `q` (face frame, 0–1, at full age and strength): along
+/// the lid–cheek junction, their roll's crease ([`Roll::shade`]). The skin colour draws
+/// it, as the crease is narrower than a mesh's triangles (the nasolabial and marionette
+/// rolls' creases are drawn by their wrinkle files).
+pub fn drawn_crease(q: Vec3) -> f32 {
+    REGIONS[BAGS]
+        .rolls
+        .iter()
+        .map(|r| r.shade(q))
+        .fold(0.0, f32::max)
+}

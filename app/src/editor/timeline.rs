@@ -36,65 +36,30 @@ pub struct TimelineEdit {
     pub curve: Option<(&'static str, f32, bool)>,
 }
 
-/// The project's age curves shown, with their field paths and colours.
-fn curves(p: &Project) -> [(&'static str, &'static str, AgeCurve, Color32); 9] {
-    let a = &p.age;
-    [
-        (
-            "large wrinkles",
-            "age.large",
-            a.large,
-            Color32::from_rgb(90, 200, 255),
-        ),
-        (
-            "fine wrinkles",
-            "age.fine",
-            a.fine,
-            Color32::from_rgb(160, 230, 120),
-        ),
-        (
-            "pores",
-            "age.pores",
-            a.pores,
-            Color32::from_rgb(240, 170, 90),
-        ),
-        (
-            "furrows",
-            "age.furrows",
-            a.furrows,
-            Color32::from_rgb(230, 110, 140),
-        ),
-        (
-            "paling",
-            "age.pale",
-            a.pale,
-            Color32::from_rgb(220, 220, 220),
-        ),
-        (
-            "age spots",
-            "age.spots",
-            a.spots,
-            Color32::from_rgb(190, 130, 80),
-        ),
-        (
-            "mottling",
-            "age.mottle",
-            a.mottle,
-            Color32::from_rgb(200, 170, 120),
-        ),
-        (
-            "redness",
-            "age.redness",
-            a.redness,
-            Color32::from_rgb(240, 90, 90),
-        ),
-        (
-            "lips and brows fading",
-            "age.contrast",
-            a.contrast,
-            Color32::from_rgb(170, 140, 230),
-        ),
-    ]
+/// The colour of each age curve, in the order of the project's table
+/// (`agesim_core::project::fields::age_curves`); a curve past the list takes gray.
+const CURVE_COLOURS: [Color32; 9] = [
+    Color32::from_rgb(90, 200, 255),
+    Color32::from_rgb(160, 230, 120),
+    Color32::from_rgb(240, 170, 90),
+    Color32::from_rgb(230, 110, 140),
+    Color32::from_rgb(220, 220, 220),
+    Color32::from_rgb(190, 130, 80),
+    Color32::from_rgb(200, 170, 120),
+    Color32::from_rgb(240, 90, 90),
+    Color32::from_rgb(170, 140, 230),
+];
+
+/// The project's age curves shown: (what, field path, curve, colour).
+fn curves(p: &Project) -> Vec<(&'static str, &'static str, AgeCurve, Color32)> {
+    agesim_core::project::fields::age_curves(p)
+        .into_iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let colour = CURVE_COLOURS.get(i).copied().unwrap_or(Color32::GRAY);
+            (r.what, r.path, r.curve, colour)
+        })
+        .collect()
 }
 
 pub fn timeline_ui(ui: &mut egui::Ui, project: &Project, playback: &mut Playback) -> TimelineEdit {

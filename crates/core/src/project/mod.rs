@@ -19,6 +19,7 @@
 mod access;
 pub mod fields;
 mod json;
+mod relief_sections;
 mod sections;
 
 #[cfg(test)]
@@ -33,6 +34,7 @@ use crate::layers::micro::furrows::FurrowParams;
 use crate::layers::micro::noise::FbmParams;
 use crate::layers::micro::pores::{PoreProfile, PoreStats};
 
+pub use relief_sections::*;
 pub use sections::*;
 
 /// The project-file version this build writes; it also reads version 1.

@@ -123,6 +123,7 @@ const BARE_TONE_PASSES: usize = 8;
 /// The artist's settings of the aged colour: the project's `skin` fields of the same
 /// names (their meaning, units and ranges: `project::fields`), colours in linear RGB, and
 /// the hair's gray colour (`hair.gray_colour`).
+/// Its defaults are the project's (`Project::default().colour_settings()`): one copy.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ColourSettings {
     /// `skin.albedo`: also the colour of a head without a colour map.
@@ -141,25 +142,6 @@ pub struct ColourSettings {
     pub gray_hair: [f32; 3],
     /// `skin.colour_seed`.
     pub seed: u64,
-}
-
-impl Default for ColourSettings {
-    fn default() -> Self {
-        Self {
-            albedo: [0.69, 0.35, 0.24],
-            pale_albedo: [0.69, 0.48, 0.37],
-            pale_amount: 0.25,
-            spots_per_cm2: 0.6,
-            spot_strength: 0.7,
-            mottle: 0.3,
-            redness: 0.5,
-            yellowing: 0.6,
-            contrast_loss: 0.7,
-            under_eye: 0.65,
-            gray_hair: [0.51, 0.49, 0.46],
-            seed: 1,
-        }
-    }
 }
 
 /// What the aged colour starts from at each texel, kept between ages: the base colour

@@ -17,7 +17,7 @@ fn spots_only() -> ColourSettings {
         redness: 0.0,
         yellowing: 0.0,
         contrast_loss: 0.0,
-        ..ColourSettings::default()
+        ..Project::default().colour_settings()
     }
 }
 

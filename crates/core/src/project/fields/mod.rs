@@ -1,15 +1,59 @@
-//! The one table of project fields: JSON path, unit, range, meaning. It drives the type and
-//! range checks of [`super::Project`], `--set`, the generated `docs/project-file.md`
-//! ([`markdown`]) and the editor's sliders and tooltips. Defaults are not repeated here:
-//! they are read from `Project::default()` ([`Field::default_value`]), so there is one copy.
+//! The one table of project fields: JSON path, the project member it names (read and set
+//! one field at a time, [`super::Project::field`]), unit, range, meaning. It drives the type
+//! and range checks of [`super::Project`], `--set`, the generated `docs/project-file.md`
+//! ([`markdown`]), the editor's sliders and tooltips and the timeline's age curves
+//! ([`age_curves`]). A row's path is made from the member it names (`id!(pores.count)`), so
+//! the two cannot disagree. Defaults are not repeated here: they are read from
+//! `Project::default()` ([`Field::default_value`]), so there is one copy.
 
 mod table;
 
 pub use table::{FIELDS, SECTIONS};
 
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 use serde_json::Value;
 
+use super::Project;
 use super::json::{get_path, type_name};
+
+/// A project member read and set as JSON, one field at a time.
+pub(crate) trait Slot {
+    fn get(&self) -> Value;
+    fn set(&mut self, value: Value) -> Result<(), String>;
+}
+
+impl<T: Serialize + DeserializeOwned> Slot for T {
+    fn get(&self) -> Value {
+        // A number, a name, a path or a list of paths: serialising cannot fail.
+        serde_json::to_value(self).unwrap_or(Value::Null)
+    }
+
+    fn set(&mut self, value: Value) -> Result<(), String> {
+        *self = serde_json::from_value(value).map_err(|e| e.to_string())?;
+        Ok(())
+    }
+}
+
+/// A field's JSON path and its accessors ([`id`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Id {
+    pub path: &'static str,
+    pub get: fn(&Project) -> Value,
+    pub set: fn(&mut Project, Value) -> Result<(), String>,
+}
+
+/// The [`Id`] of the project member `a.b.c`: its JSON path `"a.b.c"` and its accessors.
+macro_rules! id {
+    ($first:ident $(. $rest:ident)*) => {
+        $crate::project::fields::Id {
+            path: concat!(stringify!($first) $(, ".", stringify!($rest))*),
+            get: |p| $crate::project::fields::Slot::get(&p.$first $(.$rest)*),
+            set: |p, v| $crate::project::fields::Slot::set(&mut p.$first $(.$rest)*, v),
+        }
+    };
+}
+pub(crate) use id;
 
 /// What a field holds, with its valid range.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -50,7 +94,7 @@ pub enum Kind {
 }
 
 /// One field of the project file.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy)]
 pub struct Field {
     /// The JSON path, e.g. `pores.radius_mm.mean`.
     pub path: &'static str,
@@ -59,6 +103,58 @@ pub struct Field {
     pub kind: Kind,
     /// One line: what it does.
     pub doc: &'static str,
+    /// The member's value as JSON.
+    pub(crate) get: fn(&Project) -> Value,
+    /// Sets the member from JSON (its type only: [`Project::set_field`] checks the rest).
+    pub(crate) set: fn(&mut Project, Value) -> Result<(), String>,
+}
+
+impl std::fmt::Debug for Field {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Field")
+            .field("path", &self.path)
+            .field("unit", &self.unit)
+            .field("kind", &self.kind)
+            .finish_non_exhaustive()
+    }
+}
+
+impl PartialEq for Field {
+    fn eq(&self, other: &Self) -> bool {
+        (self.path, self.unit, self.kind, self.doc)
+            == (other.path, other.unit, other.kind, other.doc)
+    }
+}
+
+/// One age curve of the project ([`age_curves`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AgeCurveRow {
+    /// Its path, e.g. `age.large` (its fields are `age.large.onset_years`, …).
+    pub path: &'static str,
+    /// What it drives, short: the table's words before any parenthesis.
+    pub what: &'static str,
+    pub curve: crate::age::AgeCurve,
+}
+
+/// The project's age curves as the table lists them (the `curve!` rows under `age.`), in
+/// document order, with their values in `project`. The timeline draws these.
+pub fn age_curves(project: &Project) -> Vec<AgeCurveRow> {
+    FIELDS
+        .iter()
+        .filter_map(|f| {
+            let path = f.path.strip_suffix(".onset_years")?;
+            let what = f.doc.strip_suffix(": age at which it starts")?;
+            let what = what.split(" (").next().unwrap_or(what);
+            let part = |name: &str| project.field(&format!("{path}.{name}"));
+            let value = serde_json::json!({
+                "onset_years": part("onset_years")?,
+                "full_years": part("full_years")?,
+                "shape": part("shape")?,
+            });
+            let curve = serde_json::from_value(value).ok()?;
+            Some(AgeCurveRow { path, what, curve })
+        })
+        .collect()
 }
 
 /// The field at `path`, or an error naming the closest fields.
@@ -371,6 +467,30 @@ mod tests {
             }
             _ => out.push(at.to_owned()),
         }
+    }
+
+    #[test]
+    fn every_age_curve_of_the_project_is_listed_with_its_value() {
+        let mut p = Project::default();
+        p.age.pale.onset_years = 41.0;
+        let rows = age_curves(&p);
+        let paths: Vec<&str> = rows.iter().map(|r| r.path).collect();
+        assert_eq!(
+            paths,
+            [
+                "age.large",
+                "age.fine",
+                "age.pores",
+                "age.furrows",
+                "age.pale",
+                "age.spots",
+                "age.mottle",
+                "age.redness",
+                "age.contrast"
+            ]
+        );
+        assert_eq!(rows[4].curve, p.age.pale);
+        assert_eq!(rows[0].what, "large-wrinkle depth");
     }
 
     #[test]

@@ -37,10 +37,10 @@ fn oct_decode(e: vec2<f32>) -> vec3<f32> {
 }
 
 // docs/models.md §9 "Graying": y_k(t) = clamp((t − t_k)/(1 − t_k), 0, 1), smoothstepped when
-// `smooth` (`agesim_core::layers::hair::gray_fraction`).
-fn gray_fraction(t: f32, onset: f32, smooth: bool) -> f32 {
+// `smoothed` (`agesim_core::layers::hair::gray_fraction`).
+fn gray_fraction(t: f32, onset: f32, smoothed: bool) -> f32 {
     let y = clamp((t - onset) / max(1.0 - onset, 1e-6), 0.0, 1.0);
-    if smooth {
+    if smoothed {
         return y * y * (3.0 - 2.0 * y);
     }
     return y;

@@ -1,19 +1,21 @@
 //! The aged head's GLB export: its composed normal map (large wrinkles, fine
 //! wrinkles and micro-relief in the head's UV, `agesim::export::head_normal_map`) against
 //! the baseline of the large-wrinkle normal map alone (`normal_map::encode_rgb8`, what a
-//! plain bake writes) at the same size, then the PNG encode and the whole export, in one
-//! run.
+//! plain bake writes) at the same size, then the export's PNG encode and the whole export,
+//! in one run. Every step is the export's own code (its bake request, its composition, its
+//! encoder), not a copy.
 //!
 //! `cargo bench -p agesim --bench glb`
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::time::Instant;
 
-use agesim::export::{ExportRequest, GlbOut, head_normal_map};
+use agesim::export::{ExportRequest, GlbOut, glb_bake_request, head_normal_map};
 use agesim_core::base::cancel::CancelToken;
 use agesim_core::maps::normal_map::{self, NormalSettings};
+use agesim_core::output::export::{PngPixels, encode_png};
 use agesim_core::project::Project;
-use agesim_core::scene::{BakeRequest, Scene};
+use agesim_core::scene::Scene;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -49,19 +51,10 @@ fn main() {
     println!("|---|---|---|---|---|---|");
     for size in [1024u32, 2048, 4096] {
         let mut scene = Scene::new(project.clone()).unwrap();
-        let request = BakeRequest {
-            large_size_px: size,
-            micro_size_px: 1024,
-            t,
-            tileable: true,
-            fine: true,
-            hair: false,
-            packed: false,
-            one_off: true,
-            micro_normals: false,
-            shape_relief: true,
-        };
-        scene.bake(&request, &never).unwrap();
+        // The export's own bake (a single-tile head: the atlas is the texture).
+        scene
+            .bake(&glb_bake_request(size, size, t), &never)
+            .unwrap();
         let large = scene.large().unwrap().height.clone();
         let runs = if size >= 4096 { 3 } else { 5 };
         let settings = NormalSettings::default();
@@ -73,19 +66,9 @@ fn main() {
             rgb = head_normal_map(&scene, t, size, &never).unwrap();
         });
         let png = time(runs, || {
+            // The export's encoder, as the GLB's normal texture is written.
             let mut out = Vec::new();
-            image::ImageEncoder::write_image(
-                image::codecs::png::PngEncoder::new_with_quality(
-                    &mut out,
-                    image::codecs::png::CompressionType::Fast,
-                    image::codecs::png::FilterType::Adaptive,
-                ),
-                &rgb,
-                size,
-                size,
-                image::ExtendedColorType::Rgb8,
-            )
-            .unwrap();
+            encode_png(&mut out, size, size, PngPixels::Rgb8, &rgb).unwrap();
             std::hint::black_box(out);
         });
         let dir = tempfile::tempdir().unwrap();

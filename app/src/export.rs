@@ -280,33 +280,118 @@ fn export_maps(
     }
     progress(0.0, "loading the inputs");
     let mut scene = scene(p, wrinkles)?;
-    // A UDIM head is baked over its atlas, `size_px` per tile, and cut into tiles.
-    let udim = scene.mesh().udim().cloned();
-    let atlas_px = atlas_size(udim.as_ref(), maps.size_px, "map size")?;
     progress(0.1, "baking the maps");
-    scene.bake(&BakeRequest::maps(atlas_px, t, maps.tileable), cancel)?;
-    let height = scene.take_height()?;
-    let normal = scene.normal_settings();
+    let baked = bake_maps(
+        &mut scene,
+        t,
+        maps.size_px,
+        maps.tileable,
+        false,
+        "map size",
+        cancel,
+    )?;
     cancel.check()?;
     progress(0.6, "writing the maps");
-    out::stage_tiled_maps(
-        set,
-        out::MapPaths {
-            height_png: maps.height_png.as_deref(),
-            height_exr: maps.height_exr.as_deref(),
-            normal_png: maps.normal_png.as_deref(),
-        },
-        &height,
-        &normal,
-        maps.exr_compression,
-        udim.as_ref(),
-    )?;
-    let paths = [&maps.height_png, &maps.height_exr, &maps.normal_png];
-    Ok(paths
+    let paths = out::MapPaths {
+        height_png: maps.height_png.as_deref(),
+        height_exr: maps.height_exr.as_deref(),
+        normal_png: maps.normal_png.as_deref(),
+    };
+    let (_, files) = stage_maps(set, paths, &baked, maps.exr_compression)?;
+    Ok(files)
+}
+
+/// The maps of a bake or an export at one age: the heights over the head's layout (a
+/// multi-tile head's UDIM atlas), its normal settings and what each step took.
+pub struct BakedMaps {
+    pub height: HeightMap,
+    pub normal: agesim_core::maps::normal_map::NormalSettings,
+    pub udim: Option<Udim>,
+    /// Milliseconds: the bake, the aged colour, taking the height map out of the scene.
+    pub bake_ms: f64,
+    pub colour_ms: f64,
+    pub take_ms: f64,
+}
+
+/// Bakes `scene`'s maps at age `t`, `size_px` per UDIM tile (`what` names that setting in
+/// errors), and with `colour` the aged base colour at the scene's size for them
+/// ([`Scene::colour_px`]; [`Scene::aged_colour`] then holds it): the one path of
+/// `agesim bake` and of the export's maps.
+pub fn bake_maps(
+    scene: &mut Scene,
+    t: f32,
+    size_px: u32,
+    tileable: bool,
+    colour: bool,
+    what: &str,
+    cancel: &CancelToken,
+) -> anyhow::Result<BakedMaps> {
+    // A UDIM head is baked over its atlas, `size_px` per tile, and cut into tiles.
+    let udim = scene.mesh().udim().cloned();
+    let atlas_px = atlas_size(udim.as_ref(), size_px, what)?;
+    let ms = |t: std::time::Instant| t.elapsed().as_secs_f64() * 1e3;
+    let start = std::time::Instant::now();
+    scene.bake(&BakeRequest::maps(atlas_px, t, tileable), cancel)?;
+    let bake_ms = ms(start);
+    let start = std::time::Instant::now();
+    if colour {
+        scene.bake_colour(scene.colour_px(atlas_px), t, cancel)?;
+    }
+    let colour_ms = ms(start);
+    let start = std::time::Instant::now();
+    let height = scene.take_height()?;
+    let take_ms = ms(start);
+    Ok(BakedMaps {
+        height,
+        normal: scene.normal_settings(),
+        udim,
+        bake_ms,
+        colour_ms,
+        take_ms,
+    })
+}
+
+/// Stages `maps` at `paths` in `set` (per UDIM tile on a multi-tile head); returns what the
+/// staging measured and the files.
+pub fn stage_maps(
+    set: &OutputSet,
+    paths: out::MapPaths<'_>,
+    maps: &BakedMaps,
+    compression: out::ExrCompression,
+) -> anyhow::Result<(out::MapsStaged, Vec<PathBuf>)> {
+    let files = [paths.height_png, paths.height_exr, paths.normal_png]
         .into_iter()
         .flatten()
-        .flat_map(|p| Udim::paths(udim.as_ref(), p))
-        .collect())
+        .flat_map(|p| Udim::paths(maps.udim.as_ref(), p))
+        .collect();
+    let staged = out::stage_tiled_maps(
+        set,
+        paths,
+        &maps.height,
+        &maps.normal,
+        compression,
+        maps.udim.as_ref(),
+    )?;
+    Ok((staged, files))
+}
+
+/// The bake of the GLB's head at `atlas_px` (`size_px` per UDIM tile) and age `t`: the
+/// large wrinkles over the atlas, the micro-relief and fine-wrinkle tiles that repeat over
+/// it, the shape's relief.
+pub fn glb_bake_request(atlas_px: u32, size_px: u32, t: f32) -> BakeRequest {
+    BakeRequest {
+        large_size_px: atlas_px,
+        micro_size_px: 1024.min(size_px.max(64)),
+        t,
+        // The tiles repeat over the head: they must wrap.
+        tileable: true,
+        fine: true,
+        hair: false,
+        packed: false,
+        one_off: true,
+        micro_normals: false,
+        shape_relief: true,
+    }
 }
 
 /// The side of a bake over `udim`'s atlas with `tile_px` per tile (`tile_px` for a
@@ -342,20 +427,7 @@ fn export_glb(
     let udim = scene.mesh().udim().cloned();
     let atlas_px = atlas_size(udim.as_ref(), glb.size_px, "GLB texture size")?;
     progress(0.1, "baking the head's maps");
-    let request = BakeRequest {
-        large_size_px: atlas_px,
-        micro_size_px: 1024.min(glb.size_px.max(64)),
-        t,
-        // The tiles repeat over the head: they must wrap.
-        tileable: true,
-        fine: true,
-        hair: false,
-        packed: false,
-        one_off: true,
-        micro_normals: false,
-        shape_relief: true,
-    };
-    scene.bake(&request, cancel)?;
+    scene.bake(&glb_bake_request(atlas_px, glb.size_px, t), cancel)?;
     progress(0.5, "composing the normal map");
     let normals = head_normal_map(&scene, t, atlas_px, cancel)?;
     cancel.check()?;
@@ -376,8 +448,8 @@ fn export_glb(
         .map(|l| agesim_core::output::compose::occlusion_map(&l.height, params.skin.disp_scale));
     // The aged base colour (docs/models.md "Skin colour"): the head's own colour map, or
     // the skin colour, with its spots, uneven tone and paling at this age, at the colour
-    // map's own size (`view::colour_px`; 1024² even for smaller GLB textures).
-    let colour_px = view::colour_px(&scene, atlas_px.max(1024));
+    // map's own size (`Scene::colour_px`; 1024² even for smaller GLB textures).
+    let colour_px = scene.colour_px(atlas_px.max(1024));
     scene.bake_colour(colour_px, t, cancel)?;
     let aged = scene.aged_colour().cloned();
     let base_colour = [1.0; 4];

@@ -12,7 +12,7 @@ use std::time::Instant;
 use agesim_core::base::cancel::CancelToken;
 use agesim_core::head::mesh::udim::Udim;
 use agesim_core::project::Project;
-use agesim_core::scene::{BakeRequest, Scene};
+use agesim_core::scene::Scene;
 use agesim_core::{defaults, maps::heightmap, output::export};
 use anyhow::{Context as _, bail};
 use serde_json::json;
@@ -294,31 +294,26 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let tileable = project.tile;
     // Loads the mesh, wrinkle files and masks, and checks every setting.
     let mut scene = Scene::new(project)?;
-    // A UDIM head is baked over its atlas, `--size` per tile, and written tile by tile.
-    let udim = scene.mesh().udim().cloned();
-    let atlas_px = crate::export::atlas_size(udim.as_ref(), args.size, "--size")?;
     let parse_ms = ms(t);
-    let t = Instant::now();
-    scene.bake(
-        &BakeRequest::maps(atlas_px, age_t, tileable),
+    // The export's path: the maps over the head's layout (its UDIM atlas, `--size` per
+    // tile), and the aged base colour (docs/models.md "Skin colour") at the scene's size
+    // for them (`Scene::colour_px`), not the maps'.
+    let baked = crate::export::bake_maps(
+        &mut scene,
+        age_t,
+        args.size,
+        tileable,
+        true,
+        "--size",
         &CancelToken::never(),
     )?;
-    let bake_ms = ms(t);
-    // The aged base colour (docs/models.md "Skin colour"), at the head's colour map's size
-    // (`view::colour_px`), not the maps'.
-    let t = Instant::now();
-    let colour_px = crate::view::colour_px(&scene, atlas_px);
-    scene.bake_colour(colour_px, age_t, &CancelToken::never())?;
-    let colour_ms = ms(t);
-    let t = Instant::now();
-    let height = scene.take_height()?;
-    let sum_ms = ms(t);
+    let (bake_ms, colour_ms, sum_ms) = (baked.bake_ms, baked.colour_ms, baked.take_ms);
+    let udim = baked.udim.clone();
     let project = scene.project();
     let (fibres, _) = scene.fibres();
     let (pores, furrows) = scene
         .relief()
         .map_or((0, 0), |r| (r.pores().len(), r.furrows().len()));
-    let normal_settings = scene.normal_settings();
     if project.large.enabled && fibres.is_empty() {
         let files: Vec<&str> = scene.wrinkles().iter().map(|w| w.name.as_str()).collect();
         if !scene.micro_enabled() {
@@ -340,18 +335,13 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let outputs = export::OutputSet::new();
     let write_start = Instant::now();
     let names = ["height.png", "height.exr", "normal.png"].map(|n| args.out.join(n));
-    let staged = export::stage_tiled_maps(
-        &outputs,
-        export::MapPaths {
-            height_png: Some(&names[0]),
-            height_exr: Some(&names[1]),
-            normal_png: Some(&names[2]),
-        },
-        &height,
-        &normal_settings,
-        args.exr_compression.into(),
-        udim.as_ref(),
-    )?;
+    let paths = export::MapPaths {
+        height_png: Some(&names[0]),
+        height_exr: Some(&names[1]),
+        normal_png: Some(&names[2]),
+    };
+    let (staged, _) =
+        crate::export::stage_maps(&outputs, paths, &baked, args.exr_compression.into())?;
     let albedo = args.out.join("albedo.png");
     if let Some(colour) = scene.aged_colour() {
         export::stage_tiled_colour(&outputs, &albedo, colour, udim.as_ref())?;
@@ -384,7 +374,7 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
             "size_meaning": if udim.as_ref().is_some_and(|u| u.multi_tile()) { "per UDIM tile" } else { "the map's side" },
             "gamma": f32_json(project.large.gamma),
             "normal_strength": f32_json(project.normal.strength),
-            "normal_convention": normal_settings.convention,
+            "normal_convention": baked.normal.convention,
             "layers": layer_names(project),
             "pores": pores,
             "furrows": furrows,

@@ -115,7 +115,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
 fn run_editor(options: crate::editor::EditorOptions) -> anyhow::Result<()> {
     let soak = options.soak_seconds.is_some();
     crate::editor::run(options)?;
-    if soak && crate::editor::soak::failed() {
+    if soak && crate::editor::soak_failed() {
         anyhow::bail!("the soak run failed (see above)");
     }
     Ok(())

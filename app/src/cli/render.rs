@@ -1,5 +1,5 @@
 //! `agesim render`: headless renders of the head with the wgpu renderer, and `--bench`,
-//! the frame-time table of the thesis's fig. 8.5 (BENCHMARKS.md).
+//! the frame-time table of the thesis's fig. 8.5 (BENCHMARKS.md; the full tables in docs/benchmarks-history.md).
 //!
 //! The scene, its layers and every per-frame number go through [`crate::view`], as in
 //! the editor: the project's view section (light, camera, relief mode) unless a flag

@@ -3,7 +3,6 @@
 //! bake runs on the [`worker`] thread.
 
 mod app;
-mod bench_ui;
 mod document;
 pub mod export_ui;
 pub mod fields_ui;
@@ -15,13 +14,12 @@ mod notices;
 pub mod pick;
 pub mod recovery;
 mod session;
-pub mod soak;
 pub mod timeline;
 pub mod viewport;
 mod watch;
 pub mod worker;
 
-pub use app::{EditorApp, EditorOptions, Pending};
+pub use app::{EditorApp, EditorOptions, Pending, soak_failed};
 
 /// Opens the editor window and runs until it is closed.
 pub fn run(mut options: EditorOptions) -> anyhow::Result<()> {

@@ -53,7 +53,7 @@ impl HeadlessView {
     pub fn bake_and_upload(&mut self, renderer: &mut Renderer, t: f32) -> anyhow::Result<()> {
         self.request.t = t;
         let changed = self.scene.bake(&self.request, &CancelToken::never())?;
-        let colour_px = super::colour_px(&self.scene, self.request.large_size_px);
+        let colour_px = self.scene.colour_px(self.request.large_size_px);
         self.scene
             .bake_colour(colour_px, t, &CancelToken::never())?;
         self.scene.prepare_shown_colour();

@@ -18,19 +18,6 @@ pub use frame::{
 pub use headless::HeadlessView;
 pub use layers::{Layers, Uploaded};
 
-/// The side of the aged colour map baked for maps of `map_px` (the 3D view, `agesim
-/// render`, `agesim bake`'s `albedo.png`, the GLB's base colour): the head's colour map's
-/// own side within 1024–2048 (1024 without one), not above the maps'. The colour map holds
-/// no more detail than its own size, and a spot of 2 mm is still 4–6 texels on a face at
-/// 1024²; a bake at the maps' 4096² would take ≈ 5 s and 1 GB for nothing (≈ 0.2 s at
-/// 1024², 0.7 s at 2048² on two cores).
-pub fn colour_px(scene: &agesim_core::scene::Scene, map_px: u32) -> u32 {
-    let own = scene
-        .colour_map()
-        .map_or(1024, |c| c.width_px.max(c.height_px));
-    own.clamp(1024, 2048).min(map_px)
-}
-
 /// Images of one size side by side, each labelled in its top-left corner.
 pub fn side_by_side(images: Vec<(String, image::RgbaImage)>) -> image::RgbaImage {
     let (w, h) = images.first().map_or((1, 1), |(_, i)| i.dimensions());

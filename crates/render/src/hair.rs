@@ -1,5 +1,5 @@
 //! The hair instance buffer's layout: `agesim_core::layers::hair::HairInstance` (32 bytes, docs/models.md
-//! §6) read directly as per-instance vertex attributes, so uploads are one memcpy.
+//! §9) read directly as per-instance vertex attributes, so uploads are one memcpy.
 
 use agesim_core::layers::hair::AgeLevel;
 

@@ -364,7 +364,7 @@ fn bake(
         None => s.reset_wrinkles()?,
     }
     let baked = s.bake(&job.request, cancel)?;
-    let colour_px = crate::view::colour_px(s, job.request.large_size_px);
+    let colour_px = s.colour_px(job.request.large_size_px);
     s.bake_colour(colour_px, job.request.t, cancel)?;
     s.prepare_shown_colour();
     s.bake_shape(job.request.t);

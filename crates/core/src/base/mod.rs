@@ -1,6 +1,7 @@
 //! The ground floor: what every other room uses and that uses nothing of the engine —
 //! the error type, positioned diagnostics, cancellation, input limits, the seeded random
-//! numbers, the SIMD dispatch and the strict JSON parse.
+//! numbers, the SIMD dispatch, the strict JSON parse, small maths, PNG encoding and the
+//! all-or-nothing writing of a set of files.
 
 pub mod cancel;
 pub mod diagnostic;
@@ -8,5 +9,7 @@ pub mod error;
 pub mod json;
 pub mod limits;
 pub mod math;
+pub mod output_set;
+pub mod png;
 pub mod rng;
 pub(crate) mod simd;

@@ -20,6 +20,19 @@ impl PartialEq for ShownKey {
 }
 
 impl Scene {
+    /// The side of the aged colour map baked for maps of `map_px` (the 3D view, `agesim
+    /// render`, `agesim bake`'s `albedo.png`, the GLB's base colour): the head's colour map's
+    /// own side within 1024–2048 (1024 without one), not above the maps'. The colour map holds
+    /// no more detail than its own size, and a spot of 2 mm is still 4–6 texels on a face at
+    /// 1024²; a bake at the maps' 4096² would take ≈ 5 s and 1 GB for nothing (≈ 0.2 s at
+    /// 1024², 0.7 s at 2048² on two cores).
+    pub fn colour_px(&self, map_px: u32) -> u32 {
+        let own = self
+            .colour_map()
+            .map_or(1024, |c| c.width_px.max(c.height_px));
+        own.clamp(1024, 2048).min(map_px)
+    }
+
     /// Bakes the aged base colour (docs/models.md "Skin colour") at `size`² and age `t`:
     /// the head's colour map (else the skin colour) with its age spots, uneven tone,
     /// paling and faded lips and brows ([`crate::layers::skin_colour`]); [`Scene::aged_colour`]

@@ -1,11 +1,11 @@
-//! UVs for meshes that have none: the inverse spherical mapping of docs/models.md §10.
+//! UVs for meshes that have none: the inverse spherical mapping of docs/models.md §6.
 //!
 //! Around a centre c, a point p maps to its longitude and latitude:
 //! u = 0.5 + atan2(x, z)/(2π) (so the +Z side — the face, in glTF's convention of a model
 //! looking along +Z — is at u = 0.5 and the seam is at the back), and
 //! v = 0.5 + asin(y/‖p − c‖)/π (v up, poles at v = 0 and 1).
 //!
-//! Seam fix (docs/models.md §10): a triangle whose corners' u differ by more than 0.5 straddles the
+//! Seam fix (docs/models.md §6): a triangle whose corners' u differ by more than 0.5 straddles the
 //! seam; its corners with u < 0.5 get u + 1, on a duplicated vertex, so no triangle spans
 //! the whole texture. Pole fix: a vertex on the axis (x = z = 0) has no longitude; in each
 //! triangle it takes the mean u of the other corners, again on a duplicate. Generated u
@@ -25,7 +25,7 @@ pub struct SphericalUvs {
     pub indices: Vec<u32>,
 }
 
-/// Longitude/latitude UV of `p` around `centre` (docs/models.md §10), without the seam fix. `None`
+/// Longitude/latitude UV of `p` around `centre` (docs/models.md §6), without the seam fix. `None`
 /// on the axis (no longitude) — the latitude alone is then returned as `Err(v)`.
 pub fn spherical_uv(p: Vec3, centre: Vec3) -> Result<Vec2, f32> {
     let d = p - centre;

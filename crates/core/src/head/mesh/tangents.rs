@@ -1,9 +1,9 @@
-//! Tangent frames from positions, normals and UVs (docs/models.md §5) with MikkTSpace.
+//! Tangent frames from positions, normals and UVs (docs/models.md §6) with MikkTSpace.
 //!
 //! We use `bevy_mikktspace` (a safe, dependency-free Rust port of Mikkelsen's reference
 //! code, byte-identical to it on x86), because MikkTSpace is what Blender, Substance,
 //! xNormal and glTF viewers bake and read normal maps against: a normal map baked there
-//! shows without seams here. It is Lengyel's per-triangle tangent (docs/models.md §5) averaged
+//! shows without seams here. It is Lengyel's per-triangle tangent (docs/models.md §6) averaged
 //! over vertices with angle weights, split where UV charts or mirroring disagree.
 //!
 //! MikkTSpace gives a tangent per triangle corner. Where two corners of one vertex get

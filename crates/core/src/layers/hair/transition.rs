@@ -650,10 +650,10 @@ impl TransitionTexture {
     /// Writes [`Self::to_luma16`] as a 16-bit grey PNG, atomically
     /// ([`crate::output::export::write_atomically`]).
     pub fn write_png16(&self, path: &std::path::Path) -> Result<(), Error> {
-        use crate::output::export::{PngPixels, encode_png_rows};
+        use crate::base::png::{PngPixels, encode_png_rows};
         let values = self.to_luma16();
         let width = self.width_px as usize;
-        crate::output::export::write_atomically(path, |w| {
+        crate::base::output_set::write_atomically(path, |w| {
             encode_png_rows(
                 w,
                 self.width_px,

@@ -1,4 +1,4 @@
-//! The tileable fine-wrinkle height map (docs/models.md §10 "Fine wrinkles", [T §5.2]): a texture
+//! The tileable fine-wrinkle height map (docs/models.md §8 "Fine wrinkles", [T §5.2]): a texture
 //! repeated over the head and applied as a normal map, blended in with age.
 //!
 //! Skin's fine lines form a crossing, rhombic network with two dominant directions. The

@@ -165,11 +165,8 @@ fn value_noise(x: f32, key: u32) -> f32 {
     at(i) + (at(i + 1.0) - at(i)) * smoothstep(f)
 }
 
-/// The smoothstep S(x) = 3x² − 2x³ ([T] 5.7), for x in [0,1].
-#[inline]
-pub fn smoothstep(x: f32) -> f32 {
-    x * x * (3.0 - 2.0 * x)
-}
+/// The smoothstep S(x) = 3x² − 2x³ ([T] 5.7), for x in [0,1]: `base::math::smooth01`.
+use crate::base::math::smooth01 as smoothstep;
 
 /// The radial attenuation At(d) = 1 − min(d/(W·L), 1) ([T] 5.5). `half_width` is W·L.
 #[inline]

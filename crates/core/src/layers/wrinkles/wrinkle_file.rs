@@ -649,7 +649,7 @@ pub fn write(file: &WrinkleFile) -> String {
 
 /// Writes `file` to `path` atomically (temporary file + rename).
 pub fn save(file: &WrinkleFile, path: &Path) -> Result<(), Error> {
-    crate::output::export::write_atomically(path, |w| {
+    crate::base::output_set::write_atomically(path, |w| {
         std::io::Write::write_all(w, write(file).as_bytes())
     })
 }

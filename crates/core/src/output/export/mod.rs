@@ -10,7 +10,7 @@
 //! file is written to its temporary first — concurrently — and only when all succeeded are
 //! they renamed into place, in the order staged (so `bake.json`, staged last, always
 //! describes the files beside it), through a commit journal, so that even a process
-//! killed half way leaves the old set or the new one, never a mix (`set` module docs). On
+//! killed half way leaves the old set or the new one, never a mix (`base::output_set` docs). On
 //! any error, and on drop without commit, the temporaries are removed;
 //! [`remove_temporaries_on_signals`] also removes them when the process is killed by
 //! SIGINT or SIGTERM.
@@ -21,15 +21,14 @@ use crate::base::error::Error;
 use crate::maps::heightmap::HeightMap;
 
 mod openexr;
-mod png_file;
 
-pub use png_file::{PngPixels, encode_png, encode_png_rows};
-pub use set::{
+// The mechanism lives in `base` (the layers write their own files with it); the export is
+// its face for the maps.
+pub use crate::base::output_set::{
     OutputSet, finish_interrupted_commit, kill_at_step_for_tests, remove_temporaries_on_signals,
     write_atomically,
 };
-
-mod set;
+pub use crate::base::png::{PngPixels, encode_png, encode_png_rows};
 
 /// Heights → 16-bit values: p = round((h − lo)/(hi − lo)·65535), so that
 /// h = lo + (hi − lo)·p/65535. A flat map (hi = lo) is all 0.

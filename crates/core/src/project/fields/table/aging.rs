@@ -68,7 +68,13 @@ pub(super) fn rows() -> Vec<Field> {
             90.0,
             "random spread of each crease's direction",
         ),
-        i(id!(fine.seed), "", 0, MAX_SEED, "seed of the generated tile"),
+        i(
+            id!(fine.seed),
+            "",
+            0,
+            MAX_SEED,
+            "seed of the generated tile",
+        ),
         k(id!(hair.enabled), Kind::Bool, "generate and show hair"),
         k(
             id!(hair.outer_mask),
@@ -100,7 +106,13 @@ pub(super) fn rows() -> Vec<Field> {
             },
             "transition texture side; null = the masks' size",
         ),
-        i(id!(hair.seed), "", 0, MAX_SEED, "seed of the hair placement"),
+        i(
+            id!(hair.seed),
+            "",
+            0,
+            MAX_SEED,
+            "seed of the hair placement",
+        ),
         f(
             id!(hair.max_deviation_deg),
             "degrees",
@@ -110,7 +122,11 @@ pub(super) fn rows() -> Vec<Field> {
         ),
         f(id!(hair.length_mm), "mm", 0.0, 500.0, "hair length"),
         k(id!(hair.base_colour), Kind::Colour, "colour before graying"),
-        k(id!(hair.gray_colour), Kind::Colour, "colour when fully gray"),
+        k(
+            id!(hair.gray_colour),
+            Kind::Colour,
+            "colour when fully gray",
+        ),
         f(
             id!(hair.graying_onset_min_years),
             YEARS,
@@ -166,7 +182,11 @@ pub(super) fn rows() -> Vec<Field> {
             "Kajiya–Kay specular exponent",
         ),
         f(id!(hair.k_amb), "", 0.0, 1.0, "ambient term"),
-        k(id!(skin.albedo), Kind::Colour, "skin colour at the young end"),
+        k(
+            id!(skin.albedo),
+            Kind::Colour,
+            "skin colour at the young end",
+        ),
         k(
             id!(skin.pale_albedo),
             Kind::Colour,
@@ -214,7 +234,13 @@ pub(super) fn rows() -> Vec<Field> {
             1.0,
             "shadow under the eyes (lower lid, tear trough) at full age, on the contrast curve",
         ),
-        f(id!(skin.yellowing), "", 0.0, 1.0, "yellowing at full paling"),
+        f(
+            id!(skin.yellowing),
+            "",
+            0.0,
+            1.0,
+            "yellowing at full paling",
+        ),
         f(
             id!(skin.contrast_loss),
             "",

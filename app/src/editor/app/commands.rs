@@ -108,18 +108,14 @@ impl EditorApp {
     pub(super) fn info(&mut self, text: impl Into<String>) {
         let now = self.now;
         let text = text.into();
-        if let Some(soak) = &mut self.soak {
-            soak.info_shown(&text);
-        }
+        self.harness.shown(&text, false);
         self.notices.post(text, false, now);
     }
 
     pub(super) fn error(&mut self, text: impl Into<String>) {
         let now = self.now;
         let text = text.into();
-        if let Some(soak) = &mut self.soak {
-            soak.error_shown(&text);
-        }
+        self.harness.shown(&text, true);
         self.notices.post(text, true, now);
     }
 

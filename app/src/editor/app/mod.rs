@@ -9,19 +9,21 @@ use agesim_core::scene::{BakeRequest, WrinkleSource};
 use serde_json::Value;
 
 mod autosave;
+mod central;
+mod commands;
 mod compare;
-mod document;
+mod harness;
 mod inputs;
 mod inspector;
 pub mod landmarks;
 mod menus;
 mod presets;
-mod scripted;
 mod shortcuts;
 mod status;
 mod windows;
 
-pub use document::Pending;
+pub use commands::Pending;
+pub use harness::soak::failed as soak_failed;
 pub use shortcuts::SHORTCUTS;
 
 use super::document::Document;
@@ -120,7 +122,7 @@ pub struct EditorOptions {
     /// (scripted runs: the recovery test).
     pub edit: Option<String>,
     /// Drive the editor at random for this many seconds, print the figures and quit
-    /// (`--soak`, [`super::soak`]).
+    /// (`--soak`, `harness::soak`).
     pub soak_seconds: Option<f64>,
 }
 
@@ -188,10 +190,8 @@ pub struct EditorApp {
     /// view also draws where the frame does not expose it (egui_kittest).
     render_state: Option<eframe::egui_wgpu::RenderState>,
     options: EditorOptions,
-    frames_with_maps: u32,
-    screenshot_requested: bool,
-    bench: Option<super::bench_ui::BenchUi>,
-    soak: Option<scripted::SoakRun>,
+    /// What drives a scripted run (benchmark, soak, screenshot); empty otherwise.
+    harness: harness::Harness,
     /// The shown large map and its deepest value (the status line's figure, computed once
     /// per map, not once per frame). Weak: the old map's data is freed as usual, but its
     /// address is not reused while this refers to it.
@@ -281,22 +281,17 @@ impl EditorApp {
             adapter,
             viewport,
             render_state: cc.wgpu_render_state.clone(),
+            harness: harness::Harness::for_options(&options),
             options,
-            frames_with_maps: 0,
-            screenshot_requested: false,
-            bench: None,
-            soak: None,
             deepest: (std::sync::Weak::new(), 0.0),
             last_hover_uv: None,
         };
-        if app.options.bench_ui {
-            app.bench = Some(super::bench_ui::BenchUi::new());
+        // The benchmark and the soak run in the default layout.
+        if app.options.bench_ui || app.options.soak_seconds.is_some() {
             app.persisted.layout = Layout::default();
-            app.persisted.compare = false;
         }
-        if let Some(seconds) = app.options.soak_seconds {
-            app.soak = Some(scripted::SoakRun::new(seconds));
-            app.persisted.layout = Layout::default();
+        if app.options.bench_ui {
+            app.persisted.compare = false;
         }
         if let Some(e) = error {
             app.error(format!("Could not open the project: {e}"));
@@ -605,7 +600,7 @@ impl eframe::App for EditorApp {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title = title;
         }
-        if self.bench.as_ref().is_some_and(|b| b.floor()) {
+        if self.harness.floor() {
             egui::CentralPanel::default()
                 .frame(bare(egui::Frame::central_panel(ui.style())))
                 .show(ui, |_| {});
@@ -679,153 +674,8 @@ impl eframe::App for EditorApp {
                 ui.heading("Fibre");
                 self.inspector_ui(ui);
             });
-        let kind = self.persisted.map_view.kind;
-        let texture = self.texture(&ctx, kind);
-        let layout_texture = self.layout_texture(&ctx, kind);
-        let fitted = self.session.snapshot.fitted;
-        let wrinkles = self.wrinkles().to_vec();
-        let render_state = frame
-            .wgpu_render_state()
-            .cloned()
-            .or_else(|| self.render_state.clone());
-        // While the age plays or the pointer drags, draw the head at a third of the
-        // resolution (upscaled): interaction stays fluid on a CPU adapter; the full
-        // resolution returns on the first still frame.
-        let moving = self.persisted.playback.playing
-            || ui.input(|i| i.pointer.any_down())
-            || self.bench.as_ref().is_some_and(|b| b.dragging());
-        if let Some(v) = &mut self.viewport {
-            v.scale = if moving { 1.0 / 3.0 } else { 1.0 };
-        }
-        let mut compare_changed = false;
-        self.landmark_view_sync();
-        let fibre_edit = egui::CentralPanel::default()
-            .frame(bare(egui::Frame::central_panel(&style)))
-            .show(ui, |ui| {
-                ui.horizontal_wrapped(|ui| {
-                    for (layout, name) in [(Layout::Both, "head | map"), (Layout::Head, "head"), (Layout::Map, "map")] {
-                        ui.selectable_value(&mut self.persisted.layout, layout, name);
-                    }
-                    ui.separator();
-                    egui::ComboBox::new("map kind", "map")
-                        .selected_text(kind.name())
-                        .show_ui(ui, |ui| {
-                            for k in MapKind::ALL {
-                                ui.selectable_value(&mut self.persisted.map_view.kind, k, k.name());
-                            }
-                        });
-                    ui.checkbox(&mut self.persisted.map_view.show_fibres, "fibres");
-                    ui.checkbox(&mut self.persisted.map_view.show_layout, "UV layout");
-                    let was = (self.persisted.compare, self.persisted.compare_years);
-                    ui.checkbox(&mut self.persisted.compare, "compare with");
-                    ui.add_enabled(
-                        self.persisted.compare,
-                        egui::DragValue::new(&mut self.persisted.compare_years)
-                            .range(0.0..=150.0)
-                            .suffix(" years"),
-                    );
-                    if was != (self.persisted.compare, self.persisted.compare_years) {
-                        compare_changed = true;
-                    }
-                    let mut landmarks_on = self.landmark_mode.is_some();
-                    if ui
-                        .toggle_value(&mut landmarks_on, "landmarks")
-                        .on_hover_text("show the head's landmarks: drag to correct, click to place, Fit")
-                        .clicked()
-                    {
-                        self.toggle_landmark_mode();
-                    }
-                    if ui.button("frame head").clicked()
-                        && let Some(v) = &mut self.viewport
-                    {
-                        v.reset(&mut self.doc.project);
-                    }
-                });
-                ui.label(
-                    egui::RichText::new(
-                        "head: drag orbit · right-drag pan · scroll zoom · Shift+drag light · double-click frame   map: drag a handle to move a fibre",
-                    )
-                    .weak()
-                    .small(),
-                );
-                let layout = if self.viewport.is_none() { Layout::Map } else { self.persisted.layout };
-                let avail = ui.available_rect_before_wrap();
-                let (head_rect, map_rect) = match layout {
-                    Layout::Both => {
-                        let mid = avail.center().x;
-                        (
-                            Some(egui::Rect::from_min_max(avail.min, egui::pos2(mid - 2.0, avail.max.y))),
-                            Some(egui::Rect::from_min_max(egui::pos2(mid + 2.0, avail.min.y), avail.max)),
-                        )
-                    }
-                    Layout::Head => (Some(avail), None),
-                    Layout::Map => (None, Some(avail)),
-                };
-                if let (Some(r), Some(viewport), Some(rs)) = (head_rect, &mut self.viewport, &render_state) {
-                    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
-                    let rect = viewport.ui(&mut child, rs, &self.session.snapshot, &mut self.doc.project);
-                    if self.persisted.compare {
-                        self.compare_ui(&mut child, rs, rect);
-                    }
-                }
-                let mut edit = None;
-                if let Some(r) = map_rect {
-                    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
-                    edit = map_view::map_view_ui(&mut child, &mut self.persisted.map_view, texture.as_ref(), layout_texture.as_ref(), &wrinkles, fitted);
-                }
-                ui.allocate_rect(avail, egui::Sense::hover());
-                edit
-            })
-            .inner;
-        if compare_changed {
-            self.submit(false, "compare");
-        }
-        // The normal-map pictures are baked only while one is shown.
-        let wants_normals = self.persisted.map_view.kind.normal_picture();
-        // So are the shape's pictures.
-        let wants_shape = self.persisted.map_view.kind == MapKind::Shape;
-        if wants_normals != self.baked_normal_picture || wants_shape != self.baked_shape_pictures {
-            self.baked_normal_picture = wants_normals;
-            self.baked_shape_pictures = wants_shape;
-            self.submit(false, "map view");
-        }
-        // The shape's movement on the head while the map view shows it.
-        if let Some(v) = &mut self.viewport {
-            v.show_shape = self.persisted.map_view.kind == MapKind::Shape;
-        }
-        // Head ↔ map: a click on the head marks its UV on the map; the pointer over the
-        // map marks the surface point on the head.
-        // A fitted head's fibres are on the template's chart: its UVs go through the
-        // correspondence both ways (the head's own maps are in its own UVs).
-        let snapshot = &self.session.snapshot;
-        let through = snapshot
-            .correspondence
-            .as_ref()
-            .filter(|_| self.persisted.map_view.kind.on_fibre_chart(snapshot.fitted));
-        if let Some(v) = &mut self.viewport {
-            if let Some(p) = v.picked.take() {
-                let uv = match through {
-                    Some(c) => c.template_uv_at(p.uv),
-                    None => Some(p.uv),
-                };
-                self.persisted.map_view.marker_uv = uv.map(|uv| [uv.x, uv.y]);
-            }
-            let hover = self.persisted.map_view.hover_uv;
-            if hover != self.last_hover_uv {
-                self.last_hover_uv = hover;
-                let head_uv = hover.map(glam::Vec2::from).and_then(|uv| match through {
-                    // Every other texel of the map, within 2 % of the chart.
-                    Some(c) => c.head_uv_of(uv, 2, 0.02),
-                    None => Some(uv),
-                });
-                v.marker = match (head_uv, &snapshot.mesh) {
-                    (Some(uv), Some(mesh)) => {
-                        super::pick::uv_to_surface(mesh, uv).map(|p| p.position)
-                    }
-                    _ => None,
-                };
-            }
-        }
+        let central_frame = bare(egui::Frame::central_panel(&style));
+        let (fibre_edit, wrinkles) = self.central_ui(ui, frame, central_frame);
         if let Some(e) = fibre_edit {
             self.apply_fibre_edit(wrinkles, e);
         }

@@ -383,7 +383,13 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             12.0,
             "octaves, fractional allowed; 0 = no noise",
         ),
-        f(id!(noise.roughness), "", 0.0, 1.0, "amplitude gain per octave"),
+        f(
+            id!(noise.roughness),
+            "",
+            0.0,
+            1.0,
+            "amplitude gain per octave",
+        ),
         f(
             id!(noise.lacunarity),
             "",
@@ -412,8 +418,20 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             10.0,
             "largest displacement per axis; 0 = no warp",
         ),
-        f(id!(warp.details), "octaves", 0.0, 6.0, "octaves of the warp"),
-        f(id!(warp.roughness), "", 0.0, 1.0, "amplitude gain per octave"),
+        f(
+            id!(warp.details),
+            "octaves",
+            0.0,
+            6.0,
+            "octaves of the warp",
+        ),
+        f(
+            id!(warp.roughness),
+            "",
+            0.0,
+            1.0,
+            "amplitude gain per octave",
+        ),
         f(
             id!(warp.lacunarity),
             "",

@@ -1,13 +1,61 @@
-//! Scripted runs: the UI benchmark (`--bench-ui`), the screenshot (`--screenshot`), the
-//! soak run (`--soak`) and the hidden `--edit`.
+//! Scripted runs, kept out of the editor's own state: the UI benchmark (`--bench-ui`,
+//! [`bench`]), the screenshot (`--screenshot`), the soak run (`--soak`, [`soak`]) and the
+//! hidden `--edit`. The app holds one [`Harness`], empty in an artist's session; each frame
+//! it calls the harness's steps, which drive the app through the calls its widgets make.
+
+pub mod bench;
+pub mod soak;
 
 use std::path::PathBuf;
 
 use agesim_core::project::fields::{FIELDS, Field, Kind};
 use serde_json::Value;
 
-use super::{EditorApp, Layout};
-use crate::editor::soak::{Action, Soak};
+use super::{EditorApp, EditorOptions, Layout};
+use bench::BenchUi;
+use soak::{Action, Soak};
+
+/// What drives a scripted run; every part `None` in an artist's session.
+#[derive(Default)]
+pub(super) struct Harness {
+    bench: Option<BenchUi>,
+    soak: Option<SoakRun>,
+    /// Frames drawn with maps before the screenshot, and whether it was asked for.
+    frames_with_maps: u32,
+    screenshot_requested: bool,
+}
+
+impl Harness {
+    /// The harness of `options`' scripted run.
+    pub(super) fn for_options(options: &EditorOptions) -> Self {
+        Self {
+            bench: options.bench_ui.then(BenchUi::new),
+            soak: options.soak_seconds.map(SoakRun::new),
+            ..Self::default()
+        }
+    }
+
+    /// Whether this frame paints nothing but an empty panel (the benchmark's floor).
+    pub(super) fn floor(&self) -> bool {
+        self.bench.as_ref().is_some_and(BenchUi::floor)
+    }
+
+    /// Whether a scripted drag is under way (the view draws as when moving).
+    pub(super) fn dragging(&self) -> bool {
+        self.bench.as_ref().is_some_and(BenchUi::dragging)
+    }
+
+    /// A message the app showed (the soak checks that only expected errors appear).
+    pub(super) fn shown(&mut self, text: &str, error: bool) {
+        if let Some(soak) = &mut self.soak {
+            if error {
+                soak.error_shown(text);
+            } else {
+                soak.info_shown(text);
+            }
+        }
+    }
+}
 
 impl EditorApp {
     /// `--edit field=value`: applied once the first maps are shown, as the layer panel
@@ -37,7 +85,7 @@ impl EditorApp {
     }
 
     pub(super) fn bench_step(&mut self, ctx: &egui::Context) {
-        let Some(bench) = &mut self.bench else {
+        let Some(bench) = &mut self.harness.bench else {
             return;
         };
         ctx.request_repaint();
@@ -54,20 +102,16 @@ impl EditorApp {
             hairs,
             years,
         ) {
-            crate::editor::bench_ui::Action::None => {}
-            crate::editor::bench_ui::Action::BigBake => {
-                self.submit_sized((4096, 4096), "4096² bake")
-            }
-            crate::editor::bench_ui::Action::SetAge(t) => self.set_age(t, true),
-            crate::editor::bench_ui::Action::Play => self.persisted.playback.playing = true,
-            crate::editor::bench_ui::Action::PlayHeadOnly => {
+            bench::Action::None => {}
+            bench::Action::BigBake => self.submit_sized((4096, 4096), "4096² bake"),
+            bench::Action::SetAge(t) => self.set_age(t, true),
+            bench::Action::Play => self.persisted.playback.playing = true,
+            bench::Action::PlayHeadOnly => {
                 self.persisted.layout = Layout::Head;
                 self.persisted.playback.playing = true;
             }
-            crate::editor::bench_ui::Action::Stop => self.persisted.playback.playing = false,
-            crate::editor::bench_ui::Action::Quit => {
-                ctx.send_viewport_cmd(egui::ViewportCommand::Close)
-            }
+            bench::Action::Stop => self.persisted.playback.playing = false,
+            bench::Action::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
         }
     }
 
@@ -76,11 +120,13 @@ impl EditorApp {
             return;
         };
         if self.session.snapshot.large.is_some() && self.idle() {
-            self.frames_with_maps += 1;
+            self.harness.frames_with_maps += 1;
         }
         ctx.request_repaint();
-        if self.frames_with_maps >= self.options.frames.max(1) && !self.screenshot_requested {
-            self.screenshot_requested = true;
+        if self.harness.frames_with_maps >= self.options.frames.max(1)
+            && !self.harness.screenshot_requested
+        {
+            self.harness.screenshot_requested = true;
             let ctx2 = ctx.clone();
             ctx.request_screenshot(move |image| {
                 let [w, h] = image.size;
@@ -99,7 +145,7 @@ impl EditorApp {
 
 /// The soak run's state on the app's side: the script ([`Soak`]), its folder and the
 /// slider fields it drags.
-pub(super) struct SoakRun {
+struct SoakRun {
     soak: Soak,
     dir: PathBuf,
     fields: Vec<&'static Field>,
@@ -110,7 +156,7 @@ pub(super) struct SoakRun {
 }
 
 impl SoakRun {
-    pub(super) fn new(seconds: f64) -> Self {
+    fn new(seconds: f64) -> Self {
         // Every number and switch of the layers and the view; not the mesh's (units,
         // axes: a different head) nor the age mapping (the scrubs move the age).
         let fields: Vec<&'static Field> = FIELDS
@@ -145,7 +191,7 @@ impl SoakRun {
 
 impl EditorApp {
     pub(super) fn soak_step(&mut self, ctx: &egui::Context) {
-        let Some(run) = &mut self.soak else {
+        let Some(run) = &mut self.harness.soak else {
             return;
         };
         ctx.request_repaint();
@@ -184,7 +230,7 @@ impl EditorApp {
                     run.soak.capacity_changed();
                 }
                 self.apply(f.path, value, dragging);
-                if let Some(run) = &mut self.soak {
+                if let Some(run) = &mut self.harness.soak {
                     run.in_edit = false;
                 }
             }
@@ -277,7 +323,7 @@ impl EditorApp {
                 if let Err(e) = result {
                     eprintln!("soak: could not rewrite {}: {e}", path.display());
                 }
-                if broken && let Some(run) = &mut self.soak {
+                if broken && let Some(run) = &mut self.harness.soak {
                     run.broken = path.display().to_string();
                 }
             }
@@ -296,7 +342,7 @@ impl EditorApp {
             }
         }
         let (latest, reported) = (self.session.worker.latest, self.session.reported);
-        if let Some(run) = &mut self.soak {
+        if let Some(run) = &mut self.harness.soak {
             run.soak.observe(latest, reported);
         }
     }

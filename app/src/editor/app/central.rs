@@ -1,0 +1,192 @@
+//! The central panel: the view's toolbar (layout, map kind, overlays, compare, landmarks),
+//! the 3D head and the UV map side by side, and the markers that tie them (a click on the
+//! head marks its UV on the map; the pointer over the map marks the surface point).
+
+use super::{EditorApp, Layout, Persisted};
+use crate::editor::map_view::{self, FibreEdit, MapKind};
+
+impl EditorApp {
+    /// Draws the central panel in `central_frame`; returns the fibre edit made on the map
+    /// and the wrinkle files it edits.
+    pub(super) fn central_ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        frame: &mut eframe::Frame,
+        central_frame: egui::Frame,
+    ) -> (Option<FibreEdit>, Vec<agesim_core::scene::WrinkleSource>) {
+        let ctx = ui.ctx().clone();
+        let kind = self.persisted.map_view.kind;
+        let texture = self.texture(&ctx, kind);
+        let layout_texture = self.layout_texture(&ctx, kind);
+        let fitted = self.session.snapshot.fitted;
+        let wrinkles = self.wrinkles().to_vec();
+        let render_state = frame
+            .wgpu_render_state()
+            .cloned()
+            .or_else(|| self.render_state.clone());
+        // While the age plays or the pointer drags, draw the head at a third of the
+        // resolution (upscaled): interaction stays fluid on a CPU adapter; the full
+        // resolution returns on the first still frame.
+        let moving = self.persisted.playback.playing
+            || ui.input(|i| i.pointer.any_down())
+            || self.harness.dragging();
+        if let Some(v) = &mut self.viewport {
+            v.scale = if moving { 1.0 / 3.0 } else { 1.0 };
+        }
+        let mut compare_changed = false;
+        self.landmark_view_sync();
+        let fibre_edit = egui::CentralPanel::default()
+            .frame(central_frame)
+            .show(ui, |ui| {
+                let toolbar = toolbar_ui(ui, &mut self.persisted, self.landmark_mode.is_some());
+                compare_changed = toolbar.compare_changed;
+                if toolbar.toggle_landmarks {
+                    self.toggle_landmark_mode();
+                }
+                if toolbar.frame_head
+                    && let Some(v) = &mut self.viewport
+                {
+                    v.reset(&mut self.doc.project);
+                }
+                ui.label(
+                    egui::RichText::new(
+                        "head: drag orbit · right-drag pan · scroll zoom · Shift+drag light · double-click frame   map: drag a handle to move a fibre",
+                    )
+                    .weak()
+                    .small(),
+                );
+                let layout = if self.viewport.is_none() { Layout::Map } else { self.persisted.layout };
+                let avail = ui.available_rect_before_wrap();
+                let (head_rect, map_rect) = match layout {
+                    Layout::Both => {
+                        let mid = avail.center().x;
+                        (
+                            Some(egui::Rect::from_min_max(avail.min, egui::pos2(mid - 2.0, avail.max.y))),
+                            Some(egui::Rect::from_min_max(egui::pos2(mid + 2.0, avail.min.y), avail.max)),
+                        )
+                    }
+                    Layout::Head => (Some(avail), None),
+                    Layout::Map => (None, Some(avail)),
+                };
+                if let (Some(r), Some(viewport), Some(rs)) = (head_rect, &mut self.viewport, &render_state) {
+                    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
+                    let rect = viewport.ui(&mut child, rs, &self.session.snapshot, &mut self.doc.project);
+                    if self.persisted.compare {
+                        self.compare_ui(&mut child, rs, rect);
+                    }
+                }
+                let mut edit = None;
+                if let Some(r) = map_rect {
+                    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
+                    edit = map_view::map_view_ui(&mut child, &mut self.persisted.map_view, texture.as_ref(), layout_texture.as_ref(), &wrinkles, fitted);
+                }
+                ui.allocate_rect(avail, egui::Sense::hover());
+                edit
+            })
+            .inner;
+        if compare_changed {
+            self.submit(false, "compare");
+        }
+        // The normal-map pictures are baked only while one is shown.
+        let wants_normals = self.persisted.map_view.kind.normal_picture();
+        // So are the shape's pictures.
+        let wants_shape = self.persisted.map_view.kind == MapKind::Shape;
+        if wants_normals != self.baked_normal_picture || wants_shape != self.baked_shape_pictures {
+            self.baked_normal_picture = wants_normals;
+            self.baked_shape_pictures = wants_shape;
+            self.submit(false, "map view");
+        }
+        // The shape's movement on the head while the map view shows it.
+        if let Some(v) = &mut self.viewport {
+            v.show_shape = self.persisted.map_view.kind == MapKind::Shape;
+        }
+        // Head ↔ map: a click on the head marks its UV on the map; the pointer over the
+        // map marks the surface point on the head.
+        // A fitted head's fibres are on the template's chart: its UVs go through the
+        // correspondence both ways (the head's own maps are in its own UVs).
+        let snapshot = &self.session.snapshot;
+        let through = snapshot
+            .correspondence
+            .as_ref()
+            .filter(|_| self.persisted.map_view.kind.on_fibre_chart(snapshot.fitted));
+        if let Some(v) = &mut self.viewport {
+            if let Some(p) = v.picked.take() {
+                let uv = match through {
+                    Some(c) => c.template_uv_at(p.uv),
+                    None => Some(p.uv),
+                };
+                self.persisted.map_view.marker_uv = uv.map(|uv| [uv.x, uv.y]);
+            }
+            let hover = self.persisted.map_view.hover_uv;
+            if hover != self.last_hover_uv {
+                self.last_hover_uv = hover;
+                let head_uv = hover.map(glam::Vec2::from).and_then(|uv| match through {
+                    // Every other texel of the map, within 2 % of the chart.
+                    Some(c) => c.head_uv_of(uv, 2, 0.02),
+                    None => Some(uv),
+                });
+                v.marker = match (head_uv, &snapshot.mesh) {
+                    (Some(uv), Some(mesh)) => {
+                        crate::editor::pick::uv_to_surface(mesh, uv).map(|p| p.position)
+                    }
+                    _ => None,
+                };
+            }
+        }
+        (fibre_edit, wrinkles)
+    }
+}
+
+/// What the toolbar asked for beyond the view settings it edits.
+struct Toolbar {
+    /// The compare view was switched or its age changed (a bake is needed).
+    compare_changed: bool,
+    toggle_landmarks: bool,
+    frame_head: bool,
+}
+
+/// The view's toolbar over `persisted` (layout, map kind, overlays, compare); the
+/// landmarks toggle shows `landmarks_on`.
+fn toolbar_ui(ui: &mut egui::Ui, persisted: &mut Persisted, landmarks_on: bool) -> Toolbar {
+    let mut out = Toolbar {
+        compare_changed: false,
+        toggle_landmarks: false,
+        frame_head: false,
+    };
+    ui.horizontal_wrapped(|ui| {
+        for (layout, name) in [
+            (Layout::Both, "head | map"),
+            (Layout::Head, "head"),
+            (Layout::Map, "map"),
+        ] {
+            ui.selectable_value(&mut persisted.layout, layout, name);
+        }
+        ui.separator();
+        let kind = persisted.map_view.kind;
+        egui::ComboBox::new("map kind", "map")
+            .selected_text(kind.name())
+            .show_ui(ui, |ui| {
+                for k in MapKind::ALL {
+                    ui.selectable_value(&mut persisted.map_view.kind, k, k.name());
+                }
+            });
+        ui.checkbox(&mut persisted.map_view.show_fibres, "fibres");
+        ui.checkbox(&mut persisted.map_view.show_layout, "UV layout");
+        let was = (persisted.compare, persisted.compare_years);
+        ui.checkbox(&mut persisted.compare, "compare with");
+        ui.add_enabled(
+            persisted.compare,
+            egui::DragValue::new(&mut persisted.compare_years)
+                .range(0.0..=150.0)
+                .suffix(" years"),
+        );
+        out.compare_changed = was != (persisted.compare, persisted.compare_years);
+        let mut on = landmarks_on;
+        out.toggle_landmarks = ui
+            .toggle_value(&mut on, "landmarks")
+            .on_hover_text("show the head's landmarks: drag to correct, click to place, Fit")
+            .clicked();
+        out.frame_head = ui.button("frame head").clicked();
+    });
+    out
+}

@@ -203,12 +203,20 @@ fn the_shader_encoding_reads_back_through_the_cpu_decoding() {
     for (d, o) in dirs.iter().zip(&out) {
         let gpu = [snorm(o[0]), snorm(o[1])];
         let cpu = oct_encode(*d);
+        worst_dir = worst_dir
+            .max(oct_decode(gpu).cross(*d).length())
+            .max(oct_decode(gpu).cross(oct_decode(cpu)).length());
+        // On the lower hemisphere's fold lines (x or y zero: the signs of −0 and +0) the
+        // square's mirrored edges are the same points: either packing may take either
+        // edge, and both decode to the direction (checked above).
+        if d.z < 0.0 && (d.x == 0.0 || d.y == 0.0) {
+            continue;
+        }
         let lsb = (0..2)
             .map(|k| (i32::from(gpu[k]) - i32::from(cpu[k])).abs())
             .max()
             .unwrap_or(0);
         worst_lsb = worst_lsb.max(lsb);
-        worst_dir = worst_dir.max(oct_decode(gpu).cross(*d).length());
     }
     assert!(
         worst_lsb <= 1,

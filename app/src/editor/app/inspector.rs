@@ -50,120 +50,164 @@ impl EditorApp {
     }
 
     pub(super) fn inspector_ui(&mut self, ui: &mut egui::Ui) {
-        ui.horizontal(|ui| {
-            if ui.button("Add fibre").clicked() {
-                self.add_fibre();
-            }
-            let selected = self.persisted.map_view.selected.is_some();
-            if ui
-                .add_enabled(selected, egui::Button::new("Delete fibre"))
-                .clicked()
-                || (selected && ui.input(|i| i.key_pressed(egui::Key::Delete)))
-            {
-                self.delete_fibre();
-            }
-        });
-        let Some((fi, gi)) = self.persisted.map_view.selected else {
-            ui.label("Click a fibre's handle on the map to select it.");
-            return;
-        };
+        let selected = self.persisted.map_view.selected;
         let mut wrinkles = self.wrinkles().to_vec();
-        if wrinkles
-            .get(fi)
-            .and_then(|w| w.file.groups.get(gi))
-            .is_none()
-        {
-            return;
+        let group = match selected {
+            Some((fi, gi)) => wrinkles.get_mut(fi).and_then(|w| {
+                let title = format!("{} — group {}", w.name, gi + 1);
+                w.file.groups.get_mut(gi).map(|g| (title, g))
+            }),
+            None => None,
+        };
+        let outcome = match group {
+            Some((title, group)) => fibre_panel(ui, &title, group, self.doc.project.age.large),
+            None => {
+                let action = fibre_buttons(ui, false);
+                if action.is_none() {
+                    ui.label("Click a fibre's handle on the map to select it.");
+                }
+                Outcome {
+                    action,
+                    edited: false,
+                }
+            }
+        };
+        match outcome.action {
+            Some(FibreAction::Add) => self.add_fibre(),
+            Some(FibreAction::Delete) => self.delete_fibre(),
+            None if outcome.edited => {
+                let (fi, gi) = selected.unwrap_or_default();
+                let dragging = ui.ctx().egui_is_using_pointer();
+                self.record("fibre edit", &format!("fibre {fi}/{gi}"), dragging);
+                self.doc.wrinkles = Some(wrinkles);
+                self.submit(dragging, "fibre");
+            }
+            None => {}
         }
-        ui.label(format!("{} — group {}", wrinkles[fi].name, gi + 1));
-        let group = &mut wrinkles[fi].file.groups[gi];
-        let f = group.fibre.clone();
-        let mut changed = None;
-        ui.label(format!(
-            "mA {:.3}; {:.3}   mB {:.3}; {:.3}",
-            f.ma()[0],
-            f.ma()[1],
-            f.mb()[0],
-            f.mb()[1]
-        ));
-        // Every slider takes its range from the fibre's one table (docs/models.md §2).
-        use agesim_core::layers::wrinkles::fibre_params as params;
-        use agesim_core::layers::wrinkles::muscle::Fibre;
-        let mut n = f.n();
-        let n_range = params::N.min as u32..=params::N.max as u32;
+    }
+}
+
+/// A button of the inspector.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum FibreAction {
+    Add,
+    Delete,
+}
+
+/// What the fibre panel did: a button, or an edit of the group it was given.
+struct Outcome {
+    action: Option<FibreAction>,
+    edited: bool,
+}
+
+/// Add and Delete (Delete, and the Delete key, only with a fibre `selected`).
+fn fibre_buttons(ui: &mut egui::Ui, selected: bool) -> Option<FibreAction> {
+    let mut action = None;
+    ui.horizontal(|ui| {
+        if ui.button("Add fibre").clicked() {
+            action = Some(FibreAction::Add);
+        }
+        if ui
+            .add_enabled(selected, egui::Button::new("Delete fibre"))
+            .clicked()
+            || (selected && ui.input(|i| i.key_pressed(egui::Key::Delete)))
+        {
+            action = Some(FibreAction::Delete);
+        }
+    });
+    action
+}
+
+/// The selected fibre's panel over the one `group` it edits: its parameters (each slider's
+/// range from the fibre's one table, docs/models.md §2), profile and own age curve
+/// (`layer_curve` when it takes one).
+fn fibre_panel(
+    ui: &mut egui::Ui,
+    title: &str,
+    group: &mut agesim_core::layers::wrinkles::wrinkle_file::WrinkleGroup,
+    layer_curve: agesim_core::age::AgeCurve,
+) -> Outcome {
+    use agesim_core::layers::wrinkles::fibre_params as params;
+    use agesim_core::layers::wrinkles::muscle::{Fibre, Profile};
+    let action = fibre_buttons(ui, true);
+    ui.label(title);
+    let f = group.fibre.clone();
+    let mut changed = None;
+    ui.label(format!(
+        "mA {:.3}; {:.3}   mB {:.3}; {:.3}",
+        f.ma()[0],
+        f.ma()[1],
+        f.mb()[0],
+        f.mb()[1]
+    ));
+    let mut n = f.n();
+    let n_range = params::N.min as u32..=params::N.max as u32;
+    if ui
+        .add(
+            egui::Slider::new(&mut n, n_range)
+                .logarithmic(params::N.wide)
+                .text("n (wrinkles)"),
+        )
+        .changed()
+    {
+        changed = f.with_n(n).ok();
+    }
+    type Setter = fn(Fibre, f32) -> Result<Fibre, agesim_core::Error>;
+    let rows: [(params::FibreParam, f32, Setter); 6] = [
+        (params::REL_WIDTH, f.rel_width(), Fibre::with_rel_width),
+        (params::MAX_ANGLE, f.max_angle(), Fibre::with_max_angle),
+        (params::OMEGA_LOW, f.omega_low(), Fibre::with_omega_low),
+        (params::DEPTH, f.depth(), Fibre::with_depth),
+        (
+            params::IRREGULARITY,
+            f.irregularity(),
+            Fibre::with_irregularity,
+        ),
+        (params::WAVINESS, f.waviness(), Fibre::with_waviness),
+    ];
+    for (param, mut value, set) in rows {
         if ui
             .add(
-                egui::Slider::new(&mut n, n_range)
-                    .logarithmic(params::N.wide)
-                    .text("n (wrinkles)"),
+                egui::Slider::new(&mut value, param.range())
+                    .logarithmic(param.wide)
+                    .text(param.key),
             )
             .changed()
         {
-            changed = f.with_n(n).ok();
-        }
-        type Setter = fn(Fibre, f32) -> Result<Fibre, agesim_core::Error>;
-        let rows: [(params::FibreParam, f32, Setter); 6] = [
-            (params::REL_WIDTH, f.rel_width(), Fibre::with_rel_width),
-            (params::MAX_ANGLE, f.max_angle(), Fibre::with_max_angle),
-            (params::OMEGA_LOW, f.omega_low(), Fibre::with_omega_low),
-            (params::DEPTH, f.depth(), Fibre::with_depth),
-            (
-                params::IRREGULARITY,
-                f.irregularity(),
-                Fibre::with_irregularity,
-            ),
-            (params::WAVINESS, f.waviness(), Fibre::with_waviness),
-        ];
-        for (param, mut value, set) in rows {
-            if ui
-                .add(
-                    egui::Slider::new(&mut value, param.range())
-                        .logarithmic(param.wide)
-                        .text(param.key),
-                )
-                .changed()
-            {
-                changed = set(f.clone(), value).ok();
-            }
-        }
-        let mut profile = f.profile();
-        egui::ComboBox::from_label("profile")
-            .selected_text(profile.name())
-            .show_ui(ui, |ui| {
-                for p in agesim_core::layers::wrinkles::muscle::Profile::ALL {
-                    ui.selectable_value(&mut profile, p, p.name());
-                }
-            });
-        if profile != f.profile() {
-            changed = Some(f.clone().with_profile(profile));
-        }
-        let mut own = group.age.is_some();
-        let mut age_changed = false;
-        if ui.checkbox(&mut own, "own age curve").changed() {
-            group.age = own.then_some(self.doc.project.age.large);
-            age_changed = true;
-        }
-        if let Some(curve) = &mut group.age {
-            age_changed |= ui
-                .add(
-                    egui::Slider::new(&mut curve.onset_years, 0.0..=100.0)
-                        .text("age onset (years)"),
-                )
-                .changed();
-            age_changed |= ui
-                .add(egui::Slider::new(&mut curve.full_years, 0.0..=120.0).text("age full (years)"))
-                .changed();
-            curve.full_years = curve.full_years.max(curve.onset_years);
-        }
-        if let Some(fibre) = changed {
-            group.fibre = fibre;
-            age_changed = true;
-        }
-        if age_changed {
-            let dragging = ui.ctx().egui_is_using_pointer();
-            self.record("fibre edit", &format!("fibre {fi}/{gi}"), dragging);
-            self.doc.wrinkles = Some(wrinkles);
-            self.submit(dragging, "fibre");
+            changed = set(f.clone(), value).ok();
         }
     }
+    let mut profile = f.profile();
+    egui::ComboBox::from_label("profile")
+        .selected_text(profile.name())
+        .show_ui(ui, |ui| {
+            for p in Profile::ALL {
+                ui.selectable_value(&mut profile, p, p.name());
+            }
+        });
+    if profile != f.profile() {
+        changed = Some(f.clone().with_profile(profile));
+    }
+    let mut own = group.age.is_some();
+    let mut edited = false;
+    if ui.checkbox(&mut own, "own age curve").changed() {
+        group.age = own.then_some(layer_curve);
+        edited = true;
+    }
+    if let Some(curve) = &mut group.age {
+        // The wrinkle file's `ageOnset`/`ageFull` range.
+        let (lo, hi) = agesim_core::age::YEARS_RANGE;
+        edited |= ui
+            .add(egui::Slider::new(&mut curve.onset_years, lo..=hi).text("age onset (years)"))
+            .changed();
+        edited |= ui
+            .add(egui::Slider::new(&mut curve.full_years, lo..=hi).text("age full (years)"))
+            .changed();
+        curve.full_years = curve.full_years.max(curve.onset_years);
+    }
+    if let Some(fibre) = changed {
+        group.fibre = fibre;
+        edited = true;
+    }
+    Outcome { action, edited }
 }

@@ -2,6 +2,7 @@
 //! the 3D head and the UV map side by side, and the markers that tie them (a click on the
 //! head marks its UV on the map; the pointer over the map marks the surface point).
 
+use super::command::Command;
 use super::{EditorApp, Layout, Persisted};
 use crate::editor::map_view::{self, FibreEdit, MapKind};
 
@@ -40,13 +41,8 @@ impl EditorApp {
             .show(ui, |ui| {
                 let toolbar = toolbar_ui(ui, &mut self.persisted, self.landmark_mode.is_some());
                 compare_changed = toolbar.compare_changed;
-                if toolbar.toggle_landmarks {
-                    self.toggle_landmark_mode();
-                }
-                if toolbar.frame_head
-                    && let Some(v) = &mut self.viewport
-                {
-                    v.reset(&mut self.doc.project);
+                for command in toolbar.commands {
+                    self.run(command, ui.ctx());
                 }
                 ui.label(
                     egui::RichText::new(
@@ -141,8 +137,8 @@ impl EditorApp {
 struct Toolbar {
     /// The compare view was switched or its age changed (a bake is needed).
     compare_changed: bool,
-    toggle_landmarks: bool,
-    frame_head: bool,
+    /// Landmarks toggled, the head framed.
+    commands: Vec<Command>,
 }
 
 /// The view's toolbar over `persisted` (layout, map kind, overlays, compare); the
@@ -150,8 +146,7 @@ struct Toolbar {
 fn toolbar_ui(ui: &mut egui::Ui, persisted: &mut Persisted, landmarks_on: bool) -> Toolbar {
     let mut out = Toolbar {
         compare_changed: false,
-        toggle_landmarks: false,
-        frame_head: false,
+        commands: Vec::new(),
     };
     ui.horizontal_wrapped(|ui| {
         for (layout, name) in [
@@ -182,11 +177,16 @@ fn toolbar_ui(ui: &mut egui::Ui, persisted: &mut Persisted, landmarks_on: bool) 
         );
         out.compare_changed = was != (persisted.compare, persisted.compare_years);
         let mut on = landmarks_on;
-        out.toggle_landmarks = ui
+        if ui
             .toggle_value(&mut on, "landmarks")
             .on_hover_text("show the head's landmarks: drag to correct, click to place, Fit")
-            .clicked();
-        out.frame_head = ui.button("frame head").clicked();
+            .clicked()
+        {
+            out.commands.push(Command::ToggleLandmarks);
+        }
+        if ui.button("frame head").clicked() {
+            out.commands.push(Command::FrameHead);
+        }
     });
     out
 }

@@ -1,6 +1,7 @@
 //! The fibre inspector: the selected fibre's parameters, and adding or deleting fibres.
 
 use super::EditorApp;
+use super::command::Command;
 
 impl EditorApp {
     /// Adds a fibre (3 creases across the middle of the UV square, irregular as the shipped
@@ -73,8 +74,7 @@ impl EditorApp {
             }
         };
         match outcome.action {
-            Some(FibreAction::Add) => self.add_fibre(),
-            Some(FibreAction::Delete) => self.delete_fibre(),
+            Some(command) => self.run(command, &ui.ctx().clone()),
             None if outcome.edited => {
                 let (fi, gi) = selected.unwrap_or_default();
                 let dragging = ui.ctx().egui_is_using_pointer();
@@ -87,32 +87,25 @@ impl EditorApp {
     }
 }
 
-/// A button of the inspector.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum FibreAction {
-    Add,
-    Delete,
-}
-
 /// What the fibre panel did: a button, or an edit of the group it was given.
 struct Outcome {
-    action: Option<FibreAction>,
+    action: Option<Command>,
     edited: bool,
 }
 
 /// Add and Delete (Delete, and the Delete key, only with a fibre `selected`).
-fn fibre_buttons(ui: &mut egui::Ui, selected: bool) -> Option<FibreAction> {
+fn fibre_buttons(ui: &mut egui::Ui, selected: bool) -> Option<Command> {
     let mut action = None;
     ui.horizontal(|ui| {
         if ui.button("Add fibre").clicked() {
-            action = Some(FibreAction::Add);
+            action = Some(Command::AddFibre);
         }
         if ui
             .add_enabled(selected, egui::Button::new("Delete fibre"))
             .clicked()
             || (selected && ui.input(|i| i.key_pressed(egui::Key::Delete)))
         {
-            action = Some(FibreAction::Delete);
+            action = Some(Command::DeleteFibre);
         }
     });
     action

@@ -1,172 +1,210 @@
-//! The menu bar: File, Edit, View, Presets, Help.
+//! The menu bar: File, Edit, View, Presets, Help. It shows [`MenuState`], edits only the
+//! view settings ([`Persisted`]) and returns the [`Command`]s chosen.
 
-use std::path::Path;
+use std::path::PathBuf;
 
-use super::{EditorApp, Layout, MapKind, Pending};
+use agesim_core::defaults;
+
+use super::command::{Command, user_preset_name};
+use super::{Layout, MapKind, Pending, Persisted};
 use crate::editor::files::Purpose;
 
-impl EditorApp {
-    pub(super) fn file_menu(&mut self, ui: &mut egui::Ui) {
-        let item = |ui: &mut egui::Ui, text: &str, shortcut: &str| {
-            ui.add(egui::Button::new(text).shortcut_text(shortcut))
-                .clicked()
-        };
-        if item(ui, "New (default head)", "Ctrl+N") {
-            self.guard(Pending::New);
+/// What the menus show of the document and the session.
+pub(super) struct MenuState<'a> {
+    /// The names of the steps undo and redo would take.
+    pub undo: Option<String>,
+    pub redo: Option<String>,
+    /// The selected fibre's wrinkle file (its index and file name), else the first file.
+    pub wrinkle_file: Option<(usize, String)>,
+    pub user_presets: &'a [PathBuf],
+}
+
+/// The menu bar; returns the commands chosen.
+pub(super) fn menu_bar(
+    ui: &mut egui::Ui,
+    state: &MenuState<'_>,
+    view: &mut Persisted,
+) -> Vec<Command> {
+    let mut out = Vec::new();
+    egui::MenuBar::new().ui(ui, |ui| {
+        ui.menu_button("File", |ui| file_menu(ui, state, view, &mut out));
+        ui.menu_button("Edit", |ui| edit_menu(ui, state, view, &mut out));
+        ui.menu_button("View", |ui| view_menu(ui, view, &mut out));
+        ui.menu_button("Presets", |ui| presets_menu(ui, state, &mut out));
+        ui.menu_button("Help", |ui| help_menu(ui, &mut out));
+    });
+    out
+}
+
+fn item(ui: &mut egui::Ui, text: &str, shortcut: &str) -> bool {
+    ui.add(egui::Button::new(text).shortcut_text(shortcut))
+        .clicked()
+}
+
+fn file_menu(ui: &mut egui::Ui, state: &MenuState<'_>, view: &Persisted, out: &mut Vec<Command>) {
+    if item(ui, "New (default head)", "Ctrl+N") {
+        out.push(Command::Guard(Pending::New));
+    }
+    if item(ui, "Open project…", "Ctrl+O") {
+        out.push(Command::Guard(Pending::Open));
+    }
+    ui.menu_button("Open recent", |ui| {
+        if view.recent.is_empty() {
+            ui.label("(none yet)");
         }
-        if item(ui, "Open project…", "Ctrl+O") {
-            self.guard(Pending::Open);
-        }
-        ui.menu_button("Open recent", |ui| {
-            if self.persisted.recent.is_empty() {
-                ui.label("(none yet)");
+        for path in &view.recent {
+            if ui.button(path.display().to_string()).clicked() {
+                out.push(Command::Guard(Pending::OpenPath(path.clone())));
             }
-            for path in self.persisted.recent.clone() {
-                if ui.button(path.display().to_string()).clicked() {
-                    self.guard(Pending::OpenPath(path));
-                }
+        }
+    });
+    if item(ui, "Save project", "Ctrl+S") {
+        out.push(Command::Save);
+    }
+    if item(ui, "Save project as…", "Ctrl+Shift+S") {
+        out.push(Command::SaveAs);
+    }
+    ui.separator();
+    if item(ui, "Import head mesh…", "Ctrl+I") {
+        out.push(Command::Ask(Purpose::ImportMesh, None));
+    }
+    if ui.button("Load wrinkle file…").clicked() {
+        out.push(Command::Ask(Purpose::LoadWrinkles { add: false }, None));
+    }
+    if ui.button("Add wrinkle file…").clicked() {
+        out.push(Command::Ask(Purpose::LoadWrinkles { add: true }, None));
+    }
+    let file_name = state.wrinkle_file.as_ref().map(|(_, n)| n.as_str());
+    if ui
+        .add_enabled(
+            file_name.is_some(),
+            egui::Button::new(format!("Save wrinkle file {} as…", file_name.unwrap_or(""))),
+        )
+        .clicked()
+        && let Some((index, name)) = &state.wrinkle_file
+    {
+        out.push(Command::Ask(
+            Purpose::SaveWrinkles(*index),
+            Some(name.clone()),
+        ));
+    }
+    ui.menu_button("Load image", |ui| {
+        for (field, text) in [
+            ("mesh.colour_map", "Head colour map…"),
+            ("large.mask", "Large-wrinkle mask…"),
+            ("fine.tile", "Fine-wrinkle tile…"),
+            ("hair.outer_mask", "Hair mask, young (outer)…"),
+            ("hair.inner_mask", "Hair mask, old (inner)…"),
+        ] {
+            if ui.button(text).clicked() {
+                out.push(Command::Ask(Purpose::Image(field), None));
             }
-        });
-        if item(ui, "Save project", "Ctrl+S") {
-            self.save();
         }
-        if item(ui, "Save project as…", "Ctrl+Shift+S") {
-            self.save_as();
-        }
-        ui.separator();
-        if item(ui, "Import head mesh…", "Ctrl+I") {
-            self.ask(Purpose::ImportMesh, None);
-        }
-        if ui.button("Load wrinkle file…").clicked() {
-            self.ask(Purpose::LoadWrinkles { add: false }, None);
-        }
-        if ui.button("Add wrinkle file…").clicked() {
-            self.ask(Purpose::LoadWrinkles { add: true }, None);
-        }
-        let selected_file = self.persisted.map_view.selected.map_or(0, |(f, _)| f);
-        let file_name = self.wrinkles().get(selected_file).map(|w| {
-            Path::new(&w.name).file_name().map_or_else(
-                || "wrinkles.wrk".into(),
-                |n| n.to_string_lossy().into_owned(),
-            )
-        });
-        if ui
-            .add_enabled(
-                file_name.is_some(),
-                egui::Button::new(format!(
-                    "Save wrinkle file {} as…",
-                    file_name.as_deref().unwrap_or("")
-                )),
-            )
-            .clicked()
-        {
-            self.ask(Purpose::SaveWrinkles(selected_file), file_name);
-        }
-        ui.menu_button("Load image", |ui| {
-            for (field, text) in [
-                ("mesh.colour_map", "Head colour map…"),
-                ("large.mask", "Large-wrinkle mask…"),
-                ("fine.tile", "Fine-wrinkle tile…"),
-                ("hair.outer_mask", "Hair mask, young (outer)…"),
-                ("hair.inner_mask", "Hair mask, old (inner)…"),
-            ] {
-                if ui.button(text).clicked() {
-                    self.ask(Purpose::Image(field), None);
-                }
-            }
-        });
-        ui.separator();
-        if item(ui, "Export…", "Ctrl+E") {
-            self.windows.export = true;
-        }
-        ui.separator();
-        if ui.button("Quit").clicked() {
-            ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+    });
+    ui.separator();
+    if item(ui, "Export…", "Ctrl+E") {
+        out.push(Command::ShowExport);
+    }
+    ui.separator();
+    if ui.button("Quit").clicked() {
+        out.push(Command::Quit);
+    }
+}
+
+fn edit_menu(ui: &mut egui::Ui, state: &MenuState<'_>, view: &Persisted, out: &mut Vec<Command>) {
+    let undo = state.undo.as_ref().map(|n| format!("Undo {n}"));
+    if ui
+        .add_enabled(
+            undo.is_some(),
+            egui::Button::new(undo.as_deref().unwrap_or("Undo")).shortcut_text("Ctrl+Z"),
+        )
+        .clicked()
+    {
+        out.push(Command::Undo);
+    }
+    let redo = state.redo.as_ref().map(|n| format!("Redo {n}"));
+    if ui
+        .add_enabled(
+            redo.is_some(),
+            egui::Button::new(redo.as_deref().unwrap_or("Redo")).shortcut_text("Ctrl+Shift+Z"),
+        )
+        .clicked()
+    {
+        out.push(Command::Redo);
+    }
+    ui.separator();
+    if ui.button("Add fibre").clicked() {
+        out.push(Command::AddFibre);
+    }
+    if ui
+        .add_enabled(
+            view.map_view.selected.is_some(),
+            egui::Button::new("Delete fibre").shortcut_text("Delete"),
+        )
+        .clicked()
+    {
+        out.push(Command::DeleteFibre);
+    }
+}
+
+fn view_menu(ui: &mut egui::Ui, view: &mut Persisted, out: &mut Vec<Command>) {
+    for kind in MapKind::ALL {
+        ui.radio_value(&mut view.map_view.kind, kind, kind.name());
+    }
+    ui.separator();
+    ui.checkbox(&mut view.map_view.show_fibres, "show fibres");
+    ui.checkbox(&mut view.map_view.show_layout, "show UV layout");
+    if ui.button("Reset map view").clicked() {
+        view.map_view.zoom = 1.0;
+        view.map_view.offset = [0.0, 0.0];
+    }
+    if ui.button("Frame the head").clicked() {
+        out.push(Command::FrameHead);
+    }
+    ui.separator();
+    for (layout, name) in [
+        (Layout::Both, "Head and map"),
+        (Layout::Head, "Head only"),
+        (Layout::Map, "Map only"),
+    ] {
+        ui.radio_value(&mut view.layout, layout, name);
+    }
+}
+
+fn presets_menu(ui: &mut egui::Ui, state: &MenuState<'_>, out: &mut Vec<Command>) {
+    ui.label(egui::RichText::new("Skin micro-relief presets").weak());
+    for name in defaults::preset_names() {
+        if ui.button(name).clicked() {
+            out.push(Command::ShippedPreset(name));
         }
     }
-
-    pub(super) fn edit_menu(&mut self, ui: &mut egui::Ui) {
-        let undo = self.doc.history.undo_name().map(|n| format!("Undo {n}"));
-        if ui
-            .add_enabled(
-                undo.is_some(),
-                egui::Button::new(undo.as_deref().unwrap_or("Undo")).shortcut_text("Ctrl+Z"),
-            )
-            .clicked()
-        {
-            self.undo();
-        }
-        let redo = self.doc.history.redo_name().map(|n| format!("Redo {n}"));
-        if ui
-            .add_enabled(
-                redo.is_some(),
-                egui::Button::new(redo.as_deref().unwrap_or("Redo")).shortcut_text("Ctrl+Shift+Z"),
-            )
-            .clicked()
-        {
-            self.redo();
-        }
-        ui.separator();
-        if ui.button("Add fibre").clicked() {
-            self.add_fibre();
-        }
-        if ui
-            .add_enabled(
-                self.persisted.map_view.selected.is_some(),
-                egui::Button::new("Delete fibre").shortcut_text("Delete"),
-            )
-            .clicked()
-        {
-            self.delete_fibre();
+    ui.separator();
+    ui.label(egui::RichText::new("Your presets").weak());
+    if state.user_presets.is_empty() {
+        ui.label("(none yet)");
+    }
+    for path in state.user_presets {
+        if ui.button(user_preset_name(path)).clicked() {
+            out.push(Command::UserPreset(path.clone()));
         }
     }
-
-    pub(super) fn help_menu(&mut self, ui: &mut egui::Ui) {
-        if ui
-            .add(egui::Button::new("Keyboard shortcuts").shortcut_text("F1"))
-            .clicked()
-        {
-            self.windows.help = true;
-        }
-        if ui.button("Messages").clicked() {
-            self.windows.messages = true;
-        }
-        if ui.button("About agesim").clicked() {
-            self.windows.about = true;
-        }
+    ui.separator();
+    if ui.button("Save as preset…").clicked() {
+        out.push(Command::ShowSavePreset);
     }
+}
 
-    pub(super) fn menu_ui(&mut self, ui: &mut egui::Ui) {
-        egui::MenuBar::new().ui(ui, |ui| {
-            ui.menu_button("File", |ui| self.file_menu(ui));
-            ui.menu_button("Edit", |ui| self.edit_menu(ui));
-            ui.menu_button("View", |ui| {
-                for kind in MapKind::ALL {
-                    ui.radio_value(&mut self.persisted.map_view.kind, kind, kind.name());
-                }
-                ui.separator();
-                ui.checkbox(&mut self.persisted.map_view.show_fibres, "show fibres");
-                ui.checkbox(&mut self.persisted.map_view.show_layout, "show UV layout");
-                if ui.button("Reset map view").clicked() {
-                    self.persisted.map_view.zoom = 1.0;
-                    self.persisted.map_view.offset = [0.0, 0.0];
-                }
-                if ui.button("Frame the head").clicked()
-                    && let Some(v) = &mut self.viewport
-                {
-                    v.reset(&mut self.doc.project);
-                }
-                ui.separator();
-                for (layout, name) in [
-                    (Layout::Both, "Head and map"),
-                    (Layout::Head, "Head only"),
-                    (Layout::Map, "Map only"),
-                ] {
-                    ui.radio_value(&mut self.persisted.layout, layout, name);
-                }
-            });
-            ui.menu_button("Presets", |ui| self.presets_menu(ui));
-            ui.menu_button("Help", |ui| self.help_menu(ui));
-        });
+fn help_menu(ui: &mut egui::Ui, out: &mut Vec<Command>) {
+    if ui
+        .add(egui::Button::new("Keyboard shortcuts").shortcut_text("F1"))
+        .clicked()
+    {
+        out.push(Command::ShowHelp);
+    }
+    if ui.button("Messages").clicked() {
+        out.push(Command::ShowMessages);
+    }
+    if ui.button("About agesim").clicked() {
+        out.push(Command::ShowAbout);
     }
 }

@@ -10,6 +10,7 @@ use serde_json::Value;
 
 mod autosave;
 mod central;
+mod command;
 mod commands;
 mod compare;
 mod harness;
@@ -592,7 +593,9 @@ impl eframe::App for EditorApp {
         self.autosave_tick();
         self.intercept_close(&ctx);
         if self.prompt.is_none() {
-            self.shortcuts(&ctx);
+            for command in shortcuts::shortcut_commands(&ctx) {
+                self.run(command, &ctx);
+            }
         }
         self.handle_drops(&ctx);
         let title = self.title();

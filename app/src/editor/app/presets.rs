@@ -86,38 +86,4 @@ impl EditorApp {
             IoResult::PresetSaved { path, result }
         });
     }
-
-    pub(super) fn presets_menu(&mut self, ui: &mut egui::Ui) {
-        ui.label(egui::RichText::new("Skin micro-relief presets").weak());
-        for name in defaults::preset_names() {
-            if ui.button(name).clicked() {
-                self.apply_shipped_preset(name);
-            }
-        }
-        ui.separator();
-        ui.label(egui::RichText::new("Your presets").weak());
-        if self.user_presets.is_empty() {
-            ui.label("(none yet)");
-        }
-        for path in self.user_presets.clone() {
-            let name = path
-                .file_name()
-                .map(|n| {
-                    n.to_string_lossy()
-                        .trim_end_matches(".agesim.json")
-                        .to_owned()
-                })
-                .unwrap_or_default();
-            if ui.button(&name).clicked() {
-                self.io.spawn(move || IoResult::PresetLoaded {
-                    result: Project::load(&path).map_err(|e| e.to_string()),
-                    name,
-                });
-            }
-        }
-        ui.separator();
-        if ui.button("Save as preset…").clicked() {
-            self.windows.save_preset = true;
-        }
-    }
 }

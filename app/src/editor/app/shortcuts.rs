@@ -2,7 +2,8 @@
 
 use egui::{Key, KeyboardShortcut, Modifiers};
 
-use super::{EditorApp, Pending};
+use super::Pending;
+use super::command::Command;
 use crate::editor::files::Purpose;
 
 /// The keyboard shortcuts, for the Help window and the README.
@@ -34,38 +35,38 @@ pub const SHORTCUTS: &[(&str, &str)] = &[
     ),
 ];
 
-impl EditorApp {
-    pub(super) fn shortcuts(&mut self, ctx: &egui::Context) {
-        let cmd = Modifiers::COMMAND;
-        let shift = Modifiers::COMMAND | Modifiers::SHIFT;
-        let pressed = |m: Modifiers, k: Key| {
-            ctx.input_mut(|i| i.consume_shortcut(&KeyboardShortcut::new(m, k)))
-        };
-        // Shift variants first: a plain shortcut also matches with Shift held.
-        if pressed(shift, Key::Z) || pressed(cmd, Key::Y) {
-            self.redo();
-        } else if pressed(cmd, Key::Z) {
-            self.undo();
-        }
-        if pressed(shift, Key::S) {
-            self.save_as();
-        } else if pressed(cmd, Key::S) {
-            self.save();
-        }
-        if pressed(cmd, Key::N) {
-            self.guard(Pending::New);
-        }
-        if pressed(cmd, Key::O) {
-            self.guard(Pending::Open);
-        }
-        if pressed(cmd, Key::I) {
-            self.ask(Purpose::ImportMesh, None);
-        }
-        if pressed(cmd, Key::E) {
-            self.windows.export = true;
-        }
-        if pressed(Modifiers::NONE, Key::F1) {
-            self.windows.help = !self.windows.help;
-        }
+/// The commands of the shortcuts pressed this frame (each consumed).
+pub(super) fn shortcut_commands(ctx: &egui::Context) -> Vec<Command> {
+    let cmd = Modifiers::COMMAND;
+    let shift = Modifiers::COMMAND | Modifiers::SHIFT;
+    let pressed =
+        |m: Modifiers, k: Key| ctx.input_mut(|i| i.consume_shortcut(&KeyboardShortcut::new(m, k)));
+    let mut out = Vec::new();
+    // Shift variants first: a plain shortcut also matches with Shift held.
+    if pressed(shift, Key::Z) || pressed(cmd, Key::Y) {
+        out.push(Command::Redo);
+    } else if pressed(cmd, Key::Z) {
+        out.push(Command::Undo);
     }
+    if pressed(shift, Key::S) {
+        out.push(Command::SaveAs);
+    } else if pressed(cmd, Key::S) {
+        out.push(Command::Save);
+    }
+    if pressed(cmd, Key::N) {
+        out.push(Command::Guard(Pending::New));
+    }
+    if pressed(cmd, Key::O) {
+        out.push(Command::Guard(Pending::Open));
+    }
+    if pressed(cmd, Key::I) {
+        out.push(Command::Ask(Purpose::ImportMesh, None));
+    }
+    if pressed(cmd, Key::E) {
+        out.push(Command::ShowExport);
+    }
+    if pressed(Modifiers::NONE, Key::F1) {
+        out.push(Command::ToggleHelp);
+    }
+    out
 }

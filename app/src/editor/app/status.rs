@@ -1,46 +1,87 @@
-//! The status line: adapter, frame time, bake progress, hairs, the deepest wrinkle.
+//! The status line: adapter, frame time, bake progress, hairs, the deepest wrinkle. It shows
+//! a [`Status`] the app gathers each frame.
 
 use super::EditorApp;
 
-impl EditorApp {
-    pub(super) fn status_ui(&mut self, ui: &mut egui::Ui, frame_ms: f32) {
-        ui.horizontal_wrapped(|ui| {
-            ui.label(format!("adapter: {}", self.adapter));
-            ui.separator();
-            ui.label(format!("frame {frame_ms:.1} ms"));
-            ui.separator();
-            if self.session.busy() {
+/// What the status line shows.
+pub(super) struct Status<'a> {
+    pub adapter: &'a str,
+    pub frame_ms: f32,
+    /// `Some(seconds)` while a bake runs (egui's clock, for the dots), else the last bake.
+    pub baking: Option<f64>,
+    pub last_bake: (&'a str, f64),
+    /// Hairs present at the age, of all.
+    pub hairs: Option<(usize, usize)>,
+    /// The 3D view's encode time and its hair thinning while moving.
+    pub view: Option<(f64, u32)>,
+    /// The deepest large wrinkle shown, height units.
+    pub deepest: Option<f32>,
+}
+
+/// The status line of `s`.
+pub(super) fn status_line(ui: &mut egui::Ui, s: &Status<'_>) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label(format!("adapter: {}", s.adapter));
+        ui.separator();
+        ui.label(format!("frame {:.1} ms", s.frame_ms));
+        ui.separator();
+        match s.baking {
+            Some(now) => {
                 // Not egui's spinner: it repaints every frame, and on a CPU adapter each
                 // frame takes cores from the bake. Four frames a second show it is alive.
-                let dots = (self.now * 4.0) as usize % 4;
+                let dots = (now * 4.0) as usize % 4;
                 ui.label(format!("baking{:<3}", ".".repeat(dots)));
                 ui.ctx()
                     .request_repaint_after(std::time::Duration::from_millis(250));
-            } else {
+            }
+            None => {
                 ui.label(format!(
                     "last bake: {} in {:.0} ms",
-                    self.session.last_what, self.session.last_bake_ms
+                    s.last_bake.0, s.last_bake.1
                 ));
             }
-            ui.separator();
-            let t = self.doc.project.age.t;
-            if let Some(h) = &self.session.snapshot.hair {
-                ui.label(format!("hairs: {} of {}", h.count(t), h.len()));
+        }
+        ui.separator();
+        if let Some((present, all)) = s.hairs {
+            ui.label(format!("hairs: {present} of {all}"));
+        }
+        if let Some((encode_ms, sparse)) = s.view {
+            ui.label(format!("3D frame encode {encode_ms:.1} ms"));
+            if sparse > 1 {
+                ui.label(format!("(moving: 1 hair in {sparse} drawn)"));
             }
-            if let Some(v) = &self.viewport {
-                ui.label(format!("3D frame encode {:.1} ms", v.encode_ms));
-                if v.sparse_hair > 1 {
-                    ui.label(format!("(moving: 1 hair in {} drawn)", v.sparse_hair));
-                }
+        }
+        if let Some(deepest) = s.deepest {
+            ui.label(format!("deepest large wrinkle: {deepest:.2}"));
+        }
+    });
+}
+
+impl EditorApp {
+    pub(super) fn status_ui(&mut self, ui: &mut egui::Ui, frame_ms: f32) {
+        let t = self.doc.project.age.t;
+        // The map is normalised; its depth applies where it is shown. Its deepest value is
+        // computed once per map, not once per frame.
+        let deepest = self.session.snapshot.large.as_ref().map(|l| {
+            if !std::ptr::eq(self.deepest.0.as_ptr(), std::sync::Arc::as_ptr(l)) {
+                self.deepest = (std::sync::Arc::downgrade(l), l.height.min_max().1);
             }
-            if let Some(l) = &self.session.snapshot.large {
-                if !std::ptr::eq(self.deepest.0.as_ptr(), std::sync::Arc::as_ptr(l)) {
-                    self.deepest = (std::sync::Arc::downgrade(l), l.height.min_max().1);
-                }
-                // The map is normalised; its depth applies where it is shown.
-                let deepest = self.deepest.1 * self.doc.project.large.depth;
-                ui.label(format!("deepest large wrinkle: {deepest:.2}"));
-            }
+            self.deepest.1 * self.doc.project.large.depth
         });
+        let status = Status {
+            adapter: &self.adapter,
+            frame_ms,
+            baking: self.session.busy().then_some(self.now),
+            last_bake: (&self.session.last_what, self.session.last_bake_ms),
+            hairs: self
+                .session
+                .snapshot
+                .hair
+                .as_ref()
+                .map(|h| (h.count(t), h.len())),
+            view: self.viewport.as_ref().map(|v| (v.encode_ms, v.sparse_hair)),
+            deepest,
+        };
+        status_line(ui, &status);
     }
 }

@@ -105,7 +105,7 @@ impl EditorApp {
         let running = self.export_run.as_ref().map(ExportRun::progress);
         let mut action = ExportAction::None;
         egui::Window::new("Export")
-            .default_pos(ctx.content_rect().center() - egui::vec2(240.0, 200.0))
+            .default_pos(window_pos(ctx))
             .open(&mut open)
             .resizable(false)
             .show(ctx, |ui| {
@@ -122,82 +122,17 @@ impl EditorApp {
                 }
             }
         }
-        let mut open = self.windows.save_preset;
-        let mut save = false;
-        egui::Window::new("Save as preset")
-            .default_pos(ctx.content_rect().center() - egui::vec2(240.0, 200.0))
-            .open(&mut open)
-            .resizable(false)
-            .collapsible(false)
-            .show(ctx, |ui| {
-                ui.label(
-                    "The skin look (micro-relief, fine wrinkles, skin) under a name of yours:",
-                );
-                ui.horizontal(|ui| {
-                    let label = ui.label("Name").id;
-                    let r = ui
-                        .text_edit_singleline(&mut self.preset_name)
-                        .labelled_by(label);
-                    let enter = r.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter));
-                    save = ui.button("Save").clicked() || enter;
-                });
-            });
-        if save {
+        if save_preset_window(ctx, &mut self.windows.save_preset, &mut self.preset_name) {
             self.save_user_preset();
-            open = false;
         }
-        self.windows.save_preset = open;
-        let mut open = self.windows.help;
-        egui::Window::new("Keyboard shortcuts")
-            .default_pos(ctx.content_rect().center() - egui::vec2(240.0, 200.0))
-            .open(&mut open)
-            .show(ctx, |ui| {
-                egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
-                    for (keys, what) in SHORTCUTS {
-                        ui.label(egui::RichText::new(*keys).monospace());
-                        ui.label(*what);
-                        ui.end_row();
-                    }
-                });
-            });
-        self.windows.help = open;
+        shortcuts_window(ctx, &mut self.windows.help);
         let mut open = self.windows.messages;
         egui::Window::new("Messages")
             .open(&mut open)
             .default_size([520.0, 300.0])
             .show(ctx, |ui| self.notices.log_ui(ui));
         self.windows.messages = open;
-        let mut open = self.windows.about;
-        egui::Window::new("About agesim")
-            .default_pos(ctx.content_rect().center() - egui::vec2(240.0, 200.0))
-            .open(&mut open)
-            .resizable(false)
-            .show(ctx, |ui| {
-                ui.heading(format!("agesim {}", env!("CARGO_PKG_VERSION")));
-                ui.label(
-                    "Age a human head: wrinkles, skin micro-relief, hair recession and graying.",
-                );
-                ui.add_space(6.0);
-                egui::Grid::new("about").show(ui, |ui| {
-                    for (k, v) in [
-                        ("GPU adapter", self.adapter.as_str()),
-                        ("UI", "egui / eframe 0.37 (wgpu backend)"),
-                        ("renderer", "wgpu 30"),
-                        ("licence", env!("CARGO_PKG_LICENSE")),
-                    ] {
-                        ui.label(k);
-                        ui.label(v);
-                        ui.end_row();
-                    }
-                });
-                ui.add_space(6.0);
-                ui.label("The default head and template (assets/heads/lee-perry-smith):");
-                ui.label(
-                    "Infinite, 3D Head Scan by Lee Perry-Smith, licensed under CC BY 3.0, based on a work at triplegangers.com.",
-                );
-                ui.label("Test heads: the MakeHuman head, CC0 1.0; agesim's mannequin.");
-            });
-        self.windows.about = open;
+        about_window(ctx, &mut self.windows.about, &self.adapter);
     }
 
     /// Asks before the window closes with unsaved changes.
@@ -213,4 +148,80 @@ impl EditorApp {
             self.prompt = Some(Pending::Quit);
         }
     }
+}
+
+/// Where the windows first open.
+fn window_pos(ctx: &egui::Context) -> egui::Pos2 {
+    ctx.content_rect().center() - egui::vec2(240.0, 200.0)
+}
+
+/// The Save-as-preset window over the preset's `name`; `true` when Save was chosen (the
+/// window then closes).
+fn save_preset_window(ctx: &egui::Context, open: &mut bool, name: &mut String) -> bool {
+    let mut save = false;
+    egui::Window::new("Save as preset")
+        .default_pos(window_pos(ctx))
+        .open(open)
+        .resizable(false)
+        .collapsible(false)
+        .show(ctx, |ui| {
+            ui.label("The skin look (micro-relief, fine wrinkles, skin) under a name of yours:");
+            ui.horizontal(|ui| {
+                let label = ui.label("Name").id;
+                let r = ui.text_edit_singleline(name).labelled_by(label);
+                let enter = r.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter));
+                save = ui.button("Save").clicked() || enter;
+            });
+        });
+    if save {
+        *open = false;
+    }
+    save
+}
+
+/// The keyboard shortcuts ([`SHORTCUTS`]).
+fn shortcuts_window(ctx: &egui::Context, open: &mut bool) {
+    egui::Window::new("Keyboard shortcuts")
+        .default_pos(window_pos(ctx))
+        .open(open)
+        .show(ctx, |ui| {
+            egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
+                for (keys, what) in SHORTCUTS {
+                    ui.label(egui::RichText::new(*keys).monospace());
+                    ui.label(*what);
+                    ui.end_row();
+                }
+            });
+        });
+}
+
+/// About agesim: the version, the adapter in use, the licences of the heads.
+fn about_window(ctx: &egui::Context, open: &mut bool, adapter: &str) {
+    egui::Window::new("About agesim")
+        .default_pos(window_pos(ctx))
+        .open(open)
+        .resizable(false)
+        .show(ctx, |ui| {
+            ui.heading(format!("agesim {}", env!("CARGO_PKG_VERSION")));
+            ui.label("Age a human head: wrinkles, skin micro-relief, hair recession and graying.");
+            ui.add_space(6.0);
+            egui::Grid::new("about").show(ui, |ui| {
+                for (k, v) in [
+                    ("GPU adapter", adapter),
+                    ("UI", "egui / eframe 0.37 (wgpu backend)"),
+                    ("renderer", "wgpu 30"),
+                    ("licence", env!("CARGO_PKG_LICENSE")),
+                ] {
+                    ui.label(k);
+                    ui.label(v);
+                    ui.end_row();
+                }
+            });
+            ui.add_space(6.0);
+            ui.label("The default head and template (assets/heads/lee-perry-smith):");
+            ui.label(
+                "Infinite, 3D Head Scan by Lee Perry-Smith, licensed under CC BY 3.0, based on a work at triplegangers.com.",
+            );
+            ui.label("Test heads: the MakeHuman head, CC0 1.0; agesim's mannequin.");
+        });
 }

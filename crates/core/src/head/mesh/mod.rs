@@ -79,18 +79,39 @@ pub struct MeshPart {
 }
 
 impl MeshPart {
-    /// Whether the part is skin, by its name: not an eye (`eye`, `cornea`, `iris`,
-    /// `pupil`), teeth, tongue, lashes or brows (hair cards), as head exports name them
-    /// (MakeHuman's `eye_l`, Character Creator's `CC_Base_Eye`, `Teeth`, `Tongue`).
+    /// Whether the part is skin, by its name — its material's when it has one (an OBJ's
+    /// `usemtl`: `object "Head" material "EyeBlend"`), else its object's: not an eye
+    /// (`eye`, `cornea`, `iris`, `pupil`, `sclera`), the eye's wet and shadow layers
+    /// (`lacrimal`, `tearline`, `caruncle`, `occlusion`), teeth, gums, tongue, lashes or
+    /// brows (hair cards), as head exports name them (MakeHuman's `eye_l`, Character
+    /// Creator's `CC_Base_Eye`, `Teeth`, `Tongue`, light-stage heads' `lacrimal fluid`).
     pub fn is_skin(&self) -> bool {
         let name = self.name.to_lowercase();
-        ![
-            "eye", "cornea", "iris", "pupil", "teeth", "tooth", "tongue", "lash", "brow",
-        ]
-        .iter()
-        .any(|w| name.contains(w))
+        let what = name
+            .split_once(" material ")
+            .map_or(name.as_str(), |(_, m)| m);
+        !NOT_SKIN.iter().any(|w| what.contains(w))
     }
 }
+
+/// Words in the names of parts that are not skin ([`MeshPart::is_skin`]).
+const NOT_SKIN: &[&str] = &[
+    "eye",
+    "cornea",
+    "iris",
+    "pupil",
+    "sclera",
+    "lacrimal",
+    "tearline",
+    "caruncle",
+    "occlusion",
+    "teeth",
+    "tooth",
+    "gum",
+    "tongue",
+    "lash",
+    "brow",
+];
 
 /// How the tangents of a mesh were obtained.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,7 +1,9 @@
 //! Wavefront OBJ through `tobj`: polygons triangulated, one index per corner
-//! (`single_index`, so a position with two UVs becomes two vertices), every object and
-//! group merged into one mesh with one [`MeshPart`] each. Materials are ignored (a missing
-//! `.mtl` is not an error). OBJ has no unit: the data is kept as written.
+//! (`single_index`, so a position with two UVs becomes two vertices), every object, group
+//! and material (`usemtl`) merged into one mesh with one [`MeshPart`] each: a head exported
+//! as one object keeps its eyes, lashes and teeth apart by their materials. The `.mtl`
+//! files are not read (a missing one is not an error): only the materials' names count.
+//! OBJ has no unit: the data is kept as written.
 
 use std::path::Path;
 
@@ -26,17 +28,56 @@ pub fn load_bytes(bytes: &[u8], path: &Path) -> Result<RawMesh, Error> {
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, _materials) = tobj::load_obj_buf(&mut &bytes[..], &options, |_| {
-        Ok(Default::default())
-    })
-    .map_err(|e| Error::MeshFile {
-        path: path.to_owned(),
-        message: format!("not a valid OBJ file: {e}"),
-    })?;
-    Ok(merge(&models))
+    // tobj splits an object at `usemtl` only for materials its `.mtl` loader knows: every
+    // material named in the file is declared by a library of our own, read first.
+    let names = material_names(bytes);
+    let library = |_: &Path| -> tobj::MTLLoadResult {
+        let materials = names
+            .iter()
+            .map(|n| tobj::Material {
+                name: n.clone(),
+                ..Default::default()
+            })
+            .collect();
+        let declared = names.iter().enumerate().map(|(i, n)| (n.clone(), i));
+        Ok((materials, declared.collect()))
+    };
+    let header: &[u8] = if names.is_empty() {
+        b""
+    } else {
+        b"mtllib agesim-material-names\n"
+    };
+    // The file's own `mtllib` lines declare the same names again (tobj appends them:
+    // material i is also n + i, 2n + i, …): the library is ours.
+    let mut reader = std::io::BufReader::new(std::io::Read::chain(header, bytes));
+    let (models, _) =
+        tobj::load_obj_buf(&mut reader, &options, library).map_err(|e| Error::MeshFile {
+            path: path.to_owned(),
+            message: format!("not a valid OBJ file: {e}"),
+        })?;
+    Ok(merge(&models, &names))
 }
 
-fn merge(models: &[tobj::Model]) -> RawMesh {
+/// The names of the materials `usemtl` lines use, in order of first use.
+fn material_names(bytes: &[u8]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for line in bytes.split(|&b| b == b'\n') {
+        let line = line.trim_ascii();
+        let Some(rest) = line.strip_prefix(b"usemtl") else {
+            continue;
+        };
+        if !rest.first().is_some_and(u8::is_ascii_whitespace) {
+            continue;
+        }
+        let name = String::from_utf8_lossy(rest).trim().to_owned();
+        if !name.is_empty() && !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    names
+}
+
+fn merge(models: &[tobj::Model], materials: &[String]) -> RawMesh {
     let any_normals = models.iter().any(|m| !m.mesh.normals.is_empty());
     let any_uvs = models.iter().any(|m| !m.mesh.texcoords.is_empty());
     let mut raw = RawMesh {
@@ -85,8 +126,14 @@ fn merge(models: &[tobj::Model]) -> RawMesh {
                 u32::MAX
             }
         }));
+        let material = mesh
+            .material_id
+            .and_then(|i| materials.get(i % materials.len().max(1)));
         raw.parts.push(MeshPart {
-            name: format!("object \"{}\"", model.name),
+            name: match material {
+                Some(m) => format!("object \"{}\" material \"{m}\"", model.name),
+                None => format!("object \"{}\"", model.name),
+            },
             first_triangle,
             triangle_count: (mesh.indices.len() / 3) as u32,
         });
@@ -148,6 +195,63 @@ f 1/1/1 2/2/1 3/3/1 4/4/1
 o B
 f 5 6 7 8
 ";
+
+    /// A head exported as one object (as light-stage heads are): skin, eyes, lashes, the
+    /// eye's wet layer and teeth told apart only by `usemtl`, with an `.mtl` that is not
+    /// there; the skin's material used twice.
+    const ONE_OBJECT_FIVE_MATERIALS: &str = "\
+mtllib head.mtl
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+o Head
+usemtl Skin
+f 1/1 2/2 3/3
+usemtl EyeBlend_L
+f 1/1 3/3 4/4
+usemtl lashes
+f 1/1 2/2 4/4
+usemtl lacrimal fluid
+f 2/2 3/3 4/4
+usemtl Teeth
+f 1/1 2/2 3/3
+usemtl Skin
+f 1/1 3/3 4/4
+";
+
+    #[test]
+    fn materials_of_one_object_are_parts_and_eyes_lashes_and_teeth_are_not_skin() {
+        let dir = tempfile::tempdir().unwrap();
+        let m = Mesh::load(&write(dir.path(), "head.obj", ONE_OBJECT_FIVE_MATERIALS)).unwrap();
+        let parts: Vec<(&str, bool)> = m
+            .parts()
+            .iter()
+            .map(|p| (p.name.as_str(), p.is_skin()))
+            .collect();
+        assert_eq!(
+            parts,
+            [
+                ("object \"Head\" material \"Skin\"", true),
+                ("object \"Head\" material \"EyeBlend_L\"", false),
+                ("object \"Head\" material \"lashes\"", false),
+                ("object \"Head\" material \"lacrimal fluid\"", false),
+                ("object \"Head\" material \"Teeth\"", false),
+                ("object \"Head\" material \"Skin\"", true),
+            ]
+        );
+        // Only the skin's two triangles are skin.
+        assert_eq!(m.skin_indices().len(), 2 * 3);
+        // Without materials, one object is one part, as before.
+        assert_eq!(
+            material_names(b"o A\nf 1 2 3\nusemtlx y\n"),
+            Vec::<String>::new()
+        );
+    }
 
     #[test]
     fn objects_merge_and_a_part_without_normals_and_uvs_is_completed() {

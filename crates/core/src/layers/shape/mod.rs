@@ -491,6 +491,22 @@ impl ShapeField {
                 (out, hollow)
             })
             .unzip();
+        let mut full: Vec<Vec<Vec3>> = full;
+        // No triangle folds over, at full age (the exported morph target) or at any age
+        // between (docs/models.md §13 "No folded skin").
+        let checks: Vec<Vec<f32>> = std::iter::once(vec![1.0; REGIONS.len()])
+            .chain((6..=20).map(|k| {
+                let years = 5.0 * k as f32;
+                REGIONS.iter().map(|r| r.curve.factor(years)).collect()
+            }))
+            .collect();
+        unfold::unfold(
+            mesh.positions(),
+            mesh.indices(),
+            &welded,
+            &mut full,
+            &checks,
+        );
         Self {
             full,
             hollow,
@@ -613,6 +629,7 @@ pub mod occlusion;
 pub mod relief;
 #[cfg(test)]
 mod tests;
+pub mod unfold;
 
 /// How far each vertex moves at full age, mm (for showing the field: the editor's map view
 /// and the head tinted by it).

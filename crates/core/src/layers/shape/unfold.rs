@@ -1,0 +1,288 @@
+//! Skin that never folds (docs/models.md §13 "No folded skin"). The regions' displacements
+//! are smooth fields over the face, but a head's triangles are not: where a field changes
+//! faster than a small triangle is wide (the lid's crease, beside the nose on a coarse
+//! head) the moved triangle turns over and shows its back. Wherever a triangle would turn
+//! by more than [`MAX_TURN_DEG`] — at full age (the exported morph target) or at any age the
+//! editor shows — the displacement of its corners is relaxed toward its neighbours' (the
+//! move spread over the neighbours, its mean kept), in every region's field alike, until
+//! none does; what still turns after [`SPREAD_PASSES`] is shrunk in place. Only the
+//! triangles round what changed are checked again, so a dense head costs what its folds do.
+
+use glam::Vec3;
+
+/// The most a triangle's normal may turn under the shape's move, degrees.
+pub const MAX_TURN_DEG: f32 = 60.0;
+/// Passes that spread a fold's move over the neighbours before one shrinks it.
+const SPREAD_PASSES: usize = 128;
+/// The most relaxation sweeps in one pass.
+const MAX_SWEEPS: usize = 16;
+/// Passes without fewer folds after which the spread widens by one ring.
+const STALL_PASSES: usize = 4;
+/// Passes that shrink what still folds (each takes a third of the move at the fold).
+const SHRINK_PASSES: usize = 48;
+
+/// Relaxes `fields` (per region, per vertex: the move at full strength) on the mesh of
+/// `positions` and `indices` so that no triangle turns by more than [`MAX_TURN_DEG`] under
+/// any of `checks` (each a factor per region: the full age, and the ages between).
+/// `welded[v]` is the first vertex at v's position: split vertices move together. Returns
+/// the number of vertices changed.
+pub fn unfold(
+    positions: &[Vec3],
+    indices: &[u32],
+    welded: &[u32],
+    fields: &mut [Vec<Vec3>],
+    checks: &[Vec<f32>],
+) -> usize {
+    let n = positions.len();
+    if fields.iter().all(|f| f.iter().all(|d| *d == Vec3::ZERO)) || n == 0 {
+        return 0;
+    }
+    // Triangles over welded vertices, each welded vertex's neighbours and triangles.
+    let triangles: Vec<[usize; 3]> = indices
+        .chunks_exact(3)
+        .map(|t| [0, 1, 2].map(|k| welded[t[k] as usize] as usize))
+        .filter(|t| t.iter().all(|&v| v < n))
+        .collect();
+    let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); n];
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (i, t) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            incident[t[k]].push(i);
+            for j in 1..3 {
+                let (a, b) = (t[k], t[(k + j) % 3]);
+                if !neighbours[a].contains(&b) {
+                    neighbours[a].push(b);
+                }
+            }
+        }
+    }
+    let cos_max = MAX_TURN_DEG.to_radians().cos();
+    // First every triangle that moves is checked; then only those round what changed.
+    let moving = |v: usize| fields.iter().any(|f| f[v] != Vec3::ZERO);
+    let mut suspects: Vec<usize> = (0..triangles.len())
+        .filter(|&i| triangles[i].iter().any(|&v| moving(v)))
+        .collect();
+    // The vertices relaxed each pass: every fold's corners and their ring so far, grown by
+    // one more ring whenever the folds stop shrinking (a fold whose surroundings jump too
+    // needs a wider spread).
+    let mut active = vec![false; n];
+    let mut best = usize::MAX;
+    let mut stalled = 0;
+    for pass in 0..SPREAD_PASSES + SHRINK_PASSES {
+        let bad = folded_vertices(positions, &triangles, &suspects, fields, checks, cos_max);
+        if bad.is_empty() {
+            break;
+        }
+        let mut touched: Vec<usize> = Vec::new();
+        if pass >= SPREAD_PASSES {
+            // What still folds is shrunk in place with its ring, the ring less, so that
+            // the shrink makes no new step.
+            let mut ring: Vec<usize> = bad.iter().flat_map(|&v| neighbours[v].clone()).collect();
+            ring.sort_unstable();
+            ring.dedup();
+            for field in fields.iter_mut() {
+                for &v in &ring {
+                    field[v] *= 0.75;
+                }
+                for &v in &bad {
+                    field[v] *= 2.0 / 3.0;
+                }
+            }
+            touched.extend(ring);
+            touched.extend_from_slice(&bad);
+        } else {
+            for &v in &bad {
+                active[v] = true;
+                for &u in &neighbours[v] {
+                    active[u] = true;
+                }
+            }
+            if bad.len() < best {
+                (best, stalled) = (bad.len(), 0);
+            } else {
+                stalled += 1;
+            }
+            if stalled >= STALL_PASSES {
+                stalled = 0;
+                let grown: Vec<usize> = (0..n)
+                    .filter(|&v| active[v])
+                    .flat_map(|v| neighbours[v].iter().copied())
+                    .collect();
+                for u in grown {
+                    active[u] = true;
+                }
+            }
+            // Each active vertex takes the mean of its neighbours' move, half way, more
+            // sweeps as the passes go on (a wide fold on a dense head needs many).
+            let ring: Vec<usize> = (0..n).filter(|&v| active[v]).collect();
+            let sweeps = (1 + pass / 4).min(MAX_SWEEPS);
+            for field in fields.iter_mut() {
+                for _ in 0..sweeps {
+                    relax(field, &ring, &neighbours);
+                }
+            }
+            touched = ring;
+        }
+        suspects = touched
+            .iter()
+            .flat_map(|&v| incident[v].iter().copied())
+            .collect();
+        suspects.sort_unstable();
+        suspects.dedup();
+    }
+    let changed = active.iter().filter(|&&a| a).count();
+    // Split vertices take their position's move.
+    for field in fields.iter_mut() {
+        for v in 0..n {
+            let w = welded[v] as usize;
+            if w != v && w < n {
+                field[v] = field[w];
+            }
+        }
+    }
+    changed
+}
+
+/// One Jacobi sweep over `ring`: each vertex half way to its neighbours' mean move (every
+/// new value from the old ones).
+fn relax(field: &mut [Vec3], ring: &[usize], neighbours: &[Vec<usize>]) {
+    let relaxed: Vec<Vec3> = ring
+        .iter()
+        .map(|&v| {
+            let around = &neighbours[v];
+            if around.is_empty() {
+                return field[v];
+            }
+            let mean = around.iter().map(|&u| field[u]).sum::<Vec3>() / around.len() as f32;
+            0.5 * (field[v] + mean)
+        })
+        .collect();
+    for (&v, d) in ring.iter().zip(relaxed) {
+        field[v] = d;
+    }
+}
+
+/// The corners of the triangles that turn by more than the limit under any check.
+fn folded_vertices(
+    positions: &[Vec3],
+    triangles: &[[usize; 3]],
+    suspects: &[usize],
+    fields: &[Vec<Vec3>],
+    checks: &[Vec<f32>],
+    cos_max: f32,
+) -> Vec<usize> {
+    let mut out = Vec::new();
+    for t in suspects.iter().map(|&i| &triangles[i]) {
+        let moves = |factors: &[f32], v: usize| -> Vec3 {
+            fields
+                .iter()
+                .zip(factors)
+                .map(|(f, &k)| f[v] * k)
+                .sum::<Vec3>()
+        };
+        let [a, b, c] = t.map(|v| positions[v]);
+        let rest = (b - a).cross(c - a);
+        if rest.length_squared() <= 0.0 || !rest.is_finite() {
+            continue;
+        }
+        let folds = checks.iter().any(|factors| {
+            let [da, db, dc] = t.map(|v| moves(factors, v));
+            if da == Vec3::ZERO && db == Vec3::ZERO && dc == Vec3::ZERO {
+                return false;
+            }
+            turned(rest, (b + db) - (a + da), (c + dc) - (a + da), cos_max)
+        });
+        if folds {
+            out.extend_from_slice(t);
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// Whether the triangle of edges `e1`, `e2` has turned from the rest normal `rest` by more
+/// than the angle of `cos_max` (or collapsed).
+fn turned(rest: Vec3, e1: Vec3, e2: Vec3, cos_max: f32) -> bool {
+    let moved = e1.cross(e2);
+    let len = (rest.length() * moved.length()).max(f32::MIN_POSITIVE);
+    moved.length_squared() <= 0.0 || rest.dot(moved) / len < cos_max
+}
+
+/// The largest turn of any triangle, degrees, and how many turn by more than 90°, when
+/// `moves` moves the vertices of `positions` (for tests and reports).
+pub fn worst_turn(positions: &[Vec3], indices: &[u32], moves: &[Vec3]) -> (f32, usize) {
+    let (mut worst, mut flipped) = (0.0f32, 0);
+    for t in indices.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| t[k] as usize);
+        let rest = (positions[b] - positions[a]).cross(positions[c] - positions[a]);
+        let p = |v: usize| positions[v] + moves[v];
+        let moved = (p(b) - p(a)).cross(p(c) - p(a));
+        let len = rest.length() * moved.length();
+        if len <= 0.0 || !len.is_finite() {
+            continue;
+        }
+        let deg = (rest.dot(moved) / len).clamp(-1.0, 1.0).acos().to_degrees();
+        worst = worst.max(deg);
+        flipped += usize::from(deg > 90.0);
+    }
+    (worst, flipped)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A strip of thin triangles across a step in the move: the field jumps by more than
+    /// the triangles are wide, so they fold; unfolded, none turns by more than the limit,
+    /// and the mean move is kept.
+    #[test]
+    fn a_step_sharper_than_the_triangles_is_spread_until_nothing_folds() {
+        let cols = 12;
+        let mut positions = Vec::new();
+        for y in 0..2 {
+            for x in 0..=cols {
+                positions.push(Vec3::new(x as f32 * 0.001, y as f32 * 0.02, 0.0));
+            }
+        }
+        let mut indices = Vec::new();
+        let row = cols as u32 + 1;
+        for x in 0..cols as u32 {
+            indices.extend([x, x + 1, x + row, x + 1, x + row + 1, x + row]);
+        }
+        // A move along x that jumps by 3 mm between columns 5 and 7 (1 mm apart).
+        let field: Vec<Vec3> = positions
+            .iter()
+            .map(|p| Vec3::new(if p.x > 0.0055 { -0.003 } else { 0.0 }, 0.0, 0.0))
+            .collect();
+        let (before, flipped) = worst_turn(&positions, &indices, &field);
+        assert!(before > 90.0 && flipped > 0, "{before}");
+        let welded: Vec<u32> = (0..positions.len() as u32).collect();
+        let mut fields = vec![field.clone()];
+        let changed = unfold(&positions, &indices, &welded, &mut fields, &[vec![1.0]]);
+        assert!(changed > 0);
+        let (after, flipped) = worst_turn(&positions, &indices, &fields[0]);
+        assert!(after <= MAX_TURN_DEG + 1e-3 && flipped == 0, "{after}");
+        // Spread, not removed: most of the move is still there.
+        let sum = |f: &[Vec3]| f.iter().map(|d| d.x).sum::<f32>().abs();
+        assert!(
+            sum(&fields[0]) > 0.5 * sum(&field),
+            "{} {}",
+            sum(&fields[0]),
+            sum(&field)
+        );
+    }
+
+    #[test]
+    fn a_move_that_folds_nothing_is_left_as_it_is() {
+        let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
+        let indices = vec![0, 1, 2];
+        let mut fields = vec![vec![Vec3::Z * 0.1; 3]];
+        let kept = fields.clone();
+        assert_eq!(
+            unfold(&positions, &indices, &[0, 1, 2], &mut fields, &[vec![1.0]]),
+            0
+        );
+        assert_eq!(fields, kept);
+    }
+}

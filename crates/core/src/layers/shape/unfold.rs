@@ -57,10 +57,14 @@ pub fn unfold(
         }
     }
     let cos_max = MAX_TURN_DEG.to_radians().cos();
-    // First every triangle that moves is checked; then only those round what changed.
-    let moving = |v: usize| fields.iter().any(|f| f[v] != Vec3::ZERO);
+    // Only what moves is relaxed (a vertex that stays — off every region, not skin — stays:
+    // it holds the spread like a wall). First every triangle that moves is checked; then
+    // only those round what changed.
+    let moving: Vec<bool> = (0..n)
+        .map(|v| fields.iter().any(|f| f[v] != Vec3::ZERO))
+        .collect();
     let mut suspects: Vec<usize> = (0..triangles.len())
-        .filter(|&i| triangles[i].iter().any(|&v| moving(v)))
+        .filter(|&i| triangles[i].iter().any(|&v| moving[v]))
         .collect();
     // The vertices relaxed each pass: every fold's corners and their ring so far, grown by
     // one more ring whenever the folds stop shrinking (a fold whose surroundings jump too
@@ -77,7 +81,11 @@ pub fn unfold(
         if pass >= SPREAD_PASSES {
             // What still folds is shrunk in place with its ring, the ring less, so that
             // the shrink makes no new step.
-            let mut ring: Vec<usize> = bad.iter().flat_map(|&v| neighbours[v].clone()).collect();
+            let mut ring: Vec<usize> = bad
+                .iter()
+                .flat_map(|&v| neighbours[v].iter().copied())
+                .filter(|&v| moving[v])
+                .collect();
             ring.sort_unstable();
             ring.dedup();
             for field in fields.iter_mut() {
@@ -92,9 +100,9 @@ pub fn unfold(
             touched.extend_from_slice(&bad);
         } else {
             for &v in &bad {
-                active[v] = true;
+                active[v] = moving[v];
                 for &u in &neighbours[v] {
-                    active[u] = true;
+                    active[u] = moving[u];
                 }
             }
             if bad.len() < best {
@@ -109,7 +117,7 @@ pub fn unfold(
                     .flat_map(|v| neighbours[v].iter().copied())
                     .collect();
                 for u in grown {
-                    active[u] = true;
+                    active[u] = moving[u];
                 }
             }
             // Each active vertex takes the mean of its neighbours' move, half way, more

@@ -398,6 +398,10 @@ pub struct ShapeField {
     full_occlusion: std::sync::OnceLock<Vec<f32>>,
 }
 
+/// Turns of keeping the skin clear of the skin and unfolding it (each can undo a little
+/// of the other).
+const CLEAR_AND_UNFOLD_ROUNDS: usize = 4;
+
 impl ShapeField {
     /// The regions' displacements on `mesh`: `template_point(v)` is vertex v's template
     /// point (template metres; `None`: off the template, it stays), `strengths` each
@@ -492,25 +496,38 @@ impl ShapeField {
             })
             .unzip();
         let mut full: Vec<Vec<Vec3>> = full;
-        // No triangle folds over, at full age (the exported morph target) or at any age
-        // between (docs/models.md §13 "No folded skin").
+        let smooth = smooth_normals(mesh.positions(), mesh.indices());
+        // No skin moves through the skin in front of it (docs/models.md §13 "No skin
+        // through skin"), its own surface ignored within 0.2 mm, and no triangle folds
+        // over, at full age (the exported morph target) or at any age between (§13 "No
+        // folded skin"): each spreads or shortens what the other did, so they take turns.
         let checks: Vec<Vec<f32>> = std::iter::once(vec![1.0; REGIONS.len()])
             .chain((6..=20).map(|k| {
                 let years = 5.0 * k as f32;
                 REGIONS.iter().map(|r| r.curve.factor(years)).collect()
             }))
             .collect();
-        unfold::unfold(
-            mesh.positions(),
-            mesh.indices(),
-            &welded,
-            &mut full,
-            &checks,
-        );
+        let (positions, indices) = (mesh.positions(), mesh.indices());
+        let mut caps = vec![f32::INFINITY; n];
+        for _ in 0..CLEAR_AND_UNFOLD_ROUNDS {
+            let blocked = clearance::keep_clear(
+                positions,
+                &smooth,
+                indices,
+                &welded,
+                &mut full,
+                0.2 * mm,
+                &mut caps,
+            );
+            let spread = unfold::unfold(positions, indices, &welded, &mut full, &checks, &caps);
+            if blocked == 0 && spread == 0 {
+                break;
+            }
+        }
         Self {
             full,
             hollow,
-            smooth: smooth_normals(mesh.positions(), mesh.indices()),
+            smooth,
             metres_per_unit,
             full_occlusion: std::sync::OnceLock::new(),
         }
@@ -625,6 +642,7 @@ impl ShapeField {
     }
 }
 
+pub mod clearance;
 pub mod occlusion;
 pub mod relief;
 #[cfg(test)]

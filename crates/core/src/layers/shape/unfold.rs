@@ -23,15 +23,18 @@ const SHRINK_PASSES: usize = 48;
 
 /// Relaxes `fields` (per region, per vertex: the move at full strength) on the mesh of
 /// `positions` and `indices` so that no triangle turns by more than [`MAX_TURN_DEG`] under
-/// any of `checks` (each a factor per region: the full age, and the ages between).
-/// `welded[v]` is the first vertex at v's position: split vertices move together. Returns
-/// the number of vertices changed.
+/// any of `checks` (each a factor per region: the full age, and the ages between), the
+/// move of vertex v at full age never longer than `caps[v]` (what keeps it clear of the
+/// skin in front, `clearance`; infinite where nothing is in front). `welded[v]` is the
+/// first vertex at v's position: split vertices move together. Returns the number of
+/// vertices changed.
 pub fn unfold(
     positions: &[Vec3],
     indices: &[u32],
     welded: &[u32],
     fields: &mut [Vec<Vec3>],
     checks: &[Vec<f32>],
+    caps: &[f32],
 ) -> usize {
     let n = positions.len();
     if fields.iter().all(|f| f.iter().all(|d| *d == Vec3::ZERO)) || n == 0 {
@@ -124,10 +127,11 @@ pub fn unfold(
             // sweeps as the passes go on (a wide fold on a dense head needs many).
             let ring: Vec<usize> = (0..n).filter(|&v| active[v]).collect();
             let sweeps = (1 + pass / 4).min(MAX_SWEEPS);
-            for field in fields.iter_mut() {
-                for _ in 0..sweeps {
+            for _ in 0..sweeps {
+                for field in fields.iter_mut() {
                     relax(field, &ring, &neighbours);
                 }
+                cap(fields, &ring, caps);
             }
             touched = ring;
         }
@@ -149,6 +153,23 @@ pub fn unfold(
         }
     }
     changed
+}
+
+/// Shortens the move at full age of each vertex of `ring` to its cap (every field alike).
+fn cap(fields: &mut [Vec<Vec3>], ring: &[usize], caps: &[f32]) {
+    for &v in ring {
+        let limit = caps.get(v).copied().unwrap_or(f32::INFINITY);
+        if !limit.is_finite() {
+            continue;
+        }
+        let len = fields.iter().map(|f| f[v]).sum::<Vec3>().length();
+        if len > limit && len > 0.0 {
+            let s = limit / len;
+            for f in fields.iter_mut() {
+                f[v] *= s;
+            }
+        }
+    }
 }
 
 /// One Jacobi sweep over `ring`: each vertex half way to its neighbours' mean move (every
@@ -267,7 +288,15 @@ mod tests {
         assert!(before > 90.0 && flipped > 0, "{before}");
         let welded: Vec<u32> = (0..positions.len() as u32).collect();
         let mut fields = vec![field.clone()];
-        let changed = unfold(&positions, &indices, &welded, &mut fields, &[vec![1.0]]);
+        let caps = vec![f32::INFINITY; positions.len()];
+        let changed = unfold(
+            &positions,
+            &indices,
+            &welded,
+            &mut fields,
+            &[vec![1.0]],
+            &caps,
+        );
         assert!(changed > 0);
         let (after, flipped) = worst_turn(&positions, &indices, &fields[0]);
         assert!(after <= MAX_TURN_DEG + 1e-3 && flipped == 0, "{after}");
@@ -288,7 +317,14 @@ mod tests {
         let mut fields = vec![vec![Vec3::Z * 0.1; 3]];
         let kept = fields.clone();
         assert_eq!(
-            unfold(&positions, &indices, &[0, 1, 2], &mut fields, &[vec![1.0]]),
+            unfold(
+                &positions,
+                &indices,
+                &[0, 1, 2],
+                &mut fields,
+                &[vec![1.0]],
+                &[f32::INFINITY; 3]
+            ),
             0
         );
         assert_eq!(fields, kept);

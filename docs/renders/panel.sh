@@ -5,9 +5,10 @@
 # apparent-age protocol), in OUT_DIR/HEAD/. The heads: the scan (the default head), the
 # MakeHuman head, the four panel heads of assets/heads/panel (three with their colour maps)
 # and a dense head of our own (the European woman split twice: 142k triangles).
-# Needs a release build, ImageMagick and python3. Usage: panel.sh OUT_DIR
+# Needs a release build (or AGESIM=path to a binary), ImageMagick and python3.
+# Usage: panel.sh OUT_DIR
 set -e
-A=./target/release/agesim
+A=${AGESIM:-./target/release/agesim}
 O=${1:?usage: panel.sh OUT_DIR}
 mkdir -p "$O"
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}

@@ -7,7 +7,7 @@
 # Any head: pass its flags (`--mesh`, `--landmarks`, `--colour-map`, …) and set MPU to its
 # metres per mesh unit (0.1 for decimetres) so the camera stands as far in metres.
 set -e
-A=./target/release/agesim
+A=${AGESIM:-./target/release/agesim}
 O=${1:?usage: rating.sh OUT_DIR [render flags]}
 shift
 mkdir -p "$O"

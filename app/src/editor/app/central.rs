@@ -67,8 +67,19 @@ impl EditorApp {
                 if let (Some(r), Some(viewport), Some(rs)) = (head_rect, &mut self.viewport, &render_state) {
                     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
                     let rect = viewport.ui(&mut child, rs, &self.session.snapshot, &mut self.doc.project);
-                    if self.persisted.compare {
-                        self.compare_ui(&mut child, rs, rect);
+                    if self.persisted.compare
+                        && let Some(b) = self.session.snapshot.compare.as_deref()
+                    {
+                        super::compare::compare_ui(
+                            &mut child,
+                            rs,
+                            rect,
+                            viewport,
+                            b,
+                            &self.doc.project,
+                            self.persisted.compare_years,
+                            &mut self.persisted.divider,
+                        );
                     }
                 }
                 let mut edit = None;

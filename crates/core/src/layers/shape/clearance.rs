@@ -101,10 +101,10 @@ pub fn keep_clear(
         scale = eased;
     }
     for field in fields.iter_mut() {
-        for v in 0..n {
+        for (v, d) in field.iter_mut().enumerate() {
             let w = welded.get(v).map_or(v, |&w| w as usize);
             if scale[w] < 1.0 {
-                field[v] *= scale[w];
+                *d *= scale[w];
             }
         }
     }
@@ -128,10 +128,10 @@ mod tests {
             Vec3::new(10.0 * mm, 10.0 * mm, 0.0),
             Vec3::new(0.0, 10.0 * mm, 0.0),
             // A roof 2 mm above the floor's first corner.
-            Vec3::new(-1.0 * mm, -1.0 * mm, 2.0 * mm),
-            Vec3::new(1.0 * mm, -1.0 * mm, 2.0 * mm),
-            Vec3::new(1.0 * mm, 1.0 * mm, 2.0 * mm),
-            Vec3::new(-1.0 * mm, 1.0 * mm, 2.0 * mm),
+            Vec3::new(-mm, -mm, 2.0 * mm),
+            Vec3::new(mm, -mm, 2.0 * mm),
+            Vec3::new(mm, mm, 2.0 * mm),
+            Vec3::new(-mm, mm, 2.0 * mm),
         ];
         let indices = vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7];
         let normals = vec![Vec3::Z; 8];
@@ -154,14 +154,10 @@ mod tests {
             0.01 * mm,
             &mut caps,
         );
-        assert!((caps[0] - 1.0 * mm).abs() < 1e-7 && caps[1].is_infinite());
+        assert!((caps[0] - mm).abs() < 1e-7 && caps[1].is_infinite());
         assert_eq!(shortened, 1);
         // Under the roof: half of the 2 mm.
-        assert!(
-            (fields[0][0].z - 1.0 * mm).abs() < 1e-7,
-            "{}",
-            fields[0][0].z
-        );
+        assert!((fields[0][0].z - mm).abs() < 1e-7, "{}", fields[0][0].z);
         // Its neighbours come down part way (eased over the rings), the roof stays.
         assert!(fields[0][2].z > fields[0][0].z && fields[0][2].z <= 3.0 * mm);
         assert_eq!(fields[0][4], Vec3::ZERO);

@@ -170,25 +170,7 @@ impl EditorApp {
         let Some(left) = self.autosave.offer.clone() else {
             return;
         };
-        let mut choice = None;
-        egui::Modal::new(egui::Id::unique("recover")).show(ctx, |ui| {
-            ui.heading("Recover unsaved work?");
-            ui.label("agesim did not exit cleanly last time. Its unsaved work was kept:");
-            ui.label(
-                egui::RichText::new(left.session.display().to_string())
-                    .monospace()
-                    .small(),
-            );
-            ui.horizontal(|ui| {
-                if ui.button("Restore").clicked() {
-                    choice = Some(true);
-                }
-                if ui.button("Discard").clicked() {
-                    choice = Some(false);
-                }
-            });
-        });
-        match choice {
+        match recovery_modal(ctx, &left.session) {
             Some(true) => {
                 self.autosave.offer = None;
                 self.restore_session(left);
@@ -202,4 +184,28 @@ impl EditorApp {
             None => {}
         }
     }
+}
+
+/// "Recover unsaved work?" over the session file `session` left by a crash: `Some(true)` to
+/// restore it, `Some(false)` to discard it, `None` while unanswered.
+fn recovery_modal(ctx: &egui::Context, session: &std::path::Path) -> Option<bool> {
+    let mut choice = None;
+    egui::Modal::new(egui::Id::unique("recover")).show(ctx, |ui| {
+        ui.heading("Recover unsaved work?");
+        ui.label("agesim did not exit cleanly last time. Its unsaved work was kept:");
+        ui.label(
+            egui::RichText::new(session.display().to_string())
+                .monospace()
+                .small(),
+        );
+        ui.horizontal(|ui| {
+            if ui.button("Restore").clicked() {
+                choice = Some(true);
+            }
+            if ui.button("Discard").clicked() {
+                choice = Some(false);
+            }
+        });
+    });
+    choice
 }

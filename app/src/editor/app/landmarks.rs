@@ -77,46 +77,8 @@ impl EditorApp {
         let Some(mode) = &mut self.landmark_mode else {
             return;
         };
-        let mut open = true;
-        let mut fit = false;
         let found = self.session.snapshot.landmarks_found;
-        egui::Window::new("Landmarks")
-            .open(&mut open)
-            // Over the inspector, clear of the 3D view where the dots are.
-            .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-12.0, 60.0))
-            .resizable(false)
-            .show(ctx, |ui| {
-                ui.label(if found && !mode.edited {
-                    "Found automatically: drag a dot to correct it."
-                } else {
-                    "Drag a dot over the head to move it."
-                });
-                ui.label("Select a landmark, then click on the head to place it.");
-                egui::Grid::new("landmark list")
-                    .striped(true)
-                    .show(ui, |ui| {
-                        for name in NAMES {
-                            let placed = mode.points.get(name).is_some();
-                            let chosen = mode.selected == Some(name);
-                            if ui.selectable_label(chosen, name).clicked() {
-                                mode.selected = Some(name);
-                            }
-                            ui.label(if placed { "placed" } else { "missing" });
-                            ui.end_row();
-                        }
-                    });
-                let placed = mode.points.len();
-                ui.horizontal(|ui| {
-                    let enough = placed >= agesim_core::head::fit::MIN_LANDMARKS;
-                    fit = ui
-                        .add_enabled(enough, egui::Button::new("Fit"))
-                        .on_hover_text(
-                            "write the landmark file beside the mesh and fit the template again",
-                        )
-                        .clicked();
-                    ui.label(format!("{placed} of {} placed", NAMES.len()));
-                });
-            });
+        let (open, fit) = landmark_window(ctx, mode, found);
         if fit {
             self.fit_landmarks();
         }
@@ -210,6 +172,52 @@ fn write_landmarks(path: &std::path::Path, landmarks: &Landmarks) -> Result<(), 
     set.stage(path, |w| std::io::Write::write_all(w, text.as_bytes()))
         .and_then(|()| set.commit())
         .map_err(|e| e.to_string())
+}
+
+/// The Landmarks window over the guided `mode` it edits (the landmark selected); `found`:
+/// the landmarks were found automatically. Returns whether it stays open and whether Fit
+/// was pressed.
+fn landmark_window(ctx: &egui::Context, mode: &mut LandmarkMode, found: bool) -> (bool, bool) {
+    let mut open = true;
+    let mut fit = false;
+    egui::Window::new("Landmarks")
+        .open(&mut open)
+        // Over the inspector, clear of the 3D view where the dots are.
+        .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-12.0, 60.0))
+        .resizable(false)
+        .show(ctx, |ui| {
+            ui.label(if found && !mode.edited {
+                "Found automatically: drag a dot to correct it."
+            } else {
+                "Drag a dot over the head to move it."
+            });
+            ui.label("Select a landmark, then click on the head to place it.");
+            egui::Grid::new("landmark list")
+                .striped(true)
+                .show(ui, |ui| {
+                    for name in NAMES {
+                        let placed = mode.points.get(name).is_some();
+                        let chosen = mode.selected == Some(name);
+                        if ui.selectable_label(chosen, name).clicked() {
+                            mode.selected = Some(name);
+                        }
+                        ui.label(if placed { "placed" } else { "missing" });
+                        ui.end_row();
+                    }
+                });
+            let placed = mode.points.len();
+            ui.horizontal(|ui| {
+                let enough = placed >= agesim_core::head::fit::MIN_LANDMARKS;
+                fit = ui
+                    .add_enabled(enough, egui::Button::new("Fit"))
+                    .on_hover_text(
+                        "write the landmark file beside the mesh and fit the template again",
+                    )
+                    .clicked();
+                ui.label(format!("{placed} of {} placed", NAMES.len()));
+            });
+        });
+    (open, fit)
 }
 
 #[cfg(test)]

@@ -427,6 +427,24 @@ pub struct GlbMaterial {
     pub extras: serde_json::Value,
 }
 
+/// A float VEC3 accessor of `points` with the `min` and `max` glTF requires of a
+/// POSITION (a mesh's and a morph target's): its bytes and its JSON (`VIEW` for the view).
+fn bounded_vec3(points: &[Vec3]) -> (Vec<u8>, String) {
+    let (lo, hi) = super::Aabb::from_points(points).map_or(([0.0; 3], [0.0; 3]), |b| {
+        (b.min.to_array(), b.max.to_array())
+    });
+    let count = points.len();
+    let bytes = points
+        .iter()
+        .flat_map(|p| p.to_array())
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    let json = format!(
+        r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#
+    );
+    (bytes, json)
+}
+
 /// Appends `bytes` to the binary chunk `bin` (4-byte aligned) and a buffer view on them to
 /// `views` (`extra`: more members of the view, e.g. `,"target":34962`); returns the view's
 /// index.
@@ -536,21 +554,13 @@ pub fn write_glb_with_morph(
             }
             let count = verts.len();
             let positions: Vec<Vec3> = verts.iter().map(|&i| mesh.positions()[i]).collect();
-            let (lo, hi) = super::Aabb::from_points(&positions).map_or(([0.0; 3], [0.0; 3]), |b| {
-                (b.min.to_array(), b.max.to_array())
-            });
             let vec = |ty: &str| {
                 format!(
                     r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"{ty}"}}"#
                 )
             };
-            let pos = push(
-                &f32s(&mut positions.iter().flat_map(|p| p.to_array())),
-                ARRAY_BUFFER,
-                format!(
-                    r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#
-                ),
-            );
+            let (bytes, json) = bounded_vec3(&positions);
+            let pos = push(&bytes, ARRAY_BUFFER, json);
             let nor = push(
                 &f32s(&mut verts.iter().flat_map(|&i| mesh.normals()[i].to_array())),
                 ARRAY_BUFFER,
@@ -585,15 +595,8 @@ pub fn write_glb_with_morph(
             let targets = morph.map_or(String::new(), |m| {
                 let at = |v: &[Vec3], i: usize| v.get(i).copied().unwrap_or(Vec3::ZERO);
                 let dp: Vec<Vec3> = verts.iter().map(|&i| at(&m.position, i)).collect();
-                let (lo, hi) = super::Aabb::from_points(&dp)
-                    .map_or(([0.0; 3], [0.0; 3]), |b| (b.min.to_array(), b.max.to_array()));
-                let pos = push(
-                    &f32s(&mut dp.iter().flat_map(|p| p.to_array())),
-                    ARRAY_BUFFER,
-                    format!(
-                        r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#
-                    ),
-                );
+                let (bytes, json) = bounded_vec3(&dp);
+                let pos = push(&bytes, ARRAY_BUFFER, json);
                 let nor = push(
                     &f32s(&mut verts.iter().flat_map(|&i| at(&m.normal, i).to_array())),
                     ARRAY_BUFFER,

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 
 use agesim_core::project::Project;
 
-use super::menus::{MenuState, menu_bar};
 use super::{EditorApp, Pending};
 use crate::editor::files::{IoResult, Purpose};
 
@@ -38,28 +37,6 @@ pub(super) enum Command {
 }
 
 impl EditorApp {
-    /// The menu bar over the document's state; runs what was chosen.
-    pub(super) fn menu_ui(&mut self, ui: &mut egui::Ui) {
-        let index = self.persisted.map_view.selected.map_or(0, |(f, _)| f);
-        let wrinkle_file = self.wrinkles().get(index).map(|w| {
-            let name = std::path::Path::new(&w.name).file_name().map_or_else(
-                || "wrinkles.wrk".into(),
-                |n| n.to_string_lossy().into_owned(),
-            );
-            (index, name)
-        });
-        let user_presets = self.user_presets.clone();
-        let state = MenuState {
-            undo: self.doc.history.undo_name().map(str::to_owned),
-            redo: self.doc.history.redo_name().map(str::to_owned),
-            wrinkle_file,
-            user_presets: &user_presets,
-        };
-        for command in menu_bar(ui, &state, &mut self.persisted) {
-            self.run(command, ui.ctx());
-        }
-    }
-
     /// Runs `command`.
     pub(super) fn run(&mut self, command: Command, ctx: &egui::Context) {
         match command {

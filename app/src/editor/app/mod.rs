@@ -455,6 +455,28 @@ impl EditorApp {
         self.submit(moving, &format!("age {years:.0} years"));
     }
 
+    /// The menu bar over the document's state; runs what was chosen.
+    fn menu_ui(&mut self, ui: &mut egui::Ui) {
+        let index = self.persisted.map_view.selected.map_or(0, |(f, _)| f);
+        let wrinkle_file = self.wrinkles().get(index).map(|w| {
+            let name = std::path::Path::new(&w.name).file_name().map_or_else(
+                || "wrinkles.wrk".into(),
+                |n| n.to_string_lossy().into_owned(),
+            );
+            (index, name)
+        });
+        let user_presets = self.user_presets.clone();
+        let state = menus::MenuState {
+            undo: self.doc.history.undo_name().map(str::to_owned),
+            redo: self.doc.history.redo_name().map(str::to_owned),
+            wrinkle_file,
+            user_presets: &user_presets,
+        };
+        for command in menus::menu_bar(ui, &state, &mut self.persisted) {
+            self.run(command, ui.ctx());
+        }
+    }
+
     fn poll_worker(&mut self) {
         for report in self.session.worker.poll() {
             self.session.reported = self.session.reported.max(report.id);

@@ -26,14 +26,17 @@ const EASE_RINGS: usize = 3;
 /// strength) so that its move at full age (all regions) goes at most [`CLEARANCE_SHARE`]
 /// of the way to the surface of `positions`/`indices` in front of it, and eases the
 /// shortening out over [`EASE_RINGS`] rings of neighbours. `normals` are the vertices'
-/// normals; `welded[v]` the first vertex at v's position; `near` how far from a vertex its
+/// normals; `bvh` the tree of `positions`/`indices`; `welded[v]` the first vertex at v's
+/// position; `near` how far from a vertex its
 /// own surface is ignored (mesh units). Each blocked vertex's cap (the longest its move at
 /// full age may be, for `unfold`) is lowered to its shortened move. Returns the number of
 /// vertices blocked.
+#[allow(clippy::too_many_arguments)]
 pub fn keep_clear(
     positions: &[Vec3],
     normals: &[Vec3],
     indices: &[u32],
+    bvh: &Bvh,
     welded: &[u32],
     fields: &mut [Vec<Vec3>],
     near: f32,
@@ -53,7 +56,6 @@ pub fn keep_clear(
     if outward.is_empty() {
         return 0;
     }
-    let bvh = Bvh::new(positions, indices);
     let scales: Vec<(usize, f32)> = outward
         .par_iter()
         .filter_map(|&v| {
@@ -145,10 +147,12 @@ mod tests {
         let mut fields = vec![(0..8).map(up).collect::<Vec<_>>()];
         let welded: Vec<u32> = (0..8).collect();
         let mut caps = vec![f32::INFINITY; 8];
+        let bvh = Bvh::new(&positions, &indices);
         let shortened = keep_clear(
             &positions,
             &normals,
             &indices,
+            &bvh,
             &welded,
             &mut fields,
             0.01 * mm,
@@ -173,6 +177,7 @@ mod tests {
                 &positions,
                 &normals,
                 &[0, 1, 2],
+                &Bvh::new(&positions, &[0, 1, 2]),
                 &[0, 1, 2],
                 &mut fields,
                 1e-5,

@@ -509,11 +509,18 @@ impl ShapeField {
             .collect();
         let (positions, indices) = (mesh.positions(), mesh.indices());
         let mut caps = vec![f32::INFINITY; n];
+        let moves = full.iter().any(|f| f.iter().any(|d| *d != Vec3::ZERO));
+        let bvh = if moves {
+            crate::head::fit::bvh::Bvh::new(positions, indices)
+        } else {
+            crate::head::fit::bvh::Bvh::new(&[], &[])
+        };
         for _ in 0..CLEAR_AND_UNFOLD_ROUNDS {
             let blocked = clearance::keep_clear(
                 positions,
                 &smooth,
                 indices,
+                &bvh,
                 &welded,
                 &mut full,
                 0.2 * mm,

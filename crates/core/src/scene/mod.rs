@@ -731,4 +731,6 @@ impl LargeMap {
 #[cfg(test)]
 mod heads_tests;
 #[cfg(test)]
+mod shape_tests;
+#[cfg(test)]
 mod tests;

@@ -1,0 +1,120 @@
+//! The aged shape on heads that are not the template (issue "any head"): no skin folds
+//! over and no skin moves through skin, on every head of the panel and a dense one.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::PathBuf;
+
+use glam::{Vec2, Vec3};
+
+use super::heads_tests::heads_dir;
+use super::*;
+
+/// `mesh` with every triangle split in four at its edges' midpoints (UVs too), written as
+/// OBJ into `dir`: a dense head of the same shape.
+fn subdivided_obj(dir: &std::path::Path, mesh: &Mesh, name: &str) -> PathBuf {
+    use std::collections::HashMap;
+    let mut positions = mesh.positions().to_vec();
+    let mut uvs = mesh.uvs().to_vec();
+    let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut indices = Vec::new();
+    let mut midpoint = |a: u32, b: u32, positions: &mut Vec<Vec3>, uvs: &mut Vec<Vec2>| {
+        *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            let (i, j) = (a as usize, b as usize);
+            positions.push(0.5 * (positions[i] + positions[j]));
+            uvs.push(0.5 * (uvs[i] + uvs[j]));
+            positions.len() as u32 - 1
+        })
+    };
+    for t in mesh.indices().chunks_exact(3) {
+        let [a, b, c] = [t[0], t[1], t[2]];
+        let ab = midpoint(a, b, &mut positions, &mut uvs);
+        let bc = midpoint(b, c, &mut positions, &mut uvs);
+        let ca = midpoint(c, a, &mut positions, &mut uvs);
+        indices.extend([a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca]);
+    }
+    let raw = crate::head::mesh::RawMesh {
+        positions,
+        uvs: Some(uvs),
+        indices,
+        ..Default::default()
+    };
+    let dense = Mesh::build(raw, name).unwrap();
+    let path = dir.join(format!("{name}.obj"));
+    std::fs::write(&path, crate::head::mesh::obj::to_obj(&dense, |p| p)).unwrap();
+    path
+}
+
+/// The shape's move folds no skin over and carries no skin through skin (issue "any
+/// head"): on the template, the MakeHuman head, the four panel heads (landmarks found
+/// automatically) and a dense head (the scan split to 65k triangles), no triangle turns by
+/// more than 90° — at full age (the exported morph target) or at 100 years, nor at 60 —
+/// and no vertex's outward move at full age crosses the head's surface as it rests.
+#[test]
+fn the_aged_shape_folds_no_skin_over_on_any_head() {
+    let dir = tempfile::tempdir().unwrap();
+    let template = crate::head::fit::template();
+    let dense = subdivided_obj(dir.path(), &template.mesh, "dense-scan");
+    let landmarks_file = dir.path().join("dense-scan.landmarks.json");
+    std::fs::write(&landmarks_file, template.landmarks.to_json_pretty()).unwrap();
+    let mut heads: Vec<(String, Project)> = vec![("the template".into(), Project::default())];
+    let mh = heads_dir().join("makehuman");
+    let mut p = Project::default();
+    p.mesh.path = Some(mh.join("mh_head.obj"));
+    p.mesh.landmarks = Some(mh.join("landmarks.json").into());
+    heads.push(("makehuman".into(), p));
+    for name in [
+        "african-female",
+        "african-male",
+        "caucasian-female",
+        "asian-male",
+    ] {
+        let mut p = Project::default();
+        p.mesh.path = Some(heads_dir().join("panel").join(format!("{name}.obj")));
+        heads.push((name.into(), p));
+    }
+    let mut p = Project::default();
+    p.mesh.path = Some(dense);
+    p.mesh.landmarks = Some(landmarks_file.into());
+    heads.push(("dense scan".into(), p));
+    let mut report = Vec::new();
+    for (name, mut project) in heads {
+        project.pores.enabled = false;
+        project.furrows.enabled = false;
+        let mut scene = Scene::new(project).unwrap();
+        let field = scene.shape_field().unwrap();
+        let mesh = scene.mesh().clone();
+        let (positions, indices) = (mesh.positions(), mesh.indices());
+        let bvh = crate::head::fit::bvh::Bvh::new(positions, indices);
+        let smooth = crate::head::mesh::normals::smooth_normals(positions, indices);
+        let near = 2e-4 / scene.metres_per_unit();
+        let crossing = field
+            .full()
+            .iter()
+            .enumerate()
+            .filter(|(v, d)| {
+                let len = d.length();
+                len > near
+                    && d.dot(smooth[*v]) > 0.3 * len
+                    && bvh.ray(positions[*v], **d / len, near, len).is_some()
+            })
+            .count();
+        report.push(format!("{name}: {crossing} vertices move through the skin"));
+        assert_eq!(crossing, 0, "{}", report.join("\n"));
+        for (what, moves) in [
+            ("full age", field.full()),
+            ("100 years", field.at(100.0)),
+            ("60 years", field.at(60.0)),
+        ] {
+            let moved = moves.iter().filter(|d| **d != Vec3::ZERO).count();
+            assert!(moved > 100, "{name}: only {moved} vertices move at {what}");
+            let (worst, flipped) =
+                crate::layers::shape::unfold::worst_turn(positions, indices, &moves);
+            report.push(format!(
+                "{name} ({} triangles) at {what}: worst turn {worst:.1}°, {flipped} over 90°",
+                indices.len() / 3
+            ));
+            assert!(flipped == 0 && worst <= 90.0, "{}", report.join("\n"));
+        }
+    }
+    println!("{}", report.join("\n"));
+}

@@ -9,6 +9,7 @@
 //! triangles round what changed are checked again, so a dense head costs what its folds do.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// The most a triangle's normal may turn under the shape's move, degrees.
 pub const MAX_TURN_DEG: f32 = 60.0;
@@ -200,31 +201,46 @@ fn folded_vertices(
     checks: &[Vec<f32>],
     cos_max: f32,
 ) -> Vec<usize> {
-    let mut out = Vec::new();
-    for t in suspects.iter().map(|&i| &triangles[i]) {
-        let moves = |factors: &[f32], v: usize| -> Vec3 {
-            fields
-                .iter()
-                .zip(factors)
-                .map(|(f, &k)| f[v] * k)
-                .sum::<Vec3>()
-        };
-        let [a, b, c] = t.map(|v| positions[v]);
-        let rest = (b - a).cross(c - a);
-        if rest.length_squared() <= 0.0 || !rest.is_finite() {
-            continue;
-        }
-        let folds = checks.iter().any(|factors| {
-            let [da, db, dc] = t.map(|v| moves(factors, v));
-            if da == Vec3::ZERO && db == Vec3::ZERO && dc == Vec3::ZERO {
-                return false;
+    // Each check's move of every corner of a suspect, once (a corner is shared by about
+    // six triangles): `moves[slot · checks + k]`.
+    let mut corners: Vec<usize> = suspects.iter().flat_map(|&i| triangles[i]).collect();
+    corners.sort_unstable();
+    corners.dedup();
+    let k = checks.len();
+    let moves: Vec<Vec3> = corners
+        .par_iter()
+        .flat_map_iter(|&v| {
+            checks.iter().map(move |factors| {
+                fields
+                    .iter()
+                    .zip(factors)
+                    .map(|(f, &w)| f[v] * w)
+                    .sum::<Vec3>()
+            })
+        })
+        .collect();
+    let slot = |v: usize| corners.binary_search(&v).unwrap_or(0) * k;
+    let mut out: Vec<usize> = suspects
+        .par_iter()
+        .filter_map(|&i| {
+            let t = &triangles[i];
+            let [a, b, c] = t.map(|v| positions[v]);
+            let rest = (b - a).cross(c - a);
+            if rest.length_squared() <= 0.0 || !rest.is_finite() {
+                return None;
             }
-            turned(rest, (b + db) - (a + da), (c + dc) - (a + da), cos_max)
-        });
-        if folds {
-            out.extend_from_slice(t);
-        }
-    }
+            let [sa, sb, sc] = t.map(slot);
+            let folds = (0..k).any(|j| {
+                let (da, db, dc) = (moves[sa + j], moves[sb + j], moves[sc + j]);
+                if da == Vec3::ZERO && db == Vec3::ZERO && dc == Vec3::ZERO {
+                    return false;
+                }
+                turned(rest, (b + db) - (a + da), (c + dc) - (a + da), cos_max)
+            });
+            folds.then_some(*t)
+        })
+        .flatten()
+        .collect();
     out.sort_unstable();
     out.dedup();
     out

@@ -36,10 +36,15 @@ fn oct_decode(e: vec2<f32>) -> vec3<f32> {
     return normalize(n);
 }
 
-// docs/models.md §9 "Graying": y_k(t) = clamp((t − t_k)/(1 − t_k), 0, 1), smoothstepped when
-// `smoothed` (`agesim_core::layers::hair::gray_fraction`).
+// docs/models.md §9 "Graying": y_k(t) = clamp((t − t_k)/GRAY_RAMP_T, 0, 1), smoothstepped
+// when `smoothed`; an onset at or past 1 never grays (`agesim_core::layers::hair::gray_fraction`,
+// `GRAY_RAMP_T`).
+const GRAY_RAMP_T: f32 = 0.08;
 fn gray_fraction(t: f32, onset: f32, smoothed: bool) -> f32 {
-    let y = clamp((t - onset) / max(1.0 - onset, 1e-6), 0.0, 1.0);
+    if onset >= 1.0 {
+        return 0.0;
+    }
+    let y = clamp((t - onset) / GRAY_RAMP_T, 0.0, 1.0);
     if smoothed {
         return y * y * (3.0 - 2.0 * y);
     }

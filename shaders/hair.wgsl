@@ -161,10 +161,6 @@ struct BrowInstance {
     @location(5) coverage: f32,
 }
 
-// How dark a brow hair is against the hair's base colour: brows are darker than the
-// scalp's hair (docs/models.md §9 "Eyebrows").
-const BROW_DARKNESS: f32 = 0.7;
-
 @vertex
 fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut {
     let curve = HairCurve(inst.root, inst.middle, inst.tip);
@@ -178,8 +174,11 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     // brush").
     out.clip = ribbon_vertex(p, tangent, 0.1 * distance(inst.root, inst.tip), s, side);
     out.tangent = tangent;
-    let base = frame.hair_base.rgb * BROW_DARKNESS * inst.shade;
-    let gray = frame.hair_gray.rgb * (0.55 + 0.5 * inst.shade);
+    // The brows' own colour (measured on the head, or the hair's, darker: docs/models.md
+    // §9 "Eyebrows"); a gray brow hair is coarse, yellowed white, a shade under the
+    // scalp's gray (brighter read, blind, as "white paint").
+    let base = frame.hair_brow.rgb * inst.shade;
+    let gray = frame.hair_gray.rgb * vec3<f32>(1.0, 0.97, 0.92) * (0.5 + 0.4 * inst.shade);
     out.colour = mix(base, gray, inst.gray) * mix(0.8, 1.0, s);
     out.world_pos = p;
     out.alpha = mix(0.8, 0.3, s) * inst.coverage;

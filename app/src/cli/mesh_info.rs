@@ -19,6 +19,13 @@ pub struct MeshInfoArgs {
     /// The head's landmark file: its outer eye corners set the units, its face the axes.
     #[arg(long, value_name = "FILE")]
     pub landmarks: Option<PathBuf>,
+    /// The head's colour map (else the one its material names): its skin tone, hair and
+    /// brow colours are measured on it.
+    #[arg(long, value_name = "IMG")]
+    pub colour_map: Option<PathBuf>,
+    /// The colour map's rows run bottom to top (v down).
+    #[arg(long)]
+    pub maps_flip_v: bool,
 }
 
 pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
@@ -37,18 +44,72 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
             project.mesh.path = Some(path.clone());
             project.mesh.metres_per_unit = None;
             project.mesh.landmarks = args.landmarks.clone().map(Into::into);
-            print!("{}", describe_head(&Scene::new(project)?));
+            project.mesh.colour_map = args.colour_map.clone();
+            project.mesh.maps_flip_v = args.maps_flip_v;
+            let mut scene = Scene::new(project)?;
+            print!("{}", describe_head(&scene));
+            print!("{}", describe_person(&mut scene)?);
         }
         _ => {
-            if args.landmarks.is_some() {
-                anyhow::bail!("--landmarks describes a FILE: give the mesh file too");
+            if args.landmarks.is_some() || args.colour_map.is_some() {
+                anyhow::bail!(
+                    "--landmarks and --colour-map describe a FILE: give the mesh file too"
+                );
             }
             print!(
                 "metres per unit: 1 (metres: a built-in mesh)\naxes:      up +Y, forward +Z\nlayout:    the template itself (its own UVs)\n"
             );
+            print!("{}", describe_person(&mut Scene::new(Project::default())?)?);
         }
     }
     Ok(())
+}
+
+/// The person's colours and hair loss as `mesh-info` prints them: measured on the head's
+/// colour map, else what the aging uses instead.
+pub fn describe_person(scene: &mut Scene) -> anyhow::Result<String> {
+    use agesim_core::base::lab::{ita_degrees, ita_group};
+    use agesim_core::scene::describe_measured;
+    let cancel = agesim_core::base::cancel::CancelToken::never();
+    let own = scene.own_colours(&cancel)?;
+    let person = scene.person();
+    let hex = |c: [f32; 3]| {
+        let s = c.map(|c| {
+            (agesim_core::maps::mask::linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0).round() as u8
+        });
+        agesim_core::project::Colour(s).to_string()
+    };
+    let skin = match own.skin {
+        Some(m) => {
+            let ita = ita_degrees(m.lab);
+            format!(
+                "{}, ITA {ita:.0}°: {} (measured on the cheeks)",
+                describe_measured(&m),
+                ita_group(ita)
+            )
+        }
+        None => format!(
+            "{} (no colour map: the project's skin.albedo)",
+            scene.project().skin.albedo
+        ),
+    };
+    let colour = |c: [f32; 3],
+                  m: Option<agesim_core::layers::skin_colour::Measured>,
+                  source: agesim_core::scene::Source,
+                  on: &str| match (source, m) {
+        (agesim_core::scene::Source::Measured, Some(m)) => format!(
+            "{} (measured on the colour map's {on})",
+            describe_measured(&m)
+        ),
+        (s, _) => format!("{} ({})", hex(c), s.describe(on)),
+    };
+    Ok(format!(
+        "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\n",
+        colour(person.hair, own.hair, person.hair_source, "scalp"),
+        colour(person.brows, own.brows, person.brow_source, "brows"),
+        person.graying_delay_years,
+        person.loss.describe(),
+    ))
 }
 
 /// The units, axes and layout a scene decided for its mesh file, as `mesh-info` prints

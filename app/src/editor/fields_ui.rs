@@ -62,15 +62,16 @@ fn tooltip(field: &Field, default: &Value) -> String {
 
 /// The whole layer panel for `project` (changes marked against `defaults`; `wrinkles`:
 /// the names of the wrinkle files being edited, shown instead of the project's paths;
-/// `metres_per_unit`: the mesh's measured units, what `mesh.metres_per_unit` shows and
-/// switches on with while it is `null`). Each field is read on its own
-/// ([`Project::field`]). Returns the edits of this frame.
+/// `automatic(path)`: what a field left `null` stands for on this head — the mesh's
+/// measured units, the hair and brow colours measured on it, the guessed hair loss — shown
+/// and switched on with). Each field is read on its own ([`Project::field`]). Returns the
+/// edits of this frame.
 pub fn layers_ui(
     ui: &mut egui::Ui,
     project: &Project,
     defaults: &Project,
     wrinkles: Option<&[&str]>,
-    metres_per_unit: f32,
+    automatic: &dyn Fn(&str) -> Option<Value>,
 ) -> Vec<Edit> {
     let value = |path: &str| match (path, wrinkles) {
         ("large.wrinkles", Some(names)) => Value::from(names.to_vec()),
@@ -133,9 +134,9 @@ pub fn layers_ui(
                             for field in fields.iter().filter(|f| !f.path.ends_with(".enabled")) {
                                 let value = value(field.path);
                                 let default = defaults.field(field.path).unwrap_or(Value::Null);
-                                let measured = (field.path == "mesh.metres_per_unit")
-                                    .then_some(f64::from(metres_per_unit));
-                                if let Some(edit) = field_ui(ui, field, &value, &default, measured)
+                                let measured = automatic(field.path);
+                                if let Some(edit) =
+                                    field_ui(ui, field, &value, &default, measured.as_ref())
                                 {
                                     edits.push(edit);
                                 }
@@ -166,7 +167,7 @@ fn field_ui(
     field: &'static Field,
     value: &Value,
     default: &Value,
-    measured: Option<f64>,
+    measured: Option<&Value>,
 ) -> Option<Edit> {
     let tip = tooltip(field, default);
     let label_id = ui
@@ -188,7 +189,7 @@ fn field_ui(
             // allows (not the range's minimum: 0.00001 m per unit shrinks a head to a speck).
             let mut x = value
                 .as_f64()
-                .or(measured)
+                .or(measured.and_then(Value::as_f64))
                 .or(default.as_f64())
                 .unwrap_or_else(|| 1f64.clamp(f64::from(min), f64::from(max)));
             let r = ui
@@ -271,6 +272,61 @@ fn field_ui(
             if r.changed() {
                 let c = agesim_core::project::Colour(rgb);
                 out = Some((Value::String(c.to_string()), false));
+            }
+            Some(r)
+        }
+        Kind::OptColour => {
+            // Off (`null`): measured on the head; shown, and switched on with.
+            let is_null = value.is_null();
+            let shown = if is_null { measured } else { Some(value) };
+            let mut rgb = shown
+                .and_then(Value::as_str)
+                .and_then(agesim_core::project::Colour::parse)
+                .map_or([0, 0, 0], |c| c.0);
+            let r = ui
+                .horizontal(|ui| {
+                    let on_with = Value::String(agesim_core::project::Colour(rgb).to_string());
+                    auto_toggle(ui, is_null, on_with, &mut out);
+                    let r = ui.add_enabled_ui(!is_null, |ui| ui.color_edit_button_srgb(&mut rgb));
+                    if r.inner.changed() {
+                        let c = agesim_core::project::Colour(rgb);
+                        out = Some((Value::String(c.to_string()), false));
+                    }
+                    if is_null {
+                        ui.label(egui::RichText::new("measured").weak().small());
+                    }
+                    r.inner
+                })
+                .inner;
+            Some(r)
+        }
+        Kind::OptChoice(names) => {
+            // Off (`null`): guessed from the head; shown, and switched on with.
+            let is_null = value.is_null();
+            let shown = if is_null { measured } else { Some(value) };
+            let current = shown.and_then(Value::as_str).unwrap_or(names[0]).to_owned();
+            let mut selected = current.clone();
+            let r = ui
+                .horizontal(|ui| {
+                    auto_toggle(ui, is_null, Value::String(current.clone()), &mut out);
+                    let r = ui.add_enabled_ui(!is_null, |ui| {
+                        egui::ComboBox::from_id_salt(field.path)
+                            .selected_text(&selected)
+                            .show_ui(ui, |ui| {
+                                for n in names {
+                                    ui.selectable_value(&mut selected, n.to_string(), *n);
+                                }
+                            })
+                            .response
+                    });
+                    if is_null {
+                        ui.label(egui::RichText::new("guessed").weak().small());
+                    }
+                    r.inner
+                })
+                .inner;
+            if selected != current {
+                out = Some((Value::String(selected), false));
             }
             Some(r)
         }

@@ -52,8 +52,8 @@ pub fn wrap_rgb(wrap: f32, subsurface: Colour) -> Vec3 {
     (c * wrap * (0.45 / 0.35)).clamp(Vec3::ZERO, Vec3::ONE)
 }
 
-/// What a frame needs to know of the head beyond the project: its unit length and how
-/// deep its UV units make the template's relief.
+/// What a frame needs to know of the head beyond the project: its unit length, how
+/// deep its UV units make the template's relief, and the person's hair and brows.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HeadScale {
     /// Metres per mesh unit ([`agesim_core::scene::Scene::metres_per_unit`]).
@@ -61,6 +61,10 @@ pub struct HeadScale {
     /// The head's UV depth of one template UV unit of relief
     /// ([`agesim_core::scene::Scene::relief_scale`]; 1 for the template itself).
     pub relief_scale: f32,
+    /// The person's hair and brow colours and graying delay
+    /// ([`agesim_core::scene::Scene::person`]); `None`: the project's values, else the
+    /// defaults.
+    pub person: Option<agesim_core::scene::Person>,
 }
 
 impl HeadScale {
@@ -68,6 +72,7 @@ impl HeadScale {
     pub const METRES: Self = Self {
         metres_per_unit: 1.0,
         relief_scale: 1.0,
+        person: None,
     };
 
     /// The scene's head.
@@ -75,6 +80,7 @@ impl HeadScale {
         Self {
             metres_per_unit: scene.metres_per_unit(),
             relief_scale: scene.relief_scale(),
+            person: Some(scene.person()),
         }
     }
 }
@@ -124,6 +130,20 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
     let pale = s.pale_amount * factors.paleness;
     let albedo = linear(s.albedo).lerp(linear(s.pale_albedo), pale);
     let (micro_tile, fine_tile) = tile_placements(project);
+    let (hair, brows, graying_delay) = match head.person {
+        Some(p) => (
+            Vec3::from(p.hair),
+            Vec3::from(p.brows),
+            p.graying_delay_years,
+        ),
+        None => {
+            let hair = linear(h.base_colour.unwrap_or(agesim_core::scene::FALLBACK_HAIR));
+            let brows = h
+                .brow_colour
+                .map_or(hair * agesim_core::scene::BROW_DARKNESS, linear);
+            (hair, brows, 0.0)
+        }
+    };
     FrameParams {
         camera,
         light: Light {
@@ -172,8 +192,9 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
             k_spec: h.k_spec,
             shininess: h.shininess,
             k_amb: h.k_amb,
-            base_colour: linear(h.base_colour),
+            base_colour: hair,
             gray_colour: linear(h.gray_colour),
+            brow_colour: brows,
             ramp: match h.graying_ramp {
                 GrayingRamp::Linear => GrayingRampParam::Linear,
                 GrayingRamp::Smoothstep => GrayingRampParam::Smoothstep,
@@ -186,7 +207,9 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
                         * ((factors.t - agesim_core::layers::hair::THINNING_FROM)
                             / (1.0 - agesim_core::layers::hair::THINNING_FROM))
                             .clamp(0.0, 1.0)),
-            gray_fraction: project.colour_factors(factors.t).brow_gray,
+            gray_fraction: project
+                .colour_factors_with_delay(factors.t, graying_delay)
+                .brow_gray,
             ..HairShading::default()
         },
         age: factors.t,

@@ -40,6 +40,8 @@ pub struct Layers {
     pub brows: Option<Arc<Vec<agesim_core::layers::hair::brows::BrowStrand>>>,
     /// The head's normal map ([`Scene::normal_map`]).
     pub normal: Option<Arc<HeadImage>>,
+    /// The person's hair and brows ([`Scene::person`]).
+    pub person: Option<agesim_core::scene::Person>,
 }
 
 impl Default for Layers {
@@ -58,6 +60,7 @@ impl Default for Layers {
             aged: None,
             shape: None,
             brows: None,
+            person: None,
             normal: None,
         }
     }
@@ -92,6 +95,7 @@ impl Layers {
         self.shape = scene.aged_shape().cloned();
         self.brows = scene.aged_brows().cloned();
         self.normal = scene.normal_map().cloned();
+        self.person = Some(scene.person());
         let metres_per_unit = scene.metres_per_unit();
         // Measured over the mesh: only when the mesh or its units change.
         if new_mesh || metres_per_unit != self.metres_per_unit {
@@ -106,6 +110,7 @@ impl Layers {
         HeadScale {
             metres_per_unit: self.metres_per_unit,
             relief_scale: self.relief_scale,
+            person: self.person,
         }
     }
 }

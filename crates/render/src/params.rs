@@ -251,6 +251,8 @@ pub struct HairShading {
     /// Base and gray colours, linear RGB.
     pub base_colour: Vec3,
     pub gray_colour: Vec3,
+    /// The brows' colour before graying, linear RGB.
+    pub brow_colour: Vec3,
     /// Graying ramp.
     pub ramp: GrayingRampParam,
     /// Hair length, mesh units (each hair varies ±15 % by its random number), ≥ 0.
@@ -288,6 +290,7 @@ impl Default for HairShading {
             k_amb: 0.08,
             base_colour: Vec3::new(0.09, 0.05, 0.03),
             gray_colour: Vec3::new(0.32, 0.315, 0.30),
+            brow_colour: Vec3::new(0.063, 0.035, 0.021),
             ramp: GrayingRampParam::Linear,
             length: 0.03,
             width_px: 0.9,

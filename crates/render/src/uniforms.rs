@@ -28,6 +28,7 @@ pub struct FrameUniform {
     pub scalp: [f32; 4],
     pub fill_dir: [f32; 4],
     pub shadow: [f32; 4],
+    pub hair_brow: [f32; 4],
 }
 
 macro_rules! members {
@@ -59,6 +60,7 @@ impl FrameUniform {
         scalp,
         fill_dir,
         shadow,
+        hair_brow,
     );
 }
 
@@ -182,6 +184,7 @@ impl FrameUniform {
                 0.0,
                 0.0,
             ],
+            hair_brow: v3(hr.brow_colour, 0.0),
         }
     }
 }

@@ -89,7 +89,7 @@ fn frame_uniform_matches_wgsl_member_for_member() {
         assert_eq!(members, rust, "struct Frame in {name} vs FrameUniform");
         assert_eq!(size, std::mem::size_of::<FrameUniform>(), "size in {name}");
     }
-    assert_eq!(std::mem::size_of::<FrameUniform>(), 400);
+    assert_eq!(std::mem::size_of::<FrameUniform>(), 416);
 }
 
 #[test]

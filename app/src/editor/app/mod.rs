@@ -672,6 +672,8 @@ impl eframe::App for EditorApp {
             .default_size(340.0)
             .show(ui, |ui| {
                 ui.heading("Layers");
+                let layers = &self.session.snapshot.layers;
+                let automatic = |path: &str| automatic_value(path, layers);
                 egui::ScrollArea::vertical()
                     .show(ui, |ui| {
                         fields_ui::layers_ui(
@@ -679,7 +681,7 @@ impl eframe::App for EditorApp {
                             &self.doc.project,
                             &self.defaults,
                             edited.as_deref(),
-                            self.session.snapshot.layers.metres_per_unit,
+                            &automatic,
                         )
                     })
                     .inner
@@ -721,5 +723,25 @@ impl eframe::App for EditorApp {
             return;
         }
         eframe::set_value(storage, eframe::APP_KEY, &self.persisted);
+    }
+}
+
+/// What a `null` field stands for on the head shown (the layer panel shows it and switches
+/// on with it): the mesh's measured units, the hair and brow colours measured on it, the
+/// guessed hair loss.
+fn automatic_value(path: &str, layers: &crate::view::Layers) -> Option<serde_json::Value> {
+    let hex = |c: [f32; 3]| {
+        let srgb = c.map(|c| {
+            (agesim_core::maps::mask::linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0).round() as u8
+        });
+        serde_json::Value::String(agesim_core::project::Colour(srgb).to_string())
+    };
+    let person = layers.person;
+    match path {
+        "mesh.metres_per_unit" => Some(serde_json::Value::from(f64::from(layers.metres_per_unit))),
+        "hair.base_colour" => person.map(|p| hex(p.hair)),
+        "hair.brow_colour" => person.map(|p| hex(p.brows)),
+        "hair.loss" => person.map(|p| serde_json::Value::String(p.loss.loss.name().into())),
+        _ => None,
     }
 }

@@ -7,6 +7,7 @@ pub mod cancel;
 pub mod diagnostic;
 pub mod error;
 pub mod json;
+pub mod lab;
 pub mod limits;
 pub mod math;
 pub mod output_set;

@@ -47,6 +47,16 @@ pub struct Landmarks {
 }
 
 impl Landmarks {
+    /// The face's height (nasion to chin, pogonion) over the outer eye corners' distance:
+    /// larger in men (a longer lower face). `None` when a point is missing.
+    pub fn face_ratio(&self) -> Option<f32> {
+        let width = self
+            .get("exocanthion_r")?
+            .distance(self.get("exocanthion_l")?);
+        let height = self.get("nasion")?.distance(self.get("pogonion")?);
+        (width > 0.0).then(|| height / width)
+    }
+
     /// The point named `name`, if the head has it.
     pub fn get(&self, name: &str) -> Option<Vec3> {
         self.points.get(name).copied()

@@ -377,14 +377,16 @@ impl Project {
         }
     }
 
-    /// The graying onset range as t values, clamped into [0, 1). [`crate::layers::hair::HairParams`]
-    /// takes it as fractions of each hair's disappearance age a_k (t_k = a_k·U[min, max)),
-    /// so hair that never recedes (a_k = 1, most of it) starts graying between the two
-    /// ages given in years, and receding hair proportionally earlier ([T] §6.2: t_k < a_k).
-    pub fn graying_onset_t(&self) -> (f32, f32) {
+    /// The graying onset range as t values, `delay_years` later than the project's range
+    /// (darker hair grays later: [`crate::layers::hair::graying_delay_years`]), not clamped
+    /// above: an onset past t = 1 never grays within the mapping. [`crate::layers::hair::HairParams`]
+    /// draws each hair's onset evenly between the two (t_k = U[min, max)).
+    pub fn graying_onset_t(&self, delay_years: f32) -> (f32, f32) {
         let m = self.age.mapping();
-        let hi = m.t(self.hair.graying_onset_max_years).min(0.999);
-        let lo = m.t(self.hair.graying_onset_min_years).min(hi);
+        let span = (m.old_years - m.young_years).max(1e-3);
+        let t = |years: f32| ((years + delay_years - m.young_years) / span).clamp(0.0, 10.0);
+        let hi = t(self.hair.graying_onset_max_years);
+        let lo = t(self.hair.graying_onset_min_years).min(hi);
         (lo, hi)
     }
 
@@ -411,9 +413,19 @@ impl Project {
     /// fraction — the mean of the hair's (onsets uniform over the graying range, the
     /// hair's ramp), as the brows gray with the hair.
     pub fn colour_factors(&self, t: f32) -> crate::age::ColourFactors {
+        self.colour_factors_with_delay(t, 0.0)
+    }
+
+    /// [`Project::colour_factors`] for hair that grays `graying_delay_years` later
+    /// (the scene's, from the head's hair colour).
+    pub fn colour_factors_with_delay(
+        &self,
+        t: f32,
+        graying_delay_years: f32,
+    ) -> crate::age::ColourFactors {
         let a = &self.age;
         let years = a.mapping().years(t);
-        let (lo, hi) = self.graying_onset_t();
+        let (lo, hi) = self.graying_onset_t(graying_delay_years);
         const ONSETS: usize = 64;
         let brow_gray = (0..ONSETS)
             .map(|k| {

@@ -21,7 +21,7 @@ fn round_trips_through_json() {
     p.pores.density_per_cm2 = Some(60.0);
     p.furrows.max_count = Some(500);
     p.large.mask = Some("m.png".into());
-    p.hair.base_colour = Colour([1, 2, 250]);
+    p.hair.base_colour = Some(Colour([1, 2, 250]));
     p.age.t = 0.25;
     let back = Project::from_json_str(&p.to_json_pretty(), "t").unwrap();
     assert_eq!(back, p);
@@ -129,7 +129,7 @@ fn set_reads_the_fields_type_and_names_what_was_typed() {
         .unwrap();
     assert_eq!((p.pores.count, p.noise.details), (1000, 5.5));
     assert_eq!(p.pores.placement, Placement::Uniform);
-    assert_eq!(p.hair.base_colour, Colour([0x10, 0x20, 0x30]));
+    assert_eq!(p.hair.base_colour, Some(Colour([0x10, 0x20, 0x30])));
     let e = p
         .set_as("large.gamma", "nan", "--gamma nan")
         .unwrap_err()
@@ -223,7 +223,7 @@ fn a_number_beyond_f32_is_out_of_range_not_infinite() {
 #[test]
 fn the_default_graying_follows_the_population_curve() {
     let p = Project::default();
-    let (lo, hi) = p.graying_onset_t();
+    let (lo, hi) = p.graying_onset_t(0.0);
     let mean_gray = |years: f32| {
         let t = p.age.mapping().t(years);
         (0..1000)

@@ -25,6 +25,8 @@ impl Scene {
     /// bake. On error (or cancellation) every kept output stays as it was.
     pub fn bake(&mut self, request: &BakeRequest, cancel: &CancelToken) -> Result<Changed, Error> {
         crate::maps::heightmap::check_size(request.large_size_px, request.micro_size_px)?;
+        // The person's own colours first: the hair and the colour gray by them.
+        self.own_colours(cancel)?;
         let (fibres, curves) = self.fibres();
         self.factors = self.project.age.factors(request.t, &curves);
         let mut changed = Changed::default();

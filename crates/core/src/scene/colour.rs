@@ -48,6 +48,8 @@ struct ImageKey {
     base: usize,
     settings: ColourSettings,
     factors: ColourFactors,
+    /// The painted hair's ages (address), age (bits), bald and hair colours (bits).
+    painted: Option<(usize, u32, [u32; 3], [u32; 3])>,
 }
 
 /// The head as the stage reads it.
@@ -57,6 +59,8 @@ pub(super) struct Head<'a> {
     /// Each vertex's template point (template metres; [`super::Scene::template_point`]).
     pub template_point: &'a dyn Fn(usize) -> Option<Vec3>,
     pub base: Option<&'a Arc<HeadImage>>,
+    /// The hair painted on the map ([`skin_colour::PaintedHair`]), when it has some.
+    pub painted: Option<skin_colour::PaintedHair<'a>>,
 }
 
 impl ColourStage {
@@ -75,6 +79,14 @@ impl ColourStage {
             base: head.base.map_or(0, |b| Arc::as_ptr(b) as usize),
             settings: settings.clone(),
             factors: *factors,
+            painted: head.painted.map(|p| {
+                (
+                    p.ages.as_ptr() as usize,
+                    p.t.to_bits(),
+                    p.bald.to_array().map(f32::to_bits),
+                    p.hair.to_array().map(f32::to_bits),
+                )
+            }),
         };
         if self.image_key.as_ref() == Some(&key) && self.image.is_some() {
             return Ok(false);
@@ -149,7 +161,15 @@ impl ColourStage {
                 b
             }
         };
-        let image = skin_colour::bake_from(&base, &texels, &spots, settings, factors, cancel)?;
+        let image = skin_colour::bake_from(
+            &base,
+            &texels,
+            &spots,
+            settings,
+            factors,
+            head.painted.as_ref(),
+            cancel,
+        )?;
         self.image = Some(Arc::new(image));
         self.image_key = Some(key);
         Ok(true)

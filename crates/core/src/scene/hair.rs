@@ -13,6 +13,7 @@ pub(super) struct HairKey {
     deviation_deg: f32,
     onset_t: (f32, f32),
     thinning: f32,
+    loss: crate::layers::hair::HairLoss,
     taper_mm: f32,
 }
 
@@ -106,6 +107,7 @@ impl Scene {
             self.transition_generation += 1;
             changed.transition = true;
         }
+        let delay = self.measure_person(cancel)?.graying_delay_years;
         let key = HairKey {
             mesh_generation: self.mesh_generation,
             transition_generation: self.transition_generation,
@@ -113,8 +115,9 @@ impl Scene {
             metres_per_unit: self.metres_per_unit(),
             seed: h.seed,
             deviation_deg: h.max_deviation_deg,
-            onset_t: self.project.graying_onset_t(),
+            onset_t: self.project.graying_onset_t(delay),
             thinning: h.thinning,
+            loss: self.hair_loss().loss,
             taper_mm: h.taper_mm,
         };
         if self.hair_key.as_ref() == Some(&key) && self.hair.is_some() {
@@ -129,7 +132,8 @@ impl Scene {
             .with_max_deviation_rad(h.max_deviation_deg.to_radians())?
             .with_graying_onset_range(key.onset_t.0, key.onset_t.1)?
             .with_thinning(h.thinning, crate::layers::hair::RECESSION_SPREAD)?
-            .with_taper_mm(h.taper_mm)?;
+            .with_taper_mm(h.taper_mm)?
+            .with_loss(key.loss);
         let mesh = &self.inputs.mesh;
         // Hair grows on the skin, not on eyes, teeth or lashes that come with the head.
         let skin = mesh.skin_indices();
@@ -158,7 +162,7 @@ impl Scene {
             self.brows_aged = None;
             return changed;
         };
-        let factors = self.project.colour_factors(t);
+        let factors = self.colour_factors(t);
         let shape = self.aged_shape().cloned();
         let key = (
             Arc::as_ptr(&hairs) as usize,

@@ -35,10 +35,12 @@ mod hair;
 mod inputs;
 mod large;
 mod micro;
+mod own;
 mod shape;
 mod shown;
 
 pub use inputs::{AUTO_FIT_MAX_MEDIAN_MM, HeadLayout, load_wrinkles};
+pub use own::{BROW_DARKNESS, FALLBACK_HAIR, LossChoice, Person, Source, describe_measured};
 pub use shape::AgedShape;
 
 use std::path::PathBuf;
@@ -248,6 +250,8 @@ pub struct Scene {
     /// The brow hairs and lashes placed on the head, keyed by mesh and layout
     /// generations, metres per unit (bits) and seed.
     brows: Option<(BrowHairsKey, Arc<EyeHairs>)>,
+    /// The head's own colours ([`Scene::own_colours`]) and what they were measured on.
+    own: Option<(own::OwnKey, Arc<crate::layers::skin_colour::OwnColours>)>,
     /// The brow hairs and lashes at the last [`Scene::bake_brows`]'s age, keyed by the
     /// hairs, the shape and the factors they were made from.
     brows_aged: Option<(BrowsKey, Arc<Vec<crate::layers::hair::brows::BrowStrand>>)>,
@@ -319,6 +323,7 @@ impl Scene {
             shape_aged: None,
             relief: None,
             brows: None,
+            own: None,
             brows_aged: None,
             shown: None,
             hair_alpha: None,
@@ -357,6 +362,7 @@ impl Scene {
             shape_aged: self.shape_aged.clone(),
             relief: self.relief.clone(),
             brows: self.brows.clone(),
+            own: self.own.clone(),
             brows_aged: self.brows_aged.clone(),
             shown: self.shown.clone(),
             hair_alpha: self.hair_alpha.clone(),
@@ -730,6 +736,8 @@ impl LargeMap {
 
 #[cfg(test)]
 mod heads_tests;
+#[cfg(test)]
+mod person_tests;
 #[cfg(test)]
 mod shape_tests;
 #[cfg(test)]

@@ -3,14 +3,16 @@
 
 use super::*;
 
-/// The transition generation and the width and height of a kept hair-age alpha.
-pub(super) type HairAlphaKey = (u64, u32, u32);
+/// The transition generation, the width and height of a kept hair-age alpha, and whether
+/// the hair recedes (the male pattern).
+pub(super) type HairAlphaKey = (u64, u32, u32, bool);
 
 /// What [`Scene::shown_colour`] was made from.
 #[derive(Clone, Debug)]
 pub(super) struct ShownKey {
     aged: Arc<crate::maps::mask::HeadImage>,
-    transition: Option<u64>,
+    /// The transition's generation and whether the hair recedes.
+    transition: Option<(u64, bool)>,
 }
 
 impl PartialEq for ShownKey {
@@ -41,7 +43,7 @@ impl Scene {
     pub fn bake_colour(&mut self, size: u32, t: f32, cancel: &CancelToken) -> Result<bool, Error> {
         crate::maps::heightmap::check_size(size, size)?;
         let settings = self.project.colour_settings();
-        let factors = self.project.colour_factors(t);
+        let factors = self.colour_factors(t);
         let key = colour::HeadKey {
             mesh_generation: self.mesh_generation,
             layout_generation: self.layout_generation,
@@ -50,13 +52,59 @@ impl Scene {
         let base = self.colour_map().cloned();
         let points = self.template_points();
         let template_point = |v: usize| points.get(v).copied().flatten();
+        // Hair painted on the map goes and grays with the hair (measured on the scalp,
+        // against the measured skin).
+        let own = self.own_colours(cancel)?;
+        let ages = match (own.hair, own.skin) {
+            (Some(_), Some(_)) => self.hair_alpha_at(size, size),
+            _ => None,
+        };
+        let painted = match (&ages, own.hair, own.skin) {
+            (Some(ages), Some(hair), Some(skin)) => Some(crate::layers::skin_colour::PaintedHair {
+                ages: ages.as_slice(),
+                t,
+                bald: skin.linear,
+                hair: hair.linear,
+            }),
+            _ => None,
+        };
         let head = colour::Head {
             key,
             mesh: &self.inputs.mesh,
             template_point: &template_point,
             base: base.as_ref(),
+            painted,
         };
         self.colour.bake(&head, size, &settings, &factors, cancel)
+    }
+
+    /// The hair's disappearance age per texel at `width × height`
+    /// ([`crate::layers::hair::scalp::hair_age_alpha`]) of the last transition texture, in the
+    /// pattern of hair loss: nothing recedes in the female pattern or none (every haired
+    /// texel 255). `None` without hair or a transition texture. Kept per size.
+    pub(super) fn hair_alpha_at(&mut self, width: u32, height: u32) -> Option<Arc<Vec<u8>>> {
+        let transition = self
+            .transition
+            .clone()
+            .filter(|_| self.project.hair.enabled)?;
+        let receding = self.hair_loss().loss == crate::layers::hair::HairLoss::Male;
+        let k = (self.transition_generation, width, height, receding);
+        if let Some((kept, a)) = &self.hair_alpha
+            && *kept == k
+        {
+            return Some(a.clone());
+        }
+        let mut a = crate::layers::hair::scalp::hair_age_alpha(&transition, width, height);
+        if !receding {
+            // The hairline kept where the male pattern has it at KEPT_HAIRLINE_T.
+            let kept = 1 + (254.0 * crate::layers::hair::KEPT_HAIRLINE_T).round() as u8;
+            a.iter_mut()
+                .filter(|a| **a > 0)
+                .for_each(|a| *a = if *a >= kept { 255 } else { 0 });
+        }
+        let a = Arc::new(a);
+        self.hair_alpha = Some((k, a.clone()));
+        Some(a)
     }
 
     /// Makes [`Scene::shown_colour`] from the last [`Scene::bake_colour`] and the hair's
@@ -73,22 +121,17 @@ impl Scene {
             .filter(|_| self.project.hair.enabled);
         let key = ShownKey {
             aged: aged.clone(),
-            transition: transition.as_ref().map(|_| self.transition_generation),
+            transition: transition.as_ref().map(|_| {
+                (
+                    self.transition_generation,
+                    self.hair_loss().loss == crate::layers::hair::HairLoss::Male,
+                )
+            }),
         };
         if self.shown.as_ref().is_some_and(|(k, _)| *k == key) {
             return;
         }
-        let alpha = transition.map(|t| {
-            let k = (self.transition_generation, aged.width_px, aged.height_px);
-            match &self.hair_alpha {
-                Some((kept, a)) if *kept == k => a.clone(),
-                _ => {
-                    let a = Arc::new(crate::layers::hair::scalp::hair_age_alpha(&t, k.1, k.2));
-                    self.hair_alpha = Some((k, a.clone()));
-                    a
-                }
-            }
-        });
+        let alpha = transition.and_then(|_| self.hair_alpha_at(aged.width_px, aged.height_px));
         let image =
             crate::layers::skin_colour::with_alpha(&aged, alpha.as_deref().map(Vec::as_slice));
         self.shown = Some((key, Arc::new(image)));

@@ -35,10 +35,9 @@ use crate::layers::hair::transition::{TransitionTexture, clamp_age};
 pub const DEFAULT_DENSITY_PER_CM2: f32 = 200.0;
 /// Default largest angle between a hair's direction and the surface normal, radians (≈ 10°).
 pub const DEFAULT_MAX_DEVIATION_RAD: f32 = 0.175;
-/// Default range of the graying onset, as a fraction of the hair's disappearance age:
-/// `t_k = a_k · U[min, max)` (**Choice**: docs/models.md §9 only says "random, below a_k"). Hair
-/// that stays (a_k = 1) starts graying between t = 0.2 and t = 0.9; receding hair starts
-/// proportionally earlier and is partly gray when it goes.
+/// Default range of the graying onset: `t_k = U[min, max)` (**Choice**: docs/models.md §9;
+/// [T]'s t_k below a_k grayed the receding crown first). Every hair starts graying between
+/// t = 0.2 and t = 0.9; one that goes before its onset never grays.
 pub const DEFAULT_GRAYING_ONSET_MIN: f32 = 0.2;
 /// See [`DEFAULT_GRAYING_ONSET_MIN`].
 pub const DEFAULT_GRAYING_ONSET_MAX: f32 = 0.9;
@@ -67,6 +66,7 @@ pub struct HairParams {
     thinning: f32,
     recession_spread: f32,
     taper_mm: f32,
+    loss: HairLoss,
     seed: u64,
 }
 
@@ -82,6 +82,7 @@ impl Default for HairParams {
             thinning: 0.0,
             recession_spread: 0.0,
             taper_mm: 0.0,
+            loss: HairLoss::Male,
             seed: 0,
         }
     }
@@ -132,13 +133,14 @@ impl HairParams {
         Ok(self)
     }
 
-    /// Graying onset range as a fraction of a_k: 0 ≤ `min` ≤ `max` < 1 (so t_k < a_k).
+    /// Graying onset range as a fraction of a_k: 0 ≤ `min` ≤ `max` ≤ 10 (an onset past
+    /// t = 1 never grays: the part of the population's range beyond the oldest age).
     pub fn with_graying_onset_range(mut self, min: f32, max: f32) -> Result<Self, Error> {
-        if !(0.0 <= min && min <= max && max < 1.0) {
+        if !(0.0 <= min && min <= max && max <= 10.0) {
             return Err(Error::InvalidValue {
                 what: "graying onset range".into(),
                 value: format!("{min}..{max}"),
-                expected: "0 ≤ min ≤ max < 1".into(),
+                expected: "0 ≤ min ≤ max ≤ 10".into(),
             });
         }
         self.graying_onset_min = min;
@@ -174,6 +176,12 @@ impl HairParams {
         }
         self.taper_mm = taper_mm;
         Ok(self)
+    }
+
+    /// The pattern the hair is lost in ([`HairLoss`]; male by default, [T]'s masks).
+    pub fn with_loss(mut self, loss: HairLoss) -> Self {
+        self.loss = loss;
+        self
     }
 
     pub fn density_per_cm2(&self) -> f32 {
@@ -313,7 +321,7 @@ impl HairInstance {
         oct_decode(self.direction_oct)
     }
 
-    /// t_k: the age at which the hair starts graying, < a_k.
+    /// t_k: the age at which the hair starts graying (never, when it goes first).
     pub fn graying_onset(&self) -> f32 {
         self.graying_onset
     }
@@ -365,7 +373,7 @@ impl HairInstances {
     /// at uniform random barycentric coordinates; a candidate is kept only where the
     /// transition texture has hair at t = 0 (outer ∪ inner region). Position, normal and
     /// UV are interpolated; a_k is the texture's age at the UV (nearest texel); t_k =
-    /// a_k · U[onset min, onset max); the direction is the normal turned by a uniform
+    /// U[onset min, onset max); the direction is the normal turned by a uniform
     /// random direction in a cone of half-angle `max_deviation_rad`. Degenerate triangles
     /// get no hairs; a vertex normal sum of zero falls back to the face normal.
     ///
@@ -547,15 +555,90 @@ pub enum GrayingRamp {
     Smoothstep,
 }
 
-/// y_k(t) = max((t − t_k)/(1 − t_k), 0), clamped to 1, optionally smoothstepped
-/// (docs/models.md §9 "Graying", [T §6.2]). `t` is clamped to [0,1] (NaN → 0); an onset t_k ≥ 1
+/// Which pattern the hair is lost in with age (`hair.loss`; docs/models.md §9 "Hair
+/// loss").
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "lowercase")]
+pub enum HairLoss {
+    /// Male pattern (Hamilton–Norwood): the temples recede and the crown thins to a bald
+    /// top over a horseshoe fringe, as the transition texture's masks draw it ([T]).
+    #[default]
+    Male,
+    /// Female pattern (Ludwig): diffuse thinning over the crown, the frontal hairline
+    /// kept; nothing recedes.
+    Female,
+    /// No pattern: nothing recedes, only `hair.thinning` everywhere.
+    None,
+}
+
+impl HairLoss {
+    pub const NAMES: [&'static str; 3] = ["male", "female", "none"];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Male => "male",
+            Self::Female => "female",
+            Self::None => "none",
+        }
+    }
+
+    /// A guess from the face's proportions when the artist has not said: the face's
+    /// height (nasion to chin) over the outer eye corners' distance, which is larger in
+    /// men (a longer lower face and chin: Farkas's norms give about 1.2 for men and 1.1
+    /// for women). At or over [`MALE_FACE_RATIO`]: male; under it: female (the pattern
+    /// that keeps the hairline, the milder wrong guess). Shown to the user as a guess.
+    pub fn guess(face_ratio: f32) -> Self {
+        if face_ratio >= MALE_FACE_RATIO {
+            Self::Male
+        } else {
+            Self::Female
+        }
+    }
+}
+
+/// How many years later than a medium-brown head's (L* about 30) hair of lightness `l_star`
+/// (CIELAB) starts graying: up to [`DARK_HAIR_DELAY_YEARS`] for black hair (L* 15 and
+/// under), none for brown and lighter. Graying comes later for darker hair, by roughly 5–10
+/// years in East Asian and African hair (Panhard et al. 2012; Tobin 2008).
+pub fn graying_delay_years(l_star: f32) -> f32 {
+    DARK_HAIR_DELAY_YEARS * ((30.0 - l_star) / 15.0).clamp(0.0, 1.0)
+}
+
+/// See [`graying_delay_years`].
+pub const DARK_HAIR_DELAY_YEARS: f32 = 8.0;
+
+/// See [`HairLoss::guess`]: between the panel's women (1.03, 1.06) and men (1.15–1.18).
+pub const MALE_FACE_RATIO: f32 = 1.1;
+
+/// In the female pattern, how much of `hair.thinning` the crown (the male pattern's
+/// receding region) loses, and the sides and back: the crown thins most, the frontal
+/// hairline (within [`HAIRLINE_KEPT_MM`] of the face) as the sides.
+pub const FEMALE_THINNING: (f32, f32) = (1.1, 0.6);
+/// See [`FEMALE_THINNING`].
+pub const HAIRLINE_KEPT_MM: f32 = 15.0;
+/// Where the hairline stays in the patterns that keep it: where the male pattern has it at
+/// this t (about 26 years). The masks' hair at t = 0 reaches lower, a boy's hairline the
+/// male pattern recedes from at once; kept, it drew a band of hair down the forehead.
+pub const KEPT_HAIRLINE_T: f32 = 0.1;
+
+/// How long (in t) one hair takes to turn from pigmented to white once its onset is
+/// reached (docs/models.md §9 "Graying"): about five years of the default 20–80 mapping.
+/// Each hair is pigmented or white, seldom between: a graying head is salt and pepper, the
+/// white fraction rising as more hairs reach their onsets (a slow ramp per hair, to t = 1,
+/// grayed every hair alike and read, blind, as "one flat bluish tint").
+pub const GRAY_RAMP_T: f32 = 0.08;
+
+/// y_k(t) = clamp((t − t_k)/[`GRAY_RAMP_T`], 0, 1), optionally smoothstepped
+/// (docs/models.md §9 "Graying"). `t` is clamped to [0,1] (NaN → 0); an onset t_k ≥ 1
 /// never grays (y = 0), an onset ≤ 0 is used as is.
 pub fn gray_fraction(t: f32, onset: f32, ramp: GrayingRamp) -> f32 {
     let t = clamp_age(t);
     if onset.is_nan() || onset >= 1.0 {
         return 0.0;
     }
-    let y = ((t - onset) / (1.0 - onset)).clamp(0.0, 1.0);
+    let y = ((t - onset) / GRAY_RAMP_T).clamp(0.0, 1.0);
     match ramp {
         GrayingRamp::Linear => y,
         GrayingRamp::Smoothstep => y * y * (3.0 - 2.0 * y),
@@ -745,8 +828,11 @@ mod tests {
                 "{} not in {near:?}",
                 h.disappear_age()
             );
-            assert!(h.graying_onset() < h.disappear_age());
-            assert!(h.graying_onset() >= DEFAULT_GRAYING_ONSET_MIN * h.disappear_age());
+            // The onset is the hair's own, whenever it goes.
+            assert!(
+                (DEFAULT_GRAYING_ONSET_MIN..=DEFAULT_GRAYING_ONSET_MAX)
+                    .contains(&h.graying_onset())
+            );
             assert!((0.0..1.0).contains(&h.random()));
             let cos = h.direction().dot(Vec3::Z);
             assert!(cos >= DEFAULT_MAX_DEVIATION_RAD.cos() - 1e-4, "{cos}");
@@ -877,7 +963,7 @@ mod tests {
         assert!(HairParams::new(1.0, 0.0).is_err());
         assert!(
             HairParams::default()
-                .with_graying_onset_range(0.5, 1.0)
+                .with_graying_onset_range(0.5, 0.4)
                 .is_err()
         );
         assert!(HairParams::default().with_max_deviation_rad(2.0).is_err());
@@ -911,20 +997,23 @@ mod tests {
 
     #[test]
     fn graying_at_hand_computed_points() {
-        // t_k = 0.2: y(0.6) = 0.4/0.8 = 0.5; smoothstep(0.5) = 0.5; y(0.4) = 0.25,
-        // smoothstep(0.25) = 3/16 − 2/64 = 0.15625.
-        close(gray_fraction(0.6, 0.2, GrayingRamp::Linear), 0.5, 1e-6);
-        close(gray_fraction(0.6, 0.2, GrayingRamp::Smoothstep), 0.5, 1e-6);
-        close(gray_fraction(0.4, 0.2, GrayingRamp::Linear), 0.25, 1e-6);
+        // t_k = 0.2, the ramp 0.08: y(0.24) = 0.5; smoothstep(0.5) = 0.5; y(0.22) = 0.25,
+        // smoothstep(0.25) = 3/16 − 2/64 = 0.15625; done from 0.28 on.
+        close(gray_fraction(0.24, 0.2, GrayingRamp::Linear), 0.5, 1e-5);
+        close(gray_fraction(0.24, 0.2, GrayingRamp::Smoothstep), 0.5, 1e-5);
+        close(gray_fraction(0.22, 0.2, GrayingRamp::Linear), 0.25, 1e-5);
         close(
-            gray_fraction(0.4, 0.2, GrayingRamp::Smoothstep),
+            gray_fraction(0.22, 0.2, GrayingRamp::Smoothstep),
             0.15625,
-            1e-6,
+            1e-5,
         );
         close(gray_fraction(0.1, 0.2, GrayingRamp::Linear), 0.0, 0.0);
-        close(gray_fraction(1.0, 0.2, GrayingRamp::Smoothstep), 1.0, 1e-6);
+        close(gray_fraction(0.28, 0.2, GrayingRamp::Smoothstep), 1.0, 1e-6);
+        close(gray_fraction(0.6, 0.2, GrayingRamp::Linear), 1.0, 1e-6);
         close(gray_fraction(3.0, 0.2, GrayingRamp::Linear), 1.0, 1e-6);
         close(gray_fraction(1.0, 1.0, GrayingRamp::Linear), 0.0, 0.0);
+        // An onset past the oldest age never grays.
+        close(gray_fraction(1.0, 1.3, GrayingRamp::Linear), 0.0, 0.0);
         // C = (1 − y)·base + y·gray: y = 0.25 between brown (0.4, 0.2, 0.1) and gray 0.8.
         let c = hair_colour(Vec3::new(0.4, 0.2, 0.1), Vec3::splat(0.8), 0.25);
         close(c.x, 0.5, 1e-6);

@@ -210,7 +210,10 @@ impl Corners {
             + (tangent * azimuth.cos() + bitangent * azimuth.sin()) * sin_theta)
             .normalize_or_zero();
         let (onset_min, onset_max) = (params.graying_onset_min, params.graying_onset_max);
-        let onset = age * (onset_min + (onset_max - onset_min) * draws.onset_u);
+        // The onset does not depend on when the hair goes (docs/models.md §9 "Graying":
+        // [T]'s t_k = a_k·U grayed the receding crown first, all of it white by 45 once
+        // each hair turns in a few years); hair that goes before its onset never grays.
+        let onset = onset_min + (onset_max - onset_min) * draws.onset_u;
         Some(HairInstance {
             position: position.to_array(),
             disappear_age: age,
@@ -250,6 +253,9 @@ impl Site<'_> {
     /// ragged edge, strays and the soft edge. `None`: the edge thins this one out.
     fn age_and_length(&self, draws: &Draws, mm: Vec3) -> Option<(f32, f32)> {
         let params = self.params;
+        if params.loss != HairLoss::Male {
+            return self.kept_and_thinned(draws);
+        }
         let mut age = disappearance(self.texture_age, draws.spread, draws.thin, params);
         // The taper (docs/models.md §9 "Taper"): shorter toward bare skin; the hair that
         // stays shorter and sparser toward the hair that goes, so the fringe left at old age
@@ -316,6 +322,52 @@ impl Site<'_> {
             }
         }
         Some((age, length))
+    }
+
+    /// The hair's disappearance age and length where nothing recedes (the female pattern,
+    /// or none: docs/models.md §9 "Hair loss"): every hair stays until the thinning takes
+    /// it; in the female pattern the crown (the male pattern's receding region, less the
+    /// band along the hairline) thins most and the sides, back and hairline less. The
+    /// taper and the sparser edge as in the male pattern. `None`: the edge thins it out.
+    fn kept_and_thinned(&self, draws: &Draws) -> Option<(f32, f32)> {
+        let params = self.params;
+        if self.texture_age < KEPT_HAIRLINE_T {
+            return None;
+        }
+        let taper_mm = params.taper_mm;
+        let reach = taper_mm.max(HAIRLINE_KEPT_MM);
+        let bare = self
+            .nearest(reach, |a| a < KEPT_HAIRLINE_T)
+            .map_or(reach, |(d, _)| d);
+        let mut length = 1.0;
+        if taper_mm > 0.0 {
+            length = taper(bare, taper_mm);
+            if draws.edge_u < 0.75 * (1.0 - smooth01(bare / (SPARSE_REACH * taper_mm))) {
+                return None;
+            }
+        } else if params.recession_spread > 0.0 {
+            let (bare, _) = edge_around(self.transition, self.uv);
+            if draws.edge_u < 0.8 * bare {
+                return None;
+            }
+        }
+        let share = match params.loss {
+            HairLoss::Female => {
+                let crown = if self.texture_age < 1.0 {
+                    smooth01(bare / HAIRLINE_KEPT_MM)
+                } else {
+                    0.0
+                };
+                FEMALE_THINNING.1 + (FEMALE_THINNING.0 - FEMALE_THINNING.1) * crown
+            }
+            _ => 1.0,
+        };
+        let thinning = (params.thinning * share).min(1.0);
+        let mut age = 1.0f32;
+        if draws.thin < thinning {
+            age = THINNING_FROM + (1.0 - THINNING_FROM) * draws.thin / thinning;
+        }
+        Some((age.max(1e-3), length))
     }
 
     /// The fringe left at old age (hair that stays, `texture_age` 1, near hair that goes):

@@ -18,10 +18,12 @@
 //! sizes are physical whatever the head's units and UV layout, and a spot crossing a UV
 //! seam continues on the other side. Seeded and hashed: the same bytes on any thread count.
 
+mod own;
 mod spots;
 mod texels;
 mod tone;
 
+pub use own::*;
 pub use spots::*;
 pub use texels::*;
 use tone::*;
@@ -90,7 +92,11 @@ const LIP_THINNING: f32 = 0.9;
 /// Brightness of gray brow hair relative to the hair's gray colour: coarse white brow
 /// hair over the skin reads lighter than the silver of the scalp's (at the scalp's
 /// brightness the brows read, blind, as "gray putty").
-const BROW_GRAY_BRIGHTNESS: f32 = 1.2;
+const BROW_GRAY_BRIGHTNESS: f32 = 1.0;
+
+/// How far a brow texel's hair goes toward the gray at its full gray (0.75 read, blind, as
+/// "white paint blobs" on dark skin).
+const BROW_TEXEL_GRAY: f32 = 0.6;
 
 /// Age spots gather over patches of about this size, mm, tried up to this many times each
 /// ([`place_spots`]).
@@ -143,6 +149,27 @@ pub struct ColourSettings {
     /// `skin.colour_seed`.
     pub seed: u64,
 }
+
+/// The hair painted on a head's colour map (a game head's scalp): it goes where the hair
+/// goes and grays with it, so an old head's bald crown is skin, not the young hair's paint
+/// (docs/models.md "Skin colour", "Painted hair").
+#[derive(Clone, Copy, Debug)]
+pub struct PaintedHair<'a> {
+    /// Per texel: the hair's disappearance age as [`crate::layers::hair::scalp::hair_age_alpha`]
+    /// writes it (0: no hair there, else 1 + 254·a).
+    pub ages: &'a [u8],
+    /// The age t.
+    pub t: f32,
+    /// The bare scalp's colour (linear): the head's skin tone.
+    pub bald: Vec3,
+    /// The painted hair's colour (linear), measured: a texel's share of hair is how far it
+    /// is from the bald colour toward it.
+    pub hair: Vec3,
+}
+
+/// How much of the painted hair's gray a fully gray head shows (the skin between the
+/// hairs keeps some of the rest).
+const PAINTED_GRAY: f32 = 0.7;
 
 /// What the aged colour starts from at each texel, kept between ages: the base colour
 /// (the head's colour map resampled, or the skin colour), in linear light, its alpha, the
@@ -210,19 +237,22 @@ pub fn bake(
     cancel: &CancelToken,
 ) -> Result<HeadImage, Error> {
     let base = BaseColour::new(base, settings.albedo, texels);
-    bake_from(&base, texels, spots, settings, factors, cancel)
+    bake_from(&base, texels, spots, settings, factors, None, cancel)
 }
 
 /// The aged colour from a kept [`BaseColour`] of the same texels: what an age change
-/// re-does (the regions and noise of the texels, the base and its tone stay).
+/// re-does (the regions and noise of the texels, the base and its tone stay). `painted`:
+/// the hair painted on the map, which goes and grays with the hair.
 pub fn bake_from(
     base: &BaseColour,
     texels: &SurfaceTexels,
     spots: &[Spot],
     settings: &ColourSettings,
     factors: &ColourFactors,
+    painted: Option<&PaintedHair>,
     cancel: &CancelToken,
 ) -> Result<HeadImage, Error> {
+    let painted = painted.filter(|p| p.ages.len() == (texels.size as usize).pow(2));
     let n = texels.size as usize;
     if base.size != texels.size {
         return Err(Error::InvalidValue {
@@ -269,6 +299,9 @@ pub fn bake_from(
                 let mut c = base.colour[i];
                 let p = texels.position[i];
                 if !young && !p.x.is_nan() {
+                    if let Some(h) = painted {
+                        c = h.age(c, h.ages[i], factors.brow_gray, look.gray);
+                    }
                     let f = &texels.fields[i];
                     let bare = if f.beard > 0 {
                         base.bare.at(x, y)
@@ -313,6 +346,31 @@ pub fn with_alpha(image: &HeadImage, alpha: Option<&[u8]>) -> HeadImage {
         }),
     }
     shown
+}
+
+impl PaintedHair<'_> {
+    /// A texel of colour `c` whose hair goes at `age` (the alpha's byte): where the hair has
+    /// gone its paint becomes the bald scalp's colour, where it stays it grays by
+    /// `gray` (the hair's mean gray fraction) toward `gray_colour`.
+    fn age(&self, c: Vec3, age: u8, gray: f32, gray_colour: Vec3) -> Vec3 {
+        if age == 0 {
+            return c;
+        }
+        let lum = |c: Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722));
+        let span = lum(self.bald) - lum(self.hair);
+        if span <= 1e-4 {
+            return c;
+        }
+        let share = ((lum(self.bald) - lum(c)) / span).clamp(0.0, 1.0);
+        let a = f32::from(age - 1) / 254.0;
+        let gone = if a >= 1.0 {
+            0.0
+        } else {
+            smoothstep(a - 0.03, a + 0.03, self.t)
+        };
+        let c = c.lerp(self.bald, share * gone);
+        c.lerp(gray_colour, share * (1.0 - gone) * gray * PAINTED_GRAY)
+    }
 }
 
 /// What ages every texel alike at one age: the settings, the factors and the tints made
@@ -394,9 +452,12 @@ impl Look<'_> {
             // fraction is the share of gray hair.
             let draw = 0.5 + 0.5 * (2.2 * from_signed(f.brow_draw)).clamp(-1.0, 1.0);
             let gray_hair = smoothstep(-0.08, 0.08, a.brow_gray_fraction() - draw);
+            // Toward a gray between the hair's and the skin's (the skin shows between
+            // the gray hairs; the strands drawn over the brows carry the white): fully
+            // white texels read, blind, as "white paint" on dark skin.
             c = c.lerp(
                 self.gray * (0.75 + 0.25 * draw),
-                (0.75 * hair * gray_hair).clamp(0.0, 1.0),
+                (BROW_TEXEL_GRAY * hair * gray_hair).clamp(0.0, 1.0),
             );
         }
         // Every skin mottles some; sun-exposed skin most. Darker blotches and lighter skin

@@ -431,25 +431,17 @@ fn the_old_brow_is_salt_and_pepper_in_streaks_and_bushier() {
     eprintln!("brow hair at 80: {kept:.2} stays dark, {gray:.2} turns light");
     assert!(kept > 0.2 && gray > 0.2, "{kept} dark, {gray} light");
     // Bushier: the lighter half of the young brow region (skin between and around the
-    // hairs) takes hair at 80, dark or gray: its texels' saturation (gray hair has none,
-    // skin some) varies more.
+    // hairs) takes hair at 80, dark or gray: a share of its texels darkens or lightens by
+    // a quarter or more (the paling alone moves them less; 0.09 measured, none without the
+    // bushier brow).
     let skin = &brows[brows.len() / 2..];
-    let saturation = |img: &HeadImage| -> Vec<f32> {
-        img.rgba
-            .chunks_exact(4)
-            .map(|p| {
-                let (hi, lo) = (p[..3].iter().max().unwrap(), p[..3].iter().min().unwrap());
-                f32::from(hi - lo) / f32::from(*hi).max(1.0)
-            })
-            .collect()
-    };
-    let variation = |l: &[f32]| {
-        let m = skin.iter().map(|&i| l[i]).sum::<f32>() / skin.len() as f32;
-        (skin.iter().map(|&i| (l[i] - m).powi(2)).sum::<f32>() / skin.len() as f32).sqrt()
-    };
-    let (vy, vo) = (variation(&saturation(&young)), variation(&saturation(&old)));
-    eprintln!("brow skin's saturation varies {vy:.3} at 25, {vo:.3} at 80");
-    assert!(vo > 1.15 * vy, "{vy} → {vo}");
+    let grown = skin
+        .iter()
+        .filter(|&&i| (lo[i] / ly[i].max(1e-4) - 1.0).abs() > 0.25)
+        .count() as f32
+        / skin.len() as f32;
+    eprintln!("brow skin at 80: {grown:.2} of it takes hair");
+    assert!(grown > 0.06, "{grown}");
     // Streaks: the draw two millimetres along the brow is closer than two across it.
     let r = Regions::template().unwrap();
     let l = &crate::head::fit::template().landmarks;
@@ -565,7 +557,10 @@ fn the_gray_beard_takes_the_colour_of_the_bare_skin_round_it() {
     let (at_25, at_80) = (gap(&young), gap(&old));
     eprintln!("beard's blue/red over the bare skin's: {at_25:.3} at 25, {at_80:.3} at 80");
     assert!(at_25 > 0.05, "{at_25}");
-    assert!(at_80.abs() < 0.4 * at_25, "{at_25} → {at_80}");
+    // Toward it, not all the way: the stubble grays, it does not vanish (the hair is
+    // about four fifths gray at 80).
+    assert!(at_80.abs() < 0.6 * at_25, "{at_25} → {at_80}");
+    assert!(at_80 > 0.2 * at_25, "{at_25} → {at_80}");
 }
 
 /// The bags cast a shadow along the lid–cheek junction, narrower than the mesh's

@@ -87,6 +87,10 @@ pub enum Kind {
     Paths,
     /// An sRGB colour `"#rrggbb"`.
     Colour,
+    /// An sRGB colour `"#rrggbb"`, or `null` (measured on the head).
+    OptColour,
+    /// One of these names, or `null` (guessed from the head).
+    OptChoice(&'static [&'static str]),
     /// A landmark file's path, the points themselves (`{name: [x, y, z]}`), or `null`.
     Landmarks,
     /// A list of names, or `null` (chosen automatically).
@@ -211,6 +215,8 @@ impl Field {
             Kind::Path => "a path or null".into(),
             Kind::Paths => "a list of paths".into(),
             Kind::Colour => "\"#rrggbb\"".into(),
+            Kind::OptColour => "\"#rrggbb\" or null".into(),
+            Kind::OptChoice(names) => format!("one of {} or null", names.join(", ")),
             Kind::OptNames => "a list of names or null".into(),
             Kind::Landmarks => "a path, {name: [x, y, z]} or null".into(),
         }
@@ -228,6 +234,8 @@ impl Field {
             Kind::Path => "a path (string) or null",
             Kind::Paths => "a list of paths",
             Kind::Colour => "a colour \"#rrggbb\"",
+            Kind::OptColour => "a colour \"#rrggbb\" or null",
+            Kind::OptChoice(_) => "a name or null",
             Kind::OptNames => "a list of names or null",
             Kind::Landmarks => "a path (string), an object {name: [x, y, z]} or null",
         }
@@ -241,6 +249,7 @@ impl Field {
             Kind::OptInt { .. } => v.is_u64() || v.is_null(),
             Kind::Bool => v.is_boolean(),
             Kind::Choice(_) | Kind::Colour => v.is_string(),
+            Kind::OptChoice(_) | Kind::OptColour => v.is_string() || v.is_null(),
             Kind::Path => v.is_string() || v.is_null(),
             Kind::Paths => v.as_array().is_some_and(|a| a.iter().all(Value::is_string)),
             Kind::OptNames => {
@@ -274,6 +283,8 @@ impl Field {
             },
             Kind::Choice(names) => v.as_str().is_some_and(|s| names.contains(&s)),
             Kind::Colour => v.as_str().and_then(super::Colour::parse).is_some(),
+            Kind::OptColour => v.is_null() || v.as_str().and_then(super::Colour::parse).is_some(),
+            Kind::OptChoice(names) => v.is_null() || v.as_str().is_some_and(|s| names.contains(&s)),
             Kind::Bool | Kind::Path | Kind::Paths | Kind::OptNames | Kind::Landmarks => true,
         };
         (!ok).then(|| {
@@ -334,6 +345,8 @@ impl Field {
             Kind::OptInt { .. } => t.parse::<u64>().ok().map(Value::from),
             Kind::Bool => t.parse::<bool>().ok().map(Value::Bool),
             Kind::Choice(_) | Kind::Colour => Some(Value::String(t.to_owned())),
+            Kind::OptChoice(_) | Kind::OptColour if t == "null" => Some(Value::Null),
+            Kind::OptChoice(_) | Kind::OptColour => Some(Value::String(t.to_owned())),
             Kind::Path | Kind::Landmarks if t == "null" => Some(Value::Null),
             // An object typed as such (a quoted string is a path, whatever it holds).
             Kind::Landmarks if decoded.is_none() && t.starts_with('{') => {
@@ -379,8 +392,10 @@ pub(crate) fn check_types(doc: &Value, out: &mut Vec<String>) -> Vec<&'static Fi
                 quote(v)
             ));
             bad.push(field);
-        } else if matches!(field.kind, Kind::Choice(_) | Kind::Colour)
-            && let Some(p) = field.range_problem(v)
+        } else if matches!(
+            field.kind,
+            Kind::Choice(_) | Kind::Colour | Kind::OptChoice(_) | Kind::OptColour
+        ) && let Some(p) = field.range_problem(v)
         {
             out.push(p);
             bad.push(field);

@@ -121,7 +121,21 @@ pub(super) fn rows() -> Vec<Field> {
             "random deviation of a hair from the surface normal",
         ),
         f(id!(hair.length_mm), "mm", 0.0, 500.0, "hair length"),
-        k(id!(hair.base_colour), Kind::Colour, "colour before graying"),
+        k(
+            id!(hair.base_colour),
+            Kind::OptColour,
+            "colour before graying; null = measured on the head's colour map (its scalp), else a dark brown",
+        ),
+        k(
+            id!(hair.brow_colour),
+            Kind::OptColour,
+            "the brows' colour before graying; null = measured on the head's colour map (its brows), else the hair's, darker",
+        ),
+        k(
+            id!(hair.loss),
+            Kind::OptChoice(&crate::layers::hair::HairLoss::NAMES),
+            "the pattern of hair loss with age: male (receding temples, bald crown), female (diffuse thinning over the crown, hairline kept), none; null = guessed from the face's proportions",
+        ),
         k(
             id!(hair.gray_colour),
             Kind::Colour,
@@ -132,14 +146,14 @@ pub(super) fn rows() -> Vec<Field> {
             YEARS,
             0.0,
             150.0,
-            "earliest age at which a hair starts to gray",
+            "earliest age at which a hair starts to gray (medium-brown hair; darker hair later)",
         ),
         f(
             id!(hair.graying_onset_max_years),
             YEARS,
             0.0,
             150.0,
-            "latest age at which a hair starts to gray",
+            "latest age at which a hair starts to gray (past the oldest age: some hair never grays)",
         ),
         k(
             id!(hair.graying_ramp),

@@ -1,0 +1,237 @@
+//! The person's own colours and hair (issue "the aged colour and hair belong to the
+//! person"): measured on the panel heads' colour maps, the hair loss of a woman, hair that
+//! grays strand by strand, painted hair that goes with the hair.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use super::heads_tests::heads_dir;
+use super::*;
+use crate::base::lab::{ita_degrees, lab};
+use crate::layers::hair::HairLoss;
+
+const MAPS: [(&str, &str); 3] = [
+    ("african-female", "middleage_darkskinned_female_diffuse.jpg"),
+    ("african-male", "middleage_darkskinned_male_diffuse.jpg"),
+    (
+        "caucasian-female",
+        "middleage_lightskinned_female_diffuse2.jpg",
+    ),
+];
+
+fn panel_project(name: &str, with_map: bool) -> Project {
+    let panel = heads_dir().join("panel");
+    let mut p = Project::default();
+    p.mesh.path = Some(panel.join(format!("{name}.obj")));
+    if with_map {
+        let map = MAPS.iter().find(|(n, _)| *n == name).unwrap().1;
+        p.mesh.colour_map = Some(panel.join(map));
+    }
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
+    p.shape.enabled = false;
+    p
+}
+
+fn hair_request(t: f32) -> BakeRequest {
+    BakeRequest {
+        large_size_px: 64,
+        micro_size_px: 64,
+        t,
+        tileable: false,
+        fine: false,
+        hair: true,
+        packed: true,
+        one_off: false,
+        micro_normals: false,
+        shape_relief: false,
+    }
+}
+
+/// `mesh-info`'s measures: the dark-skinned heads have dark hair (L* < 30) and dark skin
+/// (ITA° under −30), the European woman light skin and lighter hair; a head without a map
+/// has nothing measured and takes the project's colours; the guessed hair loss follows the
+/// face (the men male, the women female).
+#[test]
+fn the_heads_own_colours_are_measured_on_its_colour_map() {
+    let never = CancelToken::never();
+    let mut report = Vec::new();
+    for (name, _) in MAPS {
+        let mut scene = Scene::new(panel_project(name, true)).unwrap();
+        let own = scene.own_colours(&never).unwrap();
+        let (skin, hair) = (own.skin.unwrap(), own.hair.unwrap());
+        let ita = ita_degrees(skin.lab);
+        report.push(format!(
+            "{name}: skin {} ITA {ita:.0}, hair {} L* {:.0}, loss {:?}",
+            skin.hex(),
+            hair.hex(),
+            hair.lab.x,
+            scene.hair_loss()
+        ));
+        let person = scene.person();
+        assert_eq!(person.hair_source, Source::Measured, "{report:?}");
+        if name.starts_with("african") {
+            assert!(hair.lab.x < 30.0 && ita < -30.0, "{report:?}");
+            assert!(person.graying_delay_years > 5.0, "{report:?}");
+        } else {
+            assert!(ita > 28.0 && hair.lab.x > 30.0, "{report:?}");
+        }
+        let guessed = if name.ends_with("-male") {
+            HairLoss::Male
+        } else {
+            HairLoss::Female
+        };
+        assert_eq!(scene.hair_loss().loss, guessed, "{report:?}");
+        assert!(scene.hair_loss().guessed.is_some());
+    }
+    eprintln!("{}", report.join("\n"));
+    // No map: nothing measured; the project's hair colour, else the default.
+    let mut p = panel_project("asian-male", false);
+    let mut scene = Scene::new(p.clone()).unwrap();
+    assert_eq!(*scene.own_colours(&never).unwrap(), Default::default());
+    assert_eq!(scene.person().hair_source, Source::Default);
+    assert_eq!(scene.hair_loss().loss, HairLoss::Male);
+    p.hair.base_colour = Some(crate::project::Colour([10, 20, 30]));
+    p.hair.loss = Some(HairLoss::None);
+    scene.set_project(p).unwrap();
+    assert_eq!(
+        scene.person().hair,
+        crate::project::Colour([10, 20, 30]).linear()
+    );
+    assert_eq!(scene.person().hair_source, Source::Project);
+    assert_eq!(scene.hair_loss().loss, HairLoss::None);
+    assert_eq!(scene.hair_loss().guessed, None);
+}
+
+/// A woman in the female pattern keeps at least half of her hairs at 80 and her frontal
+/// hairline (the hair the male pattern loses first); the male pattern loses that hairline.
+#[test]
+fn a_woman_keeps_her_hairline_and_half_her_hair() {
+    let never = CancelToken::never();
+    let mut kept = Vec::new();
+    for loss in [HairLoss::Female, HairLoss::Male] {
+        let mut p = panel_project("caucasian-female", false);
+        p.hair.loss = Some(loss);
+        p.hair.density_per_cm2 = 40.0;
+        let mut scene = Scene::new(p).unwrap();
+        scene.bake(&hair_request(1.0), &never).unwrap();
+        let hair = scene.hair().unwrap().clone();
+        let transition = scene.transition().unwrap().clone();
+        // The frontal hairline: where the male pattern's hair goes before t = 0.3.
+        let front = |h: &&crate::layers::hair::HairInstance| {
+            let a = transition.age_at_uv(h.uv().x, h.uv().y);
+            (0.1..0.3).contains(&a)
+        };
+        let all = hair.instances();
+        let at = |t: f32| &all[..hair.count(t)];
+        let share = |t: f32| at(t).len() as f32 / at(0.0).len().max(1) as f32;
+        let front_share = |t: f32| {
+            at(t).iter().filter(front).count() as f32
+                / at(0.1).iter().filter(front).count().max(1) as f32
+        };
+        kept.push((
+            loss,
+            share(1.0),
+            front_share(1.0),
+            at(0.1).iter().filter(front).count(),
+        ));
+    }
+    eprintln!("{kept:?}");
+    let (_, female_all, female_front, front_hairs) = kept[0];
+    assert!(front_hairs > 100, "{kept:?}");
+    assert!(female_all >= 0.5 && female_front >= 0.5, "{kept:?}");
+    let (_, male_all, male_front, _) = kept[1];
+    assert!(male_front < 0.1 && male_all < female_all, "{kept:?}");
+}
+
+/// Each hair is pigmented or white, seldom between: at 65 the hairs' gray fractions
+/// fall in two groups, and the white share rises with age (docs/models.md §9 "Graying").
+#[test]
+fn the_hair_grays_strand_by_strand() {
+    let never = CancelToken::never();
+    let mut p = Project::default();
+    p.hair.density_per_cm2 = 60.0;
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
+    let mut scene = Scene::new(p).unwrap();
+    scene.bake(&hair_request(0.5), &never).unwrap();
+    let hair = scene.hair().unwrap().clone();
+    let ramp = scene.project().hair.graying_ramp;
+    let groups = |years: f32| {
+        let t = scene.project().age.mapping().t(years);
+        let hairs = &hair.instances()[..hair.count(t)];
+        let y: Vec<f32> = hairs.iter().map(|h| h.gray_fraction(t, ramp)).collect();
+        let n = y.len() as f32;
+        (
+            y.iter().filter(|&&y| y < 0.1).count() as f32 / n,
+            y.iter().filter(|&&y| y > 0.9).count() as f32 / n,
+        )
+    };
+    let (dark, white) = groups(65.0);
+    eprintln!("at 65: {dark:.2} pigmented, {white:.2} white");
+    assert!(
+        dark > 0.3 && white > 0.2 && dark + white > 0.85,
+        "{dark} {white}"
+    );
+    let (_, white_45) = groups(45.0);
+    let (_, white_80) = groups(80.0);
+    assert!(
+        white_45 < 0.15 && white_80 > white + 0.15,
+        "{white_45} {white} {white_80}"
+    );
+}
+
+/// The hair painted on a game head's map goes with the hair: on the African man's bald
+/// crown at 80 the map is his skin, not his young hair; at the young end the map is his own.
+#[test]
+fn painted_hair_goes_with_the_hair_and_the_young_map_is_the_heads_own() {
+    let never = CancelToken::never();
+    let mut scene = Scene::new(panel_project("african-male", true)).unwrap();
+    scene.bake(&hair_request(1.0), &never).unwrap();
+    let own = *scene.own_colours(&never).unwrap();
+    let (skin, hair) = (own.skin.unwrap(), own.hair.unwrap());
+    let n = 512u32;
+    let ages = scene.hair_alpha_at(n, n).unwrap();
+    scene.bake_colour(n, 1.0, &never).unwrap();
+    let old = scene.aged_colour().unwrap().clone();
+    // The young end: the head's own map (its colours unchanged).
+    scene.bake_colour(n, 0.0, &never).unwrap();
+    let young = scene.aged_colour().unwrap().clone();
+    let l = |img: &crate::maps::mask::HeadImage, i: usize| {
+        let p = &img.rgba[4 * i..4 * i + 3];
+        lab(glam::Vec3::new(
+            crate::maps::mask::srgb_to_linear(f32::from(p[0]) / 255.0),
+            crate::maps::mask::srgb_to_linear(f32::from(p[1]) / 255.0),
+            crate::maps::mask::srgb_to_linear(f32::from(p[2]) / 255.0),
+        ))
+        .x
+    };
+    // The crown: hair that goes before 0.6, painted dark at the young end.
+    let crown: Vec<usize> = (0..(n * n) as usize)
+        .filter(|&i| (2..150).contains(&ages[i]) && l(&young, i) < hair.lab.x + 8.0)
+        .collect();
+    assert!(crown.len() > 200, "{}", crown.len());
+    let mean = |img: &crate::maps::mask::HeadImage| {
+        crown.iter().map(|&i| l(img, i)).sum::<f32>() / crown.len() as f32
+    };
+    let (was, now) = (mean(&young), mean(&old));
+    eprintln!(
+        "crown L*: {was:.1} young, {now:.1} at 80 (hair {:.1}, skin {:.1})",
+        hair.lab.x, skin.lab.x
+    );
+    assert!(now > was + 0.6 * (skin.lab.x - was), "{was} → {now}");
+    let map = scene.colour_map().unwrap().clone();
+    // Young: every covered texel as the map has it (resampled to n², within rounding).
+    let own_map = map.as_ref();
+    let differ = crown
+        .iter()
+        .filter(|&&i| {
+            let (x, y) = (i as u32 % n, i as u32 / n);
+            let (mx, my) = (
+                x * own_map.width_px / n + own_map.width_px / n / 2,
+                y * own_map.height_px / n + own_map.height_px / n / 2,
+            );
+            let m = 4 * (my * own_map.width_px + mx) as usize;
+            (0..3).any(|k| young.rgba[4 * i + k].abs_diff(own_map.rgba[m + k]) > 24)
+        })
+        .count();
+    assert!(differ * 20 < crown.len(), "{differ} of {}", crown.len());
+}

@@ -543,7 +543,12 @@ fn shade(s: Surface) -> vec4<f32> {
         return vec4<f32>(n_ts, 1.0);
     }
     let n = normalize(t_geo * n_ts.x + b_geo * n_ts.y + n_geo * n_ts.z);
-    let n_red = normalize(n + t_geo * n_soft_ts.x + b_geo * n_soft_ts.y + n_geo * n_soft_ts.z);
+    // Melanin absorbs the red that scatters back out of a fold: on dark skin red is lit
+    // by the full relief too (the red's wrap over the blue's, which the frame narrows for
+    // dark skin, `view::wrap_for_skin`, measures how far red scatters: 1 on light skin).
+    // Lit half by the blurred relief on dark skin, every fold drew a red line.
+    let red_scatter = clamp((frame.skin_wrap.r / max(frame.skin_wrap.b, 1e-3) - 1.0) / 1.1, 0.0, 1.0);
+    let n_red = normalize(n + red_scatter * (t_geo * n_soft_ts.x + b_geo * n_soft_ts.y + n_geo * n_soft_ts.z));
 
     // The albedo arrives with the age's paling applied (docs/models.md "Age"); a head's
     // own colour map pales the same way.

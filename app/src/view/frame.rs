@@ -52,6 +52,15 @@ pub fn wrap_rgb(wrap: f32, subsurface: Colour) -> Vec3 {
     (c * wrap * (0.45 / 0.35)).clamp(Vec3::ZERO, Vec3::ONE)
 }
 
+/// [`wrap_rgb`] for skin of CIELAB lightness `skin_l`: melanin absorbs the red light that
+/// scatters back out of a fold, so on dark skin the wrap is nearly the same for every
+/// channel (a red-wrapped fold read, blind, as "red drawn-looking forehead lines" on a
+/// dark-skinned head). Full at L* 60 and over, a third of the red's excess at L* 30.
+pub fn wrap_for_skin(wrap: Vec3, skin_l: f32) -> Vec3 {
+    let scatter = ((skin_l - 20.0) / 40.0).clamp(0.3, 1.0);
+    Vec3::splat(wrap.z).lerp(wrap, scatter)
+}
+
 /// What a frame needs to know of the head beyond the project: its unit length, how
 /// deep its UV units make the template's relief, and the person's hair and brows.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -130,18 +139,24 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
     let pale = s.pale_amount * factors.paleness;
     let albedo = linear(s.albedo).lerp(linear(s.pale_albedo), pale);
     let (micro_tile, fine_tile) = tile_placements(project);
-    let (hair, brows, graying_delay) = match head.person {
+    let (hair, brows, graying_delay, skin_l) = match head.person {
         Some(p) => (
             Vec3::from(p.hair),
             Vec3::from(p.brows),
             p.graying_delay_years,
+            p.skin_l,
         ),
         None => {
             let hair = linear(h.base_colour.unwrap_or(agesim_core::scene::FALLBACK_HAIR));
             let brows = h
                 .brow_colour
                 .map_or(hair * agesim_core::scene::BROW_DARKNESS, linear);
-            (hair, brows, 0.0)
+            (
+                hair,
+                brows,
+                0.0,
+                agesim_core::base::lab::lab(linear(s.albedo)).x,
+            )
         }
     };
     FrameParams {
@@ -181,7 +196,7 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
             micro_relief: project.micro_enabled(),
             micro_tile,
             fine_tile,
-            wrap: wrap_rgb(s.wrap, s.subsurface_colour),
+            wrap: wrap_for_skin(wrap_rgb(s.wrap, s.subsurface_colour), skin_l),
             roughness: s.roughness,
             // The Fresnel reflectance of a dielectric, 0.08·specular (skin: 0.35 → 0.028).
             f0: 0.08 * s.specular,

@@ -57,6 +57,8 @@ pub struct Person {
     pub brow_source: Source,
     pub graying_delay_years: f32,
     pub loss: LossChoice,
+    /// The skin's CIELAB lightness: measured on the cheeks, else the project's skin colour.
+    pub skin_l: f32,
 }
 
 /// The pattern of hair loss a scene uses and where it comes from.
@@ -201,6 +203,10 @@ impl Scene {
                 lab(glam::Vec3::from(hair)).x,
             ),
             loss: self.hair_loss(),
+            skin_l: own.skin.map_or_else(
+                || lab(glam::Vec3::from(self.project.skin.albedo.linear())).x,
+                |m| m.lab.x,
+            ),
         }
     }
 

@@ -98,6 +98,9 @@ const BROW_GRAY_BRIGHTNESS: f32 = 1.0;
 /// "white paint blobs" on dark skin).
 const BROW_TEXEL_GRAY: f32 = 0.6;
 
+/// The lightest a gray brow texel gets, in luminance over the skin around it.
+const BROW_GRAY_OVER_SKIN: f32 = 2.2;
+
 /// Age spots gather over patches of about this size, mm, tried up to this many times each
 /// ([`place_spots`]).
 const SPOT_CLUSTER_MM: f32 = 35.0;
@@ -455,10 +458,13 @@ impl Look<'_> {
             // Toward a gray between the hair's and the skin's (the skin shows between
             // the gray hairs; the strands drawn over the brows carry the white): fully
             // white texels read, blind, as "white paint" on dark skin.
-            c = c.lerp(
-                self.gray * (0.75 + 0.25 * draw),
-                (BROW_TEXEL_GRAY * hair * gray_hair).clamp(0.0, 1.0),
-            );
+            // And no lighter than BROW_GRAY_OVER_SKIN × the skin around: on dark skin
+            // the texels go to a light gray-brown, and the strands drawn over them carry
+            // the white.
+            let target = self.gray.lerp(reference, 0.3) * (0.75 + 0.25 * draw);
+            let most = BROW_GRAY_OVER_SKIN * lum(reference);
+            let target = target * (most / lum(target).max(1e-4)).min(1.0);
+            c = c.lerp(target, (BROW_TEXEL_GRAY * hair * gray_hair).clamp(0.0, 1.0));
         }
         // Every skin mottles some; sun-exposed skin most. Darker blotches and lighter skin
         // between, about even on average, so no region's mean tone shifts (no edge where

@@ -60,11 +60,16 @@ const MOTTLE_TINT: [f32; 3] = [0.30, 0.40, 0.50];
 /// Feature sizes of the mottling, mm: blotches and a finer grain.
 const MOTTLE_MM: (f32, f32) = (9.0, 2.6);
 
-/// How far the beard's darkest texels go toward the bare skin round the beard when all the
-/// hair is gray, and how far every beard texel does.
+/// How far a gray stubble hair's texel goes toward a light gray (the bare skin's, lighter),
+/// and how far every beard texel goes toward the bare skin when all the hair is gray.
 const BEARD_GRAY: f32 = 0.8;
 /// See [`BEARD_GRAY`].
-const BEARD_LIFT: f32 = 0.5;
+const BEARD_LIFT: f32 = 0.65;
+/// A stubble hair's draw of the salt and pepper is one value-noise cell this size, mm (a
+/// hair and the skin round it).
+const STUBBLE_MM: f32 = 0.5;
+/// A gray stubble texel: this much lighter than the bare skin round the beard.
+const STUBBLE_GRAY_LIGHT: f32 = 1.18;
 /// How much a full under-eye shadow takes from each linear channel (red least, blue most:
 /// a brown-grey shadow; a violet one, and one taking a third from green, read blind as
 /// "bruise paint").
@@ -425,11 +430,23 @@ impl Look<'_> {
         // most: no "moustache" shadow at 80, and no grey jaw over a pink neck (toward the
         // beard's own tone, which the dark stubble pulls down and grays, the jaw read,
         // blind, as "a colour seam" where it met the neck).
-        let beard = from_unit(f.beard) * a.brow_gray;
-        if beard > 0.0 {
+        // Hair by hair (salt and pepper, docs/models.md "Skin colour"): a stubble texel
+        // whose draw is under the gray fraction turns a gray a little lighter than the
+        // bare skin, the others keep their dark, so the beard shadow grays and keeps its
+        // grain instead of vanishing (the old beard evened out to bare skin made the aged
+        // map *less* uneven than the young one).
+        let beard = from_unit(f.beard);
+        if beard > 0.0 && a.brow_gray > 0.0 {
             let dark = smoothstep(0.0, 0.25, 1.0 - lum(c) / lum(reference).max(1e-4));
-            let lift = beard * (BEARD_GRAY * dark + BEARD_LIFT);
+            let draw = 0.5
+                + 0.5
+                    * (2.2 * value3(p * (1000.0 / STUBBLE_MM), self.spot_key ^ 0x9e37_79b9))
+                        .clamp(-1.0, 1.0);
+            let gray_hair = smoothstep(-0.08, 0.08, a.brow_gray - draw);
+            let lift = beard * a.brow_gray * BEARD_LIFT * (1.0 - dark);
             c = c.lerp(bare, lift.clamp(0.0, 1.0));
+            let whiten = beard * dark * gray_hair * BEARD_GRAY;
+            c = c.lerp(bare * STUBBLE_GRAY_LIGHT, whiten.clamp(0.0, 1.0));
         }
         // The under-eye shadow (thinner lid skin over the orbicularis, the tear trough's
         // hollow): a brown-grey darkening on the contrast curve.

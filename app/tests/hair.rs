@@ -229,3 +229,34 @@ fn a_head_in_centimetres_or_millimetres_gets_the_hair_of_the_head_in_metres() {
         assert!((0.98..1.02).contains(&ratio), "{hairs} vs {hairs_m}");
     }
 }
+
+/// `--set hair.loss=…` on `hair`: the female pattern keeps more of the default head's hair
+/// at t = 1 than the male (nothing recedes); a bad value names the field and its choices.
+#[test]
+fn the_hair_loss_pattern_is_set_on_the_command_line() {
+    let at_one = |loss: &str| {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().display().to_string();
+        let set = format!("hair.loss={loss}");
+        ok(&["hair", "--density", "20", "--set", &set, "--out", &out]);
+        let c = counts(&read_json(dir.path()));
+        let at = |t: f64| {
+            c.iter()
+                .filter(|(ct, _)| *ct <= t)
+                .last()
+                .map_or(0, |x| x.1)
+        };
+        (at(0.0), at(1.0))
+    };
+    let (female_0, female_1) = at_one("female");
+    let (male_0, male_1) = at_one("male");
+    assert!(female_1 * 2 >= female_0, "{female_1} of {female_0}");
+    assert!(
+        male_1 < female_1,
+        "male {male_1}, female {female_1} at t = 1 (of {male_0}, {female_0})"
+    );
+    let bad = agesim(&["hair", "--set", "hair.loss=bald", "--out", "/nonexistent"]);
+    assert!(!bad.status.success());
+    let e = String::from_utf8_lossy(&bad.stderr);
+    assert!(e.contains("hair.loss") && e.contains("female"), "{e}");
+}

@@ -18,6 +18,9 @@ pub struct ExportArgs {
     /// A shipped preset instead of a project.
     #[arg(long, value_name = "NAME")]
     pub preset: Option<String>,
+    /// Project fields set on the command line.
+    #[command(flatten)]
+    pub sets: super::SetArgs,
     /// The age of the export.
     #[command(flatten)]
     pub age: super::AgeArgs,
@@ -84,8 +87,10 @@ pub struct ExportArgs {
 
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let start = Instant::now();
-    let mut project =
-        super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
+    let mut project = args.sets.apply(super::load_project_or_preset(
+        args.project.as_deref(),
+        args.preset.as_deref(),
+    )?)?;
     if let Some(m) = &args.mesh {
         project.mesh.path = Some(m.clone());
         project.mesh.metres_per_unit = None;

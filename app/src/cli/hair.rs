@@ -23,6 +23,9 @@ pub struct HairArgs {
     /// The head: its mesh, units and landmarks.
     #[command(flatten)]
     pub head: super::MeshArgs,
+    /// Project fields set on the command line (`hair.loss`, …; the flags below win).
+    #[command(flatten)]
+    pub sets: super::SetArgs,
     /// Outer hair mask (hair at age 0), any grey image. Default: the default head's.
     #[arg(long)]
     pub outer: Option<PathBuf>,
@@ -54,7 +57,7 @@ pub struct HairArgs {
 
 /// The project of `args`: the hair settings from the flags, every other layer off.
 fn project(args: &HairArgs) -> anyhow::Result<Project> {
-    let mut p = Project::default();
+    let mut p = args.sets.apply(Project::default())?;
     args.head.apply_to(&mut p)?;
     p.hair.outer_mask = args.outer.clone();
     p.hair.inner_mask = args.inner.clone();

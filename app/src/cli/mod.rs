@@ -148,6 +148,34 @@ impl AgeArgs {
     }
 }
 
+/// `--set PATH=VALUE` (repeatable): one project field by its JSON path, on the commands
+/// that make hair and renders (`render`, `hair`, `export`; `bake` has its own).
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct SetArgs {
+    /// Override one project field by its JSON path, e.g. `--set hair.loss=female`
+    /// (repeatable; docs/project-file.md lists them).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<String>,
+}
+
+impl SetArgs {
+    /// `project` with every `--set` applied, checked field by field.
+    pub fn apply(
+        &self,
+        mut project: agesim_core::project::Project,
+    ) -> anyhow::Result<agesim_core::project::Project> {
+        for assignment in &self.set {
+            let Some((path, value)) = assignment.split_once('=') else {
+                anyhow::bail!(
+                    "--set {assignment}: expected PATH=VALUE, e.g. --set hair.loss=female"
+                );
+            };
+            project = project.set(path.trim(), value.trim())?;
+        }
+        Ok(project)
+    }
+}
+
 /// The head flags of `hair` and `render`: the mesh, its units and its landmarks.
 #[derive(Clone, Debug, Default, clap::Args)]
 pub struct MeshArgs {

@@ -23,6 +23,9 @@ pub struct RenderArgs {
     /// Project file (`*.agesim.json`): wrinkles, mask, micro-relief. Default: the default project.
     #[arg(long, value_name = "FILE")]
     pub project: Option<PathBuf>,
+    /// Project fields set on the command line.
+    #[command(flatten)]
+    pub sets: super::SetArgs,
     /// The head: its mesh, units and landmarks.
     #[command(flatten)]
     pub head: super::MeshArgs,
@@ -134,6 +137,7 @@ fn project_of(args: &RenderArgs) -> anyhow::Result<Project> {
     if p.hair.enabled {
         p.hair.density_per_cm2 = density;
     }
+    let mut p = args.sets.apply(p)?;
     let v = &mut p.view;
     if let Some(pom) = args.pom {
         v.pom = pom.into();

@@ -80,8 +80,9 @@ impl Scene {
 
     /// The hair's disappearance age per texel at `width × height`
     /// ([`crate::layers::hair::scalp::hair_age_alpha`]) of the last transition texture, in the
-    /// pattern of hair loss: nothing recedes in the female pattern or none (every haired
-    /// texel 255). `None` without hair or a transition texture. Kept per size.
+    /// pattern of hair loss: nothing recedes in the female pattern or none (the haired
+    /// texels from the kept hairline on, ramping to 255 over 0.3 of the male pattern's
+    /// ages). `None` without hair or a transition texture. Kept per size.
     pub(super) fn hair_alpha_at(&mut self, width: u32, height: u32) -> Option<Arc<Vec<u8>>> {
         let transition = self
             .transition
@@ -96,11 +97,19 @@ impl Scene {
         }
         let mut a = crate::layers::hair::scalp::hair_age_alpha(&transition, width, height);
         if !receding {
-            // The hairline kept where the male pattern has it at KEPT_HAIRLINE_T.
-            let kept = 1 + (254.0 * crate::layers::hair::KEPT_HAIRLINE_T).round() as u8;
-            a.iter_mut()
-                .filter(|a| **a > 0)
-                .for_each(|a| *a = if *a >= kept { 255 } else { 0 });
+            // The hairline kept where the male pattern has it at KEPT_HAIRLINE_T, and the
+            // hair there as if it went late: the texels along the hairline (the taper's
+            // shorter, sparser hair) tint the scalp less (at 255 the tint ran full to the
+            // hairline's edge, a band of hair colour below the hair).
+            let kept = crate::layers::hair::KEPT_HAIRLINE_T;
+            a.iter_mut().filter(|a| **a > 0).for_each(|a| {
+                let age = (f32::from(*a) - 1.0) / 254.0;
+                *a = if age < kept {
+                    0
+                } else {
+                    1 + (254.0 * ((age - kept) / 0.3).min(1.0)).round() as u8
+                };
+            });
         }
         let a = Arc::new(a);
         self.hair_alpha = Some((k, a.clone()));

@@ -242,8 +242,8 @@ fn the_hair_loss_pattern_is_set_on_the_command_line() {
         let c = counts(&read_json(dir.path()));
         let at = |t: f64| {
             c.iter()
-                .filter(|(ct, _)| *ct <= t)
-                .last()
+                .rev()
+                .find(|(ct, _)| *ct <= t)
                 .map_or(0, |x| x.1)
         };
         (at(0.0), at(1.0))

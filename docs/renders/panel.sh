@@ -20,8 +20,10 @@ one_head() {
   MPU=$mpu sh docs/renders/rating.sh "$O/$name" "$@" > /dev/null
   dist=$(awk -v u="$mpu" 'BEGIN { printf "%g", 0.72 / u }')
   for y in 25 45 65 85; do
-    $A render --age-years $y --size 560x600 --distance "$dist" --yaw 0 --pitch 0 --map-size 2048 "$@" \
-      --out "$O/$name/age-$y.png" > /dev/null
+    # The default age range ends at 80 (t = 1): 85 is rendered on a range that reaches it.
+    old=80; [ "$y" -gt 80 ] && old=$y
+    $A render --age-years $y --set age.old_years=$old --size 560x600 --distance "$dist" --yaw 0 --pitch 0 \
+      --map-size 2048 "$@" --out "$O/$name/age-$y.png" > /dev/null
   done
   echo "$name done"
 }

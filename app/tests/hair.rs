@@ -240,12 +240,7 @@ fn the_hair_loss_pattern_is_set_on_the_command_line() {
         let set = format!("hair.loss={loss}");
         ok(&["hair", "--density", "20", "--set", &set, "--out", &out]);
         let c = counts(&read_json(dir.path()));
-        let at = |t: f64| {
-            c.iter()
-                .rev()
-                .find(|(ct, _)| *ct <= t)
-                .map_or(0, |x| x.1)
-        };
+        let at = |t: f64| c.iter().rev().find(|(ct, _)| *ct <= t).map_or(0, |x| x.1);
         (at(0.0), at(1.0))
     };
     let (female_0, female_1) = at_one("female");

@@ -3,7 +3,7 @@
 //! few millimetres away — the cheek beside the nose's wing, the lid under the brow — the
 //! move could carry it through that surface, which then shows a hole (blind reviewers:
 //! "a dark red hole torn in the face beside the nostril"). Each vertex that moves outward
-//! looks along its move for the head's surface as it rests; its move (in every region's
+//! or inward looks along its move for the head's surface as it rests; its move (in every region's
 //! field alike) is shortened to half the way there.
 
 use glam::Vec3;
@@ -13,8 +13,8 @@ use crate::head::fit::bvh::Bvh;
 
 /// The share of the way to the surface in front that an outward move may take.
 pub const CLEARANCE_SHARE: f32 = 0.5;
-/// The least a move must lean outward (its cosine with the normal) to be checked: a move
-/// along the skin (a descent) slides over it, not through what faces it.
+/// The least a move must lean outward or inward (its cosine with the normal) to be
+/// checked: a move along the skin (a descent) slides over it, not through what faces it.
 const OUTWARD: f32 = 0.3;
 
 /// Rings of neighbours over which a shortened move eases back to the whole move (each
@@ -50,7 +50,10 @@ pub fn keep_clear(
         .filter(|&v| {
             let (d, normal) = (total[v], normals.get(v).copied().unwrap_or(Vec3::ZERO));
             let len = d.length();
-            len > near && d.dot(normal) > OUTWARD * len * normal.length()
+            // Inward too: a deflation beside the nose's wing carried the cheek through the
+            // nostril's inner wall behind it (its inside then showed as "a black hole
+            // beside the nostril", blind).
+            len > near && d.dot(normal).abs() > OUTWARD * len * normal.length()
         })
         .collect();
     if outward.is_empty() {

@@ -33,7 +33,7 @@ impl HeadlessView {
                 packed: false,
                 one_off: true,
                 micro_normals: false,
-                shape_relief: std::env::var_os("AGESIM_NO_RELIEF").is_none(),
+                shape_relief: true,
             },
             layers: Layers::default(),
             uploaded: Uploaded::default(),

@@ -189,7 +189,7 @@ pub struct AgeFactors {
 }
 
 /// The brows' gray fraction relative to the scalp hair's: brows gray later.
-const BROW_GRAY_LAG: f32 = 0.5;
+const BROW_GRAY_LAG: f32 = 0.65;
 
 /// Each effect of the aged colour and the brows and lashes, its age factor 0–1 (the age
 /// model's curves at one age; the scene makes them from the project).

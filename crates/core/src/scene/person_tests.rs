@@ -115,10 +115,10 @@ fn a_woman_keeps_her_hairline_and_half_her_hair() {
         scene.bake(&hair_request(1.0), &never).unwrap();
         let hair = scene.hair().unwrap().clone();
         let transition = scene.transition().unwrap().clone();
-        // The frontal hairline: where the male pattern's hair goes before t = 0.3.
+        // The frontal hairline: the band the male pattern loses first (t 0.1–0.2).
         let front = |h: &&crate::layers::hair::HairInstance| {
             let a = transition.age_at_uv(h.uv().x, h.uv().y);
-            (0.1..0.3).contains(&a)
+            (0.1..0.2).contains(&a)
         };
         let all = hair.instances();
         let at = |t: f32| &all[..hair.count(t)];

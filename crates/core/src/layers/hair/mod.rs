@@ -615,9 +615,9 @@ pub const MALE_FACE_RATIO: f32 = 1.1;
 /// In the female pattern, how much of `hair.thinning` the crown (the male pattern's
 /// receding region) loses, and the sides and back: the crown thins most, the frontal
 /// hairline (within [`HAIRLINE_KEPT_MM`] of the face) as the sides.
-pub const FEMALE_THINNING: (f32, f32) = (1.1, 0.6);
+pub const FEMALE_THINNING: (f32, f32) = (1.45, 0.6);
 /// See [`FEMALE_THINNING`].
-pub const HAIRLINE_KEPT_MM: f32 = 15.0;
+pub const HAIRLINE_KEPT_MM: f32 = 25.0;
 /// Where the hairline stays in the patterns that keep it: where the male pattern has it at
 /// this t (about 26 years). The masks' hair at t = 0 reaches lower, a boy's hairline the
 /// male pattern recedes from at once; kept, it drew a band of hair down the forehead.

@@ -306,3 +306,31 @@ fn the_old_base_colour_is_more_uneven_than_the_young() {
     );
     assert!(o > 1.08 * y, "{y} → {o}");
 }
+
+/// Dark skin ages duller and ashier, not yellower: on the African man's head the aged
+/// texels' mean chroma (CIELAB C*ab) at 80 is below its value at 25, where the yellowing
+/// alone raised it (read, blind, as "the same saturated, glossy orange").
+#[test]
+fn dark_skin_ages_ashier_not_more_orange() {
+    let never = CancelToken::never();
+    let mut scene = Scene::new(panel_project("african-male", true)).unwrap();
+    let n = 512;
+    scene.bake_colour(n, 0.0833, &never).unwrap();
+    let young = scene.aged_colour().unwrap().clone();
+    scene.bake_colour(n, 1.0, &never).unwrap();
+    let old = scene.aged_colour().unwrap().clone();
+    let chroma = |img: &crate::maps::mask::HeadImage, i: usize| {
+        let p = &img.rgba[4 * i..4 * i + 3];
+        let lin = |c: u8| crate::maps::mask::srgb_to_linear(f32::from(c) / 255.0);
+        let c = lab(glam::Vec3::new(lin(p[0]), lin(p[1]), lin(p[2])));
+        c.y.hypot(c.z)
+    };
+    let aged: Vec<usize> = (0..(n * n) as usize)
+        .filter(|&i| (0..3).any(|k| young.rgba[4 * i + k] != old.rgba[4 * i + k]))
+        .collect();
+    assert!(aged.len() > 1000, "{}", aged.len());
+    let mean = |img| aged.iter().map(|&i| chroma(img, i)).sum::<f32>() / aged.len() as f32;
+    let (c25, c80) = (mean(&young), mean(&old));
+    eprintln!("dark skin chroma: {c25:.1} at 25, {c80:.1} at 80");
+    assert!(c80 < c25, "{c25} → {c80}");
+}

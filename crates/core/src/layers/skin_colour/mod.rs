@@ -84,6 +84,14 @@ const CREASE_TINT: [f32; 3] = [0.7, 0.85, 1.0];
 /// Feature size of the redness and of the thread veins, mm.
 const REDNESS_MM: (f32, f32) = (6.0, 3.0);
 
+/// Linear luminance of the skin round a texel below which it counts as dark (fully dark
+/// at the first: the panel's dark heads are about 0.07; light skin 0.35–0.5).
+const DARK_SKIN_LUM: (f32, f32) = (0.08, 0.2);
+/// How much saturation dark skin loses at full paling (ashier, not yellower), and how much
+/// less its redness shows.
+const ASHY: f32 = 0.2;
+const DARK_SKIN_REDNESS: f32 = 0.6;
+
 /// The yellowing's tint per unit (green and blue lowered, red kept).
 const YELLOW_TINT: [f32; 3] = [0.0, 0.06, 0.22];
 
@@ -462,8 +470,15 @@ impl Look<'_> {
         if crease > 0.0 {
             c *= Vec3::ONE - Vec3::from(CREASE_TINT) * crease;
         }
-        // Paling and yellowing: a tint, so what is darker stays darker.
-        c *= self.pale_tint * self.yellow;
+        // Paling and yellowing: a tint, so what is darker stays darker. On dark skin
+        // (by the skin tone round the texel) old skin goes duller and ashier rather than
+        // yellow: the yellowing fades out and the colour loses some saturation (yellowed,
+        // it read, blind, as "the same saturated, glossy orange").
+        let dark = 1.0 - smoothstep(DARK_SKIN_LUM.0, DARK_SKIN_LUM.1, lum(reference));
+        c *= self.pale_tint * Vec3::ONE.lerp(self.yellow, 1.0 - dark);
+        if dark > 0.0 {
+            c = c.lerp(Vec3::splat(lum(c)), ASHY * dark * a.pale.min(1.0));
+        }
         // The brows gray with the hair, hair by hair: a texel's hair is gray when its draw
         // (value noise in streaks along the hairs, [`BROW_STRAND_MM`]) is under the gray
         // fraction: salt and pepper. The skin shows a little between the hairs.
@@ -495,7 +510,8 @@ impl Look<'_> {
             c *= Vec3::ONE - Vec3::from(MOTTLE_TINT) * d;
         }
         // Redness and thread veins on the cheeks and the nose.
-        let r = s.redness * a.redness * red;
+        // Redness shows far less through melanin.
+        let r = s.redness * a.redness * red * (1.0 - DARK_SKIN_REDNESS * dark);
         if r > 0.0 {
             let flush = r * (0.55 + 0.45 * from_signed(f.flush));
             let veins = r * (1.0 - from_signed(f.vein).abs()).powi(14);

@@ -227,7 +227,9 @@ impl BrowHairs {
                     middle: middle.to_array(),
                     shade: r.shade,
                     tip: tip.to_array(),
-                    coverage: 1.0 - 0.25 * gray,
+                    // Gray brow hair is finer: at a quarter less cover the white
+                    // brows read, blind, as "white paint" on dark skin.
+                    coverage: 1.0 - 0.45 * gray,
                 }
             })
             .collect()

@@ -224,3 +224,41 @@ fn mesh_info_prints_the_units_and_how_they_were_decided() {
         "{err}"
     );
 }
+
+/// The person: on the African man's panel head with his colour map, `mesh-info` prints his
+/// skin tone with its ITA° group, his measured hair colour (dark) and brows, and the hair
+/// loss guessed from his face; without the map, the hair colour is the default and says so.
+#[test]
+fn prints_the_persons_measured_colours_and_hair_loss() {
+    let panel = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/heads/panel");
+    let head = panel.join("african-male.obj").display().to_string();
+    let map = panel
+        .join("middleage_darkskinned_male_diffuse.jpg")
+        .display()
+        .to_string();
+    let out = mesh_info(&[&head, "--colour-map", &map]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = stdout(&out);
+    let line = |start: &str| {
+        text.lines()
+            .find(|l| l.starts_with(start))
+            .unwrap_or_else(|| panic!("no `{start}` in {text}"))
+            .to_owned()
+    };
+    assert!(line("skin tone: #").contains(": dark"), "{text}");
+    let hair = line("hair colour: #");
+    assert!(hair.contains("measured on the colour map's scalp"), "{hair}");
+    let l_star: f32 = hair
+        .split("L* ")
+        .nth(1)
+        .and_then(|s| s.split(',').next())
+        .and_then(|s| s.trim().parse().ok())
+        .unwrap();
+    assert!(l_star < 30.0, "{hair}");
+    assert!(line("hair loss: ").contains("male (guessed from the face"), "{text}");
+    let bare = stdout(&mesh_info(&[&head]));
+    assert!(bare.contains("hair colour: #3f2c1f (a dark brown"), "{bare}");
+    // --colour-map describes a file.
+    let e = mesh_info(&["--colour-map", &map]);
+    assert!(!e.status.success());
+}

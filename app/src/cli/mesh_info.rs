@@ -96,17 +96,30 @@ pub fn describe_person(scene: &mut Scene) -> anyhow::Result<String> {
     let colour = |c: [f32; 3],
                   m: Option<agesim_core::layers::skin_colour::Measured>,
                   source: agesim_core::scene::Source,
-                  on: &str| match (source, m) {
+                  on: &str,
+                  default: &str| match (source, m) {
         (agesim_core::scene::Source::Measured, Some(m)) => format!(
             "{} (measured on the colour map's {on})",
             describe_measured(&m)
         ),
-        (s, _) => format!("{} ({})", hex(c), s.describe(on)),
+        (s, _) => format!("{} ({})", hex(c), s.describe(on, default)),
     };
     Ok(format!(
         "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\n",
-        colour(person.hair, own.hair, person.hair_source, "scalp"),
-        colour(person.brows, own.brows, person.brow_source, "brows"),
+        colour(
+            person.hair,
+            own.hair,
+            person.hair_source,
+            "scalp",
+            "a dark brown"
+        ),
+        colour(
+            person.brows,
+            own.brows,
+            person.brow_source,
+            "brows",
+            "the hair's, darker",
+        ),
         person.graying_delay_years,
         person.loss.describe(),
     ))

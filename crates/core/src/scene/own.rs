@@ -37,11 +37,13 @@ pub enum Source {
 }
 
 impl Source {
-    pub fn describe(self, measured_on: &str) -> String {
+    /// Where a colour comes from, for reports: `measured_on` the region it is measured on
+    /// (`scalp`, `brows`), `default` what stands in without one.
+    pub fn describe(self, measured_on: &str, default: &str) -> String {
         match self {
             Self::Project => "set in the project".into(),
             Self::Measured => format!("measured on the colour map's {measured_on}"),
-            Self::Default => "default: the head's colour map shows none".into(),
+            Self::Default => format!("{default}: the head's colour map shows none on its {measured_on}"),
         }
     }
 }

@@ -237,7 +237,11 @@ fn prints_the_persons_measured_colours_and_hair_loss() {
         .display()
         .to_string();
     let out = mesh_info(&[&head, "--colour-map", &map]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = stdout(&out);
     let line = |start: &str| {
         text.lines()
@@ -247,7 +251,10 @@ fn prints_the_persons_measured_colours_and_hair_loss() {
     };
     assert!(line("skin tone: #").contains(": dark"), "{text}");
     let hair = line("hair colour: #");
-    assert!(hair.contains("measured on the colour map's scalp"), "{hair}");
+    assert!(
+        hair.contains("measured on the colour map's scalp"),
+        "{hair}"
+    );
     let l_star: f32 = hair
         .split("L* ")
         .nth(1)
@@ -255,9 +262,15 @@ fn prints_the_persons_measured_colours_and_hair_loss() {
         .and_then(|s| s.trim().parse().ok())
         .unwrap();
     assert!(l_star < 30.0, "{hair}");
-    assert!(line("hair loss: ").contains("male (guessed from the face"), "{text}");
+    assert!(
+        line("hair loss: ").contains("male (guessed from the face"),
+        "{text}"
+    );
     let bare = stdout(&mesh_info(&[&head]));
-    assert!(bare.contains("hair colour: #3f2c1f (a dark brown"), "{bare}");
+    assert!(
+        bare.contains("hair colour: #3f2c1f (a dark brown"),
+        "{bare}"
+    );
     // --colour-map describes a file.
     let e = mesh_info(&["--colour-map", &map]);
     assert!(!e.status.success());

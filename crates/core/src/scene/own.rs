@@ -43,7 +43,9 @@ impl Source {
         match self {
             Self::Project => "set in the project".into(),
             Self::Measured => format!("measured on the colour map's {measured_on}"),
-            Self::Default => format!("{default}: the head's colour map shows none on its {measured_on}"),
+            Self::Default => {
+                format!("{default}: the head's colour map shows none on its {measured_on}")
+            }
         }
     }
 }

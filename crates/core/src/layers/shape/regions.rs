@@ -125,7 +125,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.75, 0.45, 0.25], [0.65, 0.35, 0.6])],
         motions: &[(Descent, 6.0)],
         rolls: &[],
-        curve: curve(40.0, 80.0),
+        curve: curve(35.0, 80.0),
     },
     ShapeRegion {
         name: "lids",
@@ -133,7 +133,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.62, 0.14, 0.3], [0.5, 0.17, 0.45])],
         motions: &[(Descent, 2.5), (Bulge, 1.0)],
         rolls: &[],
-        curve: curve(40.0, 80.0),
+        curve: curve(35.0, 80.0),
     },
     ShapeRegion {
         name: "bags",
@@ -157,7 +157,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             crease_half: 0.11,
             mirrored: true,
         }],
-        curve: curve(40.0, 75.0),
+        curve: curve(35.0, 75.0),
     },
     ShapeRegion {
         name: "tear_trough",
@@ -183,7 +183,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Deflate, 5.0)],
         rolls: &[],
-        curve: curve(35.0, 70.0),
+        curve: curve(30.0, 70.0),
     },
     ShapeRegion {
         name: "temples",
@@ -205,7 +205,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Deflate, 15.0)],
         rolls: &[],
-        curve: curve(40.0, 80.0),
+        curve: curve(35.0, 80.0),
     },
     ShapeRegion {
         name: "cheeks",
@@ -229,7 +229,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
                 ..CHEEK_ROLL
             },
         ],
-        curve: curve(35.0, 75.0),
+        curve: curve(30.0, 75.0),
     },
     ShapeRegion {
         name: "jowls",
@@ -248,7 +248,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
                 ..JOWL_ROLL
             },
         ],
-        curve: curve(40.0, 80.0),
+        curve: curve(35.0, 80.0),
     },
     ShapeRegion {
         name: "lips",
@@ -260,7 +260,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.0, -1.1, 0.5], [0.6, 0.24, 0.45])],
         motions: &[(Descent, 1.5), (Deflate, 1.5)],
         rolls: &[],
-        curve: curve(40.0, 80.0),
+        curve: curve(35.0, 80.0),
     },
     ShapeRegion {
         name: "nose",
@@ -268,7 +268,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.0, -0.65, 0.95], [0.28, 0.28, 0.35])],
         motions: &[(Descent, 4.5)],
         rolls: &[],
-        curve: curve(45.0, 85.0),
+        curve: curve(40.0, 85.0),
     },
     ShapeRegion {
         name: "ears",
@@ -278,7 +278,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([1.72, -1.0, -1.45], [0.35, 0.6, 0.45])],
         motions: &[(Descent, 8.0)],
         rolls: &[],
-        curve: curve(40.0, 85.0),
+        curve: curve(35.0, 85.0),
     },
     ShapeRegion {
         name: "neck",
@@ -313,7 +313,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Descent, 3.0), (Bulge, 0.5)],
         rolls: &[],
-        curve: curve(40.0, 80.0),
+        curve: curve(35.0, 80.0),
     },
 ];
 

@@ -31,6 +31,13 @@ fn panel_project(name: &str, with_map: bool) -> Project {
     p
 }
 
+/// CIELAB of texel `i` of an sRGB picture.
+fn texel_lab(img: &crate::maps::mask::HeadImage, i: usize) -> glam::Vec3 {
+    let p = &img.rgba[4 * i..4 * i + 3];
+    let lin = |c: u8| crate::maps::mask::srgb_to_linear(f32::from(c) / 255.0);
+    lab(glam::Vec3::new(lin(p[0]), lin(p[1]), lin(p[2])))
+}
+
 fn hair_request(t: f32) -> BakeRequest {
     BakeRequest {
         large_size_px: 64,
@@ -195,15 +202,7 @@ fn painted_hair_goes_with_the_hair_and_the_young_map_is_the_heads_own() {
     // The young end: the head's own map (its colours unchanged).
     scene.bake_colour(n, 0.0, &never).unwrap();
     let young = scene.aged_colour().unwrap().clone();
-    let l = |img: &crate::maps::mask::HeadImage, i: usize| {
-        let p = &img.rgba[4 * i..4 * i + 3];
-        lab(glam::Vec3::new(
-            crate::maps::mask::srgb_to_linear(f32::from(p[0]) / 255.0),
-            crate::maps::mask::srgb_to_linear(f32::from(p[1]) / 255.0),
-            crate::maps::mask::srgb_to_linear(f32::from(p[2]) / 255.0),
-        ))
-        .x
-    };
+    let l = |img: &crate::maps::mask::HeadImage, i: usize| texel_lab(img, i).x;
     // The crown: hair that goes before 0.6, painted dark at the young end.
     let crown: Vec<usize> = (0..(n * n) as usize)
         .filter(|&i| (2..150).contains(&ages[i]) && l(&young, i) < hair.lab.x + 8.0)
@@ -320,9 +319,7 @@ fn dark_skin_ages_ashier_not_more_orange() {
     scene.bake_colour(n, 1.0, &never).unwrap();
     let old = scene.aged_colour().unwrap().clone();
     let chroma = |img: &crate::maps::mask::HeadImage, i: usize| {
-        let p = &img.rgba[4 * i..4 * i + 3];
-        let lin = |c: u8| crate::maps::mask::srgb_to_linear(f32::from(c) / 255.0);
-        let c = lab(glam::Vec3::new(lin(p[0]), lin(p[1]), lin(p[2])));
+        let c = texel_lab(img, i);
         c.y.hypot(c.z)
     };
     let aged: Vec<usize> = (0..(n * n) as usize)

@@ -73,13 +73,7 @@ impl Scene {
                     expected: "white where hair grows at age 0".into(),
                 });
             }
-            let size = h.transition_size_px.unwrap_or_else(|| {
-                outer
-                    .width_px()
-                    .max(outer.height_px())
-                    .max(inner.width_px())
-                    .max(inner.height_px())
-            });
+            let size = transition_size(h.transition_size_px, outer, inner);
             // The built-in masks come with the order their hair goes in; masks of the
             // artist's own grow their transition from the inner region.
             let order = (h.outer_mask.is_none() && h.inner_mask.is_none())
@@ -225,4 +219,15 @@ impl Scene {
         self.brows = Some((key, hairs.clone()));
         (!hairs.is_empty()).then_some(hairs)
     }
+}
+
+/// The transition texture's side: `hair.transition_size_px`, else the masks' larger side.
+pub(super) fn transition_size(set: Option<u32>, outer: &Mask, inner: &Mask) -> u32 {
+    set.unwrap_or_else(|| {
+        outer
+            .width_px()
+            .max(outer.height_px())
+            .max(inner.width_px())
+            .max(inner.height_px())
+    })
 }

@@ -145,13 +145,8 @@ impl Scene {
             }));
         };
         let outer = &masks.0;
-        let size = self.project.hair.transition_size_px.unwrap_or_else(|| {
-            outer
-                .width_px()
-                .max(outer.height_px())
-                .max(masks.1.width_px())
-                .max(masks.1.height_px())
-        });
+        let size =
+            super::hair::transition_size(self.project.hair.transition_size_px, outer, &masks.1);
         let (values, side) = match self.correspondence(size, cancel)? {
             Some(c) => (
                 c.resample(outer.values(), outer.width_px(), outer.height_px()),

@@ -310,6 +310,20 @@ impl Regions {
         w * front(q.z, self.ear_z) * (1.0 - self.eyes(p))
     }
 
+    /// The upper face, where the dark papules of dark skin come: in front of the ears,
+    /// from the mouth up to the top of the forehead (the cheeks, temples and forehead);
+    /// not the lips or the eyes.
+    pub fn upper_face(&self, p: Vec3) -> f32 {
+        let q = self.rel(p);
+        let below_top = 1.0 - smoothstep(1.3, 1.8, q.y);
+        let above_mouth = smoothstep(self.mouth.y, self.nose_tip.y, q.y);
+        front(q.z, self.ear_z)
+            * below_top
+            * above_mouth
+            * (1.0 - self.lips(p))
+            * (1.0 - self.eyes(p))
+    }
+
     /// Sun exposure: the face in front of the ears down to the chin, the ears, the top
     /// of the head (seen when it is bald); not under the chin, nor the lips or the eyes.
     pub fn sun(&self, p: Vec3) -> f32 {

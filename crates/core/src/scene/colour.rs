@@ -175,6 +175,11 @@ impl ColourStage {
         Ok(true)
     }
 
+    /// The texels of the last bake.
+    pub fn texels(&self) -> Option<&Arc<SurfaceTexels>> {
+        self.texels.as_ref().map(|(_, t)| t)
+    }
+
     /// The spots of the last bake.
     pub fn spots(&self) -> Option<&Arc<Vec<Spot>>> {
         self.spots.as_ref().map(|(_, s)| s)

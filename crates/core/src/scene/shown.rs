@@ -160,6 +160,11 @@ impl Scene {
         self.colour.image.as_ref()
     }
 
+    /// The texels of the last [`Scene::bake_colour`]: the regions each stands for.
+    pub fn colour_texels(&self) -> Option<&Arc<crate::layers::skin_colour::SurfaceTexels>> {
+        self.colour.texels()
+    }
+
     /// The age spots placed on the head by the last [`Scene::bake_colour`] (head metres).
     pub fn age_spots(&self) -> Option<&Arc<Vec<crate::layers::skin_colour::Spot>>> {
         self.colour.spots()

@@ -51,11 +51,23 @@ const SPOT_FIRST_SIZE: f32 = 0.4;
 /// How far (in the spot curve's factor) after it appears a spot reaches its full size.
 const SPOT_GROWTH: f32 = 0.35;
 
-/// How much each linear channel of a full-strength spot darkens (brown: blue most).
-const SPOT_TINT: [f32; 3] = [0.55, 0.68, 0.78];
-
 /// How much melanin mottling darkens each channel at full strength.
 const MOTTLE_TINT: [f32; 3] = [0.30, 0.40, 0.50];
+
+/// Pigment specks: hyperpigmented flecks of about this size, mm, over the mottling, each
+/// darkening by up to [`SPECK_TINT`] (uneven tone at the finest scale: mottled
+/// hyperpigmentation of photo-aged skin).
+const SPECK_MM: f32 = 1.3;
+const SPECK_TINT: [f32; 3] = [0.6, 0.75, 0.9];
+const SPECK_TINT_DARK: [f32; 3] = [0.7, 0.72, 0.74];
+
+/// How much more dark skin mottles: uneven pigmentation is the first sign of age on it,
+/// before wrinkles (Vashi et al. 2016).
+const MOTTLE_ON_DARK: f32 = 1.5;
+
+/// How much less lentigines show on dark skin (melanin hides them; its spots are the
+/// papules and keratoses).
+const LENTIGO_ON_DARK: f32 = 0.6;
 
 /// Feature sizes of the mottling, mm: blotches and a finer grain.
 const MOTTLE_MM: (f32, f32) = (9.0, 2.6);
@@ -501,13 +513,25 @@ impl Look<'_> {
         // Every skin mottles some; sun-exposed skin most. Darker blotches and lighter skin
         // between, about even on average, so no region's mean tone shifts (no edge where
         // the exposure falls off).
+        // Dark skin mottles more at the fine scale (the grain and the specks; its broad
+        // blotches, as strong, read as a skin disease).
         let m = s.mottle * a.mottle * (0.35 + 0.65 * sun);
         if m > 0.0 {
+            let fine = m * (1.0 + MOTTLE_ON_DARK * dark);
             let (blotch, grain) = (from_signed(f.blotch), from_signed(f.grain));
-            let d = (smoothstep(-0.3, 0.6, blotch) - 0.45
-                + 0.4 * (smoothstep(-0.2, 0.7, grain) - 0.4))
-                * m;
+            let d = (smoothstep(-0.3, 0.6, blotch) - 0.45) * m
+                + 0.4 * (smoothstep(-0.2, 0.7, grain) - 0.4) * fine;
             c *= Vec3::ONE - Vec3::from(MOTTLE_TINT) * d;
+            // Pigment specks, on the exposed skin, gathered in the darker blotches (value
+            // noise's peaks; spread evenly they read as grit).
+            let speck = fine
+                * sun
+                * smoothstep(0.0, 0.5, blotch)
+                * smoothstep(0.2, 0.5, from_signed(f.speck));
+            // On dark skin a neutral dark brown (melanin over melanin; the light skin's
+            // tint drew rust-red flecks there).
+            let tint = Vec3::from(SPECK_TINT).lerp(Vec3::from(SPECK_TINT_DARK), dark);
+            c *= Vec3::ONE - tint * speck;
         }
         // Redness and thread veins on the cheeks and the nose.
         // Redness shows far less through melanin.
@@ -521,10 +545,15 @@ impl Look<'_> {
                 1.0 - 0.22 * flush - 0.34 * veins,
             );
         }
-        // Age spots.
-        let spot = self.grid.darkness(p, self.spot_key) * s.spot_strength;
-        if spot > 0.0 {
-            c *= Vec3::ONE - Vec3::from(SPOT_TINT) * spot.min(1.0);
+        // Age spots, each kind with its tint: lentigines show less on dark skin, the
+        // dark papules only there.
+        let spots = self.grid.darkness(p, self.spot_key);
+        let shows = [1.0 - LENTIGO_ON_DARK * dark, 1.0, dark];
+        for (k, kind) in SPOT_KINDS.iter().enumerate() {
+            let spot = spots[k] * shows[k] * s.spot_strength;
+            if spot > 0.0 {
+                c *= Vec3::ONE - Vec3::from(kind.tint) * spot.min(1.0);
+            }
         }
         c
     }

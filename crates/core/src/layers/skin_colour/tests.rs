@@ -127,8 +127,23 @@ fn spots_are_2_to_10_mm_and_appear_one_by_one_from_the_onset() {
     let mut scene = Scene::new(Project::default()).unwrap();
     let cancel = CancelToken::never();
     scene.bake_colour(256, 1.0, &cancel).unwrap();
-    let spots = scene.age_spots().unwrap().clone();
-    // About 0.6 per cm² over the exposed face, scalp and ears.
+    let all = scene.age_spots().unwrap().clone();
+    let spots: Vec<Spot> = all
+        .iter()
+        .filter(|s| s.kind == SpotKind::Lentigo)
+        .copied()
+        .collect();
+    // The other kinds: a few keratoses, and the papules of the upper face.
+    let count = |k| all.iter().filter(|s| s.kind == k).count();
+    let (keratoses, papules) = (count(SpotKind::Keratosis), count(SpotKind::Papule));
+    eprintln!("{keratoses} keratoses, {papules} papules");
+    assert!((3..60).contains(&keratoses), "{keratoses}");
+    assert!((20..800).contains(&papules), "{papules}");
+    for s in all.iter() {
+        let (lo, hi) = s.kind.params().diameter_mm;
+        assert!((lo..=hi).contains(&s.diameter_mm), "{s:?}");
+    }
+    // About 0.6 lentigines per cm² over the exposed face, scalp and ears.
     assert!((100..1000).contains(&spots.len()), "{} spots", spots.len());
     let (lo, hi) = SPOT_DIAMETER_MM;
     assert!(spots.iter().all(|s| (lo..=hi).contains(&s.diameter_mm)));
@@ -177,6 +192,7 @@ fn age_spots_gather_in_patches() {
             2.0,
             1,
             tries,
+            SpotKind::Lentigo.params(),
         );
         let mean = spots
             .iter()
@@ -206,6 +222,7 @@ fn a_baked_spot_measures_its_diameter_in_millimetres() {
     let texels = texels_of(&mesh, &template, size);
     // Three lone spots of known sizes, fully grown.
     let spot = |x_mm: f32, y_mm: f32, d: f32| Spot {
+        kind: SpotKind::Lentigo,
         centre: Vec3::new(x_mm, y_mm, 0.0) * 1e-3,
         normal: Vec3::Z,
         diameter_mm: d,
@@ -266,6 +283,53 @@ fn a_baked_spot_measures_its_diameter_in_millimetres() {
             sp.diameter_mm
         );
     }
+}
+
+/// The dark papules show on dark skin only, and lentigines less there (melanin hides
+/// them): the same spots baked on a light and a dark skin colour.
+#[test]
+fn papules_show_on_dark_skin_and_lentigines_less() {
+    let mesh = crate::head::default::skin_patch();
+    let point = forehead();
+    let template = |_: usize| Some(point);
+    let size = 200;
+    let texels = texels_of(&mesh, &template, size);
+    let spot = |kind, x_mm: f32| Spot {
+        kind,
+        centre: Vec3::new(x_mm, 0.0, 0.0) * 1e-3,
+        normal: Vec3::Z,
+        diameter_mm: 3.0,
+        appears: 0.0,
+        strength: 1.0,
+        phases: [0.3, 1.9, 4.0],
+    };
+    let spots = [spot(SpotKind::Lentigo, -10.0), spot(SpotKind::Papule, 10.0)];
+    let factors = ColourFactors {
+        spots: 1.0,
+        ..ColourFactors::default()
+    };
+    // Each spot's darkest texel against the skin.
+    let darkening = |albedo: [f32; 3]| {
+        let s = ColourSettings {
+            albedo,
+            ..spots_only()
+        };
+        let lum =
+            luminance(&bake(None, &texels, &spots, &s, &factors, &CancelToken::never()).unwrap());
+        let skin = lum[(size as usize / 2) * size as usize + 5];
+        let darkest = |x_mm: f32| {
+            let x = ((x_mm + 25.0) / 50.0 * size as f32) as usize;
+            (x - 3..=x + 3)
+                .map(|x| lum[(size as usize / 2) * size as usize + x])
+                .fold(f32::INFINITY, f32::min)
+        };
+        [1.0 - darkest(-10.0) / skin, 1.0 - darkest(10.0) / skin]
+    };
+    let light = darkening([0.7, 0.45, 0.33]);
+    let dark = darkening([0.12, 0.05, 0.025]);
+    eprintln!("lentigo, papule darkening: light skin {light:?}, dark skin {dark:?}");
+    assert!(light[0] > 0.3 && light[1] < 0.02, "{light:?}");
+    assert!(dark[1] > 0.3 && dark[0] < 0.7 * light[0], "{dark:?}");
 }
 
 #[test]

@@ -25,6 +25,7 @@ pub(super) struct Fields {
     pub(super) red: u8,
     pub(super) blotch: u8,
     pub(super) grain: u8,
+    pub(super) speck: u8,
     pub(super) flush: u8,
     pub(super) vein: u8,
     pub(super) brow_draw: u8,
@@ -90,6 +91,7 @@ impl Fields {
             red: unit_byte(red),
             blotch: signed_byte(fbm(mm / MOTTLE_MM.0, keys[0])),
             grain: signed_byte(value3(mm / MOTTLE_MM.1, keys[1])),
+            speck: signed_byte(value3(mm / SPECK_MM, keys[1].rotate_left(11))),
             flush: if red > 0.0 {
                 signed_byte(fbm(mm / REDNESS_MM.0, keys[2]))
             } else {
@@ -194,5 +196,11 @@ impl SurfaceTexels {
 
     pub fn size(&self) -> u32 {
         self.size
+    }
+
+    /// Texel `i`'s weight in the cheeks and nose (row by row from the top), 0–1: where a
+    /// face's evenness of tone is measured (Matts et al. 2007 measured the cheek).
+    pub fn cheeks_and_nose(&self, i: usize) -> f32 {
+        self.fields.get(i).map_or(0.0, |f| from_unit(f.red))
     }
 }

@@ -227,7 +227,8 @@ fn mesh_info_prints_the_units_and_how_they_were_decided() {
 
 /// The person: on the African man's panel head with his colour map, `mesh-info` prints his
 /// skin tone with its ITA° group, his measured hair colour (dark) and brows, and the hair
-/// loss guessed from his face; without the map, the hair colour is the default and says so.
+/// loss guessed from his face, his facial contrast; without the map, the hair colour is the
+/// default and says so, and there is no contrast to measure.
 #[test]
 fn prints_the_persons_measured_colours_and_hair_loss() {
     let panel = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/heads/panel");
@@ -266,9 +267,16 @@ fn prints_the_persons_measured_colours_and_hair_loss() {
         line("hair loss: ").contains("male (guessed from the face"),
         "{text}"
     );
+    // His brows and lips are darker than his cheeks (0.12 each).
+    let contrast = line("facial contrast: brows 0.");
+    assert!(contrast.contains(", lips 0.1"), "{contrast}");
     let bare = stdout(&mesh_info(&[&head]));
     assert!(
         bare.contains("hair colour: #3f2c1f (a dark brown"),
+        "{bare}"
+    );
+    assert!(
+        bare.contains("facial contrast: no colour map to measure"),
         "{bare}"
     );
     // --colour-map describes a file.

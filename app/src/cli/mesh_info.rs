@@ -104,8 +104,19 @@ pub fn describe_person(scene: &mut Scene) -> anyhow::Result<String> {
         ),
         (s, _) => format!("{} ({})", hex(c), s.describe(on, default)),
     };
+    let c = own.contrast;
+    let value = |v: Option<f32>| v.map_or_else(|| "—".to_owned(), |v| format!("{v:.2}"));
+    let contrast = if c.brows.is_none() && c.lips.is_none() {
+        "no colour map to measure".to_owned()
+    } else {
+        format!(
+            "brows {}, lips {} (luminance, against the cheeks)",
+            value(c.brows),
+            value(c.lips)
+        )
+    };
     Ok(format!(
-        "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\n",
+        "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\nfacial contrast: {contrast}\n",
         colour(
             person.hair,
             own.hair,

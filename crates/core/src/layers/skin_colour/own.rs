@@ -36,6 +36,47 @@ pub struct OwnColours {
     pub skin: Option<Measured>,
     pub hair: Option<Measured>,
     pub brows: Option<Measured>,
+    /// The contrast of its brows and lips with its skin.
+    pub contrast: FacialContrast,
+}
+
+/// The facial contrast of a colour map (Porcheron et al. 2013, 2017: it falls with age and
+/// is a cue of it): the luminance contrast (L*skin − L*feature) / (L*skin + L*feature) of
+/// the brows and the lips against the skin (the cheeks and nose), each the mean L* of its
+/// region (CIELAB), as Porcheron et al. measured it. `None` where a region has too few texels.
+/// (Not measured: the eyes, whose colours are not in the skin's map, and the lips'
+/// redness, which the cheeks' own redness with age would confound.)
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FacialContrast {
+    pub brows: Option<f32>,
+    pub lips: Option<f32>,
+}
+
+/// The texels of the skin a colour is measured on: the cheeks and nose, away from the
+/// brows, lips, under-eye and beard.
+fn is_skin(f: &Fields) -> bool {
+    f.red > 128 && f.brows == 0 && f.lips == 0 && f.under_eye < 64 && f.beard < 64
+}
+
+/// The facial contrast of `colour` (linear RGB of texel i, row by row) over `texels`'
+/// regions: of the head's map, or of an aged colour of the same texels.
+pub fn facial_contrast(texels: &SurfaceTexels, colour: &dyn Fn(usize) -> Vec3) -> FacialContrast {
+    // The mean L* of a region's texels.
+    let l_star = |pick: &dyn Fn(&Fields) -> bool| -> Option<f32> {
+        let l: Vec<f32> = (0..texels.fields.len())
+            .filter(|&i| !texels.position[i].x.is_nan() && pick(&texels.fields[i]))
+            .map(|i| lab(colour(i)).x)
+            .collect();
+        (l.len() >= MIN_TEXELS).then(|| l.iter().sum::<f32>() / l.len() as f32)
+    };
+    let Some(skin) = l_star(&is_skin) else {
+        return FacialContrast::default();
+    };
+    let contrast = |f: f32| (skin + f > 1e-3).then(|| (skin - f) / (skin + f));
+    FacialContrast {
+        brows: l_star(&|f| f.brows > 150).and_then(contrast),
+        lips: l_star(&|f| f.lips > 150).and_then(contrast),
+    }
 }
 
 /// The fewest texels a region is measured on.
@@ -69,13 +110,7 @@ pub fn measure(
             .map(|i| (lab(base.colour[i]).x, i))
             .collect()
     };
-    let skin = median(
-        base,
-        &labs(&|_, f| {
-            f.red > 128 && f.brows == 0 && f.lips == 0 && f.under_eye < 64 && f.beard < 64
-        }),
-        1.0,
-    );
+    let skin = median(base, &labs(&|_, f| is_skin(f)), 1.0);
     let dark = |m: Option<Measured>, darker: f32| {
         m.filter(|m| skin.is_none_or(|s| s.lab.x - m.lab.x >= darker))
             .filter(|m| m.lab.y <= HAIR_MAX_A && m.lab.y.hypot(m.lab.z) <= HAIR_MAX_CHROMA)
@@ -94,7 +129,12 @@ pub fn measure(
         median(base, &labs(&|_, f| f.brows > 150), BROWS_SHARE),
         BROWS_DARKER_L,
     );
-    OwnColours { skin, hair, brows }
+    OwnColours {
+        skin,
+        hair,
+        brows,
+        contrast: facial_contrast(texels, &|i| base.colour[i]),
+    }
 }
 
 /// The median colour (per CIELAB channel, back to linear through the texel nearest it) of

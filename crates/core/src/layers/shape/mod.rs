@@ -136,6 +136,11 @@ pub struct Roll {
     pub crease_half: f32,
     /// Whether it is mirrored to the other side of the midline (its line on the +x side).
     pub mirrored: bool,
+    /// A roll that tapers to its ends instead of fading there: the share of its length
+    /// over which it narrows and lowers to nothing at its first and its last point
+    /// ([`Roll::taper_at`]). `None`: its height fades over the ends
+    /// ([`ROLL_END_FADE`]).
+    pub taper: Option<[f32; 2]>,
 }
 
 /// How far a roll's shadow reaches up its wall and down from its crease, face units.
@@ -167,12 +172,41 @@ impl Roll {
         } else {
             q
         };
-        let (s, ends, z) = self.locate(glam::Vec2::new(q.x, q.y))?;
+        let (s, ends, z) = self.shaped(glam::Vec2::new(q.x, q.y))?;
         if s >= self.reach || s <= -below {
             return None;
         }
         let fade = ends * Self::depth_gate(q.z - z);
         (fade > 0.0).then_some((s, fade))
+    }
+
+    /// Where `p` (x, y of the face frame, on the line's side when mirrored) lies in the
+    /// roll's own cross-section: its signed distance from the line scaled by the taper
+    /// there (its crest and reach are a tapering roll's at that point), the ends' fade
+    /// times the taper, and the line's z there; `None` for a line of no length or at a
+    /// tapered end.
+    fn shaped(&self, p: glam::Vec2) -> Option<(f32, f32, f32)> {
+        let (s, ends, z, t) = self.locate(p)?;
+        // A tapering roll is narrower and lower toward its ends by the same factor: its
+        // slopes stay as they are, and its skirt's edge closes on the line's ends in a
+        // smooth lens instead of being cut across (its height faded over the ends, the
+        // cheek's roll peaked in mid-line: "a lump that starts mid-cheek").
+        let k = self.taper_at(t);
+        if k <= 0.0 {
+            return None;
+        }
+        let s = if s > 0.0 { s / k } else { s };
+        Some((s, ends * k, z))
+    }
+
+    /// A tapering roll's scale at `t` along it (0 at its first point, 1 at its last): 1
+    /// between its tapers, falling to 0 at its ends as a smoothstep; 1 for a roll that
+    /// does not taper.
+    pub fn taper_at(&self, t: f32) -> f32 {
+        match self.taper {
+            Some([first, last]) => smoothstep(0.0, first, t) * smoothstep(0.0, last, 1.0 - t),
+            None => 1.0,
+        }
     }
 
     /// How much of the roll reaches skin `dz` in front of (or behind) its line: all within
@@ -183,8 +217,9 @@ impl Roll {
 
     /// Where the point `p` (x, y of the face frame, on the line's side when mirrored)
     /// lies from the line: its signed distance (positive on the raised side), the ends'
-    /// fade and the line's z there; `None` for a line of no length.
-    fn locate(&self, p: glam::Vec2) -> Option<(f32, f32, f32)> {
+    /// fade (1 for a tapering roll), the line's z there and how far along it the point
+    /// lies (0–1); `None` for a line of no length.
+    fn locate(&self, p: glam::Vec2) -> Option<(f32, f32, f32, f32)> {
         let raised = glam::Vec2::from(self.raised);
         let points = self.line;
         let length: f32 = points
@@ -245,9 +280,12 @@ impl Roll {
         // Out on the raised side the ends fade over more of the line, so the roll's skirt
         // falls back as gently at its ends as across it ([`END_FADE_WIDENING`]).
         let s = sign * d2.sqrt();
+        if self.taper.is_some() {
+            return Some((s, 1.0, z, t));
+        }
         let fade = (ROLL_END_FADE + END_FADE_WIDENING * s.max(0.0)).min(0.5);
         let ends = smoothstep(0.0, fade, t) * smoothstep(0.0, fade, 1.0 - t);
-        Some((s, ends, z))
+        Some((s, ends, z, t))
     }
 
     /// The roll's height across it at signed distance `s` from its line, mm, before the

@@ -74,6 +74,7 @@ pub(super) const CHEEK_ROLL: Roll = Roll {
     crease_mm: 0.0,
     crease_half: 0.03,
     mirrored: false,
+    taper: Some([0.15, 0.7]),
 };
 
 /// The marionette grooves of `marionette.wrk` on the template, from the mouth corner down
@@ -114,6 +115,7 @@ pub(super) const JOWL_ROLL: Roll = Roll {
     crease_mm: 0.6,
     crease_half: 0.06,
     mirrored: false,
+    taper: None,
 };
 
 /// The default regions (docs/models.md §13, each with its source). Millimetres at full
@@ -156,6 +158,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             crease_mm: 0.3,
             crease_half: 0.11,
             mirrored: true,
+            taper: None,
         }],
         curve: curve(35.0, 75.0),
     },

@@ -128,22 +128,26 @@ fn the_cheek_rolls_over_the_nasolabial_fold() {
     let (mesh, field) = default_head();
     let full = field.full();
     let frame = Regions::template().unwrap();
-    // Each side: (lateral, medial) displacements out along the normal, mm.
+    let cheeks = REGIONS.iter().find(|r| r.name == "cheeks").unwrap();
+    // Each side: (lateral, medial) displacements out along the normal, mm, along the
+    // fold's middle (0.35–0.75 of it, down to the mouth corner; above, the mid-cheek's
+    // hollow takes the skin in more than the roll takes it out).
     let mut sides = [(Vec::new(), Vec::new()), (Vec::new(), Vec::new())];
     for ((p, d), n) in mesh.positions().iter().zip(&full).zip(mesh.normals()) {
         let q = frame.relative(*p);
-        if q.z < 0.3 || !(-1.2..=-0.8).contains(&q.y) {
+        if q.z < 0.3 {
             continue;
         }
-        // The folds of nasolabial.wrk on the template (measured: not mirror images about
-        // the eyes' midline), |x| at this height.
-        let (side, fold_x) = if q.x > 0.0 {
-            (0, 0.425 + (-0.892 - q.y) * 0.46)
-        } else {
-            (1, 0.590 + (-0.876 - q.y) * 0.31)
+        let side = usize::from(q.x < 0.0);
+        let roll = cheeks.rolls[1 - side];
+        let Some((s, _, _, t)) = roll.locate(glam::Vec2::new(q.x, q.y)) else {
+            continue;
         };
+        if !(0.35..0.75).contains(&t) {
+            continue;
+        }
         let out_mm = d.dot(*n) * 1000.0;
-        match q.x.abs() - fold_x {
+        match s {
             o if (0.05..0.3).contains(&o) => sides[side].0.push(out_mm),
             o if (-0.3..-0.15).contains(&o) => sides[side].1.push(out_mm),
             _ => {}
@@ -159,7 +163,7 @@ fn the_cheek_rolls_over_the_nasolabial_fold() {
             medial.len()
         );
         assert!(lateral.len() > 5 && medial.len() > 10);
-        assert!(mean(lateral) > 1.0, "{}", mean(lateral));
+        assert!(mean(lateral) > 0.5, "{}", mean(lateral));
         assert!(mean(medial) < 0.5 * mean(lateral), "{}", mean(medial));
     }
 }
@@ -258,6 +262,7 @@ fn a_roll_rises_steeply_from_its_crease_and_falls_gently_beyond_its_crest() {
         crease_mm: 1.0,
         crease_half: 0.05,
         mirrored: true,
+        taper: None,
     };
     let at = |x: f32, y: f32| roll.height_mm(Vec3::new(x, y, 0.0));
     assert!((at(0.5, 0.0) + 1.0).abs() < 1e-5, "{}", at(0.5, 0.0));
@@ -357,7 +362,8 @@ fn the_aged_shape_hides_sky_in_its_folds_and_nowhere_else() {
         assert!(!near.is_empty(), "{q}");
         near.iter().sum::<f32>() / near.len() as f32
     };
-    let (left, right) = (mean_near(NASOLABIAL_L[4]), mean_near(NASOLABIAL_R[4]));
+    // Its upper half, where the roll is whole (it tapers over its last 70 %).
+    let (left, right) = (mean_near(NASOLABIAL_L[3]), mean_near(NASOLABIAL_R[3]));
     eprintln!("sky kept in the nasolabial creases: {left:.3} left, {right:.3} right");
     // (A roll 3.5 mm high over a 0.3 mm crease, its crest 8 mm out: the relief finer than
     // the triangles draws the rest of it, and the wrinkle file the crease; 4.5 over 1 mm
@@ -410,14 +416,14 @@ fn a_rolls_skirt_fades_gently_at_its_ends() {
         for roll in region.rolls.iter().filter(|r| r.reach >= 0.4) {
             // Its height at (x, y) at the line's own depth there (the depth gate open).
             let at = |x: f32, y: f32| {
-                let (_, _, z) = roll.locate(glam::Vec2::new(x, y)).unwrap();
+                let (_, _, z, _) = roll.locate(glam::Vec2::new(x, y)).unwrap();
                 roll.height_mm(Vec3::new(x, y, z))
             };
             let (mut steepest, mut place) = (0.0f32, (0.0, 0.0));
             for i in -300..=300 {
                 for j in -500..=100 {
                     let (x, y) = (i as f32 * step, j as f32 * step);
-                    let (s, _, _) = roll.locate(glam::Vec2::new(x, y)).unwrap();
+                    let (s, _, _, _) = roll.locate(glam::Vec2::new(x, y)).unwrap();
                     if s < 2.0 * roll.crest || s > roll.reach {
                         continue;
                     }

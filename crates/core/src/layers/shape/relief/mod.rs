@@ -382,7 +382,7 @@ impl<'a> RollGrid<'a> {
             .map(|k| {
                 let p = origin
                     + glam::Vec2::new((k % columns) as f32, (k / columns) as f32) * GRID_STEP;
-                match roll.locate(p) {
+                match roll.shaped(p) {
                     Some((s, ends, z)) => (strength * ends * roll.profile_mm(s), z),
                     None => (0.0, f32::NAN),
                 }

@@ -482,7 +482,7 @@ impl Default for AgeSection {
             furrows_young_scale: 0.5,
             pale: AgeCurve::new(40.0, 80.0, CurveShape::Linear),
             // docs/models.md "Skin colour": lentigines from about 50, most by 80.
-            spots: AgeCurve::new(48.0, 85.0, CurveShape::Linear),
+            spots: AgeCurve::new(40.0, 85.0, CurveShape::Linear),
             mottle: AgeCurve::new(30.0, 80.0, CurveShape::Smoothstep),
             redness: AgeCurve::new(35.0, 80.0, CurveShape::Smoothstep),
             contrast: AgeCurve::new(35.0, 80.0, CurveShape::Linear),

@@ -154,15 +154,15 @@ fn spots_are_2_to_10_mm_and_appear_one_by_one_from_the_onset() {
         "{small} of {} under 6 mm",
         spots.len()
     );
-    // The count at each age, by the project's spot curve (48 → 85 years).
+    // The count at each age, by the project's spot curve (40 → 85 years).
     let p = Project::default();
     let shown = |years: f32| {
         let f = p.colour_factors(p.age.mapping().t(years)).spots;
         spots.iter().filter(|s| s.diameter_at(f) > 0.0).count()
     };
-    let counts: Vec<usize> = [40.0, 48.0, 55.0, 65.0, 80.0].map(shown).to_vec();
+    let counts: Vec<usize> = [35.0, 40.0, 48.0, 65.0, 80.0].map(shown).to_vec();
     eprintln!(
-        "{} spots; shown at 40/48/55/65/80 years: {counts:?}",
+        "{} spots; shown at 35/40/48/65/80 years: {counts:?}",
         spots.len()
     );
     assert_eq!(&counts[..2], &[0, 0], "{counts:?}");

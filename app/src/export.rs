@@ -507,7 +507,9 @@ fn export_glb(
             },
             base_colour,
             base_colour_png,
-            roughness: 0.42,
+            // The skin's roughness at this age (old skin is drier: docs/models.md "Skin
+            // colour", "Sheen").
+            roughness: params.skin.roughness,
             metallic: 0.0,
             normal_png: Some(normal_png),
             occlusion_png,

@@ -159,6 +159,8 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
             )
         }
     };
+    let sheen =
+        agesim_core::layers::skin_colour::aged_sheen(s.roughness, s.specular, factors.paleness);
     FrameParams {
         camera,
         light: Light {
@@ -197,9 +199,10 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
             micro_tile,
             fine_tile,
             wrap: wrap_for_skin(wrap_rgb(s.wrap, s.subsurface_colour), skin_l),
-            roughness: s.roughness,
+            // Old skin is drier: less sheen (docs/models.md "Skin colour", "Sheen").
+            roughness: sheen.0,
             // The Fresnel reflectance of a dielectric, 0.08·specular (skin: 0.35 → 0.028).
-            f0: 0.08 * s.specular,
+            f0: 0.08 * sheen.1,
         },
         hair: HairShading {
             enabled: h.enabled && v.show_hair,
@@ -265,6 +268,18 @@ mod tests {
         assert_eq!(params(&p, 0.5).skin.disp_scale, base * 2.5);
         p.large.depth = 0.0;
         assert_eq!(params(&p, 0.5).skin.disp_scale, 0.0);
+    }
+
+    /// Old skin is drier: the project's roughness and specular young, rougher and less
+    /// specular old (docs/models.md "Skin colour", "Sheen").
+    #[test]
+    fn old_skin_has_less_sheen() {
+        let p = Project::default();
+        let (young, old) = (params(&p, 0.0), params(&p, 1.0));
+        assert_eq!(young.skin.roughness, p.skin.roughness);
+        assert_eq!(young.skin.f0, 0.08 * p.skin.specular);
+        assert!(old.skin.roughness > young.skin.roughness + 0.1, "{old:?}");
+        assert!(old.skin.f0 < 0.6 * young.skin.f0, "{old:?}");
     }
 
     /// The fine blend, the paling and the age follow `t` itself.

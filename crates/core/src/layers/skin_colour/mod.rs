@@ -63,7 +63,7 @@ const SPECK_TINT_DARK: [f32; 3] = [0.7, 0.72, 0.74];
 
 /// How much more dark skin mottles: uneven pigmentation is the first sign of age on it,
 /// before wrinkles (Vashi et al. 2016).
-const MOTTLE_ON_DARK: f32 = 1.5;
+const MOTTLE_ON_DARK: f32 = 1.0;
 
 /// How much less lentigines show on dark skin (melanin hides them; its spots are the
 /// papules and keratoses).
@@ -250,6 +250,24 @@ impl BaseColour {
             bare,
         }
     }
+}
+
+/// How much drier old skin is (docs/models.md "Skin colour", "Sheen"): at full paling
+/// (`age.pale`) its specular reflectance is this much lower and its roughness this much
+/// higher. Sebum falls with age (Pochi et al. 1979), and an old face has less sheen; at
+/// full sheen the cheek's crest over the nasolabial fold read, blind, on the dark-skinned
+/// heads as "a wet white streak", their skin as "glossy plastic".
+pub const DRY_SPECULAR: f32 = 0.45;
+pub const DRY_ROUGHNESS: f32 = 0.15;
+
+/// The skin's (roughness, specular) at paling factor `pale` (0 young, 1 old): the
+/// project's at 0, drier with age ([`DRY_SPECULAR`], [`DRY_ROUGHNESS`]).
+pub fn aged_sheen(roughness: f32, specular: f32, pale: f32) -> (f32, f32) {
+    let f = pale.clamp(0.0, 1.0);
+    (
+        (roughness + DRY_ROUGHNESS * f).min(1.0),
+        specular * (1.0 - DRY_SPECULAR * f),
+    )
 }
 
 /// The aged base colour at `size`² (the texels' size): `base` (the head's colour map, any

@@ -405,3 +405,34 @@ fn the_facial_contrast_falls_with_age() {
         }
     }
 }
+
+/// Only skin grows hair: on the African woman's head, whose eyes' UVs lie beside the
+/// scalp's island of her map, the 3D view's colour map gives the eyes' texels no scalp
+/// tint (they took the young hair's dark tint and lost it as the hair went: "orange eye
+/// slits, new at 80", blind), while her scalp has it.
+#[test]
+fn only_skin_takes_the_scalp_tint() {
+    let never = CancelToken::never();
+    let mut scene = Scene::new(panel_project("african-female", true)).unwrap();
+    scene.bake(&hair_request(0.1), &never).unwrap();
+    let n = 512u32;
+    scene.bake_colour(n, 0.1, &never).unwrap();
+    scene.prepare_shown_colour();
+    let shown = scene.shown_colour().unwrap().clone();
+    let alpha = |u: f32, v: f32| {
+        let (x, y) = ((u * n as f32) as usize, ((1.0 - v) * n as f32) as usize);
+        shown.rgba[4 * (y * n as usize + x) + 3]
+    };
+    // The eyes' UVs (eye_l, eye_r of the OBJ): u 0.76–0.81, v 0.93–0.96.
+    let mut eyes = 0;
+    for i in 0..20 {
+        for j in 0..10 {
+            let (u, v) = (0.762 + 0.0025 * i as f32, 0.933 + 0.0022 * j as f32);
+            assert_eq!(alpha(u, v), 0, "({u}, {v})");
+            eyes += 1;
+        }
+    }
+    let tinted = shown.rgba.chunks_exact(4).filter(|p| p[3] > 0).count();
+    eprintln!("{eyes} eye texels untinted, {tinted} texels tinted");
+    assert!(tinted > 1000, "{tinted}");
+}

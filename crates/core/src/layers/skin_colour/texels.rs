@@ -198,6 +198,12 @@ impl SurfaceTexels {
         self.size
     }
 
+    /// Whether a skin triangle covers texel `i` (or its guard band round a UV island):
+    /// texels only other parts (eyes, teeth) or nothing cover are not skin.
+    pub fn covers_skin(&self, i: usize) -> bool {
+        self.position.get(i).is_some_and(|p| !p.x.is_nan())
+    }
+
     /// Texel `i`'s weight in the cheeks and nose (row by row from the top), 0–1: where a
     /// face's evenness of tone is measured (Matts et al. 2007 measured the cheek).
     pub fn cheeks_and_nose(&self, i: usize) -> f32 {

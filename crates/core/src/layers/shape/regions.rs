@@ -260,8 +260,16 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // over the red of the lip (which narrows) and flattens (blind ratings read it
         // unchanged as "puffy, sticking out past the lower lip in profile"). Nothing at
         // the slit: a deflation there parts the lips (their normals point at each other).
-        blobs: &[Blob::new([0.0, -1.1, 0.5], [0.6, 0.24, 0.45])],
-        motions: &[(Descent, 1.5), (Deflate, 1.5)],
+        // The lower lip's red thins too (its fullness deflates; vermilion height falls
+        // with age, a strong cue of perceived age: Gunn et al. 2009): a blob centred
+        // below the slit, reaching no nearer it than 0.08 (≈ 4 mm), not descending (the
+        // lips stay closed). Without it the panel heads' lips read, blind, as "as full as
+        // at 25".
+        blobs: &[
+            Blob::new([0.0, -1.1, 0.5], [0.6, 0.24, 0.45]),
+            Blob::new([0.0, -1.56, 0.5], [0.5, 0.14, 0.45]).descending(0.0),
+        ],
+        motions: &[(Descent, 1.5), (Deflate, 2.0)],
         rolls: &[],
         curve: curve(35.0, 80.0),
     },

@@ -196,8 +196,14 @@ pub struct PaintedHair<'a> {
 }
 
 /// How much of the painted hair's gray a fully gray head shows (the skin between the
-/// hairs keeps some of the rest).
-const PAINTED_GRAY: f32 = 0.7;
+/// hairs keeps some of the rest, and the strands drawn over it carry the white: at 0.7 the
+/// African man's fringe read, blind, as "a flat pure-white block over a painted white
+/// base with a hard top edge").
+const PAINTED_GRAY: f32 = 0.35;
+
+/// Over how much of the hair's age (t) painted hair fades to skin where the hair goes:
+/// its edge follows the ragged fringe softly.
+const PAINTED_EDGE: f32 = 0.08;
 
 /// What the aged colour starts from at each texel, kept between ages: the base colour
 /// (the head's colour map resampled, or the skin colour), in linear light, its alpha, the
@@ -412,7 +418,7 @@ impl PaintedHair<'_> {
         let gone = if a >= 1.0 {
             0.0
         } else {
-            smoothstep(a - 0.03, a + 0.03, self.t)
+            smoothstep(a - PAINTED_EDGE, a + PAINTED_EDGE, self.t)
         };
         let c = c.lerp(self.bald, share * gone);
         c.lerp(gray_colour, share * (1.0 - gone) * gray * PAINTED_GRAY)

@@ -34,6 +34,13 @@ const OCCLUSION_STEPS: f32 = 200.0;
 const FILL_TINT: vec3<f32> = vec3<f32>(0.92, 0.96, 1.0);
 // How much less of the light an occlusion takes from the channel that scatters farthest.
 const OCCLUSION_TINT: f32 = 0.45;
+// How far the red channel's normal leans toward the blurred relief's on light skin (red
+// light scatters farther under the skin, so a fold's bottom stays redder than its walls):
+// at 1 the MakeHuman heads' forehead lines read, blind, as "red-orange cores, as if drawn
+// in marker" (round 7 of docs/ratings.md); at 0 their creases are brown, and the scan's
+// barely changes.
+const RED_SCATTER: f32 = 0.25;
+
 // How much the hair present over the scalp darkens it (its shadow), per unit of
 // `hair.scalp_tint`: a white fringe over pale skin with no shadow under it read, blind, as
 // "a flat painted layer".
@@ -547,7 +554,7 @@ fn shade(s: Surface) -> vec4<f32> {
     // by the full relief too (the red's wrap over the blue's, which the frame narrows for
     // dark skin, `view::wrap_for_skin`, measures how far red scatters: 1 on light skin).
     // Lit half by the blurred relief on dark skin, every fold drew a red line.
-    let red_scatter = clamp((frame.skin_wrap.r / max(frame.skin_wrap.b, 1e-3) - 1.0) / 1.1, 0.0, 1.0);
+    let red_scatter = RED_SCATTER * clamp((frame.skin_wrap.r / max(frame.skin_wrap.b, 1e-3) - 1.0) / 1.1, 0.0, 1.0);
     let n_red = normalize(n + red_scatter * (t_geo * n_soft_ts.x + b_geo * n_soft_ts.y + n_geo * n_soft_ts.z));
 
     // The albedo arrives with the age's paling applied (docs/models.md "Age"); a head's

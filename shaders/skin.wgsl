@@ -479,6 +479,11 @@ fn wrap_diffuse3(n_l: vec3<f32>, wrap: vec3<f32>) -> vec3<f32> {
 // The large wrinkles' normal from the slope between points `r` UV units to each side: the
 // relief averaged over about 2r (the red channel's, docs/models.md §10 "Subsurface").
 fn wide_normal(uv: vec2<f32>, r: f32, strength: f32, ddx: vec2<f32>, ddy: vec2<f32>) -> vec3<f32> {
+    // No relief (the depth slider at 0 makes r 0): flat. (0 / 0 here lit the red channel
+    // by a NaN normal, and the whole head turned cyan.)
+    if r <= 0.0 {
+        return vec3<f32>(0.0, 0.0, 1.0);
+    }
     let du = vec2<f32>(r, 0.0);
     let dv = vec2<f32>(0.0, r);
     let hu = large_height(uv + du, ddx, ddy) - large_height(uv - du, ddx, ddy);

@@ -70,6 +70,53 @@ fn compare_puts_two_frames_side_by_side() {
     assert_eq!((img.width(), img.height()), (80, 32));
 }
 
+/// With the wrinkles' depth slider at 0 the skin keeps its colour: the head's middle is
+/// redder than it is blue, as skin is (a 0 / 0 in the red channel's blurred normal turned
+/// the whole head cyan).
+#[test]
+fn no_wrinkle_depth_keeps_the_skins_colour() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut means = Vec::new();
+    for depth in ["1", "0"] {
+        let out = dir.path().join(format!("depth-{depth}.png"));
+        let set = format!("large.depth={depth}");
+        let Some(_) = render(&[
+            "render",
+            "--size",
+            "64x64",
+            "--distance",
+            "0.35",
+            "--no-hair",
+            "--map-size",
+            "128",
+            "--age-years",
+            "70",
+            "--set",
+            &set,
+            "--out",
+            out.to_str().unwrap(),
+        ]) else {
+            return;
+        };
+        let img = image::open(&out).unwrap().to_rgb8();
+        // The middle quarter: the face.
+        let (mut r, mut b, mut n) = (0.0f64, 0.0f64, 0.0f64);
+        for y in 24..40 {
+            for x in 24..40 {
+                let p = img.get_pixel(x, y);
+                r += f64::from(p[0]);
+                b += f64::from(p[2]);
+                n += 1.0;
+            }
+        }
+        means.push((r / n, b / n));
+    }
+    eprintln!("mean red, blue of the face at depth 1 and 0: {means:?}");
+    for (r, b) in means {
+        assert!(r > b + 20.0, "red {r}, blue {b}");
+    }
+}
+
 #[test]
 fn bad_arguments_are_rejected_before_rendering() {
     for args in [

@@ -116,6 +116,7 @@ fn a_colour_map_is_exported_aged_as_the_base_colour_texture() {
     std::fs::write(&project_file, project.to_json_pretty()).unwrap();
     let glb = dir.path().join("aged.glb");
     let mut images_at = Vec::new();
+    let mut roughness = Vec::new();
     for years in ["20", "80"] {
         let o = agesim(&[
             "export",
@@ -132,6 +133,7 @@ fn a_colour_map_is_exported_aged_as_the_base_colour_texture() {
         let (doc, _, images) = gltf::import(&glb).expect("the GLB imports");
         let pbr = doc.materials().next().unwrap().pbr_metallic_roughness();
         assert_eq!(pbr.base_color_factor(), [1.0; 4]);
+        roughness.push(pbr.roughness_factor());
         let texture = pbr.base_color_texture().expect("a base colour texture");
         let image = images[texture.texture().source().index()].clone();
         // Baked over the head's UVs at the colour map's size, at least 1024².
@@ -152,6 +154,9 @@ fn a_colour_map_is_exported_aged_as_the_base_colour_texture() {
     assert_eq!(images_at[0], [150.0, 60.0, 40.0]);
     let (young, old) = (images_at[0], images_at[1]);
     assert!(old[1] / old[0] > young[1] / young[0], "{young:?} → {old:?}");
+    // Old skin is drier: the skin's roughness young, rougher old (docs/models.md "Sheen").
+    assert_eq!(roughness[0], project.skin.roughness);
+    assert!(roughness[1] > roughness[0] + 0.1, "{roughness:?}");
 }
 
 /// The GLB's base colour at 80 has the age spots and the uneven tone; at 25 it is the

@@ -184,6 +184,25 @@ fn the_hair_grays_strand_by_strand() {
         white_45 < 0.15 && white_80 > white + 0.15,
         "{white_45} {white} {white_80}"
     );
+    // The temples and the sides gray first in the male pattern: at 55 the hairs growing
+    // sideways (|x| of their direction over 0.85) are whiter than those growing up (the
+    // top of the head, y over 0.8).
+    let t = scene.project().age.mapping().t(55.0);
+    let hairs = &hair.instances()[..hair.count(t)];
+    let white_share = |pick: &dyn Fn(glam::Vec3) -> bool| {
+        let group: Vec<_> = hairs.iter().filter(|h| pick(h.direction())).collect();
+        let n = group.len();
+        let w = group
+            .iter()
+            .filter(|h| h.gray_fraction(t, ramp) > 0.9)
+            .count();
+        (w as f32 / n.max(1) as f32, n)
+    };
+    let (sides, n_sides) = white_share(&|d| d.x.abs() > 0.85);
+    let (top, n_top) = white_share(&|d| d.y > 0.8);
+    eprintln!("white at 55: {sides:.2} of {n_sides} side hairs, {top:.2} of {n_top} on top");
+    assert!(n_sides > 100 && n_top > 100, "{n_sides} {n_top}");
+    assert!(sides > top + 0.08, "{sides} {top}");
 }
 
 /// The hair painted on a game head's map goes with the hair: on the African man's bald

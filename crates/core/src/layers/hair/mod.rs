@@ -630,6 +630,11 @@ pub const KEPT_HAIRLINE_T: f32 = 0.1;
 /// grayed every hair alike and read, blind, as "one flat bluish tint").
 pub const GRAY_RAMP_T: f32 = 0.08;
 
+/// How much earlier, as a share of the graying onsets' range, the hairs at the temples and
+/// the sides gray in the male pattern (a fifth of the default 41–91 years: 10 years;
+/// docs/models.md §9 "Graying").
+pub const TEMPLE_GRAYING_LEAD: f32 = 0.2;
+
 /// y_k(t) = clamp((t − t_k)/[`GRAY_RAMP_T`], 0, 1), optionally smoothstepped
 /// (docs/models.md §9 "Graying"). `t` is clamped to [0,1] (NaN → 0); an onset t_k ≥ 1
 /// never grays (y = 0), an onset ≤ 0 is used as is.

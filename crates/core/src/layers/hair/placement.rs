@@ -4,7 +4,7 @@
 //! ragged fade, strays and the soft edge.
 
 use super::*;
-use crate::base::math::smooth01;
+use crate::base::math::{smooth01, smoothstep};
 
 /// How many times the median UV stretch (UV length per unit of 3D length) a triangle's
 /// may have before it counts as torn across the layout.
@@ -213,7 +213,16 @@ impl Corners {
         // The onset does not depend on when the hair goes (docs/models.md §9 "Graying":
         // [T]'s t_k = a_k·U grayed the receding crown first, all of it white by 45 once
         // each hair turns in a few years); hair that goes before its onset never grays.
-        let onset = onset_min + (onset_max - onset_min) * draws.onset_u;
+        // In the male pattern the temples and the sides gray first (Tobin 2008): a hair
+        // whose root faces sideways (the head's +Y up, ±X to the sides) starts up to
+        // [`TEMPLE_GRAYING_LEAD`] of the range earlier; in women graying is more diffuse.
+        let side = if params.loss == HairLoss::Male {
+            smoothstep(0.45, 0.85, normal.x.abs())
+        } else {
+            0.0
+        };
+        let onset =
+            onset_min + (onset_max - onset_min) * (draws.onset_u - TEMPLE_GRAYING_LEAD * side);
         Some(HairInstance {
             position: position.to_array(),
             disappear_age: age,

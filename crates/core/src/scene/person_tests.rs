@@ -455,3 +455,48 @@ fn only_skin_takes_the_scalp_tint() {
     eprintln!("{eyes} eye texels untinted, {tinted} texels tinted");
     assert!(tinted > 1000, "{tinted}");
 }
+
+/// The neck ages with the face: no colour seam at the jaw. On the scan and every textured
+/// panel head the colour difference (CIELAB ΔE of the means) between the jaw (the beard
+/// region, in the sun) and the neck below it (bare skin out of the sun) is at 80 no more
+/// than 3 above what it is at 25.
+#[test]
+fn the_neck_ages_with_the_face() {
+    let never = CancelToken::never();
+    let mut heads = vec![("scan", Project::default())];
+    for (name, _) in MAPS {
+        heads.push((name, panel_project(name, true)));
+    }
+    for (name, project) in heads {
+        let mut scene = Scene::new(project).unwrap();
+        let n = 512u32;
+        scene.bake_colour(n, 0.0833, &never).unwrap();
+        let young = scene.aged_colour().unwrap().clone();
+        scene.bake_colour(n, 1.0, &never).unwrap();
+        let old = scene.aged_colour().unwrap().clone();
+        let texels = scene.colour_texels().unwrap();
+        let band = |pick: &dyn Fn(f32, f32, f32) -> bool| -> Vec<usize> {
+            (0..(n * n) as usize)
+                .filter(|&i| {
+                    let (sun, beard, bare) = texels.sun_beard_bare(i);
+                    texels.covers_skin(i) && pick(sun, beard, bare)
+                })
+                .collect()
+        };
+        let jaw = band(&|sun, beard, _| beard > 0.6 && sun > 0.15);
+        let neck = band(&|sun, beard, bare| bare > 0.6 && beard < 0.05 && sun < 0.05);
+        assert!(
+            jaw.len() > 200 && neck.len() > 200,
+            "{name}: {} {}",
+            jaw.len(),
+            neck.len()
+        );
+        let mean = |img: &crate::maps::mask::HeadImage, set: &[usize]| {
+            set.iter().map(|&i| texel_lab(img, i)).sum::<glam::Vec3>() / set.len() as f32
+        };
+        let de = |img| mean(img, &jaw).distance(mean(img, &neck));
+        let (at25, at80) = (de(&young), de(&old));
+        eprintln!("{name}: jaw–neck ΔE {at25:.1} at 25, {at80:.1} at 80");
+        assert!(at80 < at25 + 3.0, "{name}: {at25} → {at80}");
+    }
+}

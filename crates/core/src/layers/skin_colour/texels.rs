@@ -204,6 +204,14 @@ impl SurfaceTexels {
         self.position.get(i).is_some_and(|p| !p.x.is_nan())
     }
 
+    /// Texel `i`'s weights in the sun-exposed skin, the beard and the bare skin round it
+    /// (0–1 each; docs/models.md "Skin colour", "Where").
+    pub fn sun_beard_bare(&self, i: usize) -> (f32, f32, f32) {
+        self.fields.get(i).map_or((0.0, 0.0, 0.0), |f| {
+            (from_unit(f.sun), from_unit(f.beard), from_unit(f.bare))
+        })
+    }
+
     /// Texel `i`'s weight in the cheeks and nose (row by row from the top), 0–1: where a
     /// face's evenness of tone is measured (Matts et al. 2007 measured the cheek).
     pub fn cheeks_and_nose(&self, i: usize) -> f32 {

@@ -65,10 +65,6 @@ const SPECK_TINT_DARK: [f32; 3] = [0.7, 0.72, 0.74];
 /// before wrinkles (Vashi et al. 2016).
 const MOTTLE_ON_DARK: f32 = 1.0;
 
-/// How much less lentigines show on dark skin (melanin hides them; its spots are the
-/// papules and keratoses).
-const LENTIGO_ON_DARK: f32 = 0.6;
-
 /// Feature sizes of the mottling, mm: blotches and a finer grain.
 const MOTTLE_MM: (f32, f32) = (9.0, 2.6);
 
@@ -572,9 +568,9 @@ impl Look<'_> {
         // Age spots, each kind with its tint: lentigines show less on dark skin, the
         // dark papules only there.
         let spots = self.grid.darkness(p, self.spot_key);
-        let shows = [1.0 - LENTIGO_ON_DARK * dark, 1.0, dark];
         for (k, kind) in SPOT_KINDS.iter().enumerate() {
-            let spot = spots[k] * shows[k] * s.spot_strength;
+            let shows = kind.shows.0 + (kind.shows.1 - kind.shows.0) * dark;
+            let spot = spots[k] * shows * s.spot_strength;
             if spot > 0.0 {
                 c *= Vec3::ONE - Vec3::from(kind.tint) * spot.min(1.0);
             }

@@ -34,6 +34,9 @@ pub struct SpotKindParams {
     pub specks: f32,
     /// How much each linear channel darkens at full darkness.
     pub tint: [f32; 3],
+    /// How much of it shows on light skin and on dark skin (between them by the skin's
+    /// darkness round the texel): melanin hides a lentigo; the papules are dark skin's.
+    pub shows: (f32, f32),
     /// The random stream the kind is drawn from (the lentigines' is the first spots').
     stream: u64,
 }
@@ -52,6 +55,7 @@ pub const SPOT_KINDS: [SpotKindParams; 3] = [
         edge: 0.7,
         specks: 0.15,
         tint: [0.55, 0.68, 0.78],
+        shows: (1.0, 0.4),
         stream: 0x5907,
     },
     SpotKindParams {
@@ -62,6 +66,7 @@ pub const SPOT_KINDS: [SpotKindParams; 3] = [
         edge: 0.78,
         specks: 0.45,
         tint: [0.5, 0.6, 0.68],
+        shows: (1.0, 1.0),
         stream: 0x5908,
     },
     SpotKindParams {
@@ -72,6 +77,7 @@ pub const SPOT_KINDS: [SpotKindParams; 3] = [
         edge: 0.6,
         specks: 0.08,
         tint: [0.72, 0.76, 0.78],
+        shows: (0.0, 1.0),
         stream: 0x5909,
     },
 ];

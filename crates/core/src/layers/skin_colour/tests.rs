@@ -139,6 +139,10 @@ fn spots_are_2_to_10_mm_and_appear_one_by_one_from_the_onset() {
     eprintln!("{keratoses} keratoses, {papules} papules");
     assert!((3..60).contains(&keratoses), "{keratoses}");
     assert!((20..800).contains(&papules), "{papules}");
+    // The table's rows are in the kinds' order (a spot's kind indexes it).
+    for (i, k) in SPOT_KINDS.iter().enumerate() {
+        assert_eq!(k.kind as usize, i);
+    }
     for s in all.iter() {
         let (lo, hi) = s.kind.params().diameter_mm;
         assert!((lo..=hi).contains(&s.diameter_mm), "{s:?}");

@@ -15,19 +15,29 @@ pub fn decode_image(bytes: &[u8], path: &Path) -> Result<image::DynamicImage, Er
         path: path.to_owned(),
         message,
     };
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
+    // The format from the content, else from the name: a TGA (the usual format of game
+    // art) has no signature to guess it by.
+    let reader_of = || -> Result<_, Error> {
+        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| fail(e.to_string()))?;
+        if reader.format().is_none()
+            && let Ok(format) = image::ImageFormat::from_path(path)
+        {
+            reader.set_format(format);
+        }
+        Ok(reader)
+    };
+    let (w, h) = reader_of()?
+        .into_dimensions()
         .map_err(|e| fail(e.to_string()))?;
-    let (w, h) = reader.into_dimensions().map_err(|e| fail(e.to_string()))?;
     let max = crate::base::limits::MAX_IMAGE_SIDE_PX;
     if w > max || h > max {
         return Err(fail(format!(
             "the image declares {w}×{h} pixels, more than the limit of {max} on a side"
         )));
     }
-    reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| fail(e.to_string()))?;
+    let mut reader = reader_of()?;
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(max);
     limits.max_image_height = Some(max);
@@ -242,6 +252,28 @@ impl Mask {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A TGA (no signature: its format comes from its name) with its origin at the
+    /// bottom-left, the format's default, reads right side up; the same bytes under
+    /// another name are refused with the file named.
+    #[test]
+    fn a_tga_with_its_origin_at_the_bottom_left_reads_right_side_up() {
+        // 2×2, 24-bit, uncompressed true colour, descriptor 0 (origin bottom-left): the
+        // file's first row is the picture's bottom (blue), its second the top (red).
+        let mut tga = vec![0u8, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0, 24, 0];
+        tga.extend_from_slice(&[255, 0, 0, 255, 0, 0]); // bottom row, BGR: blue
+        tga.extend_from_slice(&[0, 0, 255, 0, 0, 255]); // top row, BGR: red
+        let img = HeadImage::decode(&tga, Path::new("head_diffuse.tga")).unwrap();
+        assert_eq!((img.width_px, img.height_px), (2, 2));
+        assert_eq!(&img.rgba[0..4], &[255, 0, 0, 255], "row 0 is the top: red");
+        assert_eq!(
+            &img.rgba[8..12],
+            &[0, 0, 255, 255],
+            "row 1 is the bottom: blue"
+        );
+        let e = HeadImage::decode(&tga, Path::new("head_diffuse.dat")).unwrap_err();
+        assert!(e.to_string().contains("head_diffuse.dat"), "{e}");
+    }
 
     #[test]
     fn samples_texel_centres_exactly_and_interpolates_between() {

@@ -253,6 +253,58 @@ impl Mask {
 mod tests {
     use super::*;
 
+    /// Every format an artist's colour map comes in reads to the same texels: PNG (8 and
+    /// 16 bit), JPEG (within its loss), TIFF (8 and 16 bit), BMP and TGA; a file no decoder
+    /// knows is refused with its name.
+    #[test]
+    fn every_input_format_reads_to_the_same_texels() {
+        use image::{DynamicImage, ImageFormat, Rgb, RgbImage};
+        // 4×2: the top row red, green, blue, white; the bottom row a gray ramp.
+        let colours = [
+            [255, 0, 0],
+            [0, 255, 0],
+            [0, 0, 255],
+            [255, 255, 255],
+            [0, 0, 0],
+            [85, 85, 85],
+            [170, 170, 170],
+            [255, 255, 255],
+        ];
+        let rgb = RgbImage::from_fn(4, 2, |x, y| Rgb(colours[(y * 4 + x) as usize]));
+        let encode = |img: DynamicImage, format: ImageFormat| {
+            let mut bytes = std::io::Cursor::new(Vec::new());
+            img.write_to(&mut bytes, format).unwrap();
+            bytes.into_inner()
+        };
+        let eight = DynamicImage::ImageRgb8(rgb.clone());
+        let sixteen = DynamicImage::ImageRgb16(eight.to_rgb16());
+        let cases = [
+            ("map.png", encode(eight.clone(), ImageFormat::Png), 0),
+            ("map16.png", encode(sixteen.clone(), ImageFormat::Png), 0),
+            ("map.jpg", encode(eight.clone(), ImageFormat::Jpeg), 60),
+            ("map.tif", encode(eight.clone(), ImageFormat::Tiff), 0),
+            ("map16.tiff", encode(sixteen, ImageFormat::Tiff), 0),
+            ("map.bmp", encode(eight.clone(), ImageFormat::Bmp), 0),
+            ("map.tga", encode(eight, ImageFormat::Tga), 0),
+        ];
+        for (name, bytes, tolerance) in cases {
+            let img = HeadImage::decode(&bytes, Path::new(name))
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!((img.width_px, img.height_px), (4, 2), "{name}");
+            for (i, c) in colours.iter().enumerate() {
+                let got = &img.rgba[4 * i..4 * i + 3];
+                for k in 0..3 {
+                    assert!(
+                        got[k].abs_diff(c[k]) <= tolerance,
+                        "{name}: texel {i} is {got:?}, not {c:?}"
+                    );
+                }
+            }
+        }
+        let e = HeadImage::decode(b"not an image at all", Path::new("map.webp")).unwrap_err();
+        assert!(e.to_string().contains("map.webp"), "{e}");
+    }
+
     /// A TGA (no signature: its format comes from its name) with its origin at the
     /// bottom-left, the format's default, reads right side up; the same bytes under
     /// another name are refused with the file named.

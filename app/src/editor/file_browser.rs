@@ -197,11 +197,17 @@ impl FileBrowser {
                         }
                     });
                 ui.separator();
+                // Enter in the name field does what the button does (a full path typed
+                // and entered opens that file, as in any file dialog).
+                let mut submit = false;
                 if self.request.mode != Mode::Folder {
                     ui.horizontal(|ui| {
                         let label = ui.label("file name");
-                        ui.text_edit_singleline(&mut self.name)
+                        let field = ui
+                            .text_edit_singleline(&mut self.name)
                             .labelled_by(label.id);
+                        submit =
+                            field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
                     });
                 }
                 let filters: Vec<String> = self
@@ -219,7 +225,7 @@ impl FileBrowser {
                         Mode::Save => "Save",
                         Mode::Folder => "Choose this folder",
                     };
-                    if ui.button(verb).clicked() {
+                    if ui.button(verb).clicked() || submit {
                         match self.chosen() {
                             Choice::Pick(path) => outcome = Outcome::Picked(path),
                             Choice::Enter(dir) => {
@@ -275,6 +281,13 @@ mod tests {
         assert_eq!(b.chosen(), Choice::Enter(dir.path().join("heads")));
         b.name = "missing.obj".into();
         assert!(matches!(b.chosen(), Choice::Refused(e) if e.contains("missing.obj")));
+        // A full path typed opens that file, wherever the browser stands.
+        let elsewhere = tempfile::tempdir().unwrap();
+        let map = elsewhere.path().join("head_diffuse.tga");
+        std::fs::write(&map, "").unwrap();
+        let mut b = FileBrowser::new(Purpose::ImportMesh, None, dir.path().to_owned());
+        b.name = map.display().to_string();
+        assert_eq!(b.chosen(), Choice::Pick(map));
     }
 
     #[test]

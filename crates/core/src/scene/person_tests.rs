@@ -31,11 +31,38 @@ fn panel_project(name: &str, with_map: bool) -> Project {
     p
 }
 
-/// CIELAB of texel `i` of an sRGB picture.
-fn texel_lab(img: &crate::maps::mask::HeadImage, i: usize) -> glam::Vec3 {
+/// Linear RGB of texel `i` of an sRGB picture.
+fn texel_linear(img: &crate::maps::mask::HeadImage, i: usize) -> glam::Vec3 {
     let p = &img.rgba[4 * i..4 * i + 3];
     let lin = |c: u8| crate::maps::mask::srgb_to_linear(f32::from(c) / 255.0);
-    lab(glam::Vec3::new(lin(p[0]), lin(p[1]), lin(p[2])))
+    glam::Vec3::new(lin(p[0]), lin(p[1]), lin(p[2]))
+}
+
+/// CIELAB of texel `i` of an sRGB picture.
+fn texel_lab(img: &crate::maps::mask::HeadImage, i: usize) -> glam::Vec3 {
+    lab(texel_linear(img, i))
+}
+
+/// The scan and every textured panel head (with its colour map).
+fn textured_heads() -> Vec<(&'static str, Project)> {
+    let mut heads = vec![("scan", Project::default())];
+    for (name, _) in MAPS {
+        heads.push((name, panel_project(name, true)));
+    }
+    heads
+}
+
+/// `scene`'s aged colour at `n`² at 25 and at 80 years (t 0.0833 and 1).
+fn young_and_old(
+    scene: &mut Scene,
+    n: u32,
+) -> (crate::maps::mask::HeadImage, crate::maps::mask::HeadImage) {
+    let never = CancelToken::never();
+    scene.bake_colour(n, 0.0833, &never).unwrap();
+    let young = (**scene.aged_colour().unwrap()).clone();
+    scene.bake_colour(n, 1.0, &never).unwrap();
+    let old = (**scene.aged_colour().unwrap()).clone();
+    (young, old)
 }
 
 fn hair_request(t: f32) -> BakeRequest {
@@ -316,11 +343,7 @@ fn unevenness(
 /// It was less (0.85×) on the scan when the old beard evened out to bare skin.
 #[test]
 fn the_old_base_colour_is_more_uneven_than_the_young() {
-    let never = CancelToken::never();
-    let mut heads = vec![("scan", Project::default())];
-    for (name, _) in MAPS {
-        heads.push((name, panel_project(name, true)));
-    }
+    let heads = textured_heads();
     // On the dark-skinned heads 1.16× and 1.08× (their young maps are the most detailed;
     // more papules and stronger specks there read, blind, as "dirt", "dried mud"): the
     // issue's 1.3× is met on the light heads only.
@@ -333,10 +356,7 @@ fn the_old_base_colour_is_more_uneven_than_the_young() {
     };
     for (name, project) in heads {
         let mut scene = Scene::new(project).unwrap();
-        scene.bake_colour(1024, 0.0833, &never).unwrap();
-        let young = scene.aged_colour().unwrap().clone();
-        scene.bake_colour(1024, 1.0, &never).unwrap();
-        let old = scene.aged_colour().unwrap().clone();
+        let (young, old) = young_and_old(&mut scene, 1024);
         let texels = scene.colour_texels().unwrap();
         let (y, o) = unevenness(&young, &old, &|i| texels.cheeks_and_nose(i) > 0.3);
         eprintln!(
@@ -352,13 +372,9 @@ fn the_old_base_colour_is_more_uneven_than_the_young() {
 /// alone raised it (read, blind, as "the same saturated, glossy orange").
 #[test]
 fn dark_skin_ages_ashier_not_more_orange() {
-    let never = CancelToken::never();
     let mut scene = Scene::new(panel_project("african-male", true)).unwrap();
     let n = 512;
-    scene.bake_colour(n, 0.0833, &never).unwrap();
-    let young = scene.aged_colour().unwrap().clone();
-    scene.bake_colour(n, 1.0, &never).unwrap();
-    let old = scene.aged_colour().unwrap().clone();
+    let (young, old) = young_and_old(&mut scene, n);
     let chroma = |img: &crate::maps::mask::HeadImage, i: usize| {
         let c = texel_lab(img, i);
         c.y.hypot(c.z)
@@ -381,26 +397,15 @@ fn dark_skin_ages_ashier_not_more_orange() {
 fn the_facial_contrast_falls_with_age() {
     use crate::layers::skin_colour::facial_contrast;
     let never = CancelToken::never();
-    let mut heads = vec![("scan", Project::default())];
-    for (name, _) in MAPS {
-        heads.push((name, panel_project(name, true)));
-    }
-    let lin = |img: &crate::maps::mask::HeadImage, i: usize| {
-        let p = &img.rgba[4 * i..4 * i + 3];
-        let c = |c: u8| crate::maps::mask::srgb_to_linear(f32::from(c) / 255.0);
-        glam::Vec3::new(c(p[0]), c(p[1]), c(p[2]))
-    };
+    let heads = textured_heads();
     for (name, project) in heads {
         let mut scene = Scene::new(project).unwrap();
         let own = scene.own_colours(&never).unwrap();
-        scene.bake_colour(1024, 0.0833, &never).unwrap();
-        let young = scene.aged_colour().unwrap().clone();
-        scene.bake_colour(1024, 1.0, &never).unwrap();
-        let old = scene.aged_colour().unwrap().clone();
+        let (young, old) = young_and_old(&mut scene, 1024);
         let texels = scene.colour_texels().unwrap();
         let (c25, c80) = (
-            facial_contrast(texels, &|i| lin(&young, i)),
-            facial_contrast(texels, &|i| lin(&old, i)),
+            facial_contrast(texels, &|i| texel_linear(&young, i)),
+            facial_contrast(texels, &|i| texel_linear(&old, i)),
         );
         eprintln!(
             "{name}: measured {:?}\n  25 {c25:?}\n  80 {c80:?}",
@@ -462,18 +467,11 @@ fn only_skin_takes_the_scalp_tint() {
 /// than 3 above what it is at 25.
 #[test]
 fn the_neck_ages_with_the_face() {
-    let never = CancelToken::never();
-    let mut heads = vec![("scan", Project::default())];
-    for (name, _) in MAPS {
-        heads.push((name, panel_project(name, true)));
-    }
+    let heads = textured_heads();
     for (name, project) in heads {
         let mut scene = Scene::new(project).unwrap();
         let n = 512u32;
-        scene.bake_colour(n, 0.0833, &never).unwrap();
-        let young = scene.aged_colour().unwrap().clone();
-        scene.bake_colour(n, 1.0, &never).unwrap();
-        let old = scene.aged_colour().unwrap().clone();
+        let (young, old) = young_and_old(&mut scene, n);
         let texels = scene.colour_texels().unwrap();
         let band = |pick: &dyn Fn(f32, f32, f32) -> bool| -> Vec<usize> {
             (0..(n * n) as usize)

@@ -140,22 +140,16 @@ impl Scene {
         if self.shown.as_ref().is_some_and(|(k, _)| *k == key) {
             return;
         }
-        let mut alpha = transition.and_then(|_| self.hair_alpha_at(aged.width_px, aged.height_px));
-        // Only skin grows hair: texels no skin triangle covers (a head's eyes, mapped onto
-        // its skin's map) get no scalp tint. (The eyes of the panel's heads, whose UVs
-        // lie beside the scalp's island, took the young hair's dark tint and lost it as
-        // the hair went: "orange eye slits, new at 80", blind.)
-        if let (Some(a), Some(texels)) = (alpha.as_mut(), self.colour.texels())
-            && a.len() == (texels.size() as usize).pow(2)
-        {
-            for (i, v) in std::sync::Arc::make_mut(a).iter_mut().enumerate() {
-                if !texels.covers_skin(i) {
-                    *v = 0;
-                }
-            }
-        }
-        let image =
-            crate::layers::skin_colour::with_alpha(&aged, alpha.as_deref().map(Vec::as_slice));
+        let alpha = transition.and_then(|_| self.hair_alpha_at(aged.width_px, aged.height_px));
+        // Only skin grows hair: texels no skin triangle covers get no scalp tint. (The eyes
+        // of the panel's heads, whose UVs lie beside the scalp's island, took the young
+        // hair's dark tint and lost it as the hair went: "orange eye slits, new at 80",
+        // blind.)
+        let image = crate::layers::skin_colour::with_alpha(
+            &aged,
+            alpha.as_deref().map(Vec::as_slice),
+            self.colour.texels().map(|t| &**t),
+        );
         self.shown = Some((key, Arc::new(image)));
     }
 

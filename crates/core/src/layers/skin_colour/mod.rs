@@ -375,16 +375,26 @@ pub fn bake_from(
 /// `image` with its alpha replaced by `alpha` (`hair::scalp::hair_age_alpha` of its size), or by 0
 /// (no hair anywhere) without one: the 3D view's colour map; the skin pass tints the scalp
 /// under the hair present at its age.
-pub fn with_alpha(image: &HeadImage, alpha: Option<&[u8]>) -> HeadImage {
+///
+/// Only skin grows hair: with `skin` (the texels `image` was baked on), texels no skin
+/// triangle covers (a head's eyes, mapped onto its skin's map) get 0.
+pub fn with_alpha(
+    image: &HeadImage,
+    alpha: Option<&[u8]>,
+    skin: Option<&SurfaceTexels>,
+) -> HeadImage {
     let mut shown = image.clone();
+    let skin = skin.filter(|t| t.position.len() * 4 == shown.rgba.len());
     match alpha.filter(|a| a.len() * 4 == shown.rgba.len()) {
         Some(alpha) => shown
             .rgba
             .par_chunks_mut(4 * 4096)
             .zip(alpha.par_chunks(4096))
-            .for_each(|(px, a)| {
-                for (p, &a) in px.chunks_exact_mut(4).zip(a) {
-                    p[3] = a;
+            .enumerate()
+            .for_each(|(chunk, (px, a))| {
+                for (k, (p, &a)) in px.chunks_exact_mut(4).zip(a).enumerate() {
+                    let covered = skin.is_none_or(|t| t.covers_skin(chunk * 4096 + k));
+                    p[3] = if covered { a } else { 0 };
                 }
             }),
         None => shown.rgba.par_chunks_mut(4 * 4096).for_each(|px| {

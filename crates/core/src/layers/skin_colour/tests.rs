@@ -568,7 +568,7 @@ fn the_shown_colour_carries_the_hair_ages_in_its_alpha_with_a_soft_edge() {
         height_px: 200,
         rgba: vec![128; 200 * 200 * 4],
     };
-    let shown = with_alpha(&aged, Some(&hair_age_alpha(&transition, 200, 200)));
+    let shown = with_alpha(&aged, Some(&hair_age_alpha(&transition, 200, 200)), None);
     let alpha = |x: usize| shown.rgba[4 * (100 * 200 + x) + 3];
     // Deep in the hair: a = 1 (byte 255); far from it: none (0); across the edge (at
     // x = 100) it falls over the blur's box (2 % of 200 px: 4 px each side).
@@ -587,7 +587,7 @@ fn the_shown_colour_carries_the_hair_ages_in_its_alpha_with_a_soft_edge() {
             .all(|p| p[..3] == [128, 128, 128])
     );
     // Without hair, no tint anywhere.
-    let bare = with_alpha(&aged, None);
+    let bare = with_alpha(&aged, None, None);
     assert!(bare.rgba.chunks_exact(4).all(|p| p[3] == 0));
 }
 

@@ -29,17 +29,10 @@ pub struct MeshInfoArgs {
 }
 
 pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
-    let (name, mesh) = match &args.file {
-        Some(path) if !args.default_head => (path.display().to_string(), Mesh::load(path)?),
-        _ => (
-            "assets/meshes/default-head.glb (built in)".to_owned(),
-            agesim_core::head::default::default_head(),
-        ),
-    };
-    print!("{}", describe(&name, &mesh));
     match &args.file {
         Some(path) if !args.default_head => {
-            // The scene decides the units, axes and layout as every command does.
+            // The scene loads the file (once) and decides the units, axes and layout as
+            // every command does.
             let mut project = Project::default();
             project.mesh.path = Some(path.clone());
             project.mesh.metres_per_unit = None;
@@ -47,6 +40,10 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
             project.mesh.colour_map = args.colour_map.clone();
             project.mesh.maps_flip_v = args.maps_flip_v;
             let mut scene = Scene::new(project)?;
+            print!(
+                "{}",
+                describe(&path.display().to_string(), scene.file_mesh())
+            );
             print!("{}", describe_head(&scene));
             print!("{}", describe_person(&mut scene)?);
         }
@@ -56,6 +53,11 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
                     "--landmarks and --colour-map describe a FILE: give the mesh file too"
                 );
             }
+            let mesh = agesim_core::head::default::default_head();
+            print!(
+                "{}",
+                describe("assets/meshes/default-head.glb (built in)", &mesh)
+            );
             print!(
                 "metres per unit: 1 (metres: a built-in mesh)\naxes:      up +Y, forward +Z\nlayout:    the template itself (its own UVs)\n"
             );

@@ -21,7 +21,7 @@ pub(super) struct Inputs {
     mesh_key: (Option<PathBuf>, BuiltinMesh, u64),
     /// The mesh as its file has it, and turned to agesim's axes (`mesh`; the same
     /// allocation when no turn is needed).
-    raw_mesh: Arc<Mesh>,
+    pub(super) raw_mesh: Arc<Mesh>,
     pub(super) mesh: Arc<Mesh>,
     /// The mesh file's axes (`mesh.up`, `mesh.forward`, else from the landmarks, else
     /// found by fitting the template), how they were decided, and what decided them.

@@ -478,6 +478,12 @@ impl Scene {
         &self.inputs.mesh
     }
 
+    /// The mesh as its file gives it (its own axes, every part), before the scene turned
+    /// it and chose its skin.
+    pub fn file_mesh(&self) -> &Arc<Mesh> {
+        &self.inputs.raw_mesh
+    }
+
     /// `fibres` with their warps attached: each `space=surface` group laid on the surface
     /// of the layout the large-wrinkle layer is baked in (the template's for a fitted
     /// head, `template` true; the head's own otherwise). A warp is made once per group

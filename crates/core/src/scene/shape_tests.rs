@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 use super::heads_tests::heads_dir;
 use super::*;
@@ -12,33 +12,7 @@ use super::*;
 /// `mesh` with every triangle split in four at its edges' midpoints (UVs too), written as
 /// OBJ into `dir`: a dense head of the same shape.
 fn subdivided_obj(dir: &std::path::Path, mesh: &Mesh, name: &str) -> PathBuf {
-    use std::collections::HashMap;
-    let mut positions = mesh.positions().to_vec();
-    let mut uvs = mesh.uvs().to_vec();
-    let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
-    let mut indices = Vec::new();
-    let mut midpoint = |a: u32, b: u32, positions: &mut Vec<Vec3>, uvs: &mut Vec<Vec2>| {
-        *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-            let (i, j) = (a as usize, b as usize);
-            positions.push(0.5 * (positions[i] + positions[j]));
-            uvs.push(0.5 * (uvs[i] + uvs[j]));
-            positions.len() as u32 - 1
-        })
-    };
-    for t in mesh.indices().chunks_exact(3) {
-        let [a, b, c] = [t[0], t[1], t[2]];
-        let ab = midpoint(a, b, &mut positions, &mut uvs);
-        let bc = midpoint(b, c, &mut positions, &mut uvs);
-        let ca = midpoint(c, a, &mut positions, &mut uvs);
-        indices.extend([a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca]);
-    }
-    let raw = crate::head::mesh::RawMesh {
-        positions,
-        uvs: Some(uvs),
-        indices,
-        ..Default::default()
-    };
-    let dense = Mesh::build(raw, name).unwrap();
+    let dense = crate::test_util::subdivided(mesh, name);
     let path = dir.join(format!("{name}.obj"));
     std::fs::write(&path, crate::head::mesh::obj::to_obj(&dense, |p| p)).unwrap();
     path

@@ -30,6 +30,8 @@ use crate::head::mesh::Mesh;
 const SAMPLES: usize = 3000;
 /// Template points of the coarse alignments that find a head's axes.
 const COARSE_SAMPLES: usize = 600;
+/// ICP iterations of each start of the global search, on the coarse samples.
+const START_ITERATIONS: usize = 20;
 /// Below this height (template metres) the template is neck, which heads cut anywhere.
 const NECK_CUT_Y_M: f32 = -0.11;
 /// Radius of the face region aligned after the whole head, template metres.
@@ -52,8 +54,14 @@ pub struct Found {
 pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Result<Found, Error> {
     let fail = |message: String| Error::Fit { message };
     let skin = head.skin_indices();
-    let bvh = Bvh::new(head.positions(), &skin);
-    let normals = triangle_normals(head.positions(), &skin);
+    // A dense head is searched on its proxy.
+    let proxy = super::proxy::of_skin(head.positions(), &skin);
+    let (h_pos, skin) = match &proxy {
+        Some(p) => (&p.positions[..], &p.indices[..]),
+        None => (head.positions(), &skin[..]),
+    };
+    let bvh = Bvh::new(h_pos, skin);
+    let normals = triangle_normals(h_pos, skin);
     if bvh.is_empty() {
         return Err(fail(
             "the head has no skin triangle to look for landmarks on".into(),
@@ -68,17 +76,24 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
     let t_nrm = template.mesh.normals();
     let samples = template_samples(template, SAMPLES);
 
+    // The starts compared coarsely (as when finding the axes), the best one refined
+    // with every sample.
     let best = global_search(
-        &samples,
+        &template_samples(template, COARSE_SAMPLES),
         t_pos,
         &bvh,
         &normals,
-        head.positions(),
+        h_pos,
         glam::Mat3::IDENTITY,
         metres_per_unit,
         &[0.5, 0.71, 1.0, 1.41, 2.0],
-        40,
-    );
+        START_ITERATIONS,
+    )
+    .map(|(_, coarse)| {
+        let (s, median) = icp(&samples, &bvh, &normals, coarse, 40, true);
+        (median / s.scale, s)
+    })
+    .filter(|(median_m, _)| median_m.is_finite());
     let Some((median_m, alignment)) = best else {
         return Err(fail(
             "the template could not be aligned to the head (is it upright and facing +Z?)".into(),
@@ -221,8 +236,13 @@ pub fn axes(
 ) -> Option<(crate::head::mesh::units::Axes, f32)> {
     use crate::head::mesh::units::{Axes, Axis};
     let skin = head.skin_indices();
-    let bvh = Bvh::new(head.positions(), &skin);
-    let normals = triangle_normals(head.positions(), &skin);
+    let proxy = super::proxy::of_skin(head.positions(), &skin);
+    let (h_pos, skin) = match &proxy {
+        Some(p) => (&p.positions[..], &p.indices[..]),
+        None => (head.positions(), &skin[..]),
+    };
+    let bvh = Bvh::new(h_pos, skin);
+    let normals = triangle_normals(h_pos, skin);
     if bvh.is_empty() || !(metres_per_unit > 0.0 && metres_per_unit.is_finite()) {
         return None;
     }
@@ -248,7 +268,7 @@ pub fn axes(
             t_pos,
             &bvh,
             &normals,
-            head.positions(),
+            h_pos,
             turn,
             metres_per_unit,
             &[0.71, 1.0, 1.41],

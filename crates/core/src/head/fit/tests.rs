@@ -55,6 +55,38 @@ fn automatic_landmarks_are_near_the_hand_placed_ones() {
     }
 }
 
+/// A dense head (the scan split twice: 283k triangles) is searched on its proxy and its
+/// landmarks found as near the hand-placed ones as on the scan itself.
+#[test]
+fn a_dense_head_s_landmarks_are_found_on_its_proxy() {
+    let (scan, hand) = shipped_head("lee-perry-smith", "LeePerrySmith.glb");
+    let once = crate::test_util::subdivided(&scan, "scan ×4");
+    let dense = crate::test_util::subdivided(&once, "scan ×16");
+    assert!(
+        super::proxy::of_skin(dense.positions(), dense.indices()).is_some(),
+        "{} triangles: no proxy",
+        dense.triangle_count()
+    );
+    let guess = crate::head::mesh::units::detect(&dense.bounds(), None).metres_per_unit;
+    let found = auto::landmarks(&dense, template(), guess).unwrap();
+    let eyes = hand.exocanthion_distance().unwrap();
+    let mut errors: Vec<f32> = crate::head::landmarks::NAMES
+        .iter()
+        .filter_map(|n| Some(found.landmarks.get(n)?.distance(hand.get(n)?) / eyes))
+        .collect();
+    errors.sort_by(f32::total_cmp);
+    let median = errors[errors.len() / 2];
+    assert!(
+        median <= 0.05,
+        "median error {median} × the eye corners' distance"
+    );
+    assert!(
+        found.median_distance_mm < 1.0,
+        "{}",
+        found.median_distance_mm
+    );
+}
+
 /// The correspondence read both ways: a head texel's template UV, and back the head UV
 /// whose template UV is nearest, which reads (almost) the same template UV.
 #[test]

@@ -27,17 +27,26 @@ pub struct TangentFrames {
     pub indices: Vec<u32>,
 }
 
+/// One piece of the mesh as MikkTSpace sees it: the triangles `faces` (indices into
+/// `indices` / 3, in the mesh's order), their corners' frames written to `out`.
 struct Corners<'a> {
     positions: &'a [Vec3],
     normals: &'a [Vec3],
     uvs: &'a [Vec2],
     indices: &'a [u32],
+    faces: &'a [u32],
     out: Vec<Option<Vec4>>,
+}
+
+impl Corners<'_> {
+    fn vertex(&self, face: usize, vert: usize) -> usize {
+        self.indices[self.faces[face] as usize * 3 + vert] as usize
+    }
 }
 
 impl Geometry for Corners<'_> {
     fn num_faces(&self) -> usize {
-        self.indices.len() / 3
+        self.faces.len()
     }
 
     fn num_vertices_of_face(&self, _face: usize) -> usize {
@@ -45,20 +54,123 @@ impl Geometry for Corners<'_> {
     }
 
     fn position(&self, face: usize, vert: usize) -> [f32; 3] {
-        self.positions[self.indices[face * 3 + vert] as usize].to_array()
+        self.positions[self.vertex(face, vert)].to_array()
     }
 
     fn normal(&self, face: usize, vert: usize) -> [f32; 3] {
-        self.normals[self.indices[face * 3 + vert] as usize].to_array()
+        self.normals[self.vertex(face, vert)].to_array()
     }
 
     fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
-        self.uvs[self.indices[face * 3 + vert] as usize].to_array()
+        self.uvs[self.vertex(face, vert)].to_array()
     }
 
     fn set_tangent(&mut self, tangent_space: Option<TangentSpace>, face: usize, vert: usize) {
         self.out[face * 3 + vert] = tangent_space.map(|t| Vec4::from_array(t.tangent_encoded()));
     }
+}
+
+/// Triangles in one piece of the mesh that MikkTSpace runs on by itself, the pieces side
+/// by side. A fixed count (not the thread count): the frames are the same on any machine.
+const PIECE_TRIANGLES: usize = 1 << 15;
+
+/// MikkTSpace's frame of every triangle corner (`None` where it gives none), the mesh cut
+/// into pieces of [`PIECE_TRIANGLES`] that run in parallel. A corner's frame depends only
+/// on the triangles around its vertex (MikkTSpace averages over the vertex's fan, welding
+/// vertices of one position), so each piece runs with its triangles and every triangle
+/// that touches one of their positions, in the mesh's order, and keeps its own corners:
+/// the frames are those of one run over the whole mesh (tested).
+fn corner_frames(
+    positions: &[Vec3],
+    normals: &[Vec3],
+    uvs: &[Vec2],
+    indices: &[u32],
+) -> Vec<Option<Vec4>> {
+    corner_frames_in(positions, normals, uvs, indices, PIECE_TRIANGLES)
+}
+
+fn corner_frames_in(
+    positions: &[Vec3],
+    normals: &[Vec3],
+    uvs: &[Vec2],
+    indices: &[u32],
+    piece_triangles: usize,
+) -> Vec<Option<Vec4>> {
+    use rayon::prelude::*;
+    let triangles = indices.len() / 3;
+    let run = |faces: &[u32]| {
+        let mut corners = Corners {
+            positions,
+            normals,
+            uvs,
+            indices,
+            faces,
+            out: vec![None; faces.len() * 3],
+        };
+        // The only error is "too many faces for the reference code's int indices"; the
+        // caller's fallback frames then cover every corner.
+        let _ = bevy_mikktspace::generate_tangents(&mut corners);
+        corners.out
+    };
+    if triangles <= piece_triangles {
+        let all: Vec<u32> = (0..triangles as u32).collect();
+        return run(&all);
+    }
+    // Vertices of one position are one key (MikkTSpace welds them); each key's triangles.
+    let mut key_of = HashMap::with_capacity(positions.len());
+    let keys: Vec<u32> = positions
+        .iter()
+        .map(|p| {
+            let bits = (*p + Vec3::ZERO).to_array().map(f32::to_bits);
+            let next = key_of.len() as u32;
+            *key_of.entry(bits).or_insert(next)
+        })
+        .collect();
+    let mut start = vec![0u32; key_of.len() + 1];
+    for &v in indices {
+        start[keys[v as usize] as usize + 1] += 1;
+    }
+    for k in 1..start.len() {
+        start[k] += start[k - 1];
+    }
+    let mut fill = start.clone();
+    let mut around = vec![0u32; indices.len()];
+    for (corner, &v) in indices.iter().enumerate() {
+        let k = keys[v as usize] as usize;
+        around[fill[k] as usize] = (corner / 3) as u32;
+        fill[k] += 1;
+    }
+    let pieces: Vec<Vec<Option<Vec4>>> = (0..triangles.div_ceil(piece_triangles))
+        .into_par_iter()
+        .map(|piece| {
+            let (first, end) = (
+                piece * piece_triangles,
+                ((piece + 1) * piece_triangles).min(triangles),
+            );
+            let mut outside: Vec<u32> = indices[first * 3..end * 3]
+                .iter()
+                .flat_map(|&v| {
+                    let k = keys[v as usize] as usize;
+                    around[start[k] as usize..start[k + 1] as usize]
+                        .iter()
+                        .copied()
+                })
+                .filter(|&t| (t as usize) < first || (t as usize) >= end)
+                .collect();
+            outside.sort_unstable();
+            outside.dedup();
+            let split = outside.partition_point(|&t| (t as usize) < first);
+            let faces: Vec<u32> = outside[..split]
+                .iter()
+                .copied()
+                .chain(first as u32..end as u32)
+                .chain(outside[split..].iter().copied())
+                .collect();
+            let out = run(&faces);
+            out[split * 3..(split + end - first) * 3].to_vec()
+        })
+        .collect();
+    pieces.concat()
 }
 
 /// MikkTSpace tangents for a cleaned mesh (indices in range). Corners MikkTSpace leaves
@@ -70,16 +182,7 @@ pub fn mikktspace(
     uvs: &[Vec2],
     indices: &[u32],
 ) -> TangentFrames {
-    let mut corners = Corners {
-        positions,
-        normals,
-        uvs,
-        indices,
-        out: vec![None; indices.len()],
-    };
-    // The only error is "too many faces for the reference code's int indices"; the
-    // fallback frames below then cover every corner.
-    let _ = bevy_mikktspace::generate_tangents(&mut corners);
+    let frames = corner_frames(positions, normals, uvs, indices);
 
     let mut tangents: Vec<Option<Vec4>> = vec![None; positions.len()];
     let mut duplicated_from = Vec::new();
@@ -88,7 +191,7 @@ pub fn mikktspace(
     let mut variants: HashMap<(u32, [i32; 4]), u32> = HashMap::new();
     for (corner, &v) in indices.iter().enumerate() {
         let n = normals[v as usize];
-        let t = match corners.out[corner] {
+        let t = match frames[corner] {
             Some(t) if t.is_finite() && t.truncate().length_squared() > 0.0 => orthonormalise(t, n),
             _ => any_tangent(n),
         };
@@ -201,6 +304,20 @@ mod tests {
                 assert_vec_close(bitangent(Vec3::Z, tan), Vec3::Y, 1e-5, "bitangent along +v");
             }
         }
+    }
+
+    #[test]
+    fn pieces_run_side_by_side_give_the_frames_of_one_run() {
+        // The default head (17.7k triangles, UV seams, mirrored islands) in pieces of 1000
+        // triangles, and the shape test heads' seams: every corner's frame bit for bit.
+        let head = crate::head::default::default_head();
+        let (p, n, uv, ix) = (head.positions(), head.normals(), head.uvs(), head.indices());
+        let whole = corner_frames_in(p, n, uv, ix, usize::MAX);
+        let pieces = corner_frames_in(p, n, uv, ix, 1000);
+        assert_eq!(whole.len(), ix.len());
+        assert!(whole.iter().filter(|f| f.is_some()).count() > ix.len() * 99 / 100);
+        let differ = whole.iter().zip(&pieces).filter(|(a, b)| a != b).count();
+        assert_eq!(differ, 0, "{differ} of {} corners differ", whole.len());
     }
 
     #[test]

@@ -1,0 +1,137 @@
+//! A coarse stand-in for a dense head's skin, for the searches that only need its shape
+//! (its axes, its landmarks): vertex clustering (Rossignac & Borrel 1993). The skin's
+//! vertices are gathered in a grid of cubes sized so that about [`PROXY_TRIANGLES`]
+//! triangles are left, each cube's vertices merged at their mean, the triangles whose
+//! corners fall in three cubes kept. Linear in the triangles, no more than a cube's
+//! width from the surface; a head of fewer triangles is used as it is.
+
+use std::collections::HashMap;
+
+use glam::Vec3;
+
+/// Triangles of skin above which the searches run on a proxy, and about how many the
+/// proxy keeps.
+pub const PROXY_TRIANGLES: usize = 100_000;
+
+/// A head's skin, coarser.
+#[derive(Clone, Debug)]
+pub struct Proxy {
+    pub positions: Vec<Vec3>,
+    /// Three per triangle, into `positions`.
+    pub indices: Vec<u32>,
+}
+
+/// The proxy of the skin triangles `skin` (three indices each) of `positions`; `None`
+/// when there are at most [`PROXY_TRIANGLES`] of them (use the skin itself).
+pub fn of_skin(positions: &[Vec3], skin: &[u32]) -> Option<Proxy> {
+    let triangles = skin.len() / 3;
+    if triangles <= PROXY_TRIANGLES {
+        return None;
+    }
+    // The mean edge, over every 16th triangle: a cube of `edge · √(triangles / target)`
+    // holds about triangles / target of them.
+    let (mut sum, mut count) = (0.0f64, 0usize);
+    for t in skin.chunks_exact(3).step_by(16) {
+        let p = |k: usize| positions.get(t[k] as usize).copied();
+        if let (Some(a), Some(b), Some(c)) = (p(0), p(1), p(2)) {
+            sum += f64::from(a.distance(b) + b.distance(c) + c.distance(a));
+            count += 3;
+        }
+    }
+    let edge = (sum / count.max(1) as f64) as f32;
+    let cube = edge * (triangles as f32 / PROXY_TRIANGLES as f32).sqrt();
+    if !(cube.is_finite() && cube > 0.0) {
+        return None;
+    }
+    // Clusters numbered in the order their first vertex is met: the same proxy on any
+    // machine.
+    let mut cluster_of_cube: HashMap<[i32; 3], u32> = HashMap::new();
+    let mut cluster_of_vertex = vec![u32::MAX; positions.len()];
+    let mut sums: Vec<(Vec3, u32)> = Vec::new();
+    let mut indices = Vec::with_capacity(skin.len() / 2);
+    for t in skin.chunks_exact(3) {
+        let mut corner = [0u32; 3];
+        let mut ok = true;
+        for (k, &v) in t.iter().enumerate() {
+            let Some(&p) = positions.get(v as usize) else {
+                ok = false;
+                break;
+            };
+            let known = &mut cluster_of_vertex[v as usize];
+            if *known == u32::MAX {
+                let key = (p / cube).floor().as_ivec3().to_array();
+                let next = sums.len() as u32;
+                let c = *cluster_of_cube.entry(key).or_insert(next);
+                if c == next {
+                    sums.push((Vec3::ZERO, 0));
+                }
+                sums[c as usize].0 += p;
+                sums[c as usize].1 += 1;
+                *known = c;
+            }
+            corner[k] = *known;
+        }
+        if ok && corner[0] != corner[1] && corner[1] != corner[2] && corner[0] != corner[2] {
+            indices.extend_from_slice(&corner);
+        }
+    }
+    Some(Proxy {
+        positions: sums.iter().map(|&(s, n)| s / n as f32).collect(),
+        indices,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sphere of `n` × 2n quads, two triangles each.
+    fn sphere(n: usize) -> (Vec<Vec3>, Vec<u32>) {
+        let mut p = Vec::new();
+        for i in 0..=n {
+            for j in 0..2 * n {
+                let (th, ph) = (
+                    std::f32::consts::PI * i as f32 / n as f32,
+                    std::f32::consts::PI * j as f32 / n as f32,
+                );
+                p.push(Vec3::new(
+                    th.sin() * ph.cos(),
+                    th.cos(),
+                    th.sin() * ph.sin(),
+                ));
+            }
+        }
+        let mut ix = Vec::new();
+        let at = |i: usize, j: usize| (i * 2 * n + j % (2 * n)) as u32;
+        for i in 0..n {
+            for j in 0..2 * n {
+                ix.extend([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                ix.extend([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        (p, ix)
+    }
+
+    #[test]
+    fn a_dense_surface_keeps_its_shape_with_about_the_target_triangles() {
+        let (p, ix) = sphere(300); // 360k triangles
+        assert!(of_skin(&p, &ix[..PROXY_TRIANGLES * 3]).is_none());
+        let proxy = of_skin(&p, &ix).unwrap();
+        let kept = proxy.indices.len() / 3;
+        assert!(
+            kept > PROXY_TRIANGLES / 3 && kept < PROXY_TRIANGLES * 2,
+            "{kept} triangles"
+        );
+        // On the sphere within a cube's width (the mean edge ×√3.6 here: ~0.02).
+        let worst = proxy
+            .positions
+            .iter()
+            .map(|q| (q.length() - 1.0).abs())
+            .fold(0.0f32, f32::max);
+        assert!(worst < 0.02, "{worst}");
+        // The same proxy again, bit for bit.
+        let again = of_skin(&p, &ix).unwrap();
+        assert_eq!(again.indices, proxy.indices);
+        assert_eq!(again.positions, proxy.positions);
+    }
+}

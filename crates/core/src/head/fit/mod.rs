@@ -27,7 +27,7 @@
 pub mod auto;
 pub mod bvh;
 mod correspondence;
-mod proxy;
+pub mod proxy;
 pub mod refine;
 pub mod similarity;
 pub mod tps;

@@ -1,31 +1,44 @@
-//! A coarse stand-in for a dense head's skin, for the searches that only need its shape
-//! (its axes, its landmarks): vertex clustering (Rossignac & Borrel 1993). The skin's
-//! vertices are gathered in a grid of cubes sized so that about [`PROXY_TRIANGLES`]
-//! triangles are left, each cube's vertices merged at their mean, the triangles whose
-//! corners fall in three cubes kept. Linear in the triangles, no more than a cube's
-//! width from the surface; a head of fewer triangles is used as it is.
+//! A coarse stand-in for a dense mesh, for what only needs its shape (the search for a
+//! head's axes and landmarks, the sky the aged shape hides): vertex clustering (Rossignac
+//! & Borrel 1993). The vertices are gathered in a grid of cubes sized so that about a
+//! target number of triangles is left, each cube's vertices merged at their mean, the
+//! triangles whose corners fall in three cubes kept. Linear in the triangles, no more
+//! than a cube's width from the surface; a mesh of fewer triangles is used as it is.
+//! What is computed on the proxy comes back to the mesh's vertices by [`Proxy::spread`].
 
 use std::collections::HashMap;
 
 use glam::Vec3;
 
-/// Triangles of skin above which the searches run on a proxy, and about how many the
-/// proxy keeps.
+/// Triangles of skin above which the landmark and axes searches run on a proxy, and
+/// about how many the proxy keeps.
 pub const PROXY_TRIANGLES: usize = 100_000;
 
-/// A head's skin, coarser.
+/// A mesh, coarser.
 #[derive(Clone, Debug)]
 pub struct Proxy {
+    /// Each cluster's mean position.
     pub positions: Vec<Vec3>,
     /// Three per triangle, into `positions`.
     pub indices: Vec<u32>,
+    /// The cluster of each vertex of the mesh (`u32::MAX`: in no triangle).
+    pub cluster_of_vertex: Vec<u32>,
+    /// The cubes' side, mesh units.
+    pub cube: f32,
+    cluster_of_cube: HashMap<[i32; 3], u32>,
 }
 
 /// The proxy of the skin triangles `skin` (three indices each) of `positions`; `None`
 /// when there are at most [`PROXY_TRIANGLES`] of them (use the skin itself).
 pub fn of_skin(positions: &[Vec3], skin: &[u32]) -> Option<Proxy> {
+    of_triangles(positions, skin, PROXY_TRIANGLES)
+}
+
+/// The proxy of the triangles `triangles` (three indices each) of `positions` with about
+/// `target` triangles; `None` when there are at most `target` (use the mesh itself).
+pub fn of_triangles(positions: &[Vec3], skin: &[u32], target: usize) -> Option<Proxy> {
     let triangles = skin.len() / 3;
-    if triangles <= PROXY_TRIANGLES {
+    if triangles <= target.max(1) {
         return None;
     }
     // The mean edge, over every 16th triangle: a cube of `edge · √(triangles / target)`
@@ -39,7 +52,7 @@ pub fn of_skin(positions: &[Vec3], skin: &[u32]) -> Option<Proxy> {
         }
     }
     let edge = (sum / count.max(1) as f64) as f32;
-    let cube = edge * (triangles as f32 / PROXY_TRIANGLES as f32).sqrt();
+    let cube = edge * (triangles as f32 / target as f32).sqrt();
     if !(cube.is_finite() && cube > 0.0) {
         return None;
     }
@@ -78,7 +91,69 @@ pub fn of_skin(positions: &[Vec3], skin: &[u32]) -> Option<Proxy> {
     Some(Proxy {
         positions: sums.iter().map(|&(s, n)| s / n as f32).collect(),
         indices,
+        cluster_of_vertex,
+        cube,
+        cluster_of_cube,
     })
+}
+
+impl Proxy {
+    /// The mean of `per_vertex` (a value of each mesh vertex) over each cluster: e.g. the
+    /// proxy's positions after the mesh moved.
+    pub fn gather(&self, per_vertex: &[Vec3]) -> Vec<Vec3> {
+        let mut sums = vec![(Vec3::ZERO, 0u32); self.positions.len()];
+        for (&c, &v) in self.cluster_of_vertex.iter().zip(per_vertex) {
+            if let Some(s) = sums.get_mut(c as usize) {
+                s.0 += v;
+                s.1 += 1;
+            }
+        }
+        sums.iter().map(|&(s, n)| s / n.max(1) as f32).collect()
+    }
+
+    /// A value of each cluster (`values`, with its `normals`) carried to the mesh's
+    /// vertices at `positions` with their `normals`: the clusters of the 27 cubes around
+    /// the vertex weighted by a tent of 1.5 cubes over their distance and by how alike
+    /// they face (a lip takes nothing from the lip it touches), so the values change
+    /// smoothly over the cubes. A vertex no cluster reaches takes its own cluster's.
+    pub fn spread(
+        &self,
+        values: &[f32],
+        normals: &[Vec3],
+        positions: &[Vec3],
+        vertex_normals: &[Vec3],
+    ) -> Vec<f32> {
+        use rayon::prelude::*;
+        let radius = 1.5 * self.cube;
+        (0..positions.len())
+            .into_par_iter()
+            .map(|v| {
+                let own = self.cluster_of_vertex.get(v).copied().unwrap_or(u32::MAX);
+                let Some(&fallback) = values.get(own as usize) else {
+                    return 1.0;
+                };
+                let (p, n) = (positions[v], vertex_normals[v]);
+                let home = (p / self.cube).floor().as_ivec3();
+                let (mut sum, mut weight) = (0.0f32, 0.0f32);
+                for z in -1..=1 {
+                    for y in -1..=1 {
+                        for x in -1..=1 {
+                            let key = (home + glam::IVec3::new(x, y, z)).to_array();
+                            let Some(&c) = self.cluster_of_cube.get(&key) else {
+                                continue;
+                            };
+                            let c = c as usize;
+                            let near = (1.0 - self.positions[c].distance(p) / radius).max(0.0);
+                            let w = near * near * normals[c].dot(n).max(0.0);
+                            sum += w * values[c];
+                            weight += w;
+                        }
+                    }
+                }
+                if weight > 0.0 { sum / weight } else { fallback }
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]

@@ -590,15 +590,13 @@ impl ShapeField {
             return vec![1.0; n];
         }
         let full = self.full_occlusion.get_or_init(|| {
-            let (positions, indices) = (mesh.positions(), mesh.indices());
-            let mpu = self.metres_per_unit;
-            let full = self.full();
-            // Only the skin near a movement can lose or gain sky.
-            let near = occlusion::near_movement(positions, &full, mpu);
-            let rest = occlusion::sky_visibility(positions, indices, mpu, &|v| near[v]);
-            let moved: Vec<Vec3> = positions.iter().zip(&full).map(|(p, d)| *p + *d).collect();
-            let aged = occlusion::sky_visibility(&moved, indices, mpu, &|v| near[v]);
-            occlusion::ratio(&aged, &rest)
+            occlusion::full_ratio(
+                mesh.positions(),
+                &self.smooth,
+                mesh.indices(),
+                &self.full(),
+                self.metres_per_unit,
+            )
         });
         full.iter().map(|r| 1.0 + (r - 1.0) * w).collect()
     }

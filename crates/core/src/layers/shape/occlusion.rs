@@ -90,6 +90,61 @@ pub fn sky_visibility(
     out
 }
 
+/// Triangles above which the sky is measured on a proxy of the mesh (about this many
+/// triangles; [`crate::head::fit::proxy`]) and carried back to its vertices: the sky
+/// changes over millimetres, a million-triangle scan's edges are a fraction of one.
+pub const SKY_PROXY_TRIANGLES: usize = 40_000;
+
+/// The full shape's ratio of sky ([`ratio`]) at each vertex of `positions` × `indices`
+/// (smooth `normals`) moved by `full`; on a proxy when the mesh has more than
+/// [`SKY_PROXY_TRIANGLES`] triangles.
+pub fn full_ratio(
+    positions: &[Vec3],
+    normals: &[Vec3],
+    indices: &[u32],
+    full: &[Vec3],
+    metres_per_unit: f32,
+) -> Vec<f32> {
+    full_ratio_with(
+        positions,
+        normals,
+        indices,
+        full,
+        metres_per_unit,
+        SKY_PROXY_TRIANGLES,
+    )
+}
+
+fn full_ratio_with(
+    positions: &[Vec3],
+    normals: &[Vec3],
+    indices: &[u32],
+    full: &[Vec3],
+    metres_per_unit: f32,
+    proxy_triangles: usize,
+) -> Vec<f32> {
+    let proxy = crate::head::fit::proxy::of_triangles(positions, indices, proxy_triangles);
+    let Some(proxy) = proxy else {
+        // Only the skin near a movement can lose or gain sky.
+        let near = near_movement(positions, full, metres_per_unit);
+        let rest = sky_visibility(positions, indices, metres_per_unit, &|v| near[v]);
+        let moved: Vec<Vec3> = positions.iter().zip(full).map(|(p, d)| *p + *d).collect();
+        let aged = sky_visibility(&moved, indices, metres_per_unit, &|v| near[v]);
+        return ratio(&aged, &rest);
+    };
+    let delta = proxy.gather(full);
+    let near = near_movement(&proxy.positions, &delta, metres_per_unit);
+    let rest = sky_visibility(&proxy.positions, &proxy.indices, metres_per_unit, &|v| {
+        near[v]
+    });
+    let moved: Vec<Vec3> = (proxy.positions.iter().zip(&delta))
+        .map(|(p, d)| *p + *d)
+        .collect();
+    let aged = sky_visibility(&moved, &proxy.indices, metres_per_unit, &|v| near[v]);
+    let cluster_normals = smooth_normals(&proxy.positions, &proxy.indices);
+    proxy.spread(&ratio(&aged, &rest), &cluster_normals, positions, normals)
+}
+
 /// The aged skin's sky over the rest's, per vertex ((aged + f)/(rest + f), f =
 /// [`RATIO_FLOOR`]), within [`RATIO_RANGE`].
 pub fn ratio(aged: &[f32], rest: &[f32]) -> Vec<f32> {
@@ -145,6 +200,38 @@ mod tests {
             }
         }
         (p, idx)
+    }
+
+    /// On a proxy of an eighth of the triangles, the sky a ridge raised beside a dense
+    /// plane's skin takes is the one measured on every vertex: within 0.03 on average,
+    /// 0.12 at most, the darkest place as dark.
+    #[test]
+    fn the_sky_measured_on_a_proxy_is_the_mesh_s() {
+        // Millimetres: the plane 40 mm across, a ridge 6 mm high along x = 0, 4 mm wide.
+        let (p, idx) = plane(110);
+        let p: Vec<Vec3> = p.iter().map(|q| *q * 20.0).collect();
+        let full: Vec<Vec3> = p
+            .iter()
+            .map(|q| Vec3::Z * 6.0 * (-(q.x / 2.0).powi(2)).exp())
+            .collect();
+        let normals = vec![Vec3::Z; p.len()];
+        let whole = full_ratio_with(&p, &normals, &idx, &full, 1e-3, usize::MAX);
+        let coarse = full_ratio_with(&p, &normals, &idx, &full, 1e-3, idx.len() / 24);
+        let diff: Vec<f32> = whole
+            .iter()
+            .zip(&coarse)
+            .map(|(a, b)| (a - b).abs())
+            .collect();
+        let mean = diff.iter().sum::<f32>() / diff.len() as f32;
+        let worst = diff.iter().copied().fold(0.0, f32::max);
+        let darkest = |r: &[f32]| r.iter().copied().fold(f32::INFINITY, f32::min);
+        assert!(
+            darkest(&whole) < 0.9,
+            "the ridge hides no sky: {}",
+            darkest(&whole)
+        );
+        assert!(mean < 0.03 && worst < 0.12, "mean {mean}, worst {worst}");
+        assert!((darkest(&whole) - darkest(&coarse)).abs() < 0.05);
     }
 
     #[test]

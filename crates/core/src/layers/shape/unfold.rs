@@ -5,7 +5,8 @@
 //! by more than [`MAX_TURN_DEG`] — at full age (the exported morph target) or at any age the
 //! editor shows — the displacement of its corners is relaxed toward its neighbours' (the
 //! move spread over the neighbours, its mean kept), in every region's field alike, until
-//! none does; what still turns after [`SPREAD_PASSES`] is shrunk in place. Only the
+//! none does; what still turns after [`SPREAD_PASSES`], or once [`PROGRESS_SPAN`] passes took
+//! off less than a quarter of the folds, is shrunk in place. Only the
 //! triangles round what changed are checked again, so a dense head costs what its folds do.
 
 use glam::Vec3;
@@ -19,6 +20,8 @@ const SPREAD_PASSES: usize = 128;
 const MAX_SWEEPS: usize = 16;
 /// Passes without fewer folds after which the spread widens by one ring.
 const STALL_PASSES: usize = 4;
+/// Passes over which the spread must take off a quarter of the folds to go on.
+const PROGRESS_SPAN: usize = 16;
 /// Passes that shrink what still folds (each takes a third of the move at the fold).
 const SHRINK_PASSES: usize = 48;
 
@@ -76,13 +79,26 @@ pub fn unfold(
     let mut active = vec![false; n];
     let mut best = usize::MAX;
     let mut stalled = 0;
-    for pass in 0..SPREAD_PASSES + SHRINK_PASSES {
+    let (mut shrink_from, mut span_start) = (SPREAD_PASSES, usize::MAX);
+    for pass in 0.. {
+        if pass >= shrink_from + SHRINK_PASSES {
+            break;
+        }
         let bad = folded_vertices(positions, &triangles, &suspects, fields, checks, cos_max);
         if bad.is_empty() {
             break;
         }
         let mut touched: Vec<usize> = Vec::new();
-        if pass >= SPREAD_PASSES {
+        // The spread ends at its passes' end, or once it has stopped paying: a span of
+        // passes that took off less than a quarter of the folds (a dense head's folds
+        // against a wall spread a ring a pass and would use every pass).
+        if pass % PROGRESS_SPAN == 0 && shrink_from == SPREAD_PASSES {
+            if pass > 0 && bad.len() * 4 > span_start * 3 {
+                shrink_from = pass;
+            }
+            span_start = bad.len();
+        }
+        if pass >= shrink_from {
             // What still folds is shrunk in place with its ring, the ring less, so that
             // the shrink makes no new step.
             let mut ring: Vec<usize> = bad
@@ -128,8 +144,19 @@ pub fn unfold(
             // sweeps as the passes go on (a wide fold on a dense head needs many).
             let ring: Vec<usize> = (0..n).filter(|&v| active[v]).collect();
             let sweeps = (1 + pass / 4).min(MAX_SWEEPS);
+            // A region's field that is zero over the ring and its neighbours stays zero
+            // under the sweeps: it is left alone (most regions, at most folds).
+            let live: Vec<bool> = fields
+                .iter()
+                .map(|field| {
+                    ring.par_iter().any(|&v| {
+                        field[v] != Vec3::ZERO
+                            || neighbours[v].iter().any(|&u| field[u] != Vec3::ZERO)
+                    })
+                })
+                .collect();
             for _ in 0..sweeps {
-                for field in fields.iter_mut() {
+                for (field, _) in fields.iter_mut().zip(&live).filter(|(_, live)| **live) {
                     relax(field, &ring, &neighbours);
                 }
                 cap(fields, &ring, caps);
@@ -177,7 +204,7 @@ fn cap(fields: &mut [Vec<Vec3>], ring: &[usize], caps: &[f32]) {
 /// new value from the old ones).
 fn relax(field: &mut [Vec3], ring: &[usize], neighbours: &[Vec<usize>]) {
     let relaxed: Vec<Vec3> = ring
-        .iter()
+        .par_iter()
         .map(|&v| {
             let around = &neighbours[v];
             if around.is_empty() {
@@ -207,18 +234,21 @@ fn folded_vertices(
     corners.sort_unstable();
     corners.dedup();
     let k = checks.len();
-    let moves: Vec<Vec3> = corners
-        .par_iter()
-        .flat_map_iter(|&v| {
-            checks.iter().map(move |factors| {
-                fields
-                    .iter()
-                    .zip(factors)
-                    .map(|(f, &w)| f[v] * w)
-                    .sum::<Vec3>()
-            })
-        })
-        .collect();
+    let mut moves = vec![Vec3::ZERO; corners.len() * k];
+    moves
+        .par_chunks_mut(k.max(1))
+        .zip(corners.par_iter())
+        .for_each(|(out, &v)| {
+            // Only the regions that move this corner (one to three of them, mostly).
+            for (r, field) in fields.iter().enumerate() {
+                let d = field[v];
+                if d != Vec3::ZERO {
+                    for (o, factors) in out.iter_mut().zip(checks) {
+                        *o += d * factors[r];
+                    }
+                }
+            }
+        });
     let slot = |v: usize| corners.binary_search(&v).unwrap_or(0) * k;
     let mut out: Vec<usize> = suspects
         .par_iter()

@@ -8,6 +8,7 @@ pub mod export_ui;
 pub mod fields_ui;
 mod file_browser;
 pub mod files;
+mod governor;
 pub mod history;
 pub mod map_view;
 mod notices;

@@ -62,9 +62,10 @@ pub struct Viewport {
     /// Show the head's colour tinted by the shape's movement (the map view shows the
     /// shape: docs/models.md §13).
     pub show_shape: bool,
-    /// Resolution scale of the next frames (1 = full; lower while the age plays or the
-    /// view is dragged, so the view keeps up on slow adapters; the image is upscaled).
-    pub scale: f32,
+    /// The quality of the next frames: full when still; while the age plays or the view
+    /// or a slider moves, what the frame-time governor chose (`governor`: a lower
+    /// resolution, upscaled; sparse hair; fewer relief steps; no contact shadows).
+    pub quality: super::governor::Quality,
     renderer: Renderer,
     /// Shows the colour target in egui's pass, with its bind group for the current
     /// target (remade when the renderer recreates its targets).
@@ -125,7 +126,7 @@ impl Viewport {
     pub fn new(rs: &egui_wgpu::RenderState) -> Result<Self, agesim_render::RenderError> {
         Ok(Self {
             show_shape: false,
-            scale: 1.0,
+            quality: super::governor::LEVELS[0],
             renderer: Renderer::new(&rs.device, &rs.queue, VIEW_FORMAT)?,
             blit: Arc::new(agesim_render::Blit::new(&rs.device, rs.target_format)),
             panes: vec![Pane::new(ViewId::MAIN)],
@@ -404,18 +405,20 @@ impl Viewport {
         let camera = view::camera(project, mpu, self.centre + self.pan);
         let head = snapshot.layers.head();
         let mut params = view::frame_params(project, head, project.age.t, camera);
-        // While the view moves or the age plays (drawn at a lower resolution), one hair in
-        // SPARSE_HAIR_STRIDE: the still frame that follows draws them all.
-        params.hair.sparse = self.scale < 1.0;
-        // Nor the contact shadows (their 32 taps a pixel cost about 2 fps while
-        // scrubbing on llvmpipe): the still frame draws them.
-        if self.scale < 1.0 {
+        // The governor's quality: the still frame that follows a move draws everything.
+        let q = self.quality;
+        params.hair.sparse = q.sparse_hair;
+        if !q.shadows {
             params.light.shadow_reach = 0.0;
         }
+        (params.skin.linear_steps, params.skin.binary_steps) = (
+            params.skin.linear_steps.min(q.relief_steps.0),
+            params.skin.binary_steps.min(q.relief_steps.1),
+        );
         // The pixels egui's paint callback covers (its viewport rounds the rectangle's
         // edges to pixels): at full resolution one texel lands on one pixel.
         let ppp = ctx.pixels_per_point();
-        let scale = self.scale.clamp(0.1, 1.0);
+        let scale = q.scale.clamp(0.1, 1.0);
         let pixels =
             |a: f32, b: f32| (((b * ppp).round() - (a * ppp).round()) * scale).round() as u32;
         let size = [

@@ -27,7 +27,11 @@ impl EditorApp {
     /// offered.
     pub(super) fn start_recovery(&mut self) {
         let folder = recovery::folder(self.options.data_dir.as_deref());
-        let wanted = self.options.autosave_seconds > 0.0 || self.options.recover;
+        // A benchmark or a screenshot shows the same thing on every machine: no session
+        // of its own is kept, none is offered (a modal's backdrop costs a benchmark's
+        // frame 25 ms on llvmpipe).
+        let measuring = self.options.bench_ui || self.options.screenshot.is_some();
+        let wanted = (self.options.autosave_seconds > 0.0 && !measuring) || self.options.recover;
         self.autosave.folder = folder.filter(|_| wanted);
         let Some(dir) = &self.autosave.folder else {
             return;

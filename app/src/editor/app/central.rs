@@ -25,14 +25,21 @@ impl EditorApp {
             .wgpu_render_state()
             .cloned()
             .or_else(|| self.render_state.clone());
-        // While the age plays or the pointer drags, draw the head at a third of the
-        // resolution (upscaled): interaction stays fluid on a CPU adapter; the full
-        // resolution returns on the first still frame.
+        // While the age plays or the pointer drags, the governor sets the view's quality
+        // from the measured frame interval (a lower resolution, upscaled, and less):
+        // interaction stays fluid on a CPU adapter or a busy machine; everything returns
+        // on the first still frame.
         let moving = self.persisted.playback.playing
             || ui.input(|i| i.pointer.any_down())
             || self.harness.dragging();
+        let now = std::time::Instant::now();
+        let interval_ms = self
+            .last_frame_at
+            .map_or(f64::NAN, |t| (now - t).as_secs_f64() * 1e3);
+        self.last_frame_at = Some(now);
+        let quality = self.governor.frame(moving, interval_ms);
         if let Some(v) = &mut self.viewport {
-            v.scale = if moving { 1.0 / 3.0 } else { 1.0 };
+            v.quality = quality;
         }
         let mut compare_changed = false;
         self.landmark_view_sync();

@@ -198,6 +198,9 @@ pub struct EditorApp {
     /// address is not reused while this refers to it.
     deepest: (std::sync::Weak<agesim_core::scene::LargeMap>, f32),
     last_hover_uv: Option<[f32; 2]>,
+    /// The 3D view's quality while moving (`governor`), and when the last frame began.
+    governor: crate::editor::governor::Governor,
+    last_frame_at: Option<std::time::Instant>,
 }
 
 impl EditorApp {
@@ -285,6 +288,8 @@ impl EditorApp {
             harness: harness::Harness::for_options(&options),
             options,
             deepest: (std::sync::Weak::new(), 0.0),
+            governor: Default::default(),
+            last_frame_at: None,
             last_hover_uv: None,
         };
         // The benchmark and the soak run in the default layout.
@@ -357,7 +362,9 @@ impl EditorApp {
 
     fn submit(&mut self, preview: bool, what: &str) {
         let size = if preview {
-            (PREVIEW_PX, PREVIEW_PX)
+            // The governor's size while moving (PREVIEW_PX at most).
+            let px = self.governor.quality().preview_px.min(PREVIEW_PX);
+            (px, px)
         } else {
             (FULL_LARGE_PX, FULL_MICRO_PX)
         };

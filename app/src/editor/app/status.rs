@@ -14,6 +14,8 @@ pub(super) struct Status<'a> {
     pub hairs: Option<(usize, usize)>,
     /// The 3D view's encode time and its hair thinning while moving.
     pub view: Option<(f64, u32)>,
+    /// The 3D view's quality in words (the governor's).
+    pub quality: String,
     /// The deepest large wrinkle shown, height units.
     pub deepest: Option<f32>,
 }
@@ -47,8 +49,9 @@ pub(super) fn status_line(ui: &mut egui::Ui, s: &Status<'_>) {
         }
         if let Some((encode_ms, sparse)) = s.view {
             ui.label(format!("3D frame encode {encode_ms:.1} ms"));
+            ui.label(&s.quality);
             if sparse > 1 {
-                ui.label(format!("(moving: 1 hair in {sparse} drawn)"));
+                ui.label(format!("(1 hair in {sparse} drawn)"));
             }
         }
         if let Some(deepest) = s.deepest {
@@ -80,6 +83,7 @@ impl EditorApp {
                 .as_ref()
                 .map(|h| (h.count(t), h.len())),
             view: self.viewport.as_ref().map(|v| (v.encode_ms, v.sparse_hair)),
+            quality: self.governor.describe(),
             deepest,
         };
         status_line(ui, &status);

@@ -101,6 +101,7 @@ impl EditorApp {
             self.session.worker.latest,
             hairs,
             years,
+            self.governor.quality().scale,
         ) {
             bench::Action::None => {}
             bench::Action::BigBake => self.submit_sized((4096, 4096), "4096² bake"),
@@ -111,6 +112,10 @@ impl EditorApp {
                 self.persisted.playback.playing = true;
             }
             bench::Action::Stop => self.persisted.playback.playing = false,
+            bench::Action::StopBoth => {
+                self.persisted.playback.playing = false;
+                self.persisted.layout = Layout::Both;
+            }
             bench::Action::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
         }
     }

@@ -126,8 +126,12 @@ impl EditorApp {
         };
         if self.session.snapshot.large.is_some() && self.idle() {
             self.harness.frames_with_maps += 1;
+            ctx.request_repaint();
+        } else {
+            // Waiting for the bake: the worker wakes the window when it reports, and no
+            // frame in between takes the cores from it.
+            ctx.request_repaint_after(std::time::Duration::from_millis(250));
         }
-        ctx.request_repaint();
         if self.harness.frames_with_maps >= self.options.frames.max(1)
             && !self.harness.screenshot_requested
         {

@@ -367,7 +367,12 @@ fn bake(
     let colour_px = s.colour_px(job.request.large_size_px);
     s.bake_colour(colour_px, job.request.t, cancel)?;
     s.prepare_shown_colour();
-    s.bake_shape(job.request.t);
+    // While a slider moves (a preview), a new shape's sky waits for the still bake.
+    if is_full(&job.request) {
+        s.bake_shape(job.request.t);
+    } else {
+        s.bake_shape_moving(job.request.t);
+    }
     s.bake_brows(job.request.t);
     changed.mesh |= baked.mesh;
     let merged = if refresh_all {

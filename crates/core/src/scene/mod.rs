@@ -243,7 +243,8 @@ pub struct Scene {
     /// unit, strengths).
     shape: Option<(ShapeKey, Arc<crate::layers::shape::ShapeField>)>,
     /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
-    shape_aged: Option<((usize, u32), Arc<AgedShape>)>,
+    /// The aged shape, keyed by its field, its age and whether its sky was measured.
+    shape_aged: Option<((usize, u32, bool), Arc<AgedShape>)>,
     /// The shape's relief finer than the head's triangles, added to the large-wrinkle
     /// map ([`crate::layers::shape::relief`]), keyed like the field and by its map size.
     relief: Option<((ShapeKey, u32), Arc<ShapeRelief>)>,

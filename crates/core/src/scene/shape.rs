@@ -26,23 +26,53 @@ impl Scene {
     /// displaced normals ([`Scene::aged_shape`]; `None` when the shape layer is off).
     /// Redone only when the age or the field changed; returns whether it was.
     pub fn bake_shape(&mut self, t: f32) -> bool {
+        self.bake_shape_with(t, true)
+    }
+
+    /// [`Scene::bake_shape`] while a slider moves: a new field's sky (its occlusion ratio,
+    /// ≈ 0.4 s for the default head) is not measured; the last shape's is kept until the
+    /// field stays (the next bake of the same field, as when the age is scrubbed, or a
+    /// [`Scene::bake_shape`]) and it is measured.
+    pub fn bake_shape_moving(&mut self, t: f32) -> bool {
+        self.bake_shape_with(t, false)
+    }
+
+    fn bake_shape_with(&mut self, t: f32, measure_sky: bool) -> bool {
         let years = self.project.age.mapping().years(t);
         let Some(field) = self.shape_field() else {
             let changed = self.shape_aged.is_some();
             self.shape_aged = None;
             return changed;
         };
-        let key = (Arc::as_ptr(&field) as usize, years.to_bits());
+        let mesh = &self.inputs.mesh;
+        // A field that was here before this bake (the age moves, not the shape) is measured.
+        let same_field = (self.shape_aged.as_ref())
+            .is_some_and(|((f, ..), _)| *f == Arc::as_ptr(&field) as usize);
+        let sky = if measure_sky || same_field {
+            Some(field.occlusion_at(mesh, years))
+        } else {
+            field.occlusion_if_measured(mesh, years)
+        };
+        let key = (Arc::as_ptr(&field) as usize, years.to_bits(), sky.is_some());
         if self.shape_aged.as_ref().is_some_and(|(k, _)| *k == key) {
             return false;
         }
+        let n = mesh.vertex_count();
+        let occlusion = sky.unwrap_or_else(|| {
+            self.shape_aged
+                .as_ref()
+                .map(|(_, s)| s.occlusion.clone())
+                .filter(|o| o.len() == n)
+                .unwrap_or_else(|| vec![1.0; n])
+        });
         let delta = field.at(years);
-        let normals = field.normals(&self.inputs.mesh, &delta);
+        let normals = field.normals(mesh, &delta);
+        let hollow_mm = field.hollow_at(years);
         self.shape_aged = Some((
             key,
             Arc::new(AgedShape {
-                hollow_mm: field.hollow_at(years),
-                occlusion: field.occlusion_at(&self.inputs.mesh, years),
+                hollow_mm,
+                occlusion,
                 delta,
                 normals,
                 years,

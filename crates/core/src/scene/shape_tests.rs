@@ -92,3 +92,32 @@ fn the_aged_shape_folds_no_skin_over_on_any_head() {
     }
     println!("{}", report.join("\n"));
 }
+
+/// While a shape slider moves, a new field's sky is not measured (the last shape's is
+/// kept: the preview is not held up by it); the next bake of the same field, or a still
+/// bake, measures it.
+#[test]
+fn a_moving_shape_keeps_the_last_sky_until_the_field_stays() {
+    let mut scene = Scene::new(Project::default()).unwrap();
+    scene.bake_shape(1.0);
+    let before = scene.aged_shape().unwrap().occlusion.clone();
+    assert!(
+        before.iter().any(|&o| o < 0.95),
+        "the default shape hides no sky"
+    );
+    let mut p = scene.project().clone();
+    p.shape.strength = 2.0;
+    scene.set_project(p).unwrap();
+    assert!(scene.bake_shape_moving(1.0));
+    let moving = scene.aged_shape().unwrap().clone();
+    assert_eq!(moving.occlusion, before, "the moving bake measured the sky");
+    // The displacement is the new field's.
+    assert!(moving.delta.iter().any(|d| d.length() > 0.0));
+    // The same field again (the age moves): measured now, and not the old one.
+    assert!(scene.bake_shape_moving(1.0));
+    let stayed = scene.aged_shape().unwrap().occlusion.clone();
+    assert_ne!(stayed, before);
+    // A still bake of that field and age keeps what was measured.
+    assert!(!scene.bake_shape(1.0));
+    assert_eq!(scene.aged_shape().unwrap().occlusion, stayed);
+}

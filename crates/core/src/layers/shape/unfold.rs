@@ -20,6 +20,8 @@ const SPREAD_PASSES: usize = 128;
 const MAX_SWEEPS: usize = 16;
 /// Passes without fewer folds after which the spread widens by one ring.
 const STALL_PASSES: usize = 4;
+/// Vertices in a ring from which a relaxation sweep runs on the thread pool.
+const PARALLEL_RING: usize = 4096;
 /// Passes over which the spread must take off a quarter of the folds to go on.
 const PROGRESS_SPAN: usize = 16;
 /// Passes that shrink what still folds (each takes a third of the move at the fold).
@@ -149,7 +151,7 @@ pub fn unfold(
             let live: Vec<bool> = fields
                 .iter()
                 .map(|field| {
-                    ring.par_iter().any(|&v| {
+                    ring.iter().any(|&v| {
                         field[v] != Vec3::ZERO
                             || neighbours[v].iter().any(|&u| field[u] != Vec3::ZERO)
                     })
@@ -203,17 +205,21 @@ fn cap(fields: &mut [Vec<Vec3>], ring: &[usize], caps: &[f32]) {
 /// One Jacobi sweep over `ring`: each vertex half way to its neighbours' mean move (every
 /// new value from the old ones).
 fn relax(field: &mut [Vec3], ring: &[usize], neighbours: &[Vec<usize>]) {
-    let relaxed: Vec<Vec3> = ring
-        .par_iter()
-        .map(|&v| {
-            let around = &neighbours[v];
-            if around.is_empty() {
-                return field[v];
-            }
-            let mean = around.iter().map(|&u| field[u]).sum::<Vec3>() / around.len() as f32;
-            0.5 * (field[v] + mean)
-        })
-        .collect();
+    let relax_one = |&v: &usize| {
+        let around = &neighbours[v];
+        if around.is_empty() {
+            return field[v];
+        }
+        let mean = around.iter().map(|&u| field[u]).sum::<Vec3>() / around.len() as f32;
+        0.5 * (field[v] + mean)
+    };
+    // In parallel only where it pays (a dense head's ring): a small ring costs less than
+    // the pool's start.
+    let relaxed: Vec<Vec3> = if ring.len() >= PARALLEL_RING {
+        ring.par_iter().map(relax_one).collect()
+    } else {
+        ring.iter().map(relax_one).collect()
+    };
     for (&v, d) in ring.iter().zip(relaxed) {
         field[v] = d;
     }
@@ -235,42 +241,46 @@ fn folded_vertices(
     corners.dedup();
     let k = checks.len();
     let mut moves = vec![Vec3::ZERO; corners.len() * k];
-    moves
-        .par_chunks_mut(k.max(1))
-        .zip(corners.par_iter())
-        .for_each(|(out, &v)| {
-            // Only the regions that move this corner (one to three of them, mostly).
-            for (r, field) in fields.iter().enumerate() {
-                let d = field[v];
-                if d != Vec3::ZERO {
-                    for (o, factors) in out.iter_mut().zip(checks) {
-                        *o += d * factors[r];
-                    }
+    let corner_moves = |(out, &v): (&mut [Vec3], &usize)| {
+        // Only the regions that move this corner (one to three of them, mostly).
+        for (r, field) in fields.iter().enumerate() {
+            let d = field[v];
+            if d != Vec3::ZERO {
+                for (o, factors) in out.iter_mut().zip(checks) {
+                    *o += d * factors[r];
                 }
             }
-        });
+        }
+    };
+    let parallel = suspects.len() >= PARALLEL_RING;
+    if parallel {
+        (moves.par_chunks_mut(k.max(1)).zip(corners.par_iter())).for_each(corner_moves);
+    } else {
+        (moves.chunks_mut(k.max(1)).zip(corners.iter())).for_each(corner_moves);
+    }
     let slot = |v: usize| corners.binary_search(&v).unwrap_or(0) * k;
-    let mut out: Vec<usize> = suspects
-        .par_iter()
-        .filter_map(|&i| {
-            let t = &triangles[i];
-            let [a, b, c] = t.map(|v| positions[v]);
-            let rest = (b - a).cross(c - a);
-            if rest.length_squared() <= 0.0 || !rest.is_finite() {
-                return None;
+    let folded = |&i: &usize| {
+        let t = &triangles[i];
+        let [a, b, c] = t.map(|v| positions[v]);
+        let rest = (b - a).cross(c - a);
+        if rest.length_squared() <= 0.0 || !rest.is_finite() {
+            return None;
+        }
+        let [sa, sb, sc] = t.map(slot);
+        let folds = (0..k).any(|j| {
+            let (da, db, dc) = (moves[sa + j], moves[sb + j], moves[sc + j]);
+            if da == Vec3::ZERO && db == Vec3::ZERO && dc == Vec3::ZERO {
+                return false;
             }
-            let [sa, sb, sc] = t.map(slot);
-            let folds = (0..k).any(|j| {
-                let (da, db, dc) = (moves[sa + j], moves[sb + j], moves[sc + j]);
-                if da == Vec3::ZERO && db == Vec3::ZERO && dc == Vec3::ZERO {
-                    return false;
-                }
-                turned(rest, (b + db) - (a + da), (c + dc) - (a + da), cos_max)
-            });
-            folds.then_some(*t)
-        })
-        .flatten()
-        .collect();
+            turned(rest, (b + db) - (a + da), (c + dc) - (a + da), cos_max)
+        });
+        folds.then_some(*t)
+    };
+    let mut out: Vec<usize> = if parallel {
+        suspects.par_iter().filter_map(folded).flatten().collect()
+    } else {
+        suspects.iter().filter_map(folded).flatten().collect()
+    };
     out.sort_unstable();
     out.dedup();
     out

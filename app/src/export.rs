@@ -307,7 +307,10 @@ pub struct BakedMaps {
     pub height: HeightMap,
     pub normal: agesim_core::maps::normal_map::NormalSettings,
     pub udim: Option<Udim>,
-    /// Milliseconds: the bake, the aged colour, taking the height map out of the scene.
+    /// The aged base colour, when asked for.
+    pub colour: Option<std::sync::Arc<agesim_core::maps::mask::HeadImage>>,
+    /// Milliseconds: the bake, the aged colour (the two side by side), taking the height
+    /// map out of the scene.
     pub bake_ms: f64,
     pub colour_ms: f64,
     pub take_ms: f64,
@@ -315,8 +318,8 @@ pub struct BakedMaps {
 
 /// Bakes `scene`'s maps at age `t`, `size_px` per UDIM tile (`what` names that setting in
 /// errors), and with `colour` the aged base colour at the scene's size for them
-/// ([`Scene::colour_px`]; [`Scene::aged_colour`] then holds it): the one path of
-/// `agesim bake` and of the export's maps.
+/// ([`Scene::colour_px`]; in [`BakedMaps::colour`]): the one path of `agesim bake` and of
+/// the export's maps.
 pub fn bake_maps(
     scene: &mut Scene,
     t: f32,
@@ -330,14 +333,32 @@ pub fn bake_maps(
     let udim = scene.mesh().udim().cloned();
     let atlas_px = atlas_size(udim.as_ref(), size_px, what)?;
     let ms = |t: std::time::Instant| t.elapsed().as_secs_f64() * 1e3;
-    let start = std::time::Instant::now();
-    scene.bake(&BakeRequest::maps(atlas_px, t, tileable), cancel)?;
-    let bake_ms = ms(start);
-    let start = std::time::Instant::now();
+    // The aged colour needs nothing the maps' bake makes (no hair: its transition is the
+    // scene's as it is): it is baked beside them, on a fork of the scene sharing its
+    // inputs and the person's colours measured once.
+    let mut colour_scene = None;
     if colour {
-        scene.bake_colour(scene.colour_px(atlas_px), t, cancel)?;
+        scene.own_colours(cancel)?;
+        colour_scene = Some(scene.fork());
     }
-    let colour_ms = ms(start);
+    let colour_px = scene.colour_px(atlas_px);
+    let ((bake, bake_ms), (aged, colour_ms)) = rayon::join(
+        || {
+            let start = std::time::Instant::now();
+            let r = scene.bake(&BakeRequest::maps(atlas_px, t, tileable), cancel);
+            (r, ms(start))
+        },
+        || {
+            let start = std::time::Instant::now();
+            let aged = colour_scene.as_mut().map(|s| {
+                s.bake_colour(colour_px, t, cancel)?;
+                Ok::<_, agesim_core::Error>(s.aged_colour().cloned())
+            });
+            (aged.transpose(), ms(start))
+        },
+    );
+    bake?;
+    let colour = aged?.flatten();
     let start = std::time::Instant::now();
     let height = scene.take_height()?;
     let take_ms = ms(start);
@@ -345,6 +366,7 @@ pub fn bake_maps(
         height,
         normal: scene.normal_settings(),
         udim,
+        colour,
         bake_ms,
         colour_ms,
         take_ms,

@@ -343,12 +343,12 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let (staged, _) =
         crate::export::stage_maps(&outputs, paths, &baked, args.exr_compression.into())?;
     let albedo = args.out.join("albedo.png");
-    if let Some(colour) = scene.aged_colour() {
+    if let Some(colour) = &baked.colour {
         export::stage_tiled_colour(&outputs, &albedo, colour, udim.as_ref())?;
     }
     let mut files: Vec<String> = names
         .iter()
-        .chain(scene.aged_colour().map(|_| &albedo))
+        .chain(baked.colour.as_ref().map(|_| &albedo))
         .flat_map(|p| Udim::paths(udim.as_ref(), p))
         .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();

@@ -216,37 +216,27 @@ pub fn run(
         done += parts[k];
         (start, parts[k] / total)
     };
+    // The head is loaded, fitted and its shape made once: each part bakes on a fork of
+    // this scene (the inputs and the shape field, with its sky, shared; a 1.13M-triangle
+    // head's shape is seconds).
+    let mut base = scene(project.clone(), wrinkles)?;
+    if request.glb.is_some() || r.any() {
+        base.shape_field();
+    }
     if request.maps.any() {
         let (start, share) = step(0);
         let p = |f: f32, what: &str| progress(start + share * f, what);
-        written.extend(export_maps(
-            project,
-            wrinkles,
-            t,
-            &request.maps,
-            &set,
-            &p,
-            cancel,
-        )?);
+        written.extend(export_maps(&base, t, &request.maps, &set, &p, cancel)?);
     }
     if let Some(glb) = &request.glb {
         let (start, share) = step(1);
         let p = |f: f32, what: &str| progress(start + share * f, what);
-        written.extend(export_glb(
-            project,
-            wrinkles,
-            t,
-            request.years,
-            glb,
-            &set,
-            &p,
-            cancel,
-        )?);
+        written.extend(export_glb(&base, t, request.years, glb, &set, &p, cancel)?);
     }
     if r.any() {
         let (start, share) = step(2);
         let p = |f: f32, what: &str| progress(start + share * f, what);
-        export_renders(project, wrinkles, t, r, &set, &p, cancel)?;
+        export_renders(&base, t, r, &set, &p, cancel)?;
         written.extend(r.outputs());
     }
     cancel.check()?;
@@ -266,20 +256,20 @@ fn scene(project: Project, wrinkles: Option<&[WrinkleSource]>) -> anyhow::Result
 
 /// Stages the maps; returns the files (one per UDIM tile and map on a multi-tile head).
 fn export_maps(
-    project: &Project,
-    wrinkles: Option<&[WrinkleSource]>,
+    base: &Scene,
     t: f32,
     maps: &MapsOut,
     set: &OutputSet,
     progress: Progress<'_>,
     cancel: &CancelToken,
 ) -> anyhow::Result<Vec<PathBuf>> {
-    let mut p = project.clone();
+    let mut p = base.project().clone();
     if let Some(c) = maps.convention {
         p.normal.convention = c;
     }
     progress(0.0, "loading the inputs");
-    let mut scene = scene(p, wrinkles)?;
+    let mut scene = base.fork();
+    scene.set_project(p)?;
     progress(0.1, "baking the maps");
     let baked = bake_maps(
         &mut scene,
@@ -435,8 +425,7 @@ pub fn atlas_size(udim: Option<&Udim>, tile_px: u32, what: &str) -> anyhow::Resu
 /// Stages the GLB and its wrinkle height map(s); returns the files.
 #[allow(clippy::too_many_arguments)]
 fn export_glb(
-    project: &Project,
-    wrinkles: Option<&[WrinkleSource]>,
+    base: &Scene,
     t: f32,
     years: f32,
     glb: &GlbOut,
@@ -445,7 +434,7 @@ fn export_glb(
     cancel: &CancelToken,
 ) -> anyhow::Result<Vec<PathBuf>> {
     progress(0.0, "loading the head");
-    let mut scene = scene(project.clone(), wrinkles)?;
+    let mut scene = base.fork();
     let udim = scene.mesh().udim().cloned();
     let atlas_px = atlas_size(udim.as_ref(), glb.size_px, "GLB texture size")?;
     progress(0.1, "baking the head's maps");
@@ -640,8 +629,7 @@ pub fn head_normal_map(
 }
 
 fn export_renders(
-    project: &Project,
-    wrinkles: Option<&[WrinkleSource]>,
+    base: &Scene,
     t: f32,
     r: &RendersOut,
     set: &OutputSet,
@@ -650,7 +638,8 @@ fn export_renders(
 ) -> anyhow::Result<()> {
     use agesim_render::{Gpu, Renderer};
     progress(0.0, "starting the renderer");
-    let scene = scene(project.clone(), wrinkles)?;
+    let scene = base.fork();
+    let project = base.project();
     let centre = scene.mesh().bounds().centre();
     let mut shown = view::HeadlessView::new(scene, 1024, project.hair.enabled);
     let gpu = Gpu::new()?;

@@ -53,15 +53,11 @@ pub struct Found {
 /// toward +Z), whose units are about `metres_per_unit`.
 pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Result<Found, Error> {
     let fail = |message: String| Error::Fit { message };
-    let skin = head.skin_indices();
-    // A dense head is searched on its proxy.
-    let proxy = super::proxy::of_skin(head.positions(), &skin);
-    let (h_pos, skin) = match &proxy {
-        Some(p) => (&p.positions[..], &p.indices[..]),
-        None => (head.positions(), &skin[..]),
-    };
-    let bvh = Bvh::new(h_pos, skin);
-    let normals = triangle_normals(h_pos, skin);
+    let Searched {
+        positions: h_pos,
+        bvh,
+        normals,
+    } = &searched(head);
     if bvh.is_empty() {
         return Err(fail(
             "the head has no skin triangle to look for landmarks on".into(),
@@ -81,8 +77,8 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
     let best = global_search(
         &template_samples(template, COARSE_SAMPLES),
         t_pos,
-        &bvh,
-        &normals,
+        bvh,
+        normals,
         h_pos,
         glam::Mat3::IDENTITY,
         metres_per_unit,
@@ -90,7 +86,7 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
         START_ITERATIONS,
     )
     .map(|(_, coarse)| {
-        let (s, median) = icp(&samples, &bvh, &normals, coarse, 40, true);
+        let (s, median) = icp(&samples, bvh, normals, coarse, 40, true);
         (median / s.scale, s)
     })
     .filter(|(median_m, _)| median_m.is_finite());
@@ -114,7 +110,7 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
         .collect();
     let head_alignment = alignment;
     let alignment = if face.len() >= 100 {
-        icp(&face, &bvh, &normals, alignment, 40, true).0
+        icp(&face, bvh, normals, alignment, 40, true).0
     } else {
         alignment
     };
@@ -134,7 +130,7 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
             alignment
         };
         let local = if patch.len() >= 8 {
-            icp(&patch, &bvh, &normals, start, 15, false).0
+            icp(&patch, bvh, normals, start, 15, false).0
         } else {
             start
         };
@@ -235,14 +231,11 @@ pub fn axes(
     good_mm: f32,
 ) -> Option<(crate::head::mesh::units::Axes, f32)> {
     use crate::head::mesh::units::{Axes, Axis};
-    let skin = head.skin_indices();
-    let proxy = super::proxy::of_skin(head.positions(), &skin);
-    let (h_pos, skin) = match &proxy {
-        Some(p) => (&p.positions[..], &p.indices[..]),
-        None => (head.positions(), &skin[..]),
-    };
-    let bvh = Bvh::new(h_pos, skin);
-    let normals = triangle_normals(h_pos, skin);
+    let Searched {
+        positions: h_pos,
+        bvh,
+        normals,
+    } = &searched(head);
     if bvh.is_empty() || !(metres_per_unit > 0.0 && metres_per_unit.is_finite()) {
         return None;
     }
@@ -266,8 +259,8 @@ pub fn axes(
         let Some((median_m, _)) = global_search(
             &samples,
             t_pos,
-            &bvh,
-            &normals,
+            bvh,
+            normals,
             h_pos,
             turn,
             metres_per_unit,
@@ -371,6 +364,27 @@ fn band_centre(points: &[Vec3], top: f32, depth: f32) -> Option<Vec3> {
         .filter(|p| p.y >= top - depth)
         .collect();
     crate::head::mesh::Aabb::from_points(&band).map(|b| b.centre())
+}
+
+/// The head's skin as the searches see it: its proxy when it is dense
+/// ([`super::proxy::of_skin`]), with its tree and triangle normals.
+struct Searched {
+    positions: Vec<Vec3>,
+    bvh: Bvh,
+    normals: Vec<Vec3>,
+}
+
+fn searched(head: &Mesh) -> Searched {
+    let skin = head.skin_indices();
+    let (positions, indices) = match super::proxy::of_skin(head.positions(), &skin) {
+        Some(p) => (p.positions, p.indices),
+        None => (head.positions().to_vec(), skin.into_owned()),
+    };
+    Searched {
+        bvh: Bvh::new(&positions, &indices),
+        normals: triangle_normals(&positions, &indices),
+        positions,
+    }
 }
 
 fn triangle_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {

@@ -30,7 +30,8 @@ fn bake(worker: &mut Worker, project: &Project, size_px: u32, t: f32) -> Snapsho
     let start = Instant::now();
     loop {
         for report in worker.poll() {
-            if report.id == id {
+            // A partial report (a dense head's first look) is not the job's end.
+            if report.id == id && !report.partial {
                 match report.outcome {
                     Outcome::Done { snapshot, .. } => return *snapshot,
                     Outcome::Failed(e) => panic!("bake failed: {e}"),

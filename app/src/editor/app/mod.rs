@@ -486,6 +486,17 @@ impl EditorApp {
 
     fn poll_worker(&mut self) {
         for report in self.session.worker.poll() {
+            if report.partial {
+                // The head shown before the job's end; the job still runs (a newer job's
+                // reports replace it).
+                if report.id < self.session.worker.latest {
+                    continue;
+                }
+                if let Outcome::Done { snapshot, .. } = report.outcome {
+                    self.session.snapshot = *snapshot;
+                }
+                continue;
+            }
             self.session.reported = self.session.reported.max(report.id);
             self.session.last_bake_ms = report.ms;
             self.session.last_what = report.what;

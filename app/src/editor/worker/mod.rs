@@ -123,6 +123,9 @@ pub struct Report {
     pub outcome: Outcome,
     /// How the mesh's units were decided, when the job asked ([`Job::detect_units`]).
     pub units: Option<agesim_core::head::mesh::units::Units>,
+    /// A first look before the job's end (a new dense head without its shape yet): the
+    /// job is still running and reports again.
+    pub partial: bool,
 }
 
 /// The UI side of the worker.
@@ -180,6 +183,11 @@ impl Worker {
         last_reported < self.latest
     }
 }
+
+/// Vertices from which a new head is reported once before its shape is made (its shape
+/// field is seconds from here; below, a second pass over the snapshot would cost more than
+/// it shows).
+const EARLY_LOOK_VERTICES: usize = 50_000;
 
 /// Bakes up to this side run on the normal-priority pool (previews); larger ones on the
 /// low-priority pool.
@@ -271,8 +279,23 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         // The snapshot shows the other scene's maps: take every layer from this one.
         let switched = snapshot_full != Some(full);
         let mut outcome = Err(Error::Cancelled);
+        // A new dense head's first look, before its shape: reported to the UI (which
+        // polls while the worker is busy) as a partial outcome.
+        let mut early = |shown: &Snapshot| {
+            let _ = reports.send(Report {
+                id: job.id,
+                what: job.what.clone(),
+                ms: start.elapsed().as_secs_f64() * 1e3,
+                outcome: Outcome::Done {
+                    snapshot: Box::new(shown.clone()),
+                    changed: Changed::default(),
+                },
+                units: None,
+                partial: true,
+            });
+        };
         install(&job, &mut || {
-            outcome = bake(scene, &mut snapshot, &job, switched, &cancel)
+            outcome = bake(scene, &mut snapshot, &job, switched, &cancel, &mut early)
         });
         let units = match &mut outcome {
             Ok((_, units)) => units.take(),
@@ -293,7 +316,14 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             }
             let mut result_b = Err(Error::Cancelled);
             install(&job_b, &mut || {
-                result_b = bake(&mut scene_b, &mut snapshot_b, &job_b, false, &cancel)
+                result_b = bake(
+                    &mut scene_b,
+                    &mut snapshot_b,
+                    &job_b,
+                    false,
+                    &cancel,
+                    &mut |_| {},
+                )
             });
             match result_b.map(|(changed, _)| changed) {
                 Ok(_) => snapshot.compare = Some(Box::new(snapshot_b.clone())),
@@ -316,6 +346,7 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             ms: start.elapsed().as_secs_f64() * 1e3,
             outcome,
             units,
+            partial: false,
         };
         if reports.send(report).is_err() {
             return;
@@ -331,12 +362,15 @@ fn is_full(r: &BakeRequest) -> bool {
 
 /// Bakes `job` in `scene` and refreshes what changed in `snapshot` (everything when
 /// `refresh_all`: the snapshot was filled from another scene).
+/// Bakes `job` on `scene` into `snapshot`; `early` is given the snapshot once before the
+/// end when a new head's shape is still to be made.
 fn bake(
     scene: &mut Option<Scene>,
     snapshot: &mut Snapshot,
     job: &Job,
     refresh_all: bool,
     cancel: &CancelToken,
+    early: &mut dyn FnMut(&Snapshot),
 ) -> Result<(Changed, Option<Units>), Error> {
     let mut changed = Changed::default();
     let project = job.project.clone();
@@ -367,6 +401,16 @@ fn bake(
     let colour_px = s.colour_px(job.request.large_size_px);
     s.bake_colour(colour_px, job.request.t, cancel)?;
     s.prepare_shown_colour();
+    changed.mesh |= baked.mesh;
+    let merged = merged_changes(s, snapshot, changed, baked, refresh_all);
+    // A new head whose shape takes a while (seconds on a dense one): the head, its maps
+    // and colour are shown first, the shape when it is made.
+    let shown_early =
+        merged.mesh && s.mesh().vertex_count() >= EARLY_LOOK_VERTICES && s.shape_field_pending();
+    if shown_early {
+        fill(s, snapshot, job, &merged, refresh_all, cancel)?;
+        early(snapshot);
+    }
     // While a slider moves (a preview), a new shape's sky waits for the still bake.
     if is_full(&job.request) {
         s.bake_shape(job.request.t);
@@ -374,8 +418,25 @@ fn bake(
         s.bake_shape_moving(job.request.t);
     }
     s.bake_brows(job.request.t);
-    changed.mesh |= baked.mesh;
-    let merged = if refresh_all {
+    if shown_early {
+        // Everything but the shape and the brows is in the snapshot already.
+        fill(s, snapshot, job, &Changed::default(), false, cancel)?;
+    } else {
+        fill(s, snapshot, job, &merged, refresh_all, cancel)?;
+    }
+    Ok((merged, units))
+}
+
+/// What a bake changed, for the snapshot: everything when it refreshes all (the snapshot
+/// showed the other scene's maps).
+fn merged_changes(
+    s: &Scene,
+    snapshot: &Snapshot,
+    changed: Changed,
+    baked: Changed,
+    refresh_all: bool,
+) -> Changed {
+    if refresh_all {
         Changed {
             mesh: changed.mesh
                 || snapshot
@@ -395,7 +456,18 @@ fn bake(
             mesh: changed.mesh,
             ..baked
         }
-    };
+    }
+}
+
+/// Fills `snapshot` from the scene `s` after a bake that changed `merged`.
+fn fill(
+    s: &mut Scene,
+    snapshot: &mut Snapshot,
+    job: &Job,
+    merged: &Changed,
+    refresh_all: bool,
+    cancel: &CancelToken,
+) -> Result<(), Error> {
     let mask_stamp = s.large_mask().map_or(0, |m| Arc::as_ptr(m) as usize);
     if mask_stamp != snapshot.mask_stamp {
         snapshot.mask_stamp = mask_stamp;
@@ -455,11 +527,15 @@ fn bake(
         .axes()
         .to_standard()
         .map_or(glam::Mat3::IDENTITY, |r| r.transpose());
-    snapshot.layers.refresh(s, &merged, refresh_all);
+    snapshot.layers.refresh(s, merged, refresh_all);
     // The shape field shown (docs/models.md §13): its movement over the head's UVs, for
     // the map view and over the aged colour for the 3D view.
-    let field = s.shape_field();
-    let colour = s.shown_colour().cloned();
+    // (Made only while shown: the field is seconds on a dense head.)
+    let (field, colour) = if job.shape_pictures {
+        (s.shape_field(), s.shown_colour().cloned())
+    } else {
+        (None, None)
+    };
     let stamps = (
         field.as_ref().map_or(0, |f| Arc::as_ptr(f) as usize),
         colour.as_ref().map_or(0, |c| Arc::as_ptr(c) as usize),
@@ -544,5 +620,5 @@ fn bake(
     snapshot.wrinkles = s.wrinkles().to_vec();
     snapshot.project = Some(s.project().clone());
     snapshot.request = Some(job.request);
-    Ok((merged, units))
+    Ok(())
 }

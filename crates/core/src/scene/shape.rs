@@ -90,15 +90,7 @@ impl Scene {
     /// head and strengths; `None` when the shape layer is off or every strength is 0.
     pub fn shape_field(&mut self) -> Option<Arc<crate::layers::shape::ShapeField>> {
         let strengths = self.project.shape.strengths();
-        if strengths.iter().all(|&s| s <= 0.0) {
-            return None;
-        }
-        let key = (
-            self.mesh_generation,
-            self.layout_generation,
-            self.metres_per_unit().to_bits(),
-            strengths.map(f32::to_bits),
-        );
+        let key = self.shape_key()?;
         if let Some((k, f)) = &self.shape
             && *k == key
         {
@@ -113,6 +105,28 @@ impl Scene {
         ));
         self.shape = Some((key, field.clone()));
         Some(field)
+    }
+
+    /// What the shape field is made from; `None` when the shape layer is off or every
+    /// strength is 0.
+    fn shape_key(&self) -> Option<ShapeKey> {
+        let strengths = self.project.shape.strengths();
+        if strengths.iter().all(|&s| s <= 0.0) {
+            return None;
+        }
+        Some((
+            self.mesh_generation,
+            self.layout_generation,
+            self.metres_per_unit().to_bits(),
+            strengths.map(f32::to_bits),
+        ))
+    }
+
+    /// Whether [`Scene::shape_field`] would have to make the field (it is not kept for
+    /// these settings): seconds on a dense head.
+    pub fn shape_field_pending(&self) -> bool {
+        self.shape_key()
+            .is_some_and(|key| self.shape.as_ref().is_none_or(|(k, _)| *k != key))
     }
 
     /// The shape's relief finer than the head's triangles at `size`² in the head's layout

@@ -121,3 +121,71 @@ fn a_bake_brings_the_colour_the_shape_and_its_field() {
     let off = bake(&mut worker, &project, 256, 1.0);
     assert!(off.layers.shape.is_none() && off.images.shape.is_none());
 }
+
+/// A new head of 50k vertices and more is shown before its shape is made: a partial
+/// report (maps, colour, no shape yet) comes first, then the job's end with the shape.
+#[test]
+fn a_dense_new_head_is_shown_before_its_shape() {
+    // A 240 × 240-quad dome, 20 cm across, its own UVs (58k vertices).
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("dome.obj");
+    let n = 240;
+    let mut obj = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
+            let (x, y) = (0.2 * u - 0.1, 0.2 * v - 0.1);
+            let z = (0.0144 - (x * x + y * y).min(0.0144)).sqrt();
+            obj += &format!("v {x} {y} {z}\nvt {u} {v}\n");
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i + 1;
+            let (b, c, d) = (a + 1, a + n + 2, a + n + 1);
+            obj += &format!("f {a}/{a} {b}/{b} {c}/{c}\nf {a}/{a} {c}/{c} {d}/{d}\n");
+        }
+    }
+    std::fs::write(&path, obj).unwrap();
+    let mut project = Project::default();
+    project.mesh.path = Some(path);
+    project.mesh.layout = agesim_core::project::Layout::OwnUvs;
+    let mut worker = Worker::spawn(|| {});
+    let id = worker.submit(Job {
+        id: 0,
+        project,
+        wrinkles: None,
+        request: BakeRequest {
+            large_size_px: 256,
+            micro_size_px: 256,
+            hair: false,
+            ..BakeRequest::preview(1.0)
+        },
+        what: "dense".into(),
+        compare_t: None,
+        detect_units: false,
+        files: Default::default(),
+        shape_pictures: false,
+    });
+    let start = Instant::now();
+    let mut seen = Vec::new();
+    while !seen.last().is_some_and(|(partial, _)| !partial) {
+        for report in worker.poll().into_iter().filter(|r| r.id == id) {
+            match report.outcome {
+                Outcome::Done { snapshot, .. } => seen.push((report.partial, snapshot)),
+                Outcome::Failed(e) => panic!("bake failed: {e}"),
+            }
+        }
+        assert!(start.elapsed() < Duration::from_secs(300), "no report");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert_eq!(seen.len(), 2, "a partial report, then the end");
+    let (first, last) = (&seen[0].1, &seen[1].1);
+    assert!(seen[0].0);
+    assert!(first.layers.mesh.is_some() && first.large.is_some() && first.layers.aged.is_some());
+    assert!(
+        first.layers.shape.is_none(),
+        "the shape came with the first look"
+    );
+    assert!(last.layers.shape.is_some(), "the shape did not come");
+}

@@ -169,7 +169,7 @@ fn a_dense_new_head_is_shown_before_its_shape() {
     });
     let start = Instant::now();
     let mut seen = Vec::new();
-    while !seen.last().is_some_and(|(partial, _)| !partial) {
+    while seen.last().is_none_or(|(partial, _)| *partial) {
         for report in worker.poll().into_iter().filter(|r| r.id == id) {
             match report.outcome {
                 Outcome::Done { snapshot, .. } => seen.push((report.partial, snapshot)),

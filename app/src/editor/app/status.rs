@@ -12,7 +12,7 @@ pub(super) struct Status<'a> {
     pub last_bake: (&'a str, f64),
     /// Hairs present at the age, of all.
     pub hairs: Option<(usize, usize)>,
-    /// The 3D view's encode time and its hair thinning while moving.
+    /// The 3D view's encode time and its hair thinning while moving (1: every hair).
     pub view: Option<(f64, u32)>,
     /// The 3D view's quality in words (the governor's).
     pub quality: String,
@@ -48,11 +48,14 @@ pub(super) fn status_line(ui: &mut egui::Ui, s: &Status<'_>) {
             ui.label(format!("hairs: {present} of {all}"));
         }
         if let Some((encode_ms, sparse)) = s.view {
-            ui.label(format!("3D frame encode {encode_ms:.1} ms"));
-            ui.label(&s.quality);
-            if sparse > 1 {
-                ui.label(format!("(1 hair in {sparse} drawn)"));
-            }
+            // One short item: the line must not wrap when the view starts moving (the
+            // panels below would jump).
+            let hair = if sparse > 1 {
+                format!(", 1 hair in {sparse}")
+            } else {
+                String::new()
+            };
+            ui.label(format!("3D: {}{hair} · {encode_ms:.1} ms", s.quality));
         }
         if let Some(deepest) = s.deepest {
             ui.label(format!("deepest large wrinkle: {deepest:.2}"));

@@ -243,8 +243,19 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             .ok()
     };
     let (preview_pool, full_pool) = (pool("agesim-preview", false), pool("agesim-bake", true));
-    let install = |job: &Job, f: &mut (dyn FnMut() + Send)| {
-        let pool = if is_full(&job.request) {
+    // A head being opened (no scene yet, or another mesh) has nothing to draw meanwhile but
+    // the last head, still: its bake takes every core (a dense head's first look is most
+    // of its loading, fitting and first maps).
+    let all_cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+    let open_pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(all_cores)
+        .thread_name(|i| format!("agesim-open-{i}"))
+        .build()
+        .ok();
+    let install = |job: &Job, opening: bool, f: &mut (dyn FnMut() + Send)| {
+        let pool = if opening {
+            &open_pool
+        } else if is_full(&job.request) {
             &full_pool
         } else {
             &preview_pool
@@ -273,6 +284,10 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         } else {
             (&mut preview_scene, &full_scene)
         };
+        let opening = [&*scene, other].iter().all(|s| {
+            s.as_ref()
+                .is_none_or(|s| s.project().mesh != job.project.mesh)
+        });
         if scene.is_none() {
             *scene = other.as_ref().map(Scene::fork);
         }
@@ -294,7 +309,7 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
                 partial: true,
             });
         };
-        install(&job, &mut || {
+        install(&job, opening, &mut || {
             outcome = bake(scene, &mut snapshot, &job, switched, &cancel, &mut early)
         });
         let units = match &mut outcome {
@@ -315,7 +330,7 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
                 scene_b = scene.as_ref().map(Scene::fork);
             }
             let mut result_b = Err(Error::Cancelled);
-            install(&job_b, &mut || {
+            install(&job_b, false, &mut || {
                 result_b = bake(
                     &mut scene_b,
                     &mut snapshot_b,

@@ -243,8 +243,9 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             .ok()
     };
     let (preview_pool, full_pool) = (pool("agesim-preview", false), pool("agesim-bake", true));
-    // A head being opened (no scene yet, or another mesh) has nothing to draw meanwhile but
-    // the last head, still: its bake takes every core (a dense head's first look is most
+    // A head being opened (no scene yet, or a changed mesh section: another file, its
+    // units, axes or landmarks) has nothing to draw meanwhile but the last head, still: its
+    // bake takes every core (a dense head's first look is most
     // of its loading, fitting and first maps).
     let all_cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
     let open_pool = rayon::ThreadPoolBuilder::new()
@@ -376,9 +377,8 @@ fn is_full(r: &BakeRequest) -> bool {
 }
 
 /// Bakes `job` in `scene` and refreshes what changed in `snapshot` (everything when
-/// `refresh_all`: the snapshot was filled from another scene).
-/// Bakes `job` on `scene` into `snapshot`; `early` is given the snapshot once before the
-/// end when a new head's shape is still to be made.
+/// `refresh_all`: the snapshot was filled from another scene); `early` is given the
+/// snapshot once before the end when a new dense head's shape is still to be made.
 fn bake(
     scene: &mut Option<Scene>,
     snapshot: &mut Snapshot,

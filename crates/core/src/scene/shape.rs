@@ -45,26 +45,25 @@ impl Scene {
             return changed;
         };
         let mesh = &self.inputs.mesh;
-        // A field that was here before this bake (the age moves, not the shape) is measured.
+        // A field that was here before this bake (the age moves, not the shape) is measured,
+        // as is one whose sky costs nothing now.
         let same_field = (self.shape_aged.as_ref())
             .is_some_and(|((f, ..), _)| *f == Arc::as_ptr(&field) as usize);
-        let sky = if measure_sky || same_field {
-            Some(field.occlusion_at(mesh, years))
-        } else {
-            field.occlusion_if_measured(mesh, years)
-        };
-        let key = (Arc::as_ptr(&field) as usize, years.to_bits(), sky.is_some());
+        let measured = measure_sky || same_field || field.occlusion_is_cheap(mesh, years);
+        let key = (Arc::as_ptr(&field) as usize, years.to_bits(), measured);
         if self.shape_aged.as_ref().is_some_and(|(k, _)| *k == key) {
             return false;
         }
         let n = mesh.vertex_count();
-        let occlusion = sky.unwrap_or_else(|| {
+        let occlusion = if measured {
+            field.occlusion_at(mesh, years)
+        } else {
             self.shape_aged
                 .as_ref()
                 .map(|(_, s)| s.occlusion.clone())
                 .filter(|o| o.len() == n)
                 .unwrap_or_else(|| vec![1.0; n])
-        });
+        };
         let delta = field.at(years);
         let normals = field.normals(mesh, &delta);
         let hollow_mm = field.hollow_at(years);

@@ -601,15 +601,12 @@ impl ShapeField {
         full.iter().map(|r| 1.0 + (r - 1.0) * w).collect()
     }
 
-    /// [`Self::occlusion_at`] if the field's sky is measured already, else `None` (nothing
-    /// is measured).
-    pub fn occlusion_if_measured(&self, mesh: &Mesh, years: f32) -> Option<Vec<f32>> {
-        let w = self.weight_at(years);
-        if mesh.vertex_count() != self.smooth.len() || w <= 0.0 {
-            return Some(vec![1.0; mesh.vertex_count()]);
-        }
-        let full = self.full_occlusion.get()?;
-        Some(full.iter().map(|r| 1.0 + (r - 1.0) * w).collect())
+    /// Whether [`Self::occlusion_at`] at `years` on `mesh` measures nothing (the sky is
+    /// measured already, or nothing moves there).
+    pub fn occlusion_is_cheap(&self, mesh: &Mesh, years: f32) -> bool {
+        self.full_occlusion.get().is_some()
+            || mesh.vertex_count() != self.smooth.len()
+            || self.weight_at(years) <= 0.0
     }
 
     /// How hollowed each vertex is at `years`, mm: the deflating regions' inward movement

@@ -470,7 +470,7 @@ fn brow_hairs_are_drawn_and_gray_with_age() {
         ..ColourFactors::default()
     };
     let mut drawn = |brow_gray: f32| {
-        let strands = brows.strands(&mesh, &age(brow_gray), None);
+        let strands = brows.strands(&mesh, &age(brow_gray), None, false);
         r.upload_brows_to(ViewId::MAIN, Some(&strands)).unwrap();
         let changed = under_hair(&mut r, &p, 256);
         let lum = changed

@@ -64,6 +64,11 @@ pub(super) struct Head<'a> {
 }
 
 impl ColourStage {
+    /// The age factors of the last aged colour baked.
+    pub fn factors(&self) -> Option<ColourFactors> {
+        self.image_key.as_ref().map(|k| k.factors)
+    }
+
     /// Bakes the aged colour at `size`², redoing only what changed; whether it changed.
     pub fn bake(
         &mut self,

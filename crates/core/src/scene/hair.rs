@@ -35,8 +35,8 @@ impl EyeHairs {
 }
 
 /// What the brow strands of an age are made from: the brow hairs and the shape (their
-/// addresses), the brows' gray fraction and growth (bits).
-pub(super) type BrowsKey = (usize, usize, u32, u32);
+/// addresses), the brows' gray fraction and growth (bits), and the loss pattern.
+pub(super) type BrowsKey = (usize, usize, u32, u32, crate::layers::hair::HairLoss);
 
 impl Scene {
     pub(super) fn bake_hair(&mut self, cancel: &CancelToken) -> Result<Changed, Error> {
@@ -163,6 +163,7 @@ impl Scene {
             shape.as_ref().map_or(0, |s| Arc::as_ptr(s) as usize),
             factors.brow_gray_fraction().to_bits(),
             factors.contrast.to_bits(),
+            self.hair_loss().loss,
         );
         if self.brows_aged.as_ref().is_some_and(|(k, _)| *k == key) {
             return false;
@@ -170,7 +171,11 @@ impl Scene {
         let shape = shape
             .as_deref()
             .map(|s| (s.delta.as_slice(), s.normals.as_slice()));
-        let mut strands = hairs.brows.strands(&self.inputs.mesh, &factors, shape);
+        // The brows age as the hair loss's pattern: a woman's thin, a man's grow bushy.
+        let female = self.hair_loss().loss == crate::layers::hair::HairLoss::Female;
+        let mut strands = hairs
+            .brows
+            .strands(&self.inputs.mesh, &factors, shape, female);
         strands.extend(hairs.lashes.strands(&self.inputs.mesh, &factors, shape));
         self.brows_aged = Some((key, Arc::new(strands)));
         true

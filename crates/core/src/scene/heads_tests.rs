@@ -750,3 +750,43 @@ fn each_head_read_at_its_own_uvs_has_its_own_surface_warps() {
     );
     assert!(first != map(&fresh), "the squeezed layout has another map");
 }
+
+/// A head's template points follow its skin without folding: over the cheeks, no
+/// triangle of a panel head turns over on the template's face frame. (Each skin point
+/// once took its closest point on the template, which leapt across the template's deep
+/// nasolabial creases: strips of folded triangles along both folds, where the cheek's
+/// roll then drew a crack. The refined points are a smooth field's.)
+#[test]
+fn a_head_s_template_points_do_not_fold_over_the_cheeks() {
+    let mut p = Project::default();
+    p.mesh.path = Some(heads_dir().join("panel/caucasian-female.obj"));
+    p.mesh.metres_per_unit = None;
+    let scene = Scene::new(p).unwrap();
+    let frame = crate::head::frame::Regions::template().unwrap();
+    let points = scene.template_points();
+    let mesh = scene.mesh();
+    let (mut cheek, mut folded) = (0, 0);
+    for t in mesh.skin_indices().chunks_exact(3) {
+        let v = [0, 1, 2].map(|k| t[k] as usize);
+        let Some(q) = v
+            .iter()
+            .map(|&i| points[i].map(|p| frame.relative(p)))
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        let on_cheek = |q: &Vec3| (0.3..1.0).contains(&q.x.abs()) && (-1.4..-0.5).contains(&q.y);
+        if !q.iter().all(on_cheek) || q.iter().any(|q| q.z < 0.1) {
+            continue;
+        }
+        let p = v.map(|i| mesh.positions()[i]);
+        let area = |a: Vec2, b: Vec2, c: Vec2| (b - a).perp_dot(c - a);
+        let on_frame = area(q[0].truncate(), q[1].truncate(), q[2].truncate());
+        let on_head = area(p[0].truncate(), p[1].truncate(), p[2].truncate());
+        cheek += 1;
+        folded += usize::from(on_frame * on_head < 0.0);
+    }
+    eprintln!("{folded} of {cheek} cheek triangles folded on the frame");
+    assert!(cheek > 300, "{cheek}");
+    assert!(folded * 100 <= cheek, "{folded} of {cheek}");
+}

@@ -259,6 +259,9 @@ pub struct Scene {
     /// The aged colour as the 3D view shows it ([`Scene::shown_colour`]), with the aged
     /// colour and the transition generation it was made from.
     shown: Option<(ShownKey, Arc<crate::maps::mask::HeadImage>)>,
+    /// The blank eyeballs' texels the 3D view draws eyes on, keyed by the mesh generation
+    /// and the shown colour's size.
+    eyes: Option<((u64, u32), Arc<crate::layers::skin_colour::EyeTexels>)>,
     /// The hair's ages as the shown colour's alpha
     /// ([`crate::layers::hair::scalp::hair_age_alpha`]), per transition generation and size.
     hair_alpha: Option<(HairAlphaKey, Arc<Vec<u8>>)>,
@@ -327,6 +330,7 @@ impl Scene {
             own: None,
             brows_aged: None,
             shown: None,
+            eyes: None,
             hair_alpha: None,
             layout_generation: 1,
             surface_warps: Vec::new(),
@@ -366,6 +370,7 @@ impl Scene {
             own: self.own.clone(),
             brows_aged: self.brows_aged.clone(),
             shown: self.shown.clone(),
+            eyes: self.eyes.clone(),
             hair_alpha: self.hair_alpha.clone(),
             layout_generation: self.layout_generation,
             surface_warps: self.surface_warps.clone(),

@@ -145,12 +145,45 @@ impl Scene {
         // of the panel's heads, whose UVs lie beside the scalp's island, took the young
         // hair's dark tint and lost it as the hair went: "orange eye slits, new at 80",
         // blind.)
-        let image = crate::layers::skin_colour::with_alpha(
+        let mut image = crate::layers::skin_colour::with_alpha(
             &aged,
             alpha.as_deref().map(Vec::as_slice),
             self.colour.texels().map(|t| &**t),
         );
+        // Eyeballs that read only blank skin get an eye (the panel's "orange blank eyes").
+        let eyes = self.eye_texels(&aged);
+        if !eyes.is_empty() {
+            let old = self.colour.factors().map_or(0.0, |f| f.pale);
+            eyes.draw(&mut image, old);
+        }
         self.shown = Some((key, Arc::new(image)));
+    }
+
+    /// The blank eyeballs' texels at `aged`'s size ([`crate::layers::skin_colour::EyeTexels`]),
+    /// found once per mesh and size.
+    fn eye_texels(
+        &mut self,
+        aged: &crate::maps::mask::HeadImage,
+    ) -> Arc<crate::layers::skin_colour::EyeTexels> {
+        let key = (self.mesh_generation, aged.width_px);
+        if let Some((k, eyes)) = &self.eyes
+            && *k == key
+        {
+            return eyes.clone();
+        }
+        let skin = self
+            .colour
+            .texels()
+            .filter(|t| t.size() == aged.width_px)
+            .cloned();
+        let eyes = Arc::new(crate::layers::skin_colour::EyeTexels::new(
+            &self.inputs.mesh,
+            aged.width_px,
+            skin.as_deref(),
+            aged,
+        ));
+        self.eyes = Some((key, eyes.clone()));
+        eyes
     }
 
     /// The aged colour of the last [`Scene::prepare_shown_colour`] as the 3D view shows it: its

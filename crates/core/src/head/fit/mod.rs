@@ -147,8 +147,12 @@ pub struct Fit {
     /// Per vertex of the head: the template UV, `None` beyond [`MAX_DISTANCE_M`] or off
     /// the skin.
     pub template_uv: Vec<Option<Vec2>>,
-    /// Per vertex of the head: the template surface point (template metres) its UV is
-    /// read at, `None` where the UV is.
+    /// Per vertex of the head: its place on the template (template metres), `None` where
+    /// the UV is: the warped and refined point, within a millimetre or two of the
+    /// template's surface. Not the closest surface point the UV is read at: that one leaps
+    /// across the template's deep creases (the nasolabial folds), folding the head's
+    /// triangles over on the template where the layers drawn from these points (the shape's
+    /// rolls, the brows, the colour's regions) then drew a crack.
     pub template_point: Vec<Option<Vec3>>,
     /// The head's coordinates to the template's.
     pub similarity: Similarity,
@@ -285,10 +289,10 @@ pub fn fit_with(
         .collect();
     let mut template_uv = vec![None; positions.len()];
     let mut template_point = vec![None; positions.len()];
-    for (&i, hit) in skin_vertices.iter().zip(&hits) {
+    for ((&i, hit), point) in skin_vertices.iter().zip(&hits).zip(&points) {
         if let Some(hit) = hit {
             template_uv[i] = Some(template.uv_at(hit));
-            template_point[i] = Some(hit.point);
+            template_point[i] = Some(*point);
         }
     }
     let report = FitReport {

@@ -141,6 +141,10 @@ pub struct Roll {
     /// ([`Roll::taper_at`]). `None`: its height fades over the ends
     /// ([`ROLL_END_FADE`]).
     pub taper: Option<[f32; 2]>,
+    /// How round the bottom of its crease is: the half-width over which the skin turns
+    /// from level (the lower side) into the roll's wall, face units; 0: a sharp turn
+    /// ([`Roll::rise`]).
+    pub round: f32,
 }
 
 /// How far a roll's shadow reaches up its wall and down from its crease, face units.
@@ -195,7 +199,7 @@ impl Roll {
         if k <= 0.0 {
             return None;
         }
-        let s = if s > 0.0 { s / k } else { s };
+        let s = if s > 0.0 { s / k.sqrt() } else { s };
         Some((s, ends * k, z))
     }
 
@@ -288,13 +292,43 @@ impl Roll {
         Some((s, ends, z, t))
     }
 
+    /// How far below its line (on the lower side) the roll reaches, face units: its
+    /// crease, and a rounded crease's turn.
+    pub(super) fn below(&self) -> f32 {
+        self.crease_half.max(3.0 * self.round)
+    }
+
+    /// The roll's wall at `s` from its line as a share of its crest, 0–1: steepest at the
+    /// crease, level at the crest, `1 − (1 − s / crest)²` (risen as a smoothstep, level at
+    /// the crease, the wall's middle drew a band of its own under the light from the other
+    /// side, "a brown painted stripe" beside the crease). With [`Roll::round`] the crease's
+    /// bottom turns over that width (`s` eased as `(s + √(s² + r²)) / 2`, faded out over
+    /// [`Roll::below`]): a sharp turn, finer than a coarse head's triangles, fell to the
+    /// relief map, which drew it as one hard line down the cheek, read blind on every
+    /// head as "a sharp crack from the cheekbone to the jaw".
+    fn rise(&self, s: f32) -> f32 {
+        let eased = if self.round > 0.0 {
+            let r = self.round;
+            let e = 0.5 * (s + (s * s + r * r).sqrt());
+            if s < 0.0 {
+                e * (1.0 - smoothstep(0.0, self.below(), -s))
+            } else {
+                e
+            }
+        } else {
+            s.max(0.0)
+        };
+        let u = (eased / self.crest).clamp(0.0, 1.0);
+        1.0 - (1.0 - u).powi(2)
+    }
+
     /// The roll's height across it at signed distance `s` from its line, mm, before the
     /// fades: its crest on the raised side less its crease on the line.
     fn profile_mm(&self, s: f32) -> f32 {
-        if s >= self.reach || s <= -self.crease_half {
+        if s >= self.reach || s <= -self.below() {
             return 0.0;
         }
-        let roll = if s > 0.0 {
+        let roll = if s > 0.0 || self.round > 0.0 {
             // Squared, so the skirt meets the skin with no bend (its foot drew a second
             // line out on the cheek beside the nasolabial fold, read blind as "extra
             // parallel lines on the cheek").
@@ -303,8 +337,7 @@ impl Roll {
             // its crease (risen as a smoothstep, level at the crease, the wall's middle
             // drew a band of its own under the light from the other side, "a brown
             // painted stripe" beside the crease).
-            let rise = 1.0 - (1.0 - (s / self.crest).min(1.0)).powi(2);
-            rise * fall * fall
+            self.rise(s) * fall * fall
         } else {
             0.0
         };
@@ -315,7 +348,7 @@ impl Roll {
     /// How far the roll moves the skin at `q` out along its normal at full age, mm
     /// (negative: into the crease).
     pub fn height_mm(&self, q: Vec3) -> f32 {
-        let Some((s, fade)) = self.place(q, self.crease_half) else {
+        let Some((s, fade)) = self.place(q, self.below()) else {
             return 0.0;
         };
         fade * self.profile_mm(s)

@@ -70,11 +70,12 @@ pub(super) const CHEEK_ROLL: Roll = Roll {
     raised: [1.0, 0.0],
     crest: 0.25,
     reach: 0.5,
-    height_mm: 5.0,
+    height_mm: 6.5,
     crease_mm: 0.0,
     crease_half: 0.03,
     mirrored: false,
-    taper: Some([0.15, 0.7]),
+    taper: Some([0.3, 0.5]),
+    round: 0.04,
 };
 
 /// The marionette grooves of `marionette.wrk` on the template, from the mouth corner down
@@ -116,6 +117,7 @@ pub(super) const JOWL_ROLL: Roll = Roll {
     crease_half: 0.06,
     mirrored: false,
     taper: None,
+    round: 0.0,
 };
 
 /// The default regions (docs/models.md §13, each with its source). Millimetres at full
@@ -159,6 +161,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             crease_half: 0.11,
             mirrored: true,
             taper: None,
+            round: 0.0,
         }],
         curve: curve(35.0, 75.0),
     },

@@ -263,6 +263,7 @@ fn a_roll_rises_steeply_from_its_crease_and_falls_gently_beyond_its_crest() {
         crease_half: 0.05,
         mirrored: true,
         taper: None,
+        round: 0.0,
     };
     let at = |x: f32, y: f32| roll.height_mm(Vec3::new(x, y, 0.0));
     assert!((at(0.5, 0.0) + 1.0).abs() < 1e-5, "{}", at(0.5, 0.0));

@@ -18,11 +18,13 @@
 //! sizes are physical whatever the head's units and UV layout, and a spot crossing a UV
 //! seam continues on the other side. Seeded and hashed: the same bytes on any thread count.
 
+mod eyes;
 mod own;
 mod spots;
 mod texels;
 mod tone;
 
+pub use eyes::*;
 pub use own::*;
 pub use spots::*;
 pub use texels::*;

@@ -88,8 +88,12 @@ struct Root {
     /// Young length, mm.
     length_mm: f32,
     elevation: f32,
-    /// Whether it grows long with age, and its share of that growth.
+    /// Whether it grows long with age, and its share of that growth (a man's brow).
     bushy: Option<f32>,
+    /// Where along the brow it grows (0 over the eye's inner corner, 1 over the outer),
+    /// and its draw against a woman's brow's thinning ([`female_loss`]).
+    s: f32,
+    loss_draw: f32,
     gray_draw: f32,
     shade: f32,
 }
@@ -190,21 +194,30 @@ impl BrowHairs {
 
     /// Every hair at an age: `factors` the aged colour's (the brows' gray fraction, and
     /// `contrast`, the old brow's growth), `shape` the head's displacement and displaced
-    /// normals at that age (mesh units, per vertex; `None`: the mesh as it is).
+    /// normals at that age (mesh units, per vertex; `None`: the mesh as it is), `female`
+    /// whether the brows age as a woman's: they thin, most at the tail, and none grows
+    /// long (the bushy old brow is a man's; grown on the panel's women, their white brows
+    /// read, blind, as "white bristle brows").
     pub fn strands(
         &self,
         mesh: &Mesh,
         factors: &ColourFactors,
         shape: Option<(&[Vec3], &[Vec3])>,
+        female: bool,
     ) -> Vec<BrowStrand> {
         let (positions, normals) = (mesh.positions(), mesh.normals());
         let gray_fraction = factors.brow_gray_fraction();
         let growth = factors.contrast.clamp(0.0, 1.0);
         self.roots
             .iter()
+            .filter(|r| !female || r.loss_draw >= growth * female_loss(r.s))
             .map(|r| {
                 let (root, normal) = rooted(positions, normals, shape, r.vertices, r.bary);
-                let grown = r.bushy.map_or(0.0, |g| g * growth);
+                let grown = if female {
+                    0.0
+                } else {
+                    r.bushy.map_or(0.0, |g| g * growth)
+                };
                 let length = r.length_mm * (1.0 + BUSHY_LENGTHENING * grown) * self.units_per_mm;
                 let elevation = r.elevation + BUSHY_ELEVATION_DEG.to_radians() * grown;
                 // Along the skin in the growth direction (kept in the aged tangent plane).
@@ -359,6 +372,8 @@ fn root(
         length_mm: head_body_tail * (0.8 + 0.4 * draws[2]),
         elevation: (ELEVATION_DEG + (draws[5] - 0.5) * 8.0).to_radians(),
         bushy,
+        s,
+        loss_draw: draws[3],
         // Wiry grown hairs are the first to go white.
         gray_draw: if bushy.is_some() {
             0.7 * draws[6]
@@ -368,6 +383,16 @@ fn root(
         shade: 0.8 + 0.4 * draws[8],
     }
 }
+
+/// The share of a woman's brow hairs lost at full age at `s` along the brow: a third over
+/// its head and body, two thirds at its tail (the lateral brow thins first and most with
+/// age in women; docs/models.md §9 "Eyebrows").
+pub fn female_loss(s: f32) -> f32 {
+    FEMALE_LOSS.0 + (FEMALE_LOSS.1 - FEMALE_LOSS.0) * smooth01((s - 0.45) / 0.55)
+}
+
+/// See [`female_loss`]: (head and body, tail).
+const FEMALE_LOSS: (f32, f32) = (0.3, 0.65);
 
 /// The brow's half height at `s` along it, mm.
 fn half_height(s: f32) -> f32 {

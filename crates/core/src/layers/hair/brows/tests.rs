@@ -16,7 +16,7 @@ fn default_brows(seed: u64) -> (&'static Mesh, BrowHairs) {
 #[test]
 fn each_brow_has_a_real_brows_count_of_hairs_on_its_own_side() {
     let (mesh, hairs) = default_brows(0);
-    let strands = hairs.strands(mesh, &ColourFactors::default(), None);
+    let strands = hairs.strands(mesh, &ColourFactors::default(), None, false);
     let left = strands.iter().filter(|s| s.root[0] > 0.0).count();
     let right = strands.len() - left;
     // A brow holds a few hundred hairs; the two within a tenth of each other.
@@ -44,15 +44,21 @@ fn the_same_seed_places_the_same_hairs_and_another_other_ones() {
     let (_, b) = default_brows(7);
     let (_, c) = default_brows(8);
     let f = factors(0.5, 0.5);
-    assert_eq!(a.strands(mesh, &f, None), b.strands(mesh, &f, None));
-    assert_ne!(a.strands(mesh, &f, None), c.strands(mesh, &f, None));
+    assert_eq!(
+        a.strands(mesh, &f, None, false),
+        b.strands(mesh, &f, None, false)
+    );
+    assert_ne!(
+        a.strands(mesh, &f, None, false),
+        c.strands(mesh, &f, None, false)
+    );
 }
 
 #[test]
 fn brow_hair_lies_along_the_brow_toward_the_temple_close_to_the_skin() {
     let (mesh, hairs) = default_brows(0);
     let regions = Regions::template().unwrap();
-    let strands = hairs.strands(mesh, &ColourFactors::default(), None);
+    let strands = hairs.strands(mesh, &ColourFactors::default(), None, false);
     let (mut lateral, mut body, mut flat) = (0, 0, 0);
     for s in &strands {
         let (root, tip) = (Vec3::from(s.root), Vec3::from(s.tip));
@@ -101,8 +107,8 @@ fn nearest_normal(mesh: &Mesh, p: Vec3) -> Vec3 {
 #[test]
 fn the_old_brow_grows_longer_and_grays_hair_by_hair() {
     let (mesh, hairs) = default_brows(0);
-    let young = hairs.strands(mesh, &factors(0.0, 0.0), None);
-    let old = hairs.strands(mesh, &factors(1.0, 1.0), None);
+    let young = hairs.strands(mesh, &factors(0.0, 0.0), None, false);
+    let old = hairs.strands(mesh, &factors(1.0, 1.0), None, false);
     let mean = |v: &[BrowStrand]| v.iter().map(length).sum::<f32>() / v.len() as f32;
     let (young_mm, old_mm) = (mean(&young) * 1e3, mean(&old) * 1e3);
     // A young hair ≈ 7–8 mm; a third of them half as long again when old (the mean
@@ -113,7 +119,7 @@ fn the_old_brow_grows_longer_and_grays_hair_by_hair() {
     // The brows' gray fraction is the share of gray hairs (each all gray or none, but
     // for the few on the edge of the draw).
     let f = factors(0.8, 1.0);
-    let gray = hairs.strands(mesh, &f, None);
+    let gray = hairs.strands(mesh, &f, None, false);
     let share = gray.iter().filter(|s| s.gray > 0.5).count() as f32 / gray.len() as f32;
     let expected = f.brow_gray_fraction();
     assert!(
@@ -125,14 +131,45 @@ fn the_old_brow_grows_longer_and_grays_hair_by_hair() {
 }
 
 #[test]
+fn a_woman_s_old_brow_thins_most_at_its_tail_and_grows_no_longer() {
+    let (mesh, hairs) = default_brows(0);
+    let young = hairs.strands(mesh, &factors(0.0, 0.0), None, true);
+    let old = hairs.strands(mesh, &factors(0.0, 1.0), None, true);
+    // Young, a woman's brow is a man's.
+    assert_eq!(young, hairs.strands(mesh, &factors(0.0, 0.0), None, false));
+    let mean = |v: &[BrowStrand]| v.iter().map(length).sum::<f32>() / v.len() as f32;
+    assert!(
+        (mean(&old) - mean(&young)).abs() < 0.03 * mean(&young),
+        "{} against {} m",
+        mean(&old),
+        mean(&young)
+    );
+    // Fewer hairs: a third to two thirds gone, more of the tail's (the roots' place along
+    // the brow from their x: the tail lies farther out from the face's middle).
+    let kept = old.len() as f32 / young.len() as f32;
+    assert!((0.4..0.75).contains(&kept), "{kept} kept");
+    let outer = |v: &[BrowStrand]| {
+        let mut xs: Vec<f32> = v.iter().map(|s| s.root[0].abs()).collect();
+        xs.sort_by(f32::total_cmp);
+        xs[xs.len() * 3 / 4]
+    };
+    assert!(
+        outer(&old) < outer(&young),
+        "{} {}",
+        outer(&old),
+        outer(&young)
+    );
+}
+
+#[test]
 fn the_hairs_move_with_the_aged_shape() {
     let (mesh, hairs) = default_brows(0);
     let f = ColourFactors::default();
     let d = Vec3::new(0.0, -0.004, 0.001);
     let delta = vec![d; mesh.vertex_count()];
     let normals = vec![Vec3::ZERO; mesh.vertex_count()];
-    let rest = hairs.strands(mesh, &f, None);
-    let moved = hairs.strands(mesh, &f, Some((&delta, &normals)));
+    let rest = hairs.strands(mesh, &f, None, false);
+    let moved = hairs.strands(mesh, &f, Some((&delta, &normals)), false);
     for (a, b) in rest.iter().zip(&moved) {
         for (p, q) in [(a.root, b.root), (a.middle, b.middle), (a.tip, b.tip)] {
             assert!((Vec3::from(q) - Vec3::from(p) - d).length() < 1e-6);
@@ -148,6 +185,7 @@ fn hairs_are_in_the_heads_own_units() {
             mesh,
             &factors(0.0, 0.0),
             None,
+            false,
         )
     });
 }

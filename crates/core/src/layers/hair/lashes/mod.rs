@@ -54,7 +54,7 @@ const SHORTENING: f32 = 0.3;
 
 /// The lashes gray this much later than the brows: a lash is gray when its draw is under
 /// this × the brows' gray fraction.
-const GRAY_LAG: f32 = 0.5;
+const GRAY_LAG: f32 = 0.25;
 
 /// One lash: where it is rooted and its draws.
 #[derive(Clone, Debug, PartialEq)]

@@ -384,7 +384,12 @@ impl<'a> RollGrid<'a> {
                     + glam::Vec2::new((k % columns) as f32, (k / columns) as f32) * GRID_STEP;
                 match roll.shaped(p) {
                     Some((s, ends, z)) => (strength * ends * roll.profile_mm(s), z),
-                    None => (0.0, f32::NAN),
+                    // Beyond a tapered end the roll is nothing, but its line's depth is
+                    // still known: a NaN there turned the depth gate of every texel whose
+                    // blur reached past the end to nothing, cutting the relief (the
+                    // roll's blurred share, negative there) off in a straight line across
+                    // the cheek beside the nose wing.
+                    None => (0.0, roll.locate(p).map_or(f32::NAN, |(_, _, z, _)| z)),
                 }
             })
             .collect();

@@ -268,3 +268,23 @@ fn every_roll_is_continuous() {
         }
     }
 }
+
+/// Past a tapered roll's ends its line's depth is still known, so a texel whose blur
+/// reaches past an end keeps its depth gate (a NaN there cut the cheek's relief off in a
+/// straight line across the cheek beside the nose wing).
+#[test]
+fn a_tapered_roll_s_depth_is_known_past_its_ends() {
+    let mut tapered = 0;
+    for region in &REGIONS {
+        for roll in region.rolls.iter().filter(|r| r.taper.is_some()) {
+            tapered += 1;
+            let grid = RollGrid::new(roll, 1.0);
+            assert!(
+                grid.nodes.iter().all(|(_, z)| z.is_finite()),
+                "{}: a node with no depth",
+                region.name
+            );
+        }
+    }
+    assert!(tapered > 0);
+}

@@ -1,0 +1,289 @@
+//! Eyes drawn where a head's eyeballs read nothing but blank skin (docs/models.md "Skin
+//! colour", "Eyes"). The panel's MakeHuman heads carry their eyeballs as parts of their one
+//! OBJ, mapped onto an unpainted corner of the skin's map (their own eye texture is another
+//! file): drawn with that map they were "orange blank eyes", read blind as a mask's. Where
+//! an eyeball's texels are blank and no skin covers them, the 3D view draws an eye over
+//! them, from where each texel lies on the ball: a pupil and an iris facing forward, a
+//! sclera round them, and with age a yellower sclera and the arcus senilis, the pale ring
+//! at the iris's rim (in 44 % of people over 60: the Tehran Geriatric Eye Study). The exported
+//! colour map keeps the head's own texels: only the view draws the eyes.
+
+use glam::Vec3;
+
+use crate::head::mesh::{Mesh, MeshPart};
+use crate::maps::mask::HeadImage;
+use crate::maps::raster::raster_uv;
+
+use super::SurfaceTexels;
+
+/// The angles from the eye's front (radians) of the pupil's rim, of the iris's and of the
+/// dark limbal ring's half-width at that rim: a 2 mm pupil and a 5.9 mm iris on a 12 mm ball.
+const PUPIL: f32 = 0.17;
+const IRIS: f32 = 0.51;
+const LIMBUS: f32 = 0.035;
+
+/// The colours of an eye (sRGB, 0–1): the pupil, a brown iris (the commonest eye colour
+/// the world over), the limbal ring, the young sclera and the old sclera's yellow.
+const PUPIL_COLOUR: [f32; 3] = [0.05, 0.04, 0.04];
+const IRIS_COLOUR: [f32; 3] = [0.30, 0.19, 0.12];
+const LIMBUS_COLOUR: [f32; 3] = [0.13, 0.10, 0.08];
+const SCLERA_COLOUR: [f32; 3] = [0.80, 0.76, 0.72];
+const OLD_SCLERA_COLOUR: [f32; 3] = [0.76, 0.70, 0.55];
+/// The arcus senilis: its colour and its width inside the iris's rim, radians.
+const ARCUS_COLOUR: [f32; 3] = [0.70, 0.70, 0.68];
+const ARCUS_WIDTH: f32 = 0.09;
+
+/// Above this spread of lightness (standard deviation, 0–1) over an eyeball's texels they
+/// hold a painted eye, which is kept (a painted eye spans a white sclera and a dark iris;
+/// the panel's blank corner of skin spreads under 0.03).
+const PAINTED_SPREAD: f32 = 0.08;
+
+/// Guard band round each eyeball's UV triangles, pixels (the map's bilinear filtering).
+const GUARD_PX: f32 = 1.5;
+
+/// The texels of a head's blank eyeballs and where each lies on its ball.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct EyeTexels {
+    size: u32,
+    /// Texel index, its angle from the eye's front (radians) and round it (radians).
+    texels: Vec<(u32, f32, f32)>,
+}
+
+impl EyeTexels {
+    /// The texels of `mesh`'s eyeballs ([`is_eyeball`]) in its UV layout at `size`² that
+    /// no skin covers (`skin`: the skin's texels at that size), found on `image` (the colour
+    /// map at that size) to be blank. The eye looks forward (+z, the scene's frame).
+    pub fn new(mesh: &Mesh, size: u32, skin: Option<&SurfaceTexels>, image: &HeadImage) -> Self {
+        let n = size as usize;
+        let mut texels = Vec::new();
+        if image.width_px != size || image.height_px != size || mesh.uvs().is_empty() {
+            return Self { size, texels };
+        }
+        let (positions, uvs, indices) = (mesh.positions(), mesh.uvs(), mesh.indices());
+        for part in mesh.parts().iter().filter(|p| is_eyeball(p)) {
+            let first = part.first_triangle as usize * 3;
+            let Some(tris) = indices.get(first..first + part.triangle_count as usize * 3) else {
+                continue;
+            };
+            // The ball: its box's centre in x and y, its front less its radius in z (a
+            // ball cut off behind is still centred on its front).
+            let (lo, hi) = tris.iter().fold(
+                (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+                |(lo, hi), &i| (lo.min(positions[i as usize]), hi.max(positions[i as usize])),
+            );
+            let radius = 0.25 * ((hi.x - lo.x) + (hi.y - lo.y));
+            if !(radius > 0.0 && radius.is_finite()) {
+                continue;
+            }
+            let centre = Vec3::new(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), hi.z - radius);
+            let mut own = Vec::new();
+            for t in tris.chunks_exact(3) {
+                let v = [0, 1, 2].map(|k| t[k] as usize);
+                let (Some(a), Some(b), Some(c)) = (uvs.get(v[0]), uvs.get(v[1]), uvs.get(v[2]))
+                else {
+                    continue;
+                };
+                let p = v.map(|i| positions[i]);
+                raster_uv([*a, *b, *c], size, GUARD_PX, |x, y, w, _| {
+                    let i = y * n + x;
+                    if skin.is_some_and(|s| s.covers_skin(i)) {
+                        return;
+                    }
+                    let d = (p[0] * w[0] + p[1] * w[1] + p[2] * w[2] - centre).normalize_or_zero();
+                    if d == Vec3::ZERO {
+                        return;
+                    }
+                    let from_front = d.z.clamp(-1.0, 1.0).acos();
+                    let round = d.y.atan2(d.x);
+                    own.push((i as u32, from_front, round));
+                });
+            }
+            own.sort_by_key(|t| t.0);
+            own.dedup_by_key(|t| t.0);
+            if !painted(image, &own) {
+                texels.extend(own);
+            }
+        }
+        Self { size, texels }
+    }
+
+    /// Whether there is no eye to draw.
+    pub fn is_empty(&self) -> bool {
+        self.texels.is_empty()
+    }
+
+    /// Draws the eyes over `image` (sRGB RGBA8 at the texels' size; alpha kept) at an
+    /// age: `old` 0–1, the skin's paling and yellowing curve (the sclera yellows with it,
+    /// and the arcus grows over its second half).
+    pub fn draw(&self, image: &mut HeadImage, old: f32) {
+        if image.width_px != self.size || image.height_px != self.size {
+            return;
+        }
+        let old = old.clamp(0.0, 1.0);
+        let arcus = smooth((old - 0.35) / 0.55);
+        for &(i, from_front, round) in &self.texels {
+            let c = eye_colour(from_front, round, old, arcus);
+            if let Some(px) = image.rgba.get_mut(i as usize * 4..i as usize * 4 + 3) {
+                for (p, c) in px.iter_mut().zip(c.to_array()) {
+                    *p = (c.clamp(0.0, 1.0) * 255.0).round() as u8;
+                }
+            }
+        }
+    }
+}
+
+/// Whether a part is an eyeball (an eye, its cornea, iris, pupil or sclera), not the wet,
+/// shadow or hair parts round it (lacrimal, tear line, occlusion, blend, lashes, brows).
+pub fn is_eyeball(part: &MeshPart) -> bool {
+    let name = part.name.to_lowercase();
+    let what = name
+        .split_once(" material ")
+        .map_or(name.as_str(), |(_, m)| m);
+    ["eye", "cornea", "iris", "pupil", "sclera"]
+        .iter()
+        .any(|w| what.contains(w))
+        && ![
+            "lash",
+            "brow",
+            "lacrimal",
+            "tear",
+            "occlusion",
+            "blend",
+            "shadow",
+            "caruncle",
+            "lid",
+        ]
+        .iter()
+        .any(|w| what.contains(w))
+}
+
+/// Whether `texels` of `image` hold a painted eye (their lightness spreads over
+/// [`PAINTED_SPREAD`]).
+fn painted(image: &HeadImage, texels: &[(u32, f32, f32)]) -> bool {
+    if texels.is_empty() {
+        return false;
+    }
+    let lum: Vec<f32> = texels
+        .iter()
+        .filter_map(|&(i, _, _)| image.rgba.get(i as usize * 4..i as usize * 4 + 3))
+        .map(|p| {
+            (0.2126 * f32::from(p[0]) + 0.7152 * f32::from(p[1]) + 0.0722 * f32::from(p[2])) / 255.0
+        })
+        .collect();
+    let mean = lum.iter().sum::<f32>() / lum.len() as f32;
+    let var = lum.iter().map(|l| (l - mean).powi(2)).sum::<f32>() / lum.len() as f32;
+    var.sqrt() > PAINTED_SPREAD
+}
+
+/// The eye's colour (sRGB, 0–1) `from_front` radians from its front, `round` radians round
+/// it, at `old` (the sclera's yellowing) with the arcus at `arcus` (0–1).
+fn eye_colour(from_front: f32, round: f32, old: f32, arcus: f32) -> Vec3 {
+    let sclera = Vec3::from(SCLERA_COLOUR).lerp(Vec3::from(OLD_SCLERA_COLOUR), 0.4 * old);
+    // The iris: fibres radiating from the pupil (a lighter collarette round it, darker
+    // toward the rim), the limbal ring blending it into the sclera.
+    let fibres = 0.85
+        + 0.1 * (round * 23.0).sin()
+        + 0.06 * (round * 57.0 + 1.3).sin()
+        + 0.04 * (round * 131.0 + 0.4).sin();
+    let across = ((from_front - PUPIL) / (IRIS - PUPIL)).clamp(0.0, 1.0);
+    let collarette = 1.0 + 0.35 * (1.0 - smooth((across - 0.15) / 0.25));
+    let iris = Vec3::from(IRIS_COLOUR) * fibres * collarette * (1.0 - 0.25 * across);
+    let iris = iris.lerp(
+        Vec3::from(ARCUS_COLOUR),
+        0.75 * arcus * smooth((from_front - (IRIS - ARCUS_WIDTH)) / (0.5 * ARCUS_WIDTH)),
+    );
+    let limbus = Vec3::from(LIMBUS_COLOUR);
+    let to_limbus = 1.0 - smooth((from_front - IRIS).abs() / LIMBUS);
+    let eye = if from_front < IRIS { iris } else { sclera };
+    let eye = eye.lerp(limbus, 0.7 * to_limbus);
+    let pupil = 1.0 - smooth((from_front - PUPIL) / 0.03 + 0.5);
+    eye.lerp(Vec3::from(PUPIL_COLOUR), pupil)
+}
+
+/// A smoothstep over [0, 1].
+fn smooth(x: f32) -> f32 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn part(name: &str) -> MeshPart {
+        MeshPart {
+            name: name.into(),
+            first_triangle: 0,
+            triangle_count: 0,
+        }
+    }
+
+    #[test]
+    fn eyeballs_are_told_from_what_lies_round_them() {
+        for name in [
+            "object \"eye_l\"",
+            "object \"Head\" material \"Cornea\"",
+            "mesh \"CC_Base_Eye\" primitive 0",
+        ] {
+            assert!(is_eyeball(&part(name)), "{name}");
+        }
+        for name in [
+            "object \"head\"",
+            "object \"Head\" material \"EyeBlend\"",
+            "object \"eyelashes\"",
+            "object \"Head\" material \"lacrimal fluid\"",
+            "object \"eye occlusion\"",
+            "object \"eyebrow_l\"",
+        ] {
+            assert!(!is_eyeball(&part(name)), "{name}");
+        }
+    }
+
+    #[test]
+    fn the_eye_has_a_dark_pupil_a_brown_iris_and_a_white_sclera_which_yellows() {
+        let lum = |c: Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722));
+        let young = |a: f32| eye_colour(a, 0.3, 0.0, 0.0);
+        assert!(lum(young(0.0)) < 0.06);
+        let iris = young(0.35);
+        assert!(iris.x > iris.z && lum(iris) < 0.35, "{iris}");
+        assert!(lum(young(0.9)) > 0.7);
+        let old = eye_colour(0.9, 0.3, 1.0, 1.0);
+        assert!(old.z < young(0.9).z - 0.05, "{old} {}", young(0.9));
+        // The arcus: the iris's rim pales with age, its middle does not.
+        let rim = IRIS - 0.3 * ARCUS_WIDTH;
+        assert!(lum(eye_colour(rim, 0.3, 1.0, 1.0)) > lum(eye_colour(rim, 0.3, 0.0, 0.0)) + 0.2);
+        assert!((lum(eye_colour(0.3, 0.3, 1.0, 1.0)) - lum(young(0.3))).abs() < 0.01);
+    }
+
+    #[test]
+    fn a_painted_eye_is_kept_and_a_blank_one_drawn() {
+        let mut image = HeadImage {
+            width_px: 4,
+            height_px: 4,
+            rgba: vec![180; 64],
+        };
+        let texels: Vec<(u32, f32, f32)> = (0..16).map(|i| (i, 0.1 * i as f32, 0.0)).collect();
+        assert!(!painted(&image, &texels));
+        for i in 0..8 {
+            image.rgba[i * 4..i * 4 + 3].copy_from_slice(&[20, 20, 20]);
+        }
+        assert!(painted(&image, &texels));
+        let eyes = EyeTexels { size: 4, texels };
+        let mut blank = HeadImage {
+            width_px: 4,
+            height_px: 4,
+            rgba: vec![180; 64],
+        };
+        eyes.draw(&mut blank, 0.0);
+        assert!(blank.rgba[0] < 30, "the pupil: {:?}", &blank.rgba[..4]);
+        assert!(
+            blank.rgba[15 * 4] > 190,
+            "the sclera: {:?}",
+            &blank.rgba[60..]
+        );
+        assert!(
+            blank.rgba.chunks_exact(4).all(|p| p[3] == 180),
+            "alpha kept"
+        );
+    }
+}

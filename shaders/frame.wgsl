@@ -55,7 +55,8 @@ struct Frame {
     // `key_shadow`): x: how far toward the light a ray looks (mesh units, 0 = none);
     // y: how thick an occluder is taken to be (mesh units); zw: unused.
     shadow: vec4<f32>,
-    // rgb: the brows' colour before graying (linear); w: unused.
+    // rgb: the brows' colour before graying (linear); w: the scalp hair's curl in [0, 1]
+    // (0 straight, 1 coiled).
     hair_brow: vec4<f32>,
 }
 

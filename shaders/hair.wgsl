@@ -50,8 +50,9 @@ struct HairCurve {
     p2: vec3<f32>,
 }
 
-fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32, random: f32) -> HairCurve {
-    let droop = clamp(frame.hair_misc.y, 0.0, 1.0);
+fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32, random: f32, curl: f32) -> HairCurve {
+    // Coiled hair is not combed flat: it stands off the scalp (a third of the droop).
+    let droop = clamp(frame.hair_misc.y, 0.0, 1.0) * (1.0 - 0.65 * curl);
     let g = normalize(vec3<f32>(0.0, -0.5, -1.0));
     let along = g - dir * dot(g, dir);
     // Where the comb is parallel to the hair there is no combing direction: stay straight.
@@ -64,7 +65,8 @@ fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32, random: f32) -> HairCur
     let q = root / max(frame.hair_base.w, 1e-9);
     let flow = 0.22 * sin(dot(q, vec3<f32>(0.61, 0.37, -0.52)) + 1.7)
         + 0.13 * sin(dot(q, vec3<f32>(-0.29, 0.83, 0.47)) * 1.9 + 0.4);
-    let turn = flow + (fract(random * 13.0) - 0.5) * 0.25;
+    // Coiled hair leans every way (up to ±80° more, from the random number's other digits).
+    let turn = flow + (fract(random * 13.0) - 0.5) * 0.25 + (fract(random * 41.0) - 0.5) * 2.8 * curl;
     comb = comb * cos(turn) + cross(dir, comb) * sin(turn);
     // Most hair lies flat (stands 5 % of its length); about one in six stands up to 18 %
     // (flyaways, from the random number's other digits), so the silhouette of the hair
@@ -89,6 +91,28 @@ fn curve_tangent(c: HairCurve, s: f32) -> vec3<f32> {
     return normalize((c.p1 - c.p0) * (1.0 - s) + (c.p2 - c.p1) * s);
 }
 
+struct Coil {
+    p: vec3<f32>,
+    tangent: vec3<f32>,
+}
+
+// A coiled hair (docs/models.md §9 "Curl"): the curve's point `p` (tangent `tangent`, `s`
+// along it) wound round the curve in a helix of COIL_TURNS turns, its radius growing from
+// the root to COIL_RADIUS of the length times `curl`, each hair at its own phase.
+const COIL_TURNS: f32 = 1.6;
+const COIL_RADIUS: f32 = 0.14;
+fn coiled(p: vec3<f32>, tangent: vec3<f32>, len: f32, s: f32, random: f32, curl: f32) -> Coil {
+    let a = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(tangent.x) > 0.9);
+    let b1 = normalize(cross(tangent, a));
+    let b2 = cross(tangent, b1);
+    let phase = 6.2831853 * (COIL_TURNS * s + fract(random * 17.0));
+    let r = curl * COIL_RADIUS * len * smoothstep(0.0, 0.3, s);
+    let round = b1 * cos(phase) + b2 * sin(phase);
+    let along = -b1 * sin(phase) + b2 * cos(phase);
+    let t = normalize(tangent * len + along * (r * 6.2831853 * COIL_TURNS));
+    return Coil(p + round * r, t);
+}
+
 // One vertex of a hair's ribbon: the curve's point `p` (tangent `tangent`, `s` along it)
 // widened in screen space, perpendicular to the projected hair (its direction taken
 // `ahead` mesh units along it), to the `side` (±1), by a pixel width that tapers to a
@@ -109,12 +133,20 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let dir = oct_decode(inst.direction_oct);
     // The taper, and ±15 % length per hair from its random number.
     let random = inst.random_length.x;
-    let len = frame.hair_base.w * inst.random_length.y * (0.85 + 0.3 * random);
+    // A coiled hair seen whole spans a little over half its length (its coils take the
+    // rest).
+    let curl = clamp(frame.hair_brow.w, 0.0, 1.0);
+    let len = frame.hair_base.w * inst.random_length.y * (0.85 + 0.3 * random) * (1.0 - 0.45 * curl);
     let s = f32(vertex / 2u) / f32(SEGMENTS);
     let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
-    let curve = hair_curve(inst.position, dir, len, random);
-    let p = curve_point(curve, s);
-    let tangent = curve_tangent(curve, s);
+    let curve = hair_curve(inst.position, dir, len, random, curl);
+    var p = curve_point(curve, s);
+    var tangent = curve_tangent(curve, s);
+    if curl > 0.0 {
+        let coil = coiled(p, tangent, len, s, random, curl);
+        p = coil.p;
+        tangent = coil.tangent;
+    }
 
     let base = frame.hair_base.rgb * (0.8 + 0.4 * random);
     let y = gray_fraction(frame.disp.w, inst.graying_onset, frame.pom.w == 1u);
@@ -206,7 +238,9 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let f_t = dot(frame.fill_dir.xyz, t);
     let f_diff = sqrt(max(1.0 - f_t * f_t, 0.0));
     let fill = frame.light_colour.rgb * frame.fill_dir.w;
-    let c = (k.x * t_diff + k.y * t_spec) * in.lit * in.colour * light + k.w * in.colour
+    // Coiled hair is matte: its coils scatter the highlight (a sixth of the specular).
+    let spec = k.y * (1.0 - 0.85 * clamp(frame.hair_brow.w, 0.0, 1.0));
+    let c = (k.x * t_diff + spec * t_spec) * in.lit * in.colour * light + k.w * in.colour
         + k.x * f_diff * in.lit_fill * in.colour * fill;
     let mapped = aces(c);
     if frame.camera_pos.w > 0.5 {

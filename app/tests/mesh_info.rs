@@ -227,7 +227,7 @@ fn mesh_info_prints_the_units_and_how_they_were_decided() {
 
 /// The person: on the African man's panel head with his colour map, `mesh-info` prints his
 /// skin tone with its ITA° group, his measured hair colour (dark) and brows, and the hair
-/// loss guessed from his face, his facial contrast; without the map, the hair colour is the
+/// loss guessed from his face, the curl guessed from his skin, his facial contrast; without the map, the hair colour is the
 /// default and says so, and there is no contrast to measure.
 #[test]
 fn prints_the_persons_measured_colours_and_hair_loss() {
@@ -267,6 +267,10 @@ fn prints_the_persons_measured_colours_and_hair_loss() {
         line("hair loss: ").contains("male (guessed from the face"),
         "{text}"
     );
+    assert!(
+        line("hair curl: ").starts_with("hair curl: coiled 1.0 (guessed from the skin's tone"),
+        "{text}"
+    );
     // His brows and lips are darker than his cheeks (0.12 each).
     let contrast = line("facial contrast: brows 0.");
     assert!(contrast.contains(", lips 0.1"), "{contrast}");
@@ -279,6 +283,8 @@ fn prints_the_persons_measured_colours_and_hair_loss() {
         bare.contains("facial contrast: no colour map to measure"),
         "{bare}"
     );
+    // Without the map, his skin is the project's light default: straight hair.
+    assert!(bare.contains("hair curl: straight 0.0 (guessed"), "{bare}");
     // --colour-map describes a file.
     let e = mesh_info(&["--colour-map", &map]);
     assert!(!e.status.success());

@@ -118,7 +118,7 @@ pub fn describe_person(scene: &mut Scene) -> anyhow::Result<String> {
         )
     };
     Ok(format!(
-        "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\nfacial contrast: {contrast}\n",
+        "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\nhair curl: {}\nfacial contrast: {contrast}\n",
         colour(
             person.hair,
             own.hair,
@@ -135,7 +135,27 @@ pub fn describe_person(scene: &mut Scene) -> anyhow::Result<String> {
         ),
         person.graying_delay_years,
         person.loss.describe(),
+        describe_curl(&person),
     ))
+}
+
+/// The hair's curl as `mesh-info` prints it: its value, and whether it was guessed.
+fn describe_curl(person: &agesim_core::scene::Person) -> String {
+    let name = if person.curl >= 0.75 {
+        "coiled"
+    } else if person.curl > 0.25 {
+        "curly"
+    } else {
+        "straight"
+    };
+    match person.curl_guessed {
+        Some(ita) => format!(
+            "{name} {:.1} (guessed from the skin's tone, ITA {ita:.0}°, coiled under {:.0}°; set hair.curl to change)",
+            person.curl,
+            agesim_core::layers::hair::COILED_UNDER_ITA
+        ),
+        None => format!("{name} {:.1} (set in the project)", person.curl),
+    }
 }
 
 /// The units, axes and layout a scene decided for its mesh file, as `mesh-info` prints

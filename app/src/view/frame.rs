@@ -139,24 +139,24 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
     let pale = s.pale_amount * factors.paleness;
     let albedo = linear(s.albedo).lerp(linear(s.pale_albedo), pale);
     let (micro_tile, fine_tile) = tile_placements(project);
-    let (hair, brows, graying_delay, skin_l) = match head.person {
+    let (hair, brows, graying_delay, skin_l, curl) = match head.person {
         Some(p) => (
             Vec3::from(p.hair),
             Vec3::from(p.brows),
             p.graying_delay_years,
             p.skin_l,
+            p.curl,
         ),
         None => {
             let hair = linear(h.base_colour.unwrap_or(agesim_core::scene::FALLBACK_HAIR));
             let brows = h
                 .brow_colour
                 .map_or(hair * agesim_core::scene::BROW_DARKNESS, linear);
-            (
-                hair,
-                brows,
-                0.0,
-                agesim_core::base::lab::lab(linear(s.albedo)).x,
-            )
+            let skin = agesim_core::base::lab::lab(linear(s.albedo));
+            let curl = h.curl.unwrap_or_else(|| {
+                agesim_core::layers::hair::guess_curl(agesim_core::base::lab::ita_degrees(skin))
+            });
+            (hair, brows, 0.0, skin.x, curl)
         }
     };
     let sheen =
@@ -218,6 +218,7 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
                 GrayingRamp::Smoothstep => GrayingRampParam::Smoothstep,
             },
             length: h.length_mm / 1000.0 / metres_per_unit.max(1e-9),
+            curl,
             // The scalp's tint follows the hair left by thinning (docs/models.md §9).
             scalp_tint: h.scalp_tint
                 * (1.0

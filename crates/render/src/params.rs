@@ -262,6 +262,10 @@ pub struct HairShading {
     /// How far the hair bends from its growth direction down along the scalp, in [0, 1]
     /// (0: straight out; 1: combed flat after the first third).
     pub droop: f32,
+    /// How curled the hair is, in [0, 1]: 0 straight (combed along the scalp), 1 tightly
+    /// coiled (each hair a helix of two turns, a little over half as long seen whole,
+    /// standing off the scalp every way, matte).
+    pub curl: f32,
     /// How far the scalp under the hair present takes the hair's colour, in [0, 1] (the
     /// colour map's alpha holds each texel's hair disappearance age:
     /// `agesim_core::layers::skin_colour::hair_age_alpha`); 0 leaves the skin as it is.
@@ -295,6 +299,7 @@ impl Default for HairShading {
             length: 0.03,
             width_px: 0.9,
             droop: 0.85,
+            curl: 0.0,
             scalp_tint: 0.0,
             gray_fraction: 0.0,
             sparse: false,

@@ -184,7 +184,7 @@ impl FrameUniform {
                 0.0,
                 0.0,
             ],
-            hair_brow: v3(hr.brow_colour, 0.0),
+            hair_brow: v3(hr.brow_colour, unit(hr.curl)),
         }
     }
 }

@@ -746,7 +746,7 @@ impl eframe::App for EditorApp {
 
 /// What a `null` field stands for on the head shown (the layer panel shows it and switches
 /// on with it): the mesh's measured units, the hair and brow colours measured on it, the
-/// guessed hair loss.
+/// guessed hair loss and curl.
 fn automatic_value(path: &str, layers: &crate::view::Layers) -> Option<serde_json::Value> {
     let hex = |c: [f32; 3]| {
         let srgb = c.map(|c| {
@@ -760,6 +760,7 @@ fn automatic_value(path: &str, layers: &crate::view::Layers) -> Option<serde_jso
         "hair.base_colour" => person.map(|p| hex(p.hair)),
         "hair.brow_colour" => person.map(|p| hex(p.brows)),
         "hair.loss" => person.map(|p| serde_json::Value::String(p.loss.loss.name().into())),
+        "hair.curl" => person.map(|p| serde_json::Value::from(f64::from(p.curl))),
         _ => None,
     }
 }

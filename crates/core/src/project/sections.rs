@@ -195,6 +195,9 @@ pub struct HairSection {
     pub brow_colour: Option<Colour>,
     /// `null`: guessed from the face ([`crate::layers::hair::HairLoss::guess`]).
     pub loss: Option<crate::layers::hair::HairLoss>,
+    /// How curled the hair is, 0 (straight) to 1 (coily); `null`: guessed
+    /// ([`crate::layers::hair::guess_curl`]).
+    pub curl: Option<f32>,
     pub gray_colour: Colour,
     pub graying_onset_min_years: f32,
     pub graying_onset_max_years: f32,
@@ -423,6 +426,7 @@ impl Default for HairSection {
             base_colour: None,
             brow_colour: None,
             loss: None,
+            curl: None,
             gray_colour: Colour([0xcc, 0xc6, 0xba]),
             graying_onset_min_years: 41.0,
             graying_onset_max_years: 91.0,

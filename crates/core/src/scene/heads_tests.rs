@@ -751,19 +751,19 @@ fn each_head_read_at_its_own_uvs_has_its_own_surface_warps() {
     assert!(first != map(&fresh), "the squeezed layout has another map");
 }
 
-/// A head's template points follow its skin without folding: over the cheeks, no
-/// triangle of a panel head turns over on the template's face frame. (Each skin point
-/// once took its closest point on the template, which leapt across the template's deep
-/// nasolabial creases: strips of folded triangles along both folds, where the cheek's
-/// roll then drew a crack. The refined points are a smooth field's.)
+/// A head's points as the shape reads them follow its skin without folding: over the
+/// cheeks, no triangle of a panel head turns over on the template's face frame. (The
+/// shape once read each skin point's closest point on the template, which leapt across
+/// the template's deep nasolabial creases: strips of folded triangles along both folds,
+/// where the cheek's roll then drew a crack. The refined points are a smooth field's.)
 #[test]
-fn a_head_s_template_points_do_not_fold_over_the_cheeks() {
+fn a_head_s_shape_points_do_not_fold_over_the_cheeks() {
     let mut p = Project::default();
     p.mesh.path = Some(heads_dir().join("panel/caucasian-female.obj"));
     p.mesh.metres_per_unit = None;
     let scene = Scene::new(p).unwrap();
     let frame = crate::head::frame::Regions::template().unwrap();
-    let points = scene.template_points();
+    let points = scene.shape_points();
     let mesh = scene.mesh();
     let (mut cheek, mut folded) = (0, 0);
     for t in mesh.skin_indices().chunks_exact(3) {

@@ -736,6 +736,16 @@ impl Scene {
             None => vec![None; mesh.vertex_count()],
         }
     }
+
+    /// Each vertex's place on the template as the shape reads it: the fit's refined point
+    /// ([`crate::head::fit::Fit::refined_point`], a smooth field's, which folds nowhere),
+    /// else [`Scene::template_points`].
+    pub fn shape_points(&self) -> Vec<Option<glam::Vec3>> {
+        match &self.inputs.layout.fit {
+            Some(fit) => fit.refined_point.clone(),
+            None => self.template_points(),
+        }
+    }
 }
 
 impl LargeMap {

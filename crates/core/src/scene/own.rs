@@ -63,6 +63,10 @@ pub struct Person {
     pub loss: LossChoice,
     /// The skin's CIELAB lightness: measured on the cheeks, else the project's skin colour.
     pub skin_l: f32,
+    /// How curled the hair is, 0–1, and whether it was guessed from this ITA° of the skin
+    /// (the project's `hair.curl` is null; [`crate::layers::hair::guess_curl`]).
+    pub curl: f32,
+    pub curl_guessed: Option<f32>,
 }
 
 /// The pattern of hair loss a scene uses and where it comes from.
@@ -193,6 +197,11 @@ impl Scene {
             (None, Some(m)) => (m.linear.to_array(), Source::Measured),
             (None, None) => (hair.map(|c| c * BROW_DARKNESS), Source::Default),
         };
+        let skin_lab = own.skin.map_or_else(
+            || lab(glam::Vec3::from(self.project.skin.albedo.linear())),
+            |m| m.lab,
+        );
+        let ita = crate::base::lab::ita_degrees(skin_lab);
         Person {
             hair,
             hair_source,
@@ -202,10 +211,12 @@ impl Scene {
                 lab(glam::Vec3::from(hair)).x,
             ),
             loss: self.hair_loss(),
-            skin_l: own.skin.map_or_else(
-                || lab(glam::Vec3::from(self.project.skin.albedo.linear())).x,
-                |m| m.lab.x,
+            skin_l: skin_lab.x,
+            curl: h.curl.map_or_else(
+                || crate::layers::hair::guess_curl(ita),
+                |c| c.clamp(0.0, 1.0),
             ),
+            curl_guessed: h.curl.is_none().then_some(ita),
         }
     }
 

@@ -83,7 +83,7 @@ fn hair_request(t: f32) -> BakeRequest {
 /// `mesh-info`'s measures: the dark-skinned heads have dark hair (L* < 30) and dark skin
 /// (ITA° under −30), the European woman light skin and lighter hair; a head without a map
 /// has nothing measured and takes the project's colours; the guessed hair loss follows the
-/// face (the men male, the women female).
+/// face (the men male, the women female), the guessed curl the skin (coiled on dark skin).
 #[test]
 fn the_heads_own_colours_are_measured_on_its_colour_map() {
     let never = CancelToken::never();
@@ -115,6 +115,15 @@ fn the_heads_own_colours_are_measured_on_its_colour_map() {
         };
         assert_eq!(scene.hair_loss().loss, guessed, "{report:?}");
         assert!(scene.hair_loss().guessed.is_some());
+        // The curl is guessed from the skin: coiled on the dark heads, straight on the
+        // light one.
+        let coiled = if name.starts_with("african") {
+            1.0
+        } else {
+            0.0
+        };
+        assert_eq!(person.curl, coiled, "{name}");
+        assert_eq!(person.curl_guessed, Some(ita), "{name}");
     }
     eprintln!("{}", report.join("\n"));
     // No map: nothing measured; the project's hair colour, else the default.
@@ -123,9 +132,15 @@ fn the_heads_own_colours_are_measured_on_its_colour_map() {
     assert_eq!(*scene.own_colours(&never).unwrap(), Default::default());
     assert_eq!(scene.person().hair_source, Source::Default);
     assert_eq!(scene.hair_loss().loss, HairLoss::Male);
+    assert_eq!(scene.person().curl, 0.0);
     p.hair.base_colour = Some(crate::project::Colour([10, 20, 30]));
     p.hair.loss = Some(HairLoss::None);
+    p.hair.curl = Some(0.4);
     scene.set_project(p).unwrap();
+    assert_eq!(
+        (scene.person().curl, scene.person().curl_guessed),
+        (0.4, None)
+    );
     assert_eq!(
         scene.person().hair,
         crate::project::Colour([10, 20, 30]).linear()

@@ -95,7 +95,7 @@ impl Scene {
         {
             return Some(f.clone());
         }
-        let points = self.template_points();
+        let points = self.shape_points();
         let field = Arc::new(crate::layers::shape::ShapeField::new(
             &self.inputs.mesh,
             &|v| points.get(v).copied().flatten(),
@@ -154,7 +154,7 @@ impl Scene {
         {
             return Ok(Some(r.clone()));
         }
-        let points = self.template_points();
+        let points = self.shape_points();
         let relief = Arc::new(ShapeRelief::new(
             &self.inputs.mesh,
             &|v| points.get(v).copied().flatten(),

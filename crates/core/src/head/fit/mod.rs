@@ -147,13 +147,17 @@ pub struct Fit {
     /// Per vertex of the head: the template UV, `None` beyond [`MAX_DISTANCE_M`] or off
     /// the skin.
     pub template_uv: Vec<Option<Vec2>>,
-    /// Per vertex of the head: its place on the template (template metres), `None` where
-    /// the UV is: the warped and refined point, within a millimetre or two of the
-    /// template's surface. Not the closest surface point the UV is read at: that one leaps
-    /// across the template's deep creases (the nasolabial folds), folding the head's
-    /// triangles over on the template where the layers drawn from these points (the shape's
-    /// rolls, the brows, the colour's regions) then drew a crack.
+    /// Per vertex of the head: the template surface point (template metres) its UV is
+    /// read at, `None` where the UV is. The colour's regions and the brows read it.
     pub template_point: Vec<Option<Vec3>>,
+    /// Per vertex of the head: the warped and refined point the surface point was found
+    /// from (template metres, within a millimetre or two of the surface), `None` where the
+    /// UV is: what the shape's regions and rolls read. A smooth field's, it folds nowhere;
+    /// the closest surface point leaps across the template's deep creases (the nasolabial
+    /// folds), folding the head's triangles over on the template, where the cheek's roll
+    /// then drew a crack. (The colour's regions keep the surface point: its leaps keep a
+    /// nostril's inside off the cheeks the skin tone is measured on.)
+    pub refined_point: Vec<Option<Vec3>>,
     /// The head's coordinates to the template's.
     pub similarity: Similarity,
     /// What the fit found, for reports.
@@ -289,10 +293,12 @@ pub fn fit_with(
         .collect();
     let mut template_uv = vec![None; positions.len()];
     let mut template_point = vec![None; positions.len()];
+    let mut refined_point = vec![None; positions.len()];
     for ((&i, hit), point) in skin_vertices.iter().zip(&hits).zip(&points) {
         if let Some(hit) = hit {
             template_uv[i] = Some(template.uv_at(hit));
-            template_point[i] = Some(*point);
+            template_point[i] = Some(hit.point);
+            refined_point[i] = Some(*point);
         }
     }
     let report = FitReport {
@@ -311,6 +317,7 @@ pub fn fit_with(
     Ok(Fit {
         template_uv,
         template_point,
+        refined_point,
         similarity,
         report,
     })

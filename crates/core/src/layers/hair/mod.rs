@@ -598,6 +598,23 @@ impl HairLoss {
     }
 }
 
+/// A guess of the hair's curl (0 straight, 1 coiled) from the skin's individual typology
+/// angle when the artist has not said (`hair.curl`): coiled on dark skin (ITA° under
+/// [`COILED_UNDER_ITA`], where afro-textured hair is by far the commonest), else straight.
+/// A prior, not a measurement: shown to the user as a guess. (Drawn straight, the panel's
+/// dark-skinned heads' white hair read, blind, as "straight and bristly, the wrong
+/// texture", "a white wig".)
+pub fn guess_curl(ita_degrees: f32) -> f32 {
+    if ita_degrees < COILED_UNDER_ITA {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// See [`guess_curl`]: the "dark" group of the ITA° scale (Chardon et al. 1991).
+pub const COILED_UNDER_ITA: f32 = -30.0;
+
 /// How many years later than a medium-brown head's (L* about 30) hair of lightness `l_star`
 /// (CIELAB) starts graying: up to [`DARK_HAIR_DELAY_YEARS`] for black hair (L* 15 and
 /// under), none for brown and lighter. Graying comes later for darker hair, by roughly 5–10

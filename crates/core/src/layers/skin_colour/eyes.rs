@@ -27,8 +27,8 @@ const LIMBUS: f32 = 0.035;
 const PUPIL_COLOUR: [f32; 3] = [0.05, 0.04, 0.04];
 const IRIS_COLOUR: [f32; 3] = [0.30, 0.19, 0.12];
 const LIMBUS_COLOUR: [f32; 3] = [0.13, 0.10, 0.08];
-const SCLERA_COLOUR: [f32; 3] = [0.80, 0.76, 0.72];
-const OLD_SCLERA_COLOUR: [f32; 3] = [0.76, 0.70, 0.55];
+const SCLERA_COLOUR: [f32; 3] = [0.72, 0.68, 0.63];
+const OLD_SCLERA_COLOUR: [f32; 3] = [0.68, 0.62, 0.48];
 /// The arcus senilis: its colour and its width inside the iris's rim, radians.
 const ARCUS_COLOUR: [f32; 3] = [0.70, 0.70, 0.68];
 const ARCUS_WIDTH: f32 = 0.09;
@@ -178,7 +178,11 @@ fn painted(image: &HeadImage, texels: &[(u32, f32, f32)]) -> bool {
 /// The eye's colour (sRGB, 0–1) `from_front` radians from its front, `round` radians round
 /// it, at `old` (the sclera's yellowing) with the arcus at `arcus` (0–1).
 fn eye_colour(from_front: f32, round: f32, old: f32, arcus: f32) -> Vec3 {
-    let sclera = Vec3::from(SCLERA_COLOUR).lerp(Vec3::from(OLD_SCLERA_COLOUR), 0.4 * old);
+    // The sclera dims toward the corners, where the lids and the caruncle shade it and its
+    // vessels show (an even white read, blind, as "glowing whites of the eyes" on dark
+    // skin).
+    let sclera = Vec3::from(SCLERA_COLOUR).lerp(Vec3::from(OLD_SCLERA_COLOUR), 0.4 * old)
+        * (1.0 - 0.3 * smooth((from_front - 0.7) / 0.6));
     // The iris: fibres radiating from the pupil (a lighter collarette round it, darker
     // toward the rim), the limbal ring blending it into the sclera.
     let fibres = 0.85
@@ -246,9 +250,9 @@ mod tests {
         assert!(lum(young(0.0)) < 0.06);
         let iris = young(0.35);
         assert!(iris.x > iris.z && lum(iris) < 0.35, "{iris}");
-        assert!(lum(young(0.9)) > 0.7);
-        let old = eye_colour(0.9, 0.3, 1.0, 1.0);
-        assert!(old.z < young(0.9).z - 0.05, "{old} {}", young(0.9));
+        assert!(lum(young(0.7)) > 0.6);
+        let old = eye_colour(0.7, 0.3, 1.0, 1.0);
+        assert!(old.z < young(0.7).z - 0.05, "{old} {}", young(0.7));
         // The arcus: the iris's rim pales with age, its middle does not.
         let rim = IRIS - 0.3 * ARCUS_WIDTH;
         assert!(lum(eye_colour(rim, 0.3, 1.0, 1.0)) > lum(eye_colour(rim, 0.3, 0.0, 0.0)) + 0.2);
@@ -277,10 +281,12 @@ mod tests {
         eyes.draw(&mut blank, 0.0);
         assert!(blank.rgba[0] < 30, "the pupil: {:?}", &blank.rgba[..4]);
         assert!(
-            blank.rgba[15 * 4] > 190,
+            blank.rgba[8 * 4] > 160,
             "the sclera: {:?}",
-            &blank.rgba[60..]
+            &blank.rgba[32..36]
         );
+        // Dimmer toward the corners.
+        assert!(blank.rgba[15 * 4] < blank.rgba[8 * 4] - 30);
         assert!(
             blank.rgba.chunks_exact(4).all(|p| p[3] == 180),
             "alpha kept"

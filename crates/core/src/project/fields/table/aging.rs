@@ -137,6 +137,11 @@ pub(super) fn rows() -> Vec<Field> {
             "the pattern of hair loss with age: male (receding temples, bald crown), female (diffuse thinning over the crown, hairline kept), none; null = guessed from the face's proportions",
         ),
         k(
+            id!(hair.curl),
+            Kind::OptFloat { min: 0.0, max: 1.0 },
+            "how curled the hair is in the 3D view: 0 straight, 1 tightly coiled (short coils standing off the scalp, matte); null = guessed from the skin's tone (coiled on dark skin)",
+        ),
+        k(
             id!(hair.gray_colour),
             Kind::Colour,
             "colour when fully gray",

@@ -210,6 +210,9 @@ fn field_ui(
                     if r.drag_stopped() && out.is_none() {
                         out = Some((Value::from(x), false));
                     }
+                    if is_null && measured.is_some() {
+                        ui.label(egui::RichText::new(automatic_word(field.path)).weak().small());
+                    }
                     r
                 })
                 .inner;
@@ -411,4 +414,14 @@ fn field_ui(
         dragging,
         pick: None,
     })
+}
+
+/// How the value a `null` number shows came about: measured on the head (its units), or
+/// guessed from it (the hair's curl, from the skin's tone).
+fn automatic_word(path: &str) -> &'static str {
+    if path == "mesh.metres_per_unit" {
+        "measured"
+    } else {
+        "guessed"
+    }
 }

@@ -211,7 +211,11 @@ fn field_ui(
                         out = Some((Value::from(x), false));
                     }
                     if is_null && measured.is_some() {
-                        ui.label(egui::RichText::new(automatic_word(field.path)).weak().small());
+                        ui.label(
+                            egui::RichText::new(automatic_word(field.path))
+                                .weak()
+                                .small(),
+                        );
                     }
                     r
                 })

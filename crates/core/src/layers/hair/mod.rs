@@ -615,13 +615,21 @@ pub fn guess_curl(ita_degrees: f32) -> f32 {
 /// See [`guess_curl`]: the "dark" group of the ITA° scale (Chardon et al. 1991).
 pub const COILED_UNDER_ITA: f32 = -30.0;
 
-/// How many years later than a medium-brown head's (L* about 30) hair of lightness `l_star`
-/// (CIELAB) starts graying: up to [`DARK_HAIR_DELAY_YEARS`] for black hair (L* 15 and
-/// under), none for brown and lighter. Graying comes later for darker hair, by roughly 5–10
-/// years in East Asian and African hair (Panhard et al. 2012; Tobin 2008).
+/// How many years later than a brown head's hair of lightness `l_star` (CIELAB) starts
+/// graying: [`DARK_HAIR_DELAY_YEARS`] for black hair (L* [`BLACK_HAIR_L`] and under), none
+/// from a dark brown ([`DARK_BROWN_HAIR_L`]) up. Graying comes later in East Asian and
+/// African hair, by roughly 5–10 years (Panhard et al. 2012; Tobin 2008), whose hair is
+/// black: the delay follows black hair, not darkness (reaching up to a medium brown, it
+/// gave the default head's dark brown five years of it: no gray at the temples at 45, and
+/// the head read, blind, as 33 at 45 and 55 at 65 over three rounds).
 pub fn graying_delay_years(l_star: f32) -> f32 {
-    DARK_HAIR_DELAY_YEARS * ((30.0 - l_star) / 15.0).clamp(0.0, 1.0)
+    DARK_HAIR_DELAY_YEARS
+        * ((DARK_BROWN_HAIR_L - l_star) / (DARK_BROWN_HAIR_L - BLACK_HAIR_L)).clamp(0.0, 1.0)
 }
+
+/// See [`graying_delay_years`]: the lightness of black hair and of a dark brown (CIELAB L*).
+pub const BLACK_HAIR_L: f32 = 15.0;
+pub const DARK_BROWN_HAIR_L: f32 = 22.0;
 
 /// See [`graying_delay_years`].
 pub const DARK_HAIR_DELAY_YEARS: f32 = 8.0;
@@ -1015,6 +1023,18 @@ mod tests {
         let mut want = unsorted.clone();
         want.sort_by(|a, b| b.disappear_age.total_cmp(&a.disappear_age));
         assert_eq!(sort_by_age_descending(&unsorted), want);
+    }
+
+    /// Black hair grays 8 years later, a dark brown and lighter on time (the default
+    /// head's fallback dark brown, L* 20.6, 1.6 years).
+    #[test]
+    fn black_hair_grays_later_and_brown_hair_on_time() {
+        assert_eq!(graying_delay_years(4.0), DARK_HAIR_DELAY_YEARS);
+        assert_eq!(graying_delay_years(BLACK_HAIR_L), DARK_HAIR_DELAY_YEARS);
+        assert_eq!(graying_delay_years(DARK_BROWN_HAIR_L), 0.0);
+        assert_eq!(graying_delay_years(45.0), 0.0);
+        let brown = graying_delay_years(20.6);
+        assert!((1.4..1.8).contains(&brown), "{brown}");
     }
 
     #[test]

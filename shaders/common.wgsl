@@ -51,6 +51,18 @@ fn gray_fraction(t: f32, onset: f32, smoothed: bool) -> f32 {
     return y;
 }
 
+// docs/models.md §9 "Miniaturisation": how whole a hair of disappearance age a_k is at age
+// t, 0–1: 1 until MINIATURE_T before a_k, falling to 0 at a_k as a smoothstep; a hair that
+// never goes (a_k ≥ 1) stays whole (`agesim_core::layers::hair::hair_whole`,
+// `MINIATURE_T`).
+const MINIATURE_T: f32 = 0.08;
+fn hair_whole(disappear_age: f32, t: f32) -> f32 {
+    if disappear_age >= 1.0 {
+        return 1.0;
+    }
+    return smoothstep(0.0, MINIATURE_T, disappear_age - t);
+}
+
 // Cavity occlusion (docs/models.md §10): `agesim_core::output::compose::{CAVITY,
 // CAVITY_MAX, CAVITY_REFERENCE_DISP, CAVITY_RING}`, which the exported GLB's occlusion
 // texture uses.

@@ -136,7 +136,13 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // A coiled hair seen whole spans a little over half its length (its coils take the
     // rest).
     let curl = clamp(frame.hair_brow.w, 0.0, 1.0);
-    let len = frame.hair_base.w * inst.random_length.y * (0.85 + 0.3 * random) * (1.0 - 0.45 * curl);
+    // A hair about to go is miniaturised first: over the last MINIATURE_T of t before its
+    // disappearance age it thins and shortens to a fine vellus hair (docs/models.md §9
+    // "Miniaturisation"), so every receding edge fades over a few millimetres instead of
+    // ending in a hard block of full hairs. Hairs that never go (a_k = 1) stay whole.
+    let whole = hair_whole(inst.disappear_age, frame.disp.w);
+    let len = frame.hair_base.w * inst.random_length.y * (0.85 + 0.3 * random) * (1.0 - 0.45 * curl)
+        * mix(0.35, 1.0, whole);
     let s = f32(vertex / 2u) / f32(SEGMENTS);
     let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
     let curve = hair_curve(inst.position, dir, len, random, curl);
@@ -171,7 +177,8 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // alone, all near their full stand, drew a pale line off the skull over a dark gap).
     let lifted = pow(fract(random * 29.0), 6.0);
     out.colour = mix(base, gray, y) * mix(0.55, mix(0.55, 1.0, face_on), s);
-    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * max(face_on, 0.25 + 0.35 * lifted);
+    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * max(face_on, 0.25 + 0.35 * lifted)
+        * mix(0.2, 1.0, whole);
     out.colour *= mix(0.75, 1.0, face_on);
     // The head shadows its own hair: a strand whose root faces away from the light gets
     // none of it directly (Kajiya–Kay alone lights it from any side, so in profile the

@@ -5,13 +5,14 @@
 //!   (`layers::hair::oct_encode`), decoded by the shader as the CPU decodes it; and the
 //!   shader's encoding read back by the CPU's decoding;
 //! - the gray fraction of a hair (`layers::hair::gray_fraction`), both ramps;
+//! - how whole a hair is before it goes (`layers::hair::hair_whole`);
 //! - the cavity occlusion (`output::compose::cavity`, the GLB's occlusion texture), and the
 //!   four cavity constants, read from the shader by naga.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
 
-use agesim_core::layers::hair::{GrayingRamp, gray_fraction, oct_decode, oct_encode};
+use agesim_core::layers::hair::{GrayingRamp, gray_fraction, hair_whole, oct_decode, oct_encode};
 use agesim_core::output::compose;
 use agesim_render::shaders;
 use common::gpu_or_skip;
@@ -42,6 +43,14 @@ fn cs_gray(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x < arrayLength(&inputs) {
         let x = inputs[id.x];
         outputs[id.x] = vec4<f32>(gray_fraction(x.x, x.y, x.z > 0.5), 0.0, 0.0, 0.0);
+    }
+}
+
+@compute @workgroup_size(64)
+fn cs_whole(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x < arrayLength(&inputs) {
+        let x = inputs[id.x];
+        outputs[id.x] = vec4<f32>(hair_whole(x.x, x.y), 0.0, 0.0, 0.0);
     }
 }
 
@@ -256,6 +265,29 @@ fn the_gray_fraction_is_the_engines() {
         assert!(
             (o[0] - cpu).abs() < 1e-6,
             "t {t}, onset {onset}, {ramp:?}: GPU {} CPU {cpu}",
+            o[0]
+        );
+    }
+}
+
+#[test]
+fn how_whole_a_hair_is_is_the_engines() {
+    let Some(gpu) = gpu_or_skip("twins: hair whole") else {
+        return;
+    };
+    let mut cases = Vec::new();
+    for i in 0..=40 {
+        for j in 0..=40 {
+            cases.push((i as f32 / 40.0, j as f32 / 40.0));
+        }
+    }
+    let inputs: Vec<[f32; 4]> = cases.iter().map(|&(a, t)| [a, t, 0.0, 0.0]).collect();
+    let out = run(&gpu, "cs_whole", &inputs);
+    for (&(a, t), o) in cases.iter().zip(&out) {
+        let cpu = hair_whole(a, t);
+        assert!(
+            (o[0] - cpu).abs() < 1e-5,
+            "a_k {a}, t {t}: GPU {} CPU {cpu}",
             o[0]
         );
     }

@@ -675,6 +675,25 @@ pub fn gray_fraction(t: f32, onset: f32, ramp: GrayingRamp) -> f32 {
     }
 }
 
+/// How long before its disappearance age (in t) a hair is miniaturised (docs/models.md §9
+/// "Miniaturisation"): about five years of the default 20–80 mapping.
+pub const MINIATURE_T: f32 = 0.08;
+
+/// How whole a hair of disappearance age `disappear_age` (a_k) is at age `t`, 0–1: 1 until
+/// [`MINIATURE_T`] before a_k, falling to 0 at a_k as a smoothstep; a hair that never goes
+/// (a_k ≥ 1) stays whole. A hair about to go is miniaturised first (the follicle shrinks
+/// to a fine, short vellus hair before it is lost), so a receding edge fades over a few
+/// millimetres instead of ending in a block of full hairs. The hair pass draws it thinner
+/// (a fifth of its cover) and shorter (a third of its length) as it falls
+/// (`shaders/common.wgsl`'s twin).
+pub fn hair_whole(disappear_age: f32, t: f32) -> f32 {
+    if disappear_age >= 1.0 {
+        return 1.0;
+    }
+    let x = ((disappear_age - t) / MINIATURE_T).clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
+
 /// C_k(t) = (1 − y)·C_base + y·C_gray (docs/models.md §9), linear RGB; `y` is clamped to [0,1].
 pub fn hair_colour(base: Vec3, gray: Vec3, y: f32) -> Vec3 {
     let y = y.clamp(0.0, 1.0);
@@ -1023,6 +1042,18 @@ mod tests {
         let mut want = unsorted.clone();
         want.sort_by(|a, b| b.disappear_age.total_cmp(&a.disappear_age));
         assert_eq!(sort_by_age_descending(&unsorted), want);
+    }
+
+    /// A hair is whole until shortly before it goes, and a hair that never goes stays whole.
+    #[test]
+    fn a_hair_is_miniaturised_just_before_it_goes() {
+        assert_eq!(hair_whole(0.6, 0.3), 1.0);
+        assert_eq!(hair_whole(0.6, 0.6 - MINIATURE_T), 1.0);
+        let half = hair_whole(0.6, 0.6 - 0.5 * MINIATURE_T);
+        assert!((half - 0.5).abs() < 1e-5, "{half}");
+        assert_eq!(hair_whole(0.6, 0.6), 0.0);
+        assert_eq!(hair_whole(1.0, 0.99), 1.0);
+        assert_eq!(hair_whole(1.0, 1.0), 1.0);
     }
 
     /// Black hair grays 8 years later, a dark brown and lighter on time (the default

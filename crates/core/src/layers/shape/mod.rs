@@ -191,10 +191,12 @@ impl Roll {
     /// tapered end.
     fn shaped(&self, p: glam::Vec2) -> Option<(f32, f32, f32)> {
         let (s, ends, z, t) = self.locate(p)?;
-        // A tapering roll is narrower and lower toward its ends by the same factor: its
-        // slopes stay as they are, and its skirt's edge closes on the line's ends in a
-        // smooth lens instead of being cut across (its height faded over the ends, the
-        // cheek's roll peaked in mid-line: "a lump that starts mid-cheek").
+        // A tapering roll is lower toward its ends by k and narrower by √k, so its slopes
+        // ease as it ends, and its skirt's edge closes on the line's ends in a smooth lens
+        // instead of being cut across (its height faded over the ends, the cheek's roll
+        // peaked in mid-line: "a lump that starts mid-cheek"; narrower by k too, its slopes
+        // kept whole, its lower end was a ridge finer than a coarse head's triangles, all
+        // of it in the relief map: "a sharp crack from the cheekbone to the jaw").
         let k = self.taper_at(t);
         if k <= 0.0 {
             return None;
@@ -303,9 +305,8 @@ impl Roll {
     /// the crease, the wall's middle drew a band of its own under the light from the other
     /// side, "a brown painted stripe" beside the crease). With [`Roll::round`] the crease's
     /// bottom turns over that width (`s` eased as `(s + √(s² + r²)) / 2`, faded out over
-    /// [`Roll::below`]): a sharp turn, finer than a coarse head's triangles, fell to the
-    /// relief map, which drew it as one hard line down the cheek, read blind on every
-    /// head as "a sharp crack from the cheekbone to the jaw".
+    /// [`Roll::below`]) instead of at once: a turn finer than a coarse head's triangles
+    /// falls whole to the relief map, which draws it as a hard line.
     fn rise(&self, s: f32) -> f32 {
         let eased = if self.round > 0.0 {
             let r = self.round;
@@ -333,10 +334,6 @@ impl Roll {
             // line out on the cheek beside the nasolabial fold, read blind as "extra
             // parallel lines on the cheek").
             let fall = 1.0 - smoothstep(self.crest, self.reach, s);
-            // Steepest at the crease, level at the crest: a fold's skin turns down into
-            // its crease (risen as a smoothstep, level at the crease, the wall's middle
-            // drew a band of its own under the light from the other side, "a brown
-            // painted stripe" beside the crease).
             self.rise(s) * fall * fall
         } else {
             0.0

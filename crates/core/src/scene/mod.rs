@@ -259,9 +259,12 @@ pub struct Scene {
     /// The aged colour as the 3D view shows it ([`Scene::shown_colour`]), with the aged
     /// colour and the transition generation it was made from.
     shown: Option<(ShownKey, Arc<crate::maps::mask::HeadImage>)>,
-    /// The blank eyeballs' texels the 3D view draws eyes on, keyed by the mesh generation
-    /// and the shown colour's size.
-    eyes: Option<((u64, u32), Arc<crate::layers::skin_colour::EyeTexels>)>,
+    /// The blank eyeballs' texels the 3D view draws eyes on, keyed by the mesh and layout
+    /// generations, the colour map (address) and the shown colour's size.
+    eyes: Option<(
+        (u64, u64, usize, u32),
+        Arc<crate::layers::skin_colour::EyeTexels>,
+    )>,
     /// The hair's ages as the shown colour's alpha
     /// ([`crate::layers::hair::scalp::hair_age_alpha`]), per transition generation and size.
     hair_alpha: Option<(HairAlphaKey, Arc<Vec<u8>>)>,

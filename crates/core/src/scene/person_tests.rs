@@ -476,6 +476,48 @@ fn only_skin_takes_the_scalp_tint() {
     assert!(tinted > 1000, "{tinted}");
 }
 
+/// The African woman's eyeballs read a blank corner of her map: the 3D view draws eyes
+/// there (a dark pupil, a light sclera), and the aged colour the exports write keeps her
+/// map's own texels.
+#[test]
+fn blank_eyeballs_get_eyes_in_the_view_only() {
+    let never = CancelToken::never();
+    let mut scene = Scene::new(panel_project("african-female", true)).unwrap();
+    scene.bake(&hair_request(0.5), &never).unwrap();
+    let n = 1024u32;
+    scene.bake_colour(n, 0.5, &never).unwrap();
+    scene.prepare_shown_colour();
+    let (shown, aged) = (
+        scene.shown_colour().unwrap().clone(),
+        scene.aged_colour().unwrap().clone(),
+    );
+    let lum = |img: &crate::maps::mask::HeadImage, i: usize| {
+        let p = &img.rgba[4 * i..4 * i + 3];
+        (u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2])) / 3
+    };
+    // The eyes' UVs (eye_l, eye_r of the OBJ): u 0.76–0.81, v 0.93–0.96.
+    let (mut dark, mut light, mut changed_elsewhere) = (0, 0, 0);
+    for i in 0..(n * n) as usize {
+        let (u, v) = (
+            (i % n as usize) as f32 / n as f32,
+            1.0 - (i / n as usize) as f32 / n as f32,
+        );
+        let on_eyes = (0.755..0.82).contains(&u) && (0.925..0.965).contains(&v);
+        let changed = shown.rgba[4 * i..4 * i + 3] != aged.rgba[4 * i..4 * i + 3];
+        if on_eyes && changed {
+            dark += usize::from(lum(&shown, i) < 40);
+            light += usize::from(lum(&shown, i) > 140);
+        } else if changed {
+            changed_elsewhere += 1;
+        }
+    }
+    assert!(dark > 4 && light > 40, "pupils {dark}, sclera {light}");
+    assert_eq!(changed_elsewhere, 0);
+    // The exported aged colour there is her map's (the blank corner, a skin tone).
+    let i = ((1.0 - 0.945) * n as f32) as usize * n as usize + (0.77 * n as f32) as usize;
+    assert!((60..140).contains(&lum(&aged, i)), "{}", lum(&aged, i));
+}
+
 /// The neck ages with the face: no colour seam at the jaw. On the scan and every textured
 /// panel head the colour difference (CIELAB ΔE of the means) between the jaw (the beard
 /// region, in the sun) and the neck below it (bare skin out of the sun) is at 80 no more

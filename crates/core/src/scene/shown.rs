@@ -160,12 +160,17 @@ impl Scene {
     }
 
     /// The blank eyeballs' texels at `aged`'s size ([`crate::layers::skin_colour::EyeTexels`]),
-    /// found once per mesh and size.
+    /// found once per mesh, layout (which parts are skin), colour map and size.
     fn eye_texels(
         &mut self,
         aged: &crate::maps::mask::HeadImage,
     ) -> Arc<crate::layers::skin_colour::EyeTexels> {
-        let key = (self.mesh_generation, aged.width_px);
+        let key = (
+            self.mesh_generation,
+            self.layout_generation,
+            self.colour_map().map_or(0, |m| Arc::as_ptr(m) as usize),
+            aged.width_px,
+        );
         if let Some((k, eyes)) = &self.eyes
             && *k == key
         {

@@ -71,7 +71,7 @@ use inputs::Inputs;
 use large::{LargeMask, LargeStage};
 use micro::MicroStage;
 use shape::ShapeKey;
-use shown::{HairAlphaKey, ShownKey};
+use shown::{EyesKey, HairAlphaKey, ShownKey};
 
 /// A wrinkle description file as the scene holds it: where it came from and its groups.
 #[derive(Clone, Debug, PartialEq)]
@@ -261,10 +261,7 @@ pub struct Scene {
     shown: Option<(ShownKey, Arc<crate::maps::mask::HeadImage>)>,
     /// The blank eyeballs' texels the 3D view draws eyes on, keyed by the mesh and layout
     /// generations, the colour map (address) and the shown colour's size.
-    eyes: Option<(
-        (u64, u64, usize, u32),
-        Arc<crate::layers::skin_colour::EyeTexels>,
-    )>,
+    eyes: Option<(EyesKey, Arc<crate::layers::skin_colour::EyeTexels>)>,
     /// The hair's ages as the shown colour's alpha
     /// ([`crate::layers::hair::scalp::hair_age_alpha`]), per transition generation and size.
     hair_alpha: Option<(HairAlphaKey, Arc<Vec<u8>>)>,

@@ -7,6 +7,10 @@ use super::*;
 /// the hair recedes (the male pattern).
 pub(super) type HairAlphaKey = (u64, u32, u32, bool);
 
+/// What the blank eyeballs' texels are found from: the mesh and layout generations, the
+/// colour map (address) and the size.
+pub(super) type EyesKey = (u64, u64, usize, u32);
+
 /// What [`Scene::shown_colour`] was made from.
 #[derive(Clone, Debug)]
 pub(super) struct ShownKey {

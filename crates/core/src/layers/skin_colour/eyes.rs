@@ -38,6 +38,15 @@ const ARCUS_WIDTH: f32 = 0.09;
 /// the panel's blank corner of skin spreads under 0.03).
 const PAINTED_SPREAD: f32 = 0.08;
 
+/// The lids' shade on the eye: the colour at their margin (a fraction of the eye's own) and
+/// how far from the nearest skin (in the ball's radius) it clears, and how far round the
+/// ball the lids are looked for. The lids and lashes keep light off the eye's edges (what a
+/// digital human's "eye occlusion" shell draws); lit whole, the eyes read, blind, as
+/// "glaring, bulging whites" on the dark heads.
+const LID_SHADE: f32 = 0.5;
+const LID_SHADE_WIDTH: f32 = 0.25;
+const LID_REACH: f32 = 1.6;
+
 /// Guard band round each eyeball's UV triangles, pixels (the map's bilinear filtering).
 const GUARD_PX: f32 = 1.5;
 
@@ -45,8 +54,9 @@ const GUARD_PX: f32 = 1.5;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct EyeTexels {
     size: u32,
-    /// Texel index, its angle from the eye's front (radians) and round it (radians).
-    texels: Vec<(u32, f32, f32)>,
+    /// Texel index, its angle from the eye's front (radians) and round it (radians), and
+    /// how far it is from the lids' shade (0 at the lid's margin, 1 clear of it).
+    texels: Vec<(u32, f32, f32, f32)>,
 }
 
 impl EyeTexels {
@@ -56,10 +66,24 @@ impl EyeTexels {
     pub fn new(mesh: &Mesh, size: u32, skin: Option<&SurfaceTexels>, image: &HeadImage) -> Self {
         let n = size as usize;
         let mut texels = Vec::new();
-        if image.width_px != size || image.height_px != size || mesh.uvs().is_empty() {
+        if image.width_px != size
+            || image.height_px != size
+            || mesh.uvs().is_empty()
+            || !mesh.parts().iter().any(is_eyeball)
+        {
             return Self { size, texels };
         }
         let (positions, uvs, indices) = (mesh.positions(), mesh.uvs(), mesh.indices());
+        let skin_points: Vec<Vec3> = {
+            let mut on_skin = vec![false; positions.len()];
+            for &i in mesh.skin_indices().iter() {
+                on_skin[i as usize] = true;
+            }
+            (0..positions.len())
+                .filter(|&i| on_skin[i])
+                .map(|i| positions[i])
+                .collect()
+        };
         for part in mesh.parts().iter().filter(|p| is_eyeball(p)) {
             let first = part.first_triangle as usize * 3;
             let Some(tris) = indices.get(first..first + part.triangle_count as usize * 3) else {
@@ -76,6 +100,12 @@ impl EyeTexels {
                 continue;
             }
             let centre = Vec3::new(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), hi.z - radius);
+            // The skin round the ball (the lids): a texel near it is in the lids' shade.
+            let lids: Vec<Vec3> = skin_points
+                .iter()
+                .copied()
+                .filter(|p| p.distance(centre) < LID_REACH * radius)
+                .collect();
             let mut own = Vec::new();
             for t in tris.chunks_exact(3) {
                 let v = [0, 1, 2].map(|k| t[k] as usize);
@@ -89,13 +119,19 @@ impl EyeTexels {
                     if skin.is_some_and(|s| s.covers_skin(i)) {
                         return;
                     }
-                    let d = (p[0] * w[0] + p[1] * w[1] + p[2] * w[2] - centre).normalize_or_zero();
+                    let at = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
+                    let d = (at - centre).normalize_or_zero();
                     if d == Vec3::ZERO {
                         return;
                     }
                     let from_front = d.z.clamp(-1.0, 1.0).acos();
                     let round = d.y.atan2(d.x);
-                    own.push((i as u32, from_front, round));
+                    let to_lid = lids
+                        .iter()
+                        .map(|l| l.distance(at))
+                        .fold(f32::INFINITY, f32::min);
+                    let clear = smooth(to_lid / (LID_SHADE_WIDTH * radius));
+                    own.push((i as u32, from_front, round, clear));
                 });
             }
             own.sort_by_key(|t| t.0);
@@ -121,8 +157,9 @@ impl EyeTexels {
         }
         let old = old.clamp(0.0, 1.0);
         let arcus = smooth((old - 0.35) / 0.55);
-        for &(i, from_front, round) in &self.texels {
-            let c = eye_colour(from_front, round, old, arcus);
+        for &(i, from_front, round, clear) in &self.texels {
+            let c =
+                eye_colour(from_front, round, old, arcus) * (LID_SHADE + (1.0 - LID_SHADE) * clear);
             if let Some(px) = image.rgba.get_mut(i as usize * 4..i as usize * 4 + 3) {
                 for (p, c) in px.iter_mut().zip(c.to_array()) {
                     *p = (c.clamp(0.0, 1.0) * 255.0).round() as u8;
@@ -159,13 +196,13 @@ pub fn is_eyeball(part: &MeshPart) -> bool {
 
 /// Whether `texels` of `image` hold a painted eye (their lightness spreads over
 /// [`PAINTED_SPREAD`]).
-fn painted(image: &HeadImage, texels: &[(u32, f32, f32)]) -> bool {
+fn painted(image: &HeadImage, texels: &[(u32, f32, f32, f32)]) -> bool {
     if texels.is_empty() {
         return false;
     }
     let lum: Vec<f32> = texels
         .iter()
-        .filter_map(|&(i, _, _)| image.rgba.get(i as usize * 4..i as usize * 4 + 3))
+        .filter_map(|&(i, ..)| image.rgba.get(i as usize * 4..i as usize * 4 + 3))
         .map(|p| {
             (0.2126 * f32::from(p[0]) + 0.7152 * f32::from(p[1]) + 0.0722 * f32::from(p[2])) / 255.0
         })
@@ -260,13 +297,33 @@ mod tests {
     }
 
     #[test]
+    fn the_lids_shade_the_eye_s_edges() {
+        let eyes = EyeTexels {
+            size: 2,
+            texels: vec![(0, 0.9, 0.0, 0.0), (1, 0.9, 0.0, 1.0)],
+        };
+        let mut image = HeadImage {
+            width_px: 2,
+            height_px: 2,
+            rgba: vec![0; 16],
+        };
+        eyes.draw(&mut image, 0.0);
+        let (at_lid, clear) = (f32::from(image.rgba[0]), f32::from(image.rgba[4]));
+        assert!(
+            at_lid < 0.6 * clear,
+            "{at_lid} at the lid, {clear} clear of it"
+        );
+    }
+
+    #[test]
     fn a_painted_eye_is_kept_and_a_blank_one_drawn() {
         let mut image = HeadImage {
             width_px: 4,
             height_px: 4,
             rgba: vec![180; 64],
         };
-        let texels: Vec<(u32, f32, f32)> = (0..16).map(|i| (i, 0.1 * i as f32, 0.0)).collect();
+        let texels: Vec<(u32, f32, f32, f32)> =
+            (0..16).map(|i| (i, 0.1 * i as f32, 0.0, 1.0)).collect();
         assert!(!painted(&image, &texels));
         for i in 0..8 {
             image.rgba[i * 4..i * 4 + 3].copy_from_slice(&[20, 20, 20]);

@@ -170,7 +170,8 @@ impl EyeTexels {
 }
 
 /// Whether a part is an eyeball (an eye, its cornea, iris, pupil or sclera), not the wet,
-/// shadow or hair parts round it (lacrimal, tear line, occlusion, blend, lashes, brows).
+/// shadow or hair parts round it (lacrimal, tear line, occlusion, blend, lashes, brows) nor
+/// an eye socket (the default head's, inside its closed lids).
 pub fn is_eyeball(part: &MeshPart) -> bool {
     let name = part.name.to_lowercase();
     let what = name
@@ -189,6 +190,7 @@ pub fn is_eyeball(part: &MeshPart) -> bool {
             "shadow",
             "caruncle",
             "lid",
+            "socket",
         ]
         .iter()
         .any(|w| what.contains(w))
@@ -275,6 +277,7 @@ mod tests {
             "object \"Head\" material \"lacrimal fluid\"",
             "object \"eye occlusion\"",
             "object \"eyebrow_l\"",
+            "mesh \"eye sockets (inside the closed lids)\" primitive 0",
         ] {
             assert!(!is_eyeball(&part(name)), "{name}");
         }

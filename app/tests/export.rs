@@ -351,42 +351,13 @@ fn the_glb_is_in_metres_for_a_head_in_centimetres() {
     );
 }
 
-/// The default head re-cut as a two-tile UDIM head: the subject's right (x < 0) moved to
-/// tile 1002. Written as OBJ.
-fn udim_head(dir: &std::path::Path) -> std::path::PathBuf {
-    use glam::Vec2;
-    let head = agesim_core::head::default::default_head();
-    let mut raw = agesim_core::head::mesh::RawMesh::default();
-    let mut uvs = Vec::new();
-    let mut copies = std::collections::HashMap::new();
-    for [a, b, c] in head.triangles() {
-        let right = [a, b, c]
-            .iter()
-            .all(|&i| head.positions()[i as usize].x < 0.0);
-        for i in [a, b, c] {
-            let v = *copies.entry((i, right)).or_insert_with(|| {
-                raw.positions.push(head.positions()[i as usize]);
-                uvs.push(head.uvs()[i as usize] + Vec2::new(if right { 1.0 } else { 0.0 }, 0.0));
-                raw.positions.len() as u32 - 1
-            });
-            raw.indices.push(v);
-        }
-    }
-    raw.uvs = Some(uvs);
-    let mesh = agesim_core::head::mesh::Mesh::build(raw, "udim head").unwrap();
-    assert_eq!(mesh.udim().unwrap().numbers(), [1001, 1002]);
-    let path = dir.join("udim.obj");
-    std::fs::write(&path, agesim_core::head::mesh::obj::to_obj(&mesh, |p| p)).unwrap();
-    path
-}
-
 /// A UDIM head's maps are written one per tile (`height.1001.png`, …, each the size asked
 /// for), by `export` and `bake`; its GLB has a material per tile, each with its tile's
 /// maps, and UVs in [0, 1] as those maps are laid out.
 #[test]
 fn a_udim_head_is_exported_tile_by_tile() {
     let dir = tempfile::tempdir().unwrap();
-    let obj = udim_head(dir.path());
+    let obj = cli::udim_head(dir.path());
     let o = cli::agesim(&["mesh-info", obj.to_str().unwrap()]);
     assert!(
         cli::stdout(&o).contains("udim:      tiles 1001, 1002"),

@@ -255,3 +255,111 @@ fn the_hair_loss_pattern_is_set_on_the_command_line() {
     let e = String::from_utf8_lossy(&bad.stderr);
     assert!(e.contains("hair.loss") && e.contains("female"), "{e}");
 }
+
+/// A UDIM head's transition is written per tile in its own UVs, named like the bakes
+/// (`transition.1001.png`, …, each the size asked for): the default head re-cut into two
+/// tiles gets, tile by tile, the default head's own transition where that tile's charts
+/// lie. The age flags print the count at that age.
+#[test]
+fn a_udim_head_gets_its_transition_per_tile_in_its_own_uvs() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = cli::udim_head(dir.path());
+    let (one, tiled) = (dir.path().join("one"), dir.path().join("tiled"));
+    let single_obj = single_tile(&obj);
+    ok(&[
+        "hair",
+        "--mesh",
+        single_obj.to_str().unwrap(),
+        "--size",
+        "256",
+        "--out",
+        one.to_str().unwrap(),
+    ]);
+    let o = ok(&[
+        "hair",
+        "--mesh",
+        obj.to_str().unwrap(),
+        "--size",
+        "256",
+        "--preview",
+        "--age-years",
+        "70",
+        "--out",
+        tiled.to_str().unwrap(),
+    ]);
+    let printed = cli::stdout(&o);
+    assert!(printed.contains("hairs at 70 years"), "{printed}");
+    let report = read_json(&tiled);
+    assert_eq!(report["udim_tiles"], serde_json::json!([1001, 1002]));
+    assert_eq!(
+        report["outputs"],
+        serde_json::json!([
+            "transition.1001.png",
+            "transition.1002.png",
+            "hair-uv.1001.png",
+            "hair-uv.1002.png"
+        ])
+    );
+    assert!(report["at_age"]["count"].as_u64().unwrap() > 0);
+    assert!(!tiled.join("transition.png").exists());
+    let read = |p: &Path| image::open(p).unwrap().into_luma16();
+    let single = read(&one.join("transition.png"));
+    let head = agesim_core::head::mesh::Mesh::load(&obj).unwrap();
+    let uvs = head.file_uvs();
+    assert_eq!(single.dimensions(), (256, 256));
+    for n in [1001, 1002] {
+        let tile = read(&tiled.join(format!("transition.{n}.png")));
+        assert_eq!(tile.dimensions(), (256, 256), "tile {n}");
+        // At the middle of each of this tile's triangles, the single-tile head has the
+        // same age (elsewhere the tile's texels are filler: no skin of that tile lies there).
+        let mut diffs = Vec::new();
+        for [a, b, c] in head.triangles() {
+            let uv = (uvs[a as usize] + uvs[b as usize] + uvs[c as usize]) / 3.0;
+            let tile_of = 1001 + uv.x.floor() as u32 + 10 * uv.y.floor() as u32;
+            if tile_of != n {
+                continue;
+            }
+            let local = uv - uv.floor();
+            let (x, y) = (
+                ((local.x * 256.0) as u32).min(255),
+                (((1.0 - local.y) * 256.0) as u32).min(255),
+            );
+            let (t, s) = (tile.get_pixel(x, y).0[0], single.get_pixel(x, y).0[0]);
+            if s > 0 {
+                diffs.push((t as f32 - s as f32).abs() / 65535.0);
+            }
+        }
+        assert!(
+            diffs.len() > 300,
+            "tile {n}: {} hair triangles",
+            diffs.len()
+        );
+        diffs.sort_by(f32::total_cmp);
+        let (median, p90) = (diffs[diffs.len() / 2], diffs[diffs.len() * 9 / 10]);
+        eprintln!(
+            "tile {n}: {} texels, median {median:.4}, 90th {p90:.4}",
+            diffs.len()
+        );
+        assert!(median < 0.02 && p90 < 0.1, "tile {n}: {median} {p90}");
+    }
+}
+
+/// The UDIM head's OBJ with its second tile moved back onto the first: the same head, its
+/// tiles' charts side by side in one tile.
+fn single_tile(obj: &Path) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(obj).unwrap();
+    let lines: Vec<String> = text
+        .lines()
+        .map(|l| match l.strip_prefix("vt ") {
+            Some(rest) => {
+                let mut p = rest.split_whitespace().map(|v| v.parse::<f32>().unwrap());
+                let (u, v) = (p.next().unwrap(), p.next().unwrap());
+                format!("vt {} {v}", if u >= 1.0 { u - 1.0 } else { u })
+            }
+            None => l.to_owned(),
+        })
+        .collect();
+    let path = obj.with_file_name("single.obj");
+    std::fs::write(&path, lines.join("\n")).unwrap();
+    path
+}

@@ -4,7 +4,7 @@
 
 mod cli;
 
-use cli::{agesim, stdout};
+use cli::{agesim, stderr, stdout};
 
 use std::process::{Command, Output};
 
@@ -285,7 +285,29 @@ fn prints_the_persons_measured_colours_and_hair_loss() {
     );
     // Without the map, his skin is the project's light default: straight hair.
     assert!(bare.contains("hair curl: straight 0.0 (guessed"), "{bare}");
-    // --colour-map describes a file.
-    let e = mesh_info(&["--colour-map", &map]);
+    // --landmarks describes a mesh: without one it is refused, naming the flag.
+    let e = mesh_info(&["--landmarks", &map]);
     assert!(!e.status.success());
+    assert!(stderr(&e).contains("--landmarks"), "{}", stderr(&e));
+}
+
+/// With an age, `mesh-info` says how many of the head's hairs are there then: fewer at 75
+/// than at 25 (the default head recedes and thins).
+#[test]
+fn the_age_flags_say_how_many_hairs_are_left() {
+    let hairs = |years: &str| {
+        let out = stdout(&mesh_info(&["--age-years", years]));
+        let line = out
+            .lines()
+            .find(|l| l.starts_with(&format!("at {years} years: ")))
+            .unwrap_or_else(|| panic!("no hair line at {years}:\n{out}"))
+            .to_owned();
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let (now, all): (u64, u64) = (words[3].parse().unwrap(), words[5].parse().unwrap());
+        (now, all)
+    };
+    let (young, all) = hairs("25");
+    let (old, all_old) = hairs("75");
+    assert_eq!(all, all_old);
+    assert!(old < young && young <= all, "{young} → {old} of {all}");
 }

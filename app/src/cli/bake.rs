@@ -1,7 +1,8 @@
 //! `agesim bake`: a project (or flags) in, height and normal maps out (docs/models.md §2–§4).
 //!
 //! Settings resolve in this order, each step validated like the project file:
-//! the default project, or `--preset NAME`, or `--project FILE`; then the shorthand flags
+//! the default project, or `--preset NAME`, or `--project FILE`; then the head flags
+//! (`--mesh`, `--landmarks`, `--colour-map`, …: [`super::HeadArgs`]); then the shorthand flags
 //! (`--wrinkles`, `--mask`, `--gamma`, `--tile`, `--seed`, `--normal-*`); then every
 //! `--set path=value` in order; then `--layers`. The resolved project is recorded in
 //! `bake.json`, so a bake can be reproduced from that file alone.
@@ -20,18 +21,6 @@ use serde_json::json;
 /// Bake height and normal maps: large wrinkles and skin micro-relief, from a project.
 #[derive(Debug, clap::Args)]
 pub struct BakeArgs {
-    /// Project file (`*.agesim.json`) with every setting; see docs/project-file.md.
-    #[arg(long, value_name = "FILE", conflicts_with = "preset")]
-    pub project: Option<PathBuf>,
-
-    /// A shipped preset: fine, rough, goose-skin, deep-pores, article-fig14.
-    #[arg(long, value_name = "NAME")]
-    pub preset: Option<String>,
-
-    /// Override one project field by its JSON path, e.g. `--set pores.count=1000` (repeatable).
-    #[arg(long = "set", value_name = "PATH=VALUE")]
-    pub set: Vec<String>,
-
     /// Wrinkle description file (repeatable); sets `large.wrinkles`. Default: the default
     /// head's wrinkle files and mask shipped in assets/.
     #[arg(long = "wrinkles", value_name = "FILE.wrk")]
@@ -40,16 +29,6 @@ pub struct BakeArgs {
     /// Grey-scale mask multiplied into the large-wrinkle layer (any image, any size).
     #[arg(long, value_name = "MASK.png")]
     pub mask: Option<PathBuf>,
-
-    /// Head mesh (OBJ, glTF, GLB) whose UV layout the maps are baked in (`mesh.path`; its
-    /// units and axes detected unless `--set mesh.metres_per_unit=…`). Default: the
-    /// project's, else the built-in default head.
-    #[arg(long, value_name = "FILE")]
-    pub mesh: Option<PathBuf>,
-
-    /// The head's landmark file (`mesh.landmarks`, in the mesh file's units).
-    #[arg(long, value_name = "L.json")]
-    pub landmarks: Option<PathBuf>,
 
     /// Side of the square maps in pixels, 1..=16384.
     #[arg(long, default_value_t = 2048, value_name = "N",
@@ -81,10 +60,6 @@ pub struct BakeArgs {
     #[arg(long, value_name = "S")]
     pub seed: Option<u64>,
 
-    /// The age to bake at.
-    #[command(flatten)]
-    pub age: super::AgeArgs,
-
     /// Compression of height.exr (all lossless): rle (default; coded on all cores, usually
     /// the fastest), none (4 bytes per pixel), zip (smallest, slowest).
     #[arg(long, value_enum, default_value = "rle")]
@@ -93,6 +68,9 @@ pub struct BakeArgs {
     /// Output directory (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
+    /// The project, the head and the age (the flags every command that reads a head takes).
+    #[command(flatten)]
+    pub head: super::HeadArgs,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -137,26 +115,11 @@ pub enum LayersArg {
     All,
 }
 
-/// Where a project came from, for bake.json.
-fn project_source(args: &BakeArgs) -> String {
-    match (&args.project, &args.preset) {
-        (Some(p), _) => p.display().to_string(),
-        (None, Some(name)) => format!("preset {name}"),
-        (None, None) => "default project".into(),
-    }
-}
-
 /// The project of `args`, fully resolved and validated.
 fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
-    let mut project =
-        super::load_project_or_preset(args.project.as_deref(), args.preset.as_deref())?;
+    let mut project = args.head.loaded()?;
     // (field, value as JSON, what the user typed): errors quote the flag as typed.
     let mut edits: Vec<(&str, String, String)> = Vec::new();
-    if let Some(m) = &args.mesh {
-        let typed = format!("--mesh {}", m.display());
-        edits.push(("mesh.path", json!(m).to_string(), typed.clone()));
-        edits.push(("mesh.metres_per_unit", "null".into(), typed));
-    }
     if !args.wrinkles.is_empty() {
         let typed: Vec<String> = args
             .wrinkles
@@ -174,13 +137,6 @@ fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
             "large.mask",
             json!(mask).to_string(),
             format!("--mask {}", mask.display()),
-        ));
-    }
-    if let Some(l) = &args.landmarks {
-        edits.push((
-            "mesh.landmarks",
-            json!(l).to_string(),
-            format!("--landmarks {}", l.display()),
         ));
     }
     if let Some(g) = args.gamma {
@@ -214,19 +170,13 @@ fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
     for (path, value, typed) in edits {
         project = project.set_as(path, &value, &typed)?;
     }
-    for assignment in &args.set {
-        let Some((path, value)) = assignment.split_once('=') else {
-            bail!("--set {assignment}: expected PATH=VALUE, e.g. --set pores.count=1000");
-        };
-        project = project.set(path.trim(), value.trim())?;
-    }
+    let mut project = args.head.sets.apply(project)?;
     // One rule, so nothing the user asked for is dropped: without --layers, a bake with
     // neither project nor preset is large wrinkles only *unless* a --set names a
     // micro-relief field (then it is everything); an explicit --wrinkles or --mask turns
     // the large-wrinkle layer on even where a preset had it off. An explicit --layers is
     // the user's own choice and wins (the fields stay in bake.json's project).
-    let micro_asked = args.set.iter().any(|a| {
-        let path = a.split_once('=').map_or(a.as_str(), |(p, _)| p).trim();
+    let micro_asked = args.head.sets.paths().any(|path| {
         [
             "pores.",
             "furrows.",
@@ -241,17 +191,15 @@ fn resolve_project(args: &BakeArgs) -> anyhow::Result<Project> {
     if !args.wrinkles.is_empty() || args.mask.is_some() {
         project.large.enabled = true;
     }
-    let layers = args
-        .layers
-        .or(if args.project.is_none() && args.preset.is_none() {
-            Some(if micro_asked {
-                LayersArg::All
-            } else {
-                LayersArg::Large
-            })
+    let layers = args.layers.or(if !args.head.has_project() {
+        Some(if micro_asked {
+            LayersArg::All
         } else {
-            None
-        });
+            LayersArg::Large
+        })
+    } else {
+        None
+    });
     if let Some(layers) = layers {
         let large = layers != LayersArg::Micro;
         let micro = layers != LayersArg::Large;
@@ -290,7 +238,7 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     crate::export::check_map_size(args.size, "--size")?;
     let t = Instant::now();
     let project = resolve_project(args)?;
-    let age_t = args.age.t(&project)?;
+    let age_t = args.head.age.t(&project)?;
     let tileable = project.tile;
     // Loads the mesh, wrinkle files and masks, and checks every setting.
     let mut scene = Scene::new(project)?;
@@ -359,7 +307,7 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     let report = json!({
         "agesim_version": env!("CARGO_PKG_VERSION"),
         "inputs": {
-            "project_source": project_source(args),
+            "project_source": args.head.source(),
             "wrinkles": if project.large.enabled {
                 scene.wrinkles().iter().map(|w| json!({"file": w.name, "fibres": w.file.groups.len()})).collect::<Vec<_>>()
             } else {

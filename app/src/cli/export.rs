@@ -12,26 +12,6 @@ use crate::export::{ExportRequest, GlbOut, MapsOut, RendersOut};
 /// Export maps, renders and the aged head (GLB) of a project at an age.
 #[derive(Debug, clap::Args)]
 pub struct ExportArgs {
-    /// Project file (`*.agesim.json`). Default: the default project.
-    #[arg(long, value_name = "FILE", conflicts_with = "preset")]
-    pub project: Option<PathBuf>,
-    /// A shipped preset instead of a project.
-    #[arg(long, value_name = "NAME")]
-    pub preset: Option<String>,
-    /// Project fields set on the command line.
-    #[command(flatten)]
-    pub sets: super::SetArgs,
-    /// The age of the export.
-    #[command(flatten)]
-    pub age: super::AgeArgs,
-    /// Head mesh (OBJ, glTF, GLB) to age instead of the project's (`mesh.path`; its units
-    /// and axes detected).
-    #[arg(long, value_name = "FILE")]
-    pub mesh: Option<PathBuf>,
-    /// The head's landmark file (`mesh.landmarks`, in the mesh file's units): its outer eye
-    /// corners set the units when the project does not.
-    #[arg(long, value_name = "L.json")]
-    pub landmarks: Option<PathBuf>,
     /// Side of the maps and of the GLB's textures, px (1..=16384; beyond 8192 only as far
     /// as memory allows); per tile for a UDIM head, whose maps are written one per tile
     /// (`height.1001.png`, …).
@@ -83,23 +63,15 @@ pub struct ExportArgs {
     /// Size of the renders, WxH px.
     #[arg(long, default_value = "1024x1024", value_parser = super::parse_size)]
     pub render_size: (u32, u32),
+    /// The project, the head and the age of the export.
+    #[command(flatten)]
+    pub head: super::HeadArgs,
 }
 
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let start = Instant::now();
-    let mut project = args.sets.apply(super::load_project_or_preset(
-        args.project.as_deref(),
-        args.preset.as_deref(),
-    )?)?;
-    if let Some(m) = &args.mesh {
-        project.mesh.path = Some(m.clone());
-        project.mesh.metres_per_unit = None;
-        project.mesh.landmarks = None;
-    }
-    if let Some(l) = &args.landmarks {
-        project.mesh.landmarks = Some(l.clone().into());
-    }
-    let years = project.age.mapping().years(args.age.t(&project)?);
+    let project = args.head.resolved()?;
+    let years = project.age.mapping().years(args.head.age.t(&project)?);
     let compare = match (&args.compare, args.compare_years.as_slice()) {
         (None, _) => None,
         (Some(path), &[a, b]) => Some((path.clone(), [a, b])),

@@ -4,55 +4,44 @@ use std::path::PathBuf;
 
 use agesim_core::Mesh;
 use agesim_core::head::mesh::TangentSource;
-use agesim_core::project::Project;
 use agesim_core::scene::Scene;
 
 /// Print vertex/triangle counts, bounding box and size, which attributes the file had and
 /// what was generated or dropped. Without FILE (or with --default-head): the default head.
 #[derive(Debug, clap::Args)]
 pub struct MeshInfoArgs {
-    /// An OBJ, glTF or GLB file.
+    /// An OBJ, glTF or GLB file (the same as --mesh).
+    #[arg(conflicts_with = "mesh")]
     pub file: Option<PathBuf>,
-    /// Report the built-in default head (the default when no FILE is given).
-    #[arg(long, conflicts_with = "file")]
+    /// Report the built-in default head (the default when no FILE, --mesh or project
+    /// mesh is given).
+    #[arg(long, conflicts_with_all = ["file", "mesh", "project", "preset"])]
     pub default_head: bool,
-    /// The head's landmark file: its outer eye corners set the units, its face the axes.
-    #[arg(long, value_name = "FILE")]
-    pub landmarks: Option<PathBuf>,
-    /// The head's colour map (else the one its material names): its skin tone, hair and
-    /// brow colours are measured on it.
-    #[arg(long, value_name = "IMG")]
-    pub colour_map: Option<PathBuf>,
-    /// The colour map's rows run bottom to top (v down).
-    #[arg(long)]
-    pub maps_flip_v: bool,
+    /// The project, the head and the age (with an age: how many of the hairs are there
+    /// then).
+    #[command(flatten)]
+    pub head: super::HeadArgs,
 }
 
 pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
-    match &args.file {
-        Some(path) if !args.default_head => {
-            // The scene loads the file (once) and decides the units, axes and layout as
-            // every command does.
-            let mut project = Project::default();
-            project.mesh.path = Some(path.clone());
-            project.mesh.metres_per_unit = None;
-            project.mesh.landmarks = args.landmarks.clone().map(Into::into);
-            project.mesh.colour_map = args.colour_map.clone();
-            project.mesh.maps_flip_v = args.maps_flip_v;
-            let mut scene = Scene::new(project)?;
+    let mut head = args.head.clone();
+    if let Some(file) = &args.file {
+        head.mesh_args.mesh = Some(file.clone());
+    }
+    let project = head.resolved()?;
+    let age_t = head.age.given().then(|| head.age.t(&project)).transpose()?;
+    // The scene loads the file (once) and decides the units, axes and layout as every
+    // command does.
+    let mut scene = Scene::new(project)?;
+    match scene.project().mesh.path.clone() {
+        Some(path) => {
             print!(
                 "{}",
                 describe(&path.display().to_string(), scene.file_mesh())
             );
             print!("{}", describe_head(&scene));
-            print!("{}", describe_person(&mut scene)?);
         }
-        _ => {
-            if args.landmarks.is_some() || args.colour_map.is_some() {
-                anyhow::bail!(
-                    "--landmarks and --colour-map describe a FILE: give the mesh file too"
-                );
-            }
+        None => {
             let mesh = agesim_core::head::default::default_head();
             print!(
                 "{}",
@@ -61,10 +50,44 @@ pub fn run(args: &MeshInfoArgs) -> anyhow::Result<()> {
             print!(
                 "metres per unit: 1 (metres: a built-in mesh)\naxes:      up +Y, forward +Z\nlayout:    the template itself (its own UVs)\n"
             );
-            print!("{}", describe_person(&mut Scene::new(Project::default())?)?);
         }
     }
+    print!("{}", describe_person(&mut scene)?);
+    if let Some(t) = age_t {
+        print!("{}", describe_hair_at(&mut scene, t)?);
+    }
     Ok(())
+}
+
+/// How many of the head's hairs are there at age `t`, as `mesh-info --age` prints it.
+fn describe_hair_at(scene: &mut Scene, t: f32) -> anyhow::Result<String> {
+    let years = scene.project().age.mapping().years(t);
+    if !scene.project().hair.enabled {
+        return Ok(format!(
+            "at {years:.0} years: no hair (hair.enabled is off)\n"
+        ));
+    }
+    let request = agesim_core::scene::BakeRequest {
+        large_size_px: 1,
+        micro_size_px: 1,
+        t,
+        tileable: false,
+        fine: false,
+        hair: true,
+        packed: false,
+        one_off: true,
+        micro_normals: false,
+        shape_relief: false,
+    };
+    scene.bake(&request, &agesim_core::base::cancel::CancelToken::never())?;
+    let Some(hairs) = scene.hair() else {
+        return Ok(format!("at {years:.0} years: no hair on this head\n"));
+    };
+    let (now, all) = (hairs.count(t), hairs.len());
+    Ok(format!(
+        "at {years:.0} years: {now} of {all} scalp hairs ({:.0} %)\n",
+        100.0 * now as f64 / all.max(1) as f64
+    ))
 }
 
 /// The person's colours and hair loss as `mesh-info` prints them: measured on the head's

@@ -20,21 +20,9 @@ use crate::view::{self, HeadlessView};
 /// Render the head with the GPU renderer (wgpu; lavapipe works).
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// Project file (`*.agesim.json`): wrinkles, mask, micro-relief. Default: the default project.
-    #[arg(long, value_name = "FILE")]
-    pub project: Option<PathBuf>,
-    /// Project fields set on the command line.
-    #[command(flatten)]
-    pub sets: super::SetArgs,
-    /// The head: its mesh, units and landmarks.
-    #[command(flatten)]
-    pub head: super::MeshArgs,
     /// Draw the 5 cm skin patch instead of the head (close-ups of the relief).
     #[arg(long, conflicts_with = "mesh")]
     pub patch: bool,
-    /// The age of one render (default: the project's).
-    #[command(flatten)]
-    pub age: super::AgeArgs,
     /// Several ages t, comma separated: writes FILE_0000.png, FILE_0001.png, ….
     #[arg(long, value_delimiter = ',', conflicts_with_all = ["age", "age_years"])]
     pub ages: Vec<f32>,
@@ -96,6 +84,9 @@ pub struct RenderArgs {
     /// Output PNG (not needed with --bench).
     #[arg(long, required_unless_present = "bench")]
     pub out: Option<PathBuf>,
+    /// The project, the head and the age.
+    #[command(flatten)]
+    pub head: super::HeadArgs,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -122,12 +113,8 @@ impl From<PomArg> for agesim_core::project::PomMode {
 
 /// The project with the command line's mesh, hair and view flags applied.
 fn project_of(args: &RenderArgs) -> anyhow::Result<Project> {
-    let mut p = match &args.project {
-        Some(path) => Project::load(path)?,
-        None => Project::default(),
-    };
-    args.head.apply_to(&mut p)?;
-    if args.patch && args.head.mesh.is_none() {
+    let mut p = args.head.loaded()?;
+    if args.patch && args.head.mesh().is_none() {
         p.mesh.builtin = BuiltinMesh::SkinPatch;
         // The patch shows its own creases (its UV square is 5 cm of skin, not a face).
         p.large.enabled = false;
@@ -137,7 +124,7 @@ fn project_of(args: &RenderArgs) -> anyhow::Result<Project> {
     if p.hair.enabled {
         p.hair.density_per_cm2 = density;
     }
-    let mut p = args.sets.apply(p)?;
+    let mut p = args.head.sets.apply(p)?;
     let v = &mut p.view;
     if let Some(pom) = args.pom {
         v.pom = pom.into();
@@ -203,7 +190,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         bail!("--compare takes two ages, T0,T1");
     }
     let project = project_of(args)?;
-    let single_t = args.age.t(&project)?;
+    let single_t = args.head.age.t(&project)?;
     let start = Instant::now();
     let scene = Scene::new(project)?;
     super::MeshArgs::report_units(&scene);
@@ -211,7 +198,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let bounds = scene.mesh().bounds();
     let mut camera = view::camera(&project, scene.metres_per_unit(), bounds.centre());
     let framed = bounds.size().length() * 1.6;
-    if args.patch || args.head.mesh.is_some() {
+    if args.patch || args.head.mesh().is_some() {
         // Framed: the whole mesh in view, face on (the patch lies in the z = 0 plane
         // facing +z, so `--pitch 70` grazes it).
         camera.distance = framed;

@@ -73,7 +73,7 @@ impl Scene {
                     expected: "white where hair grows at age 0".into(),
                 });
             }
-            let size = transition_size(h.transition_size_px, outer, inner);
+            let size = transition_size(h.transition_size_px, outer, inner, self.udim_grid());
             // The built-in masks come with the order their hair goes in; masks of the
             // artist's own grow their transition from the inner region.
             let order = (h.outer_mask.is_none() && h.inner_mask.is_none())
@@ -226,13 +226,20 @@ impl Scene {
     }
 }
 
-/// The transition texture's side: `hair.transition_size_px`, else the masks' larger side.
-pub(super) fn transition_size(set: Option<u32>, outer: &Mask, inner: &Mask) -> u32 {
-    set.unwrap_or_else(|| {
+/// The transition texture's side: `hair.transition_size_px`, else the masks' larger side;
+/// per tile of a UDIM head, whose transition is its atlas of `grid` × `grid` tiles (at
+/// most [`MAX_TRANSITION_PX`] per side).
+pub(super) fn transition_size(set: Option<u32>, outer: &Mask, inner: &Mask, grid: u32) -> u32 {
+    let tile = set.unwrap_or_else(|| {
         outer
             .width_px()
             .max(outer.height_px())
             .max(inner.width_px())
             .max(inner.height_px())
-    })
+    });
+    tile.saturating_mul(grid.max(1))
+        .min(MAX_TRANSITION_PX.max(tile))
 }
+
+/// The largest side of a UDIM head's transition atlas (its tiles smaller beyond it).
+pub const MAX_TRANSITION_PX: u32 = 8192;

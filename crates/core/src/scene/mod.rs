@@ -484,6 +484,11 @@ impl Scene {
         &self.inputs.mesh
     }
 
+    /// Cells per side of the head's UDIM atlas (1 for a single-tile head).
+    pub(crate) fn udim_grid(&self) -> u32 {
+        self.inputs.mesh.udim().map_or(1, |u| u.grid())
+    }
+
     /// The mesh as its file gives it (its own axes, every part), before the scene turned
     /// it and chose its skin.
     pub fn file_mesh(&self) -> &Arc<Mesh> {

@@ -149,8 +149,12 @@ impl Scene {
             }));
         };
         let outer = &masks.0;
-        let size =
-            super::hair::transition_size(self.project.hair.transition_size_px, outer, &masks.1);
+        let size = super::hair::transition_size(
+            self.project.hair.transition_size_px,
+            outer,
+            &masks.1,
+            self.udim_grid(),
+        );
         let (values, side) = match self.correspondence(size, cancel)? {
             Some(c) => (
                 c.resample(outer.values(), outer.width_px(), outer.height_px()),

@@ -9,6 +9,7 @@
 //! at g·N px per side is, cell by cell, the tile's own N px map: exports cut it into
 //! `height.1001.png`, `height.1002.png`, … and the GLB gives each tile a material of its own.
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use glam::{UVec2, Vec2};
@@ -92,7 +93,7 @@ impl Udim {
     }
 
     /// Tile `k`'s square of an atlas image (`channels` values a texel, row 0 at the top).
-    pub fn crop<T: Copy>(&self, k: usize, atlas: &[T], atlas_px: u32, channels: usize) -> Vec<T> {
+    pub fn crop<T: Clone>(&self, k: usize, atlas: &[T], atlas_px: u32, channels: usize) -> Vec<T> {
         let (x0, y0, side) = self.tile_rect_px(k, atlas_px);
         let (n, side) = (atlas_px as usize, side as usize);
         let mut out = Vec::with_capacity(side * side * channels);
@@ -143,6 +144,31 @@ impl Udim {
             }
         };
         path.with_file_name(name)
+    }
+
+    /// An atlas image (`atlas_px`², `channels` values a texel, row 0 at the top) as the
+    /// files of an output named `path`: each tile's square with its file and side for a
+    /// multi-tile head (`height.1001.png`, …), the whole image under `path` for one tile.
+    pub fn cut<'a, T: Clone>(
+        udim: Option<&Self>,
+        path: &Path,
+        atlas: &'a [T],
+        atlas_px: u32,
+        channels: usize,
+    ) -> Vec<(PathBuf, u32, Cow<'a, [T]>)> {
+        match udim {
+            Some(u) if u.multi_tile() => u
+                .numbers()
+                .into_iter()
+                .enumerate()
+                .map(|(k, n)| {
+                    let side = u.tile_rect_px(k, atlas_px).2;
+                    let tile = u.crop(k, atlas, atlas_px, channels);
+                    (Self::tile_path(path, n), side, Cow::Owned(tile))
+                })
+                .collect(),
+            _ => vec![(path.to_owned(), atlas_px, Cow::Borrowed(atlas))],
+        }
     }
 
     /// The files of an output named `path`, one per tile for a multi-tile head; `path`

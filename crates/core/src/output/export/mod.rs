@@ -367,19 +367,34 @@ pub fn stage_tiled_colour(
         .chunks_exact(4)
         .flat_map(|p| [p[0], p[1], p[2]])
         .collect();
-    let side = picture.width_px;
-    match udim.filter(|u| u.multi_tile()) {
-        Some(u) => {
-            for (k, n) in u.numbers().into_iter().enumerate() {
-                let tile_side = u.tile_rect_px(k, side).2;
-                let tile = u.crop(k, &rgb, side, 3);
-                let name = crate::head::mesh::udim::Udim::tile_path(path, n);
-                stage_rgb8_png(set, &name, tile_side, tile_side, &tile)?;
-            }
-            Ok(())
-        }
-        None => stage_rgb8_png(set, path, side, picture.height_px, &rgb),
+    if udim.is_none_or(|u| !u.multi_tile()) {
+        return stage_rgb8_png(set, path, picture.width_px, picture.height_px, &rgb);
     }
+    let side = picture.width_px;
+    for (file, side, tile) in crate::head::mesh::udim::Udim::cut(udim, path, &rgb, side, 3) {
+        stage_rgb8_png(set, &file, side, side, &tile)?;
+    }
+    Ok(())
+}
+
+/// A square 16-bit grey picture over the head's UV layout (the hair's transition texture)
+/// as 16-bit grey PNG, per UDIM tile like [`stage_tiled_colour`]; the files written.
+pub fn stage_tiled_grey16(
+    set: &OutputSet,
+    path: &Path,
+    grey: &[u16],
+    side_px: u32,
+    udim: Option<&crate::head::mesh::udim::Udim>,
+) -> Result<Vec<std::path::PathBuf>, Error> {
+    let mut files = Vec::new();
+    for (file, side, tile) in crate::head::mesh::udim::Udim::cut(udim, path, grey, side_px, 1) {
+        let bytes: Vec<u8> = tile.iter().flat_map(|v| v.to_be_bytes()).collect();
+        set.stage(&file, |w| {
+            encode_png(w, side, side, PngPixels::Grey16, &bytes)
+        })?;
+        files.push(file);
+    }
+    Ok(files)
 }
 
 /// Writes 8-bit grey pixels as PNG (previews, masks).

@@ -76,3 +76,12 @@ const CAVITY_RING: f32 = 0.5;
 fn cavity_loss(local: f32, disp: f32) -> f32 {
     return clamp(CAVITY * max(local, 0.0) * max(disp, 0.0) / CAVITY_REFERENCE_DISP, 0.0, CAVITY_MAX);
 }
+
+// Crease roughness (docs/models.md §10): `agesim_core::output::compose::{CREASE_ROUGHNESS,
+// crease_roughness}`, the exported GLB's metallicRoughnessTexture. The skin's roughness
+// where a cavity takes `loss` of the light: up to CREASE_ROUGHNESS rougher at the bottom of
+// the deepest crease.
+const CREASE_ROUGHNESS: f32 = 0.2;
+fn crease_roughness(roughness: f32, loss: f32) -> f32 {
+    return clamp(roughness + CREASE_ROUGHNESS * clamp(loss, 0.0, CAVITY_MAX) / CAVITY_MAX, 0.0, 1.0);
+}

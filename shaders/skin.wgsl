@@ -600,7 +600,6 @@ fn shade(s: Surface) -> vec4<f32> {
     // The key's contact shadow takes its light.
     let key = vec3<f32>(1.0) - (1.0 - s.key_light) * keep;
     let diffuse = key * wrap_diffuse3(vec3<f32>(dot(n_red, l), dot(n, l), dot(n, l)), wrap);
-    let spec = s.key_light * skin_specular(n, to_eye, l, frame.skin_wrap.w, frame.skin_spec.x);
     // Hemisphere ambient through the perturbed normal, so micro-relief shows in shadow.
     let sky = 0.6 + 0.4 * n.y;
     // Cavity occlusion (docs/models.md §10): the bottom of a crease sees less of the sky
@@ -615,6 +614,9 @@ fn shade(s: Surface) -> vec4<f32> {
     }
     let local = max(depth01 - ring / 8.0, 0.0);
     let cavity_loss = cavity_loss(local, frame.disp.x);
+    // A crease's floor is rougher than the open skin (the GLB's roughness texture too).
+    let roughness = crease_roughness(frame.skin_wrap.w, cavity_loss);
+    let spec = s.key_light * skin_specular(n, to_eye, l, roughness, frame.skin_spec.x);
     // A hollow of the aged shape (temples, tear trough, below the cheekbone) sees less of
     // the sky and of the light (docs/models.md §13 "Hollows").
     let hollow = clamp(s.hollow, 0.0, 1.0);

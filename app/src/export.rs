@@ -22,13 +22,20 @@ use glam::Vec3;
 use crate::view;
 
 /// The maps of `agesim bake` (the large wrinkles on the head's UV plus the micro-relief
-/// over the whole square), at one size.
+/// over the whole square, the aged base colour, the skin's roughness and occlusion), at
+/// one size.
 #[derive(Clone, Debug, Default)]
 pub struct MapsOut {
     pub size_px: u32,
     pub height_png: Option<PathBuf>,
     pub height_exr: Option<PathBuf>,
     pub normal_png: Option<PathBuf>,
+    /// The aged base colour, 8-bit RGB at the head's colour map's size (1024–2048).
+    pub base_colour_png: Option<PathBuf>,
+    /// The skin's roughness at the age, rougher in the creases (8-bit grey).
+    pub roughness_png: Option<PathBuf>,
+    /// The creases' cavity occlusion (8-bit grey, 255 = open skin).
+    pub ao_png: Option<PathBuf>,
     /// The normal map's green channel; `None`: the project's `normal.convention`.
     pub convention: Option<Convention>,
     /// Bake the micro-relief periodic, so the maps tile (the skin patch).
@@ -39,8 +46,46 @@ pub struct MapsOut {
 
 impl MapsOut {
     fn any(&self) -> bool {
-        self.height_png.is_some() || self.height_exr.is_some() || self.normal_png.is_some()
+        !self.files().is_empty()
     }
+
+    /// The files asked for, in order.
+    fn files(&self) -> Vec<&PathBuf> {
+        [
+            &self.height_png,
+            &self.height_exr,
+            &self.normal_png,
+            &self.base_colour_png,
+            &self.roughness_png,
+            &self.ao_png,
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
+    }
+
+    /// Where the maps go, for [`stage_maps`].
+    pub fn paths(&self) -> MapPaths<'_> {
+        MapPaths {
+            height_png: self.height_png.as_deref(),
+            height_exr: self.height_exr.as_deref(),
+            normal_png: self.normal_png.as_deref(),
+            base_colour_png: self.base_colour_png.as_deref(),
+            roughness_png: self.roughness_png.as_deref(),
+            ao_png: self.ao_png.as_deref(),
+        }
+    }
+}
+
+/// Where [`stage_maps`] writes each map (`None`: not written).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MapPaths<'a> {
+    pub height_png: Option<&'a Path>,
+    pub height_exr: Option<&'a Path>,
+    pub normal_png: Option<&'a Path>,
+    pub base_colour_png: Option<&'a Path>,
+    pub roughness_png: Option<&'a Path>,
+    pub ao_png: Option<&'a Path>,
 }
 
 /// The aged head as a binary glTF: mesh with tangents, a material whose `normalTexture`
@@ -104,12 +149,7 @@ impl ExportRequest {
     /// Every file the request names, in order (a multi-tile head's maps are written one
     /// per UDIM tile: `height.1001.png`, …; [`run`] returns those).
     pub fn outputs(&self) -> Vec<PathBuf> {
-        let m = &self.maps;
-        let mut files: Vec<PathBuf> = [&m.height_png, &m.height_exr, &m.normal_png]
-            .into_iter()
-            .flatten()
-            .cloned()
-            .collect();
+        let mut files: Vec<PathBuf> = self.maps.files().into_iter().cloned().collect();
         if let Some(g) = &self.glb {
             files.push(g.path.clone());
             files.push(g.height_path());
@@ -276,18 +316,13 @@ fn export_maps(
         t,
         maps.size_px,
         maps.tileable,
-        false,
+        maps.base_colour_png.is_some(),
         "map size",
         cancel,
     )?;
     cancel.check()?;
     progress(0.6, "writing the maps");
-    let paths = out::MapPaths {
-        height_png: maps.height_png.as_deref(),
-        height_exr: maps.height_exr.as_deref(),
-        normal_png: maps.normal_png.as_deref(),
-    };
-    let (_, files) = stage_maps(set, paths, &baked, maps.exr_compression)?;
+    let (_, files) = stage_maps(set, maps.paths(), &baked, maps.exr_compression)?;
     Ok(files)
 }
 
@@ -299,6 +334,9 @@ pub struct BakedMaps {
     pub udim: Option<Udim>,
     /// The aged base colour, when asked for.
     pub colour: Option<std::sync::Arc<agesim_core::maps::mask::HeadImage>>,
+    /// The skin's occlusion, roughness and metallic over the heights' texels
+    /// ([`crease_maps`]).
+    pub orm: Vec<u8>,
     /// Milliseconds: the bake, the aged colour (the two side by side), taking the height
     /// map out of the scene.
     pub bake_ms: f64,
@@ -350,6 +388,7 @@ pub fn bake_maps(
     bake?;
     let colour = aged?.flatten();
     let start = std::time::Instant::now();
+    let orm = crease_maps(scene, t, atlas_px);
     let height = scene.take_height()?;
     let take_ms = ms(start);
     Ok(BakedMaps {
@@ -357,6 +396,7 @@ pub fn bake_maps(
         normal: scene.normal_settings(),
         udim,
         colour,
+        orm,
         bake_ms,
         colour_ms,
         take_ms,
@@ -367,24 +407,74 @@ pub fn bake_maps(
 /// staging measured and the files.
 pub fn stage_maps(
     set: &OutputSet,
-    paths: out::MapPaths<'_>,
+    paths: MapPaths<'_>,
     maps: &BakedMaps,
     compression: out::ExrCompression,
 ) -> anyhow::Result<(out::MapsStaged, Vec<PathBuf>)> {
-    let files = [paths.height_png, paths.height_exr, paths.normal_png]
+    let udim = maps.udim.as_ref();
+    let mut files: Vec<PathBuf> = [paths.height_png, paths.height_exr, paths.normal_png]
         .into_iter()
         .flatten()
-        .flat_map(|p| Udim::paths(maps.udim.as_ref(), p))
+        .flat_map(|p| Udim::paths(udim, p))
         .collect();
     let staged = out::stage_tiled_maps(
         set,
-        paths,
+        out::MapPaths {
+            height_png: paths.height_png,
+            height_exr: paths.height_exr,
+            normal_png: paths.normal_png,
+        },
         &maps.height,
         &maps.normal,
         compression,
-        maps.udim.as_ref(),
+        udim,
     )?;
+    if let Some(path) = paths.base_colour_png {
+        let Some(colour) = &maps.colour else {
+            bail!("{}: the base colour was not baked", path.display());
+        };
+        out::stage_tiled_colour(set, path, colour, udim)?;
+        files.extend(Udim::paths(udim, path));
+    }
+    let side = maps.height.width_px();
+    for (path, channel) in [(paths.ao_png, 0), (paths.roughness_png, 1)] {
+        let Some(path) = path else { continue };
+        if maps.orm.len() != (side as usize).pow(2) * 3 {
+            bail!(
+                "{}: the roughness and occlusion were made at another size than the heights ({side}²)",
+                path.display()
+            );
+        }
+        let grey: Vec<u8> = maps.orm.chunks_exact(3).map(|p| p[channel]).collect();
+        files.extend(out::stage_tiled_png(
+            set,
+            path,
+            &grey,
+            side,
+            out::PngPixels::Grey8,
+            udim,
+        )?);
+    }
     Ok((staged, files))
+}
+
+/// The skin's occlusion, roughness and metallic at age `t` over `side_px`² texels of the
+/// head's layout, packed as glTF's ORM texture (8-bit RGB: `compose::orm_map`): the
+/// creases' cavity occlusion and their rougher floors from the large wrinkles, drawn as
+/// deep as the view draws them, on the skin's roughness at that age (old skin is drier);
+/// open skin everywhere when no large-wrinkle map of that size was baked.
+pub fn crease_maps(scene: &Scene, t: f32, side_px: u32) -> Vec<u8> {
+    let project = scene.project();
+    let head = view::HeadScale::of(scene);
+    let camera = view::camera(project, head.metres_per_unit, Vec3::ZERO);
+    let skin = view::frame_params(project, head, t, camera).skin;
+    match scene.large().filter(|l| l.height.width_px() == side_px) {
+        Some(l) => compose::orm_map(&l.height, skin.disp_scale, skin.roughness),
+        None => {
+            let r = (skin.roughness.clamp(0.0, 1.0) * 255.0).round() as u8;
+            [255, r, 0].repeat((side_px as usize).pow(2))
+        }
+    }
 }
 
 /// The bake of the GLB's head at `atlas_px` (`size_px` per UDIM tile) and age `t`: the
@@ -452,11 +542,12 @@ fn export_glb(
         None => HeightMap::zeros(atlas_px, atlas_px)?,
     };
     let range = scene.large().map(|_| height.min_max());
-    // The creases' cavity occlusion, as the view darkens them (docs/models.md §10).
-    let occlusion = scene
+    // The creases' cavity occlusion, as the view darkens them, and their rougher floors
+    // on the skin's roughness at this age (docs/models.md §10), as glTF packs them.
+    let orm = scene
         .large()
-        .filter(|l| l.height.width_px() == atlas_px)
-        .map(|l| agesim_core::output::compose::occlusion_map(&l.height, params.skin.disp_scale));
+        .is_some_and(|l| l.height.width_px() == atlas_px)
+        .then(|| crease_maps(&scene, t, atlas_px));
     // The aged base colour (docs/models.md "Skin colour"): the head's own colour map, or
     // the skin colour, with its spots, uneven tone and paling at this age, at the colour
     // map's own size (`Scene::colour_px`; 1024² even for smaller GLB textures).
@@ -495,9 +586,9 @@ fn export_glb(
         };
         let atlas = (atlas_px, atlas_px);
         let normal_png = tile_png(&normals, atlas, out::PngPixels::Rgb8, 3, "normal map")?;
-        let occlusion_png = occlusion
+        let orm_png = orm
             .as_ref()
-            .map(|ao| tile_png(ao, atlas, out::PngPixels::Grey8, 1, "occlusion map"))
+            .map(|orm| tile_png(orm, atlas, out::PngPixels::Rgb8, 3, "roughness map"))
             .transpose()?;
         let base_colour_png = aged
             .as_ref()
@@ -519,11 +610,16 @@ fn export_glb(
             base_colour,
             base_colour_png,
             // The skin's roughness at this age (old skin is drier: docs/models.md "Skin
-            // colour", "Sheen").
-            roughness: params.skin.roughness,
-            metallic: 0.0,
+            // colour", "Sheen"): in the texture when there is one, which the factor
+            // multiplies.
+            roughness: if orm_png.is_some() {
+                1.0
+            } else {
+                params.skin.roughness
+            },
+            metallic: if orm_png.is_some() { 1.0 } else { 0.0 },
             normal_png: Some(normal_png),
-            occlusion_png,
+            orm_png,
             extras: serde_json::json!({
                 "agesim_version": env!("CARGO_PKG_VERSION"),
                 "age_years": years,

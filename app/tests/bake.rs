@@ -14,7 +14,7 @@ fn bake_json(out: &Path) -> serde_json::Value {
 }
 
 #[test]
-fn default_bake_writes_the_five_files() {
+fn default_bake_writes_the_texture_set() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("maps");
     let o = agesim(&[
@@ -28,23 +28,25 @@ fn default_bake_writes_the_five_files() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     for f in [
-        "height.png",
-        "height.exr",
-        "normal.png",
-        "albedo.png",
+        "head_Height.png",
+        "head_Height.exr",
+        "head_Normal.png",
+        "head_BaseColor.png",
+        "head_Roughness.png",
+        "head_AO.png",
         "bake.json",
     ] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
     // The aged base colour at the maps' size.
-    let albedo = image::open(out.join("albedo.png")).unwrap();
+    let albedo = image::open(out.join("head_BaseColor.png")).unwrap();
     assert_eq!((albedo.width(), albedo.height()), (256, 256));
     let report: serde_json::Value = bake_json(&out);
     assert!(
         report["outputs"]
             .as_array()
             .unwrap()
-            .contains(&serde_json::json!("albedo.png")),
+            .contains(&serde_json::json!("head_BaseColor.png")),
         "{report}"
     );
     let range = report["height_range"].as_array().unwrap();
@@ -69,10 +71,10 @@ fn default_bake_writes_the_five_files() {
             .contains("forehead.wrk")
     );
 
-    let height = image::open(out.join("height.png")).unwrap();
+    let height = image::open(out.join("head_Height.png")).unwrap();
     assert_eq!(height.color(), image::ColorType::L16);
     assert_eq!((height.width(), height.height()), (256, 256));
-    let normal = image::open(out.join("normal.png")).unwrap();
+    let normal = image::open(out.join("head_Normal.png")).unwrap();
     assert_eq!(normal.color(), image::ColorType::Rgb8);
     // The default files are the default head's: every wrinkle group, with its mask.
     assert_eq!(report["inputs"]["wrinkles"].as_array().unwrap().len(), 8);
@@ -121,7 +123,9 @@ fn thesis_example_is_cut_into_its_forehead() {
         serde_json::Value::Null,
         "own files: no default mask"
     );
-    let h = image::open(out.join("height.png")).unwrap().into_luma16();
+    let h = image::open(out.join("head_Height.png"))
+        .unwrap()
+        .into_luma16();
     // The deepest point (0: the wrinkles are cut in) lies on the forehead.
     let deepest = (0..256u32)
         .flat_map(|x| (0..256u32).map(move |y| (x, y)))
@@ -233,14 +237,14 @@ fn mask_limits_the_wrinkles() {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let exr = exr::prelude::read_first_flat_layer_from_file(out.join("height.exr")).unwrap();
+    let exr = exr::prelude::read_first_flat_layer_from_file(out.join("head_Height.exr")).unwrap();
     assert!(
         exr.layer_data.channel_data.list[0]
             .sample_data
             .values_as_f32()
             .all(|h| h == 0.0)
     );
-    assert!(Path::new(&out.join("normal.png")).is_file());
+    assert!(Path::new(&out.join("head_Normal.png")).is_file());
 }
 
 #[test]
@@ -250,9 +254,9 @@ fn help_lists_the_subcommands() {
     assert!(String::from_utf8_lossy(&o.stdout).contains("bake"));
 }
 
-/// The f32 heights of a bake's height.exr.
+/// The f32 heights of a bake's head_Height.exr.
 fn exr_heights(dir: &Path) -> Vec<f32> {
-    let exr = exr::prelude::read_first_flat_layer_from_file(dir.join("height.exr")).unwrap();
+    let exr = exr::prelude::read_first_flat_layer_from_file(dir.join("head_Height.exr")).unwrap();
     exr.layer_data.channel_data.list[0]
         .sample_data
         .values_as_f32()
@@ -331,12 +335,12 @@ fn bake_json_alone_reproduces_the_bake() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(
-        std::fs::read(first.join("height.exr")).unwrap(),
-        std::fs::read(second.join("height.exr")).unwrap()
+        std::fs::read(first.join("head_Height.exr")).unwrap(),
+        std::fs::read(second.join("head_Height.exr")).unwrap()
     );
     assert_eq!(
-        std::fs::read(first.join("normal.png")).unwrap(),
-        std::fs::read(second.join("normal.png")).unwrap()
+        std::fs::read(first.join("head_Normal.png")).unwrap(),
+        std::fs::read(second.join("head_Normal.png")).unwrap()
     );
 }
 
@@ -493,7 +497,7 @@ fn bake_json_reproduces_the_bake_from_any_directory() {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
-    for f in ["height.exr", "height.png", "normal.png"] {
+    for f in ["head_Height.exr", "head_Height.png", "head_Normal.png"] {
         assert_eq!(
             std::fs::read(dir.path().join("first").join(f)).unwrap(),
             std::fs::read(dir.path().join("second").join(f)).unwrap(),
@@ -640,17 +644,23 @@ fn an_output_set_is_all_old_or_all_new() {
     let o = agesim(&["bake", "--size", "64", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let old = snapshot_dir(&out);
-    assert_eq!(old.len(), 5);
+    assert_eq!(old.len(), 7);
 
-    // A later output that cannot be written (normal.png is a directory): nothing changes.
-    std::fs::remove_file(out.join("normal.png")).unwrap();
-    std::fs::create_dir(out.join("normal.png")).unwrap();
+    // A later output that cannot be written (head_Normal.png is a directory): nothing changes.
+    std::fs::remove_file(out.join("head_Normal.png")).unwrap();
+    std::fs::create_dir(out.join("head_Normal.png")).unwrap();
     let before = snapshot_dir(&out.join("..").join("maps"));
     let o = agesim(&["bake", "--size", "96", "--out", out.to_str().unwrap()]);
     assert!(!o.status.success());
     let after: Vec<(String, Vec<u8>)> = snapshot_dir(&out);
-    assert_eq!(before.iter().filter(|(n, _)| n != "normal.png").count(), 4);
-    for (name, bytes) in before.iter().filter(|(n, _)| n != "normal.png") {
+    assert_eq!(
+        before
+            .iter()
+            .filter(|(n, _)| n != "head_Normal.png")
+            .count(),
+        6
+    );
+    for (name, bytes) in before.iter().filter(|(n, _)| n != "head_Normal.png") {
         let now = after.iter().find(|(n, _)| n == name).unwrap();
         assert_eq!(&now.1, bytes, "{name} was replaced although the set failed");
     }
@@ -659,10 +669,10 @@ fn an_output_set_is_all_old_or_all_new() {
         "{:?}",
         after.iter().map(|x| &x.0).collect::<Vec<_>>()
     );
-    std::fs::remove_dir(out.join("normal.png")).unwrap();
+    std::fs::remove_dir(out.join("head_Normal.png")).unwrap();
     std::fs::write(
-        out.join("normal.png"),
-        &old.iter().find(|(n, _)| n == "normal.png").unwrap().1,
+        out.join("head_Normal.png"),
+        &old.iter().find(|(n, _)| n == "head_Normal.png").unwrap().1,
     )
     .unwrap();
 
@@ -723,7 +733,8 @@ fn every_exr_compression_reads_back_the_same_heights() {
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
         assert_eq!(bake_json(&out)["inputs"]["exr_compression"], c);
-        let exr = exr::prelude::read_first_flat_layer_from_file(out.join("height.exr")).unwrap();
+        let exr =
+            exr::prelude::read_first_flat_layer_from_file(out.join("head_Height.exr")).unwrap();
         heights.push(
             exr.layer_data.channel_data.list[0]
                 .sample_data
@@ -734,4 +745,107 @@ fn every_exr_compression_reads_back_the_same_heights() {
     assert!(heights[0].iter().any(|&h| h != 0.0));
     assert_eq!(heights[0], heights[1], "none is lossless");
     assert_eq!(heights[0], heights[2], "zip is lossless");
+}
+
+/// The maps are named as a texture set (`<set>_BaseColor.png`, …) or with agesim's own
+/// names; a set name with a folder in it is refused before anything is written.
+#[test]
+fn the_maps_are_named_as_a_texture_set_or_as_agesim_named_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let names = |extra: &[&str]| {
+        let out = dir.path().join(extra.join("-"));
+        let mut args = vec!["bake", "--size", "64", "--out", out.to_str().unwrap()];
+        args.extend(extra);
+        let o = agesim(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let mut files: Vec<String> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        files.sort();
+        files
+    };
+    assert_eq!(
+        names(&["--texture-set", "face"]),
+        [
+            "bake.json",
+            "face_AO.png",
+            "face_BaseColor.png",
+            "face_Height.exr",
+            "face_Height.png",
+            "face_Normal.png",
+            "face_Roughness.png"
+        ]
+    );
+    assert_eq!(
+        names(&["--names", "agesim"]),
+        [
+            "albedo.png",
+            "ao.png",
+            "bake.json",
+            "height.exr",
+            "height.png",
+            "normal.png",
+            "roughness.png"
+        ]
+    );
+    let out = dir.path().join("bad");
+    let o = agesim(&[
+        "bake",
+        "--texture-set",
+        "a/b",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--texture-set `a/b`"), "{}", stderr(&o));
+    assert!(!out.exists());
+}
+
+/// The roughness map: the skin's roughness at the age (old skin is drier: rougher at 80
+/// than at 25), rougher still on the floors of the creases, where the occlusion map is
+/// dark.
+#[test]
+fn the_roughness_map_dries_with_age_and_follows_the_creases() {
+    let dir = tempfile::tempdir().unwrap();
+    let bake = |years: &str| {
+        let out = dir.path().join(years);
+        let o = agesim(&[
+            "bake",
+            "--size",
+            "256",
+            "--age-years",
+            years,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let grey = |name: &str| image::open(out.join(name)).unwrap().into_luma8().into_raw();
+        (grey("head_Roughness.png"), grey("head_AO.png"))
+    };
+    let median = |v: &[u8]| {
+        let mut v = v.to_vec();
+        v.sort_unstable();
+        v[v.len() / 2]
+    };
+    let (young, _) = bake("25");
+    let (old, ao) = bake("80");
+    assert!(
+        median(&old) > median(&young) + 15,
+        "{} → {}",
+        median(&young),
+        median(&old)
+    );
+    let open = median(&old);
+    let creases: Vec<u8> = old
+        .iter()
+        .zip(&ao)
+        .filter(|(_, a)| **a < 200)
+        .map(|(r, _)| *r)
+        .collect();
+    assert!(creases.len() > 30, "{} crease texels", creases.len());
+    assert!(
+        creases.iter().all(|&r| r > open),
+        "crease roughness {creases:?} against {open}"
+    );
 }

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use agesim_core::base::cancel::CancelToken;
-use agesim_core::head::mesh::udim::Udim;
+use agesim_core::output::names::{MapKind, Naming};
 use agesim_core::project::Project;
 use agesim_core::scene::Scene;
 use agesim_core::{defaults, maps::heightmap, output::export};
@@ -65,12 +65,54 @@ pub struct BakeArgs {
     #[arg(long, value_enum, default_value = "rle")]
     pub exr_compression: ExrCompressionArg,
 
+    /// How the maps are named: texture-set (`head_BaseColor.png`, `head_Normal.png`,
+    /// `head_Height.png`/`.exr`, `head_Roughness.png`, `head_AO.png`, as Substance,
+    /// Marmoset and the engines name a texture set's maps) or agesim (`albedo.png`,
+    /// `normal.png`, `height.png`/`.exr`, `roughness.png`, `ao.png`).
+    #[arg(long, value_enum, default_value = "texture-set")]
+    pub names: NamesArg,
+
+    /// The texture set's name, the maps' file names' start (default: `head` for
+    /// texture-set names, none for agesim's).
+    #[arg(long, value_name = "NAME")]
+    pub texture_set: Option<String>,
+
     /// Output directory (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// The project, the head and the age (the flags every command that reads a head takes).
     #[command(flatten)]
     pub head: super::HeadArgs,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum NamesArg {
+    TextureSet,
+    Agesim,
+}
+
+impl From<NamesArg> for Naming {
+    fn from(n: NamesArg) -> Self {
+        match n {
+            NamesArg::TextureSet => Self::TextureSet,
+            NamesArg::Agesim => Self::Agesim,
+        }
+    }
+}
+
+/// The texture set's name of `args`, checked: a file name's start.
+fn texture_set(args: &BakeArgs) -> anyhow::Result<String> {
+    let set = match (&args.texture_set, args.names) {
+        (Some(s), _) => s.trim().to_owned(),
+        (None, NamesArg::TextureSet) => "head".to_owned(),
+        (None, NamesArg::Agesim) => String::new(),
+    };
+    if args.texture_set.is_some()
+        && (set.is_empty() || set.contains(['/', '\\', ':']) || set.starts_with('.'))
+    {
+        bail!("--texture-set `{set}`: expected a file name's start without folders, e.g. head");
+    }
+    Ok(set)
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -238,6 +280,7 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     crate::export::check_map_size(args.size, "--size")?;
     let t = Instant::now();
     let project = resolve_project(args)?;
+    let set = texture_set(args)?;
     let age_t = args.head.age.t(&project)?;
     let tileable = project.tile;
     // Loads the mesh, wrinkle files and masks, and checks every setting.
@@ -282,22 +325,28 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
     // once), and only when all are written are they renamed into place, bake.json last.
     let outputs = export::OutputSet::new();
     let write_start = Instant::now();
-    let names = ["height.png", "height.exr", "normal.png"].map(|n| args.out.join(n));
-    let paths = export::MapPaths {
+    let file = |kind: MapKind| args.out.join(kind.file_name(args.names.into(), &set));
+    let names = [
+        MapKind::Height,
+        MapKind::HeightExr,
+        MapKind::Normal,
+        MapKind::BaseColour,
+        MapKind::Roughness,
+        MapKind::Ao,
+    ]
+    .map(file);
+    let paths = crate::export::MapPaths {
         height_png: Some(&names[0]),
         height_exr: Some(&names[1]),
         normal_png: Some(&names[2]),
+        base_colour_png: baked.colour.as_ref().map(|_| names[3].as_path()),
+        roughness_png: Some(&names[4]),
+        ao_png: Some(&names[5]),
     };
-    let (staged, _) =
+    let (staged, written) =
         crate::export::stage_maps(&outputs, paths, &baked, args.exr_compression.into())?;
-    let albedo = args.out.join("albedo.png");
-    if let Some(colour) = &baked.colour {
-        export::stage_tiled_colour(&outputs, &albedo, colour, udim.as_ref())?;
-    }
-    let mut files: Vec<String> = names
+    let mut files: Vec<String> = written
         .iter()
-        .chain(baked.colour.as_ref().map(|_| &albedo))
-        .flat_map(|p| Udim::paths(udim.as_ref(), p))
         .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
     files.push("bake.json".to_owned());
@@ -327,6 +376,8 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
             "pores": pores,
             "furrows": furrows,
             "exr_compression": export::ExrCompression::from(args.exr_compression),
+            "names": Naming::from(args.names),
+            "texture_set": set,
             "age_t": age_t,
             "age_years": project.age.mapping().years(age_t),
         },

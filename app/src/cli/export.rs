@@ -33,11 +33,22 @@ pub struct ExportArgs {
     /// The normal map's green channel (default: the project's `normal.convention`).
     #[arg(long, value_enum)]
     pub normal_convention: Option<crate::cli::bake::ConventionArg>,
+    /// The aged base colour as an 8-bit PNG (at the head's colour map's size, 1024–2048).
+    #[arg(long, value_name = "FILE.png")]
+    pub base_colour_png: Option<PathBuf>,
+    /// The skin's roughness at the age as an 8-bit grey PNG: drier (rougher) with age,
+    /// rougher in the creases (the GLB's metallicRoughnessTexture's green).
+    #[arg(long, value_name = "FILE.png")]
+    pub roughness_png: Option<PathBuf>,
+    /// The creases' cavity occlusion as an 8-bit grey PNG (255 = open skin; the GLB's
+    /// occlusionTexture).
+    #[arg(long, value_name = "FILE.png")]
+    pub ao_png: Option<PathBuf>,
     /// Bake the micro-relief periodic so the maps tile (skin patches).
     #[arg(long)]
     pub tileable: bool,
-    /// The aged head as binary glTF (normal map and base colour at the age; the height
-    /// map beside it as FILE_wrinkle_height.png).
+    /// The aged head as binary glTF (normal map, base colour, roughness and occlusion at
+    /// the age; the height map beside it as FILE_wrinkle_height.png).
     #[arg(long, value_name = "FILE.glb")]
     pub glb: Option<PathBuf>,
     /// A render at the age.
@@ -87,6 +98,9 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
             height_png: args.height_png.clone(),
             height_exr: args.height_exr.clone(),
             normal_png: args.normal_png.clone(),
+            base_colour_png: args.base_colour_png.clone(),
+            roughness_png: args.roughness_png.clone(),
+            ao_png: args.ao_png.clone(),
             convention: args.normal_convention.map(Into::into),
             tileable: args.tileable,
             exr_compression: args.exr_compression.into(),

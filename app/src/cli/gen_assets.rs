@@ -194,7 +194,7 @@ pub fn default_head_glb(head: &scan::DefaultHead) -> Vec<u8> {
         roughness: 0.6,
         metallic: 0.0,
         normal_png: Some(head.normal_jpeg.clone()),
-        occlusion_png: None,
+        orm_png: None,
         extras: serde_json::json!({
             "credit": "Infinite, 3D Head Scan by Lee Perry-Smith, licensed under CC BY 3.0, based on a work at triplegangers.com"
         }),

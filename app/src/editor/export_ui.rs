@@ -8,6 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use agesim_core::base::cancel::CancelToken;
 use agesim_core::maps::normal_map::Convention;
+use agesim_core::output::names::{MapKind, Naming};
 use agesim_core::project::Project;
 use agesim_core::scene::WrinkleSource;
 
@@ -18,8 +19,12 @@ use crate::export::{ExportRequest, GlbOut, MapsOut, RendersOut};
 #[serde(default)]
 pub struct ExportSettings {
     pub folder: Option<PathBuf>,
-    /// File names start with this: `head_height.png`, `head.glb`, ….
+    /// File names start with this (the texture set's name): `head_Height.png`,
+    /// `head.glb`, ….
     pub base: String,
+    /// How the maps are named: `head_BaseColor.png`, … (texture set) or `head_albedo.png`,
+    /// … (agesim's names).
+    pub names: Naming,
     /// Export at the timeline's age (else at `years`).
     pub at_current_age: bool,
     pub years: f32,
@@ -28,6 +33,9 @@ pub struct ExportSettings {
     pub height_exr: bool,
     pub exr_compression: agesim_core::output::export::ExrCompression,
     pub normal_png: bool,
+    pub base_colour_png: bool,
+    pub roughness_png: bool,
+    pub ao_png: bool,
     pub directx: bool,
     pub tileable: bool,
     pub glb: bool,
@@ -45,6 +53,7 @@ impl Default for ExportSettings {
         Self {
             folder: None,
             base: "head".into(),
+            names: Naming::TextureSet,
             at_current_age: true,
             years: 70.0,
             size_px: 2048,
@@ -52,6 +61,9 @@ impl Default for ExportSettings {
             height_exr: false,
             exr_compression: agesim_core::output::export::ExrCompression::Rle,
             normal_png: true,
+            base_colour_png: true,
+            roughness_png: true,
+            ao_png: true,
             directx: false,
             tileable: false,
             glb: true,
@@ -81,6 +93,8 @@ impl ExportSettings {
             ));
         }
         let file = |suffix: &str| folder.join(format!("{base}{suffix}"));
+        let map =
+            |on: bool, kind: MapKind| on.then(|| folder.join(kind.file_name(self.names, base)));
         let sequence = if self.sequence {
             let years: Result<Vec<f32>, _> = self
                 .sequence_years
@@ -103,9 +117,12 @@ impl ExportSettings {
             years,
             maps: MapsOut {
                 size_px: self.size_px,
-                height_png: self.height_png.then(|| file("_height.png")),
-                height_exr: self.height_exr.then(|| file("_height.exr")),
-                normal_png: self.normal_png.then(|| file("_normal.png")),
+                height_png: map(self.height_png, MapKind::Height),
+                height_exr: map(self.height_exr, MapKind::HeightExr),
+                normal_png: map(self.normal_png, MapKind::Normal),
+                base_colour_png: map(self.base_colour_png, MapKind::BaseColour),
+                roughness_png: map(self.roughness_png, MapKind::Roughness),
+                ao_png: map(self.ao_png, MapKind::Ao),
                 convention: Some(if self.directx {
                     Convention::DirectX
                 } else {
@@ -276,13 +293,28 @@ pub fn export_ui(
                         ui.radio_value(&mut s.directx, false, "OpenGL");
                         ui.radio_value(&mut s.directx, true, "DirectX");
                     });
+                    ui.horizontal(|ui| {
+                        ui.checkbox(&mut s.base_colour_png, "base colour");
+                        ui.checkbox(&mut s.roughness_png, "roughness");
+                        ui.checkbox(&mut s.ao_png, "occlusion");
+                    });
                     ui.checkbox(&mut s.tileable, "tileable (skin patch)");
+                    ui.horizontal(|ui| {
+                        let label = ui.label("names").id;
+                        for (n, text) in [
+                            (Naming::TextureSet, "texture set"),
+                            (Naming::Agesim, "agesim"),
+                        ] {
+                            ui.radio_value(&mut s.names, n, text).labelled_by(label);
+                        }
+                        ui.weak(MapKind::Height.file_name(s.names, s.base.trim()));
+                    });
                 });
                 ui.end_row();
                 ui.label("Head");
                 ui.checkbox(
                     &mut s.glb,
-                    "aged head as GLB (normal map + base colour; height map beside)",
+                    "aged head as GLB (normal, base colour, roughness, occlusion; height map beside)",
                 );
                 ui.end_row();
                 ui.label("Renders");

@@ -91,7 +91,7 @@ fn real_glb() -> Vec<u8> {
         roughness: 0.5,
         metallic: 0.0,
         normal_png: None,
-        occlusion_png: None,
+        orm_png: None,
         extras: serde_json::Value::Null,
     };
     gltf::write_glb_with_material(&mesh, Some(&material))

@@ -337,6 +337,7 @@ fn the_cavity_constants_are_the_engines() {
         ("CAVITY_MAX", compose::CAVITY_MAX),
         ("CAVITY_REFERENCE_DISP", compose::CAVITY_REFERENCE_DISP),
         ("CAVITY_RING", compose::CAVITY_RING),
+        ("CREASE_ROUGHNESS", compose::CREASE_ROUGHNESS),
     ] {
         assert_eq!(constant(&module, name), cpu, "{name}");
     }

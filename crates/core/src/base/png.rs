@@ -17,7 +17,7 @@ pub enum PngPixels {
 }
 
 impl PngPixels {
-    fn bytes_per_pixel(self) -> usize {
+    pub fn bytes_per_pixel(self) -> usize {
         match self {
             Self::Grey8 => 1,
             Self::Grey16 => 2,

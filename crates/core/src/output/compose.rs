@@ -30,6 +30,10 @@ pub const CAVITY_REFERENCE_DISP: f32 = 0.005;
 /// (`disp_scale`; about 1.5 mm on the default head): a crease narrower than it is a
 /// cavity over its whole width, a wider hollow or fold only along its sharp bottom.
 pub const CAVITY_RING: f32 = 0.5;
+/// How much rougher the bottom of the deepest crease (a cavity of [`CAVITY_MAX`]) is than
+/// the open skin around it (docs/models.md §10 "Crease roughness"): a furrow's floor is
+/// dry, uneven stratum corneum that keeps no sebum film, so it does not shine.
+pub const CREASE_ROUGHNESS: f32 = 0.2;
 /// The ring's eight directions, 45° apart, starting along +u (the shader's order).
 const RING: [[f32; 2]; 8] = [
     [1.0, 0.0],
@@ -97,6 +101,28 @@ pub fn occlusion_map(large: &HeightMap, disp_scale: f32) -> Vec<u8> {
         .map(|i| {
             let local = local_depth(large, (i % w) as u32, (i / w) as u32, disp_scale);
             (cavity(local, disp_scale) * 255.0).round() as u8
+        })
+        .collect()
+}
+
+/// The skin's roughness where the cavity occlusion is `ao` (1 = open skin, down to
+/// 1 − [`CAVITY_MAX`]): `roughness` on open skin, up to [`CREASE_ROUGHNESS`] rougher at the
+/// bottom of the deepest crease, as the skin pass shades it.
+pub fn crease_roughness(roughness: f32, ao: f32) -> f32 {
+    let loss = (1.0 - ao).clamp(0.0, CAVITY_MAX);
+    (roughness + CREASE_ROUGHNESS * loss / CAVITY_MAX).clamp(0.0, 1.0)
+}
+
+/// The skin's occlusion, roughness and metallic map as glTF packs them (one RGB texture:
+/// red the occlusion, [`occlusion_map`]; green the roughness, [`crease_roughness`] of the
+/// skin's `roughness` at this age; blue the metallic, 0): the exported GLB's
+/// `occlusionTexture` and `metallicRoughnessTexture`, 8-bit RGB over `large`'s texels.
+pub fn orm_map(large: &HeightMap, disp_scale: f32, roughness: f32) -> Vec<u8> {
+    occlusion_map(large, disp_scale)
+        .par_iter()
+        .flat_map_iter(|&ao| {
+            let r = crease_roughness(roughness, f32::from(ao) / 255.0);
+            [ao, (r * 255.0).round() as u8, 0]
         })
         .collect()
 }
@@ -392,6 +418,28 @@ mod tests {
         assert_eq!(at(0), 255);
         // No relief, no cavity.
         assert!(occlusion_map(&narrow, 0.0).iter().all(|&a| a == 255));
+        // The roughness follows the creases: open skin the skin's, a crease's bottom
+        // rougher, by at most CREASE_ROUGHNESS; metallic nowhere.
+        let (orm, ao) = (orm_map(&narrow, disp, 0.5), occlusion_map(&narrow, disp));
+        let rough: Vec<u8> = orm.chunks_exact(3).map(|p| p[1]).collect();
+        for (p, &a) in orm.chunks_exact(3).zip(&ao) {
+            assert_eq!(p[0], a);
+            assert_eq!(p[2], 0);
+        }
+        let open = (0.5f32 * 255.0).round() as u8;
+        let most = ((0.5 + CREASE_ROUGHNESS) * 255.0).round() as u8;
+        assert!(
+            rough.iter().all(|&r| (open..=most).contains(&r)),
+            "{rough:?}"
+        );
+        let darkest = ao
+            .iter()
+            .position(|&a| a == *ao.iter().min().unwrap())
+            .unwrap();
+        assert!(rough[darkest] > open + 10, "{}", rough[darkest]);
+        assert_eq!(crease_roughness(0.5, 1.0), 0.5);
+        assert!((crease_roughness(0.5, 1.0 - CAVITY_MAX) - 0.7).abs() < 1e-6);
+        assert_eq!(crease_roughness(0.95, 0.0), 1.0);
     }
 
     #[test]

@@ -3,3 +3,4 @@
 
 pub mod compose;
 pub mod export;
+pub mod names;

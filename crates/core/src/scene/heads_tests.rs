@@ -601,7 +601,7 @@ fn a_head_files_own_textures_are_read_from_its_material() {
         roughness: 0.5,
         metallic: 0.0,
         normal_png: Some(normal.clone()),
-        occlusion_png: None,
+        orm_png: None,
         extras: serde_json::Value::Null,
     };
     let glb = dir.path().join("textured.glb");

@@ -420,9 +420,11 @@ pub struct GlbMaterial {
     /// A tangent-space normal map as PNG (or JPEG) bytes (OpenGL convention: green = +bitangent, as
     /// glTF 2.0 §3.9.3 asks), embedded in the binary chunk as `normalTexture`.
     pub normal_png: Option<Vec<u8>>,
-    /// Ambient occlusion as grey PNG bytes (the red channel is read, glTF 2.0 §3.9.3),
-    /// embedded as `occlusionTexture`.
-    pub occlusion_png: Option<Vec<u8>>,
+    /// Occlusion, roughness and metallic as one RGB PNG (red, green, blue: glTF 2.0
+    /// §3.9.3's channels), embedded once as both `occlusionTexture` and
+    /// `metallicRoughnessTexture`; `roughness` and `metallic` then multiply it (1 keeps
+    /// the texture's values).
+    pub orm_png: Option<Vec<u8>>,
     /// Recorded in the file's `extras` (glTF has no displacement: a height map beside).
     pub extras: serde_json::Value,
 }
@@ -640,10 +642,11 @@ pub fn write_glb_with_morph(
             let mut normal = String::new();
             let mut colour = String::new();
             let mut occlusion = String::new();
+            let mut metallic_roughness = String::new();
             for (png, name) in [
                 (&m.normal_png, "normal"),
                 (&m.base_colour_png, "base colour"),
-                (&m.occlusion_png, "occlusion"),
+                (&m.orm_png, "occlusion, roughness, metallic"),
             ] {
                 let Some(png) = png else { continue };
                 let view = push_view(&mut bin, &mut views, png, "");
@@ -661,7 +664,10 @@ pub fn write_glb_with_morph(
                 let texture = format!(r#"{{"index":{index}}}"#);
                 match name {
                     "normal" => normal = format!(r#","normalTexture":{texture}"#),
-                    "occlusion" => occlusion = format!(r#","occlusionTexture":{texture}"#),
+                    "occlusion, roughness, metallic" => {
+                        occlusion = format!(r#","occlusionTexture":{texture}"#);
+                        metallic_roughness = format!(r#","metallicRoughnessTexture":{texture}"#);
+                    }
                     _ => colour = format!(r#","baseColorTexture":{texture}"#),
                 }
             }
@@ -673,7 +679,7 @@ pub fn write_glb_with_morph(
                 format!(r#","extras":{}"#, m.extras)
             };
             list.push(format!(
-                r#"{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}}}{normal}{occlusion}{extras}}}"#,
+                r#"{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}{metallic_roughness}}}{normal}{occlusion}{extras}}}"#,
                 json_string(&m.name),
                 f(m.metallic),
                 f(m.roughness),
@@ -1070,7 +1076,7 @@ mod tests {
             roughness: 0.45,
             metallic: 0.0,
             normal_png: Some(png.clone()),
-            occlusion_png: None,
+            orm_png: None,
             extras: serde_json::json!({"age_years": 70.0}),
         };
         let glb = write_glb_with_material(&original, Some(&material));

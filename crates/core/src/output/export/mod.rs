@@ -353,9 +353,28 @@ pub fn stage_rgb8_png(
     })
 }
 
-/// An RGBA8 picture over the head's UV layout (the aged base colour) as RGB8 PNG: each
-/// UDIM tile's square as its own file (`albedo.1001.png`, …), or the one path for a
-/// single-tile head.
+/// A square picture over the head's UV layout (`side_px`², `pixels` as a PNG stores them:
+/// 16-bit values big-endian) as PNG: each UDIM tile's square as its own file
+/// (`roughness.1001.png`, …), or the one path for a single-tile head; the files staged.
+pub fn stage_tiled_png(
+    set: &OutputSet,
+    path: &Path,
+    data: &[u8],
+    side_px: u32,
+    pixels: PngPixels,
+    udim: Option<&crate::head::mesh::udim::Udim>,
+) -> Result<Vec<std::path::PathBuf>, Error> {
+    let bytes = pixels.bytes_per_pixel();
+    let mut files = Vec::new();
+    for (file, side, tile) in crate::head::mesh::udim::Udim::cut(udim, path, data, side_px, bytes) {
+        set.stage(&file, |w| encode_png(w, side, side, pixels, &tile))?;
+        files.push(file);
+    }
+    Ok(files)
+}
+
+/// An RGBA8 picture over the head's UV layout (the aged base colour) as RGB8 PNG, per
+/// UDIM tile ([`stage_tiled_png`]).
 pub fn stage_tiled_colour(
     set: &OutputSet,
     path: &Path,
@@ -370,15 +389,11 @@ pub fn stage_tiled_colour(
     if udim.is_none_or(|u| !u.multi_tile()) {
         return stage_rgb8_png(set, path, picture.width_px, picture.height_px, &rgb);
     }
-    let side = picture.width_px;
-    for (file, side, tile) in crate::head::mesh::udim::Udim::cut(udim, path, &rgb, side, 3) {
-        stage_rgb8_png(set, &file, side, side, &tile)?;
-    }
-    Ok(())
+    stage_tiled_png(set, path, &rgb, picture.width_px, PngPixels::Rgb8, udim).map(|_| ())
 }
 
 /// A square 16-bit grey picture over the head's UV layout (the hair's transition texture)
-/// as 16-bit grey PNG, per UDIM tile like [`stage_tiled_colour`]; the files written.
+/// as 16-bit grey PNG, per UDIM tile ([`stage_tiled_png`]); the files staged.
 pub fn stage_tiled_grey16(
     set: &OutputSet,
     path: &Path,
@@ -386,15 +401,8 @@ pub fn stage_tiled_grey16(
     side_px: u32,
     udim: Option<&crate::head::mesh::udim::Udim>,
 ) -> Result<Vec<std::path::PathBuf>, Error> {
-    let mut files = Vec::new();
-    for (file, side, tile) in crate::head::mesh::udim::Udim::cut(udim, path, grey, side_px, 1) {
-        let bytes: Vec<u8> = tile.iter().flat_map(|v| v.to_be_bytes()).collect();
-        set.stage(&file, |w| {
-            encode_png(w, side, side, PngPixels::Grey16, &bytes)
-        })?;
-        files.push(file);
-    }
-    Ok(files)
+    let bytes: Vec<u8> = grey.iter().flat_map(|v| v.to_be_bytes()).collect();
+    stage_tiled_png(set, path, &bytes, side_px, PngPixels::Grey16, udim)
 }
 
 /// Writes 8-bit grey pixels as PNG (previews, masks).

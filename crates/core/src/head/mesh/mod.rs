@@ -16,6 +16,7 @@
 //! Conventions (docs/models.md §1): UV v up (glTF's v is flipped on load), counter-clockwise front
 //! faces, tangent `w` = ±1 with bitangent = `w · cross(normal, tangent)`.
 
+mod glb_write;
 pub mod gltf;
 pub mod normals;
 pub mod obj;

@@ -1,0 +1,376 @@
+//! Writing a head as binary glTF 2.0 (GLB): the mesh with its parts, UDIM tiles and
+//! morph target, its materials and their maps embedded, and extra meshes beside it (the
+//! aged hair). Read back by [`super::gltf::load`]; written by hand as JSON text and one
+//! binary chunk so that the same mesh gives the same bytes.
+
+use glam::Vec3;
+
+/// Writes `mesh` as a binary glTF 2.0 file (GLB): one node and mesh per part (named after
+/// it), each with one indexed triangle primitive carrying POSITION (with its bounds),
+/// NORMAL, TANGENT and TEXCOORD_0 as `f32` and `u32` indices. UV v is flipped to glTF's
+/// v-down. Each part gets the vertices it uses, in their order in `mesh`, so that a
+/// one-part mesh reads back with the same vertex order, and [`load_bytes`] gives back the
+/// same data up to the rounding of the v flip and of normalisation (a few ulps).
+/// Deterministic: the same mesh gives the same bytes.
+pub fn write_glb(mesh: &super::Mesh) -> Vec<u8> {
+    write_glb_with_material(mesh, None)
+}
+
+/// A glTF metallic-roughness material for [`write_glb_with_material`].
+#[derive(Clone, Debug)]
+pub struct GlbMaterial {
+    pub name: String,
+    /// Linear RGBA (`baseColorFactor`; multiplies `base_colour_png` when there is one).
+    pub base_colour: [f32; 4],
+    /// The base colour as PNG (or JPEG) bytes (sRGB, over the mesh's UVs), embedded in the
+    /// binary chunk as `baseColorTexture`.
+    pub base_colour_png: Option<Vec<u8>>,
+    pub roughness: f32,
+    pub metallic: f32,
+    /// A tangent-space normal map as PNG (or JPEG) bytes (OpenGL convention: green = +bitangent, as
+    /// glTF 2.0 §3.9.3 asks), embedded in the binary chunk as `normalTexture`.
+    pub normal_png: Option<Vec<u8>>,
+    /// Occlusion, roughness and metallic as one RGB PNG (red, green, blue: glTF 2.0
+    /// §3.9.3's channels), embedded once as both `occlusionTexture` and
+    /// `metallicRoughnessTexture`; `roughness` and `metallic` then multiply it (1 keeps
+    /// the texture's values).
+    pub orm_png: Option<Vec<u8>>,
+    /// Recorded in the file's `extras` (glTF has no displacement: a height map beside).
+    pub extras: serde_json::Value,
+}
+
+/// A float VEC3 accessor of `points` with the `min` and `max` glTF requires of a
+/// POSITION (a mesh's and a morph target's): its bytes and its JSON (`VIEW` for the view).
+fn bounded_vec3(points: &[Vec3]) -> (Vec<u8>, String) {
+    let (lo, hi) = super::Aabb::from_points(points).map_or(([0.0; 3], [0.0; 3]), |b| {
+        (b.min.to_array(), b.max.to_array())
+    });
+    let count = points.len();
+    let bytes = points
+        .iter()
+        .flat_map(|p| p.to_array())
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    let json = format!(
+        r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#
+    );
+    (bytes, json)
+}
+
+/// Appends `bytes` to the binary chunk `bin` (4-byte aligned) and a buffer view on them to
+/// `views` (`extra`: more members of the view, e.g. `,"target":34962`); returns the view's
+/// index.
+pub(super) fn push_view(
+    bin: &mut Vec<u8>,
+    views: &mut Vec<String>,
+    bytes: &[u8],
+    extra: &str,
+) -> usize {
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    views.push(format!(
+        r#"{{"buffer":0,"byteOffset":{},"byteLength":{}{extra}}}"#,
+        bin.len(),
+        bytes.len()
+    ));
+    bin.extend_from_slice(bytes);
+    views.len() - 1
+}
+
+/// [`write_glb`], with every skin primitive using `material` when given.
+pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial>) -> Vec<u8> {
+    write_glb_with_materials(mesh, material.map(std::slice::from_ref).unwrap_or_default())
+}
+
+/// [`write_glb`] with the skin's `materials`, one per UDIM tile of the mesh
+/// ([`super::Mesh::udim`]; one for a single-tile layout): a multi-tile head's skin is one
+/// primitive per tile, its UVs in [0, 1] as the tile's own maps are (glTF has no UDIM).
+/// Parts that are not skin get a plain material of their own.
+pub fn write_glb_with_materials(mesh: &super::Mesh, materials: &[GlbMaterial]) -> Vec<u8> {
+    write_glb_with_morph(mesh, materials, None)
+}
+
+/// A morph target of every primitive (glTF `targets`, named in the mesh's
+/// `extras.targetNames`, the convention Blender and three.js read as shape keys): per vertex
+/// of the mesh, the position, normal and tangent (xyz) deltas, and the mesh's default
+/// weight.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GlbMorph {
+    pub name: String,
+    pub position: Vec<Vec3>,
+    pub normal: Vec<Vec3>,
+    pub tangent: Vec<Vec3>,
+    pub weight: f32,
+}
+
+/// [`write_glb_with_materials`] with a morph target on every mesh.
+pub fn write_glb_with_morph(
+    mesh: &super::Mesh,
+    materials: &[GlbMaterial],
+    morph: Option<&GlbMorph>,
+) -> Vec<u8> {
+    let mut bin: Vec<u8> = Vec::new();
+    let mut views = Vec::new();
+    let mut accessors = Vec::new();
+    let mut meshes = Vec::new();
+    // Appends `bytes` as a buffer view (4-byte aligned) and an accessor on it.
+    let mut push = |bytes: &[u8], target: u32, accessor: String| {
+        let view = push_view(
+            &mut bin,
+            &mut views,
+            bytes,
+            &format!(r#","target":{target}"#),
+        );
+        accessors.push(accessor.replace("VIEW", &view.to_string()));
+        accessors.len() - 1
+    };
+    let f32s =
+        |v: &mut dyn Iterator<Item = f32>| -> Vec<u8> { v.flat_map(f32::to_le_bytes).collect() };
+    const ARRAY_BUFFER: u32 = 34962;
+    const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+    // Parts that are not skin (eyes, teeth…) get a plain material of their own: our maps
+    // are the skin's.
+    let any_not_skin = mesh
+        .parts()
+        .iter()
+        .enumerate()
+        .any(|(k, p)| !mesh.part_is_skin(k, p));
+    let plain_material = materials.len();
+    // UVs as each tile's maps read them: a UDIM head's atlas cell back to [0, 1].
+    let triangle_tiles = mesh.triangle_tiles();
+    let local_uv = |i: usize, tile: usize| match mesh.udim() {
+        Some(u) => mesh.uvs()[i] * u.grid() as f32 - u.cell(tile).as_vec2(),
+        None => mesh.uvs()[i],
+    };
+    let tiles = mesh.udim().map_or(1, |u| u.tiles().len());
+    for (k, part) in mesh.parts().iter().enumerate() {
+        let first = part.first_triangle as usize;
+        let count = part.triangle_count as usize;
+        let skin = mesh.part_is_skin(k, part);
+        let mut primitives = Vec::new();
+        for tile in 0..tiles {
+            let tri: Vec<u32> = (first..first + count)
+                .filter(|&t| triangle_tiles[t] == tile)
+                .flat_map(|t| mesh.indices()[t * 3..t * 3 + 3].iter().copied())
+                .collect();
+            if tri.is_empty() {
+                continue;
+            }
+            let mut used = vec![false; mesh.vertex_count()];
+            for &i in &tri {
+                used[i as usize] = true;
+            }
+            let mut remap = vec![0u32; mesh.vertex_count()];
+            let mut verts = Vec::new();
+            for (i, &u) in used.iter().enumerate() {
+                if u {
+                    remap[i] = verts.len() as u32;
+                    verts.push(i);
+                }
+            }
+            let count = verts.len();
+            let positions: Vec<Vec3> = verts.iter().map(|&i| mesh.positions()[i]).collect();
+            let vec = |ty: &str| {
+                format!(
+                    r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"{ty}"}}"#
+                )
+            };
+            let (bytes, json) = bounded_vec3(&positions);
+            let pos = push(&bytes, ARRAY_BUFFER, json);
+            let nor = push(
+                &f32s(&mut verts.iter().flat_map(|&i| mesh.normals()[i].to_array())),
+                ARRAY_BUFFER,
+                vec("VEC3"),
+            );
+            let tan = push(
+                &f32s(&mut verts.iter().flat_map(|&i| mesh.tangents()[i].to_array())),
+                ARRAY_BUFFER,
+                vec("VEC4"),
+            );
+            let uv = push(
+                &f32s(&mut verts.iter().flat_map(|&i| {
+                    let uv = local_uv(i, tile);
+                    [uv.x, 1.0 - uv.y]
+                })),
+                ARRAY_BUFFER,
+                vec("VEC2"),
+            );
+            let ix: Vec<u8> = tri
+                .iter()
+                .flat_map(|&i| remap[i as usize].to_le_bytes())
+                .collect();
+            let ind = push(
+                &ix,
+                ELEMENT_ARRAY_BUFFER,
+                format!(
+                    r#"{{"bufferView":VIEW,"componentType":5125,"count":{},"type":"SCALAR"}}"#,
+                    tri.len()
+                ),
+            );
+            // The morph target's deltas of this primitive's vertices.
+            let targets = morph.map_or(String::new(), |m| {
+                let at = |v: &[Vec3], i: usize| v.get(i).copied().unwrap_or(Vec3::ZERO);
+                let dp: Vec<Vec3> = verts.iter().map(|&i| at(&m.position, i)).collect();
+                let (bytes, json) = bounded_vec3(&dp);
+                let pos = push(&bytes, ARRAY_BUFFER, json);
+                let nor = push(
+                    &f32s(&mut verts.iter().flat_map(|&i| at(&m.normal, i).to_array())),
+                    ARRAY_BUFFER,
+                    vec("VEC3"),
+                );
+                let tan = push(
+                    &f32s(&mut verts.iter().flat_map(|&i| at(&m.tangent, i).to_array())),
+                    ARRAY_BUFFER,
+                    vec("VEC3"),
+                );
+                format!(r#","targets":[{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan}}}]"#)
+            });
+            let material = match materials.len() {
+                0 => String::new(),
+                n if skin => format!(r#","material":{}"#, tile.min(n - 1)),
+                _ => format!(r#","material":{plain_material}"#),
+            };
+            primitives.push(format!(
+                r#"{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4{material}{targets}}}"#
+            ));
+        }
+        let morph_json = morph.map_or(String::new(), |m| {
+            let w = if m.weight.is_finite() { m.weight } else { 0.0 };
+            format!(
+                r#","weights":[{w}],"extras":{{"targetNames":[{}]}}"#,
+                json_string(&m.name)
+            )
+        });
+        meshes.push(format!(
+            r#"{{"name":{},"primitives":[{}]{morph_json}}}"#,
+            json_string(&part.name),
+            primitives.join(",")
+        ));
+    }
+    // The materials, and their maps as images in the binary chunk.
+    let mut material_json = String::new();
+    if !materials.is_empty() {
+        let mut images = Vec::new();
+        let mut list = Vec::new();
+        for m in materials {
+            let mut normal = String::new();
+            let mut colour = String::new();
+            let mut occlusion = String::new();
+            let mut metallic_roughness = String::new();
+            for (png, name) in [
+                (&m.normal_png, "normal"),
+                (&m.base_colour_png, "base colour"),
+                (&m.orm_png, "occlusion, roughness, metallic"),
+            ] {
+                let Some(png) = png else { continue };
+                let view = push_view(&mut bin, &mut views, png, "");
+                let index = images.len();
+                // JPEG bytes (the default head's scanned maps) are embedded as they are.
+                let mime = if png.starts_with(&[0xFF, 0xD8]) {
+                    "image/jpeg"
+                } else {
+                    "image/png"
+                };
+                images.push(format!(
+                    r#"{{"bufferView":{view},"mimeType":"{mime}","name":{}}}"#,
+                    json_string(&format!("{name}, {}", m.name))
+                ));
+                let texture = format!(r#"{{"index":{index}}}"#);
+                match name {
+                    "normal" => normal = format!(r#","normalTexture":{texture}"#),
+                    "occlusion, roughness, metallic" => {
+                        occlusion = format!(r#","occlusionTexture":{texture}"#);
+                        metallic_roughness = format!(r#","metallicRoughnessTexture":{texture}"#);
+                    }
+                    _ => colour = format!(r#","baseColorTexture":{texture}"#),
+                }
+            }
+            let f = |x: f32| if x.is_finite() { x } else { 0.0 };
+            let [r, g, b, a] = m.base_colour.map(f);
+            let extras = if m.extras.is_null() {
+                String::new()
+            } else {
+                format!(r#","extras":{}"#, m.extras)
+            };
+            list.push(format!(
+                r#"{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[{r},{g},{b},{a}]{colour},"metallicFactor":{},"roughnessFactor":{}{metallic_roughness}}}{normal}{occlusion}{extras}}}"#,
+                json_string(&m.name),
+                f(m.metallic),
+                f(m.roughness),
+            ));
+        }
+        if any_not_skin {
+            list.push(r#"{"name":"not skin (left as it is by agesim)","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0,"roughnessFactor":0.3}}"#.to_owned());
+        }
+        let images = if images.is_empty() {
+            String::new()
+        } else {
+            let textures: Vec<String> = (0..images.len())
+                .map(|i| format!(r#"{{"source":{i},"sampler":0}}"#))
+                .collect();
+            format!(
+                r#","images":[{}],"textures":[{}],"samplers":[{{"magFilter":9729,"minFilter":9987,"wrapS":33071,"wrapT":33071}}]"#,
+                images.join(","),
+                textures.join(",")
+            )
+        };
+        material_json = format!(r#","materials":[{}]{images}"#, list.join(","));
+        // The first material's extras also describe the file (readers that show the
+        // asset's extras).
+        if !materials[0].extras.is_null() {
+            material_json.push_str(&format!(r#","extras":{}"#, materials[0].extras));
+        }
+    }
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let nodes: Vec<String> = mesh
+        .parts()
+        .iter()
+        .enumerate()
+        .map(|(k, p)| format!(r#"{{"name":{},"mesh":{k}}}"#, json_string(&p.name)))
+        .collect();
+    let scene_nodes: Vec<String> = (0..nodes.len()).map(|k| k.to_string()).collect();
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0","generator":"agesim"}},"scene":0,"scenes":[{{"nodes":[{}]}}],"nodes":[{}],"meshes":[{}],"accessors":[{}],"bufferViews":[{}],"buffers":[{{"byteLength":{}}}]{material_json}}}"#,
+        scene_nodes.join(","),
+        nodes.join(","),
+        meshes.join(","),
+        accessors.join(","),
+        views.join(","),
+        bin.len()
+    )
+    .into_bytes();
+    glb_container(&json, &bin)
+}
+
+/// A GLB file of a JSON chunk and a binary chunk (each padded to 4 bytes: the JSON with
+/// spaces, the binary with zeros), lengths written as they are.
+pub fn glb_container(json: &[u8], bin: &[u8]) -> Vec<u8> {
+    let pad = |v: &[u8], with: u8| {
+        let mut v = v.to_vec();
+        while !v.len().is_multiple_of(4) {
+            v.push(with);
+        }
+        v
+    };
+    let (json, bin) = (pad(json, b' '), pad(bin, 0));
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    out
+}
+
+/// `s` as a JSON string literal.
+fn json_string(s: &str) -> String {
+    serde_json::Value::String(s.to_owned()).to_string()
+}

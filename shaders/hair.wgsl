@@ -38,81 +38,6 @@ struct VertexOut {
     @location(5) lit_fill: f32,
 }
 
-// The hair as a quadratic Bézier: out of the scalp along its direction for up to half of
-// its length, then combed along the scalp, back and down (the comb direction projected
-// onto the plane across the hair's root direction: swept back from the hairline, down at
-// the back, back and down over the ears), so hair lies on the head instead of standing
-// like bristles or falling over the brow. The head is in the standard frame (+y up, +z
-// forward). `droop` ∈ [0, 1] is how far it bends (0: straight along its direction).
-struct HairCurve {
-    p0: vec3<f32>,
-    p1: vec3<f32>,
-    p2: vec3<f32>,
-}
-
-fn hair_curve(root: vec3<f32>, dir: vec3<f32>, len: f32, random: f32, curl: f32) -> HairCurve {
-    // Coiled hair is not combed flat: it stands off the scalp (a third of the droop).
-    let droop = clamp(frame.hair_misc.y, 0.0, 1.0) * (1.0 - 0.65 * curl);
-    let g = normalize(vec3<f32>(0.0, -0.5, -1.0));
-    let along = g - dir * dot(g, dir);
-    // Where the comb is parallel to the hair there is no combing direction: stay straight.
-    var comb = select(dir, normalize(along), length(along) > 1e-3);
-    // The comb's way wanders over the scalp, up to ±20° over a few centimetres (a smooth
-    // field of the root's position in hair lengths, so the same on any head's units):
-    // hair lies in locks that flow (combed all one way, the fringe read, blind, as "a
-    // flat, streaky painted band"); and each hair its own way within that, up to ±7°
-    // (from its random number's other digits; ±20° each read as static).
-    let q = root / max(frame.hair_base.w, 1e-9);
-    let flow = 0.22 * sin(dot(q, vec3<f32>(0.61, 0.37, -0.52)) + 1.7)
-        + 0.13 * sin(dot(q, vec3<f32>(-0.29, 0.83, 0.47)) * 1.9 + 0.4);
-    // Coiled hair leans every way (up to ±80° more, from the random number's other digits).
-    let turn = flow + (fract(random * 13.0) - 0.5) * 0.25 + (fract(random * 41.0) - 0.5) * 2.8 * curl;
-    comb = comb * cos(turn) + cross(dir, comb) * sin(turn);
-    // Most hair lies flat (stands 5 % of its length); about one in six stands up to 18 %
-    // (flyaways, from the random number's other digits), so the silhouette of the hair
-    // is broken into strands instead of a solid band.
-    let r = fract(random * 29.0);
-    let r3 = r * r * r;
-    let stand = mix(0.05, 0.18, r3 * r3);
-    let p1 = root + dir * (len * mix(0.5, stand, droop));
-    // The tip bends back toward the scalp (as far as a head's curvature takes it from a
-    // straight hair), so hair lies on it instead of flaring where the head curves away.
-    let p2 = p1 + normalize(mix(dir, comb, droop)) * (len * mix(0.5, 0.92, droop))
-        - dir * (len * 0.12 * droop);
-    return HairCurve(root, p1, p2);
-}
-
-fn curve_point(c: HairCurve, s: f32) -> vec3<f32> {
-    let r = 1.0 - s;
-    return c.p0 * (r * r) + c.p1 * (2.0 * r * s) + c.p2 * (s * s);
-}
-
-fn curve_tangent(c: HairCurve, s: f32) -> vec3<f32> {
-    return normalize((c.p1 - c.p0) * (1.0 - s) + (c.p2 - c.p1) * s);
-}
-
-struct Coil {
-    p: vec3<f32>,
-    tangent: vec3<f32>,
-}
-
-// A coiled hair (docs/models.md §9 "Curl"): the curve's point `p` (tangent `tangent`, `s`
-// along it) wound round the curve in a helix of COIL_TURNS turns, its radius growing from
-// the root to COIL_RADIUS of the length times `curl`, each hair at its own phase.
-const COIL_TURNS: f32 = 1.6;
-const COIL_RADIUS: f32 = 0.14;
-fn coiled(p: vec3<f32>, tangent: vec3<f32>, len: f32, s: f32, random: f32, curl: f32) -> Coil {
-    let a = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(tangent.x) > 0.9);
-    let b1 = normalize(cross(tangent, a));
-    let b2 = cross(tangent, b1);
-    let phase = 6.2831853 * (COIL_TURNS * s + fract(random * 17.0));
-    let r = curl * COIL_RADIUS * len * smoothstep(0.0, 0.3, s);
-    let round = b1 * cos(phase) + b2 * sin(phase);
-    let along = -b1 * sin(phase) + b2 * cos(phase);
-    let t = normalize(tangent * len + along * (r * 6.2831853 * COIL_TURNS));
-    return Coil(p + round * r, t);
-}
-
 // One vertex of a hair's ribbon: the curve's point `p` (tangent `tangent`, `s` along it)
 // widened in screen space, perpendicular to the projected hair (its direction taken
 // `ahead` mesh units along it), to the `side` (±1), by a pixel width that tapers to a
@@ -141,11 +66,10 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // "Miniaturisation"), so every receding edge fades over a few millimetres instead of
     // ending in a hard block of full hairs. Hairs that never go (a_k = 1) stay whole.
     let whole = hair_whole(inst.disappear_age, frame.disp.w);
-    let len = frame.hair_base.w * inst.random_length.y * (0.85 + 0.3 * random) * (1.0 - 0.45 * curl)
-        * mix(0.35, 1.0, whole);
+    let len = strand_length(frame.hair_base.w, inst.random_length.y, random, curl, whole);
     let s = f32(vertex / 2u) / f32(SEGMENTS);
     let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
-    let curve = hair_curve(inst.position, dir, len, random, curl);
+    let curve = hair_curve(inst.position, dir, len, random, curl, frame.hair_misc.y, frame.hair_base.w);
     var p = curve_point(curve, s);
     var tangent = curve_tangent(curve, s);
     if curl > 0.0 {

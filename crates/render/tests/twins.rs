@@ -7,11 +7,14 @@
 //! - the gray fraction of a hair (`layers::hair::gray_fraction`), both ramps;
 //! - how whole a hair is before it goes (`layers::hair::hair_whole`);
 //! - the cavity occlusion (`output::compose::cavity`, the GLB's occlusion texture), and the
-//!   four cavity constants, read from the shader by naga.
+//!   cavity and crease-roughness constants, read from the shader by naga;
+//! - a scalp hair's strand (`layers::hair::strand`: its curve, its coil and its length),
+//!   what the GLB's hair is made of.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
 
+use agesim_core::layers::hair::strand;
 use agesim_core::layers::hair::{GrayingRamp, gray_fraction, hair_whole, oct_decode, oct_encode};
 use agesim_core::output::compose;
 use agesim_render::shaders;
@@ -59,6 +62,30 @@ fn cs_cavity(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x < arrayLength(&inputs) {
         let x = inputs[id.x];
         outputs[id.x] = vec4<f32>(cavity_loss(x.x, x.y), 0.0, 0.0, 0.0);
+    }
+}
+
+// A strand's point: three vec4 in per case (root, len; dir, random; curl, droop, unit,
+// s), the coiled point and tangent's x out in the first third of the outputs, the
+// tangent and the length in the second.
+@compute @workgroup_size(64)
+fn cs_strand(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n = arrayLength(&inputs) / 3u;
+    if id.x < n {
+        let a = inputs[3u * id.x];
+        let b = inputs[3u * id.x + 1u];
+        let c = inputs[3u * id.x + 2u];
+        let len = strand_length(a.w, 0.8, b.w, c.x, 0.6);
+        let curve = hair_curve(a.xyz, b.xyz, len, b.w, c.x, c.y, c.z);
+        var p = curve_point(curve, c.w);
+        var t = curve_tangent(curve, c.w);
+        if c.x > 0.0 {
+            let coil = coiled(p, t, len, c.w, b.w, c.x);
+            p = coil.p;
+            t = coil.tangent;
+        }
+        outputs[id.x] = vec4<f32>(p, 0.0);
+        outputs[n + id.x] = vec4<f32>(t, len);
     }
 }
 "#;
@@ -338,7 +365,60 @@ fn the_cavity_constants_are_the_engines() {
         ("CAVITY_REFERENCE_DISP", compose::CAVITY_REFERENCE_DISP),
         ("CAVITY_RING", compose::CAVITY_RING),
         ("CREASE_ROUGHNESS", compose::CREASE_ROUGHNESS),
+        ("COIL_TURNS", strand::COIL_TURNS),
+        ("COIL_RADIUS", strand::COIL_RADIUS),
     ] {
         assert_eq!(constant(&module, name), cpu, "{name}");
+    }
+}
+
+/// The GLB's hair is the view's: a strand's point and tangent along its curve, straight
+/// and coiled, as the hair pass places them.
+#[test]
+fn the_strand_is_the_hair_passes() {
+    let Some(gpu) = gpu_or_skip("twins: strand") else {
+        return;
+    };
+    let mut cases = Vec::new();
+    for (k, dir) in directions().into_iter().enumerate().step_by(7) {
+        let root = Vec3::new(0.03 * (k as f32 * 0.7).sin(), 0.1, 0.02 * (k as f32).cos());
+        for (curl, droop, s) in [
+            (0.0, 0.8, 0.5),
+            (0.0, 0.3, 1.0),
+            (1.0, 0.8, 0.7),
+            (0.5, 1.0, 0.25),
+        ] {
+            let random = (k as f32 * 0.618_034).fract();
+            cases.push((root, dir, random, curl, droop, s));
+        }
+    }
+    let (length, unit) = (0.06, 0.06);
+    let inputs: Vec<[f32; 4]> = cases
+        .iter()
+        .flat_map(|&(root, dir, random, curl, droop, s)| {
+            [
+                [root.x, root.y, root.z, length],
+                [dir.x, dir.y, dir.z, random],
+                [curl, droop, unit, s],
+            ]
+        })
+        .collect();
+    let out = run(&gpu, "cs_strand", &inputs);
+    let n = cases.len();
+    for (i, &(root, dir, random, curl, droop, s)) in cases.iter().enumerate() {
+        let len = strand::strand_length(length, 0.8, random, curl, 0.6);
+        let c = strand::hair_curve(root, dir, len, random, curl, droop, unit);
+        let (mut p, mut t) = (strand::curve_point(&c, s), strand::curve_tangent(&c, s));
+        if curl > 0.0 {
+            (p, t) = strand::coiled(p, t, len, s, random, curl);
+        }
+        let gpu_p = Vec3::from_slice(&out[i][..3]);
+        let gpu_t = Vec3::from_slice(&out[n + i][..3]);
+        assert!((out[n + i][3] - len).abs() < 1e-6, "case {i}: length");
+        assert!(
+            gpu_p.distance(p) < 2e-5 * length,
+            "case {i}: GPU {gpu_p} CPU {p}"
+        );
+        assert!(gpu_t.distance(t) < 2e-4, "case {i}: GPU {gpu_t} CPU {t}");
     }
 }

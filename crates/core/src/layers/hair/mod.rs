@@ -17,6 +17,7 @@ pub mod lashes;
 mod packing;
 mod placement;
 pub mod scalp;
+pub mod strand;
 pub mod transition;
 
 use packing::unorm16;
@@ -334,6 +335,11 @@ impl HairInstance {
     /// A uniform random number in [0, 1) for per-hair variation (length, shade).
     pub fn random(&self) -> f32 {
         self.random_unorm as f32 / 65536.0
+    }
+
+    /// The random number as the hair pass reads it (its 16 bits as a unorm: / 65535).
+    pub fn random_as_drawn(&self) -> f32 {
+        self.random_unorm as f32 / 65535.0
     }
 
     /// The hair's length as a fraction of the project's (docs/models.md §9 "Taper"): 1

@@ -104,11 +104,37 @@ pub struct GlbMorph {
     pub weight: f32,
 }
 
+/// A mesh beside the head (the aged hair): triangles with per-vertex colours (glTF
+/// `COLOR_0`, which multiplies the material's base colour), in glTF's units (metres),
+/// drawn with its own material, as a node of its own named `name`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GlbExtraMesh {
+    pub name: String,
+    pub positions: Vec<Vec3>,
+    pub normals: Vec<Vec3>,
+    /// Linear RGBA per vertex, 16-bit (8 bits would band a dark hair's linear colour).
+    pub colours: Vec<[u16; 4]>,
+    pub indices: Vec<u32>,
+    /// Its material: base colour factor, roughness, double-sided.
+    pub material_name: String,
+    pub roughness: f32,
+}
+
 /// [`write_glb_with_materials`] with a morph target on every mesh.
 pub fn write_glb_with_morph(
     mesh: &super::Mesh,
     materials: &[GlbMaterial],
     morph: Option<&GlbMorph>,
+) -> Vec<u8> {
+    write_glb_with_extras(mesh, materials, morph, &[])
+}
+
+/// [`write_glb_with_morph`] with `extras`, meshes of their own beside the head.
+pub fn write_glb_with_extras(
+    mesh: &super::Mesh,
+    materials: &[GlbMaterial],
+    morph: Option<&GlbMorph>,
+    extras: &[GlbExtraMesh],
 ) -> Vec<u8> {
     let mut bin: Vec<u8> = Vec::new();
     let mut views = Vec::new();
@@ -248,9 +274,48 @@ pub fn write_glb_with_morph(
             primitives.join(",")
         ));
     }
+    // The meshes beside the head, each with its material after the head's.
+    let first_extra_material = materials.len() + usize::from(any_not_skin && !materials.is_empty());
+    for (k, extra) in extras.iter().enumerate() {
+        let count = extra.positions.len();
+        let (bytes, json) = bounded_vec3(&extra.positions);
+        let pos = push(&bytes, ARRAY_BUFFER, json);
+        let nor = push(
+            &f32s(&mut extra.normals.iter().take(count).flat_map(|n| n.to_array())),
+            ARRAY_BUFFER,
+            format!(r#"{{"bufferView":VIEW,"componentType":5126,"count":{count},"type":"VEC3"}}"#),
+        );
+        let col = push(
+            &extra
+                .colours
+                .iter()
+                .take(count)
+                .flatten()
+                .flat_map(|c| c.to_le_bytes())
+                .collect::<Vec<u8>>(),
+            ARRAY_BUFFER,
+            format!(
+                r#"{{"bufferView":VIEW,"componentType":5123,"normalized":true,"count":{count},"type":"VEC4"}}"#
+            ),
+        );
+        let ix: Vec<u8> = extra.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+        let ind = push(
+            &ix,
+            ELEMENT_ARRAY_BUFFER,
+            format!(
+                r#"{{"bufferView":VIEW,"componentType":5125,"count":{},"type":"SCALAR"}}"#,
+                extra.indices.len()
+            ),
+        );
+        meshes.push(format!(
+            r#"{{"name":{},"primitives":[{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"COLOR_0":{col}}},"indices":{ind},"mode":4,"material":{}}}]}}"#,
+            json_string(&extra.name),
+            first_extra_material + k
+        ));
+    }
     // The materials, and their maps as images in the binary chunk.
     let mut material_json = String::new();
-    if !materials.is_empty() {
+    if !materials.is_empty() || !extras.is_empty() {
         let mut images = Vec::new();
         let mut list = Vec::new();
         for m in materials {
@@ -300,8 +365,19 @@ pub fn write_glb_with_morph(
                 f(m.roughness),
             ));
         }
-        if any_not_skin {
+        if any_not_skin && !materials.is_empty() {
             list.push(r#"{"name":"not skin (left as it is by agesim)","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0,"roughnessFactor":0.3}}"#.to_owned());
+        }
+        for extra in extras {
+            let r = if extra.roughness.is_finite() {
+                extra.roughness.clamp(0.0, 1.0)
+            } else {
+                0.5
+            };
+            list.push(format!(
+                r#"{{"name":{},"pbrMetallicRoughness":{{"baseColorFactor":[1,1,1,1],"metallicFactor":0,"roughnessFactor":{r}}},"doubleSided":true}}"#,
+                json_string(&extra.material_name)
+            ));
         }
         let images = if images.is_empty() {
             String::new()
@@ -318,8 +394,8 @@ pub fn write_glb_with_morph(
         material_json = format!(r#","materials":[{}]{images}"#, list.join(","));
         // The first material's extras also describe the file (readers that show the
         // asset's extras).
-        if !materials[0].extras.is_null() {
-            material_json.push_str(&format!(r#","extras":{}"#, materials[0].extras));
+        if let Some(first) = materials.first().filter(|m| !m.extras.is_null()) {
+            material_json.push_str(&format!(r#","extras":{}"#, first.extras));
         }
     }
     while !bin.len().is_multiple_of(4) {
@@ -330,6 +406,13 @@ pub fn write_glb_with_morph(
         .iter()
         .enumerate()
         .map(|(k, p)| format!(r#"{{"name":{},"mesh":{k}}}"#, json_string(&p.name)))
+        .chain(extras.iter().enumerate().map(|(k, e)| {
+            format!(
+                r#"{{"name":{},"mesh":{}}}"#,
+                json_string(&e.name),
+                mesh.parts().len() + k
+            )
+        }))
         .collect();
     let scene_nodes: Vec<String> = (0..nodes.len()).map(|k| k.to_string()).collect();
     let json = format!(

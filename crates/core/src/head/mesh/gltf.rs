@@ -27,8 +27,8 @@ use super::{MeshPart, MeshWarning, RawMesh};
 use crate::base::error::Error;
 
 pub use super::glb_write::{
-    GlbMaterial, GlbMorph, glb_container, write_glb, write_glb_with_material,
-    write_glb_with_materials, write_glb_with_morph,
+    GlbExtraMesh, GlbMaterial, GlbMorph, glb_container, write_glb, write_glb_with_extras,
+    write_glb_with_material, write_glb_with_materials, write_glb_with_morph,
 };
 
 /// Whether a buffer URI stays inside the glTF's folder: a `data:` URI, or a relative path

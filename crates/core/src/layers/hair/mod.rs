@@ -793,6 +793,16 @@ mod tests {
         .unwrap()
     }
 
+    /// Hairs on a 10 cm square in metres (the disc that recedes and the band that stays of
+    /// [`transition`]), graying over t 0.2–0.9: for the tests of what is made of hairs.
+    pub(super) fn some_hairs() -> HairInstances {
+        let params = HairParams::new(20.0, 1.0)
+            .unwrap()
+            .with_graying_onset_range(0.2, 0.9)
+            .unwrap();
+        HairInstances::generate(&grid(8, 0.1).surface(), &transition(), &params).unwrap()
+    }
+
     #[test]
     fn instance_is_32_bytes_with_the_documented_offsets() {
         assert_eq!(std::mem::size_of::<HairInstance>(), 32);

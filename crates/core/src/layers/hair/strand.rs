@@ -149,6 +149,134 @@ pub fn strand_colour(
     (pigmented.lerp(white, y), y)
 }
 
+/// How the exported hair looks: the view's style and colours at the age, and its ribbons'
+/// width.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HairLook {
+    pub style: StrandStyle,
+    /// The hair's pigmented and gray colours and the brows', linear RGB.
+    pub base: Vec3,
+    pub gray: Vec3,
+    pub brow: Vec3,
+    pub ramp: GrayingRamp,
+    /// A ribbon's width at the root, mesh units (a third of it at the tip).
+    pub width: f32,
+}
+
+/// The hair of an age as one triangle mesh (the GLB's `hair`): each strand a ribbon of
+/// `segments` quads along the curve the view draws, lying across its growth direction,
+/// tapering to a third at the tip, coloured as the view colours it (each hair pigmented
+/// or gray); one scalp hair in `stride` (its ribbon `stride` times as wide, so the hair
+/// covers the scalp as densely), then the brows and the lashes.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct HairMesh {
+    pub positions: Vec<Vec3>,
+    pub normals: Vec<Vec3>,
+    /// Linear RGBA, 16-bit.
+    pub colours: Vec<[u16; 4]>,
+    pub indices: Vec<u32>,
+}
+
+impl HairMesh {
+    /// The scalp hair present at `t` (one in `stride`) and the `brows` (brow hairs and
+    /// lashes at that age).
+    pub fn new(
+        hairs: &super::HairInstances,
+        brows: &[super::brows::BrowStrand],
+        look: &HairLook,
+        t: f32,
+        stride: usize,
+        segments: u32,
+    ) -> Self {
+        use rayon::prelude::*;
+        let stride = stride.max(1);
+        let present = &hairs.instances()[..hairs.count(t).min(hairs.len())];
+        let width = look.width * stride as f32;
+        let scalp: Vec<(Vec<(Vec3, Vec3)>, Vec3, Vec3, f32)> = present
+            .par_iter()
+            .step_by(stride)
+            .map(|h| {
+                let (colour, _) = strand_colour(h, look.base, look.gray, t, look.ramp);
+                (
+                    strand(h, &look.style, t, segments),
+                    h.direction(),
+                    colour,
+                    width,
+                )
+            })
+            .collect();
+        let brow_strands = brows.iter().map(|b| {
+            let curve = [b.root, b.middle, b.tip].map(Vec3::from);
+            let points = (0..=segments.max(1))
+                .map(|k| {
+                    let s = k as f32 / segments.max(1) as f32;
+                    (curve_point(&curve, s), curve_tangent(&curve, s))
+                })
+                .collect();
+            let base = look.brow * b.shade;
+            let gray = look.gray * Vec3::new(1.0, 0.97, 0.92) * (0.5 + 0.4 * b.shade);
+            (
+                points,
+                Vec3::Z,
+                base.lerp(gray, b.gray),
+                look.width * b.coverage.clamp(0.2, 1.0),
+            )
+        });
+        let mut mesh = Self::default();
+        for (points, up, colour, width) in scalp.into_iter().chain(brow_strands) {
+            mesh.ribbon(&points, up, colour, width);
+        }
+        mesh
+    }
+
+    /// One strand's ribbon: `points` (with tangents) from root to tip, across `up`.
+    fn ribbon(&mut self, points: &[(Vec3, Vec3)], up: Vec3, colour: Vec3, width: f32) {
+        if points.len() < 2 || !width.is_finite() || width <= 0.0 {
+            return;
+        }
+        let rgba = {
+            let c = colour.clamp(Vec3::ZERO, Vec3::ONE).to_array();
+            let q = |x: f32| (x * 65535.0).round() as u16;
+            [q(c[0]), q(c[1]), q(c[2]), u16::MAX]
+        };
+        let first = self.positions.len() as u32;
+        let last = (points.len() - 1) as f32;
+        for (k, &(p, t)) in points.iter().enumerate() {
+            let across = t.cross(up);
+            let across = if across.length_squared() > 1e-12 {
+                across.normalize()
+            } else {
+                t.any_orthonormal_vector()
+            };
+            let mut n = across.cross(t).normalize_or(up);
+            if n.dot(up) < 0.0 {
+                n = -n;
+            }
+            let half = 0.5 * width * (1.0 - 0.65 * k as f32 / last);
+            for side in [-1.0, 1.0] {
+                self.positions.push(p + across * (half * side));
+                self.normals.push(n);
+                self.colours.push(rgba);
+            }
+        }
+        for k in 0..points.len() as u32 - 1 {
+            let (a, b) = (first + 2 * k, first + 2 * k + 2);
+            self.indices
+                .extend_from_slice(&[a, a + 1, b + 1, a, b + 1, b]);
+        }
+    }
+
+    /// Strands in the mesh.
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+
+    /// The bytes the mesh takes in a GLB (positions, normals, 16-bit colours, indices).
+    pub fn glb_bytes(&self) -> usize {
+        self.positions.len() * (12 + 12 + 8) + self.indices.len() * 4
+    }
+}
+
 fn fract(x: f32) -> f32 {
     x - x.floor()
 }
@@ -198,6 +326,68 @@ mod tests {
         for r in radii {
             assert!((r - COIL_RADIUS * 0.04).abs() < 1e-6, "{r}");
         }
+    }
+
+    #[test]
+    fn the_hair_mesh_is_a_ribbon_per_strand_coloured_by_its_graying() {
+        use crate::layers::hair::brows::BrowStrand;
+        let hairs = crate::layers::hair::tests::some_hairs();
+        let look = HairLook {
+            style: StrandStyle {
+                length: 0.05,
+                droop: 0.8,
+                curl: 0.0,
+            },
+            base: Vec3::new(0.05, 0.03, 0.02),
+            gray: Vec3::new(0.6, 0.58, 0.55),
+            brow: Vec3::new(0.03, 0.02, 0.01),
+            ramp: GrayingRamp::Linear,
+            width: 1e-4,
+        };
+        let brow = BrowStrand {
+            root: [0.0, 0.1, 0.1],
+            gray: 1.0,
+            middle: [0.003, 0.101, 0.1],
+            shade: 1.0,
+            tip: [0.006, 0.101, 0.1],
+            coverage: 1.0,
+        };
+        let (t, segments) = (0.6, 3);
+        let mesh = HairMesh::new(&hairs, &[brow], &look, t, 1, segments);
+        let present = hairs.count(t);
+        assert!(present > 0 && present < hairs.len());
+        // 2 vertices a point, 2 triangles a segment, for every hair present and the brow.
+        let strands = present + 1;
+        assert_eq!(mesh.positions.len(), strands * 2 * (segments as usize + 1));
+        assert_eq!(mesh.triangle_count(), strands * 2 * segments as usize);
+        assert!(
+            mesh.indices
+                .iter()
+                .all(|&i| (i as usize) < mesh.positions.len())
+        );
+        // Each hair's colour is its own: pigmented ones dark, gray ones light.
+        let (dark, light) = mesh.colours.iter().fold((0, 0), |(d, l), c| {
+            (
+                d + usize::from(c[0] < 10_000),
+                l + usize::from(c[0] > 20_000),
+            )
+        });
+        assert!(dark > 0 && light > 0, "{dark} dark, {light} light");
+        // The ribbon at the root is the width asked for, a third of it at the tip.
+        let root = mesh.positions[0].distance(mesh.positions[1]);
+        let tip = mesh.positions[2 * segments as usize]
+            .distance(mesh.positions[2 * segments as usize + 1]);
+        assert!(
+            (root - 1e-4).abs() < 1e-7 && (tip - 0.35e-4).abs() < 1e-7,
+            "{root} {tip}"
+        );
+        // Fewer hairs, wider.
+        let light_mesh = HairMesh::new(&hairs, &[], &look, t, 4, segments);
+        assert_eq!(
+            light_mesh.positions.len(),
+            present.div_ceil(4) * 2 * (segments as usize + 1)
+        );
+        assert!((light_mesh.positions[0].distance(light_mesh.positions[1]) - 4e-4).abs() < 1e-7);
     }
 
     #[test]

@@ -1,0 +1,247 @@
+//! The aged head as binary glTF: the mesh with its `age` morph target, its materials and
+//! maps, and the hair beside it.
+
+use std::path::PathBuf;
+
+use agesim_core::base::cancel::CancelToken;
+use agesim_core::head::mesh::udim::Udim;
+use agesim_core::output::export::OutputSet;
+use agesim_core::scene::{BakeRequest, Scene};
+use agesim_core::{HeightMap, output::compose, output::export as out};
+use anyhow::Context as _;
+use glam::Vec3;
+
+use super::{GlbOut, Progress, atlas_size, crease_maps};
+use crate::view;
+use agesim_core::head::mesh::gltf::{GlbMaterial, GlbMorph, write_glb_with_morph};
+
+/// The bake of the GLB's head at `atlas_px` (`size_px` per UDIM tile) and age `t`: the
+/// large wrinkles over the atlas, the micro-relief and fine-wrinkle tiles that repeat over
+/// it, the shape's relief.
+pub fn glb_bake_request(atlas_px: u32, size_px: u32, t: f32) -> BakeRequest {
+    BakeRequest {
+        large_size_px: atlas_px,
+        micro_size_px: 1024.min(size_px.max(64)),
+        t,
+        // The tiles repeat over the head: they must wrap.
+        tileable: true,
+        fine: true,
+        hair: false,
+        packed: false,
+        one_off: true,
+        micro_normals: false,
+        shape_relief: true,
+    }
+}
+
+/// Stages the GLB and its wrinkle height map(s); returns the files.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn export_glb(
+    base: &Scene,
+    t: f32,
+    years: f32,
+    glb: &GlbOut,
+    set: &OutputSet,
+    progress: Progress<'_>,
+    cancel: &CancelToken,
+) -> anyhow::Result<Vec<PathBuf>> {
+    progress(0.0, "loading the head");
+    let mut scene = base.fork();
+    let udim = scene.mesh().udim().cloned();
+    let atlas_px = atlas_size(udim.as_ref(), glb.size_px, "GLB texture size")?;
+    progress(0.1, "baking the head's maps");
+    scene.bake(&glb_bake_request(atlas_px, glb.size_px, t), cancel)?;
+    progress(0.5, "composing the normal map");
+    let normals = head_normal_map(&scene, t, atlas_px, cancel)?;
+    cancel.check()?;
+    let project = scene.project();
+    let head = view::HeadScale::of(&scene);
+    let mpu = head.metres_per_unit;
+    let params = view::frame_params(project, head, t, view::camera(project, mpu, Vec3::ZERO));
+    let depth = project.large.depth;
+    let height = match scene.large() {
+        Some(l) => l.scaled(depth)?,
+        None => HeightMap::zeros(atlas_px, atlas_px)?,
+    };
+    let range = scene.large().map(|_| height.min_max());
+    // The creases' cavity occlusion, as the view darkens them, and their rougher floors
+    // on the skin's roughness at this age (docs/models.md §10), as glTF packs them.
+    let orm = scene
+        .large()
+        .is_some_and(|l| l.height.width_px() == atlas_px)
+        .then(|| crease_maps(&scene, t, atlas_px));
+    // The aged base colour (docs/models.md "Skin colour"): the head's own colour map, or
+    // the skin colour, with its spots, uneven tone and paling at this age, at the colour
+    // map's own size (`Scene::colour_px`; 1024² even for smaller GLB textures).
+    let colour_px = scene.colour_px(atlas_px.max(1024));
+    scene.bake_colour(colour_px, t, cancel)?;
+    let aged = scene.aged_colour().cloned();
+    let base_colour = [1.0; 4];
+    // One material per UDIM tile (one for a single-tile head), each with its tile's maps.
+    let tiles = udim.as_ref().map_or(vec![0], |u| u.numbers());
+    let multi = tiles.len() > 1;
+    let height_paths = Udim::paths(udim.as_ref(), &glb.height_path());
+    let mut materials = Vec::new();
+    for (k, &number) in tiles.iter().enumerate() {
+        progress(
+            0.7 + 0.2 * k as f32 / tiles.len() as f32,
+            "encoding the textures",
+        );
+        // One atlas picture (`w`×`h`) as this tile's PNG: its cell of a multi-tile
+        // head's atlas, or the whole picture.
+        let tile_png = |texels: &[u8],
+                        (w, h): (u32, u32),
+                        pixels: out::PngPixels,
+                        channels: usize,
+                        what: &str| {
+            let (texels, w, h) = match &udim {
+                Some(u) if multi => {
+                    let side = w / u.grid();
+                    (u.crop(k, texels, w, channels), side, side)
+                }
+                _ => (texels.to_vec(), w, h),
+            };
+            let mut png = Vec::new();
+            out::encode_png(&mut png, w, h, pixels, &texels)
+                .with_context(|| format!("encoding the {what}"))?;
+            anyhow::Ok(png)
+        };
+        let atlas = (atlas_px, atlas_px);
+        let normal_png = tile_png(&normals, atlas, out::PngPixels::Rgb8, 3, "normal map")?;
+        let orm_png = orm
+            .as_ref()
+            .map(|orm| tile_png(orm, atlas, out::PngPixels::Rgb8, 3, "roughness map"))
+            .transpose()?;
+        let base_colour_png = aged
+            .as_ref()
+            .map(|c| {
+                let size = (c.width_px, c.height_px);
+                tile_png(&c.rgba, size, out::PngPixels::Rgba8, 4, "base colour map")
+            })
+            .transpose()?;
+        let height_name = height_paths[k]
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        materials.push(GlbMaterial {
+            name: if multi {
+                format!("agesim skin, {years:.0} years, UDIM {number}")
+            } else {
+                format!("agesim skin, {years:.0} years")
+            },
+            base_colour,
+            base_colour_png,
+            // The skin's roughness at this age (old skin is drier: docs/models.md "Skin
+            // colour", "Sheen"): in the texture when there is one, which the factor
+            // multiplies.
+            roughness: if orm_png.is_some() {
+                1.0
+            } else {
+                params.skin.roughness
+            },
+            metallic: if orm_png.is_some() { 1.0 } else { 0.0 },
+            normal_png: Some(normal_png),
+            orm_png,
+            extras: serde_json::json!({
+                "agesim_version": env!("CARGO_PKG_VERSION"),
+                "age_years": years,
+                "age_t": t,
+                "udim_tile": multi.then_some(number),
+                "height_map": height_name,
+                "height_range": range.map(|(lo, hi)| [lo, hi]),
+                "height_meaning": "large-wrinkle height = lo + (hi - lo) * p / 65535 for a 16-bit value p, in the project's height units (large.depth = deepest)",
+            }),
+        });
+    }
+    cancel.check()?;
+    // glTF is in metres, +Y up, +Z forward: the scene's mesh is turned already; its
+    // units are made metres here (a head in centimetres or the scan's 0.052 m).
+    let mesh = match mpu {
+        1.0 => scene.mesh().clone(),
+        m => std::sync::Arc::new(scene.mesh().scaled(m)),
+    };
+    // Age changes the shape (docs/models.md §13): the full old-age displacement as the
+    // `age` morph target, its weight the chosen age's, in metres like the mesh.
+    let morph = scene.shape_field().map(|field| {
+        let full = field.full();
+        let head = scene.mesh();
+        let normals = field.normals(head, &full);
+        let tangent = head
+            .tangents()
+            .iter()
+            .zip(&normals)
+            .map(|(t, n)| {
+                let t3 = t.truncate();
+                (t3 - *n * n.dot(t3)).normalize_or(t3) - t3
+            })
+            .collect();
+        GlbMorph {
+            name: "age".into(),
+            position: full.iter().map(|d| *d * mpu).collect(),
+            normal: normals
+                .iter()
+                .zip(head.normals())
+                .map(|(n, n0)| *n - *n0)
+                .collect(),
+            tangent,
+            weight: field.weight_at(years),
+        }
+    });
+    let bytes = write_glb_with_morph(&mesh, &materials, morph.as_ref());
+    progress(0.9, "writing the GLB");
+    set.stage(&glb.path, |w| std::io::Write::write_all(w, &bytes))?;
+    // The wrinkle heights beside it, tile by tile on one range.
+    let settings = scene.normal_settings();
+    out::stage_tiled_maps(
+        set,
+        out::MapPaths {
+            height_png: Some(&glb.height_path()),
+            ..Default::default()
+        },
+        &height,
+        &settings,
+        Default::default(),
+        udim.as_ref(),
+    )?;
+    let mut files = vec![glb.path.clone()];
+    files.extend(height_paths);
+    Ok(files)
+}
+
+/// The head's tangent-space normal map of `scene` at age `t`, `size_px`² over the head's
+/// UV square: the layers composed as the renderer's skin pass does
+/// ([`agesim_core::output::compose`]), with the same relief depth, tiles and fine blend as the
+/// 3D view ([`view::frame_params`]).
+pub fn head_normal_map(
+    scene: &Scene,
+    t: f32,
+    size_px: u32,
+    cancel: &CancelToken,
+) -> anyhow::Result<Vec<u8>> {
+    let project = scene.project();
+    let scale = scene
+        .surface_scale()
+        .context("the mesh's UVs are degenerate: no normal map can be laid on it")?;
+    let head = view::HeadScale::of(scene);
+    let mpu = head.metres_per_unit;
+    let skin = view::frame_params(project, head, t, view::camera(project, mpu, Vec3::ZERO)).skin;
+    let tile = |heights, placement: agesim_render::TilePlacement| compose::RepeatedTile {
+        heights,
+        repeats: scale.repeats(mpu, placement.size_m.max(1e-6)),
+        strength: placement.strength,
+    };
+    let layers = compose::Layers {
+        large: scene.large().map(|l| &l.height),
+        disp_scale: skin.disp_scale,
+        fine: scene.fine().map(|f| tile(f.as_ref(), skin.fine_tile)),
+        fine_blend: skin.fine_blend,
+        micro: scene
+            .micro()
+            .filter(|_| skin.micro_relief)
+            .map(|m| tile(&m.height, skin.micro_tile)),
+        head_normal: scene
+            .normal_map()
+            .map(|m| (m.as_ref(), skin.head_normal_green_down)),
+    };
+    Ok(compose::normal_map(&layers, size_px, cancel)?)
+}

@@ -78,6 +78,8 @@ fn main() {
                 glb: Some(GlbOut {
                     path: dir.path().join("head.glb"),
                     size_px: size,
+                    // The head alone, as measured before the hair came to the GLB.
+                    hair: agesim::export::GlbHair::None,
                 }),
                 ..ExportRequest::default()
             };

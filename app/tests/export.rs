@@ -87,7 +87,7 @@ fn the_aged_head_glb_loads_back_with_its_material() {
         .count();
     assert!(bent > 100, "only {bent} texels bent by wrinkles");
     // The skin has the aged material; the eye sockets (not skin) a plain one.
-    for mesh in doc.meshes() {
+    for mesh in doc.meshes().filter(|m| m.name() != Some("hair")) {
         let skin = !mesh.name().unwrap_or_default().contains("eye sockets");
         for prim in mesh.primitives() {
             assert_eq!(prim.material().index(), Some(usize::from(!skin)));
@@ -280,6 +280,7 @@ fn a_bad_request_or_a_cancel_leaves_the_old_files_and_no_temporary() {
         glb: Some(GlbOut {
             path: glb.clone(),
             size_px: 256,
+            hair: agesim::export::GlbHair::default(),
         }),
         ..ExportRequest::default()
     };
@@ -354,7 +355,7 @@ fn the_glb_is_in_metres_for_a_head_in_centimetres() {
     let (doc, buffers, _) = gltf::import(&glb).unwrap();
     let mut top = f32::NEG_INFINITY;
     let mut bottom = f32::INFINITY;
-    for mesh in doc.meshes() {
+    for mesh in doc.meshes().filter(|m| m.name() != Some("hair")) {
         for prim in mesh.primitives() {
             let reader = prim.reader(|b| Some(&buffers[b.index()]));
             for p in reader.read_positions().unwrap() {
@@ -368,6 +369,21 @@ fn the_glb_is_in_metres_for_a_head_in_centimetres() {
         ((top - bottom) / want - 1.0).abs() < 0.01,
         "{} m tall, want {want}",
         top - bottom
+    );
+    // The hair is in metres too: on the head, standing at most 2 cm above its top.
+    let hair = doc
+        .meshes()
+        .find(|m| m.name() == Some("hair"))
+        .expect("hair");
+    let prim = hair.primitives().next().unwrap();
+    let reader = prim.reader(|b| Some(&buffers[b.index()]));
+    let hair_top = reader
+        .read_positions()
+        .unwrap()
+        .fold(f32::NEG_INFINITY, |m, p| m.max(p[1]));
+    assert!(
+        hair_top > top - 0.03 && hair_top < top + 0.02,
+        "hair top {hair_top}, head {top}"
     );
 }
 
@@ -457,7 +473,7 @@ fn a_udim_head_is_exported_tile_by_tile() {
         assert_eq!((image.width, image.height), (128, 128));
     }
     let mut skin_primitives = 0;
-    for mesh in doc.meshes() {
+    for mesh in doc.meshes().filter(|m| m.name() != Some("hair")) {
         for prim in mesh.primitives() {
             let reader = prim.reader(|b| Some(&buffers[b.index()]));
             for uv in reader.read_tex_coords(0).unwrap().into_f32() {
@@ -551,7 +567,13 @@ fn the_glb_carries_the_age_morph_target() {
         let bytes = std::fs::read(&glb).unwrap();
         let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
         let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
-        for m in json["meshes"].as_array().unwrap() {
+        // The head's meshes (the hair beside them is at the age: no target).
+        for m in json["meshes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|m| m["name"] != "hair")
+        {
             assert_eq!(
                 m["extras"]["targetNames"],
                 serde_json::json!(["age"]),
@@ -560,7 +582,7 @@ fn the_glb_carries_the_age_morph_target() {
         }
         let (mut largest, mut down, mut moved) = (0.0f32, 0.0f32, 0usize);
         let mut weight = None;
-        for mesh in doc.meshes() {
+        for mesh in doc.meshes().filter(|m| m.name() != Some("hair")) {
             let w = mesh.weights().expect("a default weight");
             assert_eq!(w.len(), 1);
             weight = Some(w[0]);
@@ -590,4 +612,55 @@ fn the_glb_carries_the_age_morph_target() {
         assert!(moved > 100, "{name}: {moved}");
         assert!(weight > 0.3 && weight < 1.0, "{name}: weight {weight}");
     }
+}
+
+/// The GLB carries the aged hair and brows as a mesh named `hair` (a ribbon per strand,
+/// its vertex colours the strand's): light is a quarter of full, none leaves it out; at 80
+/// its strands are two groups, pigmented and gray; at 25 none is gray.
+#[test]
+fn the_glb_carries_the_aged_hair() {
+    let dir = tempfile::tempdir().unwrap();
+    let hair = |years: &str, which: &str| {
+        let glb = dir.path().join(format!("{years}-{which}.glb"));
+        let o = agesim(&[
+            "export",
+            "--age-years",
+            years,
+            "--size",
+            "64",
+            "--glb-hair",
+            which,
+            "--glb",
+            glb.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (doc, buffers, _) = gltf::import(&glb).expect("the GLB imports");
+        let node = doc.nodes().find(|n| n.name() == Some("hair"))?;
+        let prim = node.mesh().unwrap().primitives().next().unwrap();
+        assert!(prim.material().double_sided());
+        let reader = prim.reader(|b| Some(&buffers[b.index()]));
+        let triangles = reader.read_indices().unwrap().into_u32().count() / 3;
+        let colours: Vec<[f32; 4]> = reader.read_colors(0).unwrap().into_rgba_f32().collect();
+        assert_eq!(colours.len(), reader.read_positions().unwrap().count());
+        Some((triangles, colours))
+    };
+    let (light, old) = hair("80", "light").expect("a hair mesh");
+    let (full, _) = hair("80", "full").expect("a hair mesh");
+    assert!(hair("80", "none").is_none(), "no hair asked, none written");
+    let ratio = full as f64 / light as f64;
+    assert!(
+        (2.5..4.5).contains(&ratio),
+        "full {full}, light {light} triangles"
+    );
+    // Gray strands light, pigmented ones dark, few between (each hair one or the other).
+    let share = |c: &[[f32; 4]], f: &dyn Fn(f32) -> bool| {
+        c.iter().filter(|c| f(c[1])).count() as f64 / c.len() as f64
+    };
+    let (gray, dark) = (share(&old, &|g| g > 0.25), share(&old, &|g| g < 0.08));
+    assert!(
+        gray > 0.3 && dark > 0.05,
+        "at 80: {gray:.2} gray, {dark:.2} dark"
+    );
+    let (_, young) = hair("25", "light").expect("a hair mesh");
+    assert!(share(&young, &|g| g > 0.25) < 0.01, "gray at 25");
 }

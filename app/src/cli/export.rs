@@ -51,6 +51,11 @@ pub struct ExportArgs {
     /// the age; the height map beside it as FILE_wrinkle_height.png).
     #[arg(long, value_name = "FILE.glb")]
     pub glb: Option<PathBuf>,
+    /// The aged hair and brows in the GLB, as a mesh named `hair` (each strand a ribbon,
+    /// coloured as the view colours it): light (one scalp hair in 4, each 4 times as wide:
+    /// the same cover, a quarter of the bytes), full (every hair), or none.
+    #[arg(long, value_enum, default_value = "light")]
+    pub glb_hair: GlbHairArg,
     /// A render at the age.
     #[arg(long, value_name = "FILE.png")]
     pub render: Option<PathBuf>,
@@ -77,6 +82,23 @@ pub struct ExportArgs {
     /// The project, the head and the age of the export.
     #[command(flatten)]
     pub head: super::HeadArgs,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum GlbHairArg {
+    None,
+    Light,
+    Full,
+}
+
+impl From<GlbHairArg> for crate::export::GlbHair {
+    fn from(h: GlbHairArg) -> Self {
+        match h {
+            GlbHairArg::None => Self::None,
+            GlbHairArg::Light => Self::Light,
+            GlbHairArg::Full => Self::Full,
+        }
+    }
 }
 
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
@@ -106,6 +128,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
             exr_compression: args.exr_compression.into(),
         },
         glb: args.glb.clone().map(|path| GlbOut {
+            hair: args.glb_hair.into(),
             path,
             size_px: args.size,
         }),

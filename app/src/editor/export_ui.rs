@@ -12,7 +12,7 @@ use agesim_core::output::names::{MapKind, Naming};
 use agesim_core::project::Project;
 use agesim_core::scene::WrinkleSource;
 
-use crate::export::{ExportRequest, GlbOut, MapsOut, RendersOut};
+use crate::export::{ExportRequest, GlbHair, GlbOut, MapsOut, RendersOut};
 
 /// The window's choices, kept between runs.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
@@ -39,6 +39,8 @@ pub struct ExportSettings {
     pub directx: bool,
     pub tileable: bool,
     pub glb: bool,
+    /// How much of the hair the GLB carries.
+    pub glb_hair: GlbHair,
     pub render: bool,
     pub sequence: bool,
     /// Ages of the sequence, years, comma separated.
@@ -67,6 +69,7 @@ impl Default for ExportSettings {
             directx: false,
             tileable: false,
             glb: true,
+            glb_hair: GlbHair::Light,
             render: false,
             sequence: false,
             sequence_years: "25, 40, 55, 70, 85".into(),
@@ -132,6 +135,7 @@ impl ExportSettings {
                 exr_compression: self.exr_compression,
             },
             glb: self.glb.then(|| GlbOut {
+                hair: self.glb_hair,
                 path: file(".glb"),
                 size_px: self.size_px,
             }),
@@ -214,12 +218,18 @@ pub enum ExportAction {
     Cancel,
 }
 
-/// The window's contents. `running`: the progress of a running export.
+/// About how many bytes a hair takes in the GLB (5 points × 2 vertices × 32 bytes, 4 quads
+/// × 6 indices × 4 bytes).
+const GLB_BYTES_PER_HAIR: f64 = 416.0;
+
+/// The window's contents. `running`: the progress of a running export; `hairs`: the
+/// hairs the view draws at its age (for the GLB's size).
 pub fn export_ui(
     ui: &mut egui::Ui,
     s: &mut ExportSettings,
     current_years: f32,
     running: Option<(f32, String)>,
+    hairs: u32,
 ) -> ExportAction {
     let mut action = ExportAction::None;
     ui.add_enabled_ui(running.is_none(), |ui| {
@@ -312,10 +322,27 @@ pub fn export_ui(
                 });
                 ui.end_row();
                 ui.label("Head");
-                ui.checkbox(
-                    &mut s.glb,
-                    "aged head as GLB (normal, base colour, roughness, occlusion; height map beside)",
-                );
+                ui.vertical(|ui| {
+                    ui.checkbox(
+                        &mut s.glb,
+                        "aged head as GLB (normal, base colour, roughness, occlusion; height map beside)",
+                    );
+                    ui.add_enabled_ui(s.glb, |ui| {
+                        ui.horizontal(|ui| {
+                            let label = ui.label("hair").id;
+                            let mb = |stride: usize| {
+                                f64::from(hairs) / stride as f64 * GLB_BYTES_PER_HAIR / 1e6
+                            };
+                            for (h, text) in [
+                                (GlbHair::None, "none".to_owned()),
+                                (GlbHair::Light, format!("light (≈ {:.0} MB)", mb(GlbHair::LIGHT_STRIDE))),
+                                (GlbHair::Full, format!("full (≈ {:.0} MB)", mb(1))),
+                            ] {
+                                ui.radio_value(&mut s.glb_hair, h, text).labelled_by(label);
+                            }
+                        });
+                    });
+                });
                 ui.end_row();
                 ui.label("Renders");
                 ui.vertical(|ui| {

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use agesim_core::base::cancel::CancelToken;
 use agesim_core::head::mesh::udim::Udim;
+use agesim_core::layers::hair::GrayingRamp;
 use agesim_core::output::export::OutputSet;
 use agesim_core::scene::{BakeRequest, Scene};
 use agesim_core::{HeightMap, output::compose, output::export as out};
@@ -13,7 +14,8 @@ use glam::Vec3;
 
 use super::{GlbOut, Progress, atlas_size, crease_maps};
 use crate::view;
-use agesim_core::head::mesh::gltf::{GlbMaterial, GlbMorph, write_glb_with_morph};
+use agesim_core::head::mesh::gltf::{GlbExtraMesh, GlbMaterial, GlbMorph, write_glb_with_extras};
+use agesim_core::layers::hair::strand::{HairLook, HairMesh, StrandStyle};
 
 /// The bake of the GLB's head at `atlas_px` (`size_px` per UDIM tile) and age `t`: the
 /// large wrinkles over the atlas, the micro-relief and fine-wrinkle tiles that repeat over
@@ -50,7 +52,10 @@ pub(super) fn export_glb(
     let udim = scene.mesh().udim().cloned();
     let atlas_px = atlas_size(udim.as_ref(), glb.size_px, "GLB texture size")?;
     progress(0.1, "baking the head's maps");
-    scene.bake(&glb_bake_request(atlas_px, glb.size_px, t), cancel)?;
+    let mut request = glb_bake_request(atlas_px, glb.size_px, t);
+    // The hair's placement, when the GLB carries it.
+    request.hair = glb.hair.stride().is_some() && scene.project().hair.enabled;
+    scene.bake(&request, cancel)?;
     progress(0.5, "composing the normal map");
     let normals = head_normal_map(&scene, t, atlas_px, cancel)?;
     cancel.check()?;
@@ -187,7 +192,15 @@ pub(super) fn export_glb(
             weight: field.weight_at(years),
         }
     });
-    let bytes = write_glb_with_morph(&mesh, &materials, morph.as_ref());
+    progress(0.85, "making the hair");
+    let hair: Vec<GlbExtraMesh> = glb
+        .hair
+        .stride()
+        .and_then(|stride| hair_mesh(&mut scene, t, years, stride))
+        .into_iter()
+        .collect();
+    cancel.check()?;
+    let bytes = write_glb_with_extras(&mesh, &materials, morph.as_ref(), &hair);
     progress(0.9, "writing the GLB");
     set.stage(&glb.path, |w| std::io::Write::write_all(w, &bytes))?;
     // The wrinkle heights beside it, tile by tile on one range.
@@ -244,4 +257,55 @@ pub fn head_normal_map(
             .map(|m| (m.as_ref(), skin.head_normal_green_down)),
     };
     Ok(compose::normal_map(&layers, size_px, cancel)?)
+}
+
+/// A hair's width at its root, metres: a scalp hair's diameter is 50–100 µm (Robbins,
+/// *Chemical and Physical Behavior of Human Hair*), a ribbon of 80 µm.
+const HAIR_WIDTH_M: f32 = 80e-6;
+
+/// Segments of each exported strand (the view's full-quality ribbon).
+const HAIR_SEGMENTS: u32 = 4;
+
+/// The hair of `scene` at age `t` as the GLB's `hair` mesh, in metres (docs/models.md §9
+/// "The hair in the GLB"): the scalp hair present (one in `stride`) and the brows and
+/// lashes, each strand a ribbon along the curve the view draws, coloured as the view
+/// colours it at that age; `None` without hair.
+fn hair_mesh(scene: &mut Scene, t: f32, years: f32, stride: usize) -> Option<GlbExtraMesh> {
+    if !scene.project().hair.enabled {
+        return None;
+    }
+    scene.bake_brows(t);
+    let head = view::HeadScale::of(scene);
+    let mpu = head.metres_per_unit;
+    let project = scene.project();
+    let hair = view::frame_params(project, head, t, view::camera(project, mpu, Vec3::ZERO)).hair;
+    let look = HairLook {
+        style: StrandStyle {
+            length: hair.length,
+            droop: hair.droop,
+            curl: hair.curl,
+        },
+        base: hair.base_colour,
+        gray: hair.gray_colour,
+        brow: hair.brow_colour,
+        ramp: match hair.ramp {
+            agesim_render::GrayingRampParam::Linear => GrayingRamp::Linear,
+            agesim_render::GrayingRampParam::Smoothstep => GrayingRamp::Smoothstep,
+        },
+        width: HAIR_WIDTH_M / mpu.max(1e-9),
+    };
+    let brows = scene.aged_brows().map_or(&[][..], |b| b.as_slice());
+    let mesh = HairMesh::new(scene.hair()?, brows, &look, t, stride, HAIR_SEGMENTS);
+    if mesh.indices.is_empty() {
+        return None;
+    }
+    Some(GlbExtraMesh {
+        name: "hair".into(),
+        positions: mesh.positions.iter().map(|p| *p * mpu).collect(),
+        normals: mesh.normals,
+        colours: mesh.colours,
+        indices: mesh.indices,
+        material_name: format!("agesim hair, {years:.0} years"),
+        roughness: 0.45,
+    })
 }

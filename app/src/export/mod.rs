@@ -103,6 +103,36 @@ pub struct GlbOut {
     pub path: PathBuf,
     /// Side of the normal and height maps, px.
     pub size_px: u32,
+    /// The aged hair and brows in the GLB, as a mesh named `hair`.
+    pub hair: GlbHair,
+}
+
+/// How much of the hair the GLB carries (docs/models.md §9 "The hair in the GLB").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum GlbHair {
+    /// No hair.
+    None,
+    /// One scalp hair in [`GlbHair::LIGHT_STRIDE`], each as wide as that many (the same
+    /// cover, a quarter of the bytes); the brows and lashes whole.
+    #[default]
+    Light,
+    /// Every hair the view draws.
+    Full,
+}
+
+impl GlbHair {
+    /// Of the scalp hairs, a light GLB carries one in this many.
+    pub const LIGHT_STRIDE: usize = 4;
+
+    /// One scalp hair in how many; `None`: no hair.
+    pub fn stride(self) -> Option<usize> {
+        match self {
+            Self::None => None,
+            Self::Light => Some(Self::LIGHT_STRIDE),
+            Self::Full => Some(1),
+        }
+    }
 }
 
 impl GlbOut {

@@ -103,13 +103,15 @@ impl EditorApp {
         let mut open = self.windows.export;
         let years = self.doc.project.age.mapping().years(self.doc.project.age.t);
         let running = self.export_run.as_ref().map(ExportRun::progress);
+        let hairs = self.viewport.as_ref().map_or(0, |v| v.hairs_drawn);
         let mut action = ExportAction::None;
         egui::Window::new("Export")
             .default_pos(window_pos(ctx))
             .open(&mut open)
             .resizable(false)
             .show(ctx, |ui| {
-                action = export_ui::export_ui(ui, &mut self.persisted.export, years, running);
+                action =
+                    export_ui::export_ui(ui, &mut self.persisted.export, years, running, hairs);
             });
         self.windows.export = open;
         match action {

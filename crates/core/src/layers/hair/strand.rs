@@ -149,6 +149,10 @@ pub fn strand_colour(
     (pigmented.lerp(white, y), y)
 }
 
+/// A strand to lay as a ribbon: its points with their tangents from root to tip, the
+/// direction the ribbon lies across (its growth direction), its colour and root width.
+type Ribbon = (Vec<(Vec3, Vec3)>, Vec3, Vec3, f32);
+
 /// How the exported hair looks: the view's style and colours at the age, and its ribbons'
 /// width.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -192,7 +196,7 @@ impl HairMesh {
         let stride = stride.max(1);
         let present = &hairs.instances()[..hairs.count(t).min(hairs.len())];
         let width = look.width * stride as f32;
-        let scalp: Vec<(Vec<(Vec3, Vec3)>, Vec3, Vec3, f32)> = present
+        let scalp: Vec<Ribbon> = present
             .par_iter()
             .step_by(stride)
             .map(|h| {

@@ -34,10 +34,7 @@ impl Purpose {
     /// The dialog's title, filters and mode.
     pub fn request(&self, file_name: Option<String>) -> DialogRequest {
         const PROJECT: (&str, &[&str]) = ("agesim project", &["json"]);
-        const IMAGES: (&str, &[&str]) = (
-            "Images",
-            &["png", "jpg", "jpeg", "tif", "tiff", "bmp", "tga"],
-        );
+        const IMAGES: (&str, &[&str]) = ("Images", IMAGE_EXTENSIONS);
         let (title, filters, mode): (String, Vec<(&str, &[&str])>, Mode) = match self {
             Self::OpenProject => ("Open project".into(), vec![PROJECT], Mode::Open),
             Self::SaveProject => ("Save project as".into(), vec![PROJECT], Mode::Save),
@@ -361,6 +358,10 @@ pub enum FileKind {
     Image,
 }
 
+/// The pictures the editor opens (colour and normal maps, masks): what the `image`
+/// crate's decoders read (`agesim_core::maps::mask::decode_image`).
+pub const IMAGE_EXTENSIONS: &[&str] = &["png", "jpg", "jpeg", "tif", "tiff", "bmp", "tga", "exr"];
+
 pub fn kind_of(path: &Path) -> Option<FileKind> {
     let name = path.file_name()?.to_string_lossy().to_lowercase();
     let ext = name.rsplit('.').next().unwrap_or_default();
@@ -368,7 +369,7 @@ pub fn kind_of(path: &Path) -> Option<FileKind> {
         "json" => FileKind::Project,
         "obj" | "gltf" | "glb" => FileKind::Mesh,
         "wrk" | "txt" => FileKind::Wrinkles,
-        "png" | "jpg" | "jpeg" | "tif" | "tiff" | "bmp" | "tga" => FileKind::Image,
+        e if IMAGE_EXTENSIONS.contains(&e) => FileKind::Image,
         _ => return None,
     })
 }

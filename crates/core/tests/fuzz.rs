@@ -117,6 +117,20 @@ fn jpeg() -> Vec<u8> {
     out
 }
 
+fn exr() -> Vec<u8> {
+    let img = image::Rgb32FImage::from_fn(8, 6, |x, y| {
+        image::Rgb([x as f32 * 0.1, y as f32 * 0.15, 0.35])
+    });
+    let mut out = Vec::new();
+    image::DynamicImage::ImageRgb32F(img)
+        .write_to(
+            &mut std::io::Cursor::new(&mut out),
+            image::ImageFormat::OpenExr,
+        )
+        .unwrap();
+    out
+}
+
 fn leak(v: Vec<u8>) -> &'static [u8] {
     Box::leak(v.into_boxed_slice())
 }
@@ -273,11 +287,13 @@ proptest! {
         bytes in prop_oneof![
             mutated(leak(png())),
             mutated(leak(jpeg())),
+            mutated(leak(exr())),
             prop::collection::vec(any::<u8>(), 0..200),
         ]
     ) {
         let _ = agesim_core::Mask::decode(&bytes, Path::new("fuzz.png"));
         let _ = agesim_core::maps::mask::HeadImage::decode(&bytes, Path::new("fuzz.png"));
+        let _ = agesim_core::maps::mask::HeadImage::decode(&bytes, Path::new("fuzz.exr"));
     }
 }
 

@@ -46,6 +46,14 @@ pub fn decode_image(bytes: &[u8], path: &Path) -> Result<image::DynamicImage, Er
     reader.decode().map_err(|e| fail(e.to_string()))
 }
 
+/// What a picture's values are: a colour (stored sRGB-encoded) or data (a normal map's
+/// linear values).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Encoding {
+    Colour,
+    Data,
+}
+
 /// An RGBA8 picture over a head's own UVs, row 0 at the top (docs/models.md §1): its
 /// base colour map (sRGB) or its tangent-space normal map (linear).
 #[derive(Clone, Debug, PartialEq)]
@@ -57,12 +65,17 @@ pub struct HeadImage {
 }
 
 impl HeadImage {
-    /// Reads any image `image` decodes, as 8-bit RGBA; `flip_v` turns it upside down (a
-    /// head whose UVs use the other v convention than its picture).
+    /// Reads a colour map in any format `image` decodes, as 8-bit sRGB RGBA; `flip_v`
+    /// turns it upside down (a head whose UVs use the other v convention than its picture).
     pub fn load(path: &Path, flip_v: bool) -> Result<Self, Error> {
+        Self::load_as(path, flip_v, Encoding::Colour)
+    }
+
+    /// [`HeadImage::load`] of a colour map or of a data map (a normal map).
+    pub fn load_as(path: &Path, flip_v: bool, encoding: Encoding) -> Result<Self, Error> {
         let bytes =
             crate::base::limits::read_file(path, crate::base::limits::MAX_IMAGE_FILE_BYTES)?;
-        let mut img = Self::decode(&bytes, path)?;
+        let mut img = Self::decode_as(&bytes, path, encoding)?;
         if flip_v {
             let row = img.width_px as usize * 4;
             let rows: Vec<&[u8]> = img.rgba.chunks_exact(row).rev().collect();
@@ -71,10 +84,33 @@ impl HeadImage {
         Ok(img)
     }
 
-    /// Decodes an image file in memory (a picture embedded in a GLB); `path` names it in
+    /// Decodes a colour map in memory (a picture embedded in a GLB); `path` names it in
     /// errors.
     pub fn decode(bytes: &[u8], path: &Path) -> Result<Self, Error> {
-        let img = decode_image(bytes, path)?.into_rgba8();
+        Self::decode_as(bytes, path, Encoding::Colour)
+    }
+
+    /// Decodes a colour map or a data map in memory. A floating-point picture (OpenEXR,
+    /// half or float) holds linear values: a colour map's are sRGB-encoded to 8 bits as
+    /// every other colour map is stored, a data map's (a normal map's, in [0, 1]) are
+    /// kept linear; values beyond [0, 1] are clamped.
+    pub fn decode_as(bytes: &[u8], path: &Path, encoding: Encoding) -> Result<Self, Error> {
+        let img = decode_image(bytes, path)?;
+        let float = matches!(
+            img,
+            image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_)
+        );
+        let img = if float && encoding == Encoding::Colour {
+            let mut rgba = img.into_rgba32f();
+            for p in rgba.pixels_mut() {
+                for c in &mut p.0[..3] {
+                    *c = linear_to_srgb(c.clamp(0.0, 1.0));
+                }
+            }
+            image::DynamicImage::ImageRgba32F(rgba).into_rgba8()
+        } else {
+            img.into_rgba8()
+        };
         let (width_px, height_px) = img.dimensions();
         Ok(Self {
             width_px,
@@ -285,7 +321,14 @@ mod tests {
             ("map.tif", encode(eight.clone(), ImageFormat::Tiff), 0),
             ("map16.tiff", encode(sixteen, ImageFormat::Tiff), 0),
             ("map.bmp", encode(eight.clone(), ImageFormat::Bmp), 0),
-            ("map.tga", encode(eight, ImageFormat::Tga), 0),
+            ("map.tga", encode(eight.clone(), ImageFormat::Tga), 0),
+            // OpenEXR holds linear light: float and half, sRGB-encoded as colour maps are.
+            (
+                "map.exr",
+                encode(linear_float(&eight), ImageFormat::OpenExr),
+                1,
+            ),
+            ("map-half.exr", half_exr(&eight), 1),
         ];
         for (name, bytes, tolerance) in cases {
             let img = HeadImage::decode(&bytes, Path::new(name))
@@ -303,6 +346,51 @@ mod tests {
         }
         let e = HeadImage::decode(b"not an image at all", Path::new("map.webp")).unwrap_err();
         assert!(e.to_string().contains("map.webp"), "{e}");
+        // A normal map in EXR is data: its values as they are, not sRGB-encoded.
+        let normal = DynamicImage::ImageRgb32F(image::Rgb32FImage::from_pixel(
+            2,
+            2,
+            image::Rgb([0.5, 0.5, 1.0]),
+        ));
+        let bytes = encode(normal, ImageFormat::OpenExr);
+        let data = HeadImage::decode_as(&bytes, Path::new("n.exr"), Encoding::Data).unwrap();
+        assert_eq!(&data.rgba[..4], &[128, 128, 255, 255]);
+        let colour = HeadImage::decode(&bytes, Path::new("n.exr")).unwrap();
+        assert_eq!(
+            &colour.rgba[..3],
+            &[188, 188, 255],
+            "0.5 linear is 188 in sRGB"
+        );
+    }
+
+    /// `img`'s sRGB colours as linear floats (what an OpenEXR colour map holds).
+    fn linear_float(img: &image::DynamicImage) -> image::DynamicImage {
+        let mut f = img.to_rgb32f();
+        for p in f.pixels_mut() {
+            for c in &mut p.0 {
+                *c = srgb_to_linear(*c);
+            }
+        }
+        image::DynamicImage::ImageRgb32F(f)
+    }
+
+    /// `img` as a half-float OpenEXR file of linear light, written by the `exr` crate.
+    fn half_exr(img: &image::DynamicImage) -> Vec<u8> {
+        use exr::prelude::*;
+        let f = linear_float(img).to_rgb32f();
+        let (w, h) = f.dimensions();
+        let channels = SpecificChannels::rgb(|p: Vec2<usize>| {
+            let c = f.get_pixel(p.x() as u32, p.y() as u32).0;
+            (
+                f16::from_f32(c[0]),
+                f16::from_f32(c[1]),
+                f16::from_f32(c[2]),
+            )
+        });
+        let image = Image::from_channels((w as usize, h as usize), channels);
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image.write().to_buffered(&mut bytes).unwrap();
+        bytes.into_inner()
     }
 
     /// A TGA (no signature: its format comes from its name) with its origin at the

@@ -210,10 +210,12 @@ impl Inputs {
         };
         // The head's pictures: small, read after the rest.
         let mut load_picture =
-            |key: &(Option<PathBuf>, bool, u64), kept: Option<Option<Arc<HeadImage>>>| {
+            |key: &(Option<PathBuf>, bool, u64),
+             kept: Option<Option<Arc<HeadImage>>>,
+             encoding: crate::maps::mask::Encoding| {
                 kept.unwrap_or_else(|| {
                     let path = key.0.as_ref()?;
-                    HeadImage::load(path, key.1)
+                    HeadImage::load_as(path, key.1, encoding)
                         .map_err(|e| errors.push(e))
                         .ok()
                         .map(Arc::new)
@@ -228,6 +230,7 @@ impl Inputs {
         let colour_map = load_picture(
             &colour_map_key,
             find(&|p| p.colour_map_key == colour_map_key).map(|p| p.colour_map.clone()),
+            crate::maps::mask::Encoding::Colour,
         );
         let normal_map_key = (
             project.mesh.normal_map.clone(),
@@ -237,6 +240,7 @@ impl Inputs {
         let normal_map = load_picture(
             &normal_map_key,
             find(&|p| p.normal_map_key == normal_map_key).map(|p| p.normal_map.clone()),
+            crate::maps::mask::Encoding::Data,
         );
         match (mesh, wrinkles, large_mask, hair_masks, fine_tile) {
             (

@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::base::error::Error;
-use crate::maps::mask::HeadImage;
+use crate::maps::mask::{Encoding, HeadImage};
 
 /// The pictures a head file's material names, decoded.
 #[derive(Clone, Debug, Default)]
@@ -28,14 +28,14 @@ enum Source {
 }
 
 impl Source {
-    fn decode(self) -> Result<(HeadImage, String), Error> {
+    fn decode(self, encoding: Encoding) -> Result<(HeadImage, String), Error> {
         match self {
             Source::Bytes(bytes, name) => {
-                let image = HeadImage::decode(&bytes, Path::new(&name))?;
+                let image = HeadImage::decode_as(&bytes, Path::new(&name), encoding)?;
                 Ok((image, name))
             }
             Source::File(path) => {
-                let image = HeadImage::load(&path, false)?;
+                let image = HeadImage::load_as(&path, false, encoding)?;
                 Ok((image, path.display().to_string()))
             }
         }
@@ -87,12 +87,12 @@ fn decode(colour: Option<Source>, normal: Option<Source>) -> Result<MeshTextures
         }
     }
     if let Some(s) = colour {
-        let (image, name) = s.decode()?;
+        let (image, name) = s.decode(Encoding::Colour)?;
         out.colour = Some(std::sync::Arc::new(image));
         out.sources.push(format!("colour map {name}"));
     }
     if let Some(s) = normal {
-        let (image, name) = s.decode()?;
+        let (image, name) = s.decode(Encoding::Data)?;
         out.normal = Some(std::sync::Arc::new(image));
         out.sources.push(format!("normal map {name}"));
     }
@@ -141,7 +141,12 @@ fn decode_tiled(
         }
         let mut images = Vec::new();
         for f in &files {
-            let image = HeadImage::load(f, false)?;
+            let encoding = if colour {
+                Encoding::Colour
+            } else {
+                Encoding::Data
+            };
+            let image = HeadImage::load_as(f, false, encoding)?;
             let side = images
                 .first()
                 .map_or(image.width_px, |i: &HeadImage| i.width_px);

@@ -45,6 +45,14 @@ impl Scene {
         let Some(masks) = self.inputs.hair_masks.clone() else {
             return Ok(changed);
         };
+        // A face only has no scalp to grow hair on (the layout says so).
+        if self.inputs.layout.face_only {
+            if self.hair.take().is_some() {
+                self.hair_key = None;
+                changed.hair = true;
+            }
+            return Ok(changed);
+        }
         let masks_id = Arc::as_ptr(&masks) as u64;
         let tkey = (
             masks_id,

@@ -364,6 +364,10 @@ pub struct HeadLayout {
     pub landmarks: Option<Arc<Landmarks>>,
     /// Whether `landmarks` were found automatically (not read from a file).
     pub found: bool,
+    /// The head is a face only (a mask: no ears, scalp or neck,
+    /// [`crate::head::fit::auto::face_only`]): the layers that have no place on it (the
+    /// hair) are left out.
+    pub face_only: bool,
     /// How it was decided, for reports.
     pub how: String,
 }
@@ -380,6 +384,7 @@ impl HeadLayout {
             fit: None,
             landmarks: None,
             found: false,
+            face_only: false,
             how: how.into(),
         }
     }
@@ -387,8 +392,24 @@ impl HeadLayout {
     /// Fits the template to `mesh` (already turned to agesim's axes by `axes`), from the
     /// project's landmarks (file coordinates) or found ones. When the fit fails (too few
     /// landmarks, found ones that do not fit) the layers are read at the head's own UVs,
-    /// and `how` says why.
+    /// and `how` says why; and a face only says what is left out.
     fn of(
+        project: &Project,
+        mesh: &Arc<Mesh>,
+        axes: Axes,
+        file_landmarks: Option<&Landmarks>,
+    ) -> Result<Self, Error> {
+        let mut layout = Self::fitted(project, mesh, axes, file_landmarks)?;
+        if project.mesh.path.is_some() && crate::head::fit::auto::face_only(mesh).is_some() {
+            layout.face_only = true;
+            layout
+                .how
+                .push_str("; a face only (no ears, scalp or neck): no hair, and no neck to age");
+        }
+        Ok(layout)
+    }
+
+    fn fitted(
         project: &Project,
         mesh: &Arc<Mesh>,
         axes: Axes,
@@ -423,6 +444,7 @@ impl HeadLayout {
                     fit: Some(Arc::new(fit)),
                     landmarks: Some(Arc::new(turned)),
                     found: false,
+                    face_only: false,
                 },
                 Err(e) => Self {
                     landmarks: Some(Arc::new(turned)),
@@ -455,6 +477,7 @@ impl HeadLayout {
                 fit: Some(Arc::new(fit)),
                 landmarks: Some(Arc::new(found.landmarks)),
                 found: true,
+                face_only: false,
             }),
             Err(e) => Ok(Self::own(choice, format!("the head's own UVs: {e}"))),
         }
@@ -477,6 +500,28 @@ fn axes_of(project: &Project, landmarks: Option<&Landmarks>, mesh: &Mesh) -> (Ax
             forward: forward.unwrap_or(detected.forward),
         };
         return (axes, "from the landmarks".into());
+    }
+    // A face only (a mask) has no cranium to fit: it faces the way its surface does, up
+    // assumed +Y (or +Z for a face looking along Y).
+    if up.is_none()
+        && forward.is_none()
+        && let Some(facing) = crate::head::fit::auto::face_only(mesh)
+        && let Some(forward) = crate::head::mesh::units::Axis::nearest_to(facing)
+    {
+        use crate::head::mesh::units::Axis;
+        let up = if matches!(forward, Axis::PosY | Axis::NegY) {
+            Axis::PosZ
+        } else {
+            Axis::PosY
+        };
+        return (
+            Axes { up, forward },
+            format!(
+                "a face only: it faces {}, up assumed {}",
+                forward.name(),
+                up.name()
+            ),
+        );
     }
     // No landmarks to read them from: the orientation the template fits best.
     if up.is_none() && forward.is_none() && project.mesh.layout == Layout::Template {

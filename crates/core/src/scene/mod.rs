@@ -762,6 +762,8 @@ impl LargeMap {
 }
 
 #[cfg(test)]
+mod face_only_tests;
+#[cfg(test)]
 mod heads_tests;
 #[cfg(test)]
 mod person_tests;

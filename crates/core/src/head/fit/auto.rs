@@ -38,6 +38,15 @@ const NECK_CUT_Y_M: f32 = -0.11;
 const FACE_M: f32 = 0.075;
 /// Radius of the patch refined around each landmark, template metres.
 const PATCH_M: f32 = 0.025;
+/// A mesh whose skin's area-weighted mean normal is at least this long faces one way: a
+/// face only (a mask: no back of the head, no ears, no neck). A whole head, closed round
+/// the back, has a short one (its neck's cut leaves it open downward).
+const FACE_ONLY_MEAN_NORMAL: f32 = 0.45;
+/// Radius of the template's face aligned to a face-only mesh, template metres: forehead
+/// to chin, cheek to cheek.
+const FACE_ONLY_M: f32 = 0.09;
+/// The landmarks a face-only mesh has no place for.
+const OFF_THE_FACE: [&str; 3] = ["vertex", "tragion_r", "tragion_l"];
 
 /// What the automatic search found.
 #[derive(Clone, Debug)]
@@ -70,26 +79,38 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
     }
     let t_pos = template.mesh.positions();
     let t_nrm = template.mesh.normals();
-    let samples = template_samples(template, SAMPLES);
+    let face_only = face_only(head).is_some();
+    let samples = if face_only {
+        template_face(template)
+    } else {
+        template_samples(template, SAMPLES)
+    };
 
     // The starts compared coarsely (as when finding the axes), the best one refined
-    // with every sample.
-    let best = global_search(
-        &template_samples(template, COARSE_SAMPLES),
-        t_pos,
-        bvh,
-        normals,
-        h_pos,
-        glam::Mat3::IDENTITY,
-        metres_per_unit,
-        &[0.5, 0.71, 1.0, 1.41, 2.0],
-        START_ITERATIONS,
-    )
-    .map(|(_, coarse)| {
-        let (s, median) = icp(&samples, bvh, normals, coarse, 40, true);
-        (median / s.scale, s)
-    })
-    .filter(|(median_m, _)| median_m.is_finite());
+    // with every sample. A face-only mesh: the template's face on it, no cranium to
+    // start from.
+    let factors = [0.5, 0.71, 1.0, 1.41, 2.0];
+    let coarse = if face_only {
+        face_search(&samples, bvh, normals, h_pos, metres_per_unit, &factors)
+    } else {
+        global_search(
+            &template_samples(template, COARSE_SAMPLES),
+            t_pos,
+            bvh,
+            normals,
+            h_pos,
+            glam::Mat3::IDENTITY,
+            metres_per_unit,
+            &factors,
+            START_ITERATIONS,
+        )
+    };
+    let best = coarse
+        .map(|(_, coarse)| {
+            let (s, median) = icp(&samples, bvh, normals, coarse, 40, true);
+            (median / s.scale, s)
+        })
+        .filter(|(median_m, _)| median_m.is_finite());
     let Some((median_m, alignment)) = best else {
         return Err(fail(
             "the template could not be aligned to the head (is it upright and facing +Z?)".into(),
@@ -119,6 +140,9 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
         let Some(l) = template.landmarks.get(name) else {
             continue;
         };
+        if face_only && OFF_THE_FACE.contains(&name) {
+            continue;
+        }
         let patch: Vec<(Vec3, Vec3)> = (0..t_pos.len())
             .filter(|&i| t_pos[i].distance(l) < PATCH_M)
             .map(|i| (t_pos[i], t_nrm[i]))
@@ -165,6 +189,86 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
         alignment,
         median_distance_mm: median_m * 1e3,
     })
+}
+
+/// Whether `head` is a face only (a mask: no back, ears, scalp or neck), and which way it
+/// faces: its skin's area-weighted mean normal, when at least [`FACE_ONLY_MEAN_NORMAL`]
+/// long (a whole head's, closed round the back, is short).
+pub fn face_only(head: &Mesh) -> Option<Vec3> {
+    let p = head.positions();
+    let mut sum = Vec3::ZERO;
+    let mut area = 0.0f32;
+    for t in head.skin_indices().chunks_exact(3) {
+        let [a, b, c] = [t[0], t[1], t[2]].map(|i| p.get(i as usize).copied().unwrap_or_default());
+        let n = (b - a).cross(c - a);
+        sum += n;
+        area += n.length();
+    }
+    let mean = sum / area.max(f32::MIN_POSITIVE);
+    (mean.length() >= FACE_ONLY_MEAN_NORMAL).then(|| mean.normalize())
+}
+
+/// The template's face (front-facing points within [`FACE_ONLY_M`] of the middle of the
+/// nose, not below the chin), what a face-only mesh is aligned with.
+fn template_face(template: &Template) -> Vec<(Vec3, Vec3)> {
+    let (t_pos, t_nrm) = (template.mesh.positions(), template.mesh.normals());
+    let l = &template.landmarks;
+    let centre = match (l.get("nasion"), l.get("subnasale")) {
+        (Some(a), Some(b)) => (a + b) * 0.5,
+        _ => Vec3::new(0.0, -0.015, 0.1),
+    };
+    let chin = l.get("pogonion").map_or(f32::NEG_INFINITY, |c| c.y - 0.01);
+    let face: Vec<usize> = (0..t_pos.len())
+        .filter(|&i| {
+            t_pos[i].distance(centre) < FACE_ONLY_M && t_nrm[i].z > 0.2 && t_pos[i].y > chin
+        })
+        .collect();
+    let step = (face.len() / SAMPLES).max(1);
+    face.iter()
+        .step_by(step)
+        .map(|&i| (t_pos[i], t_nrm[i]))
+        .collect()
+}
+
+/// [`global_search`] for a face-only mesh (+Y up, +Z forward): the template's face
+/// `samples` started at each scale `factor` around `metres_per_unit` with the middle of
+/// their box on the middle of the head's, its front on the head's front.
+fn face_search(
+    samples: &[(Vec3, Vec3)],
+    bvh: &Bvh,
+    normals: &[Vec3],
+    h_pos: &[Vec3],
+    metres_per_unit: f32,
+    factors: &[f32],
+) -> Option<(f32, Similarity)> {
+    use rayon::prelude::*;
+    let points: Vec<Vec3> = samples.iter().map(|s| s.0).collect();
+    let t_box = crate::head::mesh::Aabb::from_points(&points)?;
+    let h_box = crate::head::mesh::Aabb::from_points(h_pos)?;
+    let tried: Vec<Option<(f32, Similarity)>> = factors
+        .par_iter()
+        .map(|&factor| {
+            let scale = 1.0 / (metres_per_unit * factor);
+            let (t_c, h_c) = (t_box.centre(), h_box.centre());
+            let translation =
+                Vec3::new(h_c.x, h_c.y, h_box.max.z) - Vec3::new(t_c.x, t_c.y, t_box.max.z) * scale;
+            let start = Similarity {
+                scale,
+                rotation: glam::Quat::IDENTITY,
+                translation,
+            };
+            let (s, median) = icp(samples, bvh, normals, start, START_ITERATIONS, true);
+            let median_m = median / s.scale;
+            median_m.is_finite().then_some((median_m, s))
+        })
+        .collect();
+    let mut best: Option<(f32, Similarity)> = None;
+    for (median_m, s) in tried.into_iter().flatten() {
+        if best.as_ref().is_none_or(|b| median_m < b.0) {
+            best = Some((median_m, s));
+        }
+    }
+    best
 }
 
 /// The best similarity-ICP alignment of the template `samples` onto the head (its tree

@@ -125,6 +125,11 @@ impl Axis {
         }
     }
 
+    /// The axis nearest to `v`.
+    pub fn nearest_to(v: Vec3) -> Option<Axis> {
+        Self::nearest(v, |_| true)
+    }
+
     /// The axis nearest to `v` among those `allowed`.
     fn nearest(v: Vec3, allowed: impl Fn(Axis) -> bool) -> Option<Axis> {
         Axis::ALL

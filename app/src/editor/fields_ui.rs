@@ -197,7 +197,11 @@ fn field_ui(
                     if matches!(field.kind, Kind::OptFloat { .. }) {
                         auto_toggle(ui, is_null, Value::from(x), &mut out);
                     }
-                    let log = min >= 0.0 && max / min.max(1e-6) > 1000.0;
+                    // Logarithmic over three decades or more of positive values (a size
+                    // in metres per unit), or from 0 to beyond 1000 (a count); a 0–1
+                    // strength is linear, as artists' sliders are (a log slider put most of
+                    // its track below 0.01 and showed 0 as "0.000000").
+                    let log = (min > 0.0 && max / min > 1000.0) || (min == 0.0 && max > 1000.0);
                     let r = ui.add_enabled(
                         !is_null,
                         egui::Slider::new(&mut x, min as f64..=max as f64)

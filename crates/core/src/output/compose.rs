@@ -73,6 +73,11 @@ pub fn cavity(local: f32, disp_scale: f32) -> f32 {
 pub fn local_depth(large: &HeightMap, x: u32, y: u32, disp_scale: f32) -> f32 {
     let (w, h) = (large.width_px(), large.height_px());
     let depth = |x: u32, y: u32| large.get(x, y).clamp(0.0, 1.0);
+    // Open skin (most of a head) is no deeper than any ring: nothing to sample.
+    let here = depth(x, y);
+    if here <= 0.0 {
+        return 0.0;
+    }
     let r = CAVITY_RING * disp_scale.max(0.0);
     let mut ring = 0.0;
     for [du, dv] in RING {
@@ -88,21 +93,51 @@ pub fn local_depth(large: &HeightMap, x: u32, y: u32, disp_scale: f32) -> f32 {
         let bottom = depth(xa, yb) * (1.0 - tx) + depth(xb, yb) * tx;
         ring += top * (1.0 - ty) + bottom * ty;
     }
-    (depth(x, y) - ring / 8.0).max(0.0)
+    (here - ring / 8.0).max(0.0)
 }
 
 /// The occlusion map of a large-wrinkle depth map, 8-bit grey (255 = open skin): the
 /// exported GLB's `occlusionTexture`, so the exported head darkens its creases as the view
 /// does.
+///
+/// [`local_depth`] per texel, its eight ring taps found once: a ring point lies the same
+/// whole texels and fraction from every texel, so each tap is four loads with fixed
+/// weights; open skin (no depth) is skipped. Row by row on every core.
 pub fn occlusion_map(large: &HeightMap, disp_scale: f32) -> Vec<u8> {
-    let w = large.width_px() as usize;
-    (0..large.data().len())
-        .into_par_iter()
-        .map(|i| {
-            let local = local_depth(large, (i % w) as u32, (i / w) as u32, disp_scale);
-            (cavity(local, disp_scale) * 255.0).round() as u8
-        })
-        .collect()
+    let (w, h) = (large.width_px() as usize, large.height_px() as usize);
+    let r = CAVITY_RING * disp_scale.max(0.0);
+    // Per ring point: the whole-texel offset (x, y) and the bilinear fractions.
+    let taps = RING.map(|[du, dv]| {
+        let (cx, cy) = (du * r * w as f32, -dv * r * h as f32);
+        let (fx, fy) = (cx.floor(), cy.floor());
+        (fx as i64, fy as i64, cx - fx, cy - fy)
+    });
+    let data = large.data();
+    let depth = |x: usize, y: usize| data[y * w + x].clamp(0.0, 1.0);
+    let mut out = vec![255u8; w * h];
+    out.par_chunks_mut(w.max(1))
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, ao) in row.iter_mut().enumerate() {
+                let here = depth(x, y);
+                if here <= 0.0 {
+                    continue;
+                }
+                let mut ring = 0.0;
+                for &(ox, oy, tx, ty) in &taps {
+                    let xa = (x as i64 + ox).rem_euclid(w as i64) as usize;
+                    let xb = (xa + 1) % w;
+                    let clamp = |j: i64| j.clamp(0, h as i64 - 1) as usize;
+                    let (ya, yb) = (clamp(y as i64 + oy), clamp(y as i64 + oy + 1));
+                    let top = depth(xa, ya) * (1.0 - tx) + depth(xb, ya) * tx;
+                    let bottom = depth(xa, yb) * (1.0 - tx) + depth(xb, yb) * tx;
+                    ring += top * (1.0 - ty) + bottom * ty;
+                }
+                let local = (here - ring / 8.0).max(0.0);
+                *ao = (cavity(local, disp_scale) * 255.0).round() as u8;
+            }
+        });
+    out
 }
 
 /// The skin's roughness where the cavity occlusion is `ao` (1 = open skin, down to
@@ -418,6 +453,22 @@ mod tests {
         assert_eq!(at(0), 255);
         // No relief, no cavity.
         assert!(occlusion_map(&narrow, 0.0).iter().all(|&a| a == 255));
+        // The map is `local_depth` texel by texel (its taps found once), within a step of
+        // the 8-bit rounding, at a relief whose ring falls between texels.
+        for disp in [0.005, 0.0123, disp] {
+            let fast = occlusion_map(&narrow, disp);
+            for (i, &a) in fast.iter().enumerate() {
+                let slow = cavity(
+                    local_depth(&narrow, (i % 64) as u32, (i / 64) as u32, disp),
+                    disp,
+                );
+                let slow = (slow * 255.0).round() as u8;
+                assert!(
+                    a.abs_diff(slow) <= 1,
+                    "texel {i} at {disp}: {a} against {slow}"
+                );
+            }
+        }
         // The roughness follows the creases: open skin the skin's, a crease's bottom
         // rougher, by at most CREASE_ROUGHNESS; metallic nowhere.
         let (orm, ao) = (orm_map(&narrow, disp, 0.5), occlusion_map(&narrow, disp));

@@ -94,19 +94,7 @@ pub fn run(args: &HairArgs) -> anyhow::Result<()> {
     };
     let load_ms = ms(start);
     let start = Instant::now();
-    let request = BakeRequest {
-        large_size_px: 1,
-        micro_size_px: 1,
-        t: 0.0,
-        tileable: false,
-        fine: false,
-        hair: true,
-        packed: false,
-        one_off: true,
-        micro_normals: false,
-        shape_relief: false,
-    };
-    scene.bake(&request, &CancelToken::never())?;
+    scene.bake(&BakeRequest::hair_only(0.0), &CancelToken::never())?;
     let bake_ms = ms(start);
     let (Some(transition), Some(hairs)) = (scene.transition(), scene.hair()) else {
         anyhow::bail!("no hair was generated (hair is disabled)");

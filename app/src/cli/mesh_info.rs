@@ -67,18 +67,7 @@ fn describe_hair_at(scene: &mut Scene, t: f32) -> anyhow::Result<String> {
             "at {years:.0} years: no hair (hair.enabled is off)\n"
         ));
     }
-    let request = agesim_core::scene::BakeRequest {
-        large_size_px: 1,
-        micro_size_px: 1,
-        t,
-        tileable: false,
-        fine: false,
-        hair: true,
-        packed: false,
-        one_off: true,
-        micro_normals: false,
-        shape_relief: false,
-    };
+    let request = agesim_core::scene::BakeRequest::hair_only(t);
     scene.bake(&request, &agesim_core::base::cancel::CancelToken::never())?;
     let Some(hairs) = scene.hair() else {
         return Ok(format!("at {years:.0} years: no hair on this head\n"));

@@ -191,7 +191,8 @@ fn a_face_only_mask_in_centimetres_is_measured_fitted_and_aged_in_place() {
 }
 
 /// Whole heads (closed round the back, their necks cut) are not taken for face-only
-/// masks: the scan, the MakeHuman head and the four panel heads.
+/// masks: the scan, the MakeHuman head and the four panel heads; nor is a flat patch of
+/// skin (it faces one way, but has no depth).
 #[test]
 fn whole_heads_are_not_face_only() {
     let dir = super::heads_tests::heads_dir();

@@ -155,6 +155,15 @@ impl BakeRequest {
             shape_relief: false,
         }
     }
+
+    /// The hair alone at age `t` (its transition and placement; every map a texel): what
+    /// `agesim hair` and `mesh-info --age` ask for.
+    pub fn hair_only(t: f32) -> Self {
+        Self {
+            hair: true,
+            ..Self::maps(1, t, false)
+        }
+    }
 }
 
 /// Which outputs a [`Scene::bake`] (or a setter) changed.

@@ -42,6 +42,9 @@ const PATCH_M: f32 = 0.025;
 /// face only (a mask: no back of the head, no ears, no neck). A whole head, closed round
 /// the back, has a short one (its neck's cut leaves it open downward).
 const FACE_ONLY_MEAN_NORMAL: f32 = 0.45;
+/// A face-only mesh is at least this deep along the way it faces, in its largest extent
+/// (a face mask ≈ 0.45; a flat patch of skin 0).
+const FACE_ONLY_DEPTH: f32 = 0.2;
 /// Radius of the template's face aligned to a face-only mesh, template metres: forehead
 /// to chin, cheek to cheek.
 const FACE_ONLY_M: f32 = 0.09;
@@ -193,7 +196,8 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
 
 /// Whether `head` is a face only (a mask: no back, ears, scalp or neck), and which way it
 /// faces: its skin's area-weighted mean normal, when at least [`FACE_ONLY_MEAN_NORMAL`]
-/// long (a whole head's, closed round the back, is short).
+/// long (a whole head's, closed round the back, is short) and the mesh at least
+/// [`FACE_ONLY_DEPTH`] deep along it (a flat patch is not a face).
 pub fn face_only(head: &Mesh) -> Option<Vec3> {
     let p = head.positions();
     let mut sum = Vec3::ZERO;
@@ -205,7 +209,27 @@ pub fn face_only(head: &Mesh) -> Option<Vec3> {
         area += n.length();
     }
     let mean = sum / area.max(f32::MIN_POSITIVE);
-    (mean.length() >= FACE_ONLY_MEAN_NORMAL).then(|| mean.normalize())
+    if mean.length() < FACE_ONLY_MEAN_NORMAL {
+        return None;
+    }
+    // A face has depth (its nose before its cheeks, a mask 9 cm deep for 20 cm tall); a
+    // flat patch of skin, which faces one way too, has none.
+    let facing = mean.normalize();
+    let skin: Vec<Vec3> = head
+        .skin_indices()
+        .iter()
+        .filter_map(|&i| p.get(i as usize).copied())
+        .collect();
+    let (lo, hi) = skin
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), q| {
+            let d = q.dot(facing);
+            (lo.min(d), hi.max(d))
+        });
+    let size = crate::head::mesh::Aabb::from_points(&skin)?
+        .size()
+        .max_element();
+    (hi - lo >= FACE_ONLY_DEPTH * size).then_some(facing)
 }
 
 /// The template's face (front-facing points within [`FACE_ONLY_M`] of the middle of the
@@ -262,13 +286,7 @@ fn face_search(
             median_m.is_finite().then_some((median_m, s))
         })
         .collect();
-    let mut best: Option<(f32, Similarity)> = None;
-    for (median_m, s) in tried.into_iter().flatten() {
-        if best.as_ref().is_none_or(|b| median_m < b.0) {
-            best = Some((median_m, s));
-        }
-    }
-    best
+    best_start(tried)
 }
 
 /// The best similarity-ICP alignment of the template `samples` onto the head (its tree
@@ -314,6 +332,12 @@ fn global_search(
             median_m.is_finite().then_some((median_m, s))
         })
         .collect();
+    best_start(tried)
+}
+
+/// Of the starts' results (median distance, alignment), in start order, the one with the
+/// smallest median: the first of equals, so the same on any thread count.
+fn best_start(tried: Vec<Option<(f32, Similarity)>>) -> Option<(f32, Similarity)> {
     let mut best: Option<(f32, Similarity)> = None;
     for (median_m, s) in tried.into_iter().flatten() {
         if best.as_ref().is_none_or(|b| median_m < b.0) {

@@ -204,19 +204,11 @@ pub fn peak_bytes(size_px: u32) -> u64 {
     (size_px as u64).pow(2) * (4 + 4 + 2 + 2 + 3)
 }
 
-/// MemAvailable from /proc/meminfo, when the platform has it.
-pub fn available_memory_bytes() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
-}
-
 /// Refuses a map size outside the engine's range, or one this machine's free memory
 /// cannot hold, before any work starts; `what` names the setting in the message.
 pub fn check_map_size(size_px: u32, what: &str) -> anyhow::Result<()> {
     heightmap::check_size(size_px, size_px).with_context(|| format!("{what} {size_px}"))?;
-    if let Some(available) = available_memory_bytes() {
+    if let Some(available) = agesim_core::base::limits::available_memory_bytes() {
         let needed = peak_bytes(size_px);
         if needed > available {
             bail!(

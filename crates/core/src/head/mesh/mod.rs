@@ -282,6 +282,12 @@ impl Mesh {
                 });
             }
         };
+        // Before it is built and aged: a head the machine cannot hold is refused now.
+        crate::base::limits::check_head_fits(
+            path,
+            raw.indices.len() / 3,
+            crate::base::limits::available_memory_bytes(),
+        )?;
         Self::build(raw, &path.display().to_string())
     }
 

@@ -620,6 +620,7 @@ fn the_glb_carries_the_age_morph_target() {
 #[test]
 fn the_glb_carries_the_aged_hair() {
     let dir = tempfile::tempdir().unwrap();
+    let colours = std::cell::RefCell::new(Vec::<(String, Vec<u8>)>::new());
     let hair = |years: &str, which: &str| {
         let glb = dir.path().join(format!("{years}-{which}.glb"));
         let o = agesim(&[
@@ -634,7 +635,18 @@ fn the_glb_carries_the_aged_hair() {
             glb.to_str().unwrap(),
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
-        let (doc, buffers, _) = gltf::import(&glb).expect("the GLB imports");
+        let (doc, buffers, images) = gltf::import(&glb).expect("the GLB imports");
+        // The skin's base colour is the same with or without the hair in the file.
+        let colour = doc.materials().next().unwrap().pbr_metallic_roughness();
+        let colour = &images[colour
+            .base_color_texture()
+            .unwrap()
+            .texture()
+            .source()
+            .index()];
+        colours
+            .borrow_mut()
+            .push((years.to_owned(), colour.pixels.clone()));
         let node = doc.nodes().find(|n| n.name() == Some("hair"))?;
         let prim = node.mesh().unwrap().primitives().next().unwrap();
         assert!(prim.material().double_sided());
@@ -646,7 +658,24 @@ fn the_glb_carries_the_aged_hair() {
     };
     let (light, old) = hair("80", "light").expect("a hair mesh");
     let (full, _) = hair("80", "full").expect("a hair mesh");
+    // The exported head read back by agesim keeps its own UVs: the hair is left out.
+    let back = agesim_core::head::mesh::Mesh::load(&dir.path().join("80-light.glb")).unwrap();
+    assert!(!back.report().uvs_generated, "{:?}", back.report().warnings);
+    assert!(back.parts().iter().all(|p| !p.name.contains("hair")));
     assert!(hair("80", "none").is_none(), "no hair asked, none written");
+    {
+        let colours = colours.borrow();
+        let at_80: Vec<&Vec<u8>> = colours
+            .iter()
+            .filter(|(y, _)| y == "80")
+            .map(|(_, c)| c)
+            .collect();
+        assert_eq!(at_80.len(), 3);
+        assert!(
+            at_80.iter().all(|c| *c == at_80[0]),
+            "the base colour changed with the hair"
+        );
+    }
     let ratio = full as f64 / light as f64;
     assert!(
         (2.5..4.5).contains(&ratio),

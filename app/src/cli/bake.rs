@@ -294,7 +294,10 @@ pub fn run(args: &BakeArgs) -> anyhow::Result<()> {
         age_t,
         args.size,
         tileable,
-        true,
+        crate::export::Wanted {
+            colour: true,
+            crease: true,
+        },
         "--size",
         &CancelToken::never(),
     )?;

@@ -31,7 +31,7 @@ pub struct HairArgs {
     #[arg(long)]
     pub inner: Option<PathBuf>,
     /// Hair density, hairs per cm² of surface (`hair.density_per_cm2`). Default: the
-    /// project's (a new project's: 120).
+    /// project's (a new project's: 200).
     #[arg(long)]
     pub density: Option<f32>,
     /// How hair fronts advance (`hair.metric`): chebyshev (the 8-neighbourhood growth of

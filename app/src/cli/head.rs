@@ -100,8 +100,8 @@ impl AgeArgs {
 #[derive(Clone, Debug, Default, clap::Args)]
 pub struct SetArgs {
     /// Override one project field by its JSON path, e.g. `--set hair.loss=female` or
-    /// `--set pores.count=1000` (repeatable, applied in order after every other flag;
-    /// docs/project-file.md lists the fields).
+    /// `--set pores.count=1000` (repeatable, applied in order after the project and the
+    /// other head flags; docs/project-file.md lists the fields).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub set: Vec<String>,
 }

@@ -52,9 +52,7 @@ pub(super) fn export_glb(
     let udim = scene.mesh().udim().cloned();
     let atlas_px = atlas_size(udim.as_ref(), glb.size_px, "GLB texture size")?;
     progress(0.1, "baking the head's maps");
-    let mut request = glb_bake_request(atlas_px, glb.size_px, t);
-    // The hair's placement, when the GLB carries it.
-    request.hair = glb.hair.stride().is_some() && scene.project().hair.enabled;
+    let request = glb_bake_request(atlas_px, glb.size_px, t);
     scene.bake(&request, cancel)?;
     progress(0.5, "composing the normal map");
     let normals = head_normal_map(&scene, t, atlas_px, cancel)?;
@@ -193,12 +191,12 @@ pub(super) fn export_glb(
         }
     });
     progress(0.85, "making the hair");
-    let hair: Vec<GlbExtraMesh> = glb
-        .hair
-        .stride()
-        .and_then(|stride| hair_mesh(&mut scene, t, years, stride))
-        .into_iter()
-        .collect();
+    let hair: Vec<GlbExtraMesh> = match glb.hair.stride() {
+        Some(stride) => hair_mesh(&mut scene, &request, years, stride, cancel)?
+            .into_iter()
+            .collect(),
+        None => Vec::new(),
+    };
     cancel.check()?;
     let bytes = write_glb_with_extras(&mesh, &materials, morph.as_ref(), &hair);
     progress(0.9, "writing the GLB");
@@ -266,14 +264,29 @@ const HAIR_WIDTH_M: f32 = 80e-6;
 /// Segments of each exported strand (the view's full-quality ribbon).
 const HAIR_SEGMENTS: u32 = 4;
 
-/// The hair of `scene` at age `t` as the GLB's `hair` mesh, in metres (docs/models.md §9
-/// "The hair in the GLB"): the scalp hair present (one in `stride`) and the brows and
-/// lashes, each strand a ribbon along the curve the view draws, coloured as the view
-/// colours it at that age; `None` without hair.
-fn hair_mesh(scene: &mut Scene, t: f32, years: f32, stride: usize) -> Option<GlbExtraMesh> {
+/// The hair of `scene` at the age of `request` as the GLB's `hair` mesh, in metres
+/// (docs/models.md §9 "The hair in the GLB"): the scalp hair present (one in `stride`) and
+/// the brows and lashes, each strand a ribbon along the curve the view draws, coloured as
+/// the view colours it at that age; `None` without hair. Placed after the maps and the
+/// base colour were made (the same with or without the hair in the file).
+fn hair_mesh(
+    scene: &mut Scene,
+    request: &BakeRequest,
+    years: f32,
+    stride: usize,
+    cancel: &CancelToken,
+) -> anyhow::Result<Option<GlbExtraMesh>> {
     if !scene.project().hair.enabled {
-        return None;
+        return Ok(None);
     }
+    let t = request.t;
+    scene.bake(
+        &BakeRequest {
+            hair: true,
+            ..*request
+        },
+        cancel,
+    )?;
     scene.bake_brows(t);
     let head = view::HeadScale::of(scene);
     let mpu = head.metres_per_unit;
@@ -295,17 +308,20 @@ fn hair_mesh(scene: &mut Scene, t: f32, years: f32, stride: usize) -> Option<Glb
         width: HAIR_WIDTH_M / mpu.max(1e-9),
     };
     let brows = scene.aged_brows().map_or(&[][..], |b| b.as_slice());
-    let mesh = HairMesh::new(scene.hair()?, brows, &look, t, stride, HAIR_SEGMENTS);
+    let Some(hairs) = scene.hair() else {
+        return Ok(None);
+    };
+    let mesh = HairMesh::new(hairs, brows, &look, t, stride, HAIR_SEGMENTS);
     if mesh.indices.is_empty() {
-        return None;
+        return Ok(None);
     }
-    Some(GlbExtraMesh {
-        name: "hair".into(),
+    Ok(Some(GlbExtraMesh {
+        name: agesim_core::head::mesh::gltf::AGESIM_HAIR_MESH.into(),
         positions: mesh.positions.iter().map(|p| *p * mpu).collect(),
         normals: mesh.normals,
         colours: mesh.colours,
         indices: mesh.indices,
         material_name: format!("agesim hair, {years:.0} years"),
         roughness: 0.45,
-    })
+    }))
 }

@@ -31,12 +31,16 @@ pub(super) fn export_maps(
     let mut scene = base.fork();
     scene.set_project(p)?;
     progress(0.1, "baking the maps");
+    let wanted = Wanted {
+        colour: maps.base_colour_png.is_some(),
+        crease: maps.roughness_png.is_some() || maps.ao_png.is_some(),
+    };
     let baked = bake_maps(
         &mut scene,
         t,
         maps.size_px,
         maps.tileable,
-        maps.base_colour_png.is_some(),
+        wanted,
         "map size",
         cancel,
     )?;
@@ -44,6 +48,14 @@ pub(super) fn export_maps(
     progress(0.6, "writing the maps");
     let (_, files) = stage_maps(set, maps.paths(), &baked, maps.exr_compression)?;
     Ok(files)
+}
+
+/// What [`bake_maps`] makes besides the heights: the aged base colour, the creases'
+/// occlusion and roughness.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Wanted {
+    pub colour: bool,
+    pub crease: bool,
 }
 
 /// The maps of a bake or an export at one age: the heights over the head's layout (a
@@ -55,7 +67,7 @@ pub struct BakedMaps {
     /// The aged base colour, when asked for.
     pub colour: Option<std::sync::Arc<agesim_core::maps::mask::HeadImage>>,
     /// The skin's occlusion, roughness and metallic over the heights' texels
-    /// ([`crease_maps`]).
+    /// ([`crease_maps`]), when asked for; empty otherwise.
     pub orm: Vec<u8>,
     /// Milliseconds: the bake, the aged colour (the two side by side), taking the height
     /// map out of the scene.
@@ -73,10 +85,11 @@ pub fn bake_maps(
     t: f32,
     size_px: u32,
     tileable: bool,
-    colour: bool,
+    wanted: Wanted,
     what: &str,
     cancel: &CancelToken,
 ) -> anyhow::Result<BakedMaps> {
+    let colour = wanted.colour;
     // A UDIM head is baked over its atlas, `size_px` per tile, and cut into tiles.
     let udim = scene.mesh().udim().cloned();
     let atlas_px = atlas_size(udim.as_ref(), size_px, what)?;
@@ -108,7 +121,11 @@ pub fn bake_maps(
     bake?;
     let colour = aged?.flatten();
     let start = std::time::Instant::now();
-    let orm = crease_maps(scene, t, atlas_px);
+    let orm = if wanted.crease {
+        crease_maps(scene, t, atlas_px)
+    } else {
+        Vec::new()
+    };
     let height = scene.take_height()?;
     let take_ms = ms(start);
     Ok(BakedMaps {

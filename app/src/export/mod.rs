@@ -25,7 +25,7 @@ mod maps;
 use glb::export_glb;
 pub use glb::{glb_bake_request, head_normal_map};
 use maps::export_maps;
-pub use maps::{BakedMaps, bake_maps, crease_maps, stage_maps};
+pub use maps::{BakedMaps, Wanted, bake_maps, crease_maps, stage_maps};
 
 /// The maps of `agesim bake` (the large wrinkles on the head's UV plus the micro-relief
 /// over the whole square, the aged base colour, the skin's roughness and occlusion), at
@@ -199,9 +199,10 @@ impl ExportRequest {
 pub type Progress<'a> = &'a (dyn Fn(f32, &str) + Sync);
 
 /// Bytes a map bake of `size_px`² needs at its peak: the f32 large and total heights, the
-/// u16 copy and its PNG byte buffer, and the RGB normals.
+/// u16 copy and its PNG byte buffer, the RGB normals, and the occlusion, roughness and
+/// metallic (RGB) with a grey copy.
 pub fn peak_bytes(size_px: u32) -> u64 {
-    (size_px as u64).pow(2) * (4 + 4 + 2 + 2 + 3)
+    (size_px as u64).pow(2) * (4 + 4 + 2 + 2 + 3 + 4)
 }
 
 /// Refuses a map size outside the engine's range, or one this machine's free memory

@@ -245,8 +245,10 @@ pub(super) fn transition_size(set: Option<u32>, outer: &Mask, inner: &Mask, grid
             .max(inner.width_px())
             .max(inner.height_px())
     });
-    tile.saturating_mul(grid.max(1))
-        .min(MAX_TRANSITION_PX.max(tile))
+    let grid = grid.max(1);
+    // Capped, a whole number of texels a tile, so each tile's file is its cell exactly.
+    let cap = (MAX_TRANSITION_PX / grid * grid).max(tile);
+    tile.saturating_mul(grid).min(cap)
 }
 
 /// The largest side of a UDIM head's transition atlas (its tiles smaller beyond it).

@@ -187,6 +187,9 @@ struct Loader<'a> {
     acc: Accumulator,
 }
 
+/// The name of the hair mesh an agesim export writes beside the head.
+pub const AGESIM_HAIR_MESH: &str = "hair";
+
 /// Deeper node hierarchies than this are refused (a cyclic or hostile file).
 const MAX_NODE_DEPTH: usize = 256;
 
@@ -209,6 +212,22 @@ impl Loader<'_> {
     }
 
     fn mesh(&mut self, mesh: &::gltf::Mesh, world: Mat4, node: &str) -> Result<(), String> {
+        // The hair an agesim export carries (ribbons without UVs, made again from the
+        // head): read as skin, it would leave the head's UVs partial (regenerated whole).
+        let agesim_hair = mesh.name() == Some(AGESIM_HAIR_MESH)
+            && mesh.primitives().all(|p| {
+                p.get(&Semantic::TexCoords(0)).is_none()
+                    && p.material()
+                        .name()
+                        .is_some_and(|n| n.starts_with("agesim hair"))
+            });
+        if agesim_hair {
+            self.acc.warnings.push(MeshWarning::Note(
+                "the hair of an agesim export is left out: agesim grows the head's hair itself"
+                    .into(),
+            ));
+            return Ok(());
+        }
         let mesh_name = mesh
             .name()
             .map_or_else(|| format!("#{}", mesh.index()), |n| format!("\"{n}\""));

@@ -110,6 +110,9 @@ pub fn strand(h: &HairInstance, style: &StrandStyle, t: f32, segments: u32) -> V
     let curl = style.curl.clamp(0.0, 1.0);
     let whole = hair_whole(h.disappear_age(), t);
     let len = strand_length(style.length, h.length_factor(), random, curl, whole);
+    if !(len > 0.0 && len.is_finite()) {
+        return Vec::new();
+    }
     let curve = hair_curve(
         h.position(),
         h.direction(),
@@ -235,7 +238,8 @@ impl HairMesh {
 
     /// One strand's ribbon: `points` (with tangents) from root to tip, across `up`.
     fn ribbon(&mut self, points: &[(Vec3, Vec3)], up: Vec3, colour: Vec3, width: f32) {
-        if points.len() < 2 || !width.is_finite() || width <= 0.0 {
+        let finite = points.iter().all(|(p, t)| p.is_finite() && t.is_finite());
+        if points.len() < 2 || !finite || !width.is_finite() || width <= 0.0 {
             return;
         }
         let rgba = {
@@ -243,15 +247,19 @@ impl HairMesh {
             let q = |x: f32| (x * 65535.0).round() as u16;
             [q(c[0]), q(c[1]), q(c[2]), u16::MAX]
         };
+        // One side for the whole strand, so the ribbon does not twist: across the strand
+        // from its root to its tip and `up` (at the root the hair leaves along `up` and the
+        // two are parallel), else any direction across `up`; at each point made square to
+        // the strand there.
+        let (root, tip) = (points[0].0, points[points.len() - 1].0);
+        let side = (tip - root)
+            .cross(up)
+            .try_normalize()
+            .unwrap_or_else(|| up.normalize_or(Vec3::Y).any_orthonormal_vector());
         let first = self.positions.len() as u32;
         let last = (points.len() - 1) as f32;
         for (k, &(p, t)) in points.iter().enumerate() {
-            let across = t.cross(up);
-            let across = if across.length_squared() > 1e-12 {
-                across.normalize()
-            } else {
-                t.any_orthonormal_vector()
-            };
+            let across = (side - t * t.dot(side)).try_normalize().unwrap_or(side);
             let mut n = across.cross(t).normalize_or(up);
             if n.dot(up) < 0.0 {
                 n = -n;
@@ -384,6 +392,31 @@ mod tests {
         assert!(
             (root - 1e-4).abs() < 1e-7 && (tip - 0.35e-4).abs() < 1e-7,
             "{root} {tip}"
+        );
+        // The ribbons do not twist: along each strand the vertex pairs' sides agree.
+        let per = 2 * (segments as usize + 1);
+        for strand in mesh.positions.chunks_exact(per) {
+            let sides: Vec<Vec3> = strand
+                .chunks_exact(2)
+                .map(|p| (p[1] - p[0]).normalize())
+                .collect();
+            for w in sides.windows(2) {
+                assert!(w[0].dot(w[1]) > 0.5, "a twisted ribbon: {w:?}");
+            }
+        }
+        // A hair of no length is no ribbon (no NaN in the mesh).
+        let none = HairLook {
+            style: StrandStyle {
+                length: 0.0,
+                ..look.style
+            },
+            ..look
+        };
+        let empty = HairMesh::new(&hairs, &[], &none, t, 1, segments);
+        assert!(
+            empty.positions.is_empty(),
+            "{} vertices",
+            empty.positions.len()
         );
         // Fewer hairs, wider.
         let light_mesh = HairMesh::new(&hairs, &[], &look, t, 4, segments);

@@ -128,23 +128,9 @@ fn write_embedded(dir: &Path, name: &str, json: &str, bin: &[u8]) -> std::path::
 
 fn write_glb(dir: &Path, name: &str, json: &str, bin: &[u8]) -> std::path::PathBuf {
     // GLB: the buffer has no uri.
-    let mut json = json.replace(r#","uri":"URI""#, "").into_bytes();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(bin);
+    let json = json.replace(r#","uri":"URI""#, "");
     let path = dir.join(name);
-    std::fs::write(&path, out).unwrap();
+    std::fs::write(&path, glb_container(json.as_bytes(), bin)).unwrap();
     path
 }
 

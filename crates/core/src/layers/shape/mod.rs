@@ -156,6 +156,14 @@ const SHADE_DOWN: f32 = 0.09;
 /// along the nasolabial crease, read blind as "a brown painted stripe").
 const ROLL_HOLLOW: f32 = 0.4;
 
+/// How far in front of or behind its line a roll reaches whole, and at all, face units:
+/// the face's side and the cheek turning away behind a nasolabial fold (the cheek's roll
+/// reaches 0.9 out), not the ears or the back of the head (1.4 and more behind). Gated
+/// over 0.2–0.4, a skirt reaching 0.5 out fell back in 12 mm and its outer slope, on the
+/// side away from the light, read blind as "a sharp dent, as if bitten into the cheek";
+/// one reaching farther was cut off by the gate where the cheek turns away, in a dimple.
+pub(super) const DEPTH_GATE: [f32; 2] = [0.5, 0.9];
+
 /// The part of a roll's length over which each end fades in.
 const ROLL_END_FADE: f32 = 0.25;
 
@@ -191,13 +199,17 @@ impl Roll {
     /// tapered end.
     fn shaped(&self, p: glam::Vec2) -> Option<(f32, f32, f32)> {
         let (s, ends, z, t) = self.locate(p)?;
+        // Out on the raised side the taper reaches farther along the line, as the ends'
+        // fade does ([`END_FADE_WIDENING`]): a skirt reaching 0.9 out, tapered over the
+        // same share everywhere, rose at its upper end at 2.3 × its fall across.
+        let widen = END_FADE_WIDENING * s.max(0.0);
         // A tapering roll is lower toward its ends by k and narrower by √k, so its slopes
         // ease as it ends, and its skirt's edge closes on the line's ends in a smooth lens
         // instead of being cut across (its height faded over the ends, the cheek's roll
         // peaked in mid-line: "a lump that starts mid-cheek"; narrower by k too, its slopes
         // kept whole, its lower end was a ridge finer than a coarse head's triangles, all
         // of it in the relief map: "a sharp crack from the cheekbone to the jaw").
-        let k = self.taper_at(t);
+        let k = self.taper_at(t, widen);
         if k <= 0.0 {
             return None;
         }
@@ -207,18 +219,21 @@ impl Roll {
 
     /// A tapering roll's scale at `t` along it (0 at its first point, 1 at its last): 1
     /// between its tapers, falling to 0 at its ends as a smoothstep; 1 for a roll that
-    /// does not taper.
-    pub fn taper_at(&self, t: f32) -> f32 {
+    /// does not taper. Each taper is `widen` longer (a share of the line), up to half of it.
+    pub fn taper_at(&self, t: f32, widen: f32) -> f32 {
         match self.taper {
-            Some([first, last]) => smoothstep(0.0, first, t) * smoothstep(0.0, last, 1.0 - t),
+            Some([first, last]) => {
+                let (first, last) = ((first + widen).min(0.5), (last + widen).min(0.5));
+                smoothstep(0.0, first, t) * smoothstep(0.0, last, 1.0 - t)
+            }
             None => 1.0,
         }
     }
 
     /// How much of the roll reaches skin `dz` in front of (or behind) its line: all within
-    /// 0.2 face units, none beyond 0.4.
+    /// [`DEPTH_GATE`]`[0]` face units, none beyond `[1]`.
     fn depth_gate(dz: f32) -> f32 {
-        1.0 - smoothstep(0.2, 0.4, dz.abs())
+        1.0 - smoothstep(DEPTH_GATE[0], DEPTH_GATE[1], dz.abs())
     }
 
     /// Where the point `p` (x, y of the face frame, on the line's side when mirrored)

@@ -48,8 +48,13 @@ pub(super) const NASOLABIAL_L: [[f32; 3]; 9] = [
     [0.68, -1.4, 0.41],
 ];
 
-/// The cheek over a nasolabial fold: a crest 5 mm high 12 mm from the line, falling back
-/// over 12 mm, with no crease of its own (the wrinkle file's fold draws the crease). Blind,
+/// The cheek over a nasolabial fold: a crest 6.5 mm high 12 mm from the line, falling
+/// back over the next 30 mm, the cheek's breadth, with no crease of its own (the wrinkle
+/// file's fold draws the crease). Falling back over 12 mm (reach 0.5), with the depth gate
+/// then at 0.2–0.4, its outer slope, on the side away from the key light, read blind on
+/// every head as "a sharp dent, as if cut or bitten into the cheek", "starting too high
+/// and too far out" (round 11; seen as a diagonal line from under the eye to the mouth's
+/// corner on the panel heads, gone when the skirt reaches 0.9). Blind,
 /// this whole head scored 20.1 / 24 over sixteen raters, against 19.3 with the crest 4 mm
 /// high 8.5 mm out and a 0.3 mm crease, whose steep narrow start read, from every rater,
 /// as "a thin reddish cut or scar"; the fold itself still reads as "doubled brown-stained
@@ -69,7 +74,7 @@ pub(super) const CHEEK_ROLL: Roll = Roll {
     line: &[],
     raised: [1.0, 0.0],
     crest: 0.25,
-    reach: 0.5,
+    reach: 0.9,
     height_mm: 6.5,
     crease_mm: 0.0,
     crease_half: 0.03,
@@ -177,8 +182,12 @@ pub const REGIONS: [ShapeRegion; 11] = [
             // a deeper lid let the eye show through it as a dark fleck).
             Blob::new([0.55, 0.38, 0.2], [0.4, 0.12, 0.35]),
             // Broad: a blob 12 mm tall drew its lower edge, under the side light, as "a
-            // pinched dent in mid-cheek" on the far side.
-            Blob::new([0.8, -0.6, 0.4], [0.6, 0.45, 0.5]),
+            // pinched dent in mid-cheek" on the far side. A dish: with a plateau over its
+            // inner third, the plateau's rim, 5 mm deep, drew a groove from beside the
+            // nose down and out across the cheek on every head but the scan, read blind
+            // as "a second nasolabial fold", "a V like the edge of a latex mask" (round
+            // 12; gone when the region is off).
+            Blob::new([0.8, -0.6, 0.4], [0.6, 0.45, 0.5]).soft(),
             // Below the cheekbone, lateral to the fold's cheek: the buccal hollow, broad
             // and 3 mm at its centre (18 mm across and 5 mm deep, its edge on the far side
             // of the light read, blind, as "a dark pit in the cheek"), a dish (a plateau's

@@ -436,16 +436,19 @@ fn a_rolls_skirt_fades_gently_at_its_ends() {
                     }
                 }
             }
-            // The fall beyond the crest alone: at most 1.5 × its height over its length
-            // (its smoothstep's steepest).
-            let fall = 1.5 * roll.height_mm / ((roll.reach - roll.crest) * mm_per_unit);
+            // The fall beyond the crest alone: at most 1.98 × its height over its length
+            // (its smoothstep squared, (1 − S)², is steepest a third of the way out:
+            // 2 · (1 − S) · S' = 2 · 0.741 · 1.333).
+            let fall = 1.98 * roll.height_mm / ((roll.reach - roll.crest) * mm_per_unit);
             eprintln!(
                 "{}: steepest {steepest:.3} at {place:?} (the fall beyond the crest {fall:.3})",
                 region.name
             );
-            // Its ends fading over up to half its length add a little of their own (at most
-            // 1.44 × the fall, the jowls'; faded over a quarter of it at every distance, the
-            // cheeks' reached 1.76 × and the jowls' 2.67 ×).
+            // Its ends fading over up to half its length add a little of their own (the
+            // cheeks' 1.22 × the fall, reaching 0.9 out; faded over a quarter of it at
+            // every distance, the cheeks' reached 1.76 × the smoothstep's 1.5 and the
+            // jowls' 2.67 ×; tapered over the same share at every distance out, the
+            // cheeks' rose at its upper end at 1.7 × the squared fall).
             assert!(
                 steepest < 1.6 * fall,
                 "{}: {steepest} at {place:?}",

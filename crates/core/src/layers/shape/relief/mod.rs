@@ -469,7 +469,7 @@ fn reach_box(roll: &Roll) -> [f32; 6] {
 }
 
 /// How far in front of or behind its line a roll reaches, face units (its depth gate).
-const DEPTH_REACH: f32 = 0.4;
+const DEPTH_REACH: f32 = super::DEPTH_GATE[1];
 
 /// The box (x0, y0, x1, y1, z0, z1) of a roll's line, x and y widened by `margin` on every
 /// side.

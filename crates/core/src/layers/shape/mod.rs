@@ -157,12 +157,15 @@ const SHADE_DOWN: f32 = 0.09;
 const ROLL_HOLLOW: f32 = 0.4;
 
 /// How far in front of or behind its line a roll reaches whole, and at all, face units:
-/// the face's side and the cheek turning away behind a nasolabial fold (the cheek's roll
-/// reaches 0.9 out), not the ears or the back of the head (1.4 and more behind). Gated
-/// over 0.2–0.4, a skirt reaching 0.5 out fell back in 12 mm and its outer slope, on the
-/// side away from the light, read blind as "a sharp dent, as if bitten into the cheek";
-/// one reaching farther was cut off by the gate where the cheek turns away, in a dimple.
-pub(super) const DEPTH_GATE: [f32; 2] = [0.5, 0.9];
+/// the whole side of the face, to which the cheek's roll reaches 0.9 out from its fold,
+/// not the ears (1.8 behind the folds' lines) or the back of the head (2 and more; a roll
+/// reaches no farther than its `reach` across the face's plane, which keeps it off the
+/// ears too). Gated over 0.2–0.4, a skirt reaching 0.5 out fell back in 12 mm and its
+/// outer slope, on the side away from the light, read blind as "a sharp dent, as if
+/// bitten into the cheek"; gated over 0.5–0.9, the gate cut the broad skirt off along
+/// the cheek's depth contour, "a long angular crease from below the cheekbone to the jaw,
+/// like a scar", on five heads of seven (round 13).
+pub(super) const DEPTH_GATE: [f32; 2] = [1.2, 1.6];
 
 /// The part of a roll's length over which each end fades in.
 const ROLL_END_FADE: f32 = 0.25;

@@ -277,7 +277,9 @@ fn a_roll_rises_steeply_from_its_crease_and_falls_gently_beyond_its_crest() {
     assert_eq!(at(0.6, 1.05), 0.0);
     assert!(at(0.6, 0.9) > 0.0 && at(0.6, 0.9) < 0.5 * at(0.6, 0.0));
     assert_eq!(at(-0.6, 0.0), at(0.6, 0.0));
-    assert_eq!(roll.height_mm(Vec3::new(0.6, 0.0, -1.0)), 0.0);
+    // Whole on the face's side behind its line, nothing past the depth gate.
+    assert_eq!(roll.height_mm(Vec3::new(0.6, 0.0, -1.0)), at(0.6, 0.0));
+    assert_eq!(roll.height_mm(Vec3::new(0.6, 0.0, -DEPTH_GATE[1])), 0.0);
     // Its crease hollows the skin on the line (0.4 of crest and crease, 4 + 1 mm); the
     // crest does not.
     assert!((roll.hollow_mm(Vec3::new(0.5, 0.0, 0.0)) - 2.0).abs() < 0.2);

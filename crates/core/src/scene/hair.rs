@@ -227,6 +227,9 @@ impl Scene {
                 regions,
                 metres_per_unit,
                 key.3,
+                mesh.parts()
+                    .iter()
+                    .any(crate::layers::skin_colour::is_eyeball),
             ),
         });
         self.brows = Some((key, hairs.clone()));

@@ -56,6 +56,15 @@ const SHORTENING: f32 = 0.3;
 /// this × the brows' gray fraction.
 const GRAY_LAG: f32 = 0.25;
 
+/// On open eyes (a head with eyeballs), the template's closed lids' slit lies on the
+/// head's lower lid margin, and the lashes rooted over it are lower lashes: this share of
+/// them, this much of the upper lashes' length (lower lashes are fewer and about half as
+/// long: Thibaut et al. 2010). Drawn as the upper ones, long and dense, they hung over the
+/// open eyes' lower lids, read blind as "spiky lower lashes", "spidery dark fans under
+/// slit eyes" (rounds 12–14).
+const LOWER_SHARE: f32 = 0.35;
+const LOWER_LENGTH: f32 = 0.5;
+
 /// One lash: where it is rooted and its draws.
 #[derive(Clone, Debug, PartialEq)]
 struct Lash {
@@ -92,6 +101,7 @@ impl Lashes {
     /// template), on the band
     /// [`BAND_MM`] above the slit, [`DENSITY_PER_CM2`] × (its area across the lid) lashes
     /// at uniform barycentric coordinates, kept with the fringe's density along the eye.
+    /// `open`: the head's eyes are open (it has eyeballs), so these are lower lashes.
     /// Deterministic in `seed`.
     pub fn generate(
         mesh: &Mesh,
@@ -99,6 +109,7 @@ impl Lashes {
         regions: &Regions,
         metres_per_unit: f32,
         seed: u64,
+        open: bool,
     ) -> Self {
         let positions = mesh.positions();
         let skin = mesh.skin_indices();
@@ -168,6 +179,15 @@ impl Lashes {
                     gray_draw: draws[5],
                     shade: 0.7 + 0.3 * draws[6],
                 });
+            }
+        }
+        if open {
+            // Which stay: a draw of its own from the root's uniform barycentric
+            // coordinates (the loss, graying and shade draws would tie the lower lashes
+            // to the last lost, the first gray or the darkest).
+            lashes.retain(|l| (977.0 * (l.bary[0] + 3.1 * l.bary[1])).fract() < LOWER_SHARE);
+            for l in &mut lashes {
+                l.length_mm *= LOWER_LENGTH;
             }
         }
         Self {

@@ -7,7 +7,7 @@ fn default_lashes(seed: u64) -> (&'static Mesh, Lashes) {
     let mesh = template.mesh.as_ref();
     let regions = Regions::template().expect("the template has its landmarks");
     let positions = mesh.positions();
-    let lashes = Lashes::generate(mesh, &|v| Some(positions[v]), regions, 1.0, seed);
+    let lashes = Lashes::generate(mesh, &|v| Some(positions[v]), regions, 1.0, seed, false);
     (mesh, lashes)
 }
 
@@ -109,10 +109,52 @@ fn the_same_seed_places_the_same_lashes_and_another_other_ones() {
 fn lashes_are_in_the_heads_own_units() {
     let regions = Regions::template().unwrap();
     crate::test_util::assert_strands_in_heads_units(|mesh, point, metres_per_unit| {
-        Lashes::generate(mesh, point, regions, metres_per_unit, 0).strands(
+        Lashes::generate(mesh, point, regions, metres_per_unit, 0, false).strands(
             mesh,
             &factors(0.0, 0.0),
             None,
         )
     });
+}
+
+/// On open eyes the lashes over the template's slit are the lower lids': about a third of
+/// them, half as long, the same ones whatever the age (the upper lashes, long and dense,
+/// hung over the panel heads' open eyes as "spiky lower lashes").
+#[test]
+fn on_open_eyes_the_lashes_are_few_and_short_lower_ones() {
+    let template = crate::head::fit::template();
+    let mesh = template.mesh.as_ref();
+    let regions = Regions::template().unwrap();
+    let positions = mesh.positions();
+    let point = |v: usize| Some(positions[v]);
+    let closed = Lashes::generate(mesh, &point, regions, 1.0, 0, false);
+    let open = Lashes::generate(mesh, &point, regions, 1.0, 0, true);
+    let share = open.len() as f32 / closed.len() as f32;
+    assert!(
+        (LOWER_SHARE - 0.08..=LOWER_SHARE + 0.08).contains(&share),
+        "{} of {} kept",
+        open.len(),
+        closed.len()
+    );
+    let young = ColourFactors::default();
+    let longest = |l: &Lashes| {
+        l.strands(mesh, &young, None)
+            .iter()
+            .map(length)
+            .fold(0.0f32, f32::max)
+    };
+    let (o, c) = (longest(&open), longest(&closed));
+    assert!(
+        o <= LOWER_LENGTH * c * 1.01 && o > 0.3 * c,
+        "{o} against {c}"
+    );
+    // Every lash kept on open eyes is one of the closed eyes' lashes, rooted where it was.
+    let roots = |l: &Lashes| {
+        l.strands(mesh, &young, None)
+            .iter()
+            .map(|s| s.root)
+            .collect::<Vec<_>>()
+    };
+    let all = roots(&closed);
+    assert!(roots(&open).iter().all(|r| all.contains(r)));
 }

@@ -290,3 +290,75 @@ fn a_tapered_roll_s_depth_is_known_past_its_ends() {
     }
     assert!(tapered > 0);
 }
+
+/// Out on a roll's raised side the relief ends at most [`RELIEF_FADE`]`[1]` past its crest
+/// (the broad skirt beyond is the mesh's), and near its line it is drawn whole: on the
+/// default head no texel past that carries relief, and the cheek's relief near its
+/// nasolabial line is there.
+#[test]
+fn the_relief_ends_past_the_crest_and_stays_whole_near_the_line() {
+    let scene = crate::scene::Scene::new(crate::project::Project::default()).unwrap();
+    let mesh = scene.mesh().clone();
+    let size = 512;
+    let relief = ShapeRelief::new(
+        &mesh,
+        &|v| mesh.positions().get(v).copied(),
+        &[1.0; REGIONS.len()],
+        1.0,
+        size,
+        &CancelToken::never(),
+    )
+    .unwrap();
+    let mut map = HeightMap::zeros(size, size).unwrap();
+    relief.apply(&mut map, &[1.0; REGIONS.len()], 0.005);
+    let r = Regions::template().unwrap();
+    let n = size as usize;
+    let mut q = vec![Vec3::NAN; n * n];
+    for tri in mesh.skin_indices().chunks_exact(3) {
+        let v = [0, 1, 2].map(|i| tri[i] as usize);
+        let uv = v.map(|i| mesh.uvs()[i]);
+        let p = v.map(|i| r.relative(mesh.positions()[i]));
+        crate::maps::raster::raster_uv(uv, size, 0.0, |x, y, w, _| {
+            q[y * n + x] = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
+        });
+    }
+    // Each texel's nearest place on any roll: (how far out on its raised side past the
+    // crest, and whether it lies near the line, within its crest).
+    let place = |q: Vec3| {
+        let mut past = f32::INFINITY;
+        let mut near = false;
+        for roll in REGIONS.iter().flat_map(|region| region.rolls) {
+            let x = if roll.mirrored { q.x.abs() } else { q.x };
+            if let Some((s, _, z, t)) = roll.locate(Vec2::new(x, q.y)) {
+                past = past.min(s - roll.crest);
+                // Between its tapers (the cheek's: the middle of its line), in front.
+                near |= (0.02..roll.crest).contains(&s)
+                    && roll.crest >= 0.2
+                    && (0.35..0.45).contains(&t)
+                    && (q.z - z).abs() < 0.3;
+            }
+        }
+        (past, near)
+    };
+    let (mut near_and_drawn, mut near_all) = (0, 0);
+    for (d, q) in map.data().iter().zip(&q) {
+        if q.x.is_nan() {
+            continue;
+        }
+        let (past, near) = place(*q);
+        if *d != 0.0 {
+            assert!(
+                past <= RELIEF_FADE[1] + 0.02,
+                "relief {d} at {q}, {past} past a crest"
+            );
+        }
+        if near {
+            near_all += 1;
+            near_and_drawn += usize::from(*d != 0.0);
+        }
+    }
+    assert!(
+        near_all > 50 && near_and_drawn * 10 >= near_all * 9,
+        "{near_and_drawn} of {near_all} texels within the cheek's crest carry relief"
+    );
+}

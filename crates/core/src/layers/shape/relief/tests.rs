@@ -185,11 +185,11 @@ fn the_relief_keeps_its_millimetres_in_any_units_and_is_nothing_when_young() {
 
 /// Off the rolls (the forehead, the back of the head) the default head's map is left as
 /// it was; the relief reaches a small part of the map, on both sides of the face.
-#[test]
-fn the_default_heads_relief_stays_on_its_rolls() {
+/// The default head's relief at full age and strength in a `size`² map (0.005 UV units a
+/// normalised depth), and the face point each texel shows (NaN off the skin).
+fn default_heads_relief(size: u32) -> (HeightMap, Vec<Vec3>) {
     let scene = crate::scene::Scene::new(crate::project::Project::default()).unwrap();
     let mesh = scene.mesh().clone();
-    let size = 512;
     let relief = ShapeRelief::new(
         &mesh,
         &|v| mesh.positions().get(v).copied(),
@@ -201,7 +201,6 @@ fn the_default_heads_relief_stays_on_its_rolls() {
     .unwrap();
     let mut map = HeightMap::zeros(size, size).unwrap();
     relief.apply(&mut map, &[1.0; REGIONS.len()], 0.005);
-    // The face points each texel shows.
     let r = Regions::template().unwrap();
     let n = size as usize;
     let mut q = vec![Vec3::NAN; n * n];
@@ -213,6 +212,14 @@ fn the_default_heads_relief_stays_on_its_rolls() {
             q[y * n + x] = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
         });
     }
+    (map, q)
+}
+
+#[test]
+fn the_default_heads_relief_stays_on_its_rolls() {
+    let size = 512;
+    let n = size as usize;
+    let (map, q) = default_heads_relief(size);
     let (mut touched, mut sides) = (0, [0, 0]);
     for (d, q) in map.data().iter().zip(&q) {
         if *d == 0.0 || q.x.is_nan() {
@@ -297,31 +304,7 @@ fn a_tapered_roll_s_depth_is_known_past_its_ends() {
 /// nasolabial line is there.
 #[test]
 fn the_relief_ends_past_the_crest_and_stays_whole_near_the_line() {
-    let scene = crate::scene::Scene::new(crate::project::Project::default()).unwrap();
-    let mesh = scene.mesh().clone();
-    let size = 512;
-    let relief = ShapeRelief::new(
-        &mesh,
-        &|v| mesh.positions().get(v).copied(),
-        &[1.0; REGIONS.len()],
-        1.0,
-        size,
-        &CancelToken::never(),
-    )
-    .unwrap();
-    let mut map = HeightMap::zeros(size, size).unwrap();
-    relief.apply(&mut map, &[1.0; REGIONS.len()], 0.005);
-    let r = Regions::template().unwrap();
-    let n = size as usize;
-    let mut q = vec![Vec3::NAN; n * n];
-    for tri in mesh.skin_indices().chunks_exact(3) {
-        let v = [0, 1, 2].map(|i| tri[i] as usize);
-        let uv = v.map(|i| mesh.uvs()[i]);
-        let p = v.map(|i| r.relative(mesh.positions()[i]));
-        crate::maps::raster::raster_uv(uv, size, 0.0, |x, y, w, _| {
-            q[y * n + x] = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
-        });
-    }
+    let (map, q) = default_heads_relief(512);
     // Each texel's nearest place on any roll: (how far out on its raised side past the
     // crest, and whether it lies near the line, within its crest).
     let place = |q: Vec3| {

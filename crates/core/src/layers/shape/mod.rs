@@ -204,7 +204,8 @@ impl Roll {
         let (s, ends, z, t) = self.locate(p)?;
         // Out on the raised side the taper reaches farther along the line, as the ends'
         // fade does ([`END_FADE_WIDENING`]): a skirt reaching 0.9 out, tapered over the
-        // same share everywhere, rose at its upper end at 2.3 × its fall across.
+        // same share everywhere, rose at its upper end at 1.7 × the steepest of its fall
+        // across (`a_rolls_skirt_fades_gently_at_its_ends`).
         let widen = END_FADE_WIDENING * s.max(0.0);
         // A tapering roll is lower toward its ends by k and narrower by √k, so its slopes
         // ease as it ends, and its skirt's edge closes on the line's ends in a smooth lens

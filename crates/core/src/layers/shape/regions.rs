@@ -53,8 +53,8 @@ pub(super) const NASOLABIAL_L: [[f32; 3]; 9] = [
 /// file's fold draws the crease). Falling back over 12 mm (reach 0.5), with the depth gate
 /// then at 0.2–0.4, its outer slope, on the side away from the key light, read blind on
 /// every head as "a sharp dent, as if cut or bitten into the cheek", "starting too high
-/// and too far out" (round 11; seen as a diagonal line from under the eye to the mouth's
-/// corner on the panel heads, gone when the skirt reaches 0.9). Blind,
+/// and too far out" (round 11; the depth gate widened with the reach, [`DEPTH_GATE`]:
+/// narrower, it cut the broad skirt off along the cheek's depth contour). Blind,
 /// this whole head scored 20.1 / 24 over sixteen raters, against 19.3 with the crest 4 mm
 /// high 8.5 mm out and a 0.3 mm crease, whose steep narrow start read, from every rater,
 /// as "a thin reddish cut or scar"; the fold itself still reads as "doubled brown-stained

@@ -613,7 +613,15 @@ impl ShapeField {
                 0.2 * mm,
                 &mut caps,
             );
-            let spread = unfold::unfold(positions, indices, &welded, &mut full, &checks, &caps);
+            let spread = unfold::unfold(
+                positions,
+                indices,
+                &welded,
+                &mut full,
+                &checks,
+                &caps,
+                unfold::SPREAD_REACH_MM * mm,
+            );
             if blocked == 0 && spread == 0 {
                 break;
             }

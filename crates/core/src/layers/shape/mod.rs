@@ -207,7 +207,7 @@ impl Roll {
         // same share everywhere, rose at its upper end at 1.7 × the steepest of its fall
         // across (`a_rolls_skirt_fades_gently_at_its_ends`).
         let widen = END_FADE_WIDENING * s.max(0.0);
-        // A tapering roll is lower toward its ends by k and narrower by √k, so its slopes
+        // A tapering roll is lower toward its ends by k and its wall narrower by √k, so its slopes
         // ease as it ends, and its skirt's edge closes on the line's ends in a smooth lens
         // instead of being cut across (its height faded over the ends, the cheek's roll
         // peaked in mid-line: "a lump that starts mid-cheek"; narrower by k too, its slopes
@@ -217,7 +217,19 @@ impl Roll {
         if k <= 0.0 {
             return None;
         }
-        let s = if s > 0.0 { s / k.sqrt() } else { s };
+        // Only the wall narrows: past the crest the skirt keeps its breadth to the ends (the
+        // crest's distance less, so the two meet level). Narrowed too, the skirt closed on
+        // the line's lower end in a lens whose outer edge, from the cheekbone down to the
+        // mouth corner, fell as steeply as the fold's own wall (0.74 against 0.76 mm per
+        // mm): a second fold far out on the cheek, read blind on every head (round 17).
+        let narrow = k.sqrt();
+        let s = if s <= 0.0 {
+            s
+        } else if s <= self.crest * narrow {
+            s / narrow
+        } else {
+            self.crest + (s - self.crest * narrow)
+        };
         Some((s, ends * k, z))
     }
 

@@ -48,9 +48,13 @@ pub(super) const NASOLABIAL_L: [[f32; 3]; 9] = [
     [0.68, -1.4, 0.41],
 ];
 
-/// The cheek over a nasolabial fold: a crest 6.5 mm high 12 mm from the line, falling
-/// back over the next 30 mm, the cheek's breadth, with no crease of its own (the wrinkle
-/// file's fold draws the crease). Falling back over 12 mm (reach 0.5), with the depth gate
+/// The cheek over a nasolabial fold: a crest 4.5 mm high 7 mm from the line, falling back
+/// over the next 45 mm, the cheek's breadth, with no crease of its own (the wrinkle file's
+/// fold draws the crease). 6.5 mm high 12 mm out and falling back over 30 mm, its skirt
+/// fell as steeply as the fold's wall (0.56 against 0.76 mm per mm, its lower end's lens
+/// closing too, [`Roll::taper_at`]) and its outer edge read blind, on every head, as "a
+/// second groove from the cheekbone to the jaw", "a cheek pad sealed off by a hard
+/// groove" (round 17); now 0.43 against 0.75. Falling back over 12 mm (reach 0.5), with the depth gate
 /// then at 0.2–0.4, its outer slope, on the side away from the key light, read blind on
 /// every head as "a sharp dent, as if cut or bitten into the cheek", "starting too high
 /// and too far out" (round 11; the depth gate widened with the reach, [`DEPTH_GATE`]:
@@ -73,9 +77,9 @@ pub(super) const NASOLABIAL_L: [[f32; 3]; 9] = [
 pub(super) const CHEEK_ROLL: Roll = Roll {
     line: &[],
     raised: [1.0, 0.0],
-    crest: 0.25,
-    reach: 0.9,
-    height_mm: 6.5,
+    crest: 0.15,
+    reach: 1.1,
+    height_mm: 4.5,
     crease_mm: 0.0,
     crease_half: 0.03,
     mirrored: false,
@@ -186,8 +190,11 @@ pub const REGIONS: [ShapeRegion; 11] = [
             // inner third, the plateau's rim, 5 mm deep, drew a groove from beside the
             // nose down and out across the cheek on every head but the scan, read blind
             // as "a second nasolabial fold", "a V like the edge of a latex mask" (round
-            // 12; gone when the region is off).
-            Blob::new([0.8, -0.6, 0.4], [0.6, 0.45, 0.5]).soft(),
+            // 12; gone when the region is off). Above the cheek's roll, where the malar fat
+            // deflates, not over it: centred on the roll ([0.8, -0.6], 0.45 tall) it dug a
+            // valley round the roll's outer edge, "a deep diagonal crease from under the eye
+            // to the jaw" on every head (round 17; gone with the region off).
+            Blob::new([0.85, -0.45, 0.4], [0.55, 0.35, 0.5]).soft(),
             // Below the cheekbone, lateral to the fold's cheek: the buccal hollow, broad
             // and 3 mm at its centre (18 mm across and 5 mm deep, its edge on the far side
             // of the light read, blind, as "a dark pit in the cheek"), a dish (a plateau's

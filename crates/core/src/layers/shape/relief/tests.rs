@@ -316,7 +316,7 @@ fn the_relief_ends_past_the_crest_and_stays_whole_near_the_line() {
                 past = past.min(s - roll.crest);
                 // Between its tapers (the cheek's: the middle of its line), in front.
                 near |= (0.02..roll.crest).contains(&s)
-                    && roll.crest >= 0.2
+                    && roll.reach >= 0.9
                     && (0.35..0.45).contains(&t)
                     && (q.z - z).abs() < 0.3;
             }

@@ -236,8 +236,12 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // one as "fuller rather than thinned"), and the cheek rolling over each
         // nasolabial fold of the wrinkle file (blind ratings read the fold without it as
         // "a thin engraved crescent"; with a chain of blobs beside it, which swelled
-        // evenly on all sides, as "a pencil line, no cheek hanging over it").
-        blobs: &[Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55]).bulging(0.2)],
+        // evenly on all sides, as "a pencil line, no cheek hanging over it"). The pad a
+        // dish: its plateau's rim, 5 mm down, sheared the cheek's coarse triangles into
+        // "angular, faceted folds" round the roll on the European heads (round 18).
+        blobs: &[Blob::new([0.8, -0.7, 0.3], [0.55, 0.5, 0.55])
+            .bulging(0.2)
+            .soft()],
         motions: &[(Descent, 5.0), (Bulge, 1.5)],
         rolls: &[
             Roll {

@@ -562,11 +562,14 @@ impl ShapeField {
                         continue;
                     };
                     let q = frame.relative(t);
-                    let normal = mesh.normals()[s as usize];
+                    // Along the normal only where the skin faces out of the head (not
+                    // the mouth's or the nostrils' inside: [`facing_out`]).
+                    let facing = facing_out(q, mesh.normals()[s as usize]);
+                    let normal = mesh.normals()[s as usize] * facing;
                     let rolled: f32 = region.rolls.iter().map(|r| r.height_mm(q)).sum();
                     let rolled = normal * (rolled * strength * mm);
                     let creased: f32 = region.rolls.iter().map(|r| r.hollow_mm(q)).sum();
-                    let creased = creased * strength;
+                    let creased = creased * strength * facing;
                     let weight = region.blob_weight(q);
                     if weight <= 0.0 {
                         out[v] = rolled;
@@ -589,7 +592,7 @@ impl ShapeField {
                         })
                         .sum();
                     out[v] = d * (weight * strength * mm) + rolled;
-                    hollow[v] = deflate_mm * deflate * weight * strength + creased;
+                    hollow[v] = deflate_mm * deflate * weight * strength * facing + creased;
                 }
                 (out, hollow)
             })
@@ -768,6 +771,25 @@ pub mod relief;
 #[cfg(test)]
 mod tests;
 pub mod unfold;
+
+/// The middle of the skull in the face frame ([`Regions::relative`]): behind the eyes,
+/// between the ears.
+pub const SKULL_CENTRE: Vec3 = Vec3::new(0.0, 0.3, -1.3);
+
+/// How much skin at `q` (face frame) whose normal is `normal` (the head's axes, as the
+/// template's: up +y, forward +z) faces out of the head, 0–1: 1 from 0.2 of a right angle
+/// out of the direction from [`SKULL_CENTRE`], 0 from 0.2 in. A move along the normal (a
+/// deflation, a bulge, a roll) is made only as much as the skin faces out: the mouth's
+/// inside, mapped to the lips' region, moved forward along its own normal, which points
+/// back, and came through the lower lip at 80, read blind as "a red dot in the lower lip",
+/// "a pinhole under the lip" (rounds 17–18).
+pub fn facing_out(q: Vec3, normal: Vec3) -> f32 {
+    smoothstep(
+        -0.2,
+        0.2,
+        normal.dot((q - SKULL_CENTRE).normalize_or_zero()),
+    )
+}
 
 /// How far each vertex moves at full age, mm (for showing the field: the editor's map view
 /// and the head tinted by it).

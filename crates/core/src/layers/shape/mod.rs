@@ -157,7 +157,7 @@ const SHADE_DOWN: f32 = 0.09;
 const ROLL_HOLLOW: f32 = 0.4;
 
 /// How far in front of or behind its line a roll reaches whole, and at all, face units:
-/// the whole side of the face, to which the cheek's roll reaches 0.9 out from its fold,
+/// the whole side of the face, to which the cheek's roll reaches 1.1 out from its fold,
 /// not the ears (1.8 behind the folds' lines) or the back of the head (2 and more; a roll
 /// reaches no farther than its `reach` across the face's plane, which keeps it off the
 /// ears too). Gated over 0.2–0.4, a skirt reaching 0.5 out fell back in 12 mm and its

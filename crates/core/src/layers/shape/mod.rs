@@ -766,54 +766,13 @@ impl ShapeField {
 }
 
 pub mod clearance;
+mod facing;
 pub mod occlusion;
+mod picture;
 pub mod relief;
 #[cfg(test)]
 mod tests;
 pub mod unfold;
 
-/// The middle of the skull in the face frame ([`Regions::relative`]): behind the eyes,
-/// between the ears.
-pub const SKULL_CENTRE: Vec3 = Vec3::new(0.0, 0.3, -1.3);
-
-/// How much skin at `q` (face frame) whose normal is `normal` (the head's axes, as the
-/// template's: up +y, forward +z) faces out of the head, 0–1: 1 from 0.2 of a right angle
-/// out of the direction from [`SKULL_CENTRE`], 0 from 0.2 in. A move along the normal (a
-/// deflation, a bulge, a roll) is made only as much as the skin faces out: the mouth's
-/// inside, mapped to the lips' region, moved forward along its own normal, which points
-/// back, and came through the lower lip at 80, read blind as "a red dot in the lower lip",
-/// "a pinhole under the lip" (rounds 17–18).
-pub fn facing_out(q: Vec3, normal: Vec3) -> f32 {
-    smoothstep(
-        -0.2,
-        0.2,
-        normal.dot((q - SKULL_CENTRE).normalize_or_zero()),
-    )
-}
-
-/// How far each vertex moves at full age, mm (for showing the field: the editor's map view
-/// and the head tinted by it).
-pub fn movement_mm(full: &[Vec3], metres_per_unit: f32) -> Vec<f32> {
-    full.iter()
-        .map(|d| d.length() * metres_per_unit * 1000.0)
-        .collect()
-}
-
-/// Per-vertex `values` over `mesh`'s skin triangles in its UV layout at `size`² (rows from
-/// the top, docs/models.md §1), interpolated across each triangle; 0 where no skin
-/// triangle lies.
-pub fn uv_picture(mesh: &Mesh, values: &[f32], size: u32) -> Vec<f32> {
-    let n = size as usize;
-    let mut out = vec![0.0f32; n * n];
-    let uvs = mesh.uvs();
-    for tri in mesh.skin_indices().chunks_exact(3) {
-        let v = [0, 1, 2].map(|k| tri[k] as usize);
-        let uv = v.map(|i| uvs.get(i).copied().unwrap_or(glam::Vec2::NAN));
-        let f = v.map(|i| values.get(i).copied().unwrap_or(0.0));
-        crate::maps::raster::raster_uv(uv, size, 1.0, |x, y, w, _| {
-            let i = y * n + x;
-            out[i] = out[i].max(f[0] * w[0] + f[1] * w[1] + f[2] * w[2]);
-        });
-    }
-    out
-}
+pub use facing::{SKULL_CENTRE, facing_out};
+pub use picture::{movement_mm, uv_picture};

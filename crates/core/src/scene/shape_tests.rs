@@ -18,18 +18,9 @@ fn subdivided_obj(dir: &std::path::Path, mesh: &Mesh, name: &str) -> PathBuf {
     path
 }
 
-/// The shape's move folds no skin over and carries no skin through skin (issue "any
-/// head"): on the template, the MakeHuman head, the four panel heads (landmarks found
-/// automatically) and a dense head (the scan split to 65k triangles), no triangle turns by
-/// more than 90° — at full age (the exported morph target) or at 100 years, nor at 60 —
-/// and no vertex's outward move at full age crosses the head's surface as it rests.
-#[test]
-fn the_aged_shape_folds_no_skin_over_on_any_head() {
-    let dir = tempfile::tempdir().unwrap();
-    let template = crate::head::fit::template();
-    let dense = subdivided_obj(dir.path(), &template.mesh, "dense-scan");
-    let landmarks_file = dir.path().join("dense-scan.landmarks.json");
-    std::fs::write(&landmarks_file, template.landmarks.to_json_pretty()).unwrap();
+/// The template, the MakeHuman head (with its landmarks) and the four panel heads
+/// (landmarks found automatically), each with pores and furrows off (the shape alone).
+fn panel_projects() -> Vec<(String, Project)> {
     let mut heads: Vec<(String, Project)> = vec![("the template".into(), Project::default())];
     let mh = heads_dir().join("makehuman");
     let mut p = Project::default();
@@ -46,14 +37,34 @@ fn the_aged_shape_folds_no_skin_over_on_any_head() {
         p.mesh.path = Some(heads_dir().join("panel").join(format!("{name}.obj")));
         heads.push((name.into(), p));
     }
+    for (_, p) in &mut heads {
+        p.pores.enabled = false;
+        p.furrows.enabled = false;
+    }
+    heads
+}
+
+/// The shape's move folds no skin over and carries no skin through skin (issue "any
+/// head"): on the template, the MakeHuman head, the four panel heads (landmarks found
+/// automatically) and a dense head (the scan split to 65k triangles), no triangle turns by
+/// more than 90° — at full age (the exported morph target) or at 100 years, nor at 60 —
+/// and no vertex's outward move at full age crosses the head's surface as it rests.
+#[test]
+fn the_aged_shape_folds_no_skin_over_on_any_head() {
+    let dir = tempfile::tempdir().unwrap();
+    let template = crate::head::fit::template();
+    let dense = subdivided_obj(dir.path(), &template.mesh, "dense-scan");
+    let landmarks_file = dir.path().join("dense-scan.landmarks.json");
+    std::fs::write(&landmarks_file, template.landmarks.to_json_pretty()).unwrap();
+    let mut heads = panel_projects();
     let mut p = Project::default();
     p.mesh.path = Some(dense);
     p.mesh.landmarks = Some(landmarks_file.into());
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
     heads.push(("dense scan".into(), p));
     let mut report = Vec::new();
-    for (name, mut project) in heads {
-        project.pores.enabled = false;
-        project.furrows.enabled = false;
+    for (name, project) in heads {
         let mut scene = Scene::new(project).unwrap();
         let field = scene.shape_field().unwrap();
         let mesh = scene.mesh().clone();
@@ -130,27 +141,10 @@ fn a_moving_shape_keeps_the_last_sky_until_the_field_stays() {
 /// on the African heads); the template's own folds are not mirror images (0.88).
 #[test]
 fn both_cheeks_age_alike_on_every_head() {
-    let mut heads: Vec<(String, Project)> = vec![("the template".into(), Project::default())];
-    let mh = heads_dir().join("makehuman");
-    let mut p = Project::default();
-    p.mesh.path = Some(mh.join("mh_head.obj"));
-    p.mesh.landmarks = Some(mh.join("landmarks.json").into());
-    heads.push(("makehuman".into(), p));
-    for name in [
-        "african-female",
-        "african-male",
-        "caucasian-female",
-        "asian-male",
-    ] {
-        let mut p = Project::default();
-        p.mesh.path = Some(heads_dir().join("panel").join(format!("{name}.obj")));
-        heads.push((name.into(), p));
-    }
+    let heads = panel_projects();
     let frame = crate::head::frame::Regions::template().unwrap();
     let (mut report, mut ratios) = (Vec::new(), Vec::new());
-    for (name, mut project) in heads {
-        project.pores.enabled = false;
-        project.furrows.enabled = false;
+    for (name, project) in heads {
         let mut scene = Scene::new(project).unwrap();
         let field = scene.shape_field().unwrap();
         let full = field.full();
@@ -185,22 +179,10 @@ fn both_cheeks_age_alike_on_every_head() {
 /// at 80: "a red dot in the lower lip" (rounds 17–18).
 #[test]
 fn nothing_about_the_lips_comes_forward() {
-    let mut heads: Vec<(String, Project)> = vec![("the template".into(), Project::default())];
-    for name in [
-        "african-female",
-        "african-male",
-        "caucasian-female",
-        "asian-male",
-    ] {
-        let mut p = Project::default();
-        p.mesh.path = Some(heads_dir().join("panel").join(format!("{name}.obj")));
-        heads.push((name.into(), p));
-    }
+    let heads = panel_projects();
     let frame = crate::head::frame::Regions::template().unwrap();
     let mut report = Vec::new();
-    for (name, mut project) in heads {
-        project.pores.enabled = false;
-        project.furrows.enabled = false;
+    for (name, project) in heads {
         let mut scene = Scene::new(project).unwrap();
         let field = scene.shape_field().unwrap();
         let points = scene.template_points();

@@ -33,8 +33,9 @@ const SHRINK_PASSES: usize = 48;
 /// hollow on that side: the asian panel head aged on one side only, the other side's fold
 /// read blind as "a deep one-sided diagonal crease far out on the cheek" (rounds 11–16,
 /// on six heads of seven; over the cheek below each eye, one side moved 0.14, 0.39 and
-/// 0.53 of the other on three panel heads, 0.67–1.0 within 8 mm, 0.59–0.76 within 12). A
-/// dense head's fold (1 mm triangles) still spreads over 8 rings.
+/// 0.53 of the other on three panel heads, 0.67–1.0 within 8 mm, 0.59–0.76 within 12;
+/// 0.63–0.90 with the cheek's later, broader roll). A dense head's fold (1 mm triangles)
+/// still spreads over 8 rings.
 pub const SPREAD_REACH_MM: f32 = 8.0;
 
 /// Relaxes `fields` (per region, per vertex: the move at full strength) on the mesh of

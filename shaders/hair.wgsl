@@ -43,14 +43,48 @@ struct VertexOut {
 // `ahead` mesh units along it), to the `side` (±1), by a pixel width that tapers to a
 // third at the tip.
 fn ribbon_vertex(p: vec3<f32>, tangent: vec3<f32>, ahead: f32, s: f32, side: f32) -> vec4<f32> {
+    return ribbon_vertex_wide(p, tangent, ahead, side, frame.hair_gray.w * (1.0 - 0.65 * s));
+}
+
+// `ribbon_vertex` with the ribbon `width_px` pixels wide.
+fn ribbon_vertex_wide(p: vec3<f32>, tangent: vec3<f32>, ahead: f32, side: f32, width_px: f32) -> vec4<f32> {
     let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
     let clip_ahead = frame.clip_from_world * vec4<f32>(p + tangent * ahead, 1.0);
     let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
     let screen_dir = (clip_ahead.xy / clip_ahead.w - clip.xy / clip.w) * viewport;
     let perp = normalize(vec2<f32>(-screen_dir.y, screen_dir.x) + vec2<f32>(1e-6, 0.0));
-    let width_px = frame.hair_gray.w * (1.0 - 0.65 * s);
     let offset_ndc = perp * (width_px / viewport);
     return vec4<f32>(clip.xy + offset_ndc * side * clip.w, clip.z, clip.w);
+}
+
+// How many pixels one mesh unit across the view spans at `p` (across the strand, whose
+// tangent is `tangent`: no foreshortening).
+fn pixels_per_unit(p: vec3<f32>, tangent: vec3<f32>) -> f32 {
+    let to_eye = frame.camera_pos.xyz - p;
+    let across = normalize(cross(tangent, to_eye) + vec3<f32>(1e-6, 0.0, 0.0));
+    let step = 0.01 * length(to_eye);
+    let a = frame.clip_from_world * vec4<f32>(p, 1.0);
+    let b = frame.clip_from_world * vec4<f32>(p + across * step, 1.0);
+    let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
+    return length((b.xy / b.w - a.xy / a.w) * 0.5 * viewport) / step;
+}
+
+// A scalp hair's ribbon at `s` along it: (its width in pixels, the share of it the hair
+// covers). A hair is a fraction of a millimetre across (`scalp.z`), far under a pixel
+// when the whole head is in view: drawn `hair_gray.w` px wide it covers only its own
+// width's share of the ribbon, so the hair's cover follows its count (every ribbon
+// covering its whole width, a crown thinned to a third of its hairs read, blind, as
+// "only recoloured": docs/models.md §9 "Cover"); seen closer than that its ribbon is its
+// own width. `scalp.z` 0: the ribbon's width, all of it covered.
+fn strand_cover(p: vec3<f32>, tangent: vec3<f32>, s: f32) -> vec2<f32> {
+    let taper = 1.0 - 0.65 * s;
+    let drawn = frame.hair_gray.w * taper;
+    if frame.scalp.z <= 0.0 {
+        return vec2<f32>(drawn, 1.0);
+    }
+    let own = frame.scalp.z * taper * pixels_per_unit(p, tangent);
+    let width = max(drawn, own);
+    return vec2<f32>(width, own / max(width, 1e-6));
 }
 
 @vertex
@@ -81,7 +115,8 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let base = frame.hair_base.rgb * (0.8 + 0.4 * random);
     let y = gray_fraction(frame.disp.w, inst.graying_onset, frame.pom.w == 1u);
     var out: VertexOut;
-    out.clip = ribbon_vertex(p, tangent, len * 0.1, s, side);
+    let cover = strand_cover(p, tangent, s);
+    out.clip = ribbon_vertex_wide(p, tangent, len * 0.1, side, cover.x);
     out.tangent = tangent;
     // Each gray hair its own shade (0.45–1.10 of C_gray, from the spare random number's
     // other digits): a gray mass reads as strands, not a slab.
@@ -102,7 +137,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let lifted = pow(fract(random * 29.0), 6.0);
     out.colour = mix(base, gray, y) * mix(0.55, mix(0.55, 1.0, face_on), s);
     out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * max(face_on, 0.25 + 0.35 * lifted)
-        * mix(0.2, 1.0, whole);
+        * mix(0.2, 1.0, whole) * cover.y;
     out.colour *= mix(0.75, 1.0, face_on);
     // The head shadows its own hair: a strand whose root faces away from the light gets
     // none of it directly (Kajiya–Kay alone lights it from any side, so in profile the

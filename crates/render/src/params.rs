@@ -259,6 +259,9 @@ pub struct HairShading {
     pub length: f32,
     /// Ribbon width at the root, pixels, ≥ 0.
     pub width_px: f32,
+    /// How wide a scalp hair is, mesh units, ≥ 0: a ribbon wider than the hair covers
+    /// only the hair's share of it (docs/models.md §9 "Cover"); 0: all of it.
+    pub diameter: f32,
     /// How far the hair bends from its growth direction down along the scalp, in [0, 1]
     /// (0: straight out; 1: combed flat after the first third).
     pub droop: f32,
@@ -298,6 +301,7 @@ impl Default for HairShading {
             ramp: GrayingRampParam::Linear,
             length: 0.03,
             width_px: 0.9,
+            diameter: 0.0,
             droop: 0.85,
             curl: 0.0,
             scalp_tint: 0.0,

@@ -81,6 +81,9 @@ pub(crate) struct FrameContext {
     pub colour_map: bool,
     /// A head normal map is bound: the layers are combined onto it.
     pub normal_map: bool,
+    /// One scalp hair drawn in how many (a sparse frame's stride, else 1): each drawn
+    /// hair covers for as many.
+    pub hair_stride: u32,
 }
 
 /// Clamps to [0, 1]; NaN (which `clamp` keeps) becomes 0, so no NaN reaches the GPU.
@@ -169,7 +172,8 @@ impl FrameUniform {
             scalp: [
                 if hr.enabled { unit(hr.scalp_tint) } else { 0.0 },
                 unit(hr.gray_fraction),
-                0.0,
+                // A sparse frame's hair covers for the hairs it leaves out.
+                non_negative(hr.diameter) * ctx.hair_stride.max(1) as f32,
                 0.0,
             ],
             fill_dir: v3(
@@ -205,6 +209,7 @@ mod tests {
             mesh_units_per_uv: 0.5,
             colour_map: false,
             normal_map: false,
+            hair_stride: 1,
         }
     }
 

@@ -293,6 +293,10 @@ impl Renderer {
                 * (self.surface_scale.units_per_u + self.surface_scale.units_per_v),
             colour_map: self.has_colour_map || self.views[vi].colour.is_some(),
             normal_map: self.has_normal_map,
+            hair_stride: match &self.pipelines.sparse_hair_pipeline {
+                Some(_) if params.hair.sparse => self.pipelines.sparse_hair_stride,
+                _ => 1,
+            },
         };
         let uniform = FrameUniform::new(params, &ctx);
         self.queue.write_buffer(

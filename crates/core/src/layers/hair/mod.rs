@@ -34,6 +34,13 @@ use crate::layers::hair::transition::{TransitionTexture, clamp_age};
 /// Default hair density, hairs per cm² of surface. The human scalp has about 150–300
 /// follicular hairs per cm²; [T] draws fewer for speed. This is the middle of that range.
 pub const DEFAULT_DENSITY_PER_CM2: f32 = 200.0;
+/// How wide a scalp hair is drawn, mm: what of the scalp it covers in the 3D view
+/// (docs/models.md §9 "Cover"). A hair is 0.05–0.12 mm across (Franbourg et al. 2003);
+/// **choice**: 0.2 mm, about two and a half diameters, for the shadow it casts and the
+/// light it scatters (at 0.08 the young hair was a flat painted cap; drawn a whole
+/// ribbon wide, 0.45 px, about 0.5 mm on the panel's renders, a crown that had lost two
+/// thirds of its hairs looked untouched).
+pub const SCALP_HAIR_COVER_MM: f32 = 0.2;
 /// Default largest angle between a hair's direction and the surface normal, radians (≈ 10°).
 pub const DEFAULT_MAX_DEVIATION_RAD: f32 = 0.175;
 /// Default range of the graying onset: `t_k = U[min, max)` (**Choice**: docs/models.md §9;

@@ -130,7 +130,7 @@ pub fn describe_person(scene: &mut Scene) -> anyhow::Result<String> {
         )
     };
     Ok(format!(
-        "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\nhair curl: {}\nfacial contrast: {contrast}\n",
+        "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\nhair curl: {}\nfacial contrast: {contrast}\nlips: {}\n",
         colour(
             person.hair,
             own.hair,
@@ -148,7 +148,20 @@ pub fn describe_person(scene: &mut Scene) -> anyhow::Result<String> {
         person.graying_delay_years,
         person.loss.describe(),
         describe_curl(&person),
+        describe_lips(scene),
     ))
+}
+
+/// How far the head's lips thin with age, as `mesh-info` prints it (docs/models.md §13
+/// "Measured on the head").
+fn describe_lips(scene: &Scene) -> String {
+    let f = scene.layout().lip_fullness;
+    if scene.layout().fit.is_none() {
+        return "thin as the template's (the head is not fitted)".to_owned();
+    }
+    format!(
+        "deflate {f:.2} × as far as the template's (by how far they stand out in front of the subnasale–chin line; shape.lips scales it)"
+    )
 }
 
 /// The hair's curl as `mesh-info` prints it: its value, and whether it was guessed.

@@ -370,6 +370,9 @@ pub struct HeadLayout {
     pub face_only: bool,
     /// How it was decided, for reports.
     pub how: String,
+    /// How much further than the template's the lips deflate with age, by how far they
+    /// stand out ([`crate::layers::shape::anatomy::lip_fullness`]); 1 unfitted.
+    pub lip_fullness: f32,
 }
 
 /// The largest median distance (template mm) between the template aligned by the
@@ -386,6 +389,7 @@ impl HeadLayout {
             found: false,
             face_only: false,
             how: how.into(),
+            lip_fullness: 1.0,
         }
     }
 
@@ -441,6 +445,7 @@ impl HeadLayout {
                 Ok(fit) => Self {
                     choice,
                     how: format!("the template fitted by the landmark file: {}", fit.report),
+                    lip_fullness: lip_fullness(mesh, &turned, &fit),
                     fit: Some(Arc::new(fit)),
                     landmarks: Some(Arc::new(turned)),
                     found: false,
@@ -474,6 +479,7 @@ impl HeadLayout {
                     "the template fitted by landmarks found automatically (template {:.1} mm from the head): {}",
                     found.median_distance_mm, fit.report
                 ),
+                lip_fullness: lip_fullness(mesh, &found.landmarks, &fit),
                 fit: Some(Arc::new(fit)),
                 landmarks: Some(Arc::new(found.landmarks)),
                 found: true,
@@ -481,6 +487,20 @@ impl HeadLayout {
             }),
             Err(e) => Ok(Self::own(choice, format!("the head's own UVs: {e}"))),
         }
+    }
+}
+
+/// How much further than the template's this head's lips deflate
+/// ([`crate::layers::shape::anatomy`]): its lips' prominence, scaled to the template's
+/// size by the fit's similarity, against the template's.
+fn lip_fullness(mesh: &Mesh, landmarks: &Landmarks, fit: &crate::head::fit::Fit) -> f32 {
+    use crate::layers::shape::anatomy;
+    let head = anatomy::lip_prominence(mesh.positions(), &mesh.skin_indices(), landmarks);
+    match (head, anatomy::template_lip_prominence()) {
+        (Some(head), Some(template)) => {
+            anatomy::lip_fullness(head * fit.similarity.scale, template)
+        }
+        _ => 1.0,
     }
 }
 

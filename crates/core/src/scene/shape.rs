@@ -85,10 +85,18 @@ impl Scene {
         self.shape_aged.as_ref().map(|(_, s)| s)
     }
 
+    /// The shape regions' strengths on this head: the project's, the lips' by how far this
+    /// head's lips stand out (docs/models.md §13 "Measured on the head").
+    pub fn shape_strengths(&self) -> [f32; crate::layers::shape::REGIONS.len()] {
+        let mut s = self.project.shape.strengths();
+        s[crate::layers::shape::LIPS] *= self.inputs.layout.lip_fullness;
+        s
+    }
+
     /// The shape regions' displacements on this head (docs/models.md §13), made once per
     /// head and strengths; `None` when the shape layer is off or every strength is 0.
     pub fn shape_field(&mut self) -> Option<Arc<crate::layers::shape::ShapeField>> {
-        let strengths = self.project.shape.strengths();
+        let strengths = self.shape_strengths();
         let key = self.shape_key()?;
         if let Some((k, f)) = &self.shape
             && *k == key
@@ -109,7 +117,7 @@ impl Scene {
     /// What the shape field is made from; `None` when the shape layer is off or every
     /// strength is 0.
     fn shape_key(&self) -> Option<ShapeKey> {
-        let strengths = self.project.shape.strengths();
+        let strengths = self.shape_strengths();
         if strengths.iter().all(|&s| s <= 0.0) {
             return None;
         }
@@ -136,7 +144,7 @@ impl Scene {
         size: u32,
         cancel: &CancelToken,
     ) -> Result<Option<Arc<ShapeRelief>>, Error> {
-        let strengths = self.project.shape.strengths();
+        let strengths = self.shape_strengths();
         if strengths.iter().all(|&s| s <= 0.0) {
             return Ok(None);
         }

@@ -206,3 +206,39 @@ fn nothing_about_the_lips_comes_forward() {
     }
     println!("{}", report.join("\n"));
 }
+
+/// Full lips thin by more millimetres (docs/models.md §13 "Measured on the head"): the
+/// lips' deflation follows how far this head's lips stand out in front of its
+/// subnasale–chin line. The African woman's, the fullest, deflate furthest; none less
+/// than the template's; the built-in head is the template.
+#[test]
+fn full_lips_thin_further() {
+    let fullness: Vec<(String, f32)> = panel_projects()
+        .into_iter()
+        .map(|(name, project)| {
+            let scene = Scene::new(project).unwrap();
+            (name, scene.layout().lip_fullness)
+        })
+        .collect();
+    eprintln!("{fullness:?}");
+    let of = |head: &str| fullness.iter().find(|(n, _)| n == head).unwrap().1;
+    assert_eq!(of("the template"), 1.0);
+    assert!(fullness.iter().all(|(_, f)| *f >= 1.0));
+    for other in [
+        "makehuman",
+        "african-male",
+        "caucasian-female",
+        "asian-male",
+    ] {
+        assert!(of("african-female") > of(other), "{fullness:?}");
+    }
+    assert!(of("african-female") > 1.5, "{fullness:?}");
+    // What the shape field is made with.
+    let (_, project) = panel_projects().swap_remove(2);
+    let scene = Scene::new(project).unwrap();
+    let lips = crate::layers::shape::LIPS;
+    assert_eq!(
+        scene.shape_strengths()[lips],
+        scene.project().shape.strengths()[lips] * scene.layout().lip_fullness
+    );
+}

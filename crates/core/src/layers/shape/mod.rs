@@ -13,7 +13,7 @@
 //! share a position with the skin (an eye socket's rim moves with the lid: no crack).
 
 mod regions;
-pub use regions::{BAGS, REGIONS, drawn_crease};
+pub use regions::{BAGS, LIPS, REGIONS, drawn_crease};
 
 use glam::Vec3;
 
@@ -765,6 +765,7 @@ impl ShapeField {
     }
 }
 
+pub mod anatomy;
 pub mod clearance;
 mod facing;
 pub mod occlusion;

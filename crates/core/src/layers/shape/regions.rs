@@ -353,6 +353,8 @@ pub const REGIONS: [ShapeRegion; 11] = [
 
 /// The bags' place in [`REGIONS`].
 pub const BAGS: usize = 2;
+/// The index of the `lips` region in [`REGIONS`].
+pub const LIPS: usize = 7;
 
 /// The shadow under the bags at `q` (face frame, 0–1, at full age and strength): along
 /// the lid–cheek junction, their roll's crease ([`Roll::shade`]). The skin colour draws

@@ -386,6 +386,7 @@ fn the_aged_shape_hides_sky_in_its_folds_and_nowhere_else() {
 #[test]
 fn the_bags_shadow_lies_on_their_crease() {
     assert_eq!(REGIONS[BAGS].name, "bags");
+    assert_eq!(REGIONS[LIPS].name, "lips");
     for side in [-1.0f32, 1.0] {
         let on = Vec3::new(0.6 * side, -0.36, 0.26);
         assert!(drawn_crease(on) > 0.95, "{}", drawn_crease(on));

@@ -47,7 +47,8 @@ struct Frame {
     // x: how far the scalp under the hair present takes the hair's colour (0: off; the
     // colour map's alpha is each texel's hair disappearance age, 0 = never hair, else
     // 1 + 254·a over 255); y: the hair's mean gray fraction at this age; z: how wide a
-    // scalp hair is, mesh units (0: each ribbon covers its drawn width); w: unused.
+    // scalp hair is, mesh units (0: each ribbon covers its drawn width); w: the same for a
+    // white brow hair (0: as a pigmented one).
     scalp: vec4<f32>,
     // xyz: unit direction toward the fill light (world), the key's mirror image low on
     // the other side; w: its intensity (in `light_colour` units, 0 = none).

@@ -75,14 +75,15 @@ fn pixels_per_unit(p: vec3<f32>, tangent: vec3<f32>) -> f32 {
 // width's share of the ribbon, so the hair's cover follows its count (every ribbon
 // covering its whole width, a crown thinned to a third of its hairs read, blind, as
 // "only recoloured": docs/models.md §9 "Cover"); seen closer than that its ribbon is its
-// own width. `scalp.z` 0: the ribbon's width, all of it covered.
-fn strand_cover(p: vec3<f32>, tangent: vec3<f32>, s: f32) -> vec2<f32> {
+// own width. `hair_width` (mesh units: `scalp.z` for the scalp's hairs, `scalp.w` for the
+// brows') 0: the ribbon's width, all of it covered.
+fn strand_cover(p: vec3<f32>, tangent: vec3<f32>, s: f32, hair_width: f32) -> vec2<f32> {
     let taper = 1.0 - 0.65 * s;
     let drawn = frame.hair_gray.w * taper;
-    if frame.scalp.z <= 0.0 {
+    if hair_width <= 0.0 {
         return vec2<f32>(drawn, 1.0);
     }
-    let own = frame.scalp.z * taper * pixels_per_unit(p, tangent);
+    let own = hair_width * taper * pixels_per_unit(p, tangent);
     let width = max(drawn, own);
     return vec2<f32>(width, own / max(width, 1e-6));
 }
@@ -115,7 +116,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let base = frame.hair_base.rgb * (0.8 + 0.4 * random);
     let y = gray_fraction(frame.disp.w, inst.graying_onset, frame.pom.w == 1u);
     var out: VertexOut;
-    let cover = strand_cover(p, tangent, s);
+    let cover = strand_cover(p, tangent, s, frame.scalp.z);
     out.clip = ribbon_vertex_wide(p, tangent, len * 0.1, side, cover.x);
     out.tangent = tangent;
     // Each gray hair its own shade (0.45–1.10 of C_gray, from the spare random number's
@@ -179,7 +180,12 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     let gray = frame.hair_gray.rgb * vec3<f32>(1.0, 0.97, 0.92) * (0.5 + 0.4 * inst.shade);
     out.colour = mix(base, gray, inst.gray) * mix(0.8, 1.0, s);
     out.world_pos = p;
-    out.alpha = mix(0.8, 0.3, s) * inst.coverage;
+    // A white hair has no melanin to absorb the light: it lets the skin behind it show
+    // and covers only what a hair `scalp.w` wide would of its ribbon (as opaque as a
+    // pigmented one, the old brows on dark skin read, blind, as "stark white bristles
+    // that look stuck on"; docs/models.md §9 "Cover").
+    let cover = strand_cover(p, tangent, s, frame.scalp.w);
+    out.alpha = mix(0.8, 0.3, s) * inst.coverage * mix(1.0, cover.y, inst.gray);
     out.lit = 1.0;
     out.lit_fill = 1.0;
     return out;

@@ -221,6 +221,9 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
             diameter: agesim_core::layers::hair::SCALP_HAIR_COVER_MM
                 / 1000.0
                 / metres_per_unit.max(1e-9),
+            white_brow_width: agesim_core::layers::hair::WHITE_BROW_HAIR_COVER_MM
+                / 1000.0
+                / metres_per_unit.max(1e-9),
             curl,
             // The scalp's tint follows the hair left by thinning (docs/models.md §9).
             scalp_tint: h.scalp_tint

@@ -262,6 +262,9 @@ pub struct HairShading {
     /// How wide a scalp hair is, mesh units, ≥ 0: a ribbon wider than the hair covers
     /// only the hair's share of it (docs/models.md §9 "Cover"); 0: all of it.
     pub diameter: f32,
+    /// How wide a white brow hair is, mesh units, ≥ 0: a white hair lets the skin behind
+    /// it show, covering only that share of its ribbon; 0: as a pigmented one.
+    pub white_brow_width: f32,
     /// How far the hair bends from its growth direction down along the scalp, in [0, 1]
     /// (0: straight out; 1: combed flat after the first third).
     pub droop: f32,
@@ -302,6 +305,7 @@ impl Default for HairShading {
             length: 0.03,
             width_px: 0.9,
             diameter: 0.0,
+            white_brow_width: 0.0,
             droop: 0.85,
             curl: 0.0,
             scalp_tint: 0.0,

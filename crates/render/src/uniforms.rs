@@ -174,7 +174,7 @@ impl FrameUniform {
                 unit(hr.gray_fraction),
                 // A sparse frame's hair covers for the hairs it leaves out.
                 non_negative(hr.diameter) * ctx.hair_stride.max(1) as f32,
-                0.0,
+                non_negative(hr.white_brow_width),
             ],
             fill_dir: v3(
                 p.light.fill_direction.normalize_or(glam::Vec3::Y),

@@ -407,3 +407,53 @@ fn the_hair_covers_the_scalp_by_its_count() {
         "{hair_third}/{hair_full} against {ribbon_third}/{ribbon_full}"
     );
 }
+
+/// A white brow hair lets the skin behind it show (docs/models.md §9 "Cover"): given its
+/// width, the old brow changes dark skin about half as much (its white hairs), the young
+/// brow (pigmented) exactly as before.
+#[test]
+fn white_brow_hairs_let_the_skin_show() {
+    let Some(gpu) = gpu_or_skip("white_brow_hairs_let_the_skin_show") else {
+        return;
+    };
+    let mesh = head::default_head();
+    let regions = agesim_core::head::frame::Regions::template().unwrap();
+    let positions = mesh.positions();
+    let brows = BrowHairs::generate(&mesh, &|v| Some(positions[v]), regions, 1.0, 0);
+    let mut r = head_renderer(&gpu, &mesh);
+    // How much the brow hairs change the skin, summed over the pixels.
+    let mut change = |brow_gray: f32, width: f32| {
+        let factors = ColourFactors {
+            brow_gray,
+            contrast: brow_gray,
+            ..ColourFactors::default()
+        };
+        let strands = brows.strands(&mesh, &factors, None, false);
+        r.upload_brows_to(ViewId::MAIN, Some(&strands)).unwrap();
+        let mut p = at_the_brows();
+        p.hair.white_brow_width = width;
+        // Dark skin, where white hairs show.
+        p.skin.albedo = Vec3::new(0.08, 0.05, 0.03);
+        let haired = r.render_to_image(&p, (96, 96)).unwrap();
+        r.upload_brows_to(ViewId::MAIN, None).unwrap();
+        let bare = r.render_to_image(&p, (96, 96)).unwrap();
+        bare.pixels()
+            .zip(haired.pixels())
+            .map(|(a, b)| {
+                a.0[..3]
+                    .iter()
+                    .zip(&b.0[..3])
+                    .map(|(x, y)| f64::from(x.abs_diff(*y)))
+                    .sum::<f64>()
+            })
+            .sum::<f64>()
+    };
+    // The default head is in metres: 0.25 mm.
+    let (young, young_white) = (change(0.0, 0.0), change(0.0, 2.5e-4));
+    let (old, old_white) = (change(1.0, 0.0), change(1.0, 2.5e-4));
+    eprintln!(
+        "brows change the skin: young {young:.0} / {young_white:.0}, old {old:.0} / {old_white:.0}"
+    );
+    assert!(young > 0.0 && (young_white - young).abs() < 1e-6 * young);
+    assert!(old_white < 0.7 * old, "{old_white} against {old}");
+}

@@ -41,6 +41,11 @@ pub const DEFAULT_DENSITY_PER_CM2: f32 = 200.0;
 /// ribbon wide, 0.45 px, about 0.5 mm on the panel's renders, a crown that had lost two
 /// thirds of its hairs looked untouched).
 pub const SCALP_HAIR_COVER_MM: f32 = 0.2;
+/// How much of the skin behind it a white brow hair hides, as the width of a pigmented
+/// hair that would hide as much, mm (docs/models.md §9 "Cover"): without melanin a hair
+/// lets the light through. **Choice**: 0.25 mm (drawn as opaque as a pigmented one, the
+/// old brows on dark skin read, blind, as "stark white bristles that look stuck on").
+pub const WHITE_BROW_HAIR_COVER_MM: f32 = 0.25;
 /// Default largest angle between a hair's direction and the surface normal, radians (≈ 10°).
 pub const DEFAULT_MAX_DEVIATION_RAD: f32 = 0.175;
 /// Default range of the graying onset: `t_k = U[min, max)` (**Choice**: docs/models.md §9;

@@ -497,10 +497,6 @@ pub struct ShapeField {
     full_occlusion: std::sync::OnceLock<Vec<f32>>,
 }
 
-/// Turns of keeping the skin clear of the skin and unfolding it (each can undo a little
-/// of the other).
-const CLEAR_AND_UNFOLD_ROUNDS: usize = 4;
-
 impl ShapeField {
     /// The regions' displacements on `mesh`: `template_point(v)` is vertex v's template
     /// point (template metres; `None`: off the template, it stays), `strengths` each
@@ -598,49 +594,19 @@ impl ShapeField {
             })
             .unzip();
         let mut full: Vec<Vec<Vec3>> = full;
-        let smooth = smooth_normals(mesh.positions(), mesh.indices());
-        // No skin moves through the skin in front of it (docs/models.md §13 "No skin
-        // through skin"), its own surface ignored within 0.2 mm, and no triangle folds
-        // over, at full age (the exported morph target) or at any age between (§13 "No
-        // folded skin"): each spreads or shortens what the other did, so they take turns.
-        let checks: Vec<Vec<f32>> = std::iter::once(vec![1.0; REGIONS.len()])
-            .chain((6..=20).map(|k| {
-                let years = 5.0 * k as f32;
-                REGIONS.iter().map(|r| r.curve.factor(years)).collect()
-            }))
+        // Each vertex's place in the face frame, for its mirror image (the cuts below made
+        // alike on both sides: [`symmetry`]).
+        let points: Vec<Option<Vec3>> = (0..n)
+            .map(|v| {
+                let s = skin_at[v];
+                if welded[v] as usize != v || s == u32::MAX {
+                    return None;
+                }
+                Some(regions?.relative(template_point(s as usize)?))
+            })
             .collect();
-        let (positions, indices) = (mesh.positions(), mesh.indices());
-        let mut caps = vec![f32::INFINITY; n];
-        let moves = full.iter().any(|f| f.iter().any(|d| *d != Vec3::ZERO));
-        let bvh = if moves {
-            crate::head::fit::bvh::Bvh::new(positions, indices)
-        } else {
-            crate::head::fit::bvh::Bvh::new(&[], &[])
-        };
-        for _ in 0..CLEAR_AND_UNFOLD_ROUNDS {
-            let blocked = clearance::keep_clear(
-                positions,
-                &smooth,
-                indices,
-                &bvh,
-                &welded,
-                &mut full,
-                0.2 * mm,
-                &mut caps,
-            );
-            let spread = unfold::unfold(
-                positions,
-                indices,
-                &welded,
-                &mut full,
-                &checks,
-                &caps,
-                unfold::SPREAD_REACH_MM * mm,
-            );
-            if blocked == 0 && spread == 0 {
-                break;
-            }
-        }
+        let smooth = smooth_normals(mesh.positions(), mesh.indices());
+        settle::settle(mesh, &welded, &smooth, &mut full, &points, mm);
         Self {
             full,
             hollow,
@@ -771,6 +737,8 @@ mod facing;
 pub mod occlusion;
 mod picture;
 pub mod relief;
+mod settle;
+mod symmetry;
 #[cfg(test)]
 mod tests;
 pub mod unfold;

@@ -1,0 +1,89 @@
+//! The aged shape settled on the head (docs/models.md §13): no skin moves through the
+//! skin in front of it ("No skin through skin"), no triangle folds over at any age ("No
+//! folded skin"), and what those cuts take from one side of the face they take from the
+//! other ("Alike on both sides").
+
+use glam::Vec3;
+
+use super::{REGIONS, clearance, symmetry, unfold};
+use crate::head::mesh::Mesh;
+
+/// Turns of keeping the skin clear of the skin and unfolding it (each can undo a little
+/// of the other).
+const CLEAR_AND_UNFOLD_ROUNDS: usize = 4;
+
+/// How far (face units, about 5 mm) a vertex's mirror partner may lie from its mirror
+/// image ([`symmetry::mirror_partners`]).
+const MIRROR_TOLERANCE: f32 = 0.1;
+
+/// Settles the regions' full displacements `full` (per region, per vertex of `mesh`, the
+/// vertices at one position `welded` together) on the head: `smooth` its smooth normals,
+/// `points` each vertex's place in the face frame (for its mirror image; `None` off the
+/// template or not the first at its position), `mm` a millimetre in the head's units.
+pub(super) fn settle(
+    mesh: &Mesh,
+    welded: &[u32],
+    smooth: &[Vec3],
+    full: &mut [Vec<Vec3>],
+    points: &[Option<Vec3>],
+    mm: f32,
+) {
+    let n = mesh.vertex_count();
+    let uncut: Vec<Vec3> = (0..n).map(|v| full.iter().map(|f| f[v]).sum()).collect();
+    // No skin moves through the skin in front of it (docs/models.md §13 "No skin
+    // through skin"), its own surface ignored within 0.2 mm, and no triangle folds
+    // over, at full age (the exported morph target) or at any age between (§13 "No
+    // folded skin"): each spreads or shortens what the other did, so they take turns.
+    let checks: Vec<Vec<f32>> = std::iter::once(vec![1.0; REGIONS.len()])
+        .chain((6..=20).map(|k| {
+            let years = 5.0 * k as f32;
+            REGIONS.iter().map(|r| r.curve.factor(years)).collect()
+        }))
+        .collect();
+    let (positions, indices) = (mesh.positions(), mesh.indices());
+    let mut caps = vec![f32::INFINITY; n];
+    let moves = full.iter().any(|f| f.iter().any(|d| *d != Vec3::ZERO));
+    let bvh = if moves {
+        crate::head::fit::bvh::Bvh::new(positions, indices)
+    } else {
+        crate::head::fit::bvh::Bvh::new(&[], &[])
+    };
+    let partners = symmetry::mirror_partners(points, MIRROR_TOLERANCE);
+    let (mut rounds, mut evened) = (0, false);
+    loop {
+        let blocked = clearance::keep_clear(
+            positions,
+            smooth,
+            indices,
+            &bvh,
+            welded,
+            full,
+            0.2 * mm,
+            &mut caps,
+        );
+        let spread = unfold::unfold(
+            positions,
+            indices,
+            welded,
+            full,
+            &checks,
+            &caps,
+            unfold::SPREAD_REACH_MM * mm,
+        );
+        rounds += 1;
+        if (blocked > 0 || spread > 0) && rounds < CLEAR_AND_UNFOLD_ROUNDS {
+            continue;
+        }
+        // What the cuts took from one side they take from the other, then one more
+        // turn keeps what that leaves clear and unfolded.
+        if evened || symmetry::even_out(full, &uncut, &partners) == 0 {
+            break;
+        }
+        evened = true;
+        for f in full.iter_mut() {
+            for v in 0..n {
+                f[v] = f[welded[v] as usize];
+            }
+        }
+    }
+}

@@ -556,3 +556,44 @@ fn the_neck_ages_with_the_face() {
         assert!(at80 < at25 + 3.0, "{name}: {at25} → {at80}");
     }
 }
+
+/// A head without a colour map has lips of their own (the lip tone over the skin's,
+/// docs/models.md "Skin colour"): darker and redder than its cheeks at 25 (the untextured
+/// heads' lips were the skin's colour, "a lipless slit"), and the difference fades with
+/// age (the lips' contrast falls).
+#[test]
+fn a_head_without_a_map_has_lips_that_fade() {
+    let mut scene = Scene::new(panel_project("asian-male", false)).unwrap();
+    let n = 512u32;
+    let (young, old) = young_and_old(&mut scene, n);
+    let texels = scene.colour_texels().unwrap();
+    let mean = |img: &crate::maps::mask::HeadImage, pick: &dyn Fn(usize) -> bool| {
+        let idx: Vec<usize> = (0..(n * n) as usize).filter(|&i| pick(i)).collect();
+        assert!(idx.len() > 30, "{} texels", idx.len());
+        let sum: glam::Vec3 = idx.iter().map(|&i| texel_lab(img, i)).sum();
+        sum / idx.len() as f32
+    };
+    let lips = |i: usize| texels.lips(i) > 0.95;
+    let cheeks = |i: usize| texels.cheeks_and_nose(i) > 0.5 && texels.lips(i) == 0.0;
+    let (lips_young, cheeks_young) = (mean(&young, &lips), mean(&young, &cheeks));
+    let (lips_old, cheeks_old) = (mean(&old, &lips), mean(&old, &cheeks));
+    eprintln!(
+        "lips against cheeks, L* and a*: {:.1}, {:.1} at 25; {:.1}, {:.1} at 80",
+        lips_young.x - cheeks_young.x,
+        lips_young.y - cheeks_young.y,
+        lips_old.x - cheeks_old.x,
+        lips_old.y - cheeks_old.y
+    );
+    assert!(
+        lips_young.x < cheeks_young.x - 5.0,
+        "{lips_young} {cheeks_young}"
+    );
+    assert!(
+        lips_young.y > cheeks_young.y + 5.0,
+        "{lips_young} {cheeks_young}"
+    );
+    assert!(
+        (lips_old.y - cheeks_old.y) < 0.7 * (lips_young.y - cheeks_young.y),
+        "{lips_old} {cheeks_old}"
+    );
+}

@@ -109,6 +109,13 @@ const YELLOW_TINT: [f32; 3] = [0.0, 0.06, 0.22];
 /// thin and gray more than they fade).
 const CONTRAST_BROWS: f32 = 0.2;
 const CONTRAST_LIPS: f32 = 0.6;
+/// The lips' colour on a head without a colour map, times the skin's (linear): darker and
+/// redder, as the vermilion is (about 10 darker in L* and 10 redder in a* than the cheek:
+/// Porcheron et al. 2013). Without it the untextured heads' lips were the skin's colour,
+/// read blind as "a lipless slit", "lips that have vanished" (rounds 21–23), and their
+/// fading with age (below) had nothing to fade.
+const LIP_TONE: [f32; 3] = [0.8, 0.58, 0.6];
+
 /// How much more than the rest of the lips their outer part (`Regions::lip_rim`) fades.
 const LIP_THINNING: f32 = 0.9;
 
@@ -229,7 +236,11 @@ impl BaseColour {
                     (x as f32 + 0.5) / n as f32,
                     (y as f32 + 0.5) / n as f32,
                 ),
-                None => Vec3::from(albedo),
+                // Without a map the lips take the lip tone over the skin's.
+                None => Vec3::from(albedo).lerp(
+                    Vec3::from(albedo) * Vec3::from(LIP_TONE),
+                    from_unit(texels.fields[y * n + x].lips),
+                ),
             }
         };
         let mut colour = vec![Vec3::ZERO; n * n];

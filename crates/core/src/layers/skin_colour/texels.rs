@@ -217,4 +217,9 @@ impl SurfaceTexels {
     pub fn cheeks_and_nose(&self, i: usize) -> f32 {
         self.fields.get(i).map_or(0.0, |f| from_unit(f.red))
     }
+
+    /// The lips' weight at texel `i` (`Regions::lips`; 0 beyond the layout).
+    pub fn lips(&self, i: usize) -> f32 {
+        self.fields.get(i).map_or(0.0, |f| from_unit(f.lips))
+    }
 }

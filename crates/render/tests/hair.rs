@@ -208,6 +208,25 @@ fn strands_are_blended_over_the_skin() {
     assert!(black * 10 < changed, "{black} of {changed}");
 }
 
+/// The default head, its brow hairs and a renderer of it.
+fn brows_on_the_default_head(gpu: &Gpu) -> (agesim_core::Mesh, BrowHairs, Renderer) {
+    let mesh = head::default_head();
+    let regions = agesim_core::head::frame::Regions::template().unwrap();
+    let positions = mesh.positions();
+    let brows = BrowHairs::generate(&mesh, &|v| Some(positions[v]), regions, 1.0, 0);
+    let r = head_renderer(gpu, &mesh);
+    (mesh, brows, r)
+}
+
+/// The colour's factors of an age whose brows are `brow_gray` gray (and faded as far).
+fn brows_aged(brow_gray: f32) -> ColourFactors {
+    ColourFactors {
+        brow_gray,
+        contrast: brow_gray,
+        ..ColourFactors::default()
+    }
+}
+
 /// Face on, close to the brows.
 fn at_the_brows() -> FrameParams {
     let mut p = FrameParams::default();
@@ -221,19 +240,10 @@ fn brow_hairs_are_drawn_and_gray_with_age() {
     let Some(gpu) = gpu_or_skip("brow_hairs_are_drawn_and_gray_with_age") else {
         return;
     };
-    let mesh = head::default_head();
-    let regions = agesim_core::head::frame::Regions::template().unwrap();
-    let positions = mesh.positions();
-    let brows = BrowHairs::generate(&mesh, &|v| Some(positions[v]), regions, 1.0, 0);
-    let mut r = head_renderer(&gpu, &mesh);
+    let (mesh, brows, mut r) = brows_on_the_default_head(&gpu);
     let p = at_the_brows();
-    let age = |brow_gray: f32| ColourFactors {
-        brow_gray,
-        contrast: brow_gray,
-        ..ColourFactors::default()
-    };
     let mut drawn = |brow_gray: f32| {
-        let strands = brows.strands(&mesh, &age(brow_gray), None, false);
+        let strands = brows.strands(&mesh, &brows_aged(brow_gray), None, false);
         r.upload_brows_to(ViewId::MAIN, Some(&strands)).unwrap();
         let changed = under_hair(&mut r, &p, 256);
         let lum = changed
@@ -416,19 +426,10 @@ fn white_brow_hairs_let_the_skin_show() {
     let Some(gpu) = gpu_or_skip("white_brow_hairs_let_the_skin_show") else {
         return;
     };
-    let mesh = head::default_head();
-    let regions = agesim_core::head::frame::Regions::template().unwrap();
-    let positions = mesh.positions();
-    let brows = BrowHairs::generate(&mesh, &|v| Some(positions[v]), regions, 1.0, 0);
-    let mut r = head_renderer(&gpu, &mesh);
+    let (mesh, brows, mut r) = brows_on_the_default_head(&gpu);
     // How much the brow hairs change the skin, summed over the pixels.
     let mut change = |brow_gray: f32, width: f32| {
-        let factors = ColourFactors {
-            brow_gray,
-            contrast: brow_gray,
-            ..ColourFactors::default()
-        };
-        let strands = brows.strands(&mesh, &factors, None, false);
+        let strands = brows.strands(&mesh, &brows_aged(brow_gray), None, false);
         r.upload_brows_to(ViewId::MAIN, Some(&strands)).unwrap();
         let mut p = at_the_brows();
         p.hair.white_brow_width = width;

@@ -133,6 +133,41 @@ fn a_moving_shape_keeps_the_last_sky_until_the_field_stays() {
     assert_eq!(scene.aged_shape().unwrap().occlusion, stayed);
 }
 
+/// On every head of [`panel_projects`], the full shape's movement summed over each side
+/// of the face (`moved(q, full, normal)`: a vertex's contribution, mm per metre of the
+/// head's unit, at its face-frame point `q`; `None` off the region), and the smaller
+/// side's share of the larger's: one report line (`what` the region) and the ratio each.
+fn sides_alike(
+    what: &str,
+    moved: &dyn Fn(Vec3, Vec3, Vec3) -> Option<f32>,
+) -> (Vec<String>, Vec<f64>) {
+    let frame = crate::head::frame::Regions::template().unwrap();
+    let (mut report, mut ratios) = (Vec::new(), Vec::new());
+    for (name, project) in panel_projects() {
+        let mut scene = Scene::new(project).unwrap();
+        let field = scene.shape_field().unwrap();
+        let (full, normals) = (field.full(), scene.mesh().normals().to_vec());
+        let mm = scene.metres_per_unit() * 1e3;
+        let mut sides = [0.0f64; 2];
+        for (v, point) in scene.template_points().iter().enumerate() {
+            let Some(q) = point.map(|p| frame.relative(p)) else {
+                continue;
+            };
+            if let Some(m) = moved(q, full[v], normals[v]) {
+                sides[usize::from(q.x > 0.0)] += f64::from(m * mm);
+            }
+        }
+        let ratio = sides[0].min(sides[1]) / sides[0].max(sides[1]).max(1e-9);
+        report.push(format!(
+            "{name}: {what} {:.0} / {:.0} mm (summed), ratio {ratio:.2}",
+            sides[0], sides[1]
+        ));
+        ratios.push(ratio);
+    }
+    println!("{}", report.join("\n"));
+    (report, ratios)
+}
+
 /// The shape ages both sides of the face alike (the issue "every head ages as well as the
 /// default one"): on the template, MakeHuman and the four panel heads, the cheek's roll and
 /// hollows move as much skin on the left as on the right. A lower lid that would not
@@ -141,34 +176,11 @@ fn a_moving_shape_keeps_the_last_sky_until_the_field_stays() {
 /// on the African heads); the template's own folds are not mirror images (0.88).
 #[test]
 fn both_cheeks_age_alike_on_every_head() {
-    let heads = panel_projects();
-    let frame = crate::head::frame::Regions::template().unwrap();
-    let (mut report, mut ratios) = (Vec::new(), Vec::new());
-    for (name, project) in heads {
-        let mut scene = Scene::new(project).unwrap();
-        let field = scene.shape_field().unwrap();
-        let full = field.full();
-        let points = scene.template_points();
-        let normals = scene.mesh().normals().to_vec();
-        // The movement along the normal over the cheek below each eye, mm, each side.
-        let mut sides = [0.0f64; 2];
-        for (v, point) in points.iter().enumerate() {
-            let Some(q) = point.map(|p| frame.relative(p)) else {
-                continue;
-            };
-            if (0.4..1.2).contains(&q.x.abs()) && (-1.3..-0.4).contains(&q.y) && q.z > 0.0 {
-                let mm = full[v].dot(normals[v]).abs() * scene.metres_per_unit() * 1e3;
-                sides[usize::from(q.x > 0.0)] += f64::from(mm);
-            }
-        }
-        let ratio = sides[0].min(sides[1]) / sides[0].max(sides[1]).max(1e-9);
-        report.push(format!(
-            "{name}: cheeks {:.0} / {:.0} mm (summed), ratio {ratio:.2}",
-            sides[0], sides[1]
-        ));
-        ratios.push(ratio);
-    }
-    println!("{}", report.join("\n"));
+    // The movement along the normal over the cheek below each eye.
+    let (report, ratios) = sides_alike("cheeks", &|q, d, n| {
+        let cheek = (0.4..1.2).contains(&q.x.abs()) && (-1.3..-0.4).contains(&q.y) && q.z > 0.0;
+        cheek.then(|| d.dot(n).abs())
+    });
     assert!(ratios.iter().all(|&r| r > 0.6), "{}", report.join("\n"));
 }
 
@@ -180,32 +192,10 @@ fn both_cheeks_age_alike_on_every_head() {
 /// other's on her and 0.69 on the asian man, 0.79–0.99 now (the template's own 0.86).
 #[test]
 fn both_lids_come_down_alike_on_every_head() {
-    let heads = panel_projects();
-    let frame = crate::head::frame::Regions::template().unwrap();
-    let (mut report, mut ratios) = (Vec::new(), Vec::new());
-    for (name, project) in heads {
-        let mut scene = Scene::new(project).unwrap();
-        let field = scene.shape_field().unwrap();
-        let full = field.full();
-        let points = scene.template_points();
-        let mm = scene.metres_per_unit() * 1e3;
-        let mut sides = [0.0f64; 2];
-        for (v, point) in points.iter().enumerate() {
-            let Some(q) = point.map(|p| frame.relative(p)) else {
-                continue;
-            };
-            if (0.25..1.0).contains(&q.x.abs()) && (0.0..0.6).contains(&q.y) && q.z > 0.0 {
-                sides[usize::from(q.x > 0.0)] += f64::from((-full[v].y * mm).max(0.0));
-            }
-        }
-        let ratio = sides[0].min(sides[1]) / sides[0].max(sides[1]).max(1e-9);
-        report.push(format!(
-            "{name}: lids and brows down {:.0} / {:.0} mm (summed), ratio {ratio:.2}",
-            sides[0], sides[1]
-        ));
-        ratios.push(ratio);
-    }
-    println!("{}", report.join("\n"));
+    let (report, ratios) = sides_alike("lids and brows down", &|q, d, _| {
+        let lid = (0.25..1.0).contains(&q.x.abs()) && (0.0..0.6).contains(&q.y) && q.z > 0.0;
+        lid.then(|| (-d.y).max(0.0))
+    });
     assert!(ratios.iter().all(|&r| r > 0.75), "{}", report.join("\n"));
 }
 

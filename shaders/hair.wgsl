@@ -38,17 +38,11 @@ struct VertexOut {
     @location(5) lit_fill: f32,
 }
 
-// One vertex of a hair's ribbon: the curve's point `p` (tangent `tangent`, `s` along it)
-// widened in screen space, perpendicular to the projected hair (its direction taken
-// `ahead` mesh units along it), to the `side` (±1), by a pixel width that tapers to a
-// third at the tip.
-fn ribbon_vertex(p: vec3<f32>, tangent: vec3<f32>, ahead: f32, s: f32, side: f32) -> vec4<f32> {
-    return ribbon_vertex_wide(p, tangent, ahead, side, frame.hair_gray.w * (1.0 - 0.65 * s));
-}
-
-// `ribbon_vertex` with the ribbon `width_px` pixels wide.
-fn ribbon_vertex_wide(p: vec3<f32>, tangent: vec3<f32>, ahead: f32, side: f32, width_px: f32) -> vec4<f32> {
-    let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
+// One vertex of a hair's ribbon: the curve's point `p` (projected: `clip`; tangent
+// `tangent`) widened in screen space, perpendicular to the projected hair (its direction
+// taken `ahead` mesh units along it), to the `side` (±1), by `width_px` pixels (its
+// callers taper it to a third at the tip).
+fn ribbon_vertex(p: vec3<f32>, clip: vec4<f32>, tangent: vec3<f32>, ahead: f32, side: f32, width_px: f32) -> vec4<f32> {
     let clip_ahead = frame.clip_from_world * vec4<f32>(p + tangent * ahead, 1.0);
     let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
     let screen_dir = (clip_ahead.xy / clip_ahead.w - clip.xy / clip.w) * viewport;
@@ -58,12 +52,11 @@ fn ribbon_vertex_wide(p: vec3<f32>, tangent: vec3<f32>, ahead: f32, side: f32, w
 }
 
 // How many pixels one mesh unit across the view spans at `p` (across the strand, whose
-// tangent is `tangent`: no foreshortening).
-fn pixels_per_unit(p: vec3<f32>, tangent: vec3<f32>) -> f32 {
+// tangent is `tangent`: no foreshortening); `a` the point projected.
+fn pixels_per_unit(p: vec3<f32>, a: vec4<f32>, tangent: vec3<f32>) -> f32 {
     let to_eye = frame.camera_pos.xyz - p;
     let across = normalize(cross(tangent, to_eye) + vec3<f32>(1e-6, 0.0, 0.0));
     let step = 0.01 * length(to_eye);
-    let a = frame.clip_from_world * vec4<f32>(p, 1.0);
     let b = frame.clip_from_world * vec4<f32>(p + across * step, 1.0);
     let viewport = vec2<f32>(frame.hair_misc.x, frame.layers.w);
     return length((b.xy / b.w - a.xy / a.w) * 0.5 * viewport) / step;
@@ -77,13 +70,13 @@ fn pixels_per_unit(p: vec3<f32>, tangent: vec3<f32>) -> f32 {
 // "only recoloured": docs/models.md §9 "Cover"); seen closer than that its ribbon is its
 // own width. `hair_width` (mesh units: `scalp.z` for the scalp's hairs, `scalp.w` for the
 // brows') 0: the ribbon's width, all of it covered.
-fn strand_cover(p: vec3<f32>, tangent: vec3<f32>, s: f32, hair_width: f32) -> vec2<f32> {
+fn strand_cover(p: vec3<f32>, clip: vec4<f32>, tangent: vec3<f32>, s: f32, hair_width: f32) -> vec2<f32> {
     let taper = 1.0 - 0.65 * s;
     let drawn = frame.hair_gray.w * taper;
     if hair_width <= 0.0 {
         return vec2<f32>(drawn, 1.0);
     }
-    let own = hair_width * taper * pixels_per_unit(p, tangent);
+    let own = hair_width * taper * pixels_per_unit(p, clip, tangent);
     let width = max(drawn, own);
     return vec2<f32>(width, own / max(width, 1e-6));
 }
@@ -116,8 +109,9 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     let base = frame.hair_base.rgb * (0.8 + 0.4 * random);
     let y = gray_fraction(frame.disp.w, inst.graying_onset, frame.pom.w == 1u);
     var out: VertexOut;
-    let cover = strand_cover(p, tangent, s, frame.scalp.z);
-    out.clip = ribbon_vertex_wide(p, tangent, len * 0.1, side, cover.x);
+    let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
+    let cover = strand_cover(p, clip, tangent, s, frame.scalp.z);
+    out.clip = ribbon_vertex(p, clip, tangent, len * 0.1, side, cover.x);
     out.tangent = tangent;
     // Each gray hair its own shade (0.45–1.10 of C_gray, from the spare random number's
     // other digits): a gray mass reads as strands, not a slab.
@@ -171,7 +165,9 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     // A tenth of the hair ahead (mesh units: a fixed step would be a micrometre on a head
     // in millimetres); as fine as the scalp's (1.3 × its width read, blind, as "a bottle
     // brush").
-    out.clip = ribbon_vertex(p, tangent, 0.1 * distance(inst.root, inst.tip), s, side);
+    let clip = frame.clip_from_world * vec4<f32>(p, 1.0);
+    let width_px = frame.hair_gray.w * (1.0 - 0.65 * s);
+    out.clip = ribbon_vertex(p, clip, tangent, 0.1 * distance(inst.root, inst.tip), side, width_px);
     out.tangent = tangent;
     // The brows' own colour (measured on the head, or the hair's, darker: docs/models.md
     // §9 "Eyebrows"); a gray brow hair is coarse, yellowed white, a shade under the
@@ -184,7 +180,7 @@ fn vs_brow(@builtin(vertex_index) vertex: u32, inst: BrowInstance) -> VertexOut 
     // and covers only what a hair `scalp.w` wide would of its ribbon (as opaque as a
     // pigmented one, the old brows on dark skin read, blind, as "stark white bristles
     // that look stuck on"; docs/models.md §9 "Cover").
-    let cover = strand_cover(p, tangent, s, frame.scalp.w);
+    let cover = strand_cover(p, clip, tangent, s, frame.scalp.w);
     out.alpha = mix(0.8, 0.3, s) * inst.coverage * mix(1.0, cover.y, inst.gray);
     out.lit = 1.0;
     out.lit_fill = 1.0;

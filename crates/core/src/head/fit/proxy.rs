@@ -6,9 +6,9 @@
 //! than a cube's width from the surface; a mesh of fewer triangles is used as it is.
 //! What is computed on the proxy comes back to the mesh's vertices by [`Proxy::spread`].
 
-use std::collections::HashMap;
-
 use glam::Vec3;
+
+use crate::base::cells::{CubeMap, cube_of};
 
 /// Triangles of skin above which the landmark and axes searches run on a proxy, and
 /// about how many the proxy keeps.
@@ -25,7 +25,7 @@ pub struct Proxy {
     pub cluster_of_vertex: Vec<u32>,
     /// The cubes' side, mesh units.
     pub cube: f32,
-    cluster_of_cube: HashMap<[i32; 3], u32>,
+    cluster_of_cube: CubeMap<u32>,
 }
 
 /// The proxy of the skin triangles `skin` (three indices each) of `positions`; `None`
@@ -58,7 +58,7 @@ pub fn of_triangles(positions: &[Vec3], skin: &[u32], target: usize) -> Option<P
     }
     // Clusters numbered in the order their first vertex is met: the same proxy on any
     // machine.
-    let mut cluster_of_cube: HashMap<[i32; 3], u32> = HashMap::new();
+    let mut cluster_of_cube: CubeMap<u32> = CubeMap::default();
     let mut cluster_of_vertex = vec![u32::MAX; positions.len()];
     let mut sums: Vec<(Vec3, u32)> = Vec::new();
     let mut indices = Vec::with_capacity(skin.len() / 2);
@@ -72,7 +72,7 @@ pub fn of_triangles(positions: &[Vec3], skin: &[u32], target: usize) -> Option<P
             };
             let known = &mut cluster_of_vertex[v as usize];
             if *known == u32::MAX {
-                let key = (p / cube).floor().as_ivec3().to_array();
+                let key = cube_of(p, cube);
                 let next = sums.len() as u32;
                 let c = *cluster_of_cube.entry(key).or_insert(next);
                 if c == next {

@@ -16,6 +16,11 @@ const CLEAR_AND_UNFOLD_ROUNDS: usize = 4;
 /// image ([`symmetry::mirror_partners`]).
 const MIRROR_TOLERANCE: f32 = 0.1;
 
+/// How far, mm, the evening's shortening is smoothed over the mesh
+/// ([`symmetry::even_out`]): (this / the mean edge)² passes, none on a head whose edges
+/// are longer.
+const EVEN_SMOOTH_MM: f32 = 2.0;
+
 /// Settles the regions' full displacements `full` (per region, per vertex of `mesh`, the
 /// vertices at one position `welded` together) on the head: `smooth` its smooth normals,
 /// `points` each vertex's place in the face frame (for its mirror image; `None` off the
@@ -49,6 +54,8 @@ pub(super) fn settle(
         crate::head::fit::bvh::Bvh::new(&[], &[])
     };
     let partners = symmetry::mirror_partners(points, MIRROR_TOLERANCE);
+    let welded_triangles: Vec<u32> = indices.iter().map(|&i| welded[i as usize]).collect();
+    let passes = smoothing_passes(positions, indices, EVEN_SMOOTH_MM * mm);
     let (mut rounds, mut evened) = (0, false);
     loop {
         let blocked = clearance::keep_clear(
@@ -76,7 +83,7 @@ pub(super) fn settle(
         }
         // What the cuts took from one side they take from the other, then one more
         // turn keeps what that leaves clear and unfolded.
-        if evened || symmetry::even_out(full, &uncut, &partners) == 0 {
+        if evened || symmetry::even_out(full, &uncut, &partners, &welded_triangles, passes) == 0 {
             break;
         }
         evened = true;
@@ -86,4 +93,22 @@ pub(super) fn settle(
             }
         }
     }
+}
+
+/// Passes of neighbour smoothing that reach about `reach` (mesh units) over the mesh of
+/// `positions` and `indices`: (reach / its mean edge)², at most 64.
+fn smoothing_passes(positions: &[Vec3], indices: &[u32], reach: f32) -> usize {
+    let (mut sum, mut count) = (0.0f64, 0usize);
+    for t in indices.chunks_exact(3).step_by(16) {
+        let p = |k: usize| positions.get(t[k] as usize).copied();
+        if let (Some(a), Some(b), Some(c)) = (p(0), p(1), p(2)) {
+            sum += f64::from(a.distance(b) + b.distance(c) + c.distance(a));
+            count += 3;
+        }
+    }
+    let edge = (sum / count.max(1) as f64) as f32;
+    if !(edge > 0.0 && edge.is_finite()) {
+        return 0;
+    }
+    ((reach / edge).powi(2).round() as usize).min(64)
 }

@@ -5,42 +5,60 @@
 //! as the other, read blind as "one half-closed eye, like ptosis or an injury". Each
 //! vertex's move is shortened to the share its mirror image keeps, when that is less.
 
-use std::collections::HashMap;
-
 use glam::Vec3;
+
+use crate::base::cells::{CubeMap, cube_of};
 
 /// Each point's mirror partner: the point nearest its mirror image about x = 0 (face
 /// units, [`crate::head::frame::Regions::relative`]) within `tolerance`; `None` for no
-/// point, or none near enough.
+/// point, or none near enough; of two as near, the lower index.
+///
+/// The points are gathered in cubes of a quarter of the tolerance and each mirror image
+/// searched shell by shell outward from its own cube, until no point farther out can be
+/// nearer: on a dense head (570k points, a few hundred in a tolerance's cube) cubes of the
+/// whole tolerance made every search weigh thousands of points (3.7 s there, 0.2 s now).
 pub fn mirror_partners(points: &[Option<Vec3>], tolerance: f32) -> Vec<Option<u32>> {
-    let cell = tolerance.max(1e-6);
-    let key = |p: Vec3| (p / cell).floor().as_ivec3().to_array();
-    let mut grid: HashMap<[i32; 3], Vec<u32>> = HashMap::new();
+    use rayon::prelude::*;
+    const SHELLS: i32 = 4;
+    let cell = (tolerance / SHELLS as f32).max(1e-7);
+    let mut grid: CubeMap<Vec<u32>> = CubeMap::default();
     for (i, p) in points.iter().enumerate() {
         if let Some(p) = p {
-            grid.entry(key(*p)).or_default().push(i as u32);
+            grid.entry(cube_of(*p, cell)).or_default().push(i as u32);
         }
     }
+    let limit = tolerance * tolerance;
     points
-        .iter()
+        .par_iter()
         .map(|p| {
             let mirrored = (*p)? * Vec3::new(-1.0, 1.0, 1.0);
-            let [x, y, z] = key(mirrored);
+            let home = glam::IVec3::from_array(cube_of(mirrored, cell));
             let mut best: Option<(f32, u32)> = None;
-            for dx in -1..=1 {
-                for dy in -1..=1 {
-                    for dz in -1..=1 {
-                        let Some(list) = grid.get(&[x + dx, y + dy, z + dz]) else {
-                            continue;
-                        };
-                        for &j in list {
-                            let d = points[j as usize]
-                                .map_or(f32::INFINITY, |q| q.distance_squared(mirrored));
-                            if d <= tolerance * tolerance && best.is_none_or(|(b, _)| d < b) {
-                                best = Some((d, j));
+            for r in 0..=SHELLS {
+                for dz in -r..=r {
+                    for dy in -r..=r {
+                        for dx in -r..=r {
+                            if dx.abs().max(dy.abs()).max(dz.abs()) != r {
+                                continue;
+                            }
+                            let at = (home + glam::IVec3::new(dx, dy, dz)).to_array();
+                            let Some(list) = grid.get(&at) else {
+                                continue;
+                            };
+                            for &j in list {
+                                let d = points[j as usize]
+                                    .map_or(f32::INFINITY, |q| q.distance_squared(mirrored));
+                                if d <= limit && best.is_none_or(|b| (d, j) < b) {
+                                    best = Some((d, j));
+                                }
                             }
                         }
                     }
+                }
+                // A point in a cube past shell r lies at least r cubes away.
+                let reach = r as f32 * cell;
+                if best.is_some_and(|(d, _)| d <= reach * reach) {
+                    break;
                 }
             }
             best.map(|(_, j)| j)
@@ -51,8 +69,17 @@ pub fn mirror_partners(points: &[Option<Vec3>], tolerance: f32) -> Vec<Option<u3
 /// Shortens each vertex's move (all regions' displacements `full`, per region per vertex)
 /// to the share of its uncut move (`uncut`, the sum over the regions before the cuts)
 /// that its mirror partner keeps, when that is less than its own share. Vertices without
-/// a partner keep theirs. Returns how many were shortened.
-pub fn even_out(full: &mut [Vec<Vec3>], uncut: &[Vec3], partners: &[Option<u32>]) -> usize {
+/// a partner keep theirs. The shortening is smoothed over the mesh's edges (`triangles`,
+/// three indices each) `passes` times, so that neighbours whose partners kept different
+/// shares are not cut apart (on a dense head, unsmoothed, it folded 68,000 vertices that
+/// had to be unfolded again). Returns how many were shortened.
+pub fn even_out(
+    full: &mut [Vec<Vec3>],
+    uncut: &[Vec3],
+    partners: &[Option<u32>],
+    triangles: &[u32],
+    passes: usize,
+) -> usize {
     let n = uncut.len();
     let kept = |v: usize, full: &[Vec<Vec3>]| {
         let before = uncut[v].length();
@@ -63,21 +90,49 @@ pub fn even_out(full: &mut [Vec<Vec3>], uncut: &[Vec3], partners: &[Option<u32>]
         (after.length() / before).min(1.0)
     };
     let shares: Vec<f32> = (0..n).map(|v| kept(v, full)).collect();
-    let mut shortened = 0;
+    let mut scale = vec![1.0f32; n];
     for v in 0..n {
         let Some(p) = partners[v] else {
             continue;
         };
         let (own, other) = (shares[v], shares[p as usize]);
         if other < own - 1e-3 && own > 0.0 {
-            let scale = other / own;
+            scale[v] = other / own;
+        }
+    }
+    for _ in 0..passes {
+        scale = smoothed(&scale, triangles);
+    }
+    let mut shortened = 0;
+    for (v, &s) in scale.iter().enumerate() {
+        if s < 1.0 - 1e-6 {
             for f in full.iter_mut() {
-                f[v] *= scale;
+                f[v] *= s;
             }
             shortened += 1;
         }
     }
     shortened
+}
+
+/// `values` averaged with their neighbours over the edges of `triangles` (each vertex
+/// with the mean of its own value and its triangles' other corners).
+fn smoothed(values: &[f32], triangles: &[u32]) -> Vec<f32> {
+    let mut sum: Vec<f32> = values.to_vec();
+    let mut count = vec![1.0f32; values.len()];
+    for t in triangles.chunks_exact(3) {
+        let [a, b, c] = [t[0], t[1], t[2]].map(|v| v as usize);
+        if a.max(b).max(c) >= values.len() {
+            continue;
+        }
+        sum[a] += 0.5 * (values[b] + values[c]);
+        sum[b] += 0.5 * (values[a] + values[c]);
+        sum[c] += 0.5 * (values[a] + values[b]);
+        count[a] += 1.0;
+        count[b] += 1.0;
+        count[c] += 1.0;
+    }
+    sum.iter().zip(&count).map(|(s, c)| s / c).collect()
 }
 
 #[cfg(test)]
@@ -103,9 +158,9 @@ mod tests {
         let uncut = vec![Vec3::new(0.0, -2.0, 0.0), Vec3::new(0.0, -2.0, 0.0)];
         let mut full = vec![vec![Vec3::new(0.0, -1.0, 0.0), Vec3::new(0.0, -2.0, 0.0)]];
         let partners = vec![Some(1), Some(0)];
-        assert_eq!(even_out(&mut full, &uncut, &partners), 1);
+        assert_eq!(even_out(&mut full, &uncut, &partners, &[], 0), 1);
         assert_eq!(full[0], vec![Vec3::new(0.0, -1.0, 0.0); 2]);
         // Alike already: nothing to do.
-        assert_eq!(even_out(&mut full, &uncut, &partners), 0);
+        assert_eq!(even_out(&mut full, &uncut, &partners, &[], 0), 0);
     }
 }

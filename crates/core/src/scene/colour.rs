@@ -49,7 +49,7 @@ struct ImageKey {
     settings: ColourSettings,
     factors: ColourFactors,
     /// The painted hair's ages (address), age (bits), bald and hair colours (bits).
-    painted: Option<(usize, u32, [u32; 3], [u32; 3])>,
+    painted: Option<(usize, u32, [u32; 3], [u32; 3], [u32; 2], bool)>,
 }
 
 /// The head as the stage reads it.
@@ -90,6 +90,8 @@ impl ColourStage {
                     p.t.to_bits(),
                     p.bald.to_array().map(f32::to_bits),
                     p.hair.to_array().map(f32::to_bits),
+                    p.thinned.map(f32::to_bits),
+                    p.keeps_hairline,
                 )
             }),
         };

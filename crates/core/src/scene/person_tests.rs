@@ -296,6 +296,52 @@ fn painted_hair_goes_with_the_hair_and_the_young_map_is_the_heads_own() {
     assert!(differ * 20 < crown.len(), "{differ} of {}", crown.len());
 }
 
+/// On a woman (the female pattern keeps the hairline and thins the crown) the paint over
+/// her crown thins by the share of hairs she has lost there, not all of it: before, it went
+/// where the crown's hair would go in the male pattern, a hard-edged bald oval under her
+/// full head of hair.
+#[test]
+fn painted_hair_thins_on_a_woman_s_crown_and_does_not_go_bald() {
+    let never = CancelToken::never();
+    let mut p = panel_project("african-female", true);
+    p.hair.loss = Some(crate::layers::hair::HairLoss::Female);
+    // No graying: the paint's lightness is then its share of skin.
+    p.hair.graying_onset_min_years = 140.0;
+    p.hair.graying_onset_max_years = 150.0;
+    let mut scene = Scene::new(p).unwrap();
+    scene.bake(&hair_request(1.0), &never).unwrap();
+    let skin = scene.own_colours(&never).unwrap().skin.unwrap();
+    let n = 512u32;
+    let ages = scene.hair_alpha_at(n, n).unwrap();
+    let lum = |c: glam::Vec3| c.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722));
+    let mut at = Vec::new();
+    for t in [0.0, 1.0] {
+        scene.bake_colour(n, t, &never).unwrap();
+        let img = scene.aged_colour().unwrap().clone();
+        let linear = |i: usize, k: usize| {
+            crate::maps::mask::srgb_to_linear(f32::from(img.rgba[4 * i + k]) / 255.0)
+        };
+        at.push(
+            (0..(n * n) as usize)
+                .map(|i| lum(glam::Vec3::new(linear(i, 0), linear(i, 1), linear(i, 2))))
+                .collect::<Vec<f32>>(),
+        );
+    }
+    // Her crown: the texels whose hair the transition has going before t = 0.9 (in the
+    // male pattern), painted dark at the young end.
+    let crown: Vec<usize> = (0..ages.len())
+        .filter(|&i| (2..230).contains(&ages[i]) && at[0][i] < 0.01)
+        .collect();
+    assert!(crown.len() > 200, "{}", crown.len());
+    let mean = |v: &[f32]| crown.iter().map(|&i| v[i]).sum::<f32>() / crown.len() as f32;
+    let (young, old, bald) = (mean(&at[0]), mean(&at[1]), lum(skin.linear));
+    let share = (old - young) / (bald - young);
+    eprintln!(
+        "crown luminance: {young:.4} young, {old:.4} at 80, bald {bald:.4}: {share:.2} of the way"
+    );
+    assert!(share > 0.3 && share < 0.85, "{young} → {old}, bald {bald}");
+}
+
 /// The luminance's high-pass deviation (less a 3 × box blur of radius 4 texels) over the
 /// texels that age (differ between the two), 0–255 units.
 fn unevenness(

@@ -63,12 +63,20 @@ impl Scene {
             (Some(_), Some(_)) => self.hair_alpha_at(size, size),
             _ => None,
         };
+        let loss = self.hair_loss().loss;
+        let shares = match loss {
+            crate::layers::hair::HairLoss::Female => crate::layers::hair::FEMALE_THINNING,
+            _ => (1.0, 1.0),
+        };
+        let thinning = self.project.hair.thinning;
         let painted = match (&ages, own.hair, own.skin) {
             (Some(ages), Some(hair), Some(skin)) => Some(crate::layers::skin_colour::PaintedHair {
                 ages: ages.as_slice(),
                 t,
                 bald: skin.linear,
                 hair: hair.linear,
+                thinned: crate::layers::skin_colour::PaintedHair::thinned_at(t, thinning, shares),
+                keeps_hairline: loss != crate::layers::hair::HairLoss::Male,
             }),
             _ => None,
         };

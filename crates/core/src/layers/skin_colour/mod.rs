@@ -198,6 +198,24 @@ pub struct PaintedHair<'a> {
     /// The painted hair's colour (linear), measured: a texel's share of hair is how far it
     /// is from the bald colour toward it.
     pub hair: Vec3,
+    /// The share of the hairs thinning has taken at this age (docs/models.md §9
+    /// "Thinning") over the crown (where the male pattern recedes) and elsewhere, and
+    /// whether the pattern keeps the hairline (female, none): then the paint over the
+    /// crown thins by that share instead of going where the male pattern's hair goes (it
+    /// went, and the women's crowns showed a hard-edged bald oval under a full head of
+    /// hair).
+    pub thinned: [f32; 2],
+    pub keeps_hairline: bool,
+}
+
+impl PaintedHair<'_> {
+    /// [`PaintedHair::thinned`] at age `t` for `thinning` (`hair.thinning`) and its shares
+    /// over the crown and elsewhere (`hair::FEMALE_THINNING` in the female pattern, else 1).
+    pub fn thinned_at(t: f32, thinning: f32, shares: (f32, f32)) -> [f32; 2] {
+        use crate::layers::hair::THINNING_FROM;
+        let ramp = ((t - THINNING_FROM) / (1.0 - THINNING_FROM)).clamp(0.0, 1.0);
+        [shares.0, shares.1].map(|share| (thinning * share).clamp(0.0, 1.0) * ramp)
+    }
 }
 
 /// How much of the painted hair's gray a fully gray head shows (the skin between the
@@ -209,6 +227,10 @@ const PAINTED_GRAY: f32 = 0.35;
 /// Over how much of the hair's age (t) painted hair fades to skin where the hair goes:
 /// its edge follows the ragged fringe softly.
 const PAINTED_EDGE: f32 = 0.08;
+
+/// Over how much of the male pattern's age (t) below 1 the crown's paint thins from the
+/// sides' share to the crown's, in the patterns that keep the hairline.
+const PAINTED_CROWN_EDGE: f32 = 0.2;
 
 /// What the aged colour starts from at each texel, kept between ages: the base colour
 /// (the head's colour map resampled, or the skin colour), in linear light, its alpha, the
@@ -434,10 +456,19 @@ impl PaintedHair<'_> {
         }
         let share = ((lum(self.bald) - lum(c)) / span).clamp(0.0, 1.0);
         let a = f32::from(age - 1) / 254.0;
-        let gone = if a >= 1.0 {
+        let receded = if a >= 1.0 {
             0.0
         } else {
             smoothstep(a - PAINTED_EDGE, a + PAINTED_EDGE, self.t)
+        };
+        let [crown, rest] = self.thinned;
+        let gone = if self.keeps_hairline && a >= crate::layers::hair::KEPT_HAIRLINE_T {
+            // The crown (the male pattern's receding hair, its age blurred over its edge)
+            // thins most, the rest as the sides.
+            let w = ((1.0 - a) / PAINTED_CROWN_EDGE).clamp(0.0, 1.0);
+            rest + (crown - rest) * w
+        } else {
+            receded.max(rest)
         };
         let c = c.lerp(self.bald, share * gone);
         c.lerp(gray_colour, share * (1.0 - gone) * gray * PAINTED_GRAY)

@@ -41,6 +41,10 @@ pub(super) struct ColourStage {
     pub image: Option<Arc<HeadImage>>,
 }
 
+/// What the painted hair was aged from: its ages (address), the age (bits), the bald and
+/// hair colours (bits), the thinned shares (bits) and whether the pattern keeps the hairline.
+type PaintedKey = (usize, u32, [u32; 3], [u32; 3], [u32; 2], bool);
+
 #[derive(Clone, Debug, PartialEq)]
 struct ImageKey {
     head: HeadKey,
@@ -48,8 +52,8 @@ struct ImageKey {
     base: usize,
     settings: ColourSettings,
     factors: ColourFactors,
-    /// The painted hair's ages (address), age (bits), bald and hair colours (bits).
-    painted: Option<(usize, u32, [u32; 3], [u32; 3], [u32; 2], bool)>,
+    /// The painted hair's ([`PaintedKey`]).
+    painted: Option<PaintedKey>,
 }
 
 /// The head as the stage reads it.

@@ -25,7 +25,7 @@ pub(super) type BrowHairsKey = (u64, u64, u32, u64);
 #[derive(Debug)]
 pub(super) struct EyeHairs {
     brows: crate::layers::hair::brows::BrowHairs,
-    lashes: crate::layers::hair::lashes::Lashes,
+    pub(crate) lashes: crate::layers::hair::lashes::Lashes,
 }
 
 impl EyeHairs {

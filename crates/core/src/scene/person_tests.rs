@@ -643,3 +643,46 @@ fn a_head_without_a_map_has_lips_that_fade() {
         "{lips_old} {cheeks_old}"
     );
 }
+
+/// An open eye has upper lashes on its own upper lid's margin (the template's lashes fall
+/// on its lower lid): on the asian man, a fringe over each eye, rooted just above the
+/// eyeball's middle in front of it, leaving forward and curling up; fewer and shorter at 80.
+#[test]
+fn an_open_eye_has_upper_lashes_on_its_lid_s_margin() {
+    let mut p = Project::default();
+    p.mesh.path = Some(heads_dir().join("panel").join("asian-male.obj"));
+    let mut scene = Scene::new(p).unwrap();
+    let hairs = scene.brow_hairs().unwrap();
+    let mesh = scene.mesh().clone();
+    let balls = crate::layers::hair::lashes::eyeballs(&mesh);
+    assert_eq!(balls.len(), 2, "{balls:?}");
+    let young = hairs
+        .lashes
+        .strands(&mesh, &crate::age::ColourFactors::default(), None);
+    let upper = |strands: &[crate::layers::hair::brows::BrowStrand]| {
+        let mut per_eye = [0usize; 2];
+        for s in strands {
+            let (r, t) = (glam::Vec3::from(s.root), glam::Vec3::from(s.tip));
+            let (e, &(c, radius)) = balls
+                .iter()
+                .enumerate()
+                .min_by(|a, b| a.1.0.distance(r).total_cmp(&b.1.0.distance(r)))
+                .unwrap();
+            let d = r - c;
+            if d.y > -0.05 * radius && d.z > 0.5 * radius && t.y > r.y && t.z > r.z {
+                per_eye[e] += 1;
+            }
+        }
+        per_eye
+    };
+    let at_25 = upper(&young);
+    eprintln!("upper lashes at 25: {at_25:?} of {}", young.len());
+    for n in at_25 {
+        assert!((60..=200).contains(&n), "{at_25:?}");
+    }
+    let old_factors = scene.colour_factors(1.0);
+    let old = hairs.lashes.strands(&mesh, &old_factors, None);
+    let at_80 = upper(&old);
+    eprintln!("at 80: {at_80:?}");
+    assert!(at_80[0] < at_25[0] && at_80[1] < at_25[1], "{at_80:?}");
+}

@@ -78,6 +78,12 @@ struct Lash {
     fan: f32,
     /// Off the lid at the root, radians.
     elevation: f32,
+    /// How much further it turns off the lid by its tip, radians (negative: back toward
+    /// the lid's plane, as an open eye's upper lashes curl up).
+    curl: f32,
+    /// The direction it leaves in instead of the skin's normal at its root (an open eye's
+    /// upper lashes: the eyeball's forward there).
+    out: Option<Vec3>,
     /// Young length, mm.
     length_mm: f32,
     /// Lost with age once the age's loss passes it.
@@ -174,6 +180,8 @@ impl Lashes {
                     up,
                     fan: fan.to_radians(),
                     elevation: (ELEVATION_DEG + (draws[2] - 0.5) * 16.0).to_radians(),
+                    curl: CURL_DEG.to_radians(),
+                    out: None,
                     length_mm: length_mm(s) * (0.8 + 0.4 * draws[3]),
                     loss_draw: draws[4],
                     gray_draw: draws[5],
@@ -189,6 +197,14 @@ impl Lashes {
             for l in &mut lashes {
                 l.length_mm *= LOWER_LENGTH;
             }
+            // The upper lashes, on the head's own upper lid margin.
+            let balls = open::eyeballs(mesh);
+            lashes.extend(open::upper_lashes(
+                mesh,
+                &balls,
+                1e-3 / metres_per_unit,
+                seed,
+            ));
         }
         Self {
             lashes,
@@ -222,6 +238,7 @@ impl Lashes {
             .filter(|l| l.loss_draw >= LOSS * aged)
             .map(|l| {
                 let (root, normal) = rooted(positions, normals, shape, l.vertices, l.bary);
+                let normal = l.out.unwrap_or(normal);
                 let length = l.length_mm * (1.0 - SHORTENING * aged) * self.units_per_mm;
                 // Down the lid, turned sideways by the fan, kept in its (aged) plane.
                 let down = -l.up * l.fan.cos() + l.lateral * l.fan.sin();
@@ -230,7 +247,7 @@ impl Lashes {
                 // A quadratic curve leaving the lid at `elevation` and arriving at the tip
                 // turned [`CURL_DEG`] further out.
                 let middle = root + leaving(l.elevation) * (0.5 * length);
-                let tip = middle + leaving(l.elevation + CURL_DEG.to_radians()) * (0.5 * length);
+                let tip = middle + leaving(l.elevation + l.curl) * (0.5 * length);
                 let gray = smooth01((gray_fraction - l.gray_draw) / 0.08);
                 BrowStrand {
                     root: root.to_array(),
@@ -260,6 +277,11 @@ fn length_mm(s: f32) -> f32 {
 fn density(s: f32) -> f32 {
     smooth01((s - SPAN.0) / 0.15) * (1.0 - smooth01((s - (SPAN.1 - 0.12)) / 0.12))
 }
+
+mod open;
+
+#[cfg(test)]
+pub(crate) use open::eyeballs;
 
 #[cfg(test)]
 mod tests;

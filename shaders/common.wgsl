@@ -51,6 +51,10 @@ fn gray_fraction(t: f32, onset: f32, smoothed: bool) -> f32 {
     return y;
 }
 
+// docs/models.md §9 "Cover": the share of its cover a white scalp hair keeps, against a
+// pigmented one's (`agesim_core::layers::hair::WHITE_SCALP_HAIR_COVER`).
+const WHITE_HAIR_COVER: f32 = 0.6;
+
 // docs/models.md §9 "Miniaturisation": how whole a hair of disappearance age a_k is at age
 // t, 0–1: 1 until MINIATURE_T before a_k, falling to 0 at a_k as a smoothstep; a hair that
 // never goes (a_k ≥ 1) stays whole (`agesim_core::layers::hair::hair_whole`,

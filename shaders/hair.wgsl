@@ -131,7 +131,9 @@ fn vs_main(@builtin(vertex_index) vertex: u32, inst: Instance) -> VertexOut {
     // alone, all near their full stand, drew a pale line off the skull over a dark gap).
     let lifted = pow(fract(random * 29.0), 6.0);
     out.colour = mix(base, gray, y) * mix(0.55, mix(0.55, 1.0, face_on), s);
-    out.alpha = mix(0.9, 0.3, s) * mix(1.0, 0.9, y) * max(face_on, 0.25 + 0.35 * lifted)
+    // A white hair, without melanin, lets more of the scalp through (docs/models.md §9
+    // "Cover"): a graying head is salt and pepper over its scalp, not a white cap.
+    out.alpha = mix(0.9, 0.3, s) * mix(1.0, WHITE_HAIR_COVER, y) * max(face_on, 0.25 + 0.35 * lifted)
         * mix(0.2, 1.0, whole) * cover.y;
     out.colour *= mix(0.75, 1.0, face_on);
     // The head shadows its own hair: a strand whose root faces away from the light gets

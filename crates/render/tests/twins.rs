@@ -367,6 +367,10 @@ fn the_cavity_constants_are_the_engines() {
         ("CREASE_ROUGHNESS", compose::CREASE_ROUGHNESS),
         ("COIL_TURNS", strand::COIL_TURNS),
         ("COIL_RADIUS", strand::COIL_RADIUS),
+        (
+            "WHITE_HAIR_COVER",
+            agesim_core::layers::hair::WHITE_SCALP_HAIR_COVER,
+        ),
     ] {
         assert_eq!(constant(&module, name), cpu, "{name}");
     }

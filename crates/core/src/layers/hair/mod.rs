@@ -41,6 +41,12 @@ pub const DEFAULT_DENSITY_PER_CM2: f32 = 200.0;
 /// ribbon wide, 0.45 px, about 0.5 mm on the panel's renders, a crown that had lost two
 /// thirds of its hairs looked untouched).
 pub const SCALP_HAIR_COVER_MM: f32 = 0.2;
+/// The share of its cover a white scalp hair keeps against a pigmented one (docs/models.md
+/// §9 "Cover"; `shaders/common.wgsl`'s `WHITE_HAIR_COVER`): without melanin a hair lets
+/// more of the light through. **Choice**: 0.6 (0.9, nearly as opaque, drew old heads that
+/// keep their hair as "a uniform white cap, only recoloured", "no salt-and-pepper stage",
+/// blind, rounds 21–25).
+pub const WHITE_SCALP_HAIR_COVER: f32 = 0.6;
 /// How much of the skin behind it a white brow hair hides, as the width of a pigmented
 /// hair that would hide as much, mm (docs/models.md §9 "Cover"): without melanin a hair
 /// lets the light through. **Choice**: 0.25 mm (drawn as opaque as a pigmented one, the

@@ -198,7 +198,6 @@ impl Scene {
             aged.width_px,
             skin.as_deref(),
             aged,
-            self.metres_per_unit(),
         ));
         self.eyes = Some((key, eyes.clone()));
         eyes

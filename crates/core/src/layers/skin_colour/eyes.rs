@@ -39,23 +39,13 @@ const ARCUS_WIDTH: f32 = 0.09;
 const PAINTED_SPREAD: f32 = 0.08;
 
 /// The lids' shade on the eye: the colour at their margin (a fraction of the eye's own) and
-/// how far from the nearest skin (mm) it clears, and how far round the ball (in its radius)
-/// the lids are looked for. The lids and lashes keep light off the eye's edges (what a
+/// how far from the nearest skin (in the ball's radius) it clears, and how far round the
+/// ball the lids are looked for. The lids and lashes keep light off the eye's edges (what a
 /// digital human's "eye occlusion" shell draws); lit whole, the eyes read, blind, as
-/// "glaring, bulging whites" on the dark heads. (A quarter of the ball's radius, 3.8 mm on
-/// the panel's 15 mm balls, with the iris drawn 15 mm across, hid the whites of a narrow
-/// eye's 6 mm opening: the asian and MakeHuman heads' eyes read, blind, as "dark slits
-/// with no visible iris or whites"; at 2 mm the African heads' whites, looked at, were
-/// brighter than they read well.)
+/// "glaring, bulging whites" on the dark heads.
 const LID_SHADE: f32 = 0.5;
-const LID_SHADE_MM: f32 = 3.0;
+const LID_SHADE_WIDTH: f32 = 0.25;
 const LID_REACH: f32 = 1.6;
-
-/// The eye the pupil, iris and limbus angles above are drawn for: a ball of this radius,
-/// mm. A head's ball of another size (the panel's are 15 mm, larger than a real eye, so
-/// the iris drawn at those angles was 15 mm across and filled a narrow eye's opening) is
-/// drawn with the same millimetres from the eye's axis.
-const EYE_RADIUS_MM: f32 = 12.0;
 
 /// Guard band round each eyeball's UV triangles, pixels (the map's bilinear filtering).
 const GUARD_PX: f32 = 1.5;
@@ -73,14 +63,7 @@ impl EyeTexels {
     /// The texels of `mesh`'s eyeballs ([`is_eyeball`]) in its UV layout at `size`² that
     /// no skin covers (`skin`: the skin's texels at that size), found on `image` (the colour
     /// map at that size) to be blank. The eye looks forward (+z, the scene's frame).
-    pub fn new(
-        mesh: &Mesh,
-        size: u32,
-        skin: Option<&SurfaceTexels>,
-        image: &HeadImage,
-        metres_per_unit: f32,
-    ) -> Self {
-        let mm = 1e-3 / metres_per_unit.max(1e-12);
+    pub fn new(mesh: &Mesh, size: u32, skin: Option<&SurfaceTexels>, image: &HeadImage) -> Self {
         let n = size as usize;
         let mut texels = Vec::new();
         if image.width_px != size
@@ -141,13 +124,13 @@ impl EyeTexels {
                     if d == Vec3::ZERO {
                         return;
                     }
-                    let from_front = standard_from_front(d, radius / mm);
+                    let from_front = d.z.clamp(-1.0, 1.0).acos();
                     let round = d.y.atan2(d.x);
                     let to_lid = lids
                         .iter()
                         .map(|l| l.distance(at))
                         .fold(f32::INFINITY, f32::min);
-                    let clear = smooth(to_lid / (LID_SHADE_MM * mm));
+                    let clear = smooth(to_lid / (LID_SHADE_WIDTH * radius));
                     own.push((i as u32, from_front, round, clear));
                 });
             }
@@ -229,19 +212,6 @@ fn painted(image: &HeadImage, texels: &[(u32, f32, f32, f32)]) -> bool {
     let mean = lum.iter().sum::<f32>() / lum.len() as f32;
     let var = lum.iter().map(|l| (l - mean).powi(2)).sum::<f32>() / lum.len() as f32;
     var.sqrt() > PAINTED_SPREAD
-}
-
-/// The angle from the front (radians) at which a ball of [`EYE_RADIUS_MM`] lies as far
-/// from the eye's axis as the point in direction `d` (unit, from the centre; the eye
-/// looks along +z) of a ball `radius_mm` in radius; behind the ball's equator the angle
-/// itself.
-fn standard_from_front(d: Vec3, radius_mm: f32) -> f32 {
-    if d.z > 0.0 {
-        let off_axis_mm = radius_mm * d.truncate().length();
-        (off_axis_mm / EYE_RADIUS_MM).clamp(0.0, 1.0).asin()
-    } else {
-        d.z.clamp(-1.0, 1.0).acos()
-    }
 }
 
 /// The eye's colour (sRGB, 0–1) `from_front` radians from its front, `round` radians round
@@ -327,25 +297,6 @@ mod tests {
         let rim = IRIS - 0.3 * ARCUS_WIDTH;
         assert!(lum(eye_colour(rim, 0.3, 1.0, 1.0)) > lum(eye_colour(rim, 0.3, 0.0, 0.0)) + 0.2);
         assert!((lum(eye_colour(0.3, 0.3, 1.0, 1.0)) - lum(young(0.3))).abs() < 0.01);
-    }
-
-    /// The iris is drawn as many millimetres across on any ball: on the panel's 15 mm balls
-    /// a point 7 mm off the axis is sclera (at the template's angles it was iris).
-    #[test]
-    fn the_iris_is_as_wide_on_a_larger_ball() {
-        let at = |off_axis_mm: f32, radius_mm: f32| {
-            let s = off_axis_mm / radius_mm;
-            standard_from_front(Vec3::new(s, 0.0, (1.0 - s * s).sqrt()), radius_mm)
-        };
-        assert!(at(5.0, 15.0) < IRIS && at(7.0, 15.0) > IRIS);
-        assert!((at(7.0, 15.0) - at(7.0, 12.0)).abs() < 1e-5);
-        // On a ball of the standard size, the angle itself.
-        let d = Vec3::new(0.3, 0.4, (1.0f32 - 0.25).sqrt());
-        assert!((standard_from_front(d, EYE_RADIUS_MM) - d.z.acos()).abs() < 1e-5);
-        assert!(
-            IRIS.sin() * EYE_RADIUS_MM > 5.5 && IRIS.sin() * EYE_RADIUS_MM < 6.5,
-            "a 12 mm iris"
-        );
     }
 
     #[test]

@@ -190,20 +190,28 @@ impl Lashes {
             }
         }
         if open {
-            // Which stay: a draw of its own from the root's uniform barycentric
-            // coordinates (the loss, graying and shade draws would tie the lower lashes
-            // to the last lost, the first gray or the darkest).
-            lashes.retain(|l| (977.0 * (l.bary[0] + 3.1 * l.bary[1])).fract() < LOWER_SHARE);
-            for l in &mut lashes {
-                l.length_mm *= LOWER_LENGTH;
-            }
-            // The upper lashes, on the head's own upper lid margin.
+            // Both lids' lashes on the head's own margins ([`open`]); where no lower
+            // margin is found, the template's lashes are the lower ones.
             let balls = open::eyeballs(mesh);
-            lashes.extend(open::upper_lashes(
+            let mm = 1e-3 / metres_per_unit;
+            let lower = open::margin_lashes(mesh, &balls, mm, seed, open::Lid::Lower);
+            if lower.is_empty() {
+                // Which stay: a draw of its own from the root's uniform barycentric
+                // coordinates (the loss, graying and shade draws would tie the lower
+                // lashes to the last lost, the first gray or the darkest).
+                lashes.retain(|l| (977.0 * (l.bary[0] + 3.1 * l.bary[1])).fract() < LOWER_SHARE);
+                for l in &mut lashes {
+                    l.length_mm *= LOWER_LENGTH;
+                }
+            } else {
+                lashes = lower;
+            }
+            lashes.extend(open::margin_lashes(
                 mesh,
                 &balls,
-                1e-3 / metres_per_unit,
+                mm,
                 seed,
+                open::Lid::Upper,
             ));
         }
         Self {

@@ -24,9 +24,9 @@ const ON_BALL: (f32, f32) = (-0.06, 0.12);
 /// The slices across the eye in which the margin is looked for, in the ball's radius.
 const SLICE: f32 = 0.08;
 
-/// An upper lash leaves the margin this far up from the ball's forward direction at its
-/// root, and by its tip has turned this much further up, degrees: out over the eye, then
-/// curling up and away from it.
+/// A lash leaves the margin this far from the ball's forward direction at its root, away
+/// from the eye's opening (up from the upper lid, down from the lower), and by its tip has
+/// turned this much further, degrees: out over the eye, then curling away from it.
 const LEAVING_DEG: f32 = 15.0;
 const CURL_DEG: f32 = 35.0;
 
@@ -74,12 +74,36 @@ pub(crate) fn eyeballs(mesh: &Mesh) -> Vec<(Vec3, f32)> {
     }
 }
 
-/// The upper lashes of each eyeball of `balls` (centre, radius) on `mesh`'s skin, `mm` a
+/// Which lid's margin.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Lid {
+    Upper,
+    Lower,
+}
+
+/// The lashes of `lid` of each eyeball of `balls` (centre, radius) on `mesh`'s skin, `mm` a
 /// millimetre in its units, deterministic in `seed`: along the lid's margin, the skin
 /// nearest the eye's opening over the front of the ball (in each slice across the eye,
-/// [`SLICE`] of the ball's radius wide, the lowest skin vertex above the ball's centre on
-/// its surface), rooted between each two neighbouring margin vertices.
-pub(super) fn upper_lashes(mesh: &Mesh, balls: &[(Vec3, f32)], mm: f32, seed: u64) -> Vec<Lash> {
+/// [`SLICE`] of the ball's radius wide, the skin vertex on the ball's surface above its
+/// centre lowest, or below it highest), rooted between each two neighbouring margin
+/// vertices. The lower lid's are fewer and shorter ([`super::LOWER_SHARE`],
+/// [`super::LOWER_LENGTH`]).
+pub(super) fn margin_lashes(
+    mesh: &Mesh,
+    balls: &[(Vec3, f32)],
+    mm: f32,
+    seed: u64,
+    lid: Lid,
+) -> Vec<Lash> {
+    let (per_mm, length, up, sign) = match lid {
+        Lid::Upper => (PER_MM, LENGTH, Vec3::NEG_Y, 1.0),
+        Lid::Lower => (
+            PER_MM * super::LOWER_SHARE,
+            super::LOWER_LENGTH,
+            Vec3::Y,
+            -1.0,
+        ),
+    };
     let positions = mesh.positions();
     let mut on_skin = vec![false; positions.len()];
     for &v in mesh.skin_indices().iter() {
@@ -98,16 +122,18 @@ pub(super) fn upper_lashes(mesh: &Mesh, balls: &[(Vec3, f32)], mm: f32, seed: u6
         for (v, p) in positions.iter().enumerate() {
             let d = *p - centre;
             let off = d.length() / radius - 1.0;
+            // Height away from the centre, toward this lid.
+            let height = sign * d.y;
             if !on_skin[v]
                 || d.z <= FRONT * radius
                 || !(ON_BALL.0..=ON_BALL.1).contains(&off)
-                || d.y <= 0.0
+                || height <= 0.0
             {
                 continue;
             }
             let slice = (((d.x / radius + 1.0) / SLICE) as usize).min(slices - 1);
-            if lowest[slice].is_none_or(|(y, _)| d.y < y) {
-                lowest[slice] = Some((d.y, v as u32));
+            if lowest[slice].is_none_or(|(h, _)| height < h) {
+                lowest[slice] = Some((height, v as u32));
             }
         }
         let margin: Vec<u32> = lowest.iter().flatten().map(|&(_, v)| v).collect();
@@ -118,8 +144,8 @@ pub(super) fn upper_lashes(mesh: &Mesh, balls: &[(Vec3, f32)], mm: f32, seed: u6
             if pa.distance(pb) > 3.0 * SLICE * radius {
                 continue;
             }
-            let expected = pa.distance(pb) / mm * PER_MM;
-            let stream = (e * 1000 + k) as u64;
+            let expected = pa.distance(pb) / mm * per_mm;
+            let stream = (e * 1000 + k) as u64 + if lid == Lid::Lower { 500 } else { 0 };
             for (_, draws) in candidates::<7>(seed ^ 0x0be7_1a5e, stream, expected) {
                 let u = draws[6];
                 let root = pa.lerp(pb, u);
@@ -130,13 +156,13 @@ pub(super) fn upper_lashes(mesh: &Mesh, balls: &[(Vec3, f32)], mm: f32, seed: u6
                     vertices: [a, b, a],
                     bary: [1.0 - u, u, 0.0],
                     lateral: Vec3::X * outer,
-                    // The lash grows up (`strands` turns it from −up).
-                    up: Vec3::NEG_Y,
+                    // The lash grows away from the opening (`strands` turns it from −up).
+                    up,
                     fan: fan.to_radians(),
                     elevation: (90.0 - LEAVING_DEG + (draws[2] - 0.5) * 16.0).to_radians(),
                     curl: -CURL_DEG.to_radians(),
                     out: Some((root - centre).normalize_or_zero()),
-                    length_mm: LENGTH * length_mm(s) * (0.8 + 0.4 * draws[3]),
+                    length_mm: length * length_mm(s) * (0.8 + 0.4 * draws[3]),
                     loss_draw: draws[4],
                     gray_draw: draws[5],
                     shade: 0.7 + 0.3 * draws[0],

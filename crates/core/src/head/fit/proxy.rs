@@ -41,17 +41,8 @@ pub fn of_triangles(positions: &[Vec3], skin: &[u32], target: usize) -> Option<P
     if triangles <= target.max(1) {
         return None;
     }
-    // The mean edge, over every 16th triangle: a cube of `edge · √(triangles / target)`
-    // holds about triangles / target of them.
-    let (mut sum, mut count) = (0.0f64, 0usize);
-    for t in skin.chunks_exact(3).step_by(16) {
-        let p = |k: usize| positions.get(t[k] as usize).copied();
-        if let (Some(a), Some(b), Some(c)) = (p(0), p(1), p(2)) {
-            sum += f64::from(a.distance(b) + b.distance(c) + c.distance(a));
-            count += 3;
-        }
-    }
-    let edge = (sum / count.max(1) as f64) as f32;
+    // A cube of `edge · √(triangles / target)` holds about triangles / target of them.
+    let edge = mean_edge(positions, skin);
     let cube = edge * (triangles as f32 / target as f32).sqrt();
     if !(cube.is_finite() && cube > 0.0) {
         return None;
@@ -95,6 +86,20 @@ pub fn of_triangles(positions: &[Vec3], skin: &[u32], target: usize) -> Option<P
         cube,
         cluster_of_cube,
     })
+}
+
+/// The mean edge of the triangles `triangles` (three indices each) of `positions`, over
+/// every 16th triangle (0 without any).
+pub fn mean_edge(positions: &[Vec3], triangles: &[u32]) -> f32 {
+    let (mut sum, mut count) = (0.0f64, 0usize);
+    for t in triangles.chunks_exact(3).step_by(16) {
+        let p = |k: usize| positions.get(t[k] as usize).copied();
+        if let (Some(a), Some(b), Some(c)) = (p(0), p(1), p(2)) {
+            sum += f64::from(a.distance(b) + b.distance(c) + c.distance(a));
+            count += 3;
+        }
+    }
+    (sum / count.max(1) as f64) as f32
 }
 
 impl Proxy {

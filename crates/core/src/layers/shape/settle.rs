@@ -98,15 +98,7 @@ pub(super) fn settle(
 /// Passes of neighbour smoothing that reach about `reach` (mesh units) over the mesh of
 /// `positions` and `indices`: (reach / its mean edge)², at most 64.
 fn smoothing_passes(positions: &[Vec3], indices: &[u32], reach: f32) -> usize {
-    let (mut sum, mut count) = (0.0f64, 0usize);
-    for t in indices.chunks_exact(3).step_by(16) {
-        let p = |k: usize| positions.get(t[k] as usize).copied();
-        if let (Some(a), Some(b), Some(c)) = (p(0), p(1), p(2)) {
-            sum += f64::from(a.distance(b) + b.distance(c) + c.distance(a));
-            count += 3;
-        }
-    }
-    let edge = (sum / count.max(1) as f64) as f32;
+    let edge = crate::head::fit::proxy::mean_edge(positions, indices);
     if !(edge > 0.0 && edge.is_finite()) {
         return 0;
     }

@@ -1,8 +1,9 @@
-//! The upper lashes of an open eye (docs/models.md §9 "Eyelashes"). The template's eyes are
-//! closed, and on a head with eyeballs its lids' slit falls on the lower lid's margin: the
-//! lashes placed through the fit are that lid's. The upper lid's margin is found on the
-//! head itself, where its skin meets the eyeball in front of it; without lashes there the
-//! open eyes of the panel's heads read, blind, as "black slit eyes".
+//! The lashes of an open eye (docs/models.md §9 "Eyelashes"). The template's eyes are
+//! closed, and on a head with eyeballs its lids' slit falls near the lower lid's margin:
+//! the lashes placed through the fit hung below it, and the upper lid had none (the open
+//! eyes of the panel's heads read, blind, as "black slit eyes" with "floating lower
+//! lashes"). Both margins are found on the head itself, where its skin meets the eyeball
+//! in front of it.
 
 use glam::Vec3;
 
@@ -11,7 +12,7 @@ use crate::head::mesh::Mesh;
 use crate::layers::hair::brows::candidates;
 
 /// Upper lashes per mm of the lid's margin (90–160 along about 30 mm, in two or three
-/// rows).
+/// rows); the lower lid's [`super::LOWER_SHARE`] of it.
 const PER_MM: f32 = 4.0;
 
 /// How far in front of the eyeball's centre, in its radius, the margin's skin lies (the
@@ -36,7 +37,8 @@ const CURL_DEG: f32 = 35.0;
 const LENGTH: f32 = 0.75;
 
 /// The eyeballs of `mesh` (its parts [`crate::layers::skin_colour::is_eyeball`]): each
-/// one's centre and radius. Two balls in one part are told apart by side.
+/// one's centre and radius. Their points are pooled and told apart by side (two eyes in
+/// one part, or one part an eye).
 pub(crate) fn eyeballs(mesh: &Mesh) -> Vec<(Vec3, f32)> {
     let positions = mesh.positions();
     let indices = mesh.indices();
@@ -118,7 +120,7 @@ pub(super) fn margin_lashes(
             _ => -1.0,
         };
         let slices = (2.0 / SLICE).ceil() as usize;
-        let mut lowest: Vec<Option<(f32, u32)>> = vec![None; slices];
+        let mut nearest: Vec<Option<(f32, u32)>> = vec![None; slices];
         for (v, p) in positions.iter().enumerate() {
             let d = *p - centre;
             let off = d.length() / radius - 1.0;
@@ -132,11 +134,11 @@ pub(super) fn margin_lashes(
                 continue;
             }
             let slice = (((d.x / radius + 1.0) / SLICE) as usize).min(slices - 1);
-            if lowest[slice].is_none_or(|(h, _)| height < h) {
-                lowest[slice] = Some((height, v as u32));
+            if nearest[slice].is_none_or(|(h, _)| height < h) {
+                nearest[slice] = Some((height, v as u32));
             }
         }
-        let margin: Vec<u32> = lowest.iter().flatten().map(|&(_, v)| v).collect();
+        let margin: Vec<u32> = nearest.iter().flatten().map(|&(_, v)| v).collect();
         for (k, pair) in margin.windows(2).enumerate() {
             let (a, b) = (pair[0], pair[1]);
             let (pa, pb) = (positions[a as usize], positions[b as usize]);

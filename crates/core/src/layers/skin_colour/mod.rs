@@ -199,12 +199,12 @@ pub struct PaintedHair<'a> {
     /// is from the bald colour toward it.
     pub hair: Vec3,
     /// The share of the hairs thinning has taken at this age (docs/models.md §9
-    /// "Thinning") over the crown (where the male pattern recedes) and elsewhere, and
-    /// whether the pattern keeps the hairline (female, none): then the paint over the
-    /// crown thins by that share instead of going where the male pattern's hair goes (it
+    /// "Thinning") over the crown (where the male pattern recedes) and elsewhere.
+    pub thinned: [f32; 2],
+    /// Whether the pattern keeps the hairline (female, none): then the paint over the
+    /// crown thins by its share instead of going where the male pattern's hair goes (it
     /// went, and the women's crowns showed a hard-edged bald oval under a full head of
     /// hair).
-    pub thinned: [f32; 2],
     pub keeps_hairline: bool,
 }
 

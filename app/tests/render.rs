@@ -196,3 +196,39 @@ fn a_colour_map_colours_the_head() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("/no/such.png"));
 }
+
+/// `--look-at` aims the camera at the head's landmarks: close up from the front, the
+/// right and the left outer eye corners give different frames, each unlike the head's
+/// centre; a name that is no landmark is refused with that name.
+#[test]
+fn look_at_aims_the_camera_at_landmarks() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut frames = Vec::new();
+    for aim in [None, Some("exocanthion_r"), Some("exocanthion_l")] {
+        let out = dir.path().join(format!("{}.png", aim.unwrap_or("centre")));
+        let out_s = out.to_str().unwrap();
+        let mut args = vec!["render", "--size", "40x40", "--no-hair", "--map-size", "64"];
+        args.extend(["--distance", "0.08", "--yaw", "0", "--out", out_s]);
+        if let Some(a) = aim {
+            args.extend(["--look-at", a]);
+        }
+        let Some(_) = render(&args) else {
+            return;
+        };
+        frames.push(image::open(&out).unwrap().to_rgb8());
+    }
+    let differ = |a: &image::RgbImage, b: &image::RgbImage| {
+        a.pixels()
+            .zip(b.pixels())
+            .filter(|(p, q)| p.0.iter().zip(q.0).any(|(x, y)| x.abs_diff(y) > 24))
+            .count()
+    };
+    for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+        let n = differ(&frames[i], &frames[j]);
+        assert!(n > 200, "frames {i} and {j} differ in {n} pixels of 1600");
+    }
+    let out = agesim(&["render", "--look-at", "nose_tip", "--out", "x.png"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("`nose_tip`"));
+    assert!(!std::path::Path::new("x.png").exists());
+}

@@ -9,6 +9,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use agesim_core::HeightMap;
+use agesim_core::head::fit::TEMPLATE_LANDMARKS_JSON;
+use agesim_core::head::landmarks::{Landmarks, NAMES};
 use agesim_core::layers::hair::DEFAULT_DENSITY_PER_CM2;
 use agesim_core::project::{BuiltinMesh, Project, ViewSection};
 use agesim_core::scene::Scene;
@@ -60,6 +62,11 @@ pub struct RenderArgs {
     /// Vertical field of view, degrees (default: the project's `view.fov_deg`).
     #[arg(long)]
     pub fov: Option<f32>,
+    /// Aim the camera at the head's landmarks (their mean), e.g. `cheilion_r,cheilion_l`
+    /// for the mouth, instead of the head's centre: close-ups framed alike on any head
+    /// (the landmarks are the project's or those found; `agesim landmarks` lists them).
+    #[arg(long, value_delimiter = ',', value_name = "NAME,…")]
+    pub look_at: Vec<String>,
     /// Young and old side by side with their ages printed: T0,T1.
     #[arg(
         long,
@@ -109,6 +116,28 @@ impl From<PomArg> for agesim_core::project::PomMode {
             PomArg::Displacement => P::Displacement,
         }
     }
+}
+
+/// The mean of the head's landmarks named in `names`, in the scene's coordinates.
+fn look_at(scene: &Scene, names: &[String]) -> anyhow::Result<glam::Vec3> {
+    // The built-in head is the template itself: its landmarks are the template's.
+    let builtin = (scene.project().mesh.path.is_none()
+        && scene.project().mesh.builtin == BuiltinMesh::Head)
+        .then(|| Landmarks::from_json_str(TEMPLATE_LANDMARKS_JSON).ok())
+        .flatten();
+    let Some(marks) = scene.layout().landmarks.as_deref().or(builtin.as_ref()) else {
+        bail!("--look-at: this head has no landmarks (none given and none found)");
+    };
+    let mut sum = glam::Vec3::ZERO;
+    for name in names {
+        sum += marks.get(name).ok_or_else(|| {
+            anyhow::anyhow!(
+                "--look-at: the head has no landmark `{name}` (names: {})",
+                NAMES.join(", ")
+            )
+        })?;
+    }
+    Ok(sum / names.len() as f32)
 }
 
 /// The project with the command line's mesh, hair and view flags applied.
@@ -219,6 +248,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     if let Some(d) = args.distance {
         camera.distance = d;
+    }
+    if !args.look_at.is_empty() {
+        camera.target = look_at(&scene, &args.look_at)?;
     }
     let mut shown = Shown {
         view: HeadlessView::new(scene, args.map_size, project.hair.enabled),

@@ -775,6 +775,8 @@ mod face_only_tests;
 #[cfg(test)]
 mod heads_tests;
 #[cfg(test)]
+mod lips_tests;
+#[cfg(test)]
 mod person_tests;
 #[cfg(test)]
 mod shape_tests;

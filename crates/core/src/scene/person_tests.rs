@@ -707,3 +707,34 @@ fn an_open_eye_has_lashes_on_its_lids_margins() {
         assert!(old[0] < young[0] && old[1] <= young[1], "{at_80:?}");
     }
 }
+
+/// A narrow eye shows its whites: the asian man's eyes (open 0.28 of their ball's radius)
+/// lay wholly in the lids' shade made for wide ones, "dark slits with no whites" to blind
+/// reviewers. With the shade narrowed to the opening, three quarters of the drawn eye (its
+/// sclera, visible or under the lids) is lighter than 96 of 255 (0.54 with the shade of a
+/// wide eye).
+#[test]
+fn a_narrow_eye_shows_its_whites() {
+    let never = CancelToken::never();
+    let mut scene = Scene::new(panel_project("asian-male", false)).unwrap();
+    scene.bake(&hair_request(0.1), &never).unwrap();
+    let n = 1024u32;
+    scene.bake_colour(n, 0.1, &never).unwrap();
+    scene.prepare_shown_colour();
+    let (shown, aged) = (
+        scene.shown_colour().unwrap().clone(),
+        scene.aged_colour().unwrap().clone(),
+    );
+    let (mut eye, mut light) = (0usize, 0usize);
+    for (s, a) in shown.rgba.chunks_exact(4).zip(aged.rgba.chunks_exact(4)) {
+        if s[..3] != a[..3] {
+            eye += 1;
+            let lum = (u32::from(s[0]) + u32::from(s[1]) + u32::from(s[2])) / 3;
+            light += usize::from(lum >= 96);
+        }
+    }
+    let share = light as f32 / eye.max(1) as f32;
+    eprintln!("{light} light of {eye} eye texels: {share:.3}");
+    assert!(eye > 500, "{eye} eye texels");
+    assert!(share > 0.65, "{share:.3} of the eye light");
+}

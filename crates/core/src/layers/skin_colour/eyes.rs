@@ -46,6 +46,16 @@ const PAINTED_SPREAD: f32 = 0.08;
 const LID_SHADE: f32 = 0.5;
 const LID_SHADE_WIDTH: f32 = 0.25;
 const LID_REACH: f32 = 1.6;
+/// An eye open at least this far (the largest distance, in the ball's radius, from the
+/// lids to a point of the ball's front, about half the opening's height) takes the whole
+/// [`LID_SHADE_WIDTH`]; a narrower one a shade narrowed in proportion, down to
+/// [`LID_SHADE_NARROWEST`] of it. The panel's narrow eyes (the asian man's and
+/// MakeHuman's, open 0.28–0.33 of their 15 mm balls) lay wholly in a shade made for wide
+/// ones: read, blind, as "dark slits with no whites", "dead eyes" (rounds 25–29).
+const LID_SHADE_OPEN: f32 = 0.4;
+const LID_SHADE_NARROWEST: f32 = 0.5;
+/// How far from the eye's front (radians) a texel counts toward the opening's measure.
+const OPENING_FRONT: f32 = 0.6;
 
 /// Guard band round each eyeball's UV triangles, pixels (the map's bilinear filtering).
 const GUARD_PX: f32 = 1.5;
@@ -106,7 +116,8 @@ impl EyeTexels {
                 .copied()
                 .filter(|p| p.distance(centre) < LID_REACH * radius)
                 .collect();
-            let mut own = Vec::new();
+            // (texel, from the front, round, distance to the lids).
+            let mut own: Vec<(u32, f32, f32, f32)> = Vec::new();
             for t in tris.chunks_exact(3) {
                 let v = [0, 1, 2].map(|k| t[k] as usize);
                 let (Some(a), Some(b), Some(c)) = (uvs.get(v[0]), uvs.get(v[1]), uvs.get(v[2]))
@@ -130,9 +141,17 @@ impl EyeTexels {
                         .iter()
                         .map(|l| l.distance(at))
                         .fold(f32::INFINITY, f32::min);
-                    let clear = smooth(to_lid / (LID_SHADE_WIDTH * radius));
-                    own.push((i as u32, from_front, round, clear));
+                    own.push((i as u32, from_front, round, to_lid));
                 });
+            }
+            let opening = own
+                .iter()
+                .filter(|t| t.1 < OPENING_FRONT)
+                .map(|t| t.3)
+                .fold(0.0f32, f32::max);
+            let width = shade_width(radius, opening);
+            for t in &mut own {
+                t.3 = smooth(t.3 / width);
             }
             own.sort_by_key(|t| t.0);
             own.dedup_by_key(|t| t.0);
@@ -167,6 +186,13 @@ impl EyeTexels {
             }
         }
     }
+}
+
+/// How far from the lids (mesh units) their shade clears on a ball of `radius` whose front
+/// lies at most `opening` from the lids ([`LID_SHADE_OPEN`]).
+fn shade_width(radius: f32, opening: f32) -> f32 {
+    let open = (opening / (LID_SHADE_OPEN * radius)).clamp(LID_SHADE_NARROWEST, 1.0);
+    (LID_SHADE_WIDTH * radius * open).max(f32::MIN_POSITIVE)
 }
 
 /// Whether a part is an eyeball (an eye, its cornea, iris, pupil or sclera), not the wet,
@@ -316,6 +342,20 @@ mod tests {
             at_lid < 0.6 * clear,
             "{at_lid} at the lid, {clear} clear of it"
         );
+    }
+
+    /// A wide-open eye keeps the whole shade; a narrow one's clears nearer the lids, in
+    /// proportion, never under half of it.
+    #[test]
+    fn a_narrow_eye_s_lid_shade_is_narrower() {
+        let r = 15.0;
+        let full = LID_SHADE_WIDTH * r;
+        assert_eq!(shade_width(r, 0.45 * r), full);
+        assert_eq!(shade_width(r, LID_SHADE_OPEN * r), full);
+        let narrow = shade_width(r, 0.28 * r);
+        assert!((narrow - 0.7 * full).abs() < 1e-4, "{narrow} of {full}");
+        assert_eq!(shade_width(r, 0.05 * r), LID_SHADE_NARROWEST * full);
+        assert!(shade_width(r, 0.0) > 0.0);
     }
 
     #[test]

@@ -234,6 +234,53 @@ fn nothing_about_the_lips_comes_forward() {
     println!("{}", report.join("\n"));
 }
 
+/// Both lips move back together with age (docs/models.md §13, `lips`): the skin about
+/// the slit, which neither deflates nor descends (either would part the lips), retrudes on
+/// every head, by over a millimetre on the template and the African woman, and its two
+/// sides alike, so the slit stays closed. (How far is capped where the mouth's inside lies
+/// close behind the lips: no skin through skin.) Deflated only below its front, a full
+/// lower lip stood out at 80 as at 25, read blind as "full, pouting lips that jut forward
+/// in profile" (rounds 28–29).
+#[test]
+fn the_lips_move_back_together() {
+    let frame = crate::head::frame::Regions::template().unwrap();
+    let mut backs = Vec::new();
+    for (name, project) in panel_projects() {
+        let mut scene = Scene::new(project).unwrap();
+        let field = scene.shape_field().unwrap();
+        let points = scene.template_points();
+        let mm = 1e-3 / scene.metres_per_unit();
+        // (above the slit, below it): the mean backward move, mm, and the count.
+        let mut sides = [(0.0f32, 0usize); 2];
+        for (v, point) in points.iter().enumerate() {
+            let Some(q) = point.map(|p| frame.relative(p)) else {
+                continue;
+            };
+            if q.x.abs() < 0.15 && (-1.40..-1.28).contains(&q.y) {
+                let side = &mut sides[usize::from(q.y < -1.34)];
+                side.0 += field.full()[v].z / mm;
+                side.1 += 1;
+            }
+        }
+        let [above, below] = sides.map(|(sum, n)| sum / n.max(1) as f32);
+        eprintln!("{name}: the slit back {above:.2} mm above, {below:.2} mm below");
+        assert!(sides.iter().all(|s| s.1 > 0), "{name}: no skin at the slit");
+        assert!(
+            above < -0.1 && below < -0.1,
+            "{name}: {above:.2}, {below:.2}"
+        );
+        assert!(
+            (above - below).abs() < 1.0,
+            "{name}: {above:.2}, {below:.2}"
+        );
+        backs.push((name, 0.5 * (above + below)));
+    }
+    for head in ["the template", "african-female"] {
+        let back = backs.iter().find(|(n, _)| n == head).unwrap().1;
+        assert!(back < -1.0, "{backs:?}");
+    }
+}
+
 /// Full lips thin by more millimetres (docs/models.md §13 "Measured on the head"): the
 /// lips' deflation follows how far this head's lips stand out in front of its
 /// subnasale–chin line. The African woman's, the fullest, deflate furthest; none less

@@ -32,6 +32,10 @@ pub enum Motion {
     Deflate,
     /// Outward along the normal (a bag, a jowl).
     Bulge,
+    /// Back into the face (−Z of the scene, the head turned to agesim's axes), whichever
+    /// way the skin faces: the lips as their support recedes, moving together so the
+    /// slit between them stays closed.
+    Retrude,
 }
 
 /// An ellipsoid of the face frame ([`Regions::relative`]: half the outer eye corners'
@@ -45,9 +49,10 @@ pub struct Blob {
     /// What this blob's bulge is, as a factor of its region's (1: the region's; 0.2 a
     /// fifth; 3 three times): a region whose parts descend alike but bulge differently.
     pub bulge: f32,
-    /// The same for its descent and its deflation.
+    /// The same for its descent, its deflation and its retrusion.
     pub descent: f32,
     pub deflate: f32,
+    pub retrude: f32,
     /// Whether its weight falls from its centre on (a dish), not from a plateau over its
     /// inner third (the plateau's rim draws a line where a hollow's slope ends).
     pub soft: bool,
@@ -61,6 +66,7 @@ impl Blob {
             bulge: 1.0,
             descent: 1.0,
             deflate: 1.0,
+            retrude: 1.0,
             soft: false,
         }
     }
@@ -90,6 +96,14 @@ impl Blob {
     const fn deflating(self, factor: f32) -> Self {
         Self {
             deflate: factor,
+            ..self
+        }
+    }
+
+    /// The blob with `factor` times its region's retrusion.
+    const fn retruding(self, factor: f32) -> Self {
+        Self {
+            retrude: factor,
             ..self
         }
     }
@@ -476,9 +490,17 @@ impl ShapeRegion {
             .map(|b| b.weight(q) * b.deflate)
             .fold(0.0, f32::max)
     }
+
+    /// The weight of its retrusion, likewise.
+    pub fn retrude_weight(&self, q: Vec3) -> f32 {
+        self.blobs
+            .iter()
+            .map(|b| b.weight(q) * b.retrude)
+            .fold(0.0, f32::max)
+    }
 }
 
-use Motion::{Bulge, Deflate, Descent};
+use Motion::{Bulge, Deflate, Descent, Retrude};
 
 /// Every region's full displacement per vertex of one head, in its units.
 #[derive(Clone, Debug, PartialEq)]
@@ -575,6 +597,7 @@ impl ShapeField {
                     let bulge = region.bulge_weight(q) / weight;
                     let descent = region.descent_weight(q) / weight;
                     let deflate = region.deflate_weight(q) / weight;
+                    let retrude = region.retrude_weight(q) / weight;
                     let d: Vec3 = region
                         .motions
                         .iter()
@@ -584,6 +607,7 @@ impl ShapeField {
                                     Descent => Vec3::NEG_Y * descent,
                                     Deflate => -normal * deflate,
                                     Bulge => normal * bulge,
+                                    Retrude => Vec3::NEG_Z * retrude,
                                 }
                         })
                         .sum();

@@ -281,6 +281,40 @@ fn the_lips_move_back_together() {
     }
 }
 
+/// The nose's tip droops on every head (docs/models.md §13, `nose`): at least 2.5 mm of
+/// its 4.5 at full age at the pronasale. Over the tip alone, the African heads' broad,
+/// flat noses folded between the dropped tip and the still wings and columella, and the
+/// unfolding left them 0.2–0.3 mm.
+#[test]
+fn the_nose_tip_droops_on_every_head() {
+    let template =
+        crate::head::landmarks::Landmarks::from_json_str(crate::head::fit::TEMPLATE_LANDMARKS_JSON)
+            .unwrap();
+    let mut droops = Vec::new();
+    for (name, project) in panel_projects() {
+        let mut scene = Scene::new(project).unwrap();
+        let marks = scene.layout().landmarks.clone();
+        let tip = marks
+            .as_deref()
+            .unwrap_or(&template)
+            .get("pronasale")
+            .unwrap();
+        let positions = scene.mesh().positions().to_vec();
+        let v = (0..positions.len())
+            .min_by(|&a, &b| {
+                positions[a]
+                    .distance(tip)
+                    .total_cmp(&positions[b].distance(tip))
+            })
+            .unwrap();
+        let mm = 1e-3 / scene.metres_per_unit();
+        let droop = -scene.shape_field().unwrap().full()[v].y / mm;
+        droops.push(format!("{name} {droop:.2}"));
+        assert!(droop > 2.5, "{droops:?}");
+    }
+    eprintln!("{droops:?}");
+}
+
 /// Full lips thin by more millimetres (docs/models.md §13 "Measured on the head"): the
 /// lips' deflation follows how far this head's lips stand out in front of its
 /// subnasale–chin line. The African woman's, the fullest, deflate furthest; none less

@@ -522,21 +522,34 @@ fn only_skin_takes_the_scalp_tint() {
     assert!(tinted > 1000, "{tinted}");
 }
 
+/// The 3D view's colour (with the drawn eyes) and the exported aged colour of `project`
+/// at `n`² and age `t`.
+fn shown_and_aged(
+    project: Project,
+    n: u32,
+    t: f32,
+) -> (
+    std::sync::Arc<crate::maps::mask::HeadImage>,
+    std::sync::Arc<crate::maps::mask::HeadImage>,
+) {
+    let never = CancelToken::never();
+    let mut scene = Scene::new(project).unwrap();
+    scene.bake(&hair_request(t), &never).unwrap();
+    scene.bake_colour(n, t, &never).unwrap();
+    scene.prepare_shown_colour();
+    (
+        scene.shown_colour().unwrap().clone(),
+        scene.aged_colour().unwrap().clone(),
+    )
+}
+
 /// The African woman's eyeballs read a blank corner of her map: the 3D view draws eyes
 /// there (a dark pupil, a light sclera, shaded by the lids at its edges), and the aged colour the exports write keeps her
 /// map's own texels.
 #[test]
 fn blank_eyeballs_get_eyes_in_the_view_only() {
-    let never = CancelToken::never();
-    let mut scene = Scene::new(panel_project("african-female", true)).unwrap();
-    scene.bake(&hair_request(0.5), &never).unwrap();
     let n = 1024u32;
-    scene.bake_colour(n, 0.5, &never).unwrap();
-    scene.prepare_shown_colour();
-    let (shown, aged) = (
-        scene.shown_colour().unwrap().clone(),
-        scene.aged_colour().unwrap().clone(),
-    );
+    let (shown, aged) = shown_and_aged(panel_project("african-female", true), n, 0.5);
     let lum = |img: &crate::maps::mask::HeadImage, i: usize| {
         let p = &img.rgba[4 * i..4 * i + 3];
         (u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2])) / 3
@@ -715,16 +728,7 @@ fn an_open_eye_has_lashes_on_its_lids_margins() {
 /// wide eye).
 #[test]
 fn a_narrow_eye_shows_its_whites() {
-    let never = CancelToken::never();
-    let mut scene = Scene::new(panel_project("asian-male", false)).unwrap();
-    scene.bake(&hair_request(0.1), &never).unwrap();
-    let n = 1024u32;
-    scene.bake_colour(n, 0.1, &never).unwrap();
-    scene.prepare_shown_colour();
-    let (shown, aged) = (
-        scene.shown_colour().unwrap().clone(),
-        scene.aged_colour().unwrap().clone(),
-    );
+    let (shown, aged) = shown_and_aged(panel_project("asian-male", false), 1024, 0.1);
     let (mut eye, mut light) = (0usize, 0usize);
     for (s, a) in shown.rgba.chunks_exact(4).zip(aged.rgba.chunks_exact(4)) {
         if s[..3] != a[..3] {

@@ -9,8 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use agesim_core::HeightMap;
-use agesim_core::head::fit::TEMPLATE_LANDMARKS_JSON;
-use agesim_core::head::landmarks::{Landmarks, NAMES};
+use agesim_core::head::landmarks::NAMES;
 use agesim_core::layers::hair::DEFAULT_DENSITY_PER_CM2;
 use agesim_core::project::{BuiltinMesh, Project, ViewSection};
 use agesim_core::scene::Scene;
@@ -123,9 +122,8 @@ fn look_at(scene: &Scene, names: &[String]) -> anyhow::Result<glam::Vec3> {
     // The built-in head is the template itself: its landmarks are the template's.
     let builtin = (scene.project().mesh.path.is_none()
         && scene.project().mesh.builtin == BuiltinMesh::Head)
-        .then(|| Landmarks::from_json_str(TEMPLATE_LANDMARKS_JSON).ok())
-        .flatten();
-    let Some(marks) = scene.layout().landmarks.as_deref().or(builtin.as_ref()) else {
+        .then(|| &agesim_core::head::fit::template().landmarks);
+    let Some(marks) = scene.layout().landmarks.as_deref().or(builtin) else {
         bail!("--look-at: this head has no landmarks (none given and none found)");
     };
     let mut sum = glam::Vec3::ZERO;

@@ -287,16 +287,14 @@ fn the_lips_move_back_together() {
 /// unfolding left them 0.2–0.3 mm.
 #[test]
 fn the_nose_tip_droops_on_every_head() {
-    let template =
-        crate::head::landmarks::Landmarks::from_json_str(crate::head::fit::TEMPLATE_LANDMARKS_JSON)
-            .unwrap();
+    let template = &crate::head::fit::template().landmarks;
     let mut droops = Vec::new();
     for (name, project) in panel_projects() {
         let mut scene = Scene::new(project).unwrap();
         let marks = scene.layout().landmarks.clone();
         let tip = marks
             .as_deref()
-            .unwrap_or(&template)
+            .unwrap_or(template)
             .get("pronasale")
             .unwrap();
         let positions = scene.mesh().positions().to_vec();

@@ -911,9 +911,11 @@ mod tests {
                 "{} not in {near:?}",
                 h.disappear_age()
             );
-            // The onset is the hair's own, whenever it goes.
+            // The onset is the hair's own, whenever it goes, within its patch's reach.
+            let reach = placement::GRAYING_PATCHES
+                * (DEFAULT_GRAYING_ONSET_MAX - DEFAULT_GRAYING_ONSET_MIN);
             assert!(
-                (DEFAULT_GRAYING_ONSET_MIN..=DEFAULT_GRAYING_ONSET_MAX)
+                (DEFAULT_GRAYING_ONSET_MIN - reach..=DEFAULT_GRAYING_ONSET_MAX + reach)
                     .contains(&h.graying_onset())
             );
             assert!((0.0..1.0).contains(&h.random()));

@@ -4,8 +4,11 @@
 
 use super::*;
 
+/// A region's age curve: linear from its onset (docs/models.md §13 "Regions": a
+/// smoothstep from 5 years later held the first descent back until the late 40s, read
+/// blind as 25–38 at 45 on five of seven heads over rounds 22–31).
 pub(super) const fn curve(onset: f32, full: f32) -> AgeCurve {
-    AgeCurve::new(onset, full, CurveShape::Smoothstep)
+    AgeCurve::new(onset, full, CurveShape::Linear)
 }
 
 /// The lid–cheek junction under each eye (its +x side; mirrored): from beside the inner
@@ -138,7 +141,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.75, 0.45, 0.25], [0.65, 0.35, 0.6])],
         motions: &[(Descent, 6.0)],
         rolls: &[],
-        curve: curve(35.0, 80.0),
+        curve: curve(30.0, 80.0),
     },
     ShapeRegion {
         name: "lids",
@@ -146,7 +149,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.62, 0.14, 0.3], [0.5, 0.17, 0.45])],
         motions: &[(Descent, 2.5), (Bulge, 1.0)],
         rolls: &[],
-        curve: curve(35.0, 80.0),
+        curve: curve(30.0, 80.0),
     },
     ShapeRegion {
         name: "bags",
@@ -172,7 +175,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             taper: None,
             round: 0.0,
         }],
-        curve: curve(35.0, 75.0),
+        curve: curve(30.0, 75.0),
     },
     ShapeRegion {
         name: "tear_trough",
@@ -205,7 +208,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Deflate, 5.0)],
         rolls: &[],
-        curve: curve(30.0, 70.0),
+        curve: curve(25.0, 70.0),
     },
     ShapeRegion {
         name: "temples",
@@ -227,7 +230,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Deflate, 15.0)],
         rolls: &[],
-        curve: curve(35.0, 80.0),
+        curve: curve(30.0, 80.0),
     },
     ShapeRegion {
         name: "cheeks",
@@ -255,7 +258,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
                 ..CHEEK_ROLL
             },
         ],
-        curve: curve(30.0, 75.0),
+        curve: curve(25.0, 75.0),
     },
     ShapeRegion {
         name: "jowls",
@@ -274,7 +277,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
                 ..JOWL_ROLL
             },
         ],
-        curve: curve(35.0, 80.0),
+        curve: curve(30.0, 80.0),
     },
     ShapeRegion {
         name: "lips",
@@ -302,7 +305,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Descent, 1.5), (Deflate, 2.0), (Retrude, 2.0)],
         rolls: &[],
-        curve: curve(35.0, 80.0),
+        curve: curve(30.0, 80.0),
     },
     ShapeRegion {
         name: "nose",
@@ -314,7 +317,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.0, -0.65, 0.95], [0.45, 0.36, 0.45])],
         motions: &[(Descent, 4.5)],
         rolls: &[],
-        curve: curve(40.0, 85.0),
+        curve: curve(35.0, 85.0),
     },
     ShapeRegion {
         name: "ears",
@@ -324,7 +327,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([1.72, -1.0, -1.45], [0.35, 0.6, 0.45])],
         motions: &[(Descent, 8.0)],
         rolls: &[],
-        curve: curve(35.0, 85.0),
+        curve: curve(30.0, 85.0),
     },
     ShapeRegion {
         name: "neck",
@@ -359,7 +362,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Descent, 3.0), (Bulge, 0.5)],
         rolls: &[],
-        curve: curve(35.0, 80.0),
+        curve: curve(30.0, 80.0),
     },
 ];
 

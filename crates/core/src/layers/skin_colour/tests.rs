@@ -684,3 +684,41 @@ fn the_bags_shadow_the_lid_cheek_junction_with_their_shape() {
         );
     }
 }
+
+/// The hair painted on a map grays in the patches the strands do: where the patch noise
+/// is low, more of it is gray, over a scalp-sized sphere the share spans a wide range,
+/// and the head's average stays that of the project's onsets.
+#[test]
+fn painted_hair_grays_in_patches() {
+    let p = Project::default();
+    let t = p.age.mapping().t(65.0);
+    let table = PaintedHair::gray_by_patch(|shift| p.gray_share(t, 0.0, shift));
+    assert!(table.windows(2).all(|w| w[0] >= w[1]), "{table:?}");
+    let ages = [128u8; 1];
+    let hair = PaintedHair {
+        ages: &ages,
+        t,
+        bald: Vec3::splat(0.5),
+        hair: Vec3::splat(0.05),
+        thinned: [0.0; 2],
+        keeps_hairline: false,
+        gray_by_patch: table,
+        seed: 0,
+    };
+    let mut shares = Vec::new();
+    for i in 0..40 {
+        for j in 0..20 {
+            let (a, b) = (i as f32 * 0.157, j as f32 * 0.157);
+            let p = Vec3::new(a.cos() * b.sin(), b.cos(), a.sin() * b.sin()) * 0.1;
+            shares.push(hair.gray_at(p));
+        }
+    }
+    let (lo, hi) = shares
+        .iter()
+        .fold((1f32, 0f32), |(lo, hi), &s| (lo.min(s), hi.max(s)));
+    let mean = shares.iter().sum::<f32>() / shares.len() as f32;
+    let average = p.gray_share(t, 0.0, 0.0);
+    eprintln!("painted gray at 65: {lo:.2}–{hi:.2}, mean {mean:.2} (the onsets' {average:.2})");
+    assert!(hi - lo > 0.4, "{lo} {hi}");
+    assert!((mean - average).abs() < 0.08, "{mean} {average}");
+}

@@ -418,21 +418,6 @@ impl Project {
 
     /// [`Project::colour_factors`] for hair that grays `graying_delay_years` later
     /// (the scene's, from the head's hair colour).
-    /// The share of the hairs gray at `t` (their mean gray fraction), the onsets `delay_years`
-    /// later than the project's range and moved by `shift` of its length (a patch of hair
-    /// graying earlier, < 0, or later: docs/models.md §9 "Graying in patches").
-    pub fn gray_share(&self, t: f32, delay_years: f32, shift: f32) -> f32 {
-        let (lo, hi) = self.graying_onset_t(delay_years);
-        const ONSETS: usize = 64;
-        (0..ONSETS)
-            .map(|k| {
-                let onset = lo + (hi - lo) * ((k as f32 + 0.5) / ONSETS as f32 + shift);
-                crate::layers::hair::gray_fraction(t, onset, self.hair.graying_ramp)
-            })
-            .sum::<f32>()
-            / ONSETS as f32
-    }
-
     pub fn colour_factors_with_delay(
         &self,
         t: f32,
@@ -440,7 +425,19 @@ impl Project {
     ) -> crate::age::ColourFactors {
         let a = &self.age;
         let years = a.mapping().years(t);
-        let brow_gray = self.gray_share(a.mapping().t(years), graying_delay_years, 0.0);
+        let (lo, hi) = self.graying_onset_t(graying_delay_years);
+        const ONSETS: usize = 64;
+        let brow_gray = (0..ONSETS)
+            .map(|k| {
+                let onset = lo + (hi - lo) * (k as f32 + 0.5) / ONSETS as f32;
+                crate::layers::hair::gray_fraction(
+                    a.mapping().t(years),
+                    onset,
+                    self.hair.graying_ramp,
+                )
+            })
+            .sum::<f32>()
+            / ONSETS as f32;
         crate::age::ColourFactors {
             pale: a.pale.factor(years),
             spots: a.spots.factor(years),

@@ -42,18 +42,8 @@ pub(super) struct ColourStage {
 }
 
 /// What the painted hair was aged from: its ages (address), the age (bits), the bald and
-/// hair colours (bits), the thinned shares (bits), whether the pattern keeps the hairline,
-/// the gray shares of its patches (bits) and the hair's seed.
-type PaintedKey = (
-    usize,
-    u32,
-    [u32; 3],
-    [u32; 3],
-    [u32; 2],
-    bool,
-    [u32; skin_colour::GRAY_PATCH_STEPS],
-    u64,
-);
+/// hair colours (bits), the thinned shares (bits) and whether the pattern keeps the hairline.
+type PaintedKey = (usize, u32, [u32; 3], [u32; 3], [u32; 2], bool);
 
 #[derive(Clone, Debug, PartialEq)]
 struct ImageKey {
@@ -106,8 +96,6 @@ impl ColourStage {
                     p.hair.to_array().map(f32::to_bits),
                     p.thinned.map(f32::to_bits),
                     p.keeps_hairline,
-                    p.gray_by_patch.map(f32::to_bits),
-                    p.seed,
                 )
             }),
         };

@@ -69,7 +69,6 @@ impl Scene {
             _ => (1.0, 1.0),
         };
         let thinning = self.project.hair.thinning;
-        let delay = self.person().graying_delay_years;
         let painted = match (&ages, own.hair, own.skin) {
             (Some(ages), Some(hair), Some(skin)) => Some(crate::layers::skin_colour::PaintedHair {
                 ages: ages.as_slice(),
@@ -78,10 +77,6 @@ impl Scene {
                 hair: hair.linear,
                 thinned: crate::layers::skin_colour::PaintedHair::thinned_at(t, thinning, shares),
                 keeps_hairline: loss != crate::layers::hair::HairLoss::Male,
-                gray_by_patch: crate::layers::skin_colour::PaintedHair::gray_by_patch(|shift| {
-                    self.project.gray_share(t, delay, shift)
-                }),
-                seed: self.project.hair.seed,
             }),
             _ => None,
         };

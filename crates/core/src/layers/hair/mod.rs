@@ -22,7 +22,6 @@ pub mod transition;
 
 use packing::unorm16;
 pub use packing::{oct_decode, oct_encode};
-pub use placement::{GRAYING_PATCHES, graying_patch_noise};
 use placement::{torn_triangles, triangle_hairs};
 
 use glam::{Vec2, Vec3};

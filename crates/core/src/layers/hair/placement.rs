@@ -497,7 +497,7 @@ pub(super) fn ragged_noise(mm: Vec3, seed: u64) -> f32 {
 
 /// How far, as a share of the onsets' range, a patch of hair grays earlier or later than
 /// the head's average, at the noise's extremes (±1; most of the head within ±0.6).
-pub const GRAYING_PATCHES: f32 = 0.8;
+pub(super) const GRAYING_PATCHES: f32 = 0.8;
 
 /// The wavelengths (mm) of [`graying_patch_noise`]'s two octaves: patches a few
 /// centimetres across with finer streaks in them.
@@ -506,7 +506,7 @@ pub(super) const GRAYING_PATCH_WAVES_MM: [f32; 2] = [32.0, 9.0];
 /// Smooth value noise in [−1, 1] at a point of the head in millimetres: where the hair
 /// grays later (> 0) or earlier (< 0) than on average, so graying comes in patches and
 /// streaks rather than one even tint (docs/models.md §9 "Graying in patches").
-pub fn graying_patch_noise(mm: Vec3, seed: u64) -> f32 {
+pub(super) fn graying_patch_noise(mm: Vec3, seed: u64) -> f32 {
     let key = crate::base::rng::mix64(seed ^ 0x6772_6179_696e) as u32;
     let a = crate::base::rng::value3(mm / GRAYING_PATCH_WAVES_MM[0], key);
     let b = crate::base::rng::value3(mm / GRAYING_PATCH_WAVES_MM[1], key ^ 0x85eb_ca6b);

@@ -206,38 +206,11 @@ pub struct PaintedHair<'a> {
     /// went, and the women's crowns showed a hard-edged bald oval under a full head of
     /// hair).
     pub keeps_hairline: bool,
-    /// The share of the hairs gray at `t` where the patch noise
-    /// ([`crate::layers::hair::graying_patch_noise`]) is −1, …, 1 in [`GRAY_PATCH_STEPS`]
-    /// even steps: the paint grays in the patches the strands do.
-    pub gray_by_patch: [f32; GRAY_PATCH_STEPS],
-    /// The hair's seed (the patches' noise).
-    pub seed: u64,
 }
-
-/// The steps of [`PaintedHair::gray_by_patch`] over the patch noise's −1..1.
-pub const GRAY_PATCH_STEPS: usize = 17;
 
 impl PaintedHair<'_> {
     /// [`PaintedHair::thinned`] at age `t` for `thinning` (`hair.thinning`) and its shares
     /// over the crown and elsewhere (`hair::FEMALE_THINNING` in the female pattern, else 1).
-    /// [`PaintedHair::gray_by_patch`] from `share(shift)`, the share of the hairs gray when
-    /// their onsets move by `shift` of the range ([`crate::project::Project::gray_share`]).
-    pub fn gray_by_patch(share: impl Fn(f32) -> f32) -> [f32; GRAY_PATCH_STEPS] {
-        std::array::from_fn(|k| {
-            let n = -1.0 + 2.0 * k as f32 / (GRAY_PATCH_STEPS - 1) as f32;
-            share(crate::layers::hair::GRAYING_PATCHES * n)
-        })
-    }
-
-    /// The share of the hairs gray at `p` (head metres), from [`PaintedHair::gray_by_patch`].
-    fn gray_at(&self, p: Vec3) -> f32 {
-        let n = crate::layers::hair::graying_patch_noise(p * 1e3, self.seed);
-        let x = (n + 1.0) * 0.5 * (GRAY_PATCH_STEPS - 1) as f32;
-        let k = (x.floor() as usize).min(GRAY_PATCH_STEPS - 2);
-        let g = &self.gray_by_patch;
-        g[k] + (g[k + 1] - g[k]) * (x - k as f32)
-    }
-
     pub fn thinned_at(t: f32, thinning: f32, shares: (f32, f32)) -> [f32; 2] {
         use crate::layers::hair::THINNING_FROM;
         let ramp = ((t - THINNING_FROM) / (1.0 - THINNING_FROM)).clamp(0.0, 1.0);
@@ -410,7 +383,7 @@ pub fn bake_from(
                 let p = texels.position[i];
                 if !young && !p.x.is_nan() {
                     if let Some(h) = painted {
-                        c = h.age(c, h.ages[i], h.gray_at(p), look.gray);
+                        c = h.age(c, h.ages[i], factors.brow_gray, look.gray);
                     }
                     let f = &texels.fields[i];
                     let bare = if f.beard > 0 {
@@ -471,7 +444,7 @@ pub fn with_alpha(
 impl PaintedHair<'_> {
     /// A texel of colour `c` whose hair goes at `age` (the alpha's byte): where the hair has
     /// gone its paint becomes the bald scalp's colour, where it stays it grays by
-    /// `gray` (the share of its hairs gray there) toward `gray_colour`.
+    /// `gray` (the hair's mean gray fraction) toward `gray_colour`.
     fn age(&self, c: Vec3, age: u8, gray: f32, gray_colour: Vec3) -> Vec3 {
         if age == 0 {
             return c;

@@ -249,6 +249,13 @@ fn the_hair_grays_strand_by_strand() {
         n > 30.0 && spread > 2.5 * binomial,
         "{n} {spread} {binomial}"
     );
+    // Never at the young end: no hair has begun to gray at 30, whatever its patch.
+    let t30 = scene.project().age.mapping().t(30.0);
+    let early = hair.instances()[..hair.count(t30)]
+        .iter()
+        .filter(|h| h.gray_fraction(t30, ramp) > 0.0)
+        .count();
+    assert_eq!(early, 0, "hairs graying at 30");
     let (_, white_45) = groups(45.0);
     let (_, white_80) = groups(80.0);
     assert!(

@@ -911,13 +911,12 @@ mod tests {
                 "{} not in {near:?}",
                 h.disappear_age()
             );
-            // The onset is the hair's own, whenever it goes, within its patch's reach.
-            let reach = placement::GRAYING_PATCHES
-                * (DEFAULT_GRAYING_ONSET_MAX - DEFAULT_GRAYING_ONSET_MIN);
-            assert!(
-                (DEFAULT_GRAYING_ONSET_MIN - reach..=DEFAULT_GRAYING_ONSET_MAX + reach)
-                    .contains(&h.graying_onset())
-            );
+            // The onset is the hair's own, whenever it goes, within its patch's reach and
+            // never far before the range.
+            let range = DEFAULT_GRAYING_ONSET_MAX - DEFAULT_GRAYING_ONSET_MIN;
+            let earliest = DEFAULT_GRAYING_ONSET_MIN - placement::GRAYING_EARLIEST * range;
+            let latest = DEFAULT_GRAYING_ONSET_MAX + placement::GRAYING_PATCHES * range;
+            assert!((earliest - 1e-6..=latest).contains(&h.graying_onset()));
             assert!((0.0..1.0).contains(&h.random()));
             let cos = h.direction().dot(Vec3::Z);
             assert!(cos >= DEFAULT_MAX_DEVIATION_RAD.cos() - 1e-4, "{cos}");

@@ -223,9 +223,11 @@ impl Corners {
         };
         // Neighbouring hairs gray together: a patch's onsets move by up to
         // [`GRAYING_PATCHES`] of the range (docs/models.md §9 "Graying in patches").
+        // Neither moves a hair's onset more than [`GRAYING_EARLIEST`] of the range before
+        // the range's start (a young head never has white hairs).
         let patch = GRAYING_PATCHES * graying_patch_noise(mm, params.seed);
-        let onset = onset_min
-            + (onset_max - onset_min) * (draws.onset_u - TEMPLE_GRAYING_LEAD * side + patch);
+        let u = (draws.onset_u - TEMPLE_GRAYING_LEAD * side + patch).max(-GRAYING_EARLIEST);
+        let onset = onset_min + (onset_max - onset_min) * u;
         Some(HairInstance {
             position: position.to_array(),
             disappear_age: age,
@@ -498,6 +500,12 @@ pub(super) fn ragged_noise(mm: Vec3, seed: u64) -> f32 {
 /// How far, as a share of the onsets' range, a patch of hair grays earlier or later than
 /// the head's average, at the noise's extremes (±1; most of the head within ±0.6).
 pub(super) const GRAYING_PATCHES: f32 = 0.8;
+
+/// How far before the onsets' range (a share of its length) a hair may start graying
+/// at the earliest, whatever its patch and the temples' lead: 10 of the default 50
+/// years, so no hair grays before about 31 (39 for black hair). Unbounded, a patch at the
+/// noise's low end drew white flecks in the African man's hair at 25 (round 33).
+pub(super) const GRAYING_EARLIEST: f32 = 0.2;
 
 /// The wavelengths (mm) of [`graying_patch_noise`]'s two octaves: patches a few
 /// centimetres across with finer streaks in them.

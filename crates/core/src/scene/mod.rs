@@ -777,6 +777,8 @@ mod heads_tests;
 #[cfg(test)]
 mod lips_tests;
 #[cfg(test)]
+mod micro_tests;
+#[cfg(test)]
 mod person_tests;
 #[cfg(test)]
 mod shape_tests;

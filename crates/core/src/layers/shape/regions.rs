@@ -4,9 +4,10 @@
 
 use super::*;
 
-/// A region's age curve: linear from its onset (docs/models.md §13 "Regions": a
-/// smoothstep from 5 years later held the first descent back until the late 40s, read
-/// blind as 25–38 at 45 on five of seven heads over rounds 22–31).
+/// A region's age curve: linear from its onset to its full age (docs/models.md §13
+/// "Regions": a smoothstep from 5 years later held the first descent back until the late
+/// 40s, read blind as 25–38 at 45 on five of seven heads over rounds 22–31; linear to 80,
+/// the rating's close-ups at 75 lost a tenth of the move, rounds 32–34).
 pub(super) const fn curve(onset: f32, full: f32) -> AgeCurve {
     AgeCurve::new(onset, full, CurveShape::Linear)
 }
@@ -141,7 +142,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.75, 0.45, 0.25], [0.65, 0.35, 0.6])],
         motions: &[(Descent, 6.0)],
         rolls: &[],
-        curve: curve(30.0, 80.0),
+        curve: curve(30.0, 75.0),
     },
     ShapeRegion {
         name: "lids",
@@ -149,7 +150,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.62, 0.14, 0.3], [0.5, 0.17, 0.45])],
         motions: &[(Descent, 2.5), (Bulge, 1.0)],
         rolls: &[],
-        curve: curve(30.0, 80.0),
+        curve: curve(30.0, 75.0),
     },
     ShapeRegion {
         name: "bags",
@@ -175,7 +176,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             taper: None,
             round: 0.0,
         }],
-        curve: curve(30.0, 75.0),
+        curve: curve(30.0, 70.0),
     },
     ShapeRegion {
         name: "tear_trough",
@@ -208,7 +209,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Deflate, 5.0)],
         rolls: &[],
-        curve: curve(25.0, 70.0),
+        curve: curve(25.0, 65.0),
     },
     ShapeRegion {
         name: "temples",
@@ -230,7 +231,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Deflate, 15.0)],
         rolls: &[],
-        curve: curve(30.0, 80.0),
+        curve: curve(30.0, 75.0),
     },
     ShapeRegion {
         name: "cheeks",
@@ -258,7 +259,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
                 ..CHEEK_ROLL
             },
         ],
-        curve: curve(25.0, 75.0),
+        curve: curve(25.0, 70.0),
     },
     ShapeRegion {
         name: "jowls",
@@ -277,7 +278,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
                 ..JOWL_ROLL
             },
         ],
-        curve: curve(30.0, 80.0),
+        curve: curve(30.0, 75.0),
     },
     ShapeRegion {
         name: "lips",
@@ -305,7 +306,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Descent, 1.5), (Deflate, 2.0), (Retrude, 2.0)],
         rolls: &[],
-        curve: curve(30.0, 80.0),
+        curve: curve(30.0, 75.0),
     },
     ShapeRegion {
         name: "nose",
@@ -317,7 +318,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([0.0, -0.65, 0.95], [0.45, 0.36, 0.45])],
         motions: &[(Descent, 4.5)],
         rolls: &[],
-        curve: curve(35.0, 85.0),
+        curve: curve(35.0, 80.0),
     },
     ShapeRegion {
         name: "ears",
@@ -327,7 +328,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         blobs: &[Blob::new([1.72, -1.0, -1.45], [0.35, 0.6, 0.45])],
         motions: &[(Descent, 8.0)],
         rolls: &[],
-        curve: curve(30.0, 85.0),
+        curve: curve(30.0, 80.0),
     },
     ShapeRegion {
         name: "neck",
@@ -362,7 +363,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         ],
         motions: &[(Descent, 3.0), (Bulge, 0.5)],
         rolls: &[],
-        curve: curve(30.0, 80.0),
+        curve: curve(30.0, 75.0),
     },
 ];
 

@@ -221,13 +221,8 @@ impl Corners {
         } else {
             0.0
         };
-        // Neighbouring hairs gray together: a patch's onsets move by up to
-        // [`GRAYING_PATCHES`] of the range (docs/models.md §9 "Graying in patches").
-        // Neither moves a hair's onset more than [`GRAYING_EARLIEST`] of the range before
-        // the range's start (a young head never has white hairs).
-        let patch = GRAYING_PATCHES * graying_patch_noise(mm, params.seed);
-        let u = (draws.onset_u - TEMPLE_GRAYING_LEAD * side + patch).max(-GRAYING_EARLIEST);
-        let onset = onset_min + (onset_max - onset_min) * u;
+        let onset =
+            onset_min + (onset_max - onset_min) * (draws.onset_u - TEMPLE_GRAYING_LEAD * side);
         Some(HairInstance {
             position: position.to_array(),
             disappear_age: age,
@@ -491,40 +486,10 @@ pub(super) const RAGGED_WAVES_MM: [f32; 2] = [38.0, 14.0];
 /// Smooth value noise in [−1, 1] at a point of the head in millimetres (so the same on
 /// both sides of a UV seam), two octaves of [`RAGGED_WAVES_MM`], seeded.
 pub(super) fn ragged_noise(mm: Vec3, seed: u64) -> f32 {
-    let keys = (seed ^ 0x7261_6767_6564, 0x9e37_79b9);
-    two_octaves(mm, keys, RAGGED_WAVES_MM, [0.7, 0.3])
-}
-
-/// Two octaves of value noise at `mm` (head millimetres), of `waves` mm weighted by
-/// `weights`, clamped to [−1, 1]: the first keyed by the mixed `keys.0`, the second by
-/// that key xor `keys.1`.
-fn two_octaves(mm: Vec3, keys: (u64, u32), waves: [f32; 2], weights: [f32; 2]) -> f32 {
-    let key = crate::base::rng::mix64(keys.0) as u32;
-    let a = crate::base::rng::value3(mm / waves[0], key);
-    let b = crate::base::rng::value3(mm / waves[1], key ^ keys.1);
-    (weights[0] * a + weights[1] * b).clamp(-1.0, 1.0)
-}
-
-/// How far, as a share of the onsets' range, a patch of hair grays earlier or later than
-/// the head's average, at the noise's extremes (±1; most of the head within ±0.6).
-pub(super) const GRAYING_PATCHES: f32 = 0.8;
-
-/// How far before the onsets' range (a share of its length) a hair may start graying
-/// at the earliest, whatever its patch and the temples' lead: 10 of the default 50
-/// years, so no hair grays before about 31 (39 for black hair). Unbounded, a patch at the
-/// noise's low end drew white flecks in the African man's hair at 25 (round 33).
-pub(super) const GRAYING_EARLIEST: f32 = 0.2;
-
-/// The wavelengths (mm) of [`graying_patch_noise`]'s two octaves: patches a few
-/// centimetres across with finer streaks in them.
-pub(super) const GRAYING_PATCH_WAVES_MM: [f32; 2] = [32.0, 9.0];
-
-/// Smooth value noise in [−1, 1] at a point of the head in millimetres: where the hair
-/// grays later (> 0) or earlier (< 0) than on average, so graying comes in patches and
-/// streaks rather than one even tint (docs/models.md §9 "Graying in patches").
-pub(super) fn graying_patch_noise(mm: Vec3, seed: u64) -> f32 {
-    let keys = (seed ^ 0x6772_6179_696e, 0x85eb_ca6b);
-    two_octaves(mm, keys, GRAYING_PATCH_WAVES_MM, [0.65, 0.35])
+    let key = crate::base::rng::mix64(seed ^ 0x7261_6767_6564) as u32;
+    let a = crate::base::rng::value3(mm / RAGGED_WAVES_MM[0], key);
+    let b = crate::base::rng::value3(mm / RAGGED_WAVES_MM[1], key ^ 0x9e37_79b9);
+    (0.7 * a + 0.3 * b).clamp(-1.0, 1.0)
 }
 
 /// The rings at which [`edge_distance`] looks, as fractions of the taper's distance.

@@ -163,8 +163,8 @@ pub(super) fn export_glb(
         1.0 => scene.mesh().clone(),
         m => std::sync::Arc::new(scene.mesh().scaled(m)),
     };
-    // Age changes the shape (docs/models.md §13): the full old-age displacement as the
-    // `age` morph target, its weight the chosen age's, in metres like the mesh.
+    // Age changes the shape (docs/models.md §13): the oldest displacement as the `age`
+    // morph target, its weight (0–1) the chosen age's, in metres like the mesh.
     let morph = scene.shape_field().map(|field| {
         let full = field.full();
         let head = scene.mesh();

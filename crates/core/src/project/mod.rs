@@ -446,9 +446,7 @@ impl Project {
             contrast: a.contrast.factor(years),
             brow_gray,
             bags: self.shape.strengths()[crate::layers::shape::BAGS]
-                * crate::layers::shape::REGIONS[crate::layers::shape::BAGS]
-                    .curve
-                    .factor(years),
+                * crate::layers::shape::REGIONS[crate::layers::shape::BAGS].factor(years),
         }
     }
 

@@ -23,14 +23,14 @@ const OUTWARD: f32 = 0.3;
 const EASE_RINGS: usize = 3;
 
 /// Shortens each vertex's move in `fields` (per region, per vertex: the move at full
-/// strength) so that its move at full age (all regions) goes at most [`CLEARANCE_SHARE`]
-/// of the way to the surface of `positions`/`indices` in front of it, and eases the
-/// shortening out over [`EASE_RINGS`] rings of neighbours. `normals` are the vertices'
-/// normals; `bvh` the tree of `positions`/`indices`; `welded[v]` the first vertex at v's
-/// position; `near` how far from a vertex its
-/// own surface is ignored (mesh units). Each blocked vertex's cap (the longest its move at
-/// full age may be, for `unfold`) is lowered to its shortened move. Returns the number of
-/// vertices blocked.
+/// strength) so that its oldest move (all regions, each times its gain in `gains`)
+/// goes at most [`CLEARANCE_SHARE`] of the way to the surface of `positions`/`indices`
+/// in front of it, and eases the shortening out over [`EASE_RINGS`] rings of neighbours.
+/// `normals` are the vertices' normals; `bvh` the tree of `positions`/`indices`;
+/// `welded[v]` the first vertex at v's position; `near` how far from a vertex its own
+/// surface is ignored (mesh units). Each blocked vertex's cap (the longest its move at
+/// full strength may be, for `unfold`) is lowered to its shortened move. Returns the
+/// number of vertices blocked.
 #[allow(clippy::too_many_arguments)]
 pub fn keep_clear(
     positions: &[Vec3],
@@ -39,13 +39,19 @@ pub fn keep_clear(
     bvh: &Bvh,
     welded: &[u32],
     fields: &mut [Vec<Vec3>],
+    gains: &[f32],
     near: f32,
     caps: &mut [f32],
 ) -> usize {
     let n = positions.len();
-    let total: Vec<Vec3> = (0..n)
-        .map(|v| fields.iter().map(|f| f[v]).sum::<Vec3>())
-        .collect();
+    let sum = |v: usize, gained: bool| -> Vec3 {
+        fields
+            .iter()
+            .zip(gains.iter().chain(std::iter::repeat(&1.0)))
+            .map(|(f, g)| if gained { f[v] * *g } else { f[v] })
+            .sum()
+    };
+    let total: Vec<Vec3> = (0..n).map(|v| sum(v, true)).collect();
     let outward: Vec<usize> = (0..n)
         .filter(|&v| {
             let (d, normal) = (total[v], normals.get(v).copied().unwrap_or(Vec3::ZERO));
@@ -78,7 +84,7 @@ pub fn keep_clear(
         scale[w] = scale[w].min(s);
         // The blocked vertex's move may not grow back (`unfold` keeps to its cap).
         if let Some(c) = caps.get_mut(w) {
-            *c = c.min(s * total[v].length());
+            *c = c.min(s * sum(v, false).length());
         }
     }
     let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); n];
@@ -158,6 +164,7 @@ mod tests {
             &bvh,
             &welded,
             &mut fields,
+            &[1.0],
             0.01 * mm,
             &mut caps,
         );
@@ -183,6 +190,7 @@ mod tests {
                 &Bvh::new(&positions, &[0, 1, 2]),
                 &[0, 1, 2],
                 &mut fields,
+                &[1.0],
                 1e-5,
                 &mut [f32::INFINITY; 3]
             ),

@@ -450,6 +450,12 @@ pub struct ShapeRegion {
     /// Rolls of skin, each with its own millimetres (the region's motions move its blobs).
     pub rolls: &'static [Roll],
     pub curve: AgeCurve,
+    /// Its share of the full move from [`regions::LATE_SPAN_YEARS`] after its full age on
+    /// (≥ 1; 1: it stops at its full move): [`regions::LATE_GAIN`] for volume and sag;
+    /// 1 for the brows, lids, lips and nose, whose moves the clearance and the unfolding
+    /// cut where the skin behind lies close or folds (a larger oldest move, cut, left
+    /// them less moved at 80: the African woman's lips and nose, docs/models.md §13).
+    pub late: f32,
 }
 
 impl ShapeRegion {
@@ -672,13 +678,13 @@ impl ShapeField {
     }
 
     /// How hollowed each vertex is at `years`, mm: the deflating regions' inward movement
-    /// there (not a descent's or a bulge's), each times its curve (docs/models.md §13
-    /// "Hollows").
+    /// there (not a descent's or a bulge's), each times its share at that age
+    /// ([`ShapeRegion::factor`]; docs/models.md §13 "Hollows").
     pub fn hollow_at(&self, years: f32) -> Vec<f32> {
         let n = self.smooth.len();
         let mut out = vec![0.0f32; n];
         for (field, region) in self.hollow.iter().zip(&REGIONS) {
-            let f = region.curve.factor(years);
+            let f = region.factor(years);
             if f == 0.0 {
                 continue;
             }
@@ -690,15 +696,17 @@ impl ShapeField {
     }
 
     /// The displacement per vertex at `years`: each region's full displacement times its
-    /// curve there.
+    /// share there ([`ShapeRegion::factor`]: its curve, then the old age's gain).
     pub fn at(&self, years: f32) -> Vec<Vec3> {
-        let factors: Vec<f32> = REGIONS.iter().map(|r| r.curve.factor(years)).collect();
+        let factors: Vec<f32> = REGIONS.iter().map(|r| r.factor(years)).collect();
         self.weighted(&factors)
     }
 
-    /// The full (old-age) displacement: every region at its full age.
+    /// The oldest displacement: every region at its old-age share of its full move
+    /// ([`ShapeRegion::oldest`]: the shape from about 95 years on; what one morph target
+    /// holds).
     pub fn full(&self) -> Vec<Vec3> {
-        self.weighted(&[1.0; REGIONS.len()])
+        self.weighted(&ShapeRegion::oldest())
     }
 
     /// Σ factor_r · full_r.

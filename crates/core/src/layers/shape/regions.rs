@@ -12,6 +12,35 @@ pub(super) const fn curve(onset: f32, full: f32) -> AgeCurve {
     AgeCurve::new(onset, full, CurveShape::Linear)
 }
 
+/// How far past its full move a region of volume and sag goes in old age
+/// (docs/models.md §13 "Old age"): its millimetres times this at [`LATE_SPAN_YEARS`]
+/// after its full age, linear from 1 between (`ShapeRegion::late`). The facial skeleton
+/// keeps receding after 65 (Shaw et al. 2011's oldest group) and the soft tissue over it
+/// follows: a shape whole at 75 and still after it read blind as 68–76 at 85 on four of
+/// seven heads (rounds 28–36).
+pub const LATE_GAIN: f32 = 1.5;
+
+/// Years from a region's full age to its old-age gain.
+pub const LATE_SPAN_YEARS: f32 = 15.0;
+
+impl ShapeRegion {
+    /// The share of its full move at `years`: its curve, then on past 1 to its
+    /// [`Self::late`] gain over [`LATE_SPAN_YEARS`] (1.5 at 90 for a region whole at 75).
+    pub fn factor(&self, years: f32) -> f32 {
+        let late = ((years - self.curve.full_years) / LATE_SPAN_YEARS).clamp(0.0, 1.0);
+        if late > 0.0 {
+            1.0 + (self.late - 1.0) * late
+        } else {
+            self.curve.factor(years)
+        }
+    }
+
+    /// Each region's oldest share ([`Self::late`]), in [`REGIONS`] order.
+    pub fn oldest() -> [f32; REGIONS.len()] {
+        REGIONS.map(|r| r.late)
+    }
+}
+
 /// The lid–cheek junction under each eye (its +x side; mirrored): from beside the inner
 /// corner down and out under the eye's middle and up to below the outer corner.
 pub(super) const LID_CHEEK_JUNCTION: [[f32; 3]; 5] = [
@@ -143,6 +172,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         motions: &[(Descent, 6.0)],
         rolls: &[],
         curve: curve(30.0, 75.0),
+        late: 1.0,
     },
     ShapeRegion {
         name: "lids",
@@ -151,6 +181,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         motions: &[(Descent, 2.5), (Bulge, 1.0)],
         rolls: &[],
         curve: curve(30.0, 75.0),
+        late: 1.0,
     },
     ShapeRegion {
         name: "bags",
@@ -177,6 +208,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             round: 0.0,
         }],
         curve: curve(30.0, 70.0),
+        late: LATE_GAIN,
     },
     ShapeRegion {
         name: "tear_trough",
@@ -210,6 +242,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         motions: &[(Deflate, 5.0)],
         rolls: &[],
         curve: curve(25.0, 65.0),
+        late: LATE_GAIN,
     },
     ShapeRegion {
         name: "temples",
@@ -232,6 +265,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         motions: &[(Deflate, 15.0)],
         rolls: &[],
         curve: curve(30.0, 75.0),
+        late: LATE_GAIN,
     },
     ShapeRegion {
         name: "cheeks",
@@ -260,6 +294,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             },
         ],
         curve: curve(25.0, 70.0),
+        late: LATE_GAIN,
     },
     ShapeRegion {
         name: "jowls",
@@ -279,6 +314,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
             },
         ],
         curve: curve(30.0, 75.0),
+        late: LATE_GAIN,
     },
     ShapeRegion {
         name: "lips",
@@ -307,6 +343,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         motions: &[(Descent, 1.5), (Deflate, 2.0), (Retrude, 2.0)],
         rolls: &[],
         curve: curve(30.0, 75.0),
+        late: 1.0,
     },
     ShapeRegion {
         name: "nose",
@@ -319,6 +356,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         motions: &[(Descent, 4.5)],
         rolls: &[],
         curve: curve(35.0, 80.0),
+        late: 1.0,
     },
     ShapeRegion {
         name: "ears",
@@ -329,6 +367,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         motions: &[(Descent, 8.0)],
         rolls: &[],
         curve: curve(30.0, 80.0),
+        late: LATE_GAIN,
     },
     ShapeRegion {
         name: "neck",
@@ -364,6 +403,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         motions: &[(Descent, 3.0), (Bulge, 0.5)],
         rolls: &[],
         curve: curve(30.0, 75.0),
+        late: LATE_GAIN,
     },
 ];
 

@@ -5,7 +5,7 @@
 
 use glam::Vec3;
 
-use super::{REGIONS, clearance, symmetry, unfold};
+use super::{REGIONS, ShapeRegion, clearance, symmetry, unfold};
 use crate::head::mesh::Mesh;
 
 /// Turns of keeping the skin clear of the skin and unfolding it (each can undo a little
@@ -37,12 +37,13 @@ pub(super) fn settle(
     let uncut: Vec<Vec3> = (0..n).map(|v| full.iter().map(|f| f[v]).sum()).collect();
     // No skin moves through the skin in front of it (docs/models.md §13 "No skin
     // through skin"), its own surface ignored within 0.2 mm, and no triangle folds
-    // over, at full age (the exported morph target) or at any age between (§13 "No
+    // over, at the oldest (the exported morph target, every region at its old-age share) or at
+    // any age between (§13 "No
     // folded skin"): each spreads or shortens what the other did, so they take turns.
-    let checks: Vec<Vec<f32>> = std::iter::once(vec![1.0; REGIONS.len()])
+    let checks: Vec<Vec<f32>> = std::iter::once(ShapeRegion::oldest().to_vec())
         .chain((6..=20).map(|k| {
             let years = 5.0 * k as f32;
-            REGIONS.iter().map(|r| r.curve.factor(years)).collect()
+            REGIONS.iter().map(|r| r.factor(years)).collect()
         }))
         .collect();
     let (positions, indices) = (mesh.positions(), mesh.indices());
@@ -65,6 +66,7 @@ pub(super) fn settle(
             &bvh,
             welded,
             full,
+            &ShapeRegion::oldest(),
             0.2 * mm,
             &mut caps,
         );

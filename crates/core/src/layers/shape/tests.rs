@@ -1,4 +1,4 @@
-use super::regions::{NASOLABIAL_L, NASOLABIAL_R};
+use super::regions::{LATE_GAIN, LATE_SPAN_YEARS, NASOLABIAL_L, NASOLABIAL_R};
 use super::*;
 use crate::project::Project;
 use crate::scene::Scene;
@@ -86,7 +86,46 @@ fn the_old_face_descends_by_millimetres_in_any_units() {
     // The regions' curves: half-way, more than nothing and less than full.
     let w = field.weight_at(60.0);
     assert!(w > 0.3 && w < 1.0, "{w}");
-    assert_eq!(field.weight_at(90.0), 1.0);
+    // Past the full move the face keeps aging (§13 "Old age"), to the morph's whole.
+    let (w75, w85) = (field.weight_at(75.0), field.weight_at(85.0));
+    assert!(w > 0.0 && w75 < w85 && w85 < 1.0, "{w75} {w85}");
+    assert_eq!(field.weight_at(95.0), 1.0);
+}
+
+/// Each region's share of its move: its curve up to its full age, then on without a
+/// step to its old-age share over [`regions::LATE_SPAN_YEARS`], then still; the regions
+/// of volume and sag go on to [`regions::LATE_GAIN`], the others stop at their full move.
+#[test]
+fn the_regions_keep_moving_in_old_age_without_a_step() {
+    let mut going_on = Vec::new();
+    for r in &REGIONS {
+        let full = r.curve.full_years;
+        assert_eq!(r.factor(r.curve.onset_years), 0.0, "{}", r.name);
+        assert_eq!(r.factor(full), 1.0, "{}", r.name);
+        let end = full + LATE_SPAN_YEARS;
+        assert_eq!(r.factor(end), r.late, "{}", r.name);
+        assert_eq!(r.factor(end + 30.0), r.late, "{}", r.name);
+        if r.late == 1.0 {
+            assert_eq!(r.factor(full + 5.0), 1.0, "{}", r.name);
+            continue;
+        }
+        assert_eq!(r.late, LATE_GAIN, "{}", r.name);
+        going_on.push(r.name);
+        let just = r.factor(full + 0.01);
+        assert!(just > 1.0 && just < 1.001, "{}: {just}", r.name);
+        let (late, later) = (r.factor(full + 5.0), r.factor(full + 10.0));
+        assert!(
+            1.0 < late && late < later && later < LATE_GAIN,
+            "{}",
+            r.name
+        );
+    }
+    assert!(
+        ["temples", "tear_trough", "jowls"]
+            .iter()
+            .all(|n| going_on.contains(n)),
+        "{going_on:?}"
+    );
 }
 
 #[test]
@@ -216,7 +255,7 @@ fn only_deflations_and_creases_make_hollows() {
     let (mesh, field) = default_head();
     let frame = Regions::template().unwrap();
     assert!(field.hollow_at(25.0).iter().all(|&h| h == 0.0));
-    let old = field.hollow_at(80.0);
+    let old = field.hollow_at(75.0);
     let deepest = old.iter().copied().fold(0.0, f32::max);
     // (The temples' blobs overlap where the deepest vertex lies: 13.6 of 15 mm.)
     assert!((12.0..=15.0).contains(&deepest), "{deepest} mm");

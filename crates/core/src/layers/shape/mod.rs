@@ -450,7 +450,7 @@ pub struct ShapeRegion {
     /// Rolls of skin, each with its own millimetres (the region's motions move its blobs).
     pub rolls: &'static [Roll],
     pub curve: AgeCurve,
-    /// Its share of the full move from [`regions::LATE_SPAN_YEARS`] after its full age on
+    /// Its share of the full move from [`regions::LATE_END_YEARS`] on
     /// (≥ 1; 1: it stops at its full move): [`regions::LATE_GAIN`] for volume and sag;
     /// 1 for the brows, lids, lips and nose, whose moves the clearance and the unfolding
     /// cut where the skin behind lies close or folds (a larger oldest move, cut, left
@@ -703,7 +703,7 @@ impl ShapeField {
     }
 
     /// The oldest displacement: every region at its old-age share of its full move
-    /// ([`ShapeRegion::oldest`]: the shape from about 95 years on; what one morph target
+    /// ([`ShapeRegion::oldest`]: the shape from 90 years on; what one morph target
     /// holds).
     pub fn full(&self) -> Vec<Vec3> {
         self.weighted(&ShapeRegion::oldest())

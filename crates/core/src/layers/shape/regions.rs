@@ -13,26 +13,31 @@ pub(super) const fn curve(onset: f32, full: f32) -> AgeCurve {
 }
 
 /// How far past its full move a region of volume and sag goes in old age
-/// (docs/models.md §13 "Old age"): its millimetres times this at [`LATE_SPAN_YEARS`]
-/// after its full age, linear from 1 between (`ShapeRegion::late`). The facial skeleton
-/// keeps receding after 65 (Shaw et al. 2011's oldest group) and the soft tissue over it
-/// follows: a shape whole at 75 and still after it read blind as 68–76 at 85 on four of
-/// seven heads (rounds 28–36).
+/// (docs/models.md §13 "Old age"): its millimetres times this from [`LATE_END_YEARS`] on
+/// (`ShapeRegion::late`). The facial skeleton keeps receding after 65 (Shaw et al. 2011's
+/// oldest group) and the soft tissue over it follows: a shape whole at 75 and still after
+/// it read blind as 68–76 at 85 on four of seven heads (rounds 28–36).
 pub const LATE_GAIN: f32 = 1.5;
 
-/// Years from a region's full age to its old-age gain.
-pub const LATE_SPAN_YEARS: f32 = 15.0;
+/// The old age's span, years: from [`LATE_START_YEARS`] (the gain 1) a smoothstep to
+/// [`LATE_END_YEARS`] (the region's whole gain). From each region's own full age instead
+/// (linear over 15 years), the tear trough (whole at 65) stood at 1.5 by 80, deepening
+/// the mid-cheek's edge and the upper-lid sulcus the rubric's 80 sees (rounds 37–39).
+pub const LATE_START_YEARS: f32 = 75.0;
+pub const LATE_END_YEARS: f32 = 90.0;
 
 impl ShapeRegion {
-    /// The share of its full move at `years`: its curve, then on past 1 to its
-    /// [`Self::late`] gain over [`LATE_SPAN_YEARS`] (1.5 at 90 for a region whole at 75).
+    /// The share of its full move at `years`: its curve times its old-age gain, 1 up to
+    /// [`LATE_START_YEARS`] and [`Self::late`] from [`LATE_END_YEARS`] on, a smoothstep
+    /// between (1.13 at 80, 1.37 at 85 for a gain of 1.5).
     pub fn factor(&self, years: f32) -> f32 {
-        let late = ((years - self.curve.full_years) / LATE_SPAN_YEARS).clamp(0.0, 1.0);
-        if late > 0.0 {
-            1.0 + (self.late - 1.0) * late
-        } else {
-            self.curve.factor(years)
+        let curve = self.curve.factor(years);
+        if years <= LATE_START_YEARS || self.late == 1.0 {
+            return curve;
         }
+        let s = crate::age::CurveShape::Smoothstep
+            .eval((years - LATE_START_YEARS) / (LATE_END_YEARS - LATE_START_YEARS));
+        curve * (1.0 + (self.late - 1.0) * s)
     }
 
     /// Each region's oldest share ([`Self::late`]), in [`REGIONS`] order.

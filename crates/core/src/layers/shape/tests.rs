@@ -1,4 +1,4 @@
-use super::regions::{LATE_GAIN, LATE_SPAN_YEARS, NASOLABIAL_L, NASOLABIAL_R};
+use super::regions::{LATE_END_YEARS, LATE_GAIN, LATE_START_YEARS, NASOLABIAL_L, NASOLABIAL_R};
 use super::*;
 use crate::project::Project;
 use crate::scene::Scene;
@@ -92,30 +92,31 @@ fn the_old_face_descends_by_millimetres_in_any_units() {
     assert_eq!(field.weight_at(95.0), 1.0);
 }
 
-/// Each region's share of its move: its curve up to its full age, then on without a
-/// step to its old-age share over [`regions::LATE_SPAN_YEARS`], then still; the regions
-/// of volume and sag go on to [`regions::LATE_GAIN`], the others stop at their full move.
+/// Each region's share of its move: its curve up to 75, then, for the regions of volume
+/// and sag, on without a step to [`LATE_GAIN`] at [`LATE_END_YEARS`] and still after; the
+/// brows, lids, lips and nose stop at their full move.
 #[test]
 fn the_regions_keep_moving_in_old_age_without_a_step() {
     let mut going_on = Vec::new();
     for r in &REGIONS {
-        let full = r.curve.full_years;
         assert_eq!(r.factor(r.curve.onset_years), 0.0, "{}", r.name);
-        assert_eq!(r.factor(full), 1.0, "{}", r.name);
-        let end = full + LATE_SPAN_YEARS;
-        assert_eq!(r.factor(end), r.late, "{}", r.name);
-        assert_eq!(r.factor(end + 30.0), r.late, "{}", r.name);
+        if r.curve.full_years <= LATE_START_YEARS {
+            assert_eq!(r.factor(r.curve.full_years), 1.0, "{}", r.name);
+        }
+        assert_eq!(r.factor(LATE_START_YEARS), r.curve.factor(LATE_START_YEARS));
+        assert_eq!(r.factor(LATE_END_YEARS), r.late, "{}", r.name);
+        assert_eq!(r.factor(LATE_END_YEARS + 30.0), r.late, "{}", r.name);
         if r.late == 1.0 {
-            assert_eq!(r.factor(full + 5.0), 1.0, "{}", r.name);
+            assert_eq!(r.factor(85.0), 1.0, "{}", r.name);
             continue;
         }
         assert_eq!(r.late, LATE_GAIN, "{}", r.name);
         going_on.push(r.name);
-        let just = r.factor(full + 0.01);
-        assert!(just > 1.0 && just < 1.001, "{}: {just}", r.name);
-        let (late, later) = (r.factor(full + 5.0), r.factor(full + 10.0));
+        let just = r.factor(LATE_START_YEARS + 0.01) - r.curve.factor(LATE_START_YEARS + 0.01);
+        assert!((0.0..0.001).contains(&just), "{}: {just}", r.name);
+        let (at80, at85) = (r.factor(80.0), r.factor(85.0));
         assert!(
-            1.0 < late && late < later && later < LATE_GAIN,
+            1.0 < at80 && at80 < 1.15 && at80 < at85 && at85 < LATE_GAIN,
             "{}",
             r.name
         );

@@ -528,12 +528,14 @@ fn a_udim_head_is_exported_tile_by_tile() {
     assert!(stderr(&o).contains("UDIM tiles"), "{}", stderr(&o));
 }
 
-/// The aged head's `age` morph target (docs/models.md §13), read back with the `gltf`
-/// crate: its name, one target per primitive, the weight of the age, and the full old-age
-/// displacement in metres: 1–25 mm at most, on the face, downward on the whole — on the
-/// default head and on the MakeHuman head (decimetres, its own landmarks).
+/// The aged head's morph targets (docs/models.md §13 "Exported"), read back with the
+/// `gltf` crate: `age` (every region's full move) and `old_age` (what the old age adds),
+/// two targets per primitive, their weights at 65 (the old age's 0) and at 85 (the full
+/// move's 1, the old age's part way), and the full move in metres: 1–25 mm at most, on
+/// the face, downward on the whole; the old age a part of it — on the default head and on
+/// the MakeHuman head (decimetres, its own landmarks).
 #[test]
-fn the_glb_carries_the_age_morph_target() {
+fn the_glb_carries_the_age_morph_targets() {
     let dir = tempfile::tempdir().unwrap();
     let heads = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/heads/makehuman");
     for (name, extra) in [
@@ -562,6 +564,21 @@ fn the_glb_carries_the_age_morph_target() {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
         let o = agesim(&args);
         assert!(o.status.success(), "{}", stderr(&o));
+        // At 85 (on a range that reaches it) the full move is whole and the old age on
+        // its way.
+        let old_glb = dir.path().join(format!("{name}-85.glb"));
+        let mut old_args = args.clone();
+        old_args[2] = "85";
+        old_args[6] = old_glb.to_str().unwrap();
+        old_args.extend(["--set", "age.old_years=90"]);
+        let o = agesim(&old_args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (old_doc, _, _) = gltf::import(&old_glb).expect("the GLB imports");
+        for mesh in old_doc.meshes().filter(|m| m.name() != Some("hair")) {
+            let w = mesh.weights().expect("default weights");
+            assert_eq!(w[0], 1.0, "{name} at 85: {w:?}");
+            assert!(w[1] > 0.5 && w[1] < 1.0, "{name} at 85: {w:?}");
+        }
         let (doc, buffers, _) = gltf::import(&glb).expect("the GLB imports");
         // The target's name, in each mesh's extras (the JSON chunk).
         let bytes = std::fs::read(&glb).unwrap();
@@ -576,33 +593,44 @@ fn the_glb_carries_the_age_morph_target() {
         {
             assert_eq!(
                 m["extras"]["targetNames"],
-                serde_json::json!(["age"]),
+                serde_json::json!(["age", "old_age"]),
                 "{name}"
             );
         }
         let (mut largest, mut down, mut moved) = (0.0f32, 0.0f32, 0usize);
+        let mut old_largest = 0.0f32;
         let mut weight = None;
         for mesh in doc.meshes().filter(|m| m.name() != Some("hair")) {
-            let w = mesh.weights().expect("a default weight");
-            assert_eq!(w.len(), 1);
+            let w = mesh.weights().expect("default weights");
+            assert_eq!(w.len(), 2);
+            assert_eq!(w[1], 0.0, "{name}: no old age at 65");
             weight = Some(w[0]);
             for prim in mesh.primitives() {
-                assert_eq!(prim.morph_targets().count(), 1, "{name}: one target");
+                assert_eq!(prim.morph_targets().count(), 2, "{name}: two targets");
                 let reader = prim.reader(|b| Some(&buffers[b.index()]));
                 let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
-                let target = reader.read_morph_targets().next().unwrap();
-                let (dp, dn, dt) = target;
-                let dp: Vec<[f32; 3]> = dp.expect("position deltas").collect();
-                assert!(dn.is_some() && dt.is_some(), "normal and tangent deltas");
-                assert_eq!(dp.len(), positions.len());
-                for d in &dp {
-                    let mm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() * 1000.0;
-                    largest = largest.max(mm);
-                    down += d[1];
-                    moved += usize::from(mm > 0.5);
+                let mut targets = reader.read_morph_targets();
+                for (k, (dp, dn, dt)) in targets.by_ref().enumerate() {
+                    let dp: Vec<[f32; 3]> = dp.expect("position deltas").collect();
+                    assert!(dn.is_some() && dt.is_some(), "normal and tangent deltas");
+                    assert_eq!(dp.len(), positions.len());
+                    for d in &dp {
+                        let mm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() * 1000.0;
+                        if k == 1 {
+                            old_largest = old_largest.max(mm);
+                            continue;
+                        }
+                        largest = largest.max(mm);
+                        down += d[1];
+                        moved += usize::from(mm > 0.5);
+                    }
                 }
             }
         }
+        assert!(
+            old_largest > 0.5 && old_largest < largest,
+            "{name}: the old age's largest {old_largest} mm, the full move's {largest}"
+        );
         let weight = weight.unwrap();
         eprintln!(
             "{name}: largest {largest:.2} mm, {moved} vertices over 0.5 mm, Σ dy {down:.4} m, weight at 65: {weight:.3}"

@@ -163,32 +163,45 @@ pub(super) fn export_glb(
         1.0 => scene.mesh().clone(),
         m => std::sync::Arc::new(scene.mesh().scaled(m)),
     };
-    // Age changes the shape (docs/models.md §13): the oldest displacement as the `age`
-    // morph target, its weight (0–1) the chosen age's, in metres like the mesh.
-    let morph = scene.shape_field().map(|field| {
-        let full = field.full();
+    // Age changes the shape (docs/models.md §13), as two morph targets in metres like
+    // the mesh: `age`, every region's full move, and `old_age`, what the old age adds to
+    // it (75 to 90); their weights the chosen age's.
+    let morphs: Vec<GlbMorph> = scene.shape_field().map_or(Vec::new(), |field| {
         let head = scene.mesh();
-        let normals = field.normals(head, &full);
-        let tangent = head
-            .tangents()
-            .iter()
-            .zip(&normals)
-            .map(|(t, n)| {
-                let t3 = t.truncate();
-                (t3 - *n * n.dot(t3)).normalize_or(t3) - t3
-            })
-            .collect();
-        GlbMorph {
-            name: "age".into(),
-            position: full.iter().map(|d| *d * mpu).collect(),
-            normal: normals
+        let whole = field.whole();
+        let oldest = field.full();
+        let (n_whole, n_oldest) = (field.normals(head, &whole), field.normals(head, &oldest));
+        // Each state's tangent: the original made perpendicular to that state's normal.
+        let tangents = |normals: &[Vec3]| -> Vec<Vec3> {
+            head.tangents()
                 .iter()
-                .zip(head.normals())
-                .map(|(n, n0)| *n - *n0)
-                .collect(),
-            tangent,
-            weight: field.weight_at(years),
-        }
+                .zip(normals)
+                .map(|(t, n)| {
+                    let t3 = t.truncate();
+                    (t3 - *n * n.dot(t3)).normalize_or(t3)
+                })
+                .collect()
+        };
+        let rest_t: Vec<Vec3> = head.tangents().iter().map(|t| t.truncate()).collect();
+        let (t_whole, t_oldest) = (tangents(&n_whole), tangents(&n_oldest));
+        let minus = |a: &[Vec3], b: &[Vec3]| a.iter().zip(b).map(|(a, b)| *a - *b).collect();
+        let [w_age, w_old] = field.morph_weights(years);
+        vec![
+            GlbMorph {
+                name: "age".into(),
+                position: whole.iter().map(|d| *d * mpu).collect(),
+                normal: minus(&n_whole, head.normals()),
+                tangent: minus(&t_whole, &rest_t),
+                weight: w_age,
+            },
+            GlbMorph {
+                name: "old_age".into(),
+                position: field.old_age().iter().map(|d| *d * mpu).collect(),
+                normal: minus(&n_oldest, &n_whole),
+                tangent: minus(&t_oldest, &t_whole),
+                weight: w_old,
+            },
+        ]
     });
     progress(0.85, "making the hair");
     let hair: Vec<GlbExtraMesh> = match glb.hair.stride() {
@@ -198,7 +211,7 @@ pub(super) fn export_glb(
         None => Vec::new(),
     };
     cancel.check()?;
-    let bytes = write_glb_with_extras(&mesh, &materials, morph.as_ref(), &hair);
+    let bytes = write_glb_with_extras(&mesh, &materials, &morphs, &hair);
     progress(0.9, "writing the GLB");
     set.stage(&glb.path, |w| std::io::Write::write_all(w, &bytes))?;
     // The wrinkle heights beside it, tile by tile on one range.

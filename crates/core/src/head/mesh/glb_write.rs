@@ -1,5 +1,5 @@
 //! Writing a head as binary glTF 2.0 (GLB): the mesh with its parts, UDIM tiles and
-//! morph target, its materials and their maps embedded, and extra meshes beside it (the
+//! morph targets, its materials and their maps embedded, and extra meshes beside it (the
 //! aged hair). Read back by [`super::gltf::load`]; written by hand as JSON text and one
 //! binary chunk so that the same mesh gives the same bytes.
 
@@ -88,13 +88,13 @@ pub fn write_glb_with_material(mesh: &super::Mesh, material: Option<&GlbMaterial
 /// primitive per tile, its UVs in [0, 1] as the tile's own maps are (glTF has no UDIM).
 /// Parts that are not skin get a plain material of their own.
 pub fn write_glb_with_materials(mesh: &super::Mesh, materials: &[GlbMaterial]) -> Vec<u8> {
-    write_glb_with_morph(mesh, materials, None)
+    write_glb_with_morph(mesh, materials, &[])
 }
 
 /// A morph target of every primitive (glTF `targets`, named in the mesh's
 /// `extras.targetNames`, the convention Blender and three.js read as shape keys): per vertex
-/// of the mesh, the position, normal and tangent (xyz) deltas, and the mesh's default
-/// weight.
+/// of the mesh, the position, normal and tangent (xyz) deltas, and its default weight in
+/// the mesh's `weights`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GlbMorph {
     pub name: String,
@@ -120,20 +120,21 @@ pub struct GlbExtraMesh {
     pub roughness: f32,
 }
 
-/// [`write_glb_with_materials`] with a morph target on every mesh.
+/// [`write_glb_with_materials`] with the morph targets `morphs` (in their order) on every
+/// mesh.
 pub fn write_glb_with_morph(
     mesh: &super::Mesh,
     materials: &[GlbMaterial],
-    morph: Option<&GlbMorph>,
+    morphs: &[GlbMorph],
 ) -> Vec<u8> {
-    write_glb_with_extras(mesh, materials, morph, &[])
+    write_glb_with_extras(mesh, materials, morphs, &[])
 }
 
 /// [`write_glb_with_morph`] with `extras`, meshes of their own beside the head.
 pub fn write_glb_with_extras(
     mesh: &super::Mesh,
     materials: &[GlbMaterial],
-    morph: Option<&GlbMorph>,
+    morphs: &[GlbMorph],
     extras: &[GlbExtraMesh],
 ) -> Vec<u8> {
     let mut bin: Vec<u8> = Vec::new();
@@ -234,8 +235,8 @@ pub fn write_glb_with_extras(
                     tri.len()
                 ),
             );
-            // The morph target's deltas of this primitive's vertices.
-            let targets = morph.map_or(String::new(), |m| {
+            // Each morph target's deltas of this primitive's vertices.
+            let mut target = |m: &GlbMorph| {
                 let at = |v: &[Vec3], i: usize| v.get(i).copied().unwrap_or(Vec3::ZERO);
                 let dp: Vec<Vec3> = verts.iter().map(|&i| at(&m.position, i)).collect();
                 let (bytes, json) = bounded_vec3(&dp);
@@ -250,8 +251,14 @@ pub fn write_glb_with_extras(
                     ARRAY_BUFFER,
                     vec("VEC3"),
                 );
-                format!(r#","targets":[{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan}}}]"#)
-            });
+                format!(r#"{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan}}}"#)
+            };
+            let targets = if morphs.is_empty() {
+                String::new()
+            } else {
+                let t: Vec<String> = morphs.iter().map(&mut target).collect();
+                format!(r#","targets":[{}]"#, t.join(","))
+            };
             let material = match materials.len() {
                 0 => String::new(),
                 n if skin => format!(r#","material":{}"#, tile.min(n - 1)),
@@ -261,13 +268,23 @@ pub fn write_glb_with_extras(
                 r#"{{"attributes":{{"POSITION":{pos},"NORMAL":{nor},"TANGENT":{tan},"TEXCOORD_0":{uv}}},"indices":{ind},"mode":4{material}{targets}}}"#
             ));
         }
-        let morph_json = morph.map_or(String::new(), |m| {
-            let w = if m.weight.is_finite() { m.weight } else { 0.0 };
+        let morph_json = if morphs.is_empty() {
+            String::new()
+        } else {
+            let weights: Vec<String> = morphs
+                .iter()
+                .map(|m| {
+                    let w = if m.weight.is_finite() { m.weight } else { 0.0 };
+                    w.to_string()
+                })
+                .collect();
+            let names: Vec<String> = morphs.iter().map(|m| json_string(&m.name)).collect();
             format!(
-                r#","weights":[{w}],"extras":{{"targetNames":[{}]}}"#,
-                json_string(&m.name)
+                r#","weights":[{}],"extras":{{"targetNames":[{}]}}"#,
+                weights.join(","),
+                names.join(",")
             )
-        });
+        };
         meshes.push(format!(
             r#"{{"name":{},"primitives":[{}]{morph_json}}}"#,
             json_string(&part.name),

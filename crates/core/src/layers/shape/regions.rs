@@ -26,18 +26,26 @@ pub const LATE_GAIN: f32 = 1.5;
 pub const LATE_START_YEARS: f32 = 75.0;
 pub const LATE_END_YEARS: f32 = 90.0;
 
+/// How far the old age has come at `years`, 0–1: 0 up to [`LATE_START_YEARS`], 1 from
+/// [`LATE_END_YEARS`] on, a smoothstep between (every region's gain alike).
+pub fn old_age_share(years: f32) -> f32 {
+    if years <= LATE_START_YEARS {
+        return 0.0;
+    }
+    crate::age::CurveShape::Smoothstep
+        .eval((years - LATE_START_YEARS) / (LATE_END_YEARS - LATE_START_YEARS))
+}
+
 impl ShapeRegion {
     /// The share of its full move at `years`: its curve times its old-age gain, 1 up to
     /// [`LATE_START_YEARS`] and [`Self::late`] from [`LATE_END_YEARS`] on, a smoothstep
     /// between (1.13 at 80, 1.37 at 85 for a gain of 1.5).
     pub fn factor(&self, years: f32) -> f32 {
         let curve = self.curve.factor(years);
-        if years <= LATE_START_YEARS || self.late == 1.0 {
+        if self.late == 1.0 {
             return curve;
         }
-        let s = crate::age::CurveShape::Smoothstep
-            .eval((years - LATE_START_YEARS) / (LATE_END_YEARS - LATE_START_YEARS));
-        curve * (1.0 + (self.late - 1.0) * s)
+        curve * (1.0 + (self.late - 1.0) * old_age_share(years))
     }
 
     /// Each region's oldest share ([`Self::late`]), in [`REGIONS`] order.

@@ -703,8 +703,8 @@ impl ShapeField {
     }
 
     /// The oldest displacement: every region at its old-age share of its full move
-    /// ([`ShapeRegion::oldest`]: the shape from 90 years on; what one morph target
-    /// holds).
+    /// ([`ShapeRegion::oldest`]: the shape from 90 years on; the GLB's two morph targets
+    /// at weight 1 each).
     pub fn full(&self) -> Vec<Vec3> {
         self.weighted(&ShapeRegion::oldest())
     }

@@ -724,10 +724,9 @@ impl ShapeField {
         out
     }
 
-    /// The morph weight that stands for `years` when one target holds [`Self::full`]: the
-    /// displacement's size at that age over its full size (summed over the vertices).
+    /// How far toward [`Self::full`] the shape is at `years`: the displacement's size at
+    /// that age over the oldest's (summed over the vertices; what the occlusion follows).
     pub fn weight_at(&self, years: f32) -> f32 {
-        let size = |d: &[Vec3]| d.iter().map(|v| f64::from(v.length())).sum::<f64>();
         let full = size(&self.full());
         if full <= 0.0 {
             return 0.0;
@@ -761,6 +760,11 @@ impl ShapeField {
             })
             .collect()
     }
+}
+
+/// A displacement's size: the sum of its vertices' moves (what a morph weight compares).
+fn size(d: &[Vec3]) -> f64 {
+    d.iter().map(|v| f64::from(v.length())).sum()
 }
 
 pub mod anatomy;

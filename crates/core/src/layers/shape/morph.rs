@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{REGIONS, ShapeField, ShapeRegion, regions};
+use super::{REGIONS, ShapeField, ShapeRegion, regions, size};
 
 impl ShapeField {
     /// Every region at its full move (its curve whole, before the old age): the GLB's
@@ -24,7 +24,6 @@ impl ShapeField {
     /// 1 once every curve is whole), the second [`regions::old_age_share`] (exact: the
     /// gain rises alike in every region).
     pub fn morph_weights(&self, years: f32) -> [f32; 2] {
-        let size = |d: &[Vec3]| d.iter().map(|v| f64::from(v.length())).sum::<f64>();
         let whole = size(&self.whole());
         if whole <= 0.0 {
             return [0.0, 0.0];

@@ -122,8 +122,9 @@ fn a_bake_brings_the_colour_the_shape_and_its_field() {
     assert!(off.layers.shape.is_none() && off.images.shape.is_none());
 }
 
-/// A new head of 50k vertices and more is shown before its shape is made: a partial
-/// report (maps, colour, no shape yet) comes first, then the job's end with the shape.
+/// A new head of 50k vertices and more is shown as soon as it is read, untextured (a
+/// partial report with its mesh and nothing else), then before its shape is made (maps,
+/// colour, no shape yet), then the job's end with the shape.
 #[test]
 fn a_dense_new_head_is_shown_before_its_shape() {
     // A 240 × 240-quad dome, 20 cm across, its own UVs (58k vertices).
@@ -179,9 +180,24 @@ fn a_dense_new_head_is_shown_before_its_shape() {
         assert!(start.elapsed() < Duration::from_secs(300), "no report");
         std::thread::sleep(Duration::from_millis(10));
     }
-    assert_eq!(seen.len(), 2, "a partial report, then the end");
-    let (first, last) = (&seen[0].1, &seen[1].1);
-    assert!(seen[0].0);
+    assert_eq!(seen.len(), 3, "two partial reports, then the end");
+    let (bare, first, last) = (&seen[0].1, &seen[1].1, &seen[2].1);
+    assert!(seen[0].0 && seen[1].0);
+    // The head as read: its mesh at the units its size gives, no layer, the same mesh
+    // the layers come on.
+    let mesh = bare
+        .layers
+        .mesh
+        .as_ref()
+        .expect("the bare head has no mesh");
+    assert!(mesh.vertex_count() > 50_000);
+    assert!(bare.mesh.is_some() && bare.large.is_none() && bare.layers.large.is_none());
+    assert!(bare.layers.aged.is_none() && bare.layers.colour.is_none() && bare.hair.is_none());
+    assert!(bare.layers.metres_per_unit > 0.0 && bare.layers.metres_per_unit.is_finite());
+    assert!(std::sync::Arc::ptr_eq(
+        mesh,
+        first.layers.mesh.as_ref().unwrap()
+    ));
     assert!(first.layers.mesh.is_some() && first.large.is_some() && first.layers.aged.is_some());
     assert!(
         first.layers.shape.is_none(),

@@ -82,6 +82,9 @@ pub struct Viewport {
     aspect: (f32, f32),
     /// A new mesh arrived: frame it on the next frame (a head of the artist's own).
     frame_pending: bool,
+    /// The head's units changed by this factor since the last frame: the camera's
+    /// distance in metres follows, so the view stays the same.
+    rescale: f32,
     pan: Vec3,
     /// Time to encode and submit the last frame, ms.
     pub encode_ms: f64,
@@ -134,6 +137,7 @@ impl Viewport {
             metres_per_unit: 1.0,
             aspect: (1.0, 1.0),
             frame_pending: false,
+            rescale: 1.0,
             pan: Vec3::ZERO,
             encode_ms: 0.0,
             hairs_drawn: 0,
@@ -172,7 +176,13 @@ impl Viewport {
                 self.mesh = Some(mesh.clone());
                 self.frame_pending = true;
             }
-            self.metres_per_unit = snapshot.layers.metres_per_unit;
+            // The same head in other units (a dense head shown at the units its size
+            // gives, then at its landmarks'): the camera stays where it is on the head.
+            let units = snapshot.layers.metres_per_unit;
+            if !self.frame_pending && units != self.metres_per_unit && units > 0.0 {
+                self.rescale *= units / self.metres_per_unit.max(1e-12);
+            }
+            self.metres_per_unit = units;
             pane.uploaded.upload(&mut self.renderer, layers)
         } else {
             pane.uploaded
@@ -217,6 +227,10 @@ impl Viewport {
         if std::mem::take(&mut self.frame_pending) && project.mesh.path.is_some() {
             // A head of the artist's own just arrived: framed, as "frame head" would.
             self.reset(project);
+        }
+        let rescale = std::mem::replace(&mut self.rescale, 1.0);
+        if rescale != 1.0 && rescale.is_finite() && project.mesh.path.is_some() {
+            project.view.camera_distance_m *= rescale;
         }
         // The guided landmark mode: a drag that starts on a dot moves it over the surface
         // (and does not orbit); a click places the selected landmark.
@@ -402,7 +416,9 @@ impl Viewport {
         // The age shown is the document's (every age-dependent number follows it at
         // once); the maps are the last baked ones.
         let mpu = snapshot.layers.metres_per_unit;
-        let camera = view::camera(project, mpu, self.centre + self.pan);
+        // A change of units not yet applied to the project's distance (next frame) is
+        // applied here, so no frame shows the head at the wrong distance.
+        let camera = view::camera(project, mpu / self.rescale, self.centre + self.pan);
         let head = snapshot.layers.head();
         let mut params = view::frame_params(project, head, project.age.t, camera);
         // The governor's quality: the still frame that follows a move draws everything.

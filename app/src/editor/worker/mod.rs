@@ -389,14 +389,21 @@ fn bake(
 ) -> Result<(Changed, Option<Units>), Error> {
     let mut changed = Changed::default();
     let project = job.project.clone();
+    // A new dense head is shown as soon as it is read and turned upright, untextured,
+    // before its fit and layers (seconds).
+    let mut bare = |mesh: &Arc<Mesh>| {
+        if mesh.vertex_count() >= EARLY_LOOK_VERTICES {
+            early(&bare_snapshot(&job.project, mesh));
+        }
+    };
     match scene {
         Some(s) => {
             if s.project() != &project {
-                changed = s.set_project(project)?;
+                changed = s.set_project_showing(project, &mut bare)?;
             }
         }
         None => {
-            *scene = Some(Scene::new(project)?);
+            *scene = Some(Scene::new_showing(project, &mut bare)?);
             changed.mesh = true;
         }
     }
@@ -440,6 +447,22 @@ fn bake(
         fill(s, snapshot, job, &merged, refresh_all, cancel)?;
     }
     Ok((merged, units))
+}
+
+/// A head as read, before anything is made for it: its mesh in the view, untextured, at
+/// the units its size gives (its landmarks may refine them).
+fn bare_snapshot(project: &Project, mesh: &Arc<Mesh>) -> Snapshot {
+    let units = agesim_core::scene::units_of(project, mesh, None);
+    Snapshot {
+        mesh: Some(mesh.clone()),
+        layers: Layers {
+            mesh: Some(mesh.clone()),
+            metres_per_unit: units.metres_per_unit,
+            ..Layers::default()
+        },
+        project: Some(project.clone()),
+        ..Snapshot::default()
+    }
 }
 
 /// What a bake changed, for the snapshot: everything when it refreshes all (the snapshot

@@ -82,6 +82,7 @@ impl Inputs {
         project: &Project,
         versions: &FileVersions,
         kept: &[&Inputs],
+        shown: &mut dyn FnMut(&Arc<Mesh>),
     ) -> Result<Self, Error> {
         let version = |p: &Option<PathBuf>| {
             p.as_ref()
@@ -297,6 +298,9 @@ impl Inputs {
                         }
                     }
                 };
+                if kept.iter().all(|p| !Arc::ptr_eq(&p.mesh, &mesh)) {
+                    shown(&mesh);
+                }
                 let layout = match find(&|p| {
                     Arc::ptr_eq(&p.mesh, &mesh)
                         && opt_ptr_eq(&p.landmarks, &landmarks)

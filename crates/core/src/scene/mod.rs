@@ -38,10 +38,12 @@ mod micro;
 mod own;
 mod shape;
 mod shown;
+mod units;
 
 pub use inputs::{AUTO_FIT_MAX_MEDIAN_MM, HeadLayout, load_wrinkles};
 pub use own::{BROW_DARKNESS, FALLBACK_HAIR, LossChoice, Person, Source, describe_measured};
 pub use shape::AgedShape;
+pub use units::units_of;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -52,7 +54,6 @@ use crate::base::error::Error;
 use crate::head::fit::Correspondence;
 use crate::head::landmarks::Landmarks;
 use crate::head::mesh::Mesh;
-use crate::head::mesh::units::Units;
 use crate::layers::hair::transition::TransitionTexture;
 use crate::layers::hair::{HairInstances, HairParams, SurfaceRef};
 use crate::layers::micro::MicroRelief;
@@ -309,11 +310,18 @@ impl Scene {
     /// Loads every input of `project` (files it names, or the built-in defaults). Nothing
     /// is baked yet; call [`Scene::bake`].
     pub fn new(project: Project) -> Result<Self, Error> {
+        Self::new_showing(project, &mut |_| {})
+    }
+
+    /// [`Scene::new`], giving `shown` the head as soon as it is read and turned upright,
+    /// before its landmarks are found and the template fitted to it (seconds on a dense
+    /// head): what a viewer shows while the rest is made.
+    pub fn new_showing(project: Project, shown: &mut dyn FnMut(&Arc<Mesh>)) -> Result<Self, Error> {
         project.validate().map_err(|message| Error::Project {
             source_name: "project".into(),
             message,
         })?;
-        let inputs = Inputs::load(&project, &FileVersions::new(), &[])?;
+        let inputs = Inputs::load(&project, &FileVersions::new(), &[], shown)?;
         let factors = project.age.factors(project.age.t, &[]);
         Ok(Self {
             tileable: project.tile,
@@ -396,11 +404,21 @@ impl Scene {
     /// Replaces the project. Inputs whose paths changed are loaded again (all errors of
     /// all inputs are reported together); on error the scene is unchanged.
     pub fn set_project(&mut self, project: Project) -> Result<Changed, Error> {
+        self.set_project_showing(project, &mut |_| {})
+    }
+
+    /// [`Scene::set_project`], giving `shown` a new head as soon as it is read and turned
+    /// upright ([`Scene::new_showing`]).
+    pub fn set_project_showing(
+        &mut self,
+        project: Project,
+        shown: &mut dyn FnMut(&Arc<Mesh>),
+    ) -> Result<Changed, Error> {
         project.validate().map_err(|message| Error::Project {
             source_name: "project".into(),
             message,
         })?;
-        let inputs = Inputs::load(&project, &self.versions, &self.kept())?;
+        let inputs = Inputs::load(&project, &self.versions, &self.kept(), shown)?;
         Ok(self.adopt(inputs, project))
     }
 
@@ -413,7 +431,7 @@ impl Scene {
         if *versions == self.versions {
             return Ok(Changed::default());
         }
-        let inputs = Inputs::load(&self.project, versions, &self.kept())?;
+        let inputs = Inputs::load(&self.project, versions, &self.kept(), &mut |_| {})?;
         self.versions = versions.clone();
         Ok(self.adopt(inputs, self.project.clone()))
     }
@@ -656,67 +674,6 @@ impl Scene {
         }
         self.correspondences.push(c.clone());
         Ok(Some(c))
-    }
-
-    /// How long one unit of the mesh is: the project's `mesh.metres_per_unit`, else 1 for
-    /// the built-in meshes, else measured from the mesh file's landmarks (the project's
-    /// file, else those found for the fit) or its size ([`crate::head::mesh::units::detect`]).
-    pub fn units(&self) -> Units {
-        match (self.project.mesh.metres_per_unit, &self.project.mesh.path) {
-            (Some(m), _) => Units {
-                metres_per_unit: m,
-                how: "set in the project (mesh.metres_per_unit)".into(),
-            },
-            (None, None) => Units {
-                metres_per_unit: 1.0,
-                how: "metres: a built-in mesh".into(),
-            },
-            (None, Some(_)) => crate::head::mesh::units::detect(
-                &self.inputs.mesh.bounds(),
-                self.landmarks().or(self.inputs.layout.landmarks.as_deref()),
-            ),
-        }
-    }
-
-    /// How deep, in the head's UV units, a relief one UV unit deep on the template is:
-    /// the template's metres per UV unit over the head's (both measured over their skin,
-    /// [`crate::head::mesh::SurfaceScale`]), so the wrinkles read through a fit are as deep in
-    /// millimetres as on the template whatever the head's UV layout; 1 when the head reads
-    /// the layers at its own UVs.
-    pub fn relief_scale(&self) -> f32 {
-        if self.inputs.layout.fit.is_none() {
-            return 1.0;
-        }
-        let head = self
-            .surface_scale()
-            .map(|s| 0.5 * (s.units_per_u + s.units_per_v) * self.metres_per_unit());
-        // The template's is measured once, with the template.
-        match (crate::head::fit::template().metres_per_uv, head) {
-            (Some(t), Some(h)) if h > 0.0 && (t / h).is_finite() => t / h,
-            _ => 1.0,
-        }
-    }
-
-    /// The head's UV density where it is looked at: over its face when its landmarks
-    /// are known (the project's, the found ones, the default head's own), else over its
-    /// skin ([`SurfaceScale::measure_face`]); it sizes the repeated tiles (micro-relief,
-    /// fine wrinkles) and the relief depth. `None` when every UV triangle is degenerate.
-    ///
-    /// [`SurfaceScale::measure_face`]: crate::head::mesh::SurfaceScale::measure_face
-    pub fn surface_scale(&self) -> Option<crate::head::mesh::SurfaceScale> {
-        let builtin_head = self.project.mesh.path.is_none()
-            && self.project.mesh.builtin == crate::project::BuiltinMesh::Head;
-        let landmarks = if builtin_head {
-            Some(&crate::head::fit::template().landmarks)
-        } else {
-            self.landmarks().or(self.inputs.layout.landmarks.as_deref())
-        };
-        crate::head::mesh::SurfaceScale::measure_face(&self.inputs.mesh, landmarks)
-    }
-
-    /// [`Scene::units`]' metres per unit.
-    pub fn metres_per_unit(&self) -> f32 {
-        self.units().metres_per_unit
     }
 
     /// Whether the project bakes any micro-relief at all ([`Project::micro_enabled`]).

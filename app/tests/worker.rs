@@ -152,13 +152,13 @@ fn a_dense_new_head_is_shown_before_its_shape() {
     project.mesh.path = Some(path);
     project.mesh.layout = agesim_core::project::Layout::OwnUvs;
     let mut worker = Worker::spawn(|| {});
-    let id = worker.submit(Job {
+    let job = |size: u32| Job {
         id: 0,
-        project,
+        project: project.clone(),
         wrinkles: None,
         request: BakeRequest {
-            large_size_px: 256,
-            micro_size_px: 256,
+            large_size_px: size,
+            micro_size_px: size,
             hair: false,
             ..BakeRequest::preview(1.0)
         },
@@ -167,19 +167,29 @@ fn a_dense_new_head_is_shown_before_its_shape() {
         detect_units: false,
         files: Default::default(),
         shape_pictures: false,
-    });
-    let start = Instant::now();
-    let mut seen = Vec::new();
-    while seen.last().is_none_or(|(partial, _)| *partial) {
-        for report in worker.poll().into_iter().filter(|r| r.id == id) {
-            match report.outcome {
-                Outcome::Done { snapshot, .. } => seen.push((report.partial, snapshot)),
-                Outcome::Failed(e) => panic!("bake failed: {e}"),
+    };
+    let reports = |worker: &mut Worker, id: u64| {
+        let start = Instant::now();
+        let mut seen = Vec::new();
+        while seen.last().is_none_or(|(partial, _)| *partial) {
+            for report in worker.poll().into_iter().filter(|r| r.id == id) {
+                match report.outcome {
+                    Outcome::Done { snapshot, .. } => seen.push((report.partial, snapshot)),
+                    Outcome::Failed(e) => panic!("bake failed: {e}"),
+                }
             }
+            assert!(start.elapsed() < Duration::from_secs(300), "no report");
+            std::thread::sleep(Duration::from_millis(10));
         }
-        assert!(start.elapsed() < Duration::from_secs(300), "no report");
-        std::thread::sleep(Duration::from_millis(10));
-    }
+        seen
+    };
+    // The full-size scene holds another head first (the default one).
+    let mut default_head = job(2048);
+    default_head.project = Project::default();
+    let id = worker.submit(default_head);
+    reports(&mut worker, id);
+    let id = worker.submit(job(256));
+    let seen = reports(&mut worker, id);
     assert_eq!(seen.len(), 3, "two partial reports, then the end");
     let (bare, first, last) = (&seen[0].1, &seen[1].1, &seen[2].1);
     assert!(seen[0].0 && seen[1].0);
@@ -204,4 +214,12 @@ fn a_dense_new_head_is_shown_before_its_shape() {
         "the shape came with the first look"
     );
     assert!(last.layers.shape.is_some(), "the shape did not come");
+    // The full-size bake of the head on show (the full-size scene, which held the default
+    // head, reads it again): the view has the head, it is not shown bare again.
+    let id = worker.submit(job(2048));
+    let full = reports(&mut worker, id);
+    assert!(
+        full.iter().all(|(_, s)| s.large.is_some()),
+        "the head was shown bare again"
+    );
 }

@@ -311,7 +311,14 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
             });
         };
         install(&job, opening, &mut || {
-            outcome = bake(scene, &mut snapshot, &job, switched, &cancel, &mut early)
+            outcome = bake(
+                scene,
+                &mut snapshot,
+                &job,
+                (switched, opening),
+                &cancel,
+                &mut early,
+            )
         });
         let units = match &mut outcome {
             Ok((_, units)) => units.take(),
@@ -336,7 +343,7 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
                     &mut scene_b,
                     &mut snapshot_b,
                     &job_b,
-                    false,
+                    (false, false),
                     &cancel,
                     &mut |_| {},
                 )
@@ -378,12 +385,14 @@ fn is_full(r: &BakeRequest) -> bool {
 
 /// Bakes `job` in `scene` and refreshes what changed in `snapshot` (everything when
 /// `refresh_all`: the snapshot was filled from another scene); `early` is given the
-/// snapshot once before the end when a new dense head's shape is still to be made.
+/// snapshot once before the end when a new dense head's shape is still to be made, and
+/// when `opening` (neither scene has the head yet: the view shows none of it) the bare
+/// head as soon as it is read.
 fn bake(
     scene: &mut Option<Scene>,
     snapshot: &mut Snapshot,
     job: &Job,
-    refresh_all: bool,
+    (refresh_all, opening): (bool, bool),
     cancel: &CancelToken,
     early: &mut dyn FnMut(&Snapshot),
 ) -> Result<(Changed, Option<Units>), Error> {
@@ -392,7 +401,7 @@ fn bake(
     // A new dense head is shown as soon as it is read and turned upright, untextured,
     // before its fit and layers (seconds).
     let mut bare = |mesh: &Arc<Mesh>| {
-        if mesh.vertex_count() >= EARLY_LOOK_VERTICES {
+        if opening && mesh.vertex_count() >= EARLY_LOOK_VERTICES {
             early(&bare_snapshot(&job.project, mesh));
         }
     };

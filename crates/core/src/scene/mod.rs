@@ -447,6 +447,9 @@ impl Scene {
         if !Arc::ptr_eq(&inputs.mesh, &self.inputs.mesh) {
             self.mesh_generation += 1;
             changed.mesh = true;
+            // What was made on the last mesh's vertices is not this one's (a dense head's
+            // first look, before its shape, showed the last head's aged shape).
+            (self.shape_aged, self.brows_aged) = (None, None);
         }
         let same_mask = match (&inputs.large_mask, &self.inputs.large_mask) {
             (Some(a), Some(b)) => Arc::ptr_eq(a, b),

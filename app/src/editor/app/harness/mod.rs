@@ -97,7 +97,7 @@ impl EditorApp {
         let years = self.doc.project.age.mapping().years(self.doc.project.age.t);
         match bench.frame(
             idle,
-            self.session.reported,
+            (self.session.reported, self.session.last_bake_ms),
             self.session.worker.latest,
             hairs,
             years,

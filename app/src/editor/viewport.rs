@@ -415,6 +415,17 @@ impl Viewport {
         }
         // The age shown is the document's (every age-dependent number follows it at
         // once); the maps are the last baked ones.
+        // A head that just arrived is framed on the next frame (`ui` frames the project's
+        // view); this frame draws it framed already, not at the last head's distance.
+        let framed;
+        let project = if i == MAIN && self.frame_pending && project.mesh.path.is_some() {
+            let mut p = project.clone();
+            self.reset(&mut p);
+            framed = p;
+            &framed
+        } else {
+            project
+        };
         let mpu = snapshot.layers.metres_per_unit;
         // A change of units not yet applied to the project's distance (next frame) is
         // applied here, so no frame shows the head at the wrong distance.

@@ -5,8 +5,11 @@ use super::worker::{Snapshot, Worker};
 
 pub(super) struct Session {
     pub(super) worker: Worker,
-    /// The last finished bake.
+    /// The last finished bake (or a running job's first look at a new head).
     pub(super) snapshot: Snapshot,
+    /// What was shown before a running job's first look (a dense head shown before its
+    /// bake ends): back on show if the job fails, dropped when a job ends well.
+    pub(super) before_first_look: Option<Snapshot>,
     /// The newest job that reported.
     pub(super) reported: u64,
     pub(super) last_bake_ms: f64,
@@ -25,6 +28,7 @@ impl Session {
         Self {
             worker: Worker::spawn(wake),
             snapshot: Snapshot::default(),
+            before_first_look: None,
             reported: 0,
             last_bake_ms: 0.0,
             last_what: String::new(),

@@ -493,10 +493,12 @@ impl EditorApp {
                     continue;
                 }
                 if let Outcome::Done { snapshot, .. } = report.outcome {
-                    self.session.snapshot = *snapshot;
+                    let shown = std::mem::replace(&mut self.session.snapshot, *snapshot);
+                    self.session.before_first_look.get_or_insert(shown);
                 }
                 continue;
             }
+            let before_first_look = self.session.before_first_look.take();
             self.session.reported = self.session.reported.max(report.id);
             self.session.last_bake_ms = report.ms;
             self.session.last_what = report.what;
@@ -532,9 +534,13 @@ impl EditorApp {
                     // A changed file that does not load: the previous input stays; the
                     // file is read again when it changes.
                     self.session.reload.clear();
-                    // Keep the previous state whole: the document goes back to what baked.
+                    // Keep the previous state whole: the document goes back to what baked,
+                    // the view to what it showed before the failed head's first look.
                     self.error(format!("{message}\n(the previous state is kept)"));
                     self.doc.project = self.doc.last_good.clone();
+                    if let Some(shown) = before_first_look {
+                        self.session.snapshot = shown;
+                    }
                     // The refused change leaves no undo step and no modified mark.
                     let good = &self.doc.last_good;
                     if let Some(doc) = self.doc.history.discard_last_if(|d| &d.project == good) {

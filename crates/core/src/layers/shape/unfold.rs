@@ -613,7 +613,6 @@ mod tests {
             [6, 7, 8],
             [8, 7, 9],
         ];
-        assert_eq!(positions.len(), 10);
         let n = positions.len();
         // Region 0 moves vertex 2 only, region 1 vertices 7 and 9, region 2 nothing.
         let mut fields = vec![vec![Vec3::ZERO; n]; 3];

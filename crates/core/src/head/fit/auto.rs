@@ -13,14 +13,15 @@
 //! 4. Each landmark: a patch of the template around it (25 mm) is moved onto the head by
 //!    the same ICP, translation only, from the face's alignment (the top of the head and
 //!    the ears from the whole head's).
-//! 5. The pairs are made mirror images about the face's midline (the aligned template's
-//!    x = 0 plane), the midline points put on it, and each is carried onto the head's
-//!    surface (closest point).
+//! 5. The pairs are made mirror images about the face's midline (its own mirror plane,
+//!    refined on the head from the aligned template's x = 0 plane), the midline points
+//!    put on it, and each is carried onto the head's surface (closest point).
 
 use glam::Vec3;
 
 use super::Template;
 use super::bvh::Bvh;
+use super::mirror::{self, Plane};
 use super::similarity::Similarity;
 use crate::base::error::Error;
 use crate::head::landmarks::{Landmarks, NAMES};
@@ -36,6 +37,9 @@ const START_ITERATIONS: usize = 20;
 const NECK_CUT_Y_M: f32 = -0.11;
 /// Radius of the face region aligned after the whole head, template metres.
 const FACE_M: f32 = 0.075;
+/// How far from a face point its mirror image's skin is looked for (template metres)
+/// when the face's own mirror plane is found.
+const MIRROR_REACH_M: f32 = 0.01;
 /// Radius of the patch refined around each landmark, template metres.
 const PATCH_M: f32 = 0.025;
 /// A mesh whose skin's area-weighted mean normal is at least this long faces one way: a
@@ -164,11 +168,22 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
         landmarks.set(name, local.apply(l))?;
     }
     // Faces are close to symmetric: the pairs are made mirror images about the face's
-    // midline plane (the template's x = 0 as aligned), the midline points put on it;
-    // this halves the scatter of each side's own refinement.
-    let origin = alignment.apply(Vec3::ZERO);
-    let normal = alignment.turn(Vec3::X).normalize_or(Vec3::X);
-    let mirror = |p: Vec3| p - normal * (2.0 * (p - origin).dot(normal));
+    // midline plane, the midline points put on it; this halves the scatter of each side's
+    // own refinement. The plane is the face's own ([`mirror::refine`] from the template's
+    // x = 0 as aligned: on a symmetric head that one lay 1–2 mm to one side).
+    let start = Plane {
+        origin: alignment.apply(Vec3::ZERO),
+        normal: alignment.turn(Vec3::X).normalize_or(Vec3::X),
+    };
+    let centre = alignment.apply(face_centre);
+    let reach = MIRROR_REACH_M * alignment.scale;
+    let near: Vec<Vec3> = h_pos
+        .iter()
+        .copied()
+        .filter(|p| p.distance(centre) < FACE_M * alignment.scale)
+        .collect();
+    let (plane, _) = mirror::refine(&near, bvh, normals, start, reach);
+    let mirror = |p: Vec3| plane.mirror(p);
     let mut symmetric = Landmarks::default();
     for name in NAMES {
         let Some(p) = landmarks.get(name) else {
@@ -181,7 +196,7 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
             let other = landmarks.get(&format!("{side}_r"));
             other.map_or(p, |o| mirror((o + mirror(p)) * 0.5))
         } else {
-            p - normal * (p - origin).dot(normal)
+            plane.project(p)
         };
         let on_head = bvh.closest(q, f32::INFINITY).map_or(q, |hit| hit.point);
         symmetric.set(name, on_head)?;

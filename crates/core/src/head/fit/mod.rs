@@ -27,6 +27,7 @@
 pub mod auto;
 pub mod bvh;
 mod correspondence;
+pub mod mirror;
 pub mod proxy;
 pub mod refine;
 pub mod similarity;

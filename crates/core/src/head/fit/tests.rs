@@ -55,6 +55,34 @@ fn automatic_landmarks_are_near_the_hand_placed_ones() {
     }
 }
 
+/// A head that is its own mirror image (a panel head: MakeHuman's, symmetric about x = 0)
+/// gets landmarks symmetric about its own midline: the midline points on x = 0 and each
+/// pair mirror images, within 0.3 mm (the template's x = 0 as aligned lay 0.8–3.5 mm to one
+/// side on the four panel heads).
+#[test]
+fn a_symmetric_head_s_landmarks_are_symmetric_about_its_own_midline() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/heads/panel");
+    for file in ["african-female.obj", "asian-male.obj"] {
+        let mesh = Mesh::load(&dir.join(file)).unwrap();
+        let guess = crate::head::mesh::units::detect(&mesh.bounds(), None).metres_per_unit;
+        let found = auto::landmarks(&mesh, template(), guess).unwrap();
+        let l = &found.landmarks;
+        let mm = 1e-3 / guess;
+        for name in crate::head::landmarks::NAMES {
+            let p = l.get(name).unwrap();
+            let off = match (name.strip_suffix("_r"), name.strip_suffix("_l")) {
+                (Some(side), _) => {
+                    let q = l.get(&format!("{side}_l")).unwrap();
+                    p.distance(Vec3::new(-q.x, q.y, q.z))
+                }
+                (_, Some(_)) => continue,
+                _ => p.x.abs(),
+            };
+            assert!(off < 0.3 * mm, "{file} {name}: {:.2} mm off", off / mm);
+        }
+    }
+}
+
 /// A dense head (the scan split twice: 283k triangles) is searched on its proxy and its
 /// landmarks found as near the hand-placed ones as on the scan itself.
 #[test]

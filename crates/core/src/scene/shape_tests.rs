@@ -281,6 +281,48 @@ fn the_lips_move_back_together() {
     }
 }
 
+/// The lower lip's red gets lower in height with age on every head (docs/models.md §13,
+/// `lips`; vermilion height falls in both lips, Gunn et al. 2009): its lower border (the
+/// face frame's y −1.50 … −1.62 at the midline) rises toward the slit by more than the
+/// slit itself moves, by at least half a millimetre. Deflated only, the African heads'
+/// full lower lips read, blind, as "thick and youthful" (round 40).
+#[test]
+fn the_lower_lip_s_red_gets_lower() {
+    let frame = crate::head::frame::Regions::template().unwrap();
+    let mut report = Vec::new();
+    for (name, project) in panel_projects() {
+        let mut scene = Scene::new(project).unwrap();
+        let field = scene.shape_field().unwrap();
+        let points = scene.template_points();
+        let mm = 1e-3 / scene.metres_per_unit();
+        // (the slit, the lower red's border): the mean upward move, mm, and the count.
+        let mut at = [(0.0f32, 0usize); 2];
+        for (v, point) in points.iter().enumerate() {
+            let Some(q) = point.map(|p| frame.relative(p)) else {
+                continue;
+            };
+            let band = if (-1.38..-1.30).contains(&q.y) {
+                0
+            } else if (-1.62..-1.50).contains(&q.y) {
+                1
+            } else {
+                continue;
+            };
+            if q.x.abs() < 0.15 {
+                at[band].0 += field.full()[v].y / mm;
+                at[band].1 += 1;
+            }
+        }
+        let [slit, border] = at.map(|(sum, n)| sum / n.max(1) as f32);
+        report.push(format!(
+            "{name}: the slit up {slit:.2} mm, the border {border:.2} mm"
+        ));
+        assert!(at.iter().all(|a| a.1 > 0), "{name}: no skin there");
+        assert!(border - slit > 0.5, "{}", report.join("\n"));
+    }
+    eprintln!("{}", report.join("\n"));
+}
+
 /// The nose's tip droops on every head (docs/models.md §13, `nose`): at least 2.5 mm of
 /// its 4.5 at full age at the pronasale. Over the tip alone, the African heads' broad,
 /// flat noses folded between the dropped tip and the still wings and columella, and the

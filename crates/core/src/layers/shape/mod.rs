@@ -49,7 +49,7 @@ pub struct Blob {
     /// What this blob's bulge is, as a factor of its region's (1: the region's; 0.2 a
     /// fifth; 3 three times): a region whose parts descend alike but bulge differently.
     pub bulge: f32,
-    /// The same for its descent, its deflation and its retrusion.
+    /// The same for its descent (negative: it rises), its deflation and its retrusion.
     pub descent: f32,
     pub deflate: f32,
     pub retrude: f32,
@@ -481,12 +481,13 @@ impl ShapeRegion {
             .fold(0.0, f32::max)
     }
 
-    /// The weight of its descent, likewise.
+    /// The weight of its descent, likewise (of the blobs' weighted descents, the one
+    /// farthest from 0: a rising blob's negative one where it outweighs the others).
     pub fn descent_weight(&self, q: Vec3) -> f32 {
         self.blobs
             .iter()
             .map(|b| b.weight(q) * b.descent)
-            .fold(0.0, f32::max)
+            .fold(0.0, larger_magnitude)
     }
 
     /// The weight of its deflation, likewise.
@@ -782,3 +783,9 @@ pub mod unfold;
 
 pub use facing::{SKULL_CENTRE, facing_out};
 pub use picture::{movement_mm, uv_picture};
+
+/// Of two weights, the one farther from 0 (`a` on a tie): the largest of non-negative
+/// weights, and a negative one where it outweighs them (a blob that rises).
+fn larger_magnitude(a: f32, b: f32) -> f32 {
+    if b.abs() > a.abs() { b } else { a }
+}

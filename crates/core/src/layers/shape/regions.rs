@@ -338,16 +338,17 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // the slit: a deflation there parts the lips (their normals point at each other).
         // The lower lip's red thins too (its fullness deflates; vermilion height falls
         // with age, a strong cue of perceived age: Gunn et al. 2009): a blob centred
-        // below the slit, reaching no nearer it than 0.08 (≈ 4 mm), not descending (the
-        // lips stay closed). Without it the panel heads' lips read, blind, as "as full as
-        // at 25". Both lips' red, the slit between them, move back together as their
+        // below the slit, reaching no nearer it than 0.08 (≈ 4 mm), rising (its border
+        // toward the slit, which stays: the red's height falls; deflated only, the
+        // African heads' full lower lips read, blind, as "thick and youthful", round 40).
+        // Without it the panel heads' lips read, blind, as "as full as at 25". Both lips' red, the slit between them, move back together as their
         // support recedes (a full lower lip, deflated only below its front, read, blind,
         // as "full, pouting lips that jut forward in profile" on the African heads,
         // rounds 28–29): a blob over the reds that neither descends nor deflates.
         blobs: &[
             Blob::new([0.0, -1.1, 0.5], [0.6, 0.24, 0.45]).retruding(0.0),
             Blob::new([0.0, -1.56, 0.5], [0.5, 0.14, 0.45])
-                .descending(0.0)
+                .descending(-1.0)
                 .retruding(0.0),
             Blob::new([0.0, -1.37, 0.5], [0.45, 0.2, 0.45])
                 .descending(0.0)

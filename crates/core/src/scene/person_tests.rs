@@ -469,7 +469,7 @@ fn the_facial_contrast_falls_with_age() {
     for (name, project) in heads {
         let mut scene = Scene::new(project).unwrap();
         let own = scene.own_colours(&never).unwrap();
-        let (young, old) = young_and_old(&mut scene, 1024);
+        let (young, old) = young_and_old(&mut scene, 512);
         let texels = scene.colour_texels().unwrap();
         let (c25, c80) = (
             facial_contrast(texels, &|i| texel_linear(&young, i)),
@@ -484,7 +484,8 @@ fn the_facial_contrast_falls_with_age() {
             ("lips", c25.lips, c80.lips, own.contrast.lips),
         ] {
             let (a, b, m) = (a.unwrap(), b.unwrap(), m.unwrap());
-            // The map's own at 25 (measured at 512², baked at 1024²).
+            // The map's own at 25 (measured and baked at 512²: at 1024² the regions' texels
+            // differ a little, the African man's lips 0.012 in contrast).
             assert!(
                 (a - m).abs() < 0.01,
                 "{name} {what}: {m} measured, {a} at 25"

@@ -104,11 +104,17 @@ impl Scene {
             return Some(f.clone());
         }
         let points = self.shape_points();
-        let field = Arc::new(crate::layers::shape::ShapeField::new(
+        // The head's outer eye corners, for its own mirror plane: its landmarks (the
+        // default head's are the template's).
+        let template = &crate::head::fit::template().landmarks;
+        let marks = self.inputs.layout.landmarks.as_deref().unwrap_or(template);
+        let eyes = marks.get("exocanthion_r").zip(marks.get("exocanthion_l"));
+        let field = Arc::new(crate::layers::shape::ShapeField::with_mirror(
             &self.inputs.mesh,
             &|v| points.get(v).copied().flatten(),
             &strengths,
             self.metres_per_unit(),
+            eyes,
         ));
         self.shape = Some((key, field.clone()));
         Some(field)

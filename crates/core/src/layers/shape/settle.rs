@@ -24,7 +24,9 @@ const EVEN_SMOOTH_MM: f32 = 2.0;
 /// Settles the regions' full displacements `full` (per region, per vertex of `mesh`, the
 /// vertices at one position `welded` together) on the head: `smooth` its smooth normals,
 /// `points` each vertex's place in the face frame (for its mirror image; `None` off the
-/// template or not the first at its position), `mm` a millimetre in the head's units.
+/// template or not the first at its position), `mm` a millimetre in the head's units,
+/// `own_pairs` the head's own mirror pairs where it is its own mirror image
+/// ([`symmetry::head_mirror`]), which then even the cuts out instead.
 pub(super) fn settle(
     mesh: &Mesh,
     welded: &[u32],
@@ -32,6 +34,7 @@ pub(super) fn settle(
     full: &mut [Vec<Vec3>],
     points: &[Option<Vec3>],
     mm: f32,
+    own_pairs: Option<&[Option<u32>]>,
 ) {
     let n = mesh.vertex_count();
     let uncut: Vec<Vec3> = (0..n).map(|v| full.iter().map(|f| f[v]).sum()).collect();
@@ -54,7 +57,12 @@ pub(super) fn settle(
     } else {
         crate::head::fit::bvh::Bvh::new(&[], &[])
     };
-    let partners = symmetry::mirror_partners(points, MIRROR_TOLERANCE);
+    // A head that is its own mirror image: its own pairs (exact); else the pairs of the
+    // face frame, within MIRROR_TOLERANCE.
+    let partners = match own_pairs {
+        Some(pairs) => pairs.to_vec(),
+        None => symmetry::mirror_partners(points, MIRROR_TOLERANCE),
+    };
     let welded_triangles: Vec<u32> = indices.iter().map(|&i| welded[i as usize]).collect();
     let passes = smoothing_passes(positions, indices, EVEN_SMOOTH_MM * mm);
     let (mut rounds, mut evened) = (0, false);

@@ -66,6 +66,94 @@ pub fn mirror_partners(points: &[Option<Vec3>], tolerance: f32) -> Vec<Option<u3
         .collect()
 }
 
+/// A head's own mirror pairs: the plane halfway between its outer eye corners `eyes`
+/// (right, left), set again from the pairs of `points` (`None`: left out) whose mirror
+/// images lie within `loose` of each other (its normal the pairs' mean direction, through
+/// their mean midpoint), then each point's partner within `tight` of its mirror image
+/// about it (mutual pairs only; a point on the plane its own). Returns the plane's normal
+/// and the partners; `None` when under a tenth of the points have one (a scan: no head is
+/// built symmetric to the vertex) or the eyes coincide.
+pub fn head_mirror(
+    points: &[Option<Vec3>],
+    eyes: (Vec3, Vec3),
+    loose: f32,
+    tight: f32,
+) -> Option<(Vec3, Vec<Option<u32>>)> {
+    let (right, left) = eyes;
+    let normal = (left - right).try_normalize()?;
+    let origin = 0.5 * (left + right);
+    let frame = |normal: Vec3, origin: Vec3| -> Vec<Option<Vec3>> {
+        let (u, v) = normal.any_orthonormal_pair();
+        points
+            .iter()
+            .map(|p| {
+                p.map(|p| {
+                    let d = p - origin;
+                    Vec3::new(d.dot(normal), d.dot(u), d.dot(v))
+                })
+            })
+            .collect()
+    };
+    let pairs = mirror_partners(&frame(normal, origin), loose);
+    let (mut across, mut middle, mut count) = (Vec3::ZERO, Vec3::ZERO, 0usize);
+    for (i, j) in pairs.iter().enumerate() {
+        let (Some(j), Some(p)) = (j, points[i]) else {
+            continue;
+        };
+        let Some(q) = points[*j as usize] else {
+            continue;
+        };
+        let d = p - q;
+        across += if d.dot(normal) < 0.0 { -d } else { d };
+        middle += 0.5 * (p + q);
+        count += 1;
+    }
+    let total = points.iter().filter(|p| p.is_some()).count();
+    if count * 10 < total || count == 0 {
+        return None;
+    }
+    let normal = across.try_normalize().unwrap_or(normal);
+    let origin = middle / count as f32;
+    let pairs = mirror_partners(&frame(normal, origin), tight);
+    let mutual: Vec<Option<u32>> = pairs
+        .iter()
+        .enumerate()
+        .map(|(i, j)| j.filter(|&j| pairs[j as usize] == Some(i as u32)))
+        .collect();
+    let paired = mutual.iter().filter(|p| p.is_some()).count();
+    (paired * 10 >= total).then_some((normal, mutual))
+}
+
+/// Makes each pair's moves (every region's displacement `full` and hollow `hollow`) mirror
+/// images about a plane of normal `normal`: each the mean of its own and its partner's
+/// reflected (a point its own partner loses its move across the plane).
+pub fn mirror_average(
+    full: &mut [Vec<Vec3>],
+    hollow: &mut [Vec<f32>],
+    partners: &[Option<u32>],
+    normal: Vec3,
+) {
+    let reflect = |d: Vec3| d - normal * (2.0 * d.dot(normal));
+    for (i, p) in partners.iter().enumerate() {
+        let Some(j) = p.map(|j| j as usize) else {
+            continue;
+        };
+        if j < i {
+            continue;
+        }
+        for f in full.iter_mut() {
+            let mean = 0.5 * (f[i] + reflect(f[j]));
+            f[i] = mean;
+            f[j] = reflect(mean);
+        }
+        for h in hollow.iter_mut() {
+            let mean = 0.5 * (h[i] + h[j]);
+            h[i] = mean;
+            h[j] = mean;
+        }
+    }
+}
+
 /// Shortens each vertex's move (all regions' displacements `full`, per region per vertex)
 /// to the share of its uncut move (`uncut`, the sum over the regions before the cuts)
 /// that its mirror partner keeps, when that is less than its own share. Vertices without

@@ -191,7 +191,7 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "lids",
         what: "upper lids hooding",
         blobs: &[Blob::new([0.62, 0.14, 0.3], [0.5, 0.17, 0.45])],
-        motions: &[(Descent, 2.5), (Bulge, 1.0)],
+        motions: &[(Descent, 1.5), (Bulge, 1.0)],
         rolls: &[],
         curve: curve(30.0, 75.0),
         late: 1.0,

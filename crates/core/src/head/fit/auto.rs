@@ -40,6 +40,8 @@ const FACE_M: f32 = 0.075;
 /// How far from a face point its mirror image's skin is looked for (template metres)
 /// when the face's own mirror plane is found.
 const MIRROR_REACH_M: f32 = 0.01;
+/// The most face points the mirror plane is refined with.
+const MIRROR_POINTS: usize = 4000;
 /// Radius of the patch refined around each landmark, template metres.
 const PATCH_M: f32 = 0.025;
 /// A mesh whose skin's area-weighted mean normal is at least this long faces one way: a
@@ -181,6 +183,12 @@ pub fn landmarks(head: &Mesh, template: &Template, metres_per_unit: f32) -> Resu
         .iter()
         .copied()
         .filter(|p| p.distance(centre) < FACE_M * alignment.scale)
+        .collect();
+    // Evenly taken, at most MIRROR_POINTS (a dense head's proxy has tens of thousands).
+    let near: Vec<Vec3> = near
+        .iter()
+        .copied()
+        .step_by((near.len() / MIRROR_POINTS).max(1))
         .collect();
     let (plane, _) = mirror::refine(&near, bvh, normals, start, reach);
     let mirror = |p: Vec3| plane.mirror(p);

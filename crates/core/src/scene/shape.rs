@@ -104,11 +104,23 @@ impl Scene {
             return Some(f.clone());
         }
         let points = self.shape_points();
-        // The head's outer eye corners, for its own mirror plane: its landmarks (the
-        // default head's are the template's).
-        let template = &crate::head::fit::template().landmarks;
-        let marks = self.inputs.layout.landmarks.as_deref().unwrap_or(template);
-        let eyes = marks.get("exocanthion_r").zip(marks.get("exocanthion_l"));
+        // The head's outer eye corners, for its own mirror plane: its landmarks, the
+        // built-in head's the template's (template metres, in its units); a head with
+        // neither has no template points and nothing moves.
+        let corners = |marks: &crate::head::landmarks::Landmarks, scale: f32| {
+            marks
+                .get("exocanthion_r")
+                .zip(marks.get("exocanthion_l"))
+                .map(|(r, l)| (r * scale, l * scale))
+        };
+        let eyes = match &self.inputs.layout.landmarks {
+            Some(marks) => corners(marks, 1.0),
+            None if points.iter().any(Option::is_some) => corners(
+                &crate::head::fit::template().landmarks,
+                1.0 / self.metres_per_unit().max(1e-12),
+            ),
+            None => None,
+        };
         let field = Arc::new(crate::layers::shape::ShapeField::with_mirror(
             &self.inputs.mesh,
             &|v| points.get(v).copied().flatten(),

@@ -72,7 +72,8 @@ pub struct EyeTexels {
 impl EyeTexels {
     /// The texels of `mesh`'s eyeballs ([`is_eyeball`]) in its UV layout at `size`² that
     /// no skin covers (`skin`: the skin's texels at that size), found on `image` (the colour
-    /// map at that size) to be blank. The eye looks forward (+z, the scene's frame).
+    /// map at that size) to be blank. The eye looks through its lids' opening, forward (+z,
+    /// the scene's frame) give or take 20° ([`gaze`]).
     pub fn new(mesh: &Mesh, size: u32, skin: Option<&SurfaceTexels>, image: &HeadImage) -> Self {
         let n = size as usize;
         let mut texels = Vec::new();
@@ -94,6 +95,7 @@ impl EyeTexels {
                 .map(|i| positions[i])
                 .collect()
         };
+        let skin_triangles = mesh.skin_indices();
         for part in mesh.parts().iter().filter(|p| is_eyeball(p)) {
             let first = part.first_triangle as usize * 3;
             let Some(tris) = indices.get(first..first + part.triangle_count as usize * 3) else {
@@ -110,6 +112,7 @@ impl EyeTexels {
                 continue;
             }
             let centre = Vec3::new(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), hi.z - radius);
+            let (gaze, across, up) = gaze(centre, radius, positions, &skin_triangles);
             // The skin round the ball (the lids): a texel near it is in the lids' shade.
             let lids: Vec<Vec3> = skin_points
                 .iter()
@@ -135,8 +138,8 @@ impl EyeTexels {
                     if d == Vec3::ZERO {
                         return;
                     }
-                    let from_front = d.z.clamp(-1.0, 1.0).acos();
-                    let round = d.y.atan2(d.x);
+                    let from_front = d.dot(gaze).clamp(-1.0, 1.0).acos();
+                    let round = d.dot(up).atan2(d.dot(across));
                     let to_lid = lids
                         .iter()
                         .map(|l| l.distance(at))
@@ -194,6 +197,87 @@ fn shade_width(radius: f32, opening: f32) -> f32 {
     let open = (opening / (LID_SHADE_OPEN * radius)).clamp(LID_SHADE_NARROWEST, 1.0);
     (LID_SHADE_WIDTH * radius * open).max(f32::MIN_POSITIVE)
 }
+
+/// Where an eye looks, and the two directions across its front (toward +x and +y): through
+/// the middle of the opening its lids leave on the ball, seen from the front (`skin`: the
+/// skin's triangles), a little above it (the pupil lies nearer the upper lid than the
+/// lower: MRD1 about 4 mm, MRD2 about 5.5 mm), at most [`GAZE_MOST`] from straight ahead;
+/// straight ahead (+z) where no skin lies round the ball or the lids leave less than
+/// [`GAZE_SAMPLES_LEAST`] of the front open. A helper eyeball that a head's shape moved away from (the panel's African man's
+/// sits 2.5 mm above his lids' opening) looked at its own +z: its iris hid under the upper
+/// lid, and with the lids' age under it whole, read blind as "bright white eye slits".
+fn gaze(centre: Vec3, radius: f32, positions: &[Vec3], skin: &[u32]) -> (Vec3, Vec3, Vec3) {
+    let straight = (Vec3::Z, Vec3::X, Vec3::Y);
+    let reach = GAZE_LID_REACH * radius;
+    let near: Vec<[Vec3; 3]> = skin
+        .chunks_exact(3)
+        .filter_map(|t| {
+            let p = [0, 1, 2].map(|k| positions.get(t[k] as usize).copied());
+            let p = [p[0]?, p[1]?, p[2]?];
+            p.iter().any(|q| q.distance(centre) < reach).then_some(p)
+        })
+        .collect();
+    if near.is_empty() {
+        return straight;
+    }
+    // A ray from the ball toward the viewer (+z) through a skin triangle is covered.
+    let covered = |at: Vec3| {
+        near.iter().any(|[a, b, c]| {
+            let (e0, e1, e2) = (*b - *a, *c - *a, at - *a);
+            let den = e0.x * e1.y - e1.x * e0.y;
+            if den.abs() < f32::EPSILON * radius * radius {
+                return false;
+            }
+            let u = (e2.x * e1.y - e1.x * e2.y) / den;
+            let w = (e0.x * e2.y - e2.x * e0.y) / den;
+            u >= 0.0 && w >= 0.0 && u + w <= 1.0 && a.z + u * e0.z + w * e1.z > at.z
+        })
+    };
+    let steps = GAZE_STEPS as i32;
+    let (mut sum, mut count, mut low, mut high) = (Vec3::ZERO, 0u32, 1.0f32, -1.0f32);
+    for j in -steps..=steps {
+        for i in -steps..=steps {
+            let (x, y) = (i as f32 / steps as f32, j as f32 / steps as f32);
+            let z2 = 1.0 - x * x - y * y;
+            if z2 < 0.05 {
+                continue;
+            }
+            let d = Vec3::new(x, y, z2.sqrt());
+            if !covered(centre + radius * d) {
+                sum += d;
+                count += 1;
+                low = low.min(y);
+                high = high.max(y);
+            }
+        }
+    }
+    if count < GAZE_SAMPLES_LEAST {
+        return straight;
+    }
+    let mean = sum / count as f32 + Vec3::Y * (GAZE_ABOVE * (high - low));
+    let Some(g) = mean.try_normalize() else {
+        return straight;
+    };
+    let turn = g.z.clamp(-1.0, 1.0).acos();
+    let g = if turn > GAZE_MOST {
+        let side = Vec3::new(g.x, g.y, 0.0).normalize_or_zero();
+        (Vec3::Z * GAZE_MOST.cos() + side * GAZE_MOST.sin()).normalize()
+    } else {
+        g
+    };
+    let across = (Vec3::X - g * g.x).normalize_or(Vec3::X);
+    (g, across, g.cross(across))
+}
+
+/// The gaze's measure ([`gaze`]): the skin looked at round the ball (in its radius), the
+/// samples across the ball's front (2 × this + 1 a side), the fewest open ones, how far
+/// above the opening's middle the pupil lies (a share of the opening's height) and the
+/// most the gaze turns from straight ahead (radians).
+const GAZE_LID_REACH: f32 = 2.0;
+const GAZE_STEPS: u32 = 24;
+const GAZE_SAMPLES_LEAST: u32 = 12;
+const GAZE_ABOVE: f32 = 0.08;
+const GAZE_MOST: f32 = 0.35;
 
 /// Whether a part is an eyeball (an eye, its cornea, iris, pupil or sclera), not the wet,
 /// shadow or hair parts round it (lacrimal, tear line, occlusion, blend, lashes, brows) nor
@@ -323,6 +407,41 @@ mod tests {
         let rim = IRIS - 0.3 * ARCUS_WIDTH;
         assert!(lum(eye_colour(rim, 0.3, 1.0, 1.0)) > lum(eye_colour(rim, 0.3, 0.0, 0.0)) + 0.2);
         assert!((lum(eye_colour(0.3, 0.3, 1.0, 1.0)) - lum(young(0.3))).abs() < 0.01);
+    }
+
+    /// A ball of radius 1 at the origin behind lids that leave open a slot from `low` to
+    /// `high` (in y), as two quads of skin in front of it.
+    fn lids(low: f32, high: f32) -> (Vec<Vec3>, Vec<u32>) {
+        let quad = |y0: f32, y1: f32| {
+            [
+                Vec3::new(-1.5, y0, 1.2),
+                Vec3::new(1.5, y0, 1.2),
+                Vec3::new(1.5, y1, 1.2),
+                Vec3::new(-1.5, y1, 1.2),
+            ]
+        };
+        let positions: Vec<Vec3> = [quad(high, 1.5), quad(-1.5, low)].concat();
+        let indices = vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7];
+        (positions, indices)
+    }
+
+    #[test]
+    fn an_eye_looks_through_its_lids_opening() {
+        // Open from 0.6 below the middle to 0.1 below: the pupil a little above the slot's
+        // middle (-0.35), never more than 20° off.
+        let (positions, skin) = lids(-0.6, -0.1);
+        let (g, across, up) = gaze(Vec3::ZERO, 1.0, &positions, &skin);
+        assert!(g.y < -0.25 && g.y > -GAZE_MOST.sin() - 1e-4, "{g}");
+        assert!(g.x.abs() < 1e-3, "{g}");
+        assert!(across.dot(g).abs() < 1e-5 && up.dot(g).abs() < 1e-5 && up.y > 0.9);
+        // Open round the middle: straight ahead, nudged up.
+        let (positions, skin) = lids(-0.4, 0.4);
+        let (g, ..) = gaze(Vec3::ZERO, 1.0, &positions, &skin);
+        assert!(g.y > 0.0 && g.y < 0.1, "{g}");
+        // No lids, or lids shut: straight ahead.
+        assert_eq!(gaze(Vec3::ZERO, 1.0, &positions, &[]).0.y, 0.0);
+        let (positions, skin) = lids(-0.2, -0.2);
+        assert_eq!(gaze(Vec3::ZERO, 1.0, &positions, &skin).0, Vec3::Z);
     }
 
     #[test]

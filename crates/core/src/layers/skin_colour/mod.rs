@@ -105,9 +105,11 @@ const DARK_SKIN_REDNESS: f32 = 0.6;
 /// The yellowing's tint per unit (green and blue lowered, red kept).
 const YELLOW_TINT: [f32; 3] = [0.0, 0.06, 0.22];
 
-/// How much of the contrast loss reaches the brows and the lips (brows keep more: they
-/// thin and gray more than they fade).
-const CONTRAST_BROWS: f32 = 0.2;
+/// How much of the contrast loss reaches the brows (on light skin, on dark skin by
+/// [`DARK_SKIN_LUM`]) and the lips (brows keep more: they thin and gray more than they
+/// fade). On dark skin the brows' texels go no lighter than a little over the skin
+/// ([`BROW_GRAY_OVER_SKIN`]), so the painted brow fades more toward the skin instead.
+const CONTRAST_BROWS: (f32, f32) = (0.2, 0.65);
 const CONTRAST_LIPS: f32 = 0.6;
 /// The lips' colour on a head without a colour map, times the skin's (linear): darker and
 /// redder, as the vermilion is (about 10 darker in L* and 10 redder in a* than the cheek:
@@ -128,8 +130,12 @@ const BROW_GRAY_BRIGHTNESS: f32 = 1.0;
 /// "white paint blobs" on dark skin).
 const BROW_TEXEL_GRAY: f32 = 0.6;
 
-/// The lightest a gray brow texel gets, in luminance over the skin around it.
-const BROW_GRAY_OVER_SKIN: f32 = 2.2;
+/// The lightest a gray brow texel gets, in luminance over the skin around it: on light
+/// skin, and on dark skin (by [`DARK_SKIN_LUM`]). At 2.2 on the dark heads, the painted
+/// brows' texels and the darker skin in the brows' region above them went a pale gray
+/// under the gray brow strands, read blind as "gray patches above the brows", "white paint
+/// splotches" (rounds 40–44, the African man's cue 11 at 1).
+const BROW_GRAY_OVER_SKIN: (f32, f32) = (2.2, 1.35);
 
 /// Age spots gather over patches of about this size, mm, tried up to this many times each
 /// ([`place_spots`]).
@@ -517,7 +523,9 @@ impl Look<'_> {
         // The lips' outer part fades further (their red narrows toward the mouth's line:
         // thinner lips; faded evenly they read, blind, as "paler but barely thinner").
         let lips = CONTRAST_LIPS * lips + LIP_THINNING * from_unit(f.lip_rim);
-        let fade = s.contrast_loss * a.contrast * (CONTRAST_BROWS * brows).max(lips);
+        let dark = 1.0 - smoothstep(DARK_SKIN_LUM.0, DARK_SKIN_LUM.1, lum(reference));
+        let fade_brows = CONTRAST_BROWS.0 + (CONTRAST_BROWS.1 - CONTRAST_BROWS.0) * dark;
+        let fade = s.contrast_loss * a.contrast * (fade_brows * brows).max(lips);
         c = c.lerp(reference, fade.clamp(0.0, 1.0));
         // The stubble grays with the hair: gray stubble on pale skin casts no shadow, so
         // the beard's texels go toward the bare skin round the beard, its darker texels
@@ -560,7 +568,6 @@ impl Look<'_> {
         // (by the skin tone round the texel) old skin goes duller and ashier rather than
         // yellow: the yellowing fades out and the colour loses some saturation (yellowed,
         // it read, blind, as "the same saturated, glossy orange").
-        let dark = 1.0 - smoothstep(DARK_SKIN_LUM.0, DARK_SKIN_LUM.1, lum(reference));
         c *= self.pale_tint * Vec3::ONE.lerp(self.yellow, 1.0 - dark);
         if dark > 0.0 {
             c = c.lerp(Vec3::splat(lum(c)), ASHY * dark * a.pale.min(1.0));
@@ -580,7 +587,9 @@ impl Look<'_> {
             // the texels go to a light gray-brown, and the strands drawn over them carry
             // the white.
             let target = self.gray.lerp(reference, 0.3) * (0.75 + 0.25 * draw);
-            let most = BROW_GRAY_OVER_SKIN * lum(reference);
+            let over =
+                BROW_GRAY_OVER_SKIN.0 + (BROW_GRAY_OVER_SKIN.1 - BROW_GRAY_OVER_SKIN.0) * dark;
+            let most = over * lum(reference);
             let target = target * (most / lum(target).max(1e-4)).min(1.0);
             c = c.lerp(target, (BROW_TEXEL_GRAY * hair * gray_hair).clamp(0.0, 1.0));
         }

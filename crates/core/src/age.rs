@@ -20,6 +20,46 @@ pub const DEFAULT_YOUNG_YEARS: f32 = 20.0;
 /// Default age that t = 1 stands for, years.
 pub const DEFAULT_OLD_YEARS: f32 = 80.0;
 
+/// The old age's span, years: from [`LATE_START_YEARS`] (no gain) a smoothstep to
+/// [`LATE_END_YEARS`] (the whole gain), for the shape's volume and sag, which keep going
+/// after their full age (docs/models.md §13 "Old age"). From each region's own full age
+/// instead (linear over 15 years), the tear trough (whole at 65) stood at 1.5 by 80,
+/// deepening the mid-cheek's edge and the upper-lid sulcus the rubric's 80 sees (rounds
+/// 37–39).
+pub const LATE_START_YEARS: f32 = 75.0;
+pub const LATE_END_YEARS: f32 = 90.0;
+
+/// How far the old age has come at `years`, 0–1: 0 up to [`LATE_START_YEARS`], 1 from
+/// [`LATE_END_YEARS`] on, a smoothstep between.
+pub fn old_age_share(years: f32) -> f32 {
+    if years <= LATE_START_YEARS {
+        return 0.0;
+    }
+    CurveShape::Smoothstep.eval((years - LATE_START_YEARS) / (LATE_END_YEARS - LATE_START_YEARS))
+}
+
+/// How much deeper than at their full age the large wrinkles are from the second of
+/// [`WRINKLE_LATE_YEARS`] on, linearly from the first (docs/models.md "Age"): wrinkle
+/// scores rise with age as a line (Trojahn et al. 2015: r = 0.90 with the chronological
+/// age), with no plateau the literature reports, where every file's curve is whole by
+/// 75–80. Whole at 80 and still after, the default head at 85 read blind as 75–78 in every
+/// round from 34 to 44 (an 80-year-old's wrinkles, the same picture). From 80, the
+/// default mapping's old end: every factor up to it is its curve's, so a fully aged
+/// project's maps keep their bytes.
+pub const WRINKLE_LATE_GAIN: f32 = 1.4;
+pub const WRINKLE_LATE_YEARS: (f32, f32) = (80.0, 90.0);
+
+/// A large wrinkle's depth factor at `years`: its curve's, times its old-age gain (1 up
+/// to [`WRINKLE_LATE_YEARS`]'s first, [`WRINKLE_LATE_GAIN`] from its second on).
+pub fn wrinkle_factor(curve: &AgeCurve, years: f32) -> f32 {
+    let f = curve.factor(years);
+    let (from, to) = WRINKLE_LATE_YEARS;
+    if years <= from {
+        return f;
+    }
+    f * (1.0 + (WRINKLE_LATE_GAIN - 1.0) * ((years - from) / (to - from)).min(1.0))
+}
+
 /// How a curve ramps from its onset to its full age.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -188,8 +228,11 @@ pub struct AgeFactors {
     pub paleness: f32,
 }
 
-/// The brows' gray fraction relative to the scalp hair's: brows gray later.
-const BROW_GRAY_LAG: f32 = 0.65;
+/// The brows' gray fraction relative to the scalp hair's: brows gray later. At 0.65, the
+/// black-haired heads' brows stayed dark beside a white fringe at 80, read blind as "the
+/// eyebrows stay jet black while the scalp is gray" (round 45, both East Asian and
+/// MakeHuman heads).
+const BROW_GRAY_LAG: f32 = 0.8;
 
 /// Each effect of the aged colour and the brows and lashes, its age factor 0–1 (the age
 /// model's curves at one age; the scene makes them from the project).
@@ -238,6 +281,21 @@ impl ColourFactors {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn large_wrinkles_keep_deepening_past_80() {
+        let curve = AgeCurve::new(40.0, 75.0, CurveShape::Smoothstep);
+        assert_eq!(wrinkle_factor(&curve, 50.0), curve.factor(50.0));
+        assert_eq!(wrinkle_factor(&curve, 80.0), 1.0);
+        let at = |y| wrinkle_factor(&curve, y);
+        assert!(at(82.0) > 1.0 && at(82.0) < at(85.0) && at(85.0) < at(90.0));
+        assert!((at(85.0) - 1.2).abs() < 1e-5, "{}", at(85.0));
+        assert_eq!(at(90.0), WRINKLE_LATE_GAIN);
+        assert_eq!(at(120.0), WRINKLE_LATE_GAIN);
+        // A curve not whole yet keeps its share.
+        let late = AgeCurve::new(60.0, 100.0, CurveShape::Linear);
+        assert!((wrinkle_factor(&late, 90.0) - 0.75 * WRINKLE_LATE_GAIN).abs() < 1e-5);
+    }
     use crate::test_util::close;
 
     #[test]

@@ -537,7 +537,7 @@ impl AgeSection {
             years,
             large: fibre_curves
                 .iter()
-                .map(|c| c.unwrap_or(self.large).factor(years))
+                .map(|c| crate::age::wrinkle_factor(&c.unwrap_or(self.large), years))
                 .collect(),
             fine_blend: self.fine.factor(years),
             pore_radius_scale: crate::age::scale(self.pores_young_scale, self.pores.factor(years)),

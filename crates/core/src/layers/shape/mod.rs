@@ -142,7 +142,7 @@ pub struct ShapeRegion {
     /// Rolls of skin, each with its own millimetres (the region's motions move its blobs).
     pub rolls: &'static [Roll],
     pub curve: AgeCurve,
-    /// Its share of the full move from [`regions::LATE_END_YEARS`] on
+    /// Its share of the full move from [`crate::age::LATE_END_YEARS`] on
     /// (≥ 1; 1: it stops at its full move): [`regions::LATE_GAIN`] for volume and sag;
     /// 1 for the brows, lids, lips and nose, whose moves the clearance and the unfolding
     /// cut where the skin behind lies close or folds (a larger oldest move, cut, left

@@ -13,32 +13,17 @@ pub(super) const fn curve(onset: f32, full: f32) -> AgeCurve {
 }
 
 /// How far past its full move a region of volume and sag goes in old age
-/// (docs/models.md §13 "Old age"): its millimetres times this from [`LATE_END_YEARS`] on
+/// (docs/models.md §13 "Old age"): its millimetres times this from [`crate::age::LATE_END_YEARS`] on
 /// (`ShapeRegion::late`). The facial skeleton keeps receding after 65 (Shaw et al. 2011's
 /// oldest group) and the soft tissue over it follows: a shape whole at 75 and still after
 /// it read blind as 68–76 at 85 on four of seven heads (rounds 28–36).
 pub const LATE_GAIN: f32 = 1.5;
 
-/// The old age's span, years: from [`LATE_START_YEARS`] (the gain 1) a smoothstep to
-/// [`LATE_END_YEARS`] (the region's whole gain). From each region's own full age instead
-/// (linear over 15 years), the tear trough (whole at 65) stood at 1.5 by 80, deepening
-/// the mid-cheek's edge and the upper-lid sulcus the rubric's 80 sees (rounds 37–39).
-pub const LATE_START_YEARS: f32 = 75.0;
-pub const LATE_END_YEARS: f32 = 90.0;
-
-/// How far the old age has come at `years`, 0–1: 0 up to [`LATE_START_YEARS`], 1 from
-/// [`LATE_END_YEARS`] on, a smoothstep between (every region's gain alike).
-pub fn old_age_share(years: f32) -> f32 {
-    if years <= LATE_START_YEARS {
-        return 0.0;
-    }
-    crate::age::CurveShape::Smoothstep
-        .eval((years - LATE_START_YEARS) / (LATE_END_YEARS - LATE_START_YEARS))
-}
+pub use crate::age::old_age_share;
 
 impl ShapeRegion {
     /// The share of its full move at `years`: its curve times its old-age gain, 1 up to
-    /// [`LATE_START_YEARS`] and [`Self::late`] from [`LATE_END_YEARS`] on, a smoothstep
+    /// [`crate::age::LATE_START_YEARS`] and [`Self::late`] from [`crate::age::LATE_END_YEARS`] on, a smoothstep
     /// between (1.13 at 80, 1.37 at 85 for a gain of 1.5).
     pub fn factor(&self, years: f32) -> f32 {
         let curve = self.curve.factor(years);

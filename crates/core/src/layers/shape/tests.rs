@@ -1,5 +1,6 @@
-use super::regions::{LATE_END_YEARS, LATE_GAIN, LATE_START_YEARS, NASOLABIAL_L, NASOLABIAL_R};
+use super::regions::{LATE_GAIN, NASOLABIAL_L, NASOLABIAL_R};
 use super::*;
+use crate::age::{LATE_END_YEARS, LATE_START_YEARS};
 use crate::project::Project;
 use crate::scene::Scene;
 

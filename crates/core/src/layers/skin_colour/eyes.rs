@@ -23,12 +23,16 @@ const IRIS: f32 = 0.51;
 const LIMBUS: f32 = 0.035;
 
 /// The colours of an eye (sRGB, 0–1): the pupil, a brown iris (the commonest eye colour
-/// the world over), the limbal ring, the young sclera and the old sclera's yellow.
+/// the world over), the limbal ring, the young sclera and the old sclera's yellow, duller
+/// (the old sclera yellows and muddies; kept near the young white, the African man's
+/// eyes at 80 read blind as "bright white crescents", round 45), reached by
+/// [`OLD_SCLERA_SHARE`] of the skin's paling curve.
 const PUPIL_COLOUR: [f32; 3] = [0.05, 0.04, 0.04];
 const IRIS_COLOUR: [f32; 3] = [0.30, 0.19, 0.12];
 const LIMBUS_COLOUR: [f32; 3] = [0.13, 0.10, 0.08];
 const SCLERA_COLOUR: [f32; 3] = [0.72, 0.68, 0.63];
-const OLD_SCLERA_COLOUR: [f32; 3] = [0.68, 0.62, 0.48];
+const OLD_SCLERA_COLOUR: [f32; 3] = [0.62, 0.55, 0.42];
+const OLD_SCLERA_SHARE: f32 = 0.6;
 /// The arcus senilis: its colour and its width inside the iris's rim, radians.
 const ARCUS_COLOUR: [f32; 3] = [0.70, 0.70, 0.68];
 const ARCUS_WIDTH: f32 = 0.09;
@@ -330,7 +334,8 @@ fn eye_colour(from_front: f32, round: f32, old: f32, arcus: f32) -> Vec3 {
     // The sclera dims toward the corners, where the lids and the caruncle shade it and its
     // vessels show (an even white read, blind, as "glowing whites of the eyes" on dark
     // skin).
-    let sclera = Vec3::from(SCLERA_COLOUR).lerp(Vec3::from(OLD_SCLERA_COLOUR), 0.4 * old)
+    let sclera = Vec3::from(SCLERA_COLOUR)
+        .lerp(Vec3::from(OLD_SCLERA_COLOUR), OLD_SCLERA_SHARE * old)
         * (1.0 - 0.3 * smooth((from_front - 0.7) / 0.6));
     // The iris: fibres radiating from the pupil (a lighter collarette round it, darker
     // toward the rim), the limbal ring blending it into the sclera.

@@ -130,6 +130,10 @@ const BROW_GRAY_BRIGHTNESS: f32 = 1.0;
 /// "white paint blobs" on dark skin).
 const BROW_TEXEL_GRAY: f32 = 0.6;
 
+/// How much of the skin's colour round a gray brow texel is in its gray (the skin shows
+/// between the gray hairs): on light skin, and on dark skin (by [`DARK_SKIN_LUM`]).
+const BROW_GRAY_SKIN_HUE: (f32, f32) = (0.3, 0.8);
+
 /// The lightest a gray brow texel gets, in luminance over the skin around it: on light
 /// skin, and on dark skin (by [`DARK_SKIN_LUM`]). At 2.2 on the dark heads, the painted
 /// brows' texels and the darker skin in the brows' region above them went a pale gray
@@ -586,7 +590,11 @@ impl Look<'_> {
             // And no lighter than BROW_GRAY_OVER_SKIN × the skin around: on dark skin
             // the texels go to a light gray-brown, and the strands drawn over them carry
             // the white.
-            let target = self.gray.lerp(reference, 0.3) * (0.75 + 0.25 * draw);
+            // On dark skin, of the skin's hue more than the gray's (the gray's blue-gray
+            // over dark skin read blind as "a blue-grey smear above the brow", round 45).
+            let skin_share =
+                BROW_GRAY_SKIN_HUE.0 + (BROW_GRAY_SKIN_HUE.1 - BROW_GRAY_SKIN_HUE.0) * dark;
+            let target = self.gray.lerp(reference, skin_share) * (0.75 + 0.25 * draw);
             let over =
                 BROW_GRAY_OVER_SKIN.0 + (BROW_GRAY_OVER_SKIN.1 - BROW_GRAY_OVER_SKIN.0) * dark;
             let most = over * lum(reference);

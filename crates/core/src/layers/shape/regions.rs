@@ -236,11 +236,15 @@ pub const REGIONS: [ShapeRegion; 11] = [
                 .deflating(0.6)
                 .soft(),
             // Below the cheekbone, lateral to the fold's cheek: the buccal hollow, broad
-            // and 3 mm at its centre (18 mm across and 5 mm deep, its edge on the far side
-            // of the light read, blind, as "a dark pit in the cheek"), a dish (a plateau's
-            // rim drew a second fold out on the cheek on the side away from the light).
-            Blob::new([1.2, -1.05, 0.05], [0.5, 0.5, 0.6])
-                .deflating(0.7)
+            // and 2.5 mm at its centre (18 mm across and 5 mm deep, its edge on the far
+            // side of the light read, blind, as "a dark pit in the cheek"), a dish (a
+            // plateau's rim drew a second fold out on the cheek on the side away from the
+            // light). A third narrower and 3.5 mm deep, its front edge drew "a diagonal
+            // groove from the outer cheekbone down to the jaw, far to the side of the
+            // fold", "like a facet", on both European heads from all three reviewers
+            // (rounds 45–46; gone with the blob off).
+            Blob::new([1.25, -1.05, 0.05], [0.65, 0.65, 0.7])
+                .deflating(0.5)
                 .soft(),
         ],
         motions: &[(Deflate, 5.0)],

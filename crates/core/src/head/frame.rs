@@ -324,6 +324,11 @@ impl Regions {
             * (1.0 - self.eyes(p))
     }
 
+    /// The top of the head above the forehead (the crown, bald or not), 0–1.
+    pub fn crown(&self, p: Vec3) -> f32 {
+        smoothstep(1.6, 2.3, self.rel(p).y)
+    }
+
     /// Sun exposure: the face in front of the ears down to the chin, the ears, the top
     /// of the head (seen when it is bald); not under the chin, nor the lips or the eyes.
     pub fn sun(&self, p: Vec3) -> f32 {
@@ -331,7 +336,7 @@ impl Regions {
         // In front of the ears (their plane), fading behind them.
         let face = smoothstep(self.ear_z - 1.0, self.ear_z + 0.8, q.z);
         // The top of the head, above the forehead.
-        let top = smoothstep(1.6, 2.3, q.y);
+        let top = self.crown(p);
         // The underside of the chin and the neck below it are shaded, the lower face
         // less exposed than the forehead, cheekbones and nose (the brow and the head's
         // tilt shade it less than the jaw's angle does): 0.3 at the mouth and the chin,

@@ -91,7 +91,13 @@ impl Fields {
             red: unit_byte(red),
             blotch: signed_byte(fbm(mm / MOTTLE_MM.0, keys[0])),
             grain: signed_byte(value3(mm / MOTTLE_MM.1, keys[1])),
-            speck: signed_byte(value3(mm / SPECK_MM, keys[1].rotate_left(11))),
+            // The pigment specks are the face's (mottled hyperpigmentation of photo-aged
+            // facial skin): over the crown they fade out (on the African man's bald
+            // scalp, clusters of them read blind as "dark specks that read as grime",
+            // round 46); its lentigines and keratoses stay.
+            speck: signed_byte(
+                value3(mm / SPECK_MM, keys[1].rotate_left(11)) * (1.0 - anywhere(Regions::crown)),
+            ),
             flush: if red > 0.0 {
                 signed_byte(fbm(mm / REDNESS_MM.0, keys[2]))
             } else {

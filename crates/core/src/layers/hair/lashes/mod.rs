@@ -52,6 +52,13 @@ const FAN_CENTRE: f32 = 0.45;
 const LOSS: f32 = 0.5;
 const SHORTENING: f32 = 0.3;
 
+/// How much of their curl the lashes lose at full age: they straighten and droop as the
+/// lid hoods (lash ptosis comes with dermatochalasis). Curled as young ones under the
+/// lowered, hooding lid of 80, their tips turned up through the fold of skin over them,
+/// read blind as "lashes poke up through the drooping upper lids as black ticks" on four
+/// heads (round 47).
+const UNCURL: f32 = 0.6;
+
 /// The lashes gray this much later than the brows: a lash is gray when its draw is under
 /// this × the brows' gray fraction.
 const GRAY_LAG: f32 = 0.25;
@@ -255,7 +262,8 @@ impl Lashes {
                 // A quadratic curve leaving the lid at `elevation` and arriving at the tip
                 // turned [`CURL_DEG`] further out.
                 let middle = root + leaving(l.elevation) * (0.5 * length);
-                let tip = middle + leaving(l.elevation + l.curl) * (0.5 * length);
+                let curl = l.curl * (1.0 - UNCURL * aged);
+                let tip = middle + leaving(l.elevation + curl) * (0.5 * length);
                 let gray = smooth01((gray_fraction - l.gray_draw) / 0.08);
                 BrowStrand {
                     root: root.to_array(),

@@ -8,7 +8,11 @@
 //! none does; what still turns after [`SPREAD_PASSES`] is shrunk in place. (Ending the spread
 //! early once it stopped paying, which saved a 1.13M-triangle head 8 s, was tried and
 //! taken back: it left a hole beside the dense panel head's nostril.) Only the triangles
-//! round what changed are checked again, so a dense head costs what its folds do.
+//! round what changed are checked again, so a dense head costs what its folds do, and a
+//! fold that no longer folds stops spreading (its vertices hold still, walls to the folds
+//! round it): relaxed on for every pass while other folds went on, the spread rings had
+//! flattened what lay in them, the default head's temple hollow to 3 mm of its 12 and its
+//! earlobes' 7 mm descent to 0.2, and a dense scan spent two thirds of its sweeps there.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -91,6 +95,10 @@ pub fn unfold(
     // The active vertices, in the order they became so (the relaxation does not depend on
     // the order; the growth goes in vertex order).
     let mut ring: Vec<usize> = Vec::new();
+    // The folds (by their seed) that still fold this pass.
+    let mut live_seed = vec![false; n];
+    // Every vertex the spread has moved.
+    let mut ever = vec![false; n];
     let mut slots = vec![u32::MAX; n];
     let mut suspected = vec![false; triangles.len()];
     let mut best = usize::MAX;
@@ -163,6 +171,22 @@ pub fn unfold(
                     }
                 }
             }
+            // A fold that no longer folds is left as it stands: its spread stops (its
+            // vertices hold still, walls to the folds round it, and join again if they
+            // fold again). On the scan split three times two thirds of the ring had no
+            // fold left by the 8th pass and were relaxed for 120 more.
+            ring.iter().for_each(|&v| ever[v] = true);
+            live_seed.iter_mut().for_each(|l| *l = false);
+            for &v in &bad {
+                if let Some(l) = live_seed.get_mut(seed[v]) {
+                    *l = true;
+                }
+            }
+            ring.retain(|&v| {
+                let keep = live_seed.get(seed[v]).copied().unwrap_or(true);
+                active[v] = keep;
+                keep
+            });
             // Each active vertex takes the mean of its neighbours' move, half way, more
             // sweeps as the passes go on (a wide fold on a dense head needs many).
             let sweeps = (1 + pass / 4).min(MAX_SWEEPS);
@@ -188,7 +212,8 @@ pub fn unfold(
         }
         suspects.iter().for_each(|&i| suspected[i] = false);
     }
-    let changed = ring.len();
+    ring.iter().for_each(|&v| ever[v] = true);
+    let changed = ever.iter().filter(|&&e| e).count();
     // Split vertices take their position's move.
     let r = moves.regions;
     for (v, &w) in welded.iter().enumerate().take(n) {

@@ -336,14 +336,16 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // below the slit, reaching no nearer it than 0.08 (≈ 4 mm), rising (its border
         // toward the slit, which stays: the red's height falls; deflated only, the
         // African heads' full lower lips read, blind, as "thick and youthful", round 40).
-        // Without it the panel heads' lips read, blind, as "as full as at 25". Both lips' red, the slit between them, move back together as their
+        // Without it the panel heads' lips read, blind, as "as full as at 25". Rising
+        // 1.6 × the region's descent (1 ×: 2 mm on the African man's 19 mm lower lip, "lips
+        // still full", "a thick lower lip" on the African heads, rounds 44–49). Both lips' red, the slit between them, move back together as their
         // support recedes (a full lower lip, deflated only below its front, read, blind,
         // as "full, pouting lips that jut forward in profile" on the African heads,
         // rounds 28–29): a blob over the reds that neither descends nor deflates.
         blobs: &[
             Blob::new([0.0, -1.1, 0.5], [0.6, 0.24, 0.45]).retruding(0.0),
             Blob::new([0.0, -1.56, 0.5], [0.5, 0.14, 0.45])
-                .descending(-1.0)
+                .descending(-1.6)
                 .retruding(0.0),
             Blob::new([0.0, -1.37, 0.5], [0.45, 0.2, 0.45])
                 .descending(0.0)

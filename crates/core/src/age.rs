@@ -281,6 +281,7 @@ impl ColourFactors {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_util::close;
 
     #[test]
     fn large_wrinkles_keep_deepening_past_80() {
@@ -296,7 +297,6 @@ mod tests {
         let late = AgeCurve::new(60.0, 100.0, CurveShape::Linear);
         assert!((wrinkle_factor(&late, 90.0) - 0.75 * WRINKLE_LATE_GAIN).abs() < 1e-5);
     }
-    use crate::test_util::close;
 
     #[test]
     fn curve_is_zero_before_onset_one_after_full_and_smooth_between() {

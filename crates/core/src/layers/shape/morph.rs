@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{REGIONS, ShapeField, ShapeRegion, regions, size};
+use super::{REGIONS, ShapeField, ShapeRegion, size};
 
 impl ShapeField {
     /// Every region at its full move (its curve whole, before the old age): the GLB's
@@ -21,7 +21,7 @@ impl ShapeField {
     /// The weights of [`Self::whole`] and [`Self::old_age`] that stand for `years` as two
     /// morph targets: the first the curves' share (the displacement's size at that age
     /// before the old age, over the whole move's: exact when the regions' curves agree,
-    /// 1 once every curve is whole), the second [`regions::old_age_share`] (exact: the
+    /// 1 once every curve is whole), the second [`crate::age::old_age_share`] (exact: the
     /// gain rises alike in every region).
     pub fn morph_weights(&self, years: f32) -> [f32; 2] {
         let whole = size(&self.whole());
@@ -34,6 +34,6 @@ impl ShapeField {
         } else {
             (size(&self.weighted(&curves)) / whole) as f32
         };
-        [age, regions::old_age_share(years)]
+        [age, crate::age::old_age_share(years)]
     }
 }

@@ -13,24 +13,23 @@ pub(super) const fn curve(onset: f32, full: f32) -> AgeCurve {
 }
 
 /// How far past its full move a region of volume and sag goes in old age
-/// (docs/models.md §13 "Old age"): its millimetres times this from [`crate::age::LATE_END_YEARS`] on
-/// (`ShapeRegion::late`). The facial skeleton keeps receding after 65 (Shaw et al. 2011's
+/// (docs/models.md §13 "Old age"): its millimetres times this from
+/// [`crate::age::LATE_END_YEARS`] on (`ShapeRegion::late`). The facial skeleton keeps receding after 65 (Shaw et al. 2011's
 /// oldest group) and the soft tissue over it follows: a shape whole at 75 and still after
 /// it read blind as 68–76 at 85 on four of seven heads (rounds 28–36).
 pub const LATE_GAIN: f32 = 1.5;
 
-pub use crate::age::old_age_share;
-
 impl ShapeRegion {
     /// The share of its full move at `years`: its curve times its old-age gain, 1 up to
-    /// [`crate::age::LATE_START_YEARS`] and [`Self::late`] from [`crate::age::LATE_END_YEARS`] on, a smoothstep
-    /// between (1.13 at 80, 1.37 at 85 for a gain of 1.5).
+    /// [`crate::age::LATE_START_YEARS`] and [`Self::late`] from
+    /// [`crate::age::LATE_END_YEARS`] on, a smoothstep between (1.13 at 80, 1.37 at 85 for
+    /// a gain of 1.5).
     pub fn factor(&self, years: f32) -> f32 {
         let curve = self.curve.factor(years);
         if self.late == 1.0 {
             return curve;
         }
-        curve * (1.0 + (self.late - 1.0) * old_age_share(years))
+        curve * (1.0 + (self.late - 1.0) * crate::age::old_age_share(years))
     }
 
     /// Each region's oldest share ([`Self::late`]), in [`REGIONS`] order.
@@ -338,8 +337,8 @@ pub const REGIONS: [ShapeRegion; 11] = [
         // African heads' full lower lips read, blind, as "thick and youthful", round 40).
         // Without it the panel heads' lips read, blind, as "as full as at 25". Rising
         // 1.6 × the region's descent (1 ×: 2 mm on the African man's 19 mm lower lip, "lips
-        // still full", "a thick lower lip" on the African heads, rounds 44–49). Both lips' red, the slit between them, move back together as their
-        // support recedes (a full lower lip, deflated only below its front, read, blind,
+        // still full", "a thick lower lip" on the African heads, rounds 44–49). Both lips'
+        // red, the slit between them, move back together as their support recedes (a full lower lip, deflated only below its front, read, blind,
         // as "full, pouting lips that jut forward in profile" on the African heads,
         // rounds 28–29): a blob over the reds that neither descends nor deflates.
         blobs: &[

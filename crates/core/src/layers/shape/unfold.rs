@@ -96,7 +96,8 @@ pub fn unfold(
     // The active vertices, in the order they became so (the relaxation does not depend on
     // the order; the growth goes in vertex order).
     let mut ring: Vec<usize> = Vec::new();
-    // The folds (by their seed) that still fold this pass.
+    // The folds (by their seed) that still fold this pass (set from the pass's folded
+    // corners and cleared from them again, not over every vertex: a dense head's passes).
     let mut live_seed = vec![false; n];
     // Every vertex the spread has moved.
     let mut ever = vec![false; n];
@@ -177,7 +178,6 @@ pub fn unfold(
             // fold again). On the scan split three times two thirds of the ring had no
             // fold left by the 8th pass and were relaxed for 120 more.
             ring.iter().for_each(|&v| ever[v] = true);
-            live_seed.iter_mut().for_each(|l| *l = false);
             for &v in &bad {
                 if let Some(l) = live_seed.get_mut(seed[v]) {
                     *l = true;
@@ -188,6 +188,11 @@ pub fn unfold(
                 active[v] = keep;
                 keep
             });
+            for &v in &bad {
+                if let Some(l) = live_seed.get_mut(seed[v]) {
+                    *l = false;
+                }
+            }
             // Each active vertex takes the mean of its neighbours' move, half way, more
             // sweeps as the passes go on (a wide fold on a dense head needs many).
             let sweeps = (1 + pass / 4).min(MAX_SWEEPS);

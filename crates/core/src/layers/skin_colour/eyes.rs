@@ -207,9 +207,10 @@ fn shade_width(radius: f32, opening: f32) -> f32 {
 /// skin's triangles), a little above it (the pupil lies nearer the upper lid than the
 /// lower: MRD1 about 4 mm, MRD2 about 5.5 mm), at most [`GAZE_MOST`] from straight ahead;
 /// straight ahead (+z) where no skin lies round the ball or the lids leave less than
-/// [`GAZE_SAMPLES_LEAST`] of the front open. A helper eyeball that a head's shape moved away from (the panel's African man's
-/// sits 2.5 mm above his lids' opening) looked at its own +z: its iris hid under the upper
-/// lid, and with the lids' age under it whole, read blind as "bright white eye slits".
+/// [`GAZE_SAMPLES_LEAST`] of the front open. A helper eyeball that a head's shape moved
+/// away from (the panel's African man's sits 2.5 mm above his lids' opening) looked at its
+/// own +z: its iris hid under the upper lid, and with the lids' age under it whole, read
+/// blind as "bright white eye slits".
 fn gaze(centre: Vec3, radius: f32, positions: &[Vec3], skin: &[u32]) -> (Vec3, Vec3, Vec3) {
     let straight = (Vec3::Z, Vec3::X, Vec3::Y);
     let reach = GAZE_LID_REACH * radius;
@@ -218,7 +219,9 @@ fn gaze(centre: Vec3, radius: f32, positions: &[Vec3], skin: &[u32]) -> (Vec3, V
         .filter_map(|t| {
             let p = [0, 1, 2].map(|k| positions.get(t[k] as usize).copied());
             let p = [p[0]?, p[1]?, p[2]?];
-            p.iter().any(|q| q.distance(centre) < reach).then_some(p)
+            // Only skin in front of the ball's middle can cover its front.
+            (p.iter().any(|q| q.distance(centre) < reach) && p.iter().any(|q| q.z > centre.z))
+                .then_some(p)
         })
         .collect();
     if near.is_empty() {

@@ -487,6 +487,12 @@ impl PaintedHair<'_> {
 
 /// What ages every texel alike at one age: the settings, the factors and the tints made
 /// from them, the spots that show.
+/// A figure given for light skin and for dark skin (`(light, dark)`), between them by the
+/// skin's darkness round the texel (`dark`, 0–1, by [`DARK_SKIN_LUM`]).
+fn on_skin((light, dark_skin): (f32, f32), dark: f32) -> f32 {
+    light + (dark_skin - light) * dark
+}
+
 struct Look<'a> {
     settings: &'a ColourSettings,
     factors: &'a ColourFactors,
@@ -528,7 +534,7 @@ impl Look<'_> {
         // thinner lips; faded evenly they read, blind, as "paler but barely thinner").
         let lips = CONTRAST_LIPS * lips + LIP_THINNING * from_unit(f.lip_rim);
         let dark = 1.0 - smoothstep(DARK_SKIN_LUM.0, DARK_SKIN_LUM.1, lum(reference));
-        let fade_brows = CONTRAST_BROWS.0 + (CONTRAST_BROWS.1 - CONTRAST_BROWS.0) * dark;
+        let fade_brows = on_skin(CONTRAST_BROWS, dark);
         let fade = s.contrast_loss * a.contrast * (fade_brows * brows).max(lips);
         c = c.lerp(reference, fade.clamp(0.0, 1.0));
         // The stubble grays with the hair: gray stubble on pale skin casts no shadow, so
@@ -592,12 +598,9 @@ impl Look<'_> {
             // the white.
             // On dark skin, of the skin's hue more than the gray's (the gray's blue-gray
             // over dark skin read blind as "a blue-grey smear above the brow", round 45).
-            let skin_share =
-                BROW_GRAY_SKIN_HUE.0 + (BROW_GRAY_SKIN_HUE.1 - BROW_GRAY_SKIN_HUE.0) * dark;
+            let skin_share = on_skin(BROW_GRAY_SKIN_HUE, dark);
             let target = self.gray.lerp(reference, skin_share) * (0.75 + 0.25 * draw);
-            let over =
-                BROW_GRAY_OVER_SKIN.0 + (BROW_GRAY_OVER_SKIN.1 - BROW_GRAY_OVER_SKIN.0) * dark;
-            let most = over * lum(reference);
+            let most = on_skin(BROW_GRAY_OVER_SKIN, dark) * lum(reference);
             let target = target * (most / lum(target).max(1e-4)).min(1.0);
             c = c.lerp(target, (BROW_TEXEL_GRAY * hair * gray_hair).clamp(0.0, 1.0));
         }
@@ -640,7 +643,7 @@ impl Look<'_> {
         // dark papules only there.
         let spots = self.grid.darkness(p, self.spot_key);
         for (k, kind) in SPOT_KINDS.iter().enumerate() {
-            let shows = kind.shows.0 + (kind.shows.1 - kind.shows.0) * dark;
+            let shows = on_skin(kind.shows, dark);
             let spot = spots[k] * shows * s.spot_strength;
             if spot > 0.0 {
                 c *= Vec3::ONE - Vec3::from(kind.tint) * spot.min(1.0);

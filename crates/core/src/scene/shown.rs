@@ -92,9 +92,10 @@ impl Scene {
 
     /// The hair's disappearance age per texel at `width × height`
     /// ([`crate::layers::hair::scalp::hair_age_alpha`]) of the last transition texture, in the
-    /// pattern of hair loss: nothing recedes in the female pattern or none (the haired
+    /// pattern of hair loss: the hairline is kept in the female pattern or none (the haired
     /// texels from the kept hairline on, ramping to 255 over 0.3 of the male pattern's
-    /// ages). `None` without hair or a transition texture. Kept per size.
+    /// ages; the female temples' small recession is the strands' alone). `None` without
+    /// hair or a transition texture. Kept per size.
     pub(super) fn hair_alpha_at(&mut self, width: u32, height: u32) -> Option<Arc<Vec<u8>>> {
         let transition = self
             .transition

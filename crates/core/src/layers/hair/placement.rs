@@ -186,21 +186,22 @@ impl Corners {
         if texture_age <= 0.0 {
             return None;
         }
+        let nrm = &self.normal;
+        let mut normal = (nrm[0] * b0 + nrm[1] * r1 + nrm[2] * r2).normalize_or_zero();
+        if normal == Vec3::ZERO {
+            normal = self.face_normal;
+        }
         let site = Site {
             transition,
             uv: uv_k,
             mm_per_texel: self.mm_per_texel,
             params,
             texture_age,
+            facing_side: normal.x.abs(),
         };
         let mm = (p[0] * b0 + p[1] * r1 + p[2] * r2) * (params.metres_per_unit * 1e3);
         let (age, length) = site.age_and_length(draws, mm)?;
         let position = p[0] * b0 + p[1] * r1 + p[2] * r2;
-        let nrm = &self.normal;
-        let mut normal = (nrm[0] * b0 + nrm[1] * r1 + nrm[2] * r2).normalize_or_zero();
-        if normal == Vec3::ZERO {
-            normal = self.face_normal;
-        }
         // Uniform over the spherical cap around the normal.
         let cos_theta = 1.0 - draws.cone_u * (1.0 - cos_max);
         let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
@@ -243,6 +244,9 @@ pub(super) struct Site<'a> {
     params: &'a HairParams,
     /// The texture's age there (> 0: hair grows there at t = 0).
     texture_age: f32,
+    /// How far the scalp there faces sideways: |x| of its normal (the head's ±X to the
+    /// sides).
+    facing_side: f32,
 }
 
 impl Site<'_> {
@@ -333,11 +337,12 @@ impl Site<'_> {
         Some((age, length))
     }
 
-    /// The hair's disappearance age and length where nothing recedes (the female pattern,
-    /// or none: docs/models.md §9 "Hair loss"): every hair stays until the thinning takes
-    /// it; in the female pattern the crown (the male pattern's receding region, less the
-    /// band along the hairline) thins most and the sides, back and hairline less. The
-    /// taper and the sparser edge as in the male pattern. `None`: the edge thins it out.
+    /// The hair's disappearance age and length where the hairline is kept (the female
+    /// pattern, or none: docs/models.md §9 "Hair loss"): every hair stays until the
+    /// thinning takes it; in the female pattern the crown (the male pattern's receding
+    /// region, less the band along the hairline) thins most and the sides, back and
+    /// hairline less, and the temples recede a little ([`female_recession`]). The taper and
+    /// the sparser edge as in the male pattern. `None`: the edge thins it out.
     fn kept_and_thinned(&self, draws: &Draws) -> Option<(f32, f32)> {
         let params = self.params;
         if self.texture_age < KEPT_HAIRLINE_T {
@@ -375,6 +380,10 @@ impl Site<'_> {
         let mut age = 1.0f32;
         if draws.thin < thinning {
             age = THINNING_FROM + (1.0 - THINNING_FROM) * draws.thin / thinning;
+        }
+        if params.loss == HairLoss::Female && bare < HAIRLINE_KEPT_MM {
+            let temple = smoothstep(FEMALE_TEMPLE_SIDE.0, FEMALE_TEMPLE_SIDE.1, self.facing_side);
+            age = age.min(female_recession(self.texture_age, draws.spread, temple));
         }
         Some((age.max(1e-3), length))
     }

@@ -134,7 +134,7 @@ pub(super) fn rows() -> Vec<Field> {
         k(
             id!(hair.loss),
             Kind::OptChoice(&crate::layers::hair::HairLoss::NAMES),
-            "the pattern of hair loss with age: male (receding temples, bald crown), female (diffuse thinning over the crown, hairline kept), none; null = guessed from the face's proportions",
+            "the pattern of hair loss with age: male (receding temples, bald crown), female (diffuse thinning over the crown, the frontal hairline kept, the temples receding a little), none; null = guessed from the face's proportions",
         ),
         k(
             id!(hair.curl),

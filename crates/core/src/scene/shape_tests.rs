@@ -461,3 +461,67 @@ fn what_does_not_fold_keeps_its_move() {
         "{found:?}"
     );
 }
+
+/// A dense head ages as much as a coarse one of the same shape (docs/models.md §13 "A dense
+/// head"): the template split twice (262k triangles, settled on its stand-in) moves as many
+/// vertices by more than 1 mm at full age as the template split once (66k, settled whole),
+/// within a fifth (settled whole, the split-twice head moved 0.59 × as many: the cuts on
+/// its fine triangles took the temples and the mid-face), and no triangle of it turns by
+/// more than the unfolding's limit at full age, at 100 years or at 60.
+#[test]
+fn a_dense_head_keeps_its_aged_shape() {
+    let dir = tempfile::tempdir().unwrap();
+    let template = crate::head::fit::template();
+    let once = crate::test_util::subdivided(&template.mesh, "scan-once");
+    let landmarks_file = dir.path().join("scan.landmarks.json");
+    std::fs::write(&landmarks_file, template.landmarks.to_json_pretty()).unwrap();
+    let mut shares = Vec::new();
+    for (name, mesh) in [
+        (
+            "once",
+            subdivided_obj(dir.path(), &template.mesh, "scan-once"),
+        ),
+        ("twice", subdivided_obj(dir.path(), &once, "scan-twice")),
+    ] {
+        let mut p = Project::default();
+        p.mesh.path = Some(mesh);
+        p.mesh.landmarks = Some(landmarks_file.clone().into());
+        p.pores.enabled = false;
+        p.furrows.enabled = false;
+        let mut scene = Scene::new(p).unwrap();
+        let field = scene.shape_field().unwrap();
+        let mesh = scene.mesh().clone();
+        let triangles = mesh.triangle_count();
+        let mm = 1e-3 / scene.metres_per_unit();
+        let full = field.full();
+        let share = full.iter().filter(|d| d.length() > mm).count() as f32 / full.len() as f32;
+        shares.push((name, triangles, share));
+        let edge_mm = crate::head::fit::proxy::mean_edge(mesh.positions(), mesh.indices()) / mm;
+        let on_stand_in = crate::layers::shape::settles_on_stand_in(edge_mm);
+        assert_eq!(
+            on_stand_in,
+            name == "twice",
+            "{name}: mean edge {edge_mm:.2} mm"
+        );
+        if name == "twice" {
+            for (what, moves) in [
+                ("full age", full),
+                ("100 years", field.at(100.0)),
+                ("60 years", field.at(60.0)),
+            ] {
+                let (worst, flipped) = crate::layers::shape::unfold::worst_turn(
+                    mesh.positions(),
+                    mesh.indices(),
+                    &moves,
+                );
+                assert!(
+                    flipped == 0 && worst <= crate::layers::shape::unfold::MAX_TURN_DEG + 0.5,
+                    "{what}: worst turn {worst:.1}°, {flipped} over 90°"
+                );
+            }
+        }
+    }
+    println!("(head, triangles, share moving over 1 mm): {shares:?}");
+    let (once, twice) = (shares[0].2, shares[1].2);
+    assert!(once > 0.05 && twice >= 0.8 * once, "{shares:?}");
+}

@@ -351,15 +351,22 @@ impl ShapeField {
             })
             .collect();
         let smooth = smooth_normals(mesh.positions(), mesh.indices());
-        settle::settle(
-            mesh,
-            &welded,
-            &smooth,
-            &mut full,
-            &points,
-            mm,
-            own.as_ref().map(|own| own.pairs.as_slice()),
-        );
+        let (positions, indices) = (mesh.positions(), mesh.indices());
+        // A dense head is settled on a coarser stand-in ([`coarse`]).
+        if !coarse::settle(
+            positions, indices, &welded, &skin, &smooth, &mut full, &points, mm,
+        ) {
+            settle::settle(
+                positions,
+                indices,
+                &welded,
+                &smooth,
+                &mut full,
+                &points,
+                mm,
+                own.as_ref().map(|own| own.pairs.as_slice()),
+            );
+        }
         // The cuts, made vertex by vertex in turn, are not quite alike on the two sides of
         // a symmetric head (0.7 mm on the East Asian man): made mirror images once more.
         if let Some(own) = &own {
@@ -497,6 +504,7 @@ fn size(d: &[Vec3]) -> f64 {
 
 pub mod anatomy;
 pub mod clearance;
+mod coarse;
 mod facing;
 mod mirrored;
 mod morph;
@@ -509,5 +517,6 @@ mod symmetry;
 mod tests;
 pub mod unfold;
 
+pub use coarse::{COARSE_CUBE_MM, settles_on_stand_in};
 pub use facing::{SKULL_CENTRE, facing_out};
 pub use picture::{movement_mm, uv_picture};

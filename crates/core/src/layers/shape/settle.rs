@@ -6,7 +6,6 @@
 use glam::Vec3;
 
 use super::{REGIONS, ShapeRegion, clearance, symmetry, unfold};
-use crate::head::mesh::Mesh;
 
 /// Turns of keeping the skin clear of the skin and unfolding it (each can undo a little
 /// of the other).
@@ -21,14 +20,17 @@ const MIRROR_TOLERANCE: f32 = 0.1;
 /// are longer.
 const EVEN_SMOOTH_MM: f32 = 2.0;
 
-/// Settles the regions' full displacements `full` (per region, per vertex of `mesh`, the
-/// vertices at one position `welded` together) on the head: `smooth` its smooth normals,
+/// Settles the regions' full displacements `full` (per region, per vertex of the mesh of
+/// `positions` and `indices`, the vertices at one position `welded` together) on the head:
+/// `smooth` its smooth normals,
 /// `points` each vertex's place in the face frame (for its mirror image; `None` off the
 /// template or not the first at its position), `mm` a millimetre in the head's units,
 /// `own_pairs` the head's own mirror pairs where it is its own mirror image
 /// ([`symmetry::head_mirror`]), which then even the cuts out instead.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn settle(
-    mesh: &Mesh,
+    positions: &[Vec3],
+    indices: &[u32],
     welded: &[u32],
     smooth: &[Vec3],
     full: &mut [Vec<Vec3>],
@@ -36,20 +38,14 @@ pub(super) fn settle(
     mm: f32,
     own_pairs: Option<&[Option<u32>]>,
 ) {
-    let n = mesh.vertex_count();
+    let n = positions.len();
     let uncut: Vec<Vec3> = (0..n).map(|v| full.iter().map(|f| f[v]).sum()).collect();
     // No skin moves through the skin in front of it (docs/models.md §13 "No skin
     // through skin"), its own surface ignored within 0.2 mm, and no triangle folds
     // over, at the oldest (the exported morph target, every region at its old-age share) or at
-    // any age between (§13 "No
-    // folded skin"): each spreads or shortens what the other did, so they take turns.
-    let checks: Vec<Vec<f32>> = std::iter::once(ShapeRegion::oldest().to_vec())
-        .chain((6..=20).map(|k| {
-            let years = 5.0 * k as f32;
-            REGIONS.iter().map(|r| r.factor(years)).collect()
-        }))
-        .collect();
-    let (positions, indices) = (mesh.positions(), mesh.indices());
+    // any age between (§13 "No folded skin"): each spreads or shortens what the other
+    // did, so they take turns.
+    let checks = fold_checks();
     let mut caps = vec![f32::INFINITY; n];
     let moves = full.iter().any(|f| f.iter().any(|d| *d != Vec3::ZERO));
     let bvh = if moves {
@@ -103,6 +99,40 @@ pub(super) fn settle(
             }
         }
     }
+}
+
+/// The region factors under which no triangle may fold: the oldest (the exported morph
+/// target, every region at its old-age share), and every 5 years from 30 to 100.
+fn fold_checks() -> Vec<Vec<f32>> {
+    std::iter::once(ShapeRegion::oldest().to_vec())
+        .chain((6..=20).map(|k| {
+            let years = 5.0 * k as f32;
+            REGIONS.iter().map(|r| r.factor(years)).collect()
+        }))
+        .collect()
+}
+
+/// Unfolds `full` on the mesh of `positions` and `indices` (vertices `welded` as in
+/// [`settle`]) under the same checks, nothing in front of the skin: what a dense head's
+/// shape, settled on its stand-in ([`super::coarse`]), still folds on its own finer
+/// triangles. Returns the number of vertices changed.
+pub(super) fn unfold_only(
+    positions: &[Vec3],
+    indices: &[u32],
+    welded: &[u32],
+    full: &mut [Vec<Vec3>],
+    mm: f32,
+) -> usize {
+    let caps = vec![f32::INFINITY; positions.len()];
+    unfold::unfold(
+        positions,
+        indices,
+        welded,
+        full,
+        &fold_checks(),
+        &caps,
+        unfold::SPREAD_REACH_MM * mm,
+    )
 }
 
 /// Passes of neighbour smoothing that reach about `reach` (mesh units) over the mesh of

@@ -25,7 +25,10 @@ pub struct Proxy {
     pub cluster_of_vertex: Vec<u32>,
     /// The cubes' side, mesh units.
     pub cube: f32,
-    cluster_of_cube: CubeMap<u32>,
+    /// Each cluster's kind ([`clustered`]'s `kinds`: two kinds never share a cluster).
+    pub kind: Vec<bool>,
+    /// The clusters by cube, one map per kind.
+    cluster_of_cube: [CubeMap<u32>; 2],
 }
 
 /// The proxy of the skin triangles `skin` (three indices each) of `positions`; `None`
@@ -47,13 +50,27 @@ pub fn of_triangles(positions: &[Vec3], skin: &[u32], target: usize) -> Option<P
     if !(cube.is_finite() && cube > 0.0) {
         return None;
     }
+    Some(clustered(positions, skin, cube, None))
+}
+
+/// The triangles `triangles` (three indices each) of `positions` clustered in cubes of
+/// side `cube`: each cube's vertices merged at their mean, the triangles whose corners fall
+/// in three clusters kept. With `kinds` (one per vertex), vertices of the two kinds never
+/// share a cluster (a dense head's skin and its eyeballs: [`crate::layers::shape`]).
+pub fn clustered(
+    positions: &[Vec3],
+    triangles: &[u32],
+    cube: f32,
+    kinds: Option<&[bool]>,
+) -> Proxy {
     // Clusters numbered in the order their first vertex is met: the same proxy on any
     // machine.
-    let mut cluster_of_cube: CubeMap<u32> = CubeMap::default();
+    let mut cluster_of_cube: [CubeMap<u32>; 2] = Default::default();
     let mut cluster_of_vertex = vec![u32::MAX; positions.len()];
     let mut sums: Vec<(Vec3, u32)> = Vec::new();
-    let mut indices = Vec::with_capacity(skin.len() / 2);
-    for t in skin.chunks_exact(3) {
+    let mut kind = Vec::new();
+    let mut indices = Vec::with_capacity(triangles.len() / 2);
+    for t in triangles.chunks_exact(3) {
         let mut corner = [0u32; 3];
         let mut ok = true;
         for (k, &v) in t.iter().enumerate() {
@@ -63,11 +80,16 @@ pub fn of_triangles(positions: &[Vec3], skin: &[u32], target: usize) -> Option<P
             };
             let known = &mut cluster_of_vertex[v as usize];
             if *known == u32::MAX {
-                let key = cube_of(p, cube);
+                let of_kind = kinds
+                    .and_then(|k| k.get(v as usize).copied())
+                    .unwrap_or(false);
                 let next = sums.len() as u32;
-                let c = *cluster_of_cube.entry(key).or_insert(next);
+                let c = *cluster_of_cube[usize::from(of_kind)]
+                    .entry(cube_of(p, cube))
+                    .or_insert(next);
                 if c == next {
                     sums.push((Vec3::ZERO, 0));
+                    kind.push(of_kind);
                 }
                 sums[c as usize].0 += p;
                 sums[c as usize].1 += 1;
@@ -79,13 +101,14 @@ pub fn of_triangles(positions: &[Vec3], skin: &[u32], target: usize) -> Option<P
             indices.extend_from_slice(&corner);
         }
     }
-    Some(Proxy {
+    Proxy {
         positions: sums.iter().map(|&(s, n)| s / n as f32).collect(),
         indices,
         cluster_of_vertex,
         cube,
+        kind,
         cluster_of_cube,
-    })
+    }
 }
 
 /// The mean edge of the triangles `triangles` (three indices each) of `positions`, over
@@ -117,10 +140,8 @@ impl Proxy {
     }
 
     /// A value of each cluster (`values`, with its `normals`) carried to the mesh's
-    /// vertices at `positions` with their `normals`: the clusters of the 27 cubes around
-    /// the vertex weighted by a tent of 1.5 cubes over their distance and by how alike
-    /// they face (a lip takes nothing from the lip it touches), so the values change
-    /// smoothly over the cubes. A vertex no cluster reaches takes its own cluster's.
+    /// vertices at `positions` with their `normals` ([`Proxy::weights`]). A vertex no
+    /// cluster reaches takes its own cluster's.
     pub fn spread(
         &self,
         values: &[f32],
@@ -129,7 +150,6 @@ impl Proxy {
         vertex_normals: &[Vec3],
     ) -> Vec<f32> {
         use rayon::prelude::*;
-        let radius = 1.5 * self.cube;
         (0..positions.len())
             .into_par_iter()
             .map(|v| {
@@ -137,27 +157,57 @@ impl Proxy {
                 let Some(&fallback) = values.get(own as usize) else {
                     return 1.0;
                 };
-                let (p, n) = (positions[v], vertex_normals[v]);
-                let home = (p / self.cube).floor().as_ivec3();
-                let (mut sum, mut weight) = (0.0f32, 0.0f32);
-                for z in -1..=1 {
-                    for y in -1..=1 {
-                        for x in -1..=1 {
-                            let key = (home + glam::IVec3::new(x, y, z)).to_array();
-                            let Some(&c) = self.cluster_of_cube.get(&key) else {
-                                continue;
-                            };
-                            let c = c as usize;
-                            let near = (1.0 - self.positions[c].distance(p) / radius).max(0.0);
-                            let w = near * near * normals[c].dot(n).max(0.0);
-                            sum += w * values[c];
-                            weight += w;
-                        }
-                    }
+                let (weights, count, total) =
+                    self.weights(positions[v], vertex_normals[v], own, normals);
+                if total > 0.0 {
+                    let sum: f32 = weights[..count]
+                        .iter()
+                        .map(|&(c, w)| w * values[c as usize])
+                        .sum();
+                    sum / total
+                } else {
+                    fallback
                 }
-                if weight > 0.0 { sum / weight } else { fallback }
             })
             .collect()
+    }
+
+    /// How much each cluster round a point `p` with normal `n` (of the cluster `own`'s
+    /// kind) counts in a value carried to it from the clusters (their `normals`): the
+    /// clusters of that kind in the 27 cubes round it, each by a tent of 1.5 cubes over its
+    /// distance and by how alike it faces (a lip takes nothing from the lip it touches), so
+    /// the value changes smoothly over the cubes. The weights, how many, and their sum
+    /// (0: none reaches).
+    pub fn weights(
+        &self,
+        p: Vec3,
+        n: Vec3,
+        own: u32,
+        normals: &[Vec3],
+    ) -> ([(u32, f32); 27], usize, f32) {
+        let radius = 1.5 * self.cube;
+        let kind = usize::from(self.kind.get(own as usize).copied().unwrap_or(false));
+        let home = (p / self.cube).floor().as_ivec3();
+        let mut weights = [(0u32, 0.0f32); 27];
+        let (mut count, mut total) = (0, 0.0f32);
+        for z in -1..=1 {
+            for y in -1..=1 {
+                for x in -1..=1 {
+                    let key = (home + glam::IVec3::new(x, y, z)).to_array();
+                    let Some(&c) = self.cluster_of_cube[kind].get(&key) else {
+                        continue;
+                    };
+                    let near = (1.0 - self.positions[c as usize].distance(p) / radius).max(0.0);
+                    let w = near * near * normals[c as usize].dot(n).max(0.0);
+                    if w > 0.0 {
+                        weights[count] = (c, w);
+                        count += 1;
+                        total += w;
+                    }
+                }
+            }
+        }
+        (weights, count, total)
     }
 }
 

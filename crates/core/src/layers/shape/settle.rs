@@ -22,9 +22,9 @@ const EVEN_SMOOTH_MM: f32 = 2.0;
 
 /// Settles the regions' full displacements `full` (per region, per vertex of the mesh of
 /// `positions` and `indices`, the vertices at one position `welded` together) on the head:
-/// `smooth` its smooth normals,
-/// `points` each vertex's place in the face frame (for its mirror image; `None` off the
-/// template or not the first at its position), `mm` a millimetre in the head's units,
+/// `smooth` its smooth normals, `points` each vertex's place in the face frame (for its
+/// mirror image; `None` off the template or not the first at its position), `mm` a
+/// millimetre in the head's units,
 /// `own_pairs` the head's own mirror pairs where it is its own mirror image
 /// ([`symmetry::head_mirror`]), which then even the cuts out instead.
 #[allow(clippy::too_many_arguments)]

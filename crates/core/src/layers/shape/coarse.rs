@@ -64,11 +64,11 @@ fn gather_points(proxy: &Proxy, points: &[Option<Vec3>]) -> Vec<Option<Vec3>> {
         .collect()
 }
 
-/// Sets `full` (per region, per vertex of the head at `positions` with its normals
-/// `vertex_normals`, the vertices at one position `welded` together) from the clusters'
-/// `moves` (per region, per cluster of `proxy`; their normals `normals`), each vertex by
-/// [`Proxy::weights`], its own cluster's where none reaches.
-fn spread(
+/// Adds to `full` (per region, per vertex of the head at `positions` with its normals
+/// `vertex_normals`, the vertices at one position `welded` together) the clusters'
+/// `moves` (per region, per cluster of `proxy`; their normals `normals`) carried to each
+/// vertex by [`Proxy::weights`], its own cluster's where none reaches.
+fn add_spread(
     proxy: &Proxy,
     moves: &[Vec<Vec3>],
     normals: &[Vec3],
@@ -106,8 +106,10 @@ fn spread(
             }
         });
     for (r, f) in full.iter_mut().enumerate() {
-        for v in 0..f.len() {
-            f[v] = out[welded[v] as usize * regions + r];
+        if moved[r] {
+            for v in 0..f.len() {
+                f[v] += out[welded[v] as usize * regions + r];
+            }
         }
     }
 }
@@ -153,21 +155,7 @@ pub(super) fn settle(
         .zip(&before)
         .map(|(a, b)| a.iter().zip(b).map(|(a, b)| *a - *b).collect())
         .collect();
-    let mut carried: Vec<Vec<Vec3>> = full.iter().map(|f| vec![Vec3::ZERO; f.len()]).collect();
-    spread(
-        &coarse,
-        &change,
-        &normals,
-        positions,
-        smooth,
-        welded,
-        &mut carried,
-    );
-    for (f, c) in full.iter_mut().zip(&carried) {
-        for (f, c) in f.iter_mut().zip(c) {
-            *f += *c;
-        }
-    }
+    add_spread(&coarse, &change, &normals, positions, smooth, welded, full);
     // Each round of unfolding can leave a fold next to one it spread (a few hundred
     // vertices of the scan split three times after the first).
     for _ in 0..UNFOLD_ROUNDS {

@@ -60,17 +60,10 @@ impl Bvh {
         )
     }
 
-    /// Builds the tree over `(triangle index, corners)` pairs.
+    /// Builds the tree over `(triangle index, corners)` pairs (its upper levels' halves
+    /// side by side: the same tree on any number of threads).
     pub fn from_triangles(mut tris: Vec<(u32, [Vec3; 3])>) -> Self {
-        let mut nodes = Vec::with_capacity(2 * tris.len() / LEAF + 1);
-        nodes.push(Node {
-            min: Vec3::ZERO,
-            max: Vec3::ZERO,
-            start: 0,
-            count: 0,
-        });
-        let len = tris.len();
-        build(&mut nodes, 0, &mut tris, 0, len);
+        let nodes = build_par(&mut tris, 0, PAR_DEPTH);
         Self {
             nodes,
             corners: tris.iter().map(|t| t.1).collect(),
@@ -208,7 +201,71 @@ pub fn ray_triangle(origin: Vec3, dir: Vec3, [a, b, c]: [Vec3; 3]) -> Option<f32
     Some(e2.dot(q) * inv)
 }
 
-fn build(nodes: &mut Vec<Node>, at: usize, tris: &mut [(u32, [Vec3; 3])], lo: usize, hi: usize) {
+/// How many of the tree's upper levels build their two halves side by side, and the
+/// fewest triangles worth it.
+const PAR_DEPTH: u32 = 6;
+const PAR_MIN: usize = 1 << 14;
+
+const EMPTY: Node = Node {
+    min: Vec3::ZERO,
+    max: Vec3::ZERO,
+    start: 0,
+    count: 0,
+};
+
+/// The nodes of the subtree over `tris` (its root first), their leaves' slots `offset`
+/// on: [`build`]'s tree, the two halves of its upper `depth` levels built side by side
+/// and laid out after the root's two children.
+fn build_par(tris: &mut [(u32, [Vec3; 3])], offset: usize, depth: u32) -> Vec<Node> {
+    let len = tris.len();
+    if depth == 0 || len < PAR_MIN {
+        let mut nodes = Vec::with_capacity(2 * len / LEAF + 1);
+        nodes.push(EMPTY);
+        build(&mut nodes, 0, tris, 0, len);
+        for node in &mut nodes {
+            if node.count > 0 {
+                node.start += offset as u32;
+            }
+        }
+        return nodes;
+    }
+    let (min, max, mid) = split(tris, 0, len);
+    let Some(mid) = mid else {
+        unreachable!("{len} triangles are more than a leaf");
+    };
+    let (left, right) = tris.split_at_mut(mid);
+    let (l, r) = rayon::join(
+        || build_par(left, offset, depth - 1),
+        || build_par(right, offset + mid, depth - 1),
+    );
+    // [root, left root, right root, left's others, right's others]: a subtree's node j
+    // ≥ 1 goes to `base + j - 1`.
+    let (base_l, base_r) = (3, 3 + l.len() - 1);
+    let moved = |node: Node, base: usize| Node {
+        start: if node.count > 0 {
+            node.start
+        } else {
+            (base + node.start as usize - 1) as u32
+        },
+        ..node
+    };
+    let mut nodes = Vec::with_capacity(1 + l.len() + r.len());
+    nodes.push(Node {
+        min,
+        max,
+        start: 1,
+        count: 0,
+    });
+    nodes.push(moved(l[0], base_l));
+    nodes.push(moved(r[0], base_r));
+    nodes.extend(l[1..].iter().map(|&n| moved(n, base_l)));
+    nodes.extend(r[1..].iter().map(|&n| moved(n, base_r)));
+    nodes
+}
+
+/// The bounds of `tris[lo..hi]` and, when they are more than a leaf, where they split:
+/// reordered about the median centroid along the longest axis of the centroids' box.
+fn split(tris: &mut [(u32, [Vec3; 3])], lo: usize, hi: usize) -> (Vec3, Vec3, Option<usize>) {
     let (mut min, mut max) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
     for (_, t) in &tris[lo..hi] {
         for p in t {
@@ -217,15 +274,8 @@ fn build(nodes: &mut Vec<Node>, at: usize, tris: &mut [(u32, [Vec3; 3])], lo: us
         }
     }
     if hi - lo <= LEAF {
-        nodes[at] = Node {
-            min,
-            max,
-            start: lo as u32,
-            count: (hi - lo) as u32,
-        };
-        return;
+        return (min, max, None);
     }
-    // Split at the median centroid along the longest axis of the centroids' box.
     let centroid = |t: &[Vec3; 3]| (t[0] + t[1] + t[2]) / 3.0;
     let (mut cmin, mut cmax) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
     for (_, t) in &tris[lo..hi] {
@@ -244,15 +294,23 @@ fn build(nodes: &mut Vec<Node>, at: usize, tris: &mut [(u32, [Vec3; 3])], lo: us
     tris[lo..hi].select_nth_unstable_by(mid - lo, |a, b| {
         centroid(&a.1)[axis].total_cmp(&centroid(&b.1)[axis])
     });
-    let left = nodes.len();
-    let empty = Node {
-        min: Vec3::ZERO,
-        max: Vec3::ZERO,
-        start: 0,
-        count: 0,
+    (min, max, Some(mid))
+}
+
+fn build(nodes: &mut Vec<Node>, at: usize, tris: &mut [(u32, [Vec3; 3])], lo: usize, hi: usize) {
+    let (min, max, mid) = split(tris, lo, hi);
+    let Some(mid) = mid else {
+        nodes[at] = Node {
+            min,
+            max,
+            start: lo as u32,
+            count: (hi - lo) as u32,
+        };
+        return;
     };
-    nodes.push(empty);
-    nodes.push(empty);
+    let left = nodes.len();
+    nodes.push(EMPTY);
+    nodes.push(EMPTY);
     nodes[at] = Node {
         min,
         max,
@@ -313,6 +371,33 @@ pub fn closest_on_triangle(p: Vec3, a: Vec3, b: Vec3, c: Vec3) -> (Vec3, Vec3) {
 mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
+
+    /// The tree whose upper halves are built side by side is the one built in one pass:
+    /// the same triangles in the same leaves, the same answers.
+    #[test]
+    fn the_tree_built_in_parallel_is_the_one_built_in_one_pass() {
+        let mut rng = crate::base::rng::Rng::new(3);
+        let mut next = || Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+        let tris: Vec<(u32, [Vec3; 3])> = (0..5 * PAR_MIN as u32 + 17)
+            .map(|i| {
+                let c = next();
+                (i, [c, c + next() * 0.01, c + next() * 0.01])
+            })
+            .collect();
+        let parallel = Bvh::from_triangles(tris.clone());
+        let mut serial_tris = tris;
+        let serial = Bvh {
+            nodes: build_par(&mut serial_tris, 0, 0),
+            corners: serial_tris.iter().map(|t| t.1).collect(),
+            order: serial_tris.iter().map(|t| t.0).collect(),
+        };
+        assert_eq!(parallel.order, serial.order);
+        assert_eq!(parallel.nodes.len(), serial.nodes.len());
+        for _ in 0..2000 {
+            let q = next() * 1.2 - Vec3::splat(0.1);
+            assert_eq!(parallel.closest(q, 0.5), serial.closest(q, 0.5), "{q}");
+        }
+    }
 
     #[test]
     fn the_tree_finds_what_a_scan_of_every_triangle_finds() {

@@ -8,7 +8,7 @@ use super::{Fit, unwrap_u};
 use crate::base::cancel::CancelToken;
 use crate::base::error::Error;
 use crate::head::mesh::Mesh;
-use crate::maps::raster::raster_uv;
+use crate::maps::raster::raster_banded;
 
 /// How far (pixels) outside its triangle a texel still takes the triangle's extrapolated
 /// template UV.
@@ -20,6 +20,26 @@ const SEAM_SLACK_UV: f32 = 0.01;
 
 /// No template point: the layers are 0 there (no wrinkle, no hair).
 const NONE: [f32; 2] = [f32::NAN, f32::NAN];
+
+/// A texel while the head's triangles are rasterised: the template UV written, whether
+/// it is inside an island, how far outside the triangle that wrote it it lies (∞: none
+/// did).
+#[derive(Clone, Copy)]
+struct Written {
+    uv: [f32; 2],
+    covered: bool,
+    distance: f32,
+}
+
+impl Default for Written {
+    fn default() -> Self {
+        Self {
+            uv: NONE,
+            covered: false,
+            distance: f32::INFINITY,
+        }
+    }
+}
 
 /// Per texel of a `size × size` map in the head's UV layout (rows from the top, v up:
 /// docs/models.md §1): the template UV, NaN where the head has no template point.
@@ -38,85 +58,97 @@ impl Correspondence {
     pub fn new(head: &Mesh, fit: &Fit, size: u32, cancel: &CancelToken) -> Result<Self, Error> {
         crate::maps::heightmap::check_size(size, size)?;
         let n = size as usize;
-        let mut texels = vec![NONE; n * n];
-        let mut covered = vec![false; n * n];
-        // How far outside the triangle that wrote each texel it lies (∞: none did).
-        let mut distance = vec![f32::INFINITY; n * n];
         let uvs = head.uvs();
         let positions = head.positions();
         let idx = head.skin_indices();
         let template_m_per_uv = super::template().metres_per_uv.unwrap_or(1.0);
+        let mut state = vec![Written::default(); n * n];
         // Every guard write as (texel, the 3D point it stands for in the writing
         // triangle's plane just beyond its edge, distance outside), for the surface's
-        // continuation below: a short list beside the map.
-        let mut guard_points: Vec<(u32, Vec3, f32)> = Vec::new();
-        for (k, tri) in idx.chunks_exact(3).enumerate() {
-            if k % 4096 == 0 {
-                cancel.check()?;
-            }
-            let corner = |i: usize| tri[i] as usize;
-            let (Some(a), Some(b), Some(c)) =
-                (uvs.get(corner(0)), uvs.get(corner(1)), uvs.get(corner(2)))
-            else {
-                continue;
-            };
-            let t = |i: usize| fit.template_uv.get(corner(i)).copied().flatten();
-            let template = match (t(0), t(1), t(2)) {
-                (Some(x), Some(y), Some(z)) => Some(unwrap_u([x, y, z])),
-                _ => None,
-            };
-            // Corners whose template points lie on different islands of the template's
-            // layout (the head's triangle spans a template seam): mixing their UVs would
-            // read somewhere unrelated in between, so each texel reads only the corners
-            // on the island of its nearest corner.
-            let p3 = |i: usize| positions.get(corner(i)).copied().unwrap_or(Vec3::ZERO);
-            let same_island = template.map(|(ta, tb, tc)| {
-                let t = [ta, tb, tc];
-                let near = |i: usize, j: usize| {
-                    let metres = p3(i).distance(p3(j)) * fit.similarity.scale;
-                    t[i].distance(t[j]) <= 4.0 * metres / template_m_per_uv + SEAM_SLACK_UV
-                };
-                [
-                    [true, near(0, 1), near(0, 2)],
-                    [near(1, 0), true, near(1, 2)],
-                    [near(2, 0), near(2, 1), true],
-                ]
-            });
-            // The triangle and a guard band around it: texels just outside every island
-            // take the triangle's template UV extrapolated (the surface's continuation
-            // across a seam), so bilinear reads at an island's border mix no copied
-            // values.
-            let guard = if template.is_some() { GUARD_PX } else { 0.0 };
-            let one_island = same_island.is_none_or(|s| s.iter().flatten().all(|&b| b));
-            let (pa, pb, pc) = (p3(0), p3(1), p3(2));
-            raster_uv([*a, *b, *c], size, guard, |x, y, [w0, w1, w2], outside| {
-                let i = y * n + x;
-                if outside >= distance[i] {
-                    return;
+        // continuation below: a short list per band of rows beside the map.
+        let guard_points: Vec<Vec<(u32, Vec3, f32)>> = raster_banded(
+            size,
+            &mut state,
+            idx.len() / 3,
+            GUARD_PX,
+            |k| {
+                let c = |i: usize| uvs.get(idx[k * 3 + i] as usize).copied();
+                Some([c(0)?, c(1)?, c(2)?])
+            },
+            |k, band, guard_points: &mut Vec<(u32, Vec3, f32)>| {
+                if k % 4096 == 0 {
+                    cancel.check()?;
                 }
-                distance[i] = outside;
-                covered[i] |= outside == 0.0;
-                if outside > 0.0 {
-                    guard_points.push((i as u32, pa * w0 + pb * w1 + pc * w2, outside));
-                }
-                texels[i] = match (template, same_island) {
-                    (Some((ta, tb, tc)), Some(_)) if one_island => {
-                        let uv = ta * w0 + tb * w1 + tc * w2;
-                        [uv.x.rem_euclid(1.0), uv.y]
-                    }
-                    (Some((ta, tb, tc)), Some(same)) => {
-                        let w = [w0, w1, w2];
-                        let k = (0..3).fold(0, |k, j| if w[j] > w[k] { j } else { k });
-                        let w: [f32; 3] =
-                            std::array::from_fn(|j| if same[k][j] { w[j] } else { 0.0 });
-                        let sum = w[0] + w[1] + w[2];
-                        let uv = (ta * w[0] + tb * w[1] + tc * w[2]) / sum;
-                        [uv.x.rem_euclid(1.0), uv.y]
-                    }
-                    _ => NONE,
+                let tri = &idx[k * 3..k * 3 + 3];
+                let corner = |i: usize| tri[i] as usize;
+                let (Some(a), Some(b), Some(c)) =
+                    (uvs.get(corner(0)), uvs.get(corner(1)), uvs.get(corner(2)))
+                else {
+                    return Ok(());
                 };
-            });
-        }
+                let t = |i: usize| fit.template_uv.get(corner(i)).copied().flatten();
+                let template = match (t(0), t(1), t(2)) {
+                    (Some(x), Some(y), Some(z)) => Some(unwrap_u([x, y, z])),
+                    _ => None,
+                };
+                // Corners whose template points lie on different islands of the
+                // template's layout (the head's triangle spans a template seam): mixing
+                // their UVs would read somewhere unrelated in between, so each texel
+                // reads only the corners on the island of its nearest corner.
+                let p3 = |i: usize| positions.get(corner(i)).copied().unwrap_or(Vec3::ZERO);
+                let same_island = template.map(|(ta, tb, tc)| {
+                    let t = [ta, tb, tc];
+                    let near = |i: usize, j: usize| {
+                        let metres = p3(i).distance(p3(j)) * fit.similarity.scale;
+                        t[i].distance(t[j]) <= 4.0 * metres / template_m_per_uv + SEAM_SLACK_UV
+                    };
+                    [
+                        [true, near(0, 1), near(0, 2)],
+                        [near(1, 0), true, near(1, 2)],
+                        [near(2, 0), near(2, 1), true],
+                    ]
+                });
+                // The triangle and a guard band around it: texels just outside every
+                // island take the triangle's template UV extrapolated (the surface's
+                // continuation across a seam), so bilinear reads at an island's border
+                // mix no copied values.
+                let guard = if template.is_some() { GUARD_PX } else { 0.0 };
+                let one_island = same_island.is_none_or(|s| s.iter().flatten().all(|&b| b));
+                let (pa, pb, pc) = (p3(0), p3(1), p3(2));
+                band.raster([*a, *b, *c], guard, |x, y, [w0, w1, w2], outside, texel| {
+                    if outside >= texel.distance {
+                        return;
+                    }
+                    texel.distance = outside;
+                    texel.covered |= outside == 0.0;
+                    if outside > 0.0 {
+                        let i = (y * n + x) as u32;
+                        guard_points.push((i, pa * w0 + pb * w1 + pc * w2, outside));
+                    }
+                    texel.uv = match (template, same_island) {
+                        (Some((ta, tb, tc)), Some(_)) if one_island => {
+                            let uv = ta * w0 + tb * w1 + tc * w2;
+                            [uv.x.rem_euclid(1.0), uv.y]
+                        }
+                        (Some((ta, tb, tc)), Some(same)) => {
+                            let w = [w0, w1, w2];
+                            let k = (0..3).fold(0, |k, j| if w[j] > w[k] { j } else { k });
+                            let w: [f32; 3] =
+                                std::array::from_fn(|j| if same[k][j] { w[j] } else { 0.0 });
+                            let sum = w[0] + w[1] + w[2];
+                            let uv = (ta * w[0] + tb * w[1] + tc * w[2]) / sum;
+                            [uv.x.rem_euclid(1.0), uv.y]
+                        }
+                        _ => NONE,
+                    };
+                });
+                Ok(())
+            },
+        )?;
+        let mut texels: Vec<[f32; 2]> = state.iter().map(|t| t.uv).collect();
+        let covered: Vec<bool> = state.iter().map(|t| t.covered).collect();
+        let distance: Vec<f32> = state.iter().map(|t| t.distance).collect();
+        drop(state);
         cancel.check()?;
         // A guard texel across a seam stands for the surface on the other side of it: its
         // template UV is read where its point lies on the head (the neighbouring
@@ -127,6 +159,7 @@ impl Correspondence {
         let reach = 0.05 * head.bounds().size().max_element();
         let continued: Vec<(usize, [f32; 2])> = guard_points
             .par_iter()
+            .flatten()
             // The last write of a texel outside every island.
             .filter(|(i, _, outside)| !covered[*i as usize] && *outside == distance[*i as usize])
             .filter_map(|&(i, q, _)| {

@@ -158,11 +158,7 @@ pub(super) fn settle(
     add_spread(&coarse, &change, &normals, positions, smooth, welded, full);
     // Each round of unfolding can leave a fold next to one it spread (a few hundred
     // vertices of the scan split three times after the first).
-    for _ in 0..UNFOLD_ROUNDS {
-        if settle::unfold_only(positions, indices, welded, full, mm) == 0 {
-            break;
-        }
-    }
+    settle::unfold_only(positions, indices, welded, full, mm, UNFOLD_ROUNDS);
     true
 }
 

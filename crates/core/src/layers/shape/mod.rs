@@ -19,6 +19,7 @@ use roll::DEPTH_GATE;
 pub use roll::Roll;
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use crate::age::{AgeCurve, CurveShape};
 use crate::base::math::smoothstep;
@@ -262,85 +263,8 @@ impl ShapeField {
             }
         }
         let mm = 1e-3 / metres_per_unit.max(1e-12);
-        let (full, hollow) = REGIONS
-            .iter()
-            .enumerate()
-            .map(|(r, region)| {
-                let strength = strengths.get(r).copied().unwrap_or(1.0);
-                let mut out = vec![Vec3::ZERO; n];
-                let mut hollow = vec![0.0f32; n];
-                let (Some(frame), true) = (regions, strength > 0.0) else {
-                    return (out, hollow);
-                };
-                let deflate_mm: f32 = region
-                    .motions
-                    .iter()
-                    .filter(|(motion, _)| *motion == Deflate)
-                    .map(|(_, amount)| amount)
-                    .sum();
-                for v in 0..n {
-                    // The first vertex at a position computes it (welded[v] ≤ v); the
-                    // others copy it, whatever part they belong to.
-                    let w = welded[v] as usize;
-                    if w != v {
-                        out[v] = out[w];
-                        hollow[v] = hollow[w];
-                        continue;
-                    }
-                    let s = skin_at[v];
-                    if s == u32::MAX {
-                        continue;
-                    }
-                    let Some(t) = template_point(s as usize) else {
-                        continue;
-                    };
-                    let q = frame.relative(t);
-                    // Along the normal only where the skin faces out of the head (not
-                    // the mouth's or the nostrils' inside: [`facing_out`]).
-                    let facing = facing_out(q, mesh.normals()[s as usize]);
-                    let normal = mesh.normals()[s as usize] * facing;
-                    let rolled: f32 = region.rolls.iter().map(|r| r.height_mm(q)).sum();
-                    let rolled = normal * (rolled * strength * mm);
-                    let creased: f32 = region.rolls.iter().map(|r| r.hollow_mm(q)).sum();
-                    let creased = creased * strength * facing;
-                    let weight = region.blob_weight(q);
-                    if weight <= 0.0 {
-                        out[v] = rolled;
-                        hollow[v] = creased;
-                        continue;
-                    }
-                    let bulge = region.bulge_weight(q) / weight;
-                    let descent = region.descent_weight(q) / weight;
-                    let deflate = region.deflate_weight(q) / weight;
-                    let retrude = region.retrude_weight(q) / weight;
-                    let d: Vec3 = region
-                        .motions
-                        .iter()
-                        .map(|&(motion, amount)| {
-                            amount
-                                * match motion {
-                                    Descent => Vec3::NEG_Y * descent,
-                                    Deflate => -normal * deflate,
-                                    Bulge => normal * bulge,
-                                    Retrude => Vec3::NEG_Z * retrude,
-                                }
-                        })
-                        .sum();
-                    out[v] = d * (weight * strength * mm) + rolled;
-                    hollow[v] = deflate_mm * deflate * weight * strength * facing + creased;
-                }
-                (out, hollow)
-            })
-            .unzip();
-        let mut full: Vec<Vec<Vec3>> = full;
-        let mut hollow: Vec<Vec<f32>> = hollow;
-        let own =
-            eyes.and_then(|eyes| mirrored::OwnMirror::of(mesh.positions(), &welded, eyes, mm));
-        if let Some(own) = &own {
-            own.average(&mut full, &mut hollow, &welded);
-        }
-        // Each vertex's place in the face frame, for its mirror image (the cuts below made
-        // alike on both sides: [`symmetry`]).
+        // Each vertex's place in the face frame: the first skin vertex at each position
+        // stands for all (its template point and normal; the others copy its moves below).
         let points: Vec<Option<Vec3>> = (0..n)
             .map(|v| {
                 let s = skin_at[v];
@@ -350,6 +274,81 @@ impl ShapeField {
                 Some(regions?.relative(template_point(s as usize)?))
             })
             .collect();
+        let normals = mesh.normals();
+        let (full, hollow) = REGIONS
+            .iter()
+            .enumerate()
+            .map(|(r, region)| {
+                let strength = strengths.get(r).copied().unwrap_or(1.0);
+                if regions.is_none() || strength <= 0.0 {
+                    return (vec![Vec3::ZERO; n], vec![0.0f32; n]);
+                }
+                let deflate_mm: f32 = region
+                    .motions
+                    .iter()
+                    .filter(|(motion, _)| *motion == Deflate)
+                    .map(|(_, amount)| amount)
+                    .sum();
+                let mut moved: Vec<(Vec3, f32)> = points
+                    .par_iter()
+                    .zip(&skin_at)
+                    .map(|(q, &s)| {
+                        let Some(q) = *q else {
+                            return (Vec3::ZERO, 0.0);
+                        };
+                        // Along the normal only where the skin faces out of the head (not
+                        // the mouth's or the nostrils' inside: [`facing_out`]).
+                        let facing = facing_out(q, normals[s as usize]);
+                        let normal = normals[s as usize] * facing;
+                        let rolled: f32 = region.rolls.iter().map(|r| r.height_mm(q)).sum();
+                        let rolled = normal * (rolled * strength * mm);
+                        let creased: f32 = region.rolls.iter().map(|r| r.hollow_mm(q)).sum();
+                        let creased = creased * strength * facing;
+                        let weight = region.blob_weight(q);
+                        if weight <= 0.0 {
+                            return (rolled, creased);
+                        }
+                        let bulge = region.bulge_weight(q) / weight;
+                        let descent = region.descent_weight(q) / weight;
+                        let deflate = region.deflate_weight(q) / weight;
+                        let retrude = region.retrude_weight(q) / weight;
+                        let d: Vec3 = region
+                            .motions
+                            .iter()
+                            .map(|&(motion, amount)| {
+                                amount
+                                    * match motion {
+                                        Descent => Vec3::NEG_Y * descent,
+                                        Deflate => -normal * deflate,
+                                        Bulge => normal * bulge,
+                                        Retrude => Vec3::NEG_Z * retrude,
+                                    }
+                            })
+                            .sum();
+                        (
+                            d * (weight * strength * mm) + rolled,
+                            deflate_mm * deflate * weight * strength * facing + creased,
+                        )
+                    })
+                    .collect();
+                // The other vertices at a position (welded[v] < v) copy the first's,
+                // whatever part they belong to.
+                for v in 0..n {
+                    let w = welded[v] as usize;
+                    if w != v {
+                        moved[v] = moved[w];
+                    }
+                }
+                moved.into_iter().unzip()
+            })
+            .unzip();
+        let mut full: Vec<Vec<Vec3>> = full;
+        let mut hollow: Vec<Vec<f32>> = hollow;
+        let own =
+            eyes.and_then(|eyes| mirrored::OwnMirror::of(mesh.positions(), &welded, eyes, mm));
+        if let Some(own) = &own {
+            own.average(&mut full, &mut hollow, &welded);
+        }
         let smooth = smooth_normals(mesh.positions(), mesh.indices());
         let (positions, indices) = (mesh.positions(), mesh.indices());
         // A dense head is settled on a coarser stand-in ([`coarse`]).

@@ -115,24 +115,36 @@ fn fold_checks() -> Vec<Vec<f32>> {
 /// Unfolds `full` on the mesh of `positions` and `indices` (vertices `welded` as in
 /// [`settle`]) under the same checks, nothing in front of the skin: what a dense head's
 /// shape, settled on its stand-in ([`super::coarse`]), still folds on its own finer
-/// triangles. Returns the number of vertices changed.
+/// triangles, in up to `rounds` rounds (each can leave a fold next to one it spread) on one
+/// [`unfold::Topology`]. Returns the number of vertices changed.
 pub(super) fn unfold_only(
     positions: &[Vec3],
     indices: &[u32],
     welded: &[u32],
     full: &mut [Vec<Vec3>],
     mm: f32,
+    rounds: usize,
 ) -> usize {
     let caps = vec![f32::INFINITY; positions.len()];
-    unfold::unfold(
-        positions,
-        indices,
-        welded,
-        full,
-        &fold_checks(),
-        &caps,
-        unfold::SPREAD_REACH_MM * mm,
-    )
+    let checks = fold_checks();
+    let topology = unfold::Topology::new(positions.len(), indices, welded);
+    let mut changed = 0;
+    for _ in 0..rounds {
+        let round = unfold::unfold_on(
+            &topology,
+            positions,
+            welded,
+            full,
+            &checks,
+            &caps,
+            unfold::SPREAD_REACH_MM * mm,
+        );
+        if round == 0 {
+            break;
+        }
+        changed += round;
+    }
+    changed
 }
 
 /// Passes of neighbour smoothing that reach about `reach` (mesh units) over the mesh of

@@ -64,17 +64,58 @@ pub fn unfold(
     caps: &[f32],
     reach: f32,
 ) -> usize {
+    if fields.iter().all(|f| f.iter().all(|d| *d == Vec3::ZERO)) || positions.is_empty() {
+        return 0;
+    }
+    let topology = Topology::new(positions.len(), indices, welded);
+    unfold_on(&topology, positions, welded, fields, checks, caps, reach)
+}
+
+/// The welded mesh as [`unfold`] walks it: its triangles over welded vertices, each
+/// welded vertex's neighbours and triangles. Made once for rounds of unfolding on one
+/// mesh ([`unfold_on`]).
+pub struct Topology {
+    triangles: Vec<[usize; 3]>,
+    neighbours: Adjacency,
+    incident: Adjacency,
+}
+
+impl Topology {
+    /// Of the `n` vertices `welded` (each the first at its position) and `indices`.
+    pub fn new(n: usize, indices: &[u32], welded: &[u32]) -> Self {
+        let triangles: Vec<[usize; 3]> = indices
+            .chunks_exact(3)
+            .map(|t| [0, 1, 2].map(|k| welded[t[k] as usize] as usize))
+            .filter(|t| t.iter().all(|&v| v < n))
+            .collect();
+        let (neighbours, incident) = Adjacency::new(n, &triangles);
+        Self {
+            triangles,
+            neighbours,
+            incident,
+        }
+    }
+}
+
+/// [`unfold`] on a [`Topology`] made of the same mesh.
+pub fn unfold_on(
+    topology: &Topology,
+    positions: &[Vec3],
+    welded: &[u32],
+    fields: &mut [Vec<Vec3>],
+    checks: &[Vec<f32>],
+    caps: &[f32],
+    reach: f32,
+) -> usize {
     let n = positions.len();
     if fields.iter().all(|f| f.iter().all(|d| *d == Vec3::ZERO)) || n == 0 {
         return 0;
     }
-    // Triangles over welded vertices, each welded vertex's neighbours and triangles.
-    let triangles: Vec<[usize; 3]> = indices
-        .chunks_exact(3)
-        .map(|t| [0, 1, 2].map(|k| welded[t[k] as usize] as usize))
-        .filter(|t| t.iter().all(|&v| v < n))
-        .collect();
-    let (neighbours, incident) = Adjacency::new(n, &triangles);
+    let Topology {
+        triangles,
+        neighbours,
+        incident,
+    } = topology;
     let mut moves = Moves::take(fields, n);
     let cos_max = MAX_TURN_DEG.to_radians().cos();
     // Only what moves is relaxed (a vertex that stays — off every region, not skin — stays:
@@ -107,7 +148,7 @@ pub fn unfold(
     let mut stalled = 0;
     for pass in 0..SPREAD_PASSES + SHRINK_PASSES {
         let bad = folded_vertices(
-            positions, &triangles, &suspects, &moves, checks, cos_max, &mut slots,
+            positions, triangles, &suspects, &moves, checks, cos_max, &mut slots,
         );
         if bad.is_empty() {
             break;
@@ -198,11 +239,11 @@ pub fn unfold(
             let sweeps = (1 + pass / 4).min(MAX_SWEEPS);
             // A region's field that is zero over the ring and its neighbours stays zero
             // under the sweeps: it is left alone (most regions, at most folds).
-            let live = moves.live(&ring, &neighbours);
+            let live = moves.live(&ring, neighbours);
             let mut relaxed = vec![Vec3::ZERO; ring.len() * moves.regions];
             let mut masks = Vec::new();
             for _ in 0..sweeps {
-                moves.relax(&ring, &neighbours, &live, &mut relaxed, &mut masks);
+                moves.relax(&ring, neighbours, &live, &mut relaxed, &mut masks);
                 moves.cap(&ring, caps);
             }
             touched = ring.clone();

@@ -41,7 +41,7 @@ use crate::base::rng::{Rng, mix64, value3};
 use crate::head::frame::Regions;
 use crate::head::mesh::Mesh;
 use crate::maps::mask::{HeadImage, linear_to_srgb, srgb_to_linear};
-use crate::maps::raster::raster_uv;
+use crate::maps::raster::raster_banded;
 
 /// Smallest and largest age-spot diameter, mm (solar lentigines: docs/models.md
 /// "Skin colour").

@@ -155,27 +155,49 @@ impl SurfaceTexels {
         crate::maps::heightmap::check_size(size, size)?;
         let n = size as usize;
         let nan = Vec3::splat(f32::NAN);
-        let mut position = vec![nan; n * n];
-        let mut template = vec![nan; n * n];
-        let mut distance = vec![f32::INFINITY; n * n];
         let (uvs, positions) = (mesh.uvs(), mesh.positions());
-        for (k, tri) in mesh.skin_indices().chunks_exact(3).enumerate() {
-            if k % 4096 == 0 {
-                cancel.check()?;
-            }
-            let v = [0, 1, 2].map(|i| tri[i] as usize);
-            let uv = v.map(|i| uvs.get(i).copied().unwrap_or(Vec2::NAN));
-            let p = v.map(|i| positions[i] * metres_per_unit);
-            let t = v.map(|i| template_point(i).unwrap_or(nan));
-            raster_uv(uv, size, GUARD_PX, |x, y, w, outside| {
-                let i = y * n + x;
-                if outside < distance[i] {
-                    distance[i] = outside;
-                    position[i] = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
-                    template[i] = t[0] * w[0] + t[1] * w[1] + t[2] * w[2];
+        let idx = mesh.skin_indices();
+        let template_points: Vec<Vec3> = (0..positions.len())
+            .map(|i| template_point(i).unwrap_or(nan))
+            .collect();
+        // Each texel's point and template point, and how far outside the triangle that
+        // wrote them it lies: the nearest triangle's.
+        let mut written = vec![(nan, nan, f32::INFINITY); n * n];
+        let uv_of = |k: usize| {
+            let c = |i: usize| {
+                uvs.get(idx[k * 3 + i] as usize)
+                    .copied()
+                    .unwrap_or(Vec2::NAN)
+            };
+            [c(0), c(1), c(2)]
+        };
+        raster_banded(
+            size,
+            &mut written,
+            idx.len() / 3,
+            GUARD_PX,
+            |k| Some(uv_of(k)),
+            |k, band, _: &mut ()| {
+                if k % 4096 == 0 {
+                    cancel.check()?;
                 }
-            });
-        }
+                let v = [0, 1, 2].map(|i| idx[k * 3 + i] as usize);
+                let p = v.map(|i| positions[i] * metres_per_unit);
+                let t = v.map(|i| template_points[i]);
+                band.raster(uv_of(k), GUARD_PX, |_, _, w, outside, texel| {
+                    if outside < texel.2 {
+                        *texel = (
+                            p[0] * w[0] + p[1] * w[1] + p[2] * w[2],
+                            t[0] * w[0] + t[1] * w[1] + t[2] * w[2],
+                            outside,
+                        );
+                    }
+                });
+                Ok(())
+            },
+        )?;
+        let (position, template): (Vec<Vec3>, Vec<Vec3>) =
+            written.into_iter().map(|(p, t, _)| (p, t)).unzip();
         let keys = noise_keys(seed);
         let mut fields = vec![Fields::default(); n * n];
         fields

@@ -21,6 +21,7 @@ use crate::base::math::smoothstep;
 use crate::head::frame::Regions;
 use crate::head::mesh::Mesh;
 use crate::maps::heightmap::HeightMap;
+use crate::maps::raster::raster_banded_in;
 
 /// How far beyond its triangle a texel still takes the triangle's relief, pixels (the
 /// map's bilinear filtering at an island's edge), as the colour's texels do.
@@ -136,49 +137,51 @@ impl ShapeRelief {
             let (width, rows) = ((x1 - x0) as usize, (y1 - y0) as usize);
             // The face point, UV density and blur of each texel (the nearest triangle's),
             // then the relief at each, row by row in parallel.
-            let mut texels = vec![Texel::default(); width * rows];
-            let mut distance = vec![f32::INFINITY; width * rows];
-            for (k, (v, uv)) in triangles.into_iter().enumerate() {
-                if k % 1024 == 0 {
-                    cancel.check()?;
-                }
-                // A height in millimetres as UV units of relief (as the large wrinkles'
-                // depth is), through the corners' UV densities: smooth across the edges
-                // (each triangle's own drew its edges as hairline steps).
-                let uv_per_mm = v.map(|i| uv_per_mm[i]);
-                if uv_per_mm.iter().any(|d| *d <= 0.0) {
-                    continue;
-                }
-                let qs = v.map(|i| q[i]);
-                // What the corners can carry: the triangles' edge round each, in the face
-                // frame, interpolated (each triangle's own made the relief step along the
-                // edges between a large and a small triangle: straight-edged facets beside
-                // the nasolabial crease).
-                let edge = v.map(|i| edges[i]);
-                crate::maps::raster::raster_uv(uv, size, GUARD_PX, |x, y, w, outside| {
-                    let (Some(x), Some(y)) =
-                        (x.checked_sub(x0 as usize), y.checked_sub(y0 as usize))
-                    else {
-                        return;
-                    };
-                    if x >= width || y >= rows {
-                        return;
+            let mut written = vec![(Texel::default(), f32::INFINITY); width * rows];
+            raster_banded_in(
+                size,
+                (x0 as usize..x1 as usize, y0 as usize..y1 as usize),
+                &mut written,
+                triangles.len(),
+                GUARD_PX,
+                |k| Some(triangles[k].1),
+                |k, band, _: &mut ()| {
+                    if k % 1024 == 0 {
+                        cancel.check()?;
                     }
-                    let i = y * width + x;
-                    if outside >= distance[i] {
-                        return;
+                    let (v, uv) = triangles[k];
+                    // A height in millimetres as UV units of relief (as the large
+                    // wrinkles' depth is), through the corners' UV densities: smooth across
+                    // the edges (each triangle's own drew its edges as hairline steps).
+                    let uv_per_mm = v.map(|i| uv_per_mm[i]);
+                    if uv_per_mm.iter().any(|d| *d <= 0.0) {
+                        return Ok(());
                     }
-                    distance[i] = outside;
-                    let e = edge[0] * w[0] + edge[1] * w[1] + edge[2] * w[2];
-                    texels[i] = Texel {
-                        q: qs[0] * w[0] + qs[1] * w[1] + qs[2] * w[2],
-                        density: uv_per_mm[0] * w[0] + uv_per_mm[1] * w[1] + uv_per_mm[2] * w[2],
-                        sigma: BLUR_SIGMA * e,
-                        weight: coarse_weight(e),
-                    };
-                });
-            }
-            drop(distance);
+                    let qs = v.map(|i| q[i]);
+                    // What the corners can carry: the triangles' edge round each, in the
+                    // face frame, interpolated (each triangle's own made the relief step
+                    // along the edges between a large and a small triangle: straight-edged
+                    // facets beside the nasolabial crease).
+                    let edge = v.map(|i| edges[i]);
+                    band.raster(uv, GUARD_PX, |_, _, w, outside, (texel, distance)| {
+                        if outside >= *distance {
+                            return;
+                        }
+                        *distance = outside;
+                        let e = edge[0] * w[0] + edge[1] * w[1] + edge[2] * w[2];
+                        *texel = Texel {
+                            q: qs[0] * w[0] + qs[1] * w[1] + qs[2] * w[2],
+                            density: uv_per_mm[0] * w[0]
+                                + uv_per_mm[1] * w[1]
+                                + uv_per_mm[2] * w[2],
+                            sigma: BLUR_SIGMA * e,
+                            weight: coarse_weight(e),
+                        };
+                    });
+                    Ok(())
+                },
+            )?;
+            let texels: Vec<Texel> = written.into_iter().map(|(t, _)| t).collect();
             cancel.check()?;
             let heights: Vec<f32> = texels
                 .par_iter()

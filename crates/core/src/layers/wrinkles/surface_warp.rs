@@ -60,6 +60,11 @@ impl PartialEq for SurfaceWarp {
     }
 }
 
+/// Bit for bit, so reflexive: an `Arc<SurfaceWarp>` then compares equal to itself without
+/// reading its points (the fibres, each with its warp, are compared at every bake; the
+/// points' comparison was an eighth of an age step's preview bake).
+impl Eq for SurfaceWarp {}
+
 impl SurfaceWarp {
     /// The warp of a wrinkle group whose capsules lie within `bounds` (`[u0, v0, u1, v1]`,
     /// `Fibre::capsule_bounds_uv`) over `mesh`'s skin triangles in its UV layout. `None` (the

@@ -129,6 +129,8 @@ pub(super) fn unfold_only(
     let checks = fold_checks();
     let topology = unfold::Topology::new(positions.len(), indices, welded);
     let mut changed = 0;
+    // Each round after the first looks for folds only round what the one before wrote.
+    let mut from: Option<Vec<usize>> = None;
     for _ in 0..rounds {
         let round = unfold::unfold_on(
             &topology,
@@ -138,11 +140,13 @@ pub(super) fn unfold_only(
             &checks,
             &caps,
             unfold::SPREAD_REACH_MM * mm,
+            from.as_deref(),
         );
-        if round == 0 {
+        if round.changed == 0 {
             break;
         }
-        changed += round;
+        changed += round.changed;
+        from = Some(round.written);
     }
     changed
 }

@@ -28,6 +28,8 @@ const MAX_SWEEPS: usize = 16;
 const STALL_PASSES: usize = 4;
 /// Vertices in a ring from which a relaxation sweep runs on the thread pool.
 const PARALLEL_RING: usize = 4096;
+/// Vertices in a block of [`Moves::take`]'s and [`Moves::give_back`]'s copies.
+const COPY_BLOCK: usize = 4096;
 /// Passes that shrink what still folds (each takes a third of the move at the fold).
 const SHRINK_PASSES: usize = 48;
 
@@ -68,7 +70,10 @@ pub fn unfold(
         return 0;
     }
     let topology = Topology::new(positions.len(), indices, welded);
-    unfold_on(&topology, positions, welded, fields, checks, caps, reach)
+    unfold_on(
+        &topology, positions, welded, fields, checks, caps, reach, None,
+    )
+    .changed
 }
 
 /// The welded mesh as [`unfold`] walks it: its triangles over welded vertices, each
@@ -97,7 +102,21 @@ impl Topology {
     }
 }
 
-/// [`unfold`] on a [`Topology`] made of the same mesh.
+/// What one [`unfold_on`] did.
+#[derive(Clone, Debug, Default)]
+pub struct Unfolded {
+    /// How many vertices its spread moved.
+    pub changed: usize,
+    /// Every (welded) vertex whose moves it wrote: where a later round on the same fields
+    /// looks for folds ([`unfold_on`]'s `from`).
+    pub written: Vec<usize>,
+}
+
+/// [`unfold`] on a [`Topology`] made of the same mesh. With `from`, the moves are those a
+/// round before left, unfolded but for the triangles round the vertices it wrote (its
+/// [`Unfolded::written`]): only those are looked at first (every other triangle was
+/// found unfolded and has not changed since), not every triangle that moves.
+#[allow(clippy::too_many_arguments)]
 pub fn unfold_on(
     topology: &Topology,
     positions: &[Vec3],
@@ -106,10 +125,11 @@ pub fn unfold_on(
     checks: &[Vec<f32>],
     caps: &[f32],
     reach: f32,
-) -> usize {
+    from: Option<&[usize]>,
+) -> Unfolded {
     let n = positions.len();
     if fields.iter().all(|f| f.iter().all(|d| *d == Vec3::ZERO)) || n == 0 {
-        return 0;
+        return Unfolded::default();
     }
     let Topology {
         triangles,
@@ -124,9 +144,27 @@ pub fn unfold_on(
     let moving: Vec<bool> = (0..n)
         .map(|v| moves.row(v).iter().any(|d| *d != Vec3::ZERO))
         .collect();
-    let mut suspects: Vec<usize> = (0..triangles.len())
-        .filter(|&i| triangles[i].iter().any(|&v| moving[v]))
-        .collect();
+    let mut suspected = vec![false; triangles.len()];
+    let mut suspects: Vec<usize> = match from {
+        None => (0..triangles.len())
+            .filter(|&i| triangles[i].iter().any(|&v| moving[v]))
+            .collect(),
+        Some(from) => {
+            let mut round: Vec<usize> = Vec::new();
+            for &v in from.iter().filter(|&&v| v < n) {
+                for &i in incident.of(v) {
+                    if !std::mem::replace(&mut suspected[i as usize], true) {
+                        round.push(i as usize);
+                    }
+                }
+            }
+            round.iter().for_each(|&i| suspected[i] = false);
+            round.retain(|&i| triangles[i].iter().any(|&v| moving[v]));
+            round
+        }
+    };
+    // Every vertex whose moves a pass wrote.
+    let mut written = vec![false; n];
     // The vertices relaxed each pass: every fold's corners and their ring so far, grown by
     // one more ring whenever the folds stop shrinking (a fold whose surroundings jump too
     // needs a wider spread).
@@ -143,7 +181,6 @@ pub fn unfold_on(
     // Every vertex the spread has moved.
     let mut ever = vec![false; n];
     let mut slots = vec![u32::MAX; n];
-    let mut suspected = vec![false; triangles.len()];
     let mut best = usize::MAX;
     let mut stalled = 0;
     for pass in 0..SPREAD_PASSES + SHRINK_PASSES {
@@ -248,6 +285,7 @@ pub fn unfold_on(
             }
             touched = ring.clone();
         }
+        touched.iter().for_each(|&v| written[v] = true);
         // Each triangle once (their order does not matter).
         suspects.clear();
         for &v in &touched {
@@ -270,7 +308,10 @@ pub fn unfold_on(
         }
     }
     moves.give_back(fields);
-    changed
+    Unfolded {
+        changed,
+        written: (0..n).filter(|&v| written[v]).collect(),
+    }
 }
 
 /// Each vertex's neighbours or triangles, in one array (`of(v)`), in the order they were
@@ -349,16 +390,32 @@ struct Moves {
 impl Moves {
     fn take(fields: &mut [Vec<Vec3>], n: usize) -> Self {
         let regions = fields.len();
+        let r = regions.max(1);
         let mut all = vec![Vec3::ZERO; n * regions];
-        let mut tails = Vec::with_capacity(regions);
-        for (k, field) in fields.iter_mut().enumerate() {
-            let mut field = std::mem::take(field);
-            for (v, d) in field.iter().take(n).enumerate() {
-                all[v * regions + k] = *d;
-            }
-            tails.push(field.split_off(n.min(field.len())));
-        }
-        let masks = (all.chunks(regions.max(1)).take(n))
+        // Block by block of vertices (a block's rows stay in the cache while each field's
+        // stretch is read into them: written field by field over the whole mesh, each
+        // store a row's length from the last, the copy was a sixth of a dense head's
+        // unfolding).
+        let fields_ro: &[Vec<Vec3>] = fields;
+        all.par_chunks_mut(r * COPY_BLOCK)
+            .enumerate()
+            .for_each(|(b, rows)| {
+                let first = b * COPY_BLOCK;
+                for (k, field) in fields_ro.iter().enumerate() {
+                    let stretch = field.get(first..).unwrap_or(&[]);
+                    for (row, d) in rows.chunks_exact_mut(r).zip(stretch) {
+                        row[k] = *d;
+                    }
+                }
+            });
+        let tails = fields
+            .iter_mut()
+            .map(|field| {
+                let mut field = std::mem::take(field);
+                field.split_off(n.min(field.len()))
+            })
+            .collect();
+        let masks = (all.chunks(r).take(n))
             .map(|row| {
                 (row.iter().enumerate())
                     .filter(|(_, d)| **d != Vec3::ZERO)
@@ -374,10 +431,33 @@ impl Moves {
     }
 
     fn give_back(self, fields: &mut [Vec<Vec3>]) {
-        let r = self.regions;
-        for (k, (field, tail)) in fields.iter_mut().zip(self.tails).enumerate() {
-            *field = self.all.iter().skip(k).step_by(r.max(1)).copied().collect();
-            field.extend(tail);
+        let r = self.regions.max(1);
+        let n = self.all.len() / r;
+        let mut out: Vec<Vec<Vec3>> = (0..self.regions).map(|_| vec![Vec3::ZERO; n]).collect();
+        // Each block of vertices: every field's stretch of it ([`Moves::take`]'s blocks).
+        let mut blocks: Vec<Vec<&mut [Vec3]>> = (0..n.div_ceil(COPY_BLOCK))
+            .map(|_| Vec::with_capacity(self.regions))
+            .collect();
+        for field in &mut out {
+            for (b, stretch) in field.chunks_mut(COPY_BLOCK).enumerate() {
+                blocks[b].push(stretch);
+            }
+        }
+        let all = &self.all;
+        blocks
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(b, mut stretches)| {
+                let rows = &all[b * COPY_BLOCK * r..];
+                for (k, stretch) in stretches.iter_mut().enumerate() {
+                    for (d, row) in stretch.iter_mut().zip(rows.chunks_exact(r)) {
+                        *d = row[k];
+                    }
+                }
+            });
+        for ((field, mut moved), tail) in fields.iter_mut().zip(out).zip(self.tails) {
+            moved.extend(tail);
+            *field = moved;
         }
     }
 

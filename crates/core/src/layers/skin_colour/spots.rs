@@ -134,12 +134,13 @@ pub fn place_spots(
     spots_per_cm2: f32,
     seed: u64,
 ) -> Vec<Spot> {
+    let points: Vec<Option<Vec3>> = (0..mesh.vertex_count()).map(template_point).collect();
     SPOT_KINDS
         .iter()
         .flat_map(|k| {
             place_spots_gathered(
                 mesh,
-                template_point,
+                &points,
                 metres_per_unit,
                 regions,
                 spots_per_cm2 * k.share,
@@ -169,7 +170,7 @@ fn favoured(kind: SpotKind, regions: &Regions, c: Vec3) -> f32 {
 #[allow(clippy::too_many_arguments)]
 pub(super) fn place_spots_gathered(
     mesh: &Mesh,
-    template_point: &dyn Fn(usize) -> Option<Vec3>,
+    template_points: &[Option<Vec3>],
     metres_per_unit: f32,
     regions: &Regions,
     spots_per_cm2: f32,
@@ -179,18 +180,28 @@ pub(super) fn place_spots_gathered(
 ) -> Vec<Spot> {
     let positions = mesh.positions();
     let idx = mesh.skin_indices();
-    // Each skin triangle's exposed area, m², as a running sum.
-    let mut cumulative = Vec::with_capacity(idx.len() / 3);
+    // Each skin triangle's exposed area, m² (side by side; `None` without a finite area),
+    // as a running sum (in order).
+    let exposed: Vec<Option<f32>> = idx
+        .par_chunks_exact(3)
+        .map(|tri| {
+            let [a, b, c] = [0, 1, 2].map(|i| positions[tri[i] as usize] * metres_per_unit);
+            let area = 0.5 * (b - a).cross(c - a).length();
+            let points: Option<Vec<Vec3>> = tri
+                .iter()
+                .map(|&v| template_points.get(v as usize).copied().flatten())
+                .collect();
+            let sun = points.map_or(0.0, |p| {
+                favoured(kind.kind, regions, (p[0] + p[1] + p[2]) / 3.0)
+            });
+            area.is_finite().then_some(area * sun)
+        })
+        .collect();
+    let mut cumulative = Vec::with_capacity(exposed.len());
     let mut total = 0.0f64;
-    for tri in idx.chunks_exact(3) {
-        let [a, b, c] = [0, 1, 2].map(|i| positions[tri[i] as usize] * metres_per_unit);
-        let area = 0.5 * (b - a).cross(c - a).length();
-        let points: Option<Vec<Vec3>> = tri.iter().map(|&v| template_point(v as usize)).collect();
-        let sun = points.map_or(0.0, |p| {
-            favoured(kind.kind, regions, (p[0] + p[1] + p[2]) / 3.0)
-        });
-        if area.is_finite() {
-            total += f64::from(area * sun);
+    for area in exposed {
+        if let Some(area) = area {
+            total += f64::from(area);
         }
         cumulative.push(total);
     }

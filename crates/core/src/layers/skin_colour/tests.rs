@@ -188,9 +188,10 @@ fn age_spots_gather_in_patches() {
     let mesh = scene.mesh().clone();
     let regions = Regions::template().unwrap();
     let kept = |tries: usize| {
+        let points: Vec<Option<Vec3>> = mesh.positions().iter().map(|p| Some(*p)).collect();
         let spots = place_spots_gathered(
             &mesh,
-            &|v| mesh.positions().get(v).copied(),
+            &points,
             1.0,
             regions,
             2.0,

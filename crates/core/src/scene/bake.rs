@@ -47,7 +47,7 @@ impl Scene {
             None => self.shape_relief(request.large_size_px, cancel)?,
         };
         let years = self.project.age.mapping().years(request.t);
-        let shape_factors = crate::layers::shape::REGIONS.map(|r| r.factor(years));
+        let shape_factors = self.shape_relief_factors(years);
         // The relief depth of the default view and wrinkle depth: the relief has its
         // millimetres there, and deepens with the wrinkles when either is turned up (a
         // slider that redraws without a bake stays so).

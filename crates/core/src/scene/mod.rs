@@ -252,6 +252,9 @@ pub struct Scene {
     /// The shape field and what it was made from (mesh and layout generations, metres per
     /// unit, strengths).
     shape: Option<(ShapeKey, Arc<crate::layers::shape::ShapeField>)>,
+    /// What the shape field is made on whatever the strengths (mesh and layout
+    /// generations, metres per unit's bits).
+    shape_basis: Option<((u64, u64, u32), Arc<crate::layers::shape::ShapeBasis>)>,
     /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
     /// The aged shape, keyed by its field, its age and whether its sky was measured.
     shape_aged: Option<((usize, u32, bool), Arc<AgedShape>)>,
@@ -341,6 +344,7 @@ impl Scene {
             hair: None,
             colour: colour::ColourStage::default(),
             shape: None,
+            shape_basis: None,
             shape_aged: None,
             relief: None,
             brows: None,
@@ -381,6 +385,7 @@ impl Scene {
             hair: self.hair.clone(),
             colour: self.colour.clone(),
             shape: self.shape.clone(),
+            shape_basis: self.shape_basis.clone(),
             shape_aged: self.shape_aged.clone(),
             relief: self.relief.clone(),
             brows: self.brows.clone(),

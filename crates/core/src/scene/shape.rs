@@ -103,6 +103,27 @@ impl Scene {
         {
             return Some(f.clone());
         }
+        let basis_key = (key.0, key.1, key.2);
+        let basis = match &self.shape_basis {
+            Some((k, b)) if *k == basis_key => b.clone(),
+            _ => {
+                let b = Arc::new(self.shape_basis_new());
+                self.shape_basis = Some((basis_key, b.clone()));
+                b
+            }
+        };
+        let field = Arc::new(crate::layers::shape::ShapeField::on(
+            &self.inputs.mesh,
+            &basis,
+            &strengths,
+        ));
+        self.shape = Some((key, field.clone()));
+        Some(field)
+    }
+
+    /// The head's [`crate::layers::shape::ShapeBasis`]: its template points, its outer eye
+    /// corners for its own mirror plane.
+    fn shape_basis_new(&self) -> crate::layers::shape::ShapeBasis {
         let points = self.shape_points();
         // The head's outer eye corners, for its own mirror plane: its landmarks, the
         // built-in head's the template's (template metres, in its units); a head with
@@ -121,15 +142,12 @@ impl Scene {
             ),
             None => None,
         };
-        let field = Arc::new(crate::layers::shape::ShapeField::with_mirror(
+        crate::layers::shape::ShapeBasis::new(
             &self.inputs.mesh,
             &|v| points.get(v).copied().flatten(),
-            &strengths,
             self.metres_per_unit(),
             eyes,
-        ));
-        self.shape = Some((key, field.clone()));
-        Some(field)
+        )
     }
 
     /// What the shape field is made from; `None` when the shape layer is off or every
@@ -155,8 +173,9 @@ impl Scene {
     }
 
     /// The shape's relief finer than the head's triangles at `size`² in the head's layout
-    /// ([`crate::layers::shape::relief`]), made once per head, strengths and size; `None` when the
-    /// shape layer is off or every strength is 0.
+    /// ([`crate::layers::shape::relief`]), made once per head, size and the regions that
+    /// are on, each at strength 1 (applied with [`Scene::shape_relief_factors`]); `None`
+    /// when the shape layer is off or every strength is 0.
     pub(super) fn shape_relief(
         &mut self,
         size: u32,
@@ -171,7 +190,7 @@ impl Scene {
                 self.mesh_generation,
                 self.layout_generation,
                 self.metres_per_unit().to_bits(),
-                strengths.map(f32::to_bits),
+                strengths.map(|s| u32::from(s > 0.0)),
             ),
             size,
         );
@@ -191,5 +210,19 @@ impl Scene {
         )?);
         self.relief = Some((key, relief.clone()));
         Ok(Some(relief))
+    }
+
+    /// What [`Scene::shape_relief`]'s regions are weighed by at `years`: each region's
+    /// strength on this head times its curve.
+    pub(super) fn shape_relief_factors(
+        &self,
+        years: f32,
+    ) -> [f32; crate::layers::shape::REGIONS.len()] {
+        let strengths = self.shape_strengths();
+        let mut factors = crate::layers::shape::REGIONS.map(|r| r.factor(years));
+        for (f, s) in factors.iter_mut().zip(strengths) {
+            *f *= s;
+        }
+        factors
     }
 }

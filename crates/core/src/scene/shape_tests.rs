@@ -525,3 +525,44 @@ fn a_dense_head_keeps_its_aged_shape() {
     let (once, twice) = (shares[0].2, shares[1].2);
     assert!(once > 0.05 && twice >= 0.8 * once, "{shares:?}");
 }
+
+/// A shape slider's move makes the regions' moves again on the head's basis kept from
+/// before, and keeps the relief (made at strength 1, weighed when applied): the field is
+/// the one made afresh, the relief the one before.
+#[test]
+fn a_strength_change_keeps_the_basis_and_the_relief() {
+    let never = CancelToken::never();
+    let mut scene = Scene::new(Project::default()).unwrap();
+    let before = scene.shape_field().unwrap();
+    let basis = scene.shape_basis.as_ref().unwrap().1.clone();
+    let relief = scene.shape_relief(128, &never).unwrap().unwrap();
+    let mut p = scene.project().clone();
+    p.shape.cheeks = 1.5;
+    scene.set_project(p.clone()).unwrap();
+    let after = scene.shape_field().unwrap();
+    assert!(!Arc::ptr_eq(&before, &after), "a new field");
+    assert!(Arc::ptr_eq(&basis, &scene.shape_basis.as_ref().unwrap().1));
+    assert!(Arc::ptr_eq(
+        &relief,
+        &scene.shape_relief(128, &never).unwrap().unwrap()
+    ));
+    let fresh = Scene::new(p).unwrap().shape_field().unwrap();
+    assert!(
+        *after == *fresh,
+        "the field on the kept basis is the one made afresh"
+    );
+    // The relief's weights carry the strength.
+    let years = 75.0;
+    let (one, more) = (
+        Scene::new(Project::default())
+            .unwrap()
+            .shape_relief_factors(years),
+        scene.shape_relief_factors(years),
+    );
+    let cheeks = crate::layers::shape::REGIONS
+        .iter()
+        .position(|r| r.name == "cheeks")
+        .unwrap();
+    assert!(one[cheeks] > 0.0);
+    assert!((more[cheeks] - 1.5 * one[cheeks]).abs() < 1e-6);
+}

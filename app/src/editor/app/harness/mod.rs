@@ -106,6 +106,9 @@ impl EditorApp {
             bench::Action::None => {}
             bench::Action::BigBake => self.submit_sized((4096, 4096), "4096² bake"),
             bench::Action::SetAge(t) => self.set_age(t, true),
+            bench::Action::Drag(path, value) => {
+                self.apply(path, Value::from(value), true);
+            }
             bench::Action::Play => self.persisted.playback.playing = true,
             bench::Action::PlayHeadOnly => {
                 self.persisted.layout = Layout::Head;

@@ -25,7 +25,8 @@ use crate::age::{AgeCurve, CurveShape};
 use crate::base::math::smoothstep;
 use crate::head::frame::Regions;
 use crate::head::mesh::Mesh;
-use crate::head::mesh::normals::{smooth_normals, weld_by_position};
+use crate::head::mesh::normals::smooth_normals;
+pub use basis::ShapeBasis;
 
 /// How a region moves the skin.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -246,34 +247,27 @@ impl ShapeField {
         metres_per_unit: f32,
         eyes: Option<(Vec3, Vec3)>,
     ) -> Self {
+        let basis = ShapeBasis::new(mesh, template_point, metres_per_unit, eyes);
+        Self::on(mesh, &basis, strengths)
+    }
+
+    /// [`ShapeField::with_mirror`] on a [`ShapeBasis`] made of `mesh`: what a change of
+    /// strengths makes again.
+    pub fn on(mesh: &Mesh, basis: &ShapeBasis, strengths: &[f32]) -> Self {
         let n = mesh.vertex_count();
-        let mut skin = vec![false; n];
-        for &i in mesh.skin_indices().iter() {
-            skin[i as usize] = true;
-        }
+        let ShapeBasis {
+            welded,
+            skin,
+            skin_at,
+            points,
+            smooth,
+            own,
+            mm,
+            metres_per_unit,
+            ..
+        } = basis;
+        let (mm, metres_per_unit) = (*mm, *metres_per_unit);
         let regions = Regions::template();
-        // One computation per position: split vertices move together. At each position
-        // the first skin vertex there stands for all (its template point and normal).
-        let welded = weld_by_position(mesh.positions());
-        let mut skin_at = vec![u32::MAX; n];
-        for v in 0..n {
-            let w = welded[v] as usize;
-            if skin[v] && skin_at[w] == u32::MAX {
-                skin_at[w] = v as u32;
-            }
-        }
-        let mm = 1e-3 / metres_per_unit.max(1e-12);
-        // Each vertex's place in the face frame: the first skin vertex at each position
-        // stands for all (its template point and normal; the others copy its moves below).
-        let points: Vec<Option<Vec3>> = (0..n)
-            .map(|v| {
-                let s = skin_at[v];
-                if welded[v] as usize != v || s == u32::MAX {
-                    return None;
-                }
-                Some(regions?.relative(template_point(s as usize)?))
-            })
-            .collect();
         let normals = mesh.normals();
         let (full, hollow) = REGIONS
             .iter()
@@ -291,7 +285,7 @@ impl ShapeField {
                     .sum();
                 let mut moved: Vec<(Vec3, f32)> = points
                     .par_iter()
-                    .zip(&skin_at)
+                    .zip(skin_at)
                     .map(|(q, &s)| {
                         let Some(q) = *q else {
                             return (Vec3::ZERO, 0.0);
@@ -344,37 +338,34 @@ impl ShapeField {
             .unzip();
         let mut full: Vec<Vec<Vec3>> = full;
         let mut hollow: Vec<Vec<f32>> = hollow;
-        let own =
-            eyes.and_then(|eyes| mirrored::OwnMirror::of(mesh.positions(), &welded, eyes, mm));
-        if let Some(own) = &own {
-            own.average(&mut full, &mut hollow, &welded);
+        if let Some(own) = own {
+            own.average(&mut full, &mut hollow, welded);
         }
-        let smooth = smooth_normals(mesh.positions(), mesh.indices());
         let (positions, indices) = (mesh.positions(), mesh.indices());
         // A dense head is settled on a coarser stand-in ([`coarse`]).
         if !coarse::settle(
-            positions, indices, &welded, &skin, &smooth, &mut full, &points, mm,
+            positions, indices, welded, skin, smooth, &mut full, points, mm,
         ) {
             settle::settle(
                 positions,
                 indices,
-                &welded,
-                &smooth,
+                welded,
+                smooth,
                 &mut full,
-                &points,
+                points,
                 mm,
-                own.as_ref().map(|own| own.pairs.as_slice()),
+                Some(basis.partners()),
             );
         }
         // The cuts, made vertex by vertex in turn, are not quite alike on the two sides of
         // a symmetric head (0.7 mm on the East Asian man): made mirror images once more.
-        if let Some(own) = &own {
-            own.average(&mut full, &mut hollow, &welded);
+        if let Some(own) = own {
+            own.average(&mut full, &mut hollow, welded);
         }
         Self {
             full,
             hollow,
-            smooth,
+            smooth: smooth.clone(),
             metres_per_unit,
             full_occlusion: std::sync::OnceLock::new(),
         }
@@ -502,6 +493,7 @@ fn size(d: &[Vec3]) -> f64 {
 }
 
 pub mod anatomy;
+mod basis;
 pub mod clearance;
 mod coarse;
 mod facing;

@@ -13,7 +13,7 @@ const CLEAR_AND_UNFOLD_ROUNDS: usize = 4;
 
 /// How far (face units, about 5 mm) a vertex's mirror partner may lie from its mirror
 /// image ([`symmetry::mirror_partners`]).
-const MIRROR_TOLERANCE: f32 = 0.1;
+pub(super) const MIRROR_TOLERANCE: f32 = 0.1;
 
 /// How far, mm, the evening's shortening is smoothed over the mesh
 /// ([`symmetry::even_out`]): (this / the mean edge)² passes, none on a head whose edges
@@ -25,8 +25,9 @@ const EVEN_SMOOTH_MM: f32 = 2.0;
 /// `smooth` its smooth normals, `points` each vertex's place in the face frame (for its
 /// mirror image; `None` off the template or not the first at its position), `mm` a
 /// millimetre in the head's units,
-/// `own_pairs` the head's own mirror pairs where it is its own mirror image
-/// ([`symmetry::head_mirror`]), which then even the cuts out instead.
+/// `partners` the vertices' mirror partners the cuts are evened over (the head's own pairs
+/// where it is its own mirror image, [`symmetry::head_mirror`]; `None`: those of `points`
+/// within [`MIRROR_TOLERANCE`]).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn settle(
     positions: &[Vec3],
@@ -36,7 +37,7 @@ pub(super) fn settle(
     full: &mut [Vec<Vec3>],
     points: &[Option<Vec3>],
     mm: f32,
-    own_pairs: Option<&[Option<u32>]>,
+    partners: Option<&[Option<u32>]>,
 ) {
     let n = positions.len();
     let uncut: Vec<Vec3> = (0..n).map(|v| full.iter().map(|f| f[v]).sum()).collect();
@@ -53,11 +54,13 @@ pub(super) fn settle(
     } else {
         crate::head::fit::bvh::Bvh::new(&[], &[])
     };
-    // A head that is its own mirror image: its own pairs (exact); else the pairs of the
-    // face frame, within MIRROR_TOLERANCE.
-    let partners = match own_pairs {
-        Some(pairs) => pairs.to_vec(),
-        None => symmetry::mirror_partners(points, MIRROR_TOLERANCE),
+    let found;
+    let partners = match partners {
+        Some(pairs) => pairs,
+        None => {
+            found = symmetry::mirror_partners(points, MIRROR_TOLERANCE);
+            &found
+        }
     };
     let welded_triangles: Vec<u32> = indices.iter().map(|&i| welded[i as usize]).collect();
     let passes = smoothing_passes(positions, indices, EVEN_SMOOTH_MM * mm);
@@ -89,7 +92,7 @@ pub(super) fn settle(
         }
         // What the cuts took from one side they take from the other, then one more
         // turn keeps what that leaves clear and unfolded.
-        if evened || symmetry::even_out(full, &uncut, &partners, &welded_triangles, passes) == 0 {
+        if evened || symmetry::even_out(full, &uncut, partners, &welded_triangles, passes) == 0 {
             break;
         }
         evened = true;

@@ -1,6 +1,7 @@
 use super::regions::{LATE_GAIN, NASOLABIAL_L, NASOLABIAL_R};
 use super::*;
 use crate::age::{LATE_END_YEARS, LATE_START_YEARS};
+use crate::head::mesh::normals::weld_by_position;
 use crate::project::Project;
 use crate::scene::Scene;
 

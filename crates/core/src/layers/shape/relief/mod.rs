@@ -7,9 +7,9 @@
 //! skin pass and the exported normal map already turn into normals (a raised side is a
 //! negative depth). The mesh and the map then draw the roll together, each once.
 //!
-//! Made once per head, map size and strengths ([`ShapeRelief::new`]), as heights in UV
-//! units per rolled region; [`ShapeRelief::apply`] weighs them by the regions' curves at an
-//! age and adds them to a map.
+//! Made once per head and map size ([`ShapeRelief::new`]), as heights in UV units per
+//! rolled region at strength 1; [`ShapeRelief::apply`] weighs them by the regions'
+//! strengths and curves at an age and adds them to a map.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -51,7 +51,10 @@ impl ShapeRelief {
     /// The relief of every region with rolls on `mesh`'s skin triangles, in its UV layout
     /// at `size`²: `template_point(v)` is vertex v's template point (template metres;
     /// `None`: off the template, no relief there), `strengths` each region's multiplier
-    /// (in [`REGIONS`] order), `metres_per_unit` the head's unit.
+    /// (in [`REGIONS`] order: a region is made where it is over 0), `metres_per_unit` the
+    /// head's unit. Each region is made at strength 1 — its relief is the roll's height
+    /// weighed and blurred, linear in it — and [`Self::apply`]'s factors carry the
+    /// strength: a shape slider's move re-makes nothing here.
     pub fn new(
         mesh: &Mesh,
         template_point: &dyn Fn(usize) -> Option<Vec3>,
@@ -87,7 +90,7 @@ impl ShapeRelief {
             let grids: Vec<RollGrid<'_>> = region
                 .rolls
                 .iter()
-                .map(|roll| RollGrid::new(roll, strength))
+                .map(|roll| RollGrid::new(roll, 1.0))
                 .collect();
             // The skin triangles the rolls' relief can reach, and the pixels they cover.
             // (With the blur's reach beyond the crease: a texel there takes the blurred
@@ -219,8 +222,8 @@ impl ShapeRelief {
         self.size
     }
 
-    /// Adds the relief at the regions' `factors` (their curves at an age, in [`REGIONS`]
-    /// order) to `map`, a large-wrinkle depth map at [`Self::size_px`] whose normalised
+    /// Adds the relief at the regions' `factors` (their strengths times their curves at an
+    /// age, in [`REGIONS`] order) to `map`, a large-wrinkle depth map at [`Self::size_px`] whose normalised
     /// depth of 1 is `depth_uv` UV units deep: a raised texel's depth falls (below 0 on a
     /// crest), a crease's rises. A map of another size is left as it is.
     pub fn apply(&self, map: &mut HeightMap, factors: &[f32], depth_uv: f32) {

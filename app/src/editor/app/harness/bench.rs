@@ -361,7 +361,10 @@ impl BenchUi {
 
     /// Whether the script is dragging a slider (the view draws its moving frames).
     pub fn dragging(&self) -> bool {
-        matches!(self.phase, Phase::Slider | Phase::SliderBusy)
+        matches!(
+            self.phase,
+            Phase::Slider | Phase::ShapeSlider | Phase::SliderBusy
+        )
     }
 
     /// Whether the app should paint nothing but an empty panel this frame.

@@ -147,35 +147,43 @@ impl Correspondence {
         )?;
         let mut texels: Vec<[f32; 2]> = state.iter().map(|t| t.uv).collect();
         let covered: Vec<bool> = state.iter().map(|t| t.covered).collect();
-        let distance: Vec<f32> = state.iter().map(|t| t.distance).collect();
-        drop(state);
-        cancel.check()?;
+        let filled: Vec<bool> = state.iter().map(|t| t.distance.is_finite()).collect();
         // A guard texel across a seam stands for the surface on the other side of it: its
         // template UV is read where its point lies on the head (the neighbouring
         // triangle, wherever that is in the UV layout), not extrapolated from one
-        // triangle, so heights on both sides of a seam agree (docs/models.md §7a).
-        let bvh = super::bvh::Bvh::new(positions, &idx);
-        // A texel's width in 3D is far below this: farther is no continuation.
-        let reach = 0.05 * head.bounds().size().max_element();
-        let continued: Vec<(usize, [f32; 2])> = guard_points
+        // triangle, so heights on both sides of a seam agree (docs/models.md §7a). Each
+        // texel outside every island, at its last write.
+        let across: Vec<(u32, Vec3)> = guard_points
             .par_iter()
             .flatten()
-            // The last write of a texel outside every island.
-            .filter(|(i, _, outside)| !covered[*i as usize] && *outside == distance[*i as usize])
-            .filter_map(|&(i, q, _)| {
-                let hit = bvh.closest(q, reach)?;
-                let t = hit.triangle as usize * 3;
-                let uv = |k: usize| fit.template_uv.get(idx[t + k] as usize).copied().flatten();
-                let (ta, tb, tc) = unwrap_u([uv(0)?, uv(1)?, uv(2)?]);
-                let w = hit.bary;
-                let uv = ta * w.x + tb * w.y + tc * w.z;
-                Some((i as usize, [uv.x.rem_euclid(1.0), uv.y]))
+            .filter(|(i, _, outside)| {
+                !covered[*i as usize] && *outside == state[*i as usize].distance
             })
+            .map(|&(i, q, _)| (i, q))
             .collect();
-        for (i, uv) in continued {
-            texels[i] = uv;
+        drop(state);
+        cancel.check()?;
+        if !across.is_empty() {
+            // The head's tree, only when a texel asks for it.
+            let bvh = super::bvh::Bvh::new(positions, &idx);
+            // A texel's width in 3D is far below this: farther is no continuation.
+            let reach = 0.05 * head.bounds().size().max_element();
+            let continued: Vec<(usize, [f32; 2])> = across
+                .par_iter()
+                .filter_map(|&(i, q)| {
+                    let hit = bvh.closest(q, reach)?;
+                    let t = hit.triangle as usize * 3;
+                    let uv = |k: usize| fit.template_uv.get(idx[t + k] as usize).copied().flatten();
+                    let (ta, tb, tc) = unwrap_u([uv(0)?, uv(1)?, uv(2)?]);
+                    let w = hit.bary;
+                    let uv = ta * w.x + tb * w.y + tc * w.z;
+                    Some((i as usize, [uv.x.rem_euclid(1.0), uv.y]))
+                })
+                .collect();
+            for (i, uv) in continued {
+                texels[i] = uv;
+            }
         }
-        let filled: Vec<bool> = distance.iter().map(|d| d.is_finite()).collect();
         pad(&mut texels, &filled, n);
         Ok(Self {
             size,

@@ -151,12 +151,12 @@ fn the_heads_own_colours_are_measured_on_its_colour_map() {
 }
 
 /// A woman in the female pattern keeps at least half of her hairs at 80 and her frontal
-/// hairline (the hair the male pattern loses first), her temples receding a little; the
-/// male pattern loses that hairline.
+/// hairline (the hair the male pattern loses first), her temples receding a little, and
+/// her first gray hairs grow along it; the male pattern loses that hairline.
 #[test]
 fn a_woman_keeps_her_hairline_and_half_her_hair() {
     let never = CancelToken::never();
-    let mut kept = Vec::new();
+    let (mut kept, mut first_gray) = (Vec::new(), Vec::new());
     for loss in [HairLoss::Female, HairLoss::Male] {
         let mut p = panel_project("caucasian-female", false);
         p.hair.loss = Some(loss);
@@ -205,11 +205,26 @@ fn a_woman_keeps_her_hairline_and_half_her_hair() {
             (stay as f32 / hairs.len().max(1) as f32, hairs.len())
         };
         let share = |t: f32| at(t).len() as f32 / at(0.0).len().max(1) as f32;
+        // Her first gray hairs grow along the front (docs/models.md §9 "Graying").
+        let (t45, ramp) = (
+            scene.project().age.mapping().t(45.0),
+            scene.project().hair.graying_ramp,
+        );
+        let white = |hairs: &[&crate::layers::hair::HairInstance]| {
+            let n = hairs
+                .iter()
+                .filter(|h| h.gray_fraction(t45, ramp) > 0.9)
+                .count();
+            n as f32 / hairs.len().max(1) as f32
+        };
+        first_gray.push((white(&front), white(&young.iter().collect::<Vec<_>>())));
         let (front, front_hairs) = kept_of(&front);
         let (temples, temple_hairs) = kept_of(&temples);
         kept.push((loss, share(1.0), front, front_hairs, temples, temple_hairs));
     }
     eprintln!("(loss, all kept, front kept, front hairs, temples kept, temple hairs): {kept:?}");
+    eprintln!("white at 45 (front, all): {first_gray:?}");
+    assert!(first_gray[0].0 > first_gray[0].1 + 0.05, "{first_gray:?}");
     let (_, female_all, female_front, front_hairs, female_temples, temple_hairs) = kept[0];
     assert!(front_hairs > 20 && temple_hairs > 20, "{kept:?}");
     assert!(female_all >= 0.5 && female_front >= 0.5, "{kept:?}");

@@ -719,6 +719,13 @@ pub const GRAY_RAMP_T: f32 = 0.08;
 /// docs/models.md §9 "Graying").
 pub const TEMPLE_GRAYING_LEAD: f32 = 0.2;
 
+/// How much earlier, as a share of the graying onsets' range, the hairs along the frontal
+/// hairline and at the temples gray in the female pattern: the lead at the kept hairline,
+/// fading to none [`HAIRLINE_KEPT_MM`] behind it, and none at the nape: women see their
+/// first gray hairs at the front more often, men at the temples (docs/models.md §9
+/// "Graying").
+pub const FRONT_GRAYING_LEAD: f32 = 0.2;
+
 /// y_k(t) = clamp((t − t_k)/[`GRAY_RAMP_T`], 0, 1), optionally smoothstepped
 /// (docs/models.md §9 "Graying"). `t` is clamped to [0,1] (NaN → 0); an onset t_k ≥ 1
 /// never grays (y = 0), an onset ≤ 0 is used as is.

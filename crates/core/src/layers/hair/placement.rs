@@ -200,7 +200,7 @@ impl Corners {
             facing_side: normal.x.abs(),
         };
         let mm = (p[0] * b0 + p[1] * r1 + p[2] * r2) * (params.metres_per_unit * 1e3);
-        let (age, length) = site.age_and_length(draws, mm)?;
+        let (age, length, hairline) = site.age_and_length(draws, mm)?;
         let position = p[0] * b0 + p[1] * r1 + p[2] * r2;
         // Uniform over the spherical cap around the normal.
         let cos_theta = 1.0 - draws.cone_u * (1.0 - cos_max);
@@ -214,16 +214,16 @@ impl Corners {
         // The onset does not depend on when the hair goes (docs/models.md §9 "Graying":
         // [T]'s t_k = a_k·U grayed the receding crown first, all of it white by 45 once
         // each hair turns in a few years); hair that goes before its onset never grays.
-        // In the male pattern the temples and the sides gray first (Tobin 2008): a hair
-        // whose root faces sideways (the head's +Y up, ±X to the sides) starts up to
-        // [`TEMPLE_GRAYING_LEAD`] of the range earlier; in women graying is more diffuse.
-        let side = if params.loss == HairLoss::Male {
-            smoothstep(0.45, 0.85, normal.x.abs())
-        } else {
-            0.0
+        // Where graying starts: in the male pattern at the temples and the sides (Tobin
+        // 2008), a hair whose root faces sideways (the head's +Y up, ±X to the sides)
+        // starting up to [`TEMPLE_GRAYING_LEAD`] of the range earlier; in the female
+        // pattern along the frontal hairline and at the temples ([`FRONT_GRAYING_LEAD`]).
+        let lead = match params.loss {
+            HairLoss::Male => TEMPLE_GRAYING_LEAD * smoothstep(0.45, 0.85, normal.x.abs()),
+            HairLoss::Female => FRONT_GRAYING_LEAD * hairline * smoothstep(-0.3, 0.2, normal.z),
+            HairLoss::None => 0.0,
         };
-        let onset =
-            onset_min + (onset_max - onset_min) * (draws.onset_u - TEMPLE_GRAYING_LEAD * side);
+        let onset = onset_min + (onset_max - onset_min) * (draws.onset_u - lead);
         Some(HairInstance {
             position: position.to_array(),
             disappear_age: age,
@@ -263,8 +263,10 @@ impl Site<'_> {
 
     /// The hair's disappearance age and length factor at its place `mm` (head, mm): the
     /// thinning and recession ([`disappearance`]), then the taper, the fringe's fade, its
-    /// ragged edge, strays and the soft edge. `None`: the edge thins this one out.
-    fn age_and_length(&self, draws: &Draws, mm: Vec3) -> Option<(f32, f32)> {
+    /// ragged edge, strays and the soft edge; and how near the kept hairline it grows (1 at
+    /// it to 0 [`HAIRLINE_KEPT_MM`] from it; 0 in the male pattern, whose hairline moves).
+    /// `None`: the edge thins this one out.
+    fn age_and_length(&self, draws: &Draws, mm: Vec3) -> Option<(f32, f32, f32)> {
         let params = self.params;
         if params.loss != HairLoss::Male {
             return self.kept_and_thinned(draws);
@@ -334,7 +336,7 @@ impl Site<'_> {
                 age = (earliest + (age - earliest) * 2.0 * draws.edge_u).max(1e-3);
             }
         }
-        Some((age, length))
+        Some((age, length, 0.0))
     }
 
     /// The hair's disappearance age and length where the hairline is kept (the female
@@ -343,7 +345,7 @@ impl Site<'_> {
     /// region, less the band along the hairline) thins most and the sides, back and
     /// hairline less, and the temples recede a little ([`female_recession`]). The taper and
     /// the sparser edge as in the male pattern. `None`: the edge thins it out.
-    fn kept_and_thinned(&self, draws: &Draws) -> Option<(f32, f32)> {
+    fn kept_and_thinned(&self, draws: &Draws) -> Option<(f32, f32, f32)> {
         let params = self.params;
         if self.texture_age < KEPT_HAIRLINE_T {
             return None;
@@ -385,7 +387,11 @@ impl Site<'_> {
             let temple = smoothstep(FEMALE_TEMPLE_SIDE.0, FEMALE_TEMPLE_SIDE.1, self.facing_side);
             age = age.min(female_recession(self.texture_age, draws.spread, temple));
         }
-        Some((age.max(1e-3), length))
+        Some((
+            age.max(1e-3),
+            length,
+            1.0 - smooth01(bare / HAIRLINE_KEPT_MM),
+        ))
     }
 
     /// The fringe left at old age (hair that stays, `texture_age` 1, near hair that goes):

@@ -374,12 +374,10 @@ fn root(
         bushy,
         s,
         loss_draw: draws[3],
-        // Wiry grown hairs are the first to go white.
-        gray_draw: if bushy.is_some() {
-            0.7 * draws[6]
-        } else {
-            draws[6]
-        },
+        // The grown, wiry hairs gray as the others do: graying first, they stood out
+        // long and white over the dark ones, read blind on dark skin as "white brow
+        // tufts" (rounds 53–54).
+        gray_draw: draws[6],
         shade: 0.8 + 0.4 * draws[8],
     }
 }

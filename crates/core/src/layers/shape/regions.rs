@@ -255,19 +255,25 @@ pub const REGIONS: [ShapeRegion; 11] = [
         name: "temples",
         what: "temples hollowing",
         // The temporal fossa behind the orbit's outer rim, not reaching the eye's corner
-        // (the eye stays), and the side of the head behind it, so the outline from the
-        // front dips between the forehead and the cheekbone (the side alone read, blind,
-        // as "full temples"; the fossa alone as "only darkened, not hollowed"; the
-        // fossa's dish narrower, its edge as "a hard vertical ridge"). Dishes (a
-        // plateau's rim drew, blind, "a hard vertical ridge" in the front outline), not
-        // reaching the forehead's side (where an edge read as "a hard vertical step").
-        // The fossa's dish just behind the rim, where the hollow shows from the front
-        // and at three-quarter (centred 68 mm out and 26 mm behind the eyes, and 11 mm
-        // deep, every blind rater read "temples not hollow"), 15 mm deep: more than an
-        // old temple loses, so that it shows at a portrait's size.
+        // (the eye stays), so the outline from the front dips between the forehead and
+        // the cheekbone (the fossa's dish narrower, its edge read, blind, as "a hard
+        // vertical ridge"). A dish (a plateau's rim drew, blind, "a hard vertical ridge"
+        // in the front outline), not reaching the forehead's side (where an edge read as
+        // "a hard vertical step"), just behind the rim, where the hollow shows from the
+        // front and at three-quarter (centred 68 mm out and 26 mm behind the eyes, and
+        // 11 mm deep, every blind rater read "temples not hollow"), 15 mm deep: more than
+        // an old temple loses, so that it shows at a portrait's size. A second dish over
+        // the side of the head behind it (26 × 45 × 47 mm, 75 mm out, 38 mm behind), at
+        // half the depth: at the full depth it cut the skull's side in under the unmoved
+        // forehead, whose sides stood out as ridges, read blind as "temples that bulge
+        // out into wings" on four heads of seven (round 56); without it as "temples
+        // still full, the face puffy" (round 57; alone at 10 mm and farther back the
+        // fossa's dish read as "only darkened, not hollowed").
         blobs: &[
             Blob::new([1.3, 0.45, -0.35], [0.42, 0.55, 0.45]).soft(),
-            Blob::new([1.6, 0.5, -0.8], [0.55, 0.95, 1.0]).soft(),
+            Blob::new([1.6, 0.5, -0.8], [0.55, 0.95, 1.0])
+                .deflating(0.5)
+                .soft(),
         ],
         motions: &[(Deflate, 15.0)],
         rolls: &[],

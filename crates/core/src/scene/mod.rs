@@ -252,6 +252,9 @@ pub struct Scene {
     /// The shape field and what it was made from (mesh and layout generations, metres per
     /// unit, strengths).
     shape: Option<(ShapeKey, Arc<crate::layers::shape::ShapeField>)>,
+    /// The field a shape slider shows while it moves (the settled one's moves scaled to
+    /// the new strengths, [`Scene::bake_shape_moving`]) and its key.
+    shape_moving: Option<(ShapeKey, Arc<crate::layers::shape::ShapeField>)>,
     /// What the shape field is made on whatever the strengths (mesh and layout
     /// generations, metres per unit's bits).
     shape_basis: Option<((u64, u64, u32), Arc<crate::layers::shape::ShapeBasis>)>,
@@ -345,6 +348,7 @@ impl Scene {
             colour: colour::ColourStage::default(),
             shape: None,
             shape_basis: None,
+            shape_moving: None,
             shape_aged: None,
             relief: None,
             brows: None,
@@ -386,6 +390,7 @@ impl Scene {
             colour: self.colour.clone(),
             shape: self.shape.clone(),
             shape_basis: self.shape_basis.clone(),
+            shape_moving: self.shape_moving.clone(),
             shape_aged: self.shape_aged.clone(),
             relief: self.relief.clone(),
             brows: self.brows.clone(),

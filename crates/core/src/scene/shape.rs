@@ -29,17 +29,25 @@ impl Scene {
         self.bake_shape_with(t, true)
     }
 
-    /// [`Scene::bake_shape`] while a slider moves: a new field's sky (its occlusion ratio,
-    /// ≈ 0.4 s for the default head) is not measured; the last shape's is kept until the
-    /// field stays (the next bake of the same field, as when the age is scrubbed, or a
-    /// [`Scene::bake_shape`]) and it is measured.
+    /// [`Scene::bake_shape`] while a slider moves: a shape slider's new strengths show the
+    /// settled field's moves scaled to them ([`crate::layers::shape::ShapeField::rescaled`]:
+    /// the settling, ≈ 80 ms on the default head, is the still bake's), the same strengths
+    /// a second time (the age moves) the field settled afresh; a new field's sky (its
+    /// occlusion ratio, ≈ 0.4 s for the default head) is not measured: the last shape's is
+    /// kept until the field stays (the next bake of the same field, as when the age is
+    /// scrubbed, or a [`Scene::bake_shape`]) and it is measured.
     pub fn bake_shape_moving(&mut self, t: f32) -> bool {
         self.bake_shape_with(t, false)
     }
 
     fn bake_shape_with(&mut self, t: f32, measure_sky: bool) -> bool {
         let years = self.project.age.mapping().years(t);
-        let Some(field) = self.shape_field() else {
+        let field = if measure_sky {
+            self.shape_field().map(|f| (f, false))
+        } else {
+            self.shape_field_moving()
+        };
+        let Some((field, scaled)) = field else {
             let changed = self.shape_aged.is_some();
             self.shape_aged = None;
             return changed;
@@ -49,7 +57,8 @@ impl Scene {
         // as is one whose sky costs nothing now.
         let same_field = (self.shape_aged.as_ref())
             .is_some_and(|((f, ..), _)| *f == Arc::as_ptr(&field) as usize);
-        let measured = measure_sky || same_field || field.occlusion_is_cheap(mesh, years);
+        let measured =
+            !scaled && (measure_sky || same_field || field.occlusion_is_cheap(mesh, years));
         let key = (Arc::as_ptr(&field) as usize, years.to_bits(), measured);
         if self.shape_aged.as_ref().is_some_and(|(k, _)| *k == key) {
             return false;
@@ -119,6 +128,28 @@ impl Scene {
         ));
         self.shape = Some((key, field.clone()));
         Some(field)
+    }
+
+    /// The shape field a moving slider shows, and whether it is the settled one scaled
+    /// ([`Scene::bake_shape_moving`]): new strengths on a head whose field was settled
+    /// with every region on or off as now scale it; the same strengths again, or no such
+    /// field, make it ([`Scene::shape_field`]).
+    fn shape_field_moving(&mut self) -> Option<(Arc<crate::layers::shape::ShapeField>, bool)> {
+        let key = self.shape_key()?;
+        let settled = self.shape.as_ref().is_some_and(|(k, _)| *k == key);
+        let again = self.shape_moving.as_ref().is_some_and(|(k, _)| *k == key);
+        if !settled
+            && !again
+            && let Some((k, f)) = &self.shape
+            && (k.0, k.1, k.2) == (key.0, key.1, key.2)
+            && let Some(scaled) = f.rescaled(&k.3.map(f32::from_bits), &key.3.map(f32::from_bits))
+        {
+            let scaled = Arc::new(scaled);
+            self.shape_moving = Some((key, scaled.clone()));
+            return Some((scaled, true));
+        }
+        self.shape_moving = None;
+        self.shape_field().map(|f| (f, false))
     }
 
     /// The head's [`crate::layers::shape::ShapeBasis`]: its template points, its outer eye

@@ -104,30 +104,51 @@ fn the_aged_shape_folds_no_skin_over_on_any_head() {
     println!("{}", report.join("\n"));
 }
 
-/// While a shape slider moves, a new field's sky is not measured (the last shape's is
-/// kept: the preview is not held up by it); the next bake of the same field, or a still
-/// bake, measures it.
+/// While a shape slider moves, the settled field's moves are scaled to the new strengths
+/// and a new field's sky is not measured (the last shape's is kept: the preview is not
+/// held up by the settling or the sky); the same strengths again settle the field afresh,
+/// the next bake of that field, or a still bake, measures its sky.
 #[test]
 fn a_moving_shape_keeps_the_last_sky_until_the_field_stays() {
     let mut scene = Scene::new(Project::default()).unwrap();
     scene.bake_shape(1.0);
-    let before = scene.aged_shape().unwrap().occlusion.clone();
+    let before = scene.aged_shape().unwrap().clone();
     assert!(
-        before.iter().any(|&o| o < 0.95),
+        before.occlusion.iter().any(|&o| o < 0.95),
         "the default shape hides no sky"
     );
     let mut p = scene.project().clone();
     p.shape.strength = 2.0;
-    scene.set_project(p).unwrap();
+    scene.set_project(p.clone()).unwrap();
     assert!(scene.bake_shape_moving(1.0));
     let moving = scene.aged_shape().unwrap().clone();
-    assert_eq!(moving.occlusion, before, "the moving bake measured the sky");
-    // The displacement is the new field's.
+    assert_eq!(
+        moving.occlusion, before.occlusion,
+        "the moving bake measured the sky"
+    );
+    // The displacement is the settled field's, twice as far.
+    let far = |a: Vec3, b: Vec3| (a - 2.0 * b).length() <= 1e-5 * (1.0 + b.length());
+    assert!(
+        moving
+            .delta
+            .iter()
+            .zip(&before.delta)
+            .all(|(m, b)| far(*m, *b))
+    );
     assert!(moving.delta.iter().any(|d| d.length() > 0.0));
-    // The same field again (the age moves): measured now, and not the old one.
+    // The same strengths again (the age moves): the field settled as a fresh scene's,
+    // its sky not measured yet.
+    assert!(scene.bake_shape_moving(1.0));
+    let settled = scene.aged_shape().unwrap().clone();
+    let mut fresh = Scene::new(p).unwrap();
+    fresh.bake_shape(1.0);
+    assert_eq!(settled.delta, fresh.aged_shape().unwrap().delta);
+    assert_eq!(settled.occlusion, before.occlusion);
+    // The same field once more: measured now, and not the old one.
     assert!(scene.bake_shape_moving(1.0));
     let stayed = scene.aged_shape().unwrap().occlusion.clone();
-    assert_ne!(stayed, before);
+    assert_ne!(stayed, before.occlusion);
+    assert_eq!(stayed, fresh.aged_shape().unwrap().occlusion);
     // A still bake of that field and age keeps what was measured.
     assert!(!scene.bake_shape(1.0));
     assert_eq!(scene.aged_shape().unwrap().occlusion, stayed);

@@ -420,6 +420,35 @@ impl ShapeField {
         out
     }
 
+    /// This field with each region's moves and hollows scaled from the strengths `from`
+    /// (the field's own) to `to`: what a shape slider shows while it moves (the moves are
+    /// linear in the strengths; the settling that keeps the skin clear and unfolded is
+    /// not, and is this field's, the still bake's is made afresh). `None` where a region
+    /// is off in one and on in the other (nothing to scale).
+    pub fn rescaled(&self, from: &[f32], to: &[f32]) -> Option<Self> {
+        let ratio = |r: usize| {
+            let (a, b) = (from.get(r).copied()?, to.get(r).copied()?);
+            match (a > 0.0, b > 0.0) {
+                (true, true) => Some(b / a),
+                (false, false) => Some(0.0),
+                _ => None,
+            }
+        };
+        let ratios: Vec<f32> = (0..self.full.len()).map(ratio).collect::<Option<_>>()?;
+        let scaled = |k: f32, v: &[Vec3]| v.iter().map(|d| *d * k).collect::<Vec<_>>();
+        Some(Self {
+            full: (self.full.iter().zip(&ratios))
+                .map(|(f, &k)| scaled(k, f))
+                .collect(),
+            hollow: (self.hollow.iter().zip(&ratios))
+                .map(|(h, &k)| h.iter().map(|x| x * k).collect())
+                .collect(),
+            smooth: self.smooth.clone(),
+            metres_per_unit: self.metres_per_unit,
+            full_occlusion: std::sync::OnceLock::new(),
+        })
+    }
+
     /// The displacement per vertex at `years`: each region's full displacement times its
     /// share there ([`ShapeRegion::factor`]: its curve, then the old age's gain).
     pub fn at(&self, years: f32) -> Vec<Vec3> {

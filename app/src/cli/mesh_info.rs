@@ -130,7 +130,7 @@ pub fn describe_person(scene: &mut Scene) -> anyhow::Result<String> {
         )
     };
     Ok(format!(
-        "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\nhair curl: {}\nfacial contrast: {contrast}\nlips: {}\n",
+        "skin tone: {skin}\nhair colour: {}\nbrow colour: {}\nhair grays: {:.0} years later than the project's range (hair.graying_onset_*_years)\nhair loss: {}\nhair curl: {}\nfacial contrast: {contrast}\nlips: {}\neyes: {}\n",
         colour(
             person.hair,
             own.hair,
@@ -149,6 +149,7 @@ pub fn describe_person(scene: &mut Scene) -> anyhow::Result<String> {
         person.loss.describe(),
         describe_curl(&person),
         describe_lips(scene),
+        describe_eyes(scene),
     ))
 }
 
@@ -161,6 +162,20 @@ fn describe_lips(scene: &Scene) -> String {
     }
     format!(
         "deflate {f:.2} × as far as the template's (by how far they stand out in front of the subnasale–chin line; shape.lips scales it)"
+    )
+}
+
+/// How far the head's eyes are open and what that makes of the lids' and brows' descent,
+/// as `mesh-info` prints it (docs/models.md §13 "Measured on the head").
+fn describe_eyes(scene: &Scene) -> String {
+    use agesim_core::layers::shape::anatomy;
+    let Some(mm) = scene.layout().eye_opening_mm else {
+        return "the lids come down their whole move (the eyes are closed, or the head is not fitted)".to_owned();
+    };
+    let lids = anatomy::lid_share(Some(mm));
+    format!(
+        "open {mm:.1} mm (scaled to the template's size): the upper lids come down {lids:.2} × their move, the brows {:.2} × (shape.lids, shape.brows scale them)",
+        anatomy::brow_share(lids)
     )
 }
 

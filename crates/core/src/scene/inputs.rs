@@ -377,6 +377,9 @@ pub struct HeadLayout {
     /// How much further than the template's the lips deflate with age, by how far they
     /// stand out ([`crate::layers::shape::anatomy::lip_fullness`]); 1 unfitted.
     pub lip_fullness: f32,
+    /// How far its eyes are open, mm on the head scaled to the template's size
+    /// ([`crate::layers::shape::anatomy::eye_opening`]); `None` unfitted or closed.
+    pub eye_opening_mm: Option<f32>,
 }
 
 /// The largest median distance (template mm) between the template aligned by the
@@ -394,6 +397,7 @@ impl HeadLayout {
             face_only: false,
             how: how.into(),
             lip_fullness: 1.0,
+            eye_opening_mm: None,
         }
     }
 
@@ -450,6 +454,7 @@ impl HeadLayout {
                     choice,
                     how: format!("the template fitted by the landmark file: {}", fit.report),
                     lip_fullness: lip_fullness(mesh, &turned, &fit),
+                    eye_opening_mm: eye_opening_mm(mesh, &turned, &fit),
                     fit: Some(Arc::new(fit)),
                     landmarks: Some(Arc::new(turned)),
                     found: false,
@@ -484,6 +489,7 @@ impl HeadLayout {
                     found.median_distance_mm, fit.report
                 ),
                 lip_fullness: lip_fullness(mesh, &found.landmarks, &fit),
+                eye_opening_mm: eye_opening_mm(mesh, &found.landmarks, &fit),
                 fit: Some(Arc::new(fit)),
                 landmarks: Some(Arc::new(found.landmarks)),
                 found: true,
@@ -506,6 +512,13 @@ fn lip_fullness(mesh: &Mesh, landmarks: &Landmarks, fit: &crate::head::fit::Fit)
         }
         _ => 1.0,
     }
+}
+
+/// How far this head's eyes are open ([`crate::layers::shape::anatomy::eye_opening`]),
+/// mm once the fit's similarity has scaled it to the template's size.
+fn eye_opening_mm(mesh: &Mesh, landmarks: &Landmarks, fit: &crate::head::fit::Fit) -> Option<f32> {
+    crate::layers::shape::anatomy::eye_opening(mesh.positions(), &mesh.skin_indices(), landmarks)
+        .map(|o| o * fit.similarity.scale * 1000.0)
 }
 
 /// A mesh file's axes: the project's where it names them, else the landmarks', else

@@ -95,10 +95,14 @@ impl Scene {
     }
 
     /// The shape regions' strengths on this head: the project's, the lips' by how far this
-    /// head's lips stand out (docs/models.md §13 "Measured on the head").
+    /// head's lips stand out, the upper lids' and the brows' by how far its eyes are open
+    /// (docs/models.md §13 "Measured on the head").
     pub fn shape_strengths(&self) -> [f32; crate::layers::shape::REGIONS.len()] {
         let mut s = self.project.shape.strengths();
         s[crate::layers::shape::LIPS] *= self.inputs.layout.lip_fullness;
+        let lids = crate::layers::shape::anatomy::lid_share(self.inputs.layout.eye_opening_mm);
+        s[crate::layers::shape::LIDS] *= lids;
+        s[crate::layers::shape::BROWS] *= crate::layers::shape::anatomy::brow_share(lids);
         s
     }
 

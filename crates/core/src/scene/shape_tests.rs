@@ -587,3 +587,38 @@ fn a_strength_change_keeps_the_basis_and_the_relief() {
     assert!(one[cheeks] > 0.0);
     assert!((more[cheeks] - 1.5 * one[cheeks]).abs() < 1e-6);
 }
+
+/// Narrow eyes close by less (docs/models.md §13 "Measured on the head"): the lids come
+/// down in proportion to how far this head's eyes are open, the brows by half the cut.
+/// The East Asian man's, the narrowest of the panel, by least; the built-in head's eyes
+/// are closed (nothing measured: the whole move).
+#[test]
+fn narrow_eyes_close_by_less() {
+    use crate::layers::shape::{BROWS, LIDS};
+    let heads: Vec<(String, Option<f32>, [f32; 11])> = panel_projects()
+        .into_iter()
+        .map(|(name, project)| {
+            let scene = Scene::new(project).unwrap();
+            (name, scene.layout().eye_opening_mm, scene.shape_strengths())
+        })
+        .collect();
+    for (name, mm, s) in &heads {
+        eprintln!(
+            "{name}: eyes open {mm:?} mm, lids × {:.2}, brows × {:.2}",
+            s[LIDS], s[BROWS]
+        );
+    }
+    let of = |head: &str| heads.iter().find(|(n, ..)| n == head).unwrap();
+    assert_eq!(of("the template").1, None);
+    assert_eq!(of("the template").2[LIDS], 1.0);
+    let asian = of("asian-male");
+    let open = asian.1.unwrap();
+    assert!((5.0..8.0).contains(&open), "{open} mm");
+    for (name, mm, s) in &heads[1..] {
+        let mm = mm.unwrap_or_else(|| panic!("{name}: no opening measured"));
+        assert!((4.0..12.0).contains(&mm), "{name}: {mm} mm");
+        assert!(asian.2[LIDS] <= s[LIDS] && s[LIDS] <= 1.0, "{name}");
+        assert!(s[BROWS] >= s[LIDS], "{name}");
+    }
+    assert!(asian.2[LIDS] < 0.6, "{}", asian.2[LIDS]);
+}

@@ -13,7 +13,7 @@
 //! share a position with the skin (an eye socket's rim moves with the lid: no crack).
 
 mod regions;
-pub use regions::{BAGS, LIPS, REGIONS, drawn_crease};
+pub use regions::{BAGS, BROWS, LIDS, LIPS, REGIONS, drawn_crease};
 mod roll;
 use roll::DEPTH_GATE;
 pub use roll::Roll;

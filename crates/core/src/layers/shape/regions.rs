@@ -423,6 +423,10 @@ pub const REGIONS: [ShapeRegion; 11] = [
     },
 ];
 
+/// The brows' place in [`REGIONS`].
+pub const BROWS: usize = 0;
+/// The upper lids' place in [`REGIONS`].
+pub const LIDS: usize = 1;
 /// The bags' place in [`REGIONS`].
 pub const BAGS: usize = 2;
 /// The index of the `lips` region in [`REGIONS`].

@@ -53,6 +53,8 @@ pub struct BenchUi {
     slider_latencies_ms: Vec<f64>,
     /// The worker's time for each of those bakes (its report), ms.
     slider_bakes_ms: Vec<f64>,
+    /// The frames' intervals (ms) and the 3D view's resolution scale while a slider moves.
+    slider_frames: Vec<(f64, f32)>,
     /// The slider move waiting to be seen: when it was sent, its job id, and whether the
     /// frame drawing its bake has started (the next frame begins once it is presented).
     slider_sent: Option<(Instant, u64, bool)>,
@@ -148,6 +150,7 @@ impl BenchUi {
             big_bake_frames: Vec::new(),
             slider_latencies_ms: Vec::new(),
             slider_bakes_ms: Vec::new(),
+            slider_frames: Vec::new(),
             slider_sent: None,
             scrub_frames: 0,
             scrub_hairs: Vec::new(),
@@ -234,6 +237,7 @@ impl BenchUi {
                 }
             }
             Phase::ShapeSlider => {
+                self.slider_frames.push((dt, scale));
                 if self.waiting(now, reported, bake_ms) {
                     return Action::None;
                 }
@@ -249,14 +253,16 @@ impl BenchUi {
                 let med = median(&mut self.slider_latencies_ms);
                 let bake = median(&mut self.slider_bakes_ms);
                 self.slider_bakes_ms.clear();
+                let frames = self.slider_frames_summary();
                 self.results.push(format!(
-                    "| shape slider (`shape.cheeks`) dragged → the frame showing it presented (a preview bake at the governor's size with a new shape field, 12 moves) | median {med:.0} ms, worst {worst:.0} ms (the worker's bake of each: median {bake:.0} ms) | ≤ 150 ms |"
+                    "| shape slider (`shape.cheeks`) dragged → the frame showing it presented (a preview bake at the governor's size with a new shape field, 12 moves) | median {med:.0} ms, worst {worst:.0} ms (the worker's bake of each: median {bake:.0} ms; {frames}) | ≤ 150 ms |"
                 ));
                 self.slider_latencies_ms.clear();
                 self.next(Phase::Scrub);
                 return Action::Play;
             }
             Phase::Slider | Phase::SliderBusy => {
+                self.slider_frames.push((dt, scale));
                 if self.waiting(now, reported, bake_ms) {
                     return Action::None;
                 }
@@ -274,8 +280,9 @@ impl BenchUi {
                 } else {
                     ("", "≤ 80 ms")
                 };
+                let frames = self.slider_frames_summary();
                 self.results.push(format!(
-                    "| age slider dragged → the frame showing it presented (a preview bake at the governor's size, 12 moves{busy}) | median {med:.0} ms, worst {worst:.0} ms (the worker's bake of each: median {bake:.0} ms) | {target} |"
+                    "| age slider dragged → the frame showing it presented (a preview bake at the governor's size, 12 moves{busy}) | median {med:.0} ms, worst {worst:.0} ms (the worker's bake of each: median {bake:.0} ms; {frames}) | {target} |"
                 ));
                 self.slider_latencies_ms.clear();
                 if self.phase == Phase::SliderBusy {
@@ -393,6 +400,19 @@ impl BenchUi {
             None => return false,
         }
         true
+    }
+
+    /// The frames drawn while a slider moved, in words (their median interval and the 3D
+    /// view's median resolution), and cleared for the next phase.
+    fn slider_frames_summary(&mut self) -> String {
+        let mut dt: Vec<f64> = self.slider_frames.iter().map(|f| f.0).collect();
+        let mut scale: Vec<f64> = self.slider_frames.iter().map(|f| f64::from(f.1)).collect();
+        self.slider_frames.clear();
+        format!(
+            "frames every {:.0} ms at {:.0} % resolution",
+            median(&mut dt),
+            100.0 * median(&mut scale)
+        )
     }
 
     fn next(&mut self, phase: Phase) {

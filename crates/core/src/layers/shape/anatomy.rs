@@ -15,6 +15,23 @@ pub const LIP_FULLNESS_GAIN: f32 = 0.5;
 /// The most the lips' deflation is multiplied by.
 pub const LIP_FULLNESS_MAX: f32 = 2.5;
 
+/// The face's axes from its landmarks: across the outer eye corners (toward the left
+/// one), up from the pogonion to the nasion, forward toward the nose tip. `None` without
+/// those landmarks or where they are degenerate.
+fn face_axes(landmarks: &Landmarks) -> Option<(Vec3, Vec3, Vec3)> {
+    let get = |n: &str| landmarks.get(n);
+    let right = (get("exocanthion_l")? - get("exocanthion_r")?).try_normalize()?;
+    let (nasion, tip, pg) = (get("nasion")?, get("pronasale")?, get("pogonion")?);
+    let up = (nasion - pg)
+        .reject_from_normalized(right)
+        .try_normalize()?;
+    let mut forward = right.cross(up);
+    if (tip - nasion).dot(forward) < 0.0 {
+        forward = -forward;
+    }
+    Some((right, up, forward))
+}
+
 /// How far the lips stand out in front of the line from the subnasale to the pogonion
 /// (the chin's front) on the face's midline, in the landmarks' units: the largest
 /// distance ahead of that line of the skin within a twentieth of the outer eye corners'
@@ -23,17 +40,9 @@ pub const LIP_FULLNESS_MAX: f32 = 2.5;
 pub fn lip_prominence(positions: &[Vec3], skin: &[u32], landmarks: &Landmarks) -> Option<f32> {
     let get = |n: &str| landmarks.get(n);
     let (eye_r, eye_l) = (get("exocanthion_r")?, get("exocanthion_l")?);
-    let (nasion, tip) = (get("nasion")?, get("pronasale")?);
     let (sn, pg) = (get("subnasale")?, get("pogonion")?);
     let eyes = eye_l - eye_r;
-    let right = eyes.try_normalize()?;
-    let up = (nasion - pg)
-        .reject_from_normalized(right)
-        .try_normalize()?;
-    let mut forward = right.cross(up);
-    if (tip - nasion).dot(forward) < 0.0 {
-        forward = -forward;
-    }
+    let (right, up, forward) = face_axes(landmarks)?;
     let middle = 0.5 * (eye_r + eye_l);
     let half_width = 0.05 * eyes.length();
     let to_pg = pg - sn;
@@ -111,15 +120,7 @@ pub fn eye_opening(positions: &[Vec3], skin: &[u32], landmarks: &Landmarks) -> O
     let get = |n: &str| landmarks.get(n);
     let (exo_r, exo_l) = (get("exocanthion_r")?, get("exocanthion_l")?);
     let (endo_r, endo_l) = (get("endocanthion_r")?, get("endocanthion_l")?);
-    let (nasion, tip, pg) = (get("nasion")?, get("pronasale")?, get("pogonion")?);
-    let right = (exo_l - exo_r).try_normalize()?;
-    let up = (nasion - pg)
-        .reject_from_normalized(right)
-        .try_normalize()?;
-    let mut forward = right.cross(up);
-    if (tip - nasion).dot(forward) < 0.0 {
-        forward = -forward;
-    }
+    let (right, up, forward) = face_axes(landmarks)?;
     let one = |exo: Vec3, endo: Vec3| -> Option<f32> {
         let centre = 0.5 * (exo + endo);
         let width = exo.distance(endo);

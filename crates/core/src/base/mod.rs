@@ -3,6 +3,7 @@
 //! numbers, the SIMD dispatch, the strict JSON parse, small maths, maps keyed by cubes of
 //! space, PNG encoding and the all-or-nothing writing of a set of files.
 
+pub mod arc_key;
 pub mod cancel;
 pub mod cells;
 pub mod diagnostic;

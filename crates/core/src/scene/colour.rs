@@ -6,6 +6,7 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use crate::age::ColourFactors;
+use crate::base::arc_key::ArcKey;
 use crate::base::cancel::CancelToken;
 use crate::base::error::Error;
 use crate::head::frame::Regions;
@@ -43,13 +44,13 @@ pub(super) struct ColourStage {
 
 /// What the painted hair was aged from: its ages (address), the age (bits), the bald and
 /// hair colours (bits), the thinned shares (bits) and whether the pattern keeps the hairline.
-type PaintedKey = (usize, u32, [u32; 3], [u32; 3], [u32; 2], bool);
+type PaintedKey = (ArcKey<Vec<u8>>, u32, [u32; 3], [u32; 3], [u32; 2], bool);
 
 #[derive(Clone, Debug, PartialEq)]
 struct ImageKey {
     head: HeadKey,
     size: u32,
-    base: usize,
+    base: Option<ArcKey<HeadImage>>,
     settings: ColourSettings,
     factors: ColourFactors,
     /// The painted hair's ([`PaintedKey`]).
@@ -65,6 +66,8 @@ pub(super) struct Head<'a> {
     pub base: Option<&'a Arc<HeadImage>>,
     /// The hair painted on the map ([`skin_colour::PaintedHair`]), when it has some.
     pub painted: Option<skin_colour::PaintedHair<'a>>,
+    /// The identity of the painted hair's ages (their owner): the key of what was painted.
+    pub painted_ages: Option<ArcKey<Vec<u8>>>,
 }
 
 impl ColourStage {
@@ -85,19 +88,22 @@ impl ColourStage {
         let key = ImageKey {
             head: head.key,
             size,
-            base: head.base.map_or(0, |b| Arc::as_ptr(b) as usize),
+            base: head.base.map(ArcKey::of),
             settings: settings.clone(),
             factors: *factors,
-            painted: head.painted.map(|p| {
-                (
-                    p.ages.as_ptr() as usize,
-                    p.t.to_bits(),
-                    p.bald.to_array().map(f32::to_bits),
-                    p.hair.to_array().map(f32::to_bits),
-                    p.thinned.map(f32::to_bits),
-                    p.keeps_hairline,
-                )
-            }),
+            painted: head
+                .painted
+                .zip(head.painted_ages.clone())
+                .map(|(p, ages)| {
+                    (
+                        ages,
+                        p.t.to_bits(),
+                        p.bald.to_array().map(f32::to_bits),
+                        p.hair.to_array().map(f32::to_bits),
+                        p.thinned.map(f32::to_bits),
+                        p.keeps_hairline,
+                    )
+                }),
         };
         if self.image_key.as_ref() == Some(&key) && self.image.is_some() {
             return Ok(false);

@@ -36,7 +36,13 @@ impl EyeHairs {
 
 /// What the brow strands of an age are made from: the brow hairs and the shape (their
 /// addresses), the brows' gray fraction and growth (bits), and the loss pattern.
-pub(super) type BrowsKey = (usize, usize, u32, u32, crate::layers::hair::HairLoss);
+pub(super) type BrowsKey = (
+    ArcKey<EyeHairs>,
+    Option<ArcKey<AgedShape>>,
+    u32,
+    u32,
+    crate::layers::hair::HairLoss,
+);
 
 impl Scene {
     pub(super) fn bake_hair(&mut self, cancel: &CancelToken) -> Result<Changed, Error> {
@@ -53,9 +59,8 @@ impl Scene {
             }
             return Ok(changed);
         }
-        let masks_id = Arc::as_ptr(&masks) as u64;
         let tkey = (
-            masks_id,
+            ArcKey::of(&masks),
             format!("{:?}", h.metric),
             h.transition_size_px,
             self.layout_generation,
@@ -167,8 +172,8 @@ impl Scene {
         let factors = self.colour_factors(t);
         let shape = self.aged_shape().cloned();
         let key = (
-            Arc::as_ptr(&hairs) as usize,
-            shape.as_ref().map_or(0, |s| Arc::as_ptr(s) as usize),
+            ArcKey::of(&hairs),
+            shape.as_ref().map(ArcKey::of),
             factors.brow_gray_fraction().to_bits(),
             factors.contrast.to_bits(),
             self.hair_loss().loss,

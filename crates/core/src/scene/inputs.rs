@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::{FileVersions, WrinkleSource};
+use crate::base::arc_key::ArcKey;
 use crate::base::error::Error;
 use crate::head::fit::Fit;
 use crate::head::landmarks::Landmarks;
@@ -27,7 +28,7 @@ pub(super) struct Inputs {
     /// found by fitting the template), how they were decided, and what decided them.
     pub(super) axes: Axes,
     pub(super) axes_how: String,
-    axes_key: (AxisChoice, AxisChoice, Layout, Option<usize>),
+    axes_key: (AxisChoice, AxisChoice, Layout, Option<ArcKey<Landmarks>>),
     /// The skin parts chosen by hand (`mesh.skin_parts`).
     skin_parts: Option<Vec<String>>,
     pub(super) wrinkles_key: Vec<PathBuf>,
@@ -71,8 +72,8 @@ impl Inputs {
             && opt_ptr_eq(&self.normal_map, &other.normal_map)
     }
 
-    pub(super) fn generation_of_fine(&self) -> u64 {
-        self.fine_tile.as_ref().map_or(0, |t| Arc::as_ptr(t) as u64)
+    pub(super) fn generation_of_fine(&self) -> Option<ArcKey<HeightMap>> {
+        self.fine_tile.as_ref().map(ArcKey::of)
     }
 
     /// Loads what `project` names, reusing the inputs of `kept` (the current state first,
@@ -255,7 +256,7 @@ impl Inputs {
                     project.mesh.up,
                     project.mesh.forward,
                     project.mesh.layout,
-                    landmarks.as_ref().map(|l| Arc::as_ptr(l) as usize),
+                    landmarks.as_ref().map(ArcKey::of),
                 );
                 // Finding the axes by fitting is not free: kept while the mesh and what
                 // decides them are the same.

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use super::{BakeRequest, Changed, LargeMap, scaled};
 use crate::age::AgeFactors;
+use crate::base::arc_key::ArcKey;
 use crate::base::cancel::CancelToken;
 use crate::base::error::Error;
 use crate::head::fit::Correspondence;
@@ -33,7 +34,7 @@ pub(super) struct LargeKey {
     layout: Option<(u64, u32)>,
     /// The shape's relief added to it: its identity, the regions' factors and the relief
     /// depth (bits).
-    relief: Option<(usize, Vec<u32>, u32)>,
+    relief: Option<(ArcKey<ShapeRelief>, Vec<u32>, u32)>,
 }
 
 /// The shape's relief finer than the head's triangles ([`crate::layers::shape::relief`]) at an
@@ -114,7 +115,7 @@ impl LargeStage {
             layout: layout.correspondence.map(|c| (layout.generation, c.size())),
             relief: relief.map(|r| {
                 (
-                    std::sync::Arc::as_ptr(r.relief) as usize,
+                    ArcKey::of(r.relief),
                     r.factors.iter().map(|f| f.to_bits()).collect(),
                     r.depth_uv.to_bits(),
                 )

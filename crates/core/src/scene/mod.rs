@@ -49,6 +49,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use crate::age::{AgeCurve, AgeFactors};
+use crate::base::arc_key::ArcKey;
 use crate::base::cancel::CancelToken;
 use crate::base::error::Error;
 use crate::head::fit::Correspondence;
@@ -241,9 +242,9 @@ pub struct Scene {
     tileable: bool,
     large: LargeStage,
     micro: MicroStage,
-    fine_key: Option<(FineWrinkleSettingsKey, u64)>,
+    fine_key: Option<(FineWrinkleSettingsKey, Option<ArcKey<HeightMap>>)>,
     fine: Option<Arc<HeightMap>>,
-    transition_key: Option<(u64, String, Option<u32>, u64)>,
+    transition_key: Option<(ArcKey<(Mask, Mask)>, String, Option<u32>, u64)>,
     transition_generation: u64,
     transition: Option<Arc<TransitionTexture>>,
     hair_key: Option<HairKey>,
@@ -260,7 +261,10 @@ pub struct Scene {
     shape_basis: Option<((u64, u64, u32), Arc<crate::layers::shape::ShapeBasis>)>,
     /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
     /// The aged shape, keyed by its field, its age and whether its sky was measured.
-    shape_aged: Option<((usize, u32, bool), Arc<AgedShape>)>,
+    shape_aged: Option<(
+        (ArcKey<crate::layers::shape::ShapeField>, u32, bool),
+        Arc<AgedShape>,
+    )>,
     /// The shape's relief finer than the head's triangles, added to the large-wrinkle
     /// map ([`crate::layers::shape::relief`]), keyed like the field and by its map size.
     relief: Option<((ShapeKey, u32), Arc<ShapeRelief>)>,

@@ -9,6 +9,7 @@ use crate::base::lab::lab;
 use crate::head::frame::Regions;
 use crate::layers::hair::HairLoss;
 use crate::layers::skin_colour::{BaseColour, Face, Measured, OwnColours, SurfaceTexels};
+use crate::maps::mask::HeadImage;
 
 /// The side of the texels the colours are measured on: enough for a brow (a few hundred
 /// texels of a 512² layout), a fraction of a bake.
@@ -23,7 +24,7 @@ pub const FALLBACK_HAIR: crate::project::Colour = crate::project::Colour([0x3f, 
 pub const BROW_DARKNESS: f32 = 0.7;
 
 /// The key of the measured colours: mesh and layout generations, the colour map's address.
-pub(super) type OwnKey = (u64, u64, usize);
+pub(super) type OwnKey = (u64, u64, Option<ArcKey<HeadImage>>);
 
 /// Where a colour the hair or brows are drawn in comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,7 +104,7 @@ impl Scene {
         let key: OwnKey = (
             self.mesh_generation,
             self.layout_generation,
-            map.as_ref().map_or(0, |m| Arc::as_ptr(m) as usize),
+            map.as_ref().map(ArcKey::of),
         );
         if let Some((k, own)) = &self.own
             && *k == key
@@ -184,7 +185,7 @@ impl Scene {
         let key: OwnKey = (
             self.mesh_generation,
             self.layout_generation,
-            self.colour_map().map_or(0, |m| Arc::as_ptr(m) as usize),
+            self.colour_map().map(ArcKey::of),
         );
         let own = match &self.own {
             Some((k, own)) if *k == key => **own,

@@ -55,11 +55,10 @@ impl Scene {
         let mesh = &self.inputs.mesh;
         // A field that was here before this bake (the age moves, not the shape) is measured,
         // as is one whose sky costs nothing now.
-        let same_field = (self.shape_aged.as_ref())
-            .is_some_and(|((f, ..), _)| *f == Arc::as_ptr(&field) as usize);
+        let same_field = (self.shape_aged.as_ref()).is_some_and(|((f, ..), _)| f.is(&field));
         let measured =
             !scaled && (measure_sky || same_field || field.occlusion_is_cheap(mesh, years));
-        let key = (Arc::as_ptr(&field) as usize, years.to_bits(), measured);
+        let key = (ArcKey::of(&field), years.to_bits(), measured);
         if self.shape_aged.as_ref().is_some_and(|(k, _)| *k == key) {
             return false;
         }

@@ -2,6 +2,7 @@
 //! with the hair's age at each texel in its alpha (`layers::hair::scalp`).
 
 use super::*;
+use crate::maps::mask::HeadImage;
 
 /// The transition generation, the width and height of a kept hair-age alpha, and whether
 /// the hair recedes (the male pattern).
@@ -9,7 +10,7 @@ pub(super) type HairAlphaKey = (u64, u32, u32, bool);
 
 /// What the blank eyeballs' texels are found from: the mesh and layout generations, the
 /// colour map (address) and the size.
-pub(super) type EyesKey = (u64, u64, usize, u32);
+pub(super) type EyesKey = (u64, u64, Option<ArcKey<HeadImage>>, u32);
 
 /// What [`Scene::shown_colour`] was made from.
 #[derive(Clone, Debug)]
@@ -86,6 +87,7 @@ impl Scene {
             template_point: &template_point,
             base: base.as_ref(),
             painted,
+            painted_ages: ages.as_ref().filter(|_| painted.is_some()).map(ArcKey::of),
         };
         self.colour.bake(&head, size, &settings, &factors, cancel)
     }
@@ -181,7 +183,7 @@ impl Scene {
         let key = (
             self.mesh_generation,
             self.layout_generation,
-            self.colour_map().map_or(0, |m| Arc::as_ptr(m) as usize),
+            self.colour_map().map(ArcKey::of),
             aged.width_px,
         );
         if let Some((k, eyes)) = &self.eyes

@@ -1,0 +1,63 @@
+//! A cache key that names one shared value by its identity.
+//!
+//! Keying a cache by `Arc::as_ptr(&a) as usize` is wrong once `a` is dropped: the next
+//! value can be allocated at the same address and the cache takes it for the old one (a
+//! flaky, allocator-dependent stale hit). An [`ArcKey`] holds a [`Weak`] to the value, so
+//! that address is not given out again while the key lives (the value itself is dropped
+//! with its last `Arc`; only its small allocation stays): equal keys are the same value.
+
+use std::fmt;
+use std::sync::{Arc, Weak};
+
+/// The identity of one `Arc`'s value (see the module).
+pub struct ArcKey<T: ?Sized>(Weak<T>);
+
+impl<T: ?Sized> ArcKey<T> {
+    /// The key of `value`.
+    pub fn of(value: &Arc<T>) -> Self {
+        Self(Arc::downgrade(value))
+    }
+
+    /// Whether `value` is the one this key names.
+    pub fn is(&self, value: &Arc<T>) -> bool {
+        std::ptr::addr_eq(self.0.as_ptr(), Arc::as_ptr(value))
+    }
+}
+
+impl<T: ?Sized> Clone for ArcKey<T> {
+    fn clone(&self) -> Self {
+        Self(self.0.clone())
+    }
+}
+
+impl<T: ?Sized> PartialEq for ArcKey<T> {
+    fn eq(&self, other: &Self) -> bool {
+        Weak::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl<T: ?Sized> Eq for ArcKey<T> {}
+
+impl<T: ?Sized> fmt::Debug for ArcKey<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "ArcKey({:p})", self.0.as_ptr())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_new_value_at_the_old_address_is_not_the_old_one() {
+        let first = Arc::new([7u64; 4]);
+        let key = ArcKey::of(&first);
+        assert!(key.is(&first));
+        assert_eq!(key, ArcKey::of(&first));
+        drop(first);
+        // Many allocations of the same size: the allocator would hand the freed block
+        // out again at once were the key not holding it.
+        let later: Vec<Arc<[u64; 4]>> = (0..64).map(|_| Arc::new([7u64; 4])).collect();
+        assert!(later.iter().all(|a| !key.is(a) && key != ArcKey::of(a)));
+    }
+}

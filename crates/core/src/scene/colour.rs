@@ -42,7 +42,7 @@ pub(super) struct ColourStage {
     pub image: Option<Arc<HeadImage>>,
 }
 
-/// What the painted hair was aged from: its ages (address), the age (bits), the bald and
+/// What the painted hair was aged from: its ages (their identity), the age (bits), the bald and
 /// hair colours (bits), the thinned shares (bits) and whether the pattern keeps the hairline.
 type PaintedKey = (ArcKey<Vec<u8>>, u32, [u32; 3], [u32; 3], [u32; 2], bool);
 

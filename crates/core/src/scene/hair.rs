@@ -34,8 +34,12 @@ impl EyeHairs {
     }
 }
 
+/// What the hair's transition texture was made from: the hair masks, the metric (its
+/// name), the size and the layout generation.
+pub(super) type TransitionKey = (ArcKey<(Mask, Mask)>, String, Option<u32>, u64);
+
 /// What the brow strands of an age are made from: the brow hairs and the shape (their
-/// addresses), the brows' gray fraction and growth (bits), and the loss pattern.
+/// identities), the brows' gray fraction and growth (bits), and the loss pattern.
 pub(super) type BrowsKey = (
     ArcKey<EyeHairs>,
     Option<ArcKey<AgedShape>>,

@@ -68,11 +68,11 @@ use crate::maps::normal_map::{self, NormalSettings};
 use crate::project::Project;
 
 use bake::{FineWrinkleSettingsKey, add_into, scaled};
-use hair::{BrowHairsKey, BrowsKey, EyeHairs, HairKey};
+use hair::{BrowHairsKey, BrowsKey, EyeHairs, HairKey, TransitionKey};
 use inputs::Inputs;
 use large::{LargeMask, LargeStage};
 use micro::MicroStage;
-use shape::ShapeKey;
+use shape::{AgedShapeKey, ShapeKey};
 use shown::{EyesKey, HairAlphaKey, ShownKey};
 
 /// A wrinkle description file as the scene holds it: where it came from and its groups.
@@ -244,7 +244,7 @@ pub struct Scene {
     micro: MicroStage,
     fine_key: Option<(FineWrinkleSettingsKey, Option<ArcKey<HeightMap>>)>,
     fine: Option<Arc<HeightMap>>,
-    transition_key: Option<(ArcKey<(Mask, Mask)>, String, Option<u32>, u64)>,
+    transition_key: Option<TransitionKey>,
     transition_generation: u64,
     transition: Option<Arc<TransitionTexture>>,
     hair_key: Option<HairKey>,
@@ -261,10 +261,7 @@ pub struct Scene {
     shape_basis: Option<((u64, u64, u32), Arc<crate::layers::shape::ShapeBasis>)>,
     /// The shape at the last [`Scene::bake_shape`]'s age, keyed by its field and years.
     /// The aged shape, keyed by its field, its age and whether its sky was measured.
-    shape_aged: Option<(
-        (ArcKey<crate::layers::shape::ShapeField>, u32, bool),
-        Arc<AgedShape>,
-    )>,
+    shape_aged: Option<(AgedShapeKey, Arc<AgedShape>)>,
     /// The shape's relief finer than the head's triangles, added to the large-wrinkle
     /// map ([`crate::layers::shape::relief`]), keyed like the field and by its map size.
     relief: Option<((ShapeKey, u32), Arc<ShapeRelief>)>,
@@ -280,7 +277,7 @@ pub struct Scene {
     /// colour and the transition generation it was made from.
     shown: Option<(ShownKey, Arc<crate::maps::mask::HeadImage>)>,
     /// The blank eyeballs' texels the 3D view draws eyes on, keyed by the mesh and layout
-    /// generations, the colour map (address) and the shown colour's size.
+    /// generations, the colour map (its identity) and the shown colour's size.
     eyes: Option<(EyesKey, Arc<crate::layers::skin_colour::EyeTexels>)>,
     /// The hair's ages as the shown colour's alpha
     /// ([`crate::layers::hair::scalp::hair_age_alpha`]), per transition generation and size.

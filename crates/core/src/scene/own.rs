@@ -23,7 +23,7 @@ pub const FALLBACK_HAIR: crate::project::Colour = crate::project::Colour([0x3f, 
 /// darker than the scalp's hair).
 pub const BROW_DARKNESS: f32 = 0.7;
 
-/// The key of the measured colours: mesh and layout generations, the colour map's address.
+/// The key of the measured colours: mesh and layout generations, the colour map's identity.
 pub(super) type OwnKey = (u64, u64, Option<ArcKey<HeadImage>>);
 
 /// Where a colour the hair or brows are drawn in comes from.

@@ -17,6 +17,9 @@ pub struct AgedShape {
     pub years: f32,
 }
 
+/// What an aged shape is: its field, its age (years' bits) and whether its sky was measured.
+pub(super) type AgedShapeKey = (ArcKey<crate::layers::shape::ShapeField>, u32, bool);
+
 /// What a shape field is made from: mesh and layout generations, metres per unit (bits),
 /// each region's strength (bits).
 pub(super) type ShapeKey = (u64, u64, u32, [u32; crate::layers::shape::REGIONS.len()]);

@@ -9,7 +9,7 @@ use crate::maps::mask::HeadImage;
 pub(super) type HairAlphaKey = (u64, u32, u32, bool);
 
 /// What the blank eyeballs' texels are found from: the mesh and layout generations, the
-/// colour map (address) and the size.
+/// colour map (its identity) and the size.
 pub(super) type EyesKey = (u64, u64, Option<ArcKey<HeadImage>>, u32);
 
 /// What [`Scene::shown_colour`] was made from.

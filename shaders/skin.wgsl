@@ -68,6 +68,10 @@ const MODE_DISPLACEMENT: u32 = 4u;
 // The head's own tangent-space normal map (linear) over the mesh UV, when bit 2 of
 // frame.hair_misc.w is set; a flat texel otherwise.
 @group(0) @binding(7) var head_normal_map: texture_2d<f32>;
+// Where the micro-relief lies over the mesh UV (linear; its weight in red, 0–1: the lips'
+// red keeps a fifth, docs/models.md §4 "Where on the head"); a white texel when the
+// head has none.
+@group(0) @binding(8) var micro_weight_map: texture_2d<f32>;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -533,7 +537,8 @@ fn shade(s: Surface) -> vec4<f32> {
     // docs/models.md §10: the age blends linearly from the surface normal to the fine-wrinkle one.
     var n_ts = normalize(mix(n_large, fine, clamp(frame.disp.z, 0.0, 1.0)));
     if frame.layers.z > 0.5 {
-        let n_micro = height_normal(micro_map, tile_sampler, micro_uv0 + offset * frame.tiling.xy, frame.layers.x, ddx_micro, ddy_micro);
+        let micro_weight = textureSampleGrad(micro_weight_map, surface_sampler, tex(uv), ddx, ddy).r;
+        let n_micro = height_normal(micro_map, tile_sampler, micro_uv0 + offset * frame.tiling.xy, frame.layers.x * micro_weight, ddx_micro, ddy_micro);
         n_ts = rnm(n_ts, n_micro);
     }
     // The light that enters the skin leaves it up to millimetres away, red farthest

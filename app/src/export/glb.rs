@@ -263,6 +263,7 @@ pub fn head_normal_map(
             .micro()
             .filter(|_| skin.micro_relief)
             .map(|m| tile(&m.height, skin.micro_tile)),
+        micro_weight: scene.micro_weight().map(|m| m.as_ref()),
         head_normal: scene
             .normal_map()
             .map(|m| (m.as_ref(), skin.head_normal_green_down)),

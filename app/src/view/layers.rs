@@ -40,6 +40,8 @@ pub struct Layers {
     pub brows: Option<Arc<Vec<agesim_core::layers::hair::brows::BrowStrand>>>,
     /// The head's normal map ([`Scene::normal_map`]).
     pub normal: Option<Arc<HeadImage>>,
+    /// Where the micro-relief lies ([`Scene::micro_weight`]).
+    pub micro_weight: Option<Arc<HeadImage>>,
     /// The person's hair and brows ([`Scene::person`]).
     pub person: Option<agesim_core::scene::Person>,
 }
@@ -62,6 +64,7 @@ impl Default for Layers {
             brows: None,
             person: None,
             normal: None,
+            micro_weight: None,
         }
     }
 }
@@ -95,6 +98,7 @@ impl Layers {
         self.shape = scene.aged_shape().cloned();
         self.brows = scene.aged_brows().cloned();
         self.normal = scene.normal_map().cloned();
+        self.micro_weight = scene.micro_weight().cloned();
         self.person = Some(scene.person());
         let metres_per_unit = scene.metres_per_unit();
         // Measured over the mesh: only when the mesh or its units change.
@@ -141,6 +145,7 @@ pub struct Uploaded {
     shape: usize,
     brows: usize,
     normal: usize,
+    micro_weight: usize,
 }
 
 impl Uploaded {
@@ -183,6 +188,10 @@ impl Uploaded {
         if stamp(&layers.normal) != self.normal {
             result = result.and(renderer.upload_normal_map(picture(&layers.normal)));
             self.normal = stamp(&layers.normal);
+        }
+        if stamp(&layers.micro_weight) != self.micro_weight {
+            result = result.and(renderer.upload_micro_weight(picture(&layers.micro_weight)));
+            self.micro_weight = stamp(&layers.micro_weight);
         }
         result
     }

@@ -2,8 +2,8 @@
 //! 3D view composes the same layers in the skin shader. Both must agree: the flat skin
 //! patch, seen face on, drawn with `FrameOutput::TangentNormal` (the shader's composed
 //! tangent-space normal) and `FrameOutput::PomHit` (each pixel's UV), against the CPU map
-//! at those UVs. Large wrinkles, fine wrinkles (blended) and micro-relief, each with
-//! slopes well above the tolerance.
+//! at those UVs. Large wrinkles, fine wrinkles (blended) and micro-relief (weighed by a
+//! map of where it lies), each with slopes well above the tolerance.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
@@ -88,6 +88,20 @@ fn the_glb_normal_composition_matches_the_skin_pass() {
     };
     r.upload_normal_map(Some((side, side, &head_normal.rgba)))
         .unwrap();
+    // Where the micro-relief lies: from none of it to all of it and back across u.
+    let weights = agesim_core::maps::mask::HeadImage {
+        width_px: side,
+        height_px: side,
+        rgba: (0..side * side)
+            .flat_map(|i| {
+                let u = ((i % side) as f32 + 0.5) / side as f32;
+                let g = ((0.5 - 0.5 * (TAU * u).cos()) * 255.0).round() as u8;
+                [g, g, g, 255]
+            })
+            .collect(),
+    };
+    r.upload_micro_weight(Some((side, side, &weights.rgba)))
+        .unwrap();
     let mut p = FrameParams::default();
     p.hair.enabled = false;
     p.skin.pom_mode = PomMode::NormalOnly;
@@ -135,6 +149,7 @@ fn the_glb_normal_composition_matches_the_skin_pass() {
             fine: Some(tile(&fine, fine_tile)),
             fine_blend,
             micro: Some(tile(&micro, micro_tile)),
+            micro_weight: Some(&weights),
             head_normal: Some((&head_normal, false)),
         },
         SIZE,

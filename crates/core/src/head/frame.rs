@@ -268,12 +268,31 @@ impl Regions {
 
     /// The lips: an ellipse round the mouth corners' line.
     pub fn lips(&self, p: Vec3) -> f32 {
+        self.lips_reaching(p, 0.0)
+    }
+
+    /// [`Regions::lips`] with the lower lip's red reaching `lower` further down (frame
+    /// units, ≥ 0): a head whose full lower lip the fit lays over the template's skin
+    /// below its red ([`Regions::below_mouth`] of its mentolabial sulcus against the
+    /// template's).
+    pub fn lips_reaching(&self, p: Vec3, lower: f32) -> f32 {
         let q = self.rel(p);
+        let dy = q.y - self.mouth.y + 0.02;
         let d = Vec2::new(
             (q.x - self.mouth.x) / (self.mouth_half_width + 0.05),
-            (q.y - self.mouth.y + 0.02) / 0.22,
+            dy / if dy < 0.0 {
+                0.22 + lower.max(0.0)
+            } else {
+                0.22
+            },
         );
         (1.0 - smoothstep(0.75, 1.05, d.length())) * front(q.z, self.ear_z)
+    }
+
+    /// How far below the mouth corners' line the template point `p` lies, in the frame's
+    /// units.
+    pub fn below_mouth(&self, p: Vec3) -> f32 {
+        self.mouth.y - self.rel(p).y
     }
 
     /// The outer part of the lips (their red's border, away from the mouth's line): what

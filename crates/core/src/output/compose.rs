@@ -186,6 +186,9 @@ pub struct Layers<'a> {
     /// The fine-wrinkle blend in [0, 1] (0: no fine wrinkles).
     pub fine_blend: f32,
     pub micro: Option<RepeatedTile<'a>>,
+    /// Where the micro-relief lies ([`crate::layers::micro::weight`]): its slopes times the
+    /// map's weight at each texel; `None`: the whole tile everywhere.
+    pub micro_weight: Option<&'a crate::maps::mask::HeadImage>,
     /// The head's own tangent-space normal map (its green down when the flag is set):
     /// the base every layer is combined onto by reoriented normal mapping.
     pub head_normal: Option<(&'a crate::maps::mask::HeadImage, bool)>,
@@ -234,14 +237,20 @@ pub fn normal_map(
                     let nf = f.tile.normal(f.columns[x], f.rows[y]);
                     n_ts = n_large.lerp(in_frame(n_large, nf), fine_blend).normalize();
                 }
+                let (u, v) = (
+                    (x as f32 + 0.5) / n as f32,
+                    1.0 - (y as f32 + 0.5) / n as f32,
+                );
                 if let Some(m) = &micro {
-                    n_ts = rnm(n_ts, m.tile.normal(m.columns[x], m.rows[y]));
+                    let mut nm = m.tile.normal(m.columns[x], m.rows[y]);
+                    if let Some(map) = layers.micro_weight {
+                        // The slopes scaled: the tile's strength times the weight.
+                        let w = crate::layers::micro::weight::sample(map, u, v);
+                        nm = Vec3::new(nm.x * w, nm.y * w, nm.z).normalize_or(Vec3::Z);
+                    }
+                    n_ts = rnm(n_ts, nm);
                 }
                 if let Some((head, green_down)) = layers.head_normal {
-                    let (u, v) = (
-                        (x as f32 + 0.5) / n as f32,
-                        1.0 - (y as f32 + 0.5) / n as f32,
-                    );
                     n_ts = rnm(head.normal_at(u, v, green_down), n_ts);
                 }
                 for (c, value) in px.iter_mut().zip(n_ts.to_array()) {
@@ -553,5 +562,49 @@ mod tests {
         };
         let rgb = normal_map(&layers, 8, &CancelToken::never()).unwrap();
         assert!(rgb.chunks(3).all(|p| p == [128, 128, 255]));
+    }
+
+    #[test]
+    fn the_micro_relief_is_scaled_by_its_weight() {
+        // A ramp tile: its normal leans; weighed 0 over the left half of the UV square it
+        // is flat there, weighed 1 over the right half it is as it was.
+        let side = 8;
+        let data = (0..side * side).map(|i| (i % side) as f32).collect();
+        let ramp = HeightMap::from_vec(side as u32, side as u32, data).unwrap();
+        let tile = RepeatedTile {
+            heights: &ramp,
+            repeats: [1.0, 1.0],
+            strength: 0.5,
+        };
+        let weights = crate::maps::mask::HeadImage {
+            width_px: 4,
+            height_px: 1,
+            rgba: [0u8, 0, 255, 255]
+                .iter()
+                .flat_map(|&g| [g, g, g, 255])
+                .collect(),
+        };
+        let plain = Layers {
+            micro: Some(tile),
+            ..Layers::default()
+        };
+        let weighed = Layers {
+            micro_weight: Some(&weights),
+            ..plain
+        };
+        let never = CancelToken::never();
+        let (a, b) = (
+            normal_map(&plain, 16, &never).unwrap(),
+            normal_map(&weighed, 16, &never).unwrap(),
+        );
+        // Texel (2, 5) lies a quarter across (weight 0), (13, 5) past three quarters (1).
+        let (left, right) = (5 * 16 + 2, 5 * 16 + 13);
+        assert!(
+            (decode(&a, left) - Vec3::Z).length() > 0.05,
+            "{}",
+            decode(&a, left)
+        );
+        assert!((decode(&b, left) - Vec3::Z).length() < 0.01);
+        assert_eq!(decode(&a, right), decode(&b, right));
     }
 }

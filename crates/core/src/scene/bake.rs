@@ -27,6 +27,7 @@ impl Scene {
         crate::maps::heightmap::check_size(request.large_size_px, request.micro_size_px)?;
         // The person's own colours first: the hair and the colour gray by them.
         self.own_colours(cancel)?;
+        self.weigh_micro()?;
         let (fibres, curves) = self.fibres();
         self.factors = self.project.age.factors(request.t, &curves);
         let mut changed = Changed::default();

@@ -381,6 +381,9 @@ pub struct HeadLayout {
     /// How far its eyes are open, mm on the head scaled to the template's size
     /// ([`crate::layers::shape::anatomy::eye_opening`]); `None` unfitted or closed.
     pub eye_opening_mm: Option<f32>,
+    /// How much further down than the template's its lower lip's red reaches where the
+    /// fit lays it on the template ([`lower_lip_reach`]); 0 unfitted.
+    pub lower_lip_reach: f32,
 }
 
 /// The largest median distance (template mm) between the template aligned by the
@@ -399,6 +402,7 @@ impl HeadLayout {
             how: how.into(),
             lip_fullness: 1.0,
             eye_opening_mm: None,
+            lower_lip_reach: 0.0,
         }
     }
 
@@ -456,6 +460,7 @@ impl HeadLayout {
                     how: format!("the template fitted by the landmark file: {}", fit.report),
                     lip_fullness: lip_fullness(mesh, &turned, &fit),
                     eye_opening_mm: eye_opening_mm(mesh, &turned, &fit),
+                    lower_lip_reach: lower_lip_reach(mesh, &turned, &fit),
                     fit: Some(Arc::new(fit)),
                     landmarks: Some(Arc::new(turned)),
                     found: false,
@@ -491,6 +496,7 @@ impl HeadLayout {
                 ),
                 lip_fullness: lip_fullness(mesh, &found.landmarks, &fit),
                 eye_opening_mm: eye_opening_mm(mesh, &found.landmarks, &fit),
+                lower_lip_reach: lower_lip_reach(mesh, &found.landmarks, &fit),
                 fit: Some(Arc::new(fit)),
                 landmarks: Some(Arc::new(found.landmarks)),
                 found: true,
@@ -514,6 +520,46 @@ fn lip_fullness(mesh: &Mesh, landmarks: &Landmarks, fit: &crate::head::fit::Fit)
         _ => 1.0,
     }
 }
+
+/// How much further down than the template's this head's lower lip's red reaches where
+/// the fit lays it on the template: how much further below the template's mouth the fit
+/// lays the head's mentolabial sulcus
+/// ([`crate::layers::shape::anatomy::mentolabial_sulcus`]; the template point of the skin
+/// vertex nearest it) than the template's own sulcus lies, in the face frame's units
+/// ([`crate::head::frame::Regions::below_mouth`]); from 0 (no further: the lips' regions
+/// as they are) to [`LOWER_LIP_REACH_MAX`]. A full lower lip's red the fit lays partly
+/// over the template's skin below its red, where the lips' regions did not reach.
+fn lower_lip_reach(mesh: &Mesh, landmarks: &Landmarks, fit: &crate::head::fit::Fit) -> f32 {
+    use crate::layers::shape::anatomy::mentolabial_sulcus;
+    let (Some(regions), template) = (
+        crate::head::frame::Regions::template(),
+        crate::head::fit::template(),
+    ) else {
+        return 0.0;
+    };
+    static TEMPLATE: std::sync::OnceLock<Option<f32>> = std::sync::OnceLock::new();
+    let own = *TEMPLATE.get_or_init(|| {
+        let m = &template.mesh;
+        mentolabial_sulcus(m.positions(), &m.skin_indices(), &template.landmarks)
+            .map(|p| regions.below_mouth(p))
+    });
+    let skin = mesh.skin_indices();
+    let head = mentolabial_sulcus(mesh.positions(), &skin, landmarks).and_then(|sulcus| {
+        let nearest = skin.iter().map(|&i| i as usize).min_by(|&a, &b| {
+            let d = |v: usize| mesh.positions()[v].distance_squared(sulcus);
+            d(a).total_cmp(&d(b))
+        })?;
+        fit.template_point.get(nearest).copied().flatten()
+    });
+    match (head, own) {
+        (Some(t), Some(own)) => (regions.below_mouth(t) - own).clamp(0.0, LOWER_LIP_REACH_MAX),
+        _ => 0.0,
+    }
+}
+
+/// The farthest a lower lip's red reaches past the template's ([`lower_lip_reach`]), in
+/// the face frame's units (half the outer eye corners' distance: 0.3 is about 14 mm).
+pub const LOWER_LIP_REACH_MAX: f32 = 0.3;
 
 /// How far this head's eyes are open ([`crate::layers::shape::anatomy::eye_opening`]),
 /// mm once the fit's similarity has scaled it to the template's size.

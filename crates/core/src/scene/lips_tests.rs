@@ -54,3 +54,57 @@ fn the_lips_red_furrows_with_age() {
         "lower lip: {old_lower} furrows at 80"
     );
 }
+
+/// The lips' red keeps a fifth of the micro-relief and the rest of the face all of it
+/// (docs/models.md §4 "Where on the head"), on the template and on panel heads whose
+/// own UVs lay the lips out their own way.
+#[test]
+fn the_lips_red_has_no_pores_on_any_head() {
+    let regions = crate::head::frame::Regions::template().unwrap();
+    let panel = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/heads/panel");
+    let mut projects = vec![Project::default()];
+    for name in ["african-female", "asian-male", "african-male"] {
+        let mut p = Project::default();
+        p.mesh.path = Some(panel.join(format!("{name}.obj")));
+        projects.push(p);
+    }
+    let mut red_texels = Vec::new();
+    for p in projects {
+        let mut scene = Scene::new(p).unwrap();
+        scene
+            .bake(&BakeRequest::preview(1.0), &CancelToken::never())
+            .unwrap();
+        let map = scene.micro_weight().expect("a weight map").clone();
+        let (mut lips, mut face) = (Vec::new(), Vec::new());
+        for (v, t) in scene.template_points().iter().enumerate() {
+            let Some(t) = *t else { continue };
+            let uv = scene.mesh().uvs()[v];
+            let w = crate::layers::micro::weight::sample(&map, uv.x, uv.y);
+            if regions.lips(t) > 0.99 {
+                lips.push(w);
+            } else if regions.lips(t) == 0.0 && regions.in_front(t) > 0.5 {
+                face.push(w);
+            }
+        }
+        let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len().max(1) as f32;
+        println!(
+            "{:?}: {} vertices on the lips' red, weight {:.2}; {} on the face, {:.3}",
+            scene.project().mesh.path,
+            lips.len(),
+            mean(&lips),
+            face.len(),
+            mean(&face)
+        );
+        assert!(lips.len() >= 4 && mean(&lips) < 0.3);
+        assert!(mean(&face) > 0.98);
+        red_texels.push((
+            scene.layout().lower_lip_reach,
+            map.rgba.chunks(4).filter(|t| t[0] < 128).count(),
+        ));
+    }
+    println!("the lower lip's reach, texels of the lips' red: {red_texels:?}");
+    // The African woman's full lower lip reaches further than the template's; the East
+    // Asian man's does not.
+    assert_eq!(red_texels[0].0, 0.0);
+    assert!(red_texels[1].0 > 0.1 && red_texels[2].0 < 0.05);
+}

@@ -258,3 +258,53 @@ pub(crate) fn age_relief(relief: &mut MicroRelief, project: &Project, factors: &
         project.furrows.anisotropy * along,
     );
 }
+
+/// What the micro-relief's weight map is made from: the mesh and layout generations.
+pub(super) type MicroWeightKey = (u64, u64);
+
+/// The side of the micro-relief's weight map ([`Scene::micro_weight`]).
+pub const MICRO_WEIGHT_PX: u32 = 1024;
+
+impl super::Scene {
+    /// Where the micro-relief lies on this head (docs/models.md §4 "Where on the head"):
+    /// its weight over the head's UVs ([`crate::layers::micro::weight::map`] of each
+    /// skin vertex's [`crate::layers::micro::weight::lips_at`], the lower lip reaching
+    /// as far as this head's: [`super::HeadLayout::lower_lip_reach`]), `MICRO_WEIGHT_PX`²;
+    /// `None` when it is everywhere the whole tile (a head off the template). Made by
+    /// [`super::Scene::bake`].
+    pub fn micro_weight(&self) -> Option<&std::sync::Arc<crate::maps::mask::HeadImage>> {
+        self.micro_weight.as_ref().and_then(|(_, m)| m.as_ref())
+    }
+
+    /// Makes [`super::Scene::micro_weight`] once per mesh and layout.
+    pub(super) fn weigh_micro(&mut self) -> Result<(), Error> {
+        let key = (self.mesh_generation, self.layout_generation);
+        if self.micro_weight.as_ref().is_some_and(|(k, _)| *k == key) {
+            return Ok(());
+        }
+        let map = match crate::head::frame::Regions::template() {
+            Some(regions) => {
+                let lower = self.inputs.layout.lower_lip_reach;
+                let lips: Vec<f32> = self
+                    .template_points()
+                    .into_iter()
+                    .map(|t| crate::layers::micro::weight::lips_at(regions, t, lower))
+                    .collect();
+                if lips.iter().all(|&l| l <= 0.0) {
+                    None
+                } else {
+                    let mesh = &self.inputs.mesh;
+                    Some(std::sync::Arc::new(crate::layers::micro::weight::map(
+                        mesh.uvs(),
+                        &mesh.skin_indices(),
+                        &lips,
+                        MICRO_WEIGHT_PX,
+                    )?))
+                }
+            }
+            None => None,
+        };
+        self.micro_weight = Some((key, map));
+        Ok(())
+    }
+}

@@ -270,6 +270,12 @@ pub struct Scene {
     brows: Option<(BrowHairsKey, Arc<EyeHairs>)>,
     /// The head's own colours ([`Scene::own_colours`]) and what they were measured on.
     own: Option<(own::OwnKey, Arc<crate::layers::skin_colour::OwnColours>)>,
+    /// Where the micro-relief lies ([`Scene::micro_weight`]), keyed by the mesh and layout
+    /// generations; `None` inside: everywhere.
+    micro_weight: Option<(
+        micro::MicroWeightKey,
+        Option<Arc<crate::maps::mask::HeadImage>>,
+    )>,
     /// The brow hairs and lashes at the last [`Scene::bake_brows`]'s age, keyed by the
     /// hairs, the shape and the factors they were made from.
     brows_aged: Option<(BrowsKey, Arc<Vec<crate::layers::hair::brows::BrowStrand>>)>,
@@ -354,6 +360,7 @@ impl Scene {
             relief: None,
             brows: None,
             own: None,
+            micro_weight: None,
             brows_aged: None,
             shown: None,
             eyes: None,
@@ -396,6 +403,7 @@ impl Scene {
             relief: self.relief.clone(),
             brows: self.brows.clone(),
             own: self.own.clone(),
+            micro_weight: self.micro_weight.clone(),
             brows_aged: self.brows_aged.clone(),
             shown: self.shown.clone(),
             eyes: self.eyes.clone(),

@@ -293,6 +293,17 @@ impl Renderer {
         Ok(())
     }
 
+    /// Uploads where the micro-relief lies over the head's UVs (RGBA8, linear, row 0 at
+    /// the top; its weight in red, 0–1: the tile's strength times it), shared by every
+    /// view. `None`: the whole tile everywhere.
+    pub fn upload_micro_weight(
+        &mut self,
+        map: Option<(u32, u32, &[u8])>,
+    ) -> Result<(), RenderError> {
+        self.micro_weight = self.head_picture("micro-relief weights", map, [255; 4], false)?;
+        Ok(())
+    }
+
     /// A picture over the head's UVs as a texture (`none` for a missing one), checked;
     /// every view's bind group is made again.
     fn head_picture(
@@ -425,6 +436,10 @@ impl Renderer {
                 wgpu::BindGroupEntry {
                     binding: 7,
                     resource: wgpu::BindingResource::TextureView(&self.head_normal.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: wgpu::BindingResource::TextureView(&self.micro_weight.view),
                 },
             ],
         });

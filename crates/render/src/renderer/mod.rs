@@ -118,6 +118,9 @@ pub struct Renderer {
     /// The head's tangent-space normal map (linear RGBA8; flat when there is none).
     head_normal: Layer,
     has_normal_map: bool,
+    /// Where the micro-relief lies over the head's UVs (linear RGBA8, the weight in red;
+    /// a white texel, everywhere, when there is none).
+    micro_weight: Layer,
     mesh: Option<GpuMesh>,
     /// The subdivided copy, made on the first displacement frame (4× the triangles:
     /// editors that never use the mode never pay for it).
@@ -165,6 +168,14 @@ impl Renderer {
             &FLAT_NORMAL,
             false,
         );
+        let micro_weight = create_rgba8(
+            device,
+            queue,
+            "agesim micro-relief weights (none)",
+            (1, 1),
+            &[255; 4],
+            false,
+        );
         let main = View::new(device, queue, &pipelines.hair_layout);
 
         if let Some(err) = pollster::block_on(scope.pop()) {
@@ -183,6 +194,7 @@ impl Renderer {
             has_colour_map: false,
             head_normal,
             has_normal_map: false,
+            micro_weight,
             mesh: None,
             displaced_mesh: None,
             mesh_to_subdivide: None,

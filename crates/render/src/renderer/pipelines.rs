@@ -94,6 +94,7 @@ impl Pipelines {
                 sampler_entry(5),
                 texture_entry(6),
                 texture_entry(7),
+                texture_entry(8),
             ],
         });
         let hair_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

@@ -14,6 +14,7 @@ pub mod furrows;
 pub mod noise;
 pub mod overlap;
 pub mod pores;
+pub mod weight;
 
 pub use bake::{BakeTimings, MicroRelief};
 

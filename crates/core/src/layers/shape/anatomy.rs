@@ -172,6 +172,79 @@ pub fn eye_opening(positions: &[Vec3], skin: &[u32], landmarks: &Landmarks) -> O
     Some(0.5 * (one(exo_r, endo_r)? + one(exo_l, endo_l)?))
 }
 
+/// The mentolabial sulcus on the face's midline, in the landmarks' units: seen from the
+/// front along the vertical line through the mouth corners' middle (`cheilion_*`), the
+/// skin's front-most depth sampled every 1/60 of the way down to the chin (`pogonion`);
+/// the lower lip's most forward sample in the upper half of the way, then the one below
+/// it deepest behind the line from it to the chin's sample: where the lower lip's red
+/// ends and the chin's skin begins. `None` without
+/// those landmarks or skin there.
+pub fn mentolabial_sulcus(positions: &[Vec3], skin: &[u32], landmarks: &Landmarks) -> Option<Vec3> {
+    let get = |n: &str| landmarks.get(n);
+    let mouth = 0.5 * (get("cheilion_r")? + get("cheilion_l")?);
+    let pg = get("pogonion")?;
+    let (right, up, forward) = face_axes(landmarks)?;
+    let drop = (pg - mouth).dot(up);
+    if drop >= 0.0 {
+        return None;
+    }
+    // The skin triangles crossing the midline below the mouth, in (across, up, depth)
+    // from the mouth's middle.
+    let near: Vec<[Vec3; 3]> = skin
+        .chunks_exact(3)
+        .filter_map(|t| {
+            let p = [0, 1, 2].map(|k| positions.get(t[k] as usize).copied());
+            let p = [p[0]?, p[1]?, p[2]?].map(|q| {
+                let d = q - mouth;
+                Vec3::new(d.dot(right), d.dot(up), d.dot(forward))
+            });
+            let xs = p.map(|q| q.x);
+            let ys = p.map(|q| q.y);
+            (xs.iter().any(|&x| x <= 0.0)
+                && xs.iter().any(|&x| x >= 0.0)
+                && ys.iter().any(|&y| y <= 0.0)
+                && ys.iter().any(|&y| y >= drop))
+            .then_some(p)
+        })
+        .collect();
+    // The front-most depth of the skin at height y on the midline.
+    let depth_at = |y: f32| {
+        near.iter()
+            .filter_map(|[a, b, c]| {
+                let (e0, e1) = (*b - *a, *c - *a);
+                let den = e0.x * e1.y - e1.x * e0.y;
+                if den.abs() <= f32::EPSILON * drop * drop {
+                    return None;
+                }
+                let (px, py) = (-a.x, y - a.y);
+                let u = (px * e1.y - e1.x * py) / den;
+                let w = (e0.x * py - px * e0.y) / den;
+                (u >= 0.0 && w >= 0.0 && u + w <= 1.0).then_some(a.z + u * e0.z + w * e1.z)
+            })
+            .reduce(f32::max)
+    };
+    const STEPS: usize = 60;
+    let samples: Vec<(f32, f32)> = (1..STEPS)
+        .filter_map(|k| {
+            let y = drop * k as f32 / STEPS as f32;
+            depth_at(y).map(|d| (y, d))
+        })
+        .collect();
+    let lip = samples
+        .iter()
+        .filter(|(y, _)| *y >= 0.5 * drop)
+        .max_by(|a, b| a.1.total_cmp(&b.1))?;
+    // The deepest below the line from the lower lip's front to the chin's (a receding
+    // chin's front lies behind the sulcus: the deepest sample would be the chin).
+    let chin = samples.last()?;
+    let line = |y: f32| lip.1 + (chin.1 - lip.1) * (y - lip.0) / (chin.0 - lip.0);
+    let (y, depth) = samples
+        .iter()
+        .filter(|(y, _)| *y < lip.0 && *y > chin.0)
+        .max_by(|a, b| (line(a.0) - a.1).total_cmp(&(line(b.0) - b.1)))?;
+    Some(mouth + up * *y + forward * *depth)
+}
+
 /// The template's lip prominence ([`lip_prominence`] on the template head, metres), made
 /// once.
 pub fn template_lip_prominence() -> Option<f32> {
@@ -186,6 +259,23 @@ pub fn template_lip_prominence() -> Option<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_template_s_sulcus_lies_between_its_lower_lip_and_its_chin() {
+        let template = crate::head::fit::template();
+        let (mesh, marks) = (&template.mesh, &template.landmarks);
+        let sulcus = mentolabial_sulcus(mesh.positions(), &mesh.skin_indices(), marks).unwrap();
+        let (_, up, forward) = face_axes(marks).unwrap();
+        let mouth = 0.5 * (marks.get("cheilion_r").unwrap() + marks.get("cheilion_l").unwrap());
+        let pg = marks.get("pogonion").unwrap();
+        // Below the mouth by 8–25 mm (an adult's lower lip's red is about 8–10 mm high),
+        // above the chin.
+        let below_mm = (mouth - sulcus).dot(up) * 1000.0;
+        assert!((8.0..25.0).contains(&below_mm), "{below_mm} mm");
+        assert!((sulcus - pg).dot(up) > 0.0);
+        // No farther forward than the chin's front (measured: level with it, 16.5 mm down).
+        assert!((pg - sulcus).dot(forward) > -0.001);
+    }
 
     #[test]
     fn the_template_s_lips_stand_a_few_millimetres_out() {

@@ -173,8 +173,9 @@ pub fn eye_opening(positions: &[Vec3], skin: &[u32], landmarks: &Landmarks) -> O
 }
 
 /// The mentolabial sulcus on the face's midline, in the landmarks' units: seen from the
-/// front along the vertical line through the mouth corners' middle (`cheilion_*`), the
-/// skin's front-most depth sampled every 1/60 of the way down to the chin (`pogonion`);
+/// front along the vertical line through the mouth corners' middle (`cheilion_*`) and two
+/// beside it a twentieth of the mouth's width away, the skin's front-most depth sampled
+/// every 1/60 of the way down to the chin (`pogonion`);
 /// the lower lip's most forward sample in the upper half of the way, then the one below
 /// it deepest behind the line from it to the chin's sample: where the lower lip's red
 /// ends and the chin's skin begins. `None` without
@@ -188,7 +189,10 @@ pub fn mentolabial_sulcus(positions: &[Vec3], skin: &[u32], landmarks: &Landmark
     if drop >= 0.0 {
         return None;
     }
-    // The skin triangles crossing the midline below the mouth, in (across, up, depth)
+    // Three vertical lines a twentieth of the mouth's width apart: a midline that runs
+    // along the triangles' edges may miss the skin in front and find the mouth's inside.
+    let beside = 0.05 * get("cheilion_r")?.distance(get("cheilion_l")?);
+    // The skin triangles crossing the lines below the mouth, in (across, up, depth)
     // from the mouth's middle.
     let near: Vec<[Vec3; 3]> = skin
         .chunks_exact(3)
@@ -200,23 +204,24 @@ pub fn mentolabial_sulcus(positions: &[Vec3], skin: &[u32], landmarks: &Landmark
             });
             let xs = p.map(|q| q.x);
             let ys = p.map(|q| q.y);
-            (xs.iter().any(|&x| x <= 0.0)
-                && xs.iter().any(|&x| x >= 0.0)
+            (xs.iter().any(|&x| x <= beside)
+                && xs.iter().any(|&x| x >= -beside)
                 && ys.iter().any(|&y| y <= 0.0)
                 && ys.iter().any(|&y| y >= drop))
             .then_some(p)
         })
         .collect();
-    // The front-most depth of the skin at height y on the midline.
+    // The front-most depth of the skin at height y, on the three lines.
     let depth_at = |y: f32| {
-        near.iter()
-            .filter_map(|[a, b, c]| {
+        (near.iter())
+            .flat_map(|t| [-beside, 0.0, beside].map(|x| (t, x)))
+            .filter_map(|([a, b, c], x)| {
                 let (e0, e1) = (*b - *a, *c - *a);
                 let den = e0.x * e1.y - e1.x * e0.y;
                 if den.abs() <= f32::EPSILON * drop * drop {
                     return None;
                 }
-                let (px, py) = (-a.x, y - a.y);
+                let (px, py) = (x - a.x, y - a.y);
                 let u = (px * e1.y - e1.x * py) / den;
                 let w = (e0.x * py - px * e0.y) / den;
                 (u >= 0.0 && w >= 0.0 && u + w <= 1.0).then_some(a.z + u * e0.z + w * e1.z)

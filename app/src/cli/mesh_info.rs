@@ -160,8 +160,17 @@ fn describe_lips(scene: &Scene) -> String {
     if scene.layout().fit.is_none() {
         return "thin as the template's (the head is not fitted)".to_owned();
     }
+    let reach = scene.layout().lower_lip_reach;
+    let lower = if reach >= 0.005 {
+        format!(
+            ", the lower lip's reaching {reach:.2} of the face frame further down than the template's (by its mentolabial sulcus)"
+        )
+    } else {
+        String::new()
+    };
     format!(
-        "deflate {f:.2} × as far as the template's (by how far they stand out in front of the subnasale–chin line; shape.lips scales it)"
+        "deflate {f:.2} × as far as the template's (by how far they stand out in front of the subnasale–chin line; shape.lips scales it); their red keeps {:.0} % of the micro-relief{lower}",
+        100.0 * agesim_core::layers::micro::weight::ON_LIPS
     )
 }
 

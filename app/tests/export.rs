@@ -86,12 +86,22 @@ fn the_aged_head_glb_loads_back_with_its_material() {
         .filter(|p| (i32::from(p[0]) - 128).abs() > 20)
         .count();
     assert!(bent > 100, "only {bent} texels bent by wrinkles");
-    // The skin has the aged material; the eye sockets (not skin) a plain one.
+    // The skin has the aged material; the eye sockets (not skin) a plain one, which reads
+    // the skin's base colour texture as the view does (the eyes drawn on blank eyeballs
+    // are in it).
+    let colour_texture = |m: gltf::Material| {
+        m.pbr_metallic_roughness()
+            .base_color_texture()
+            .map(|t| t.texture().index())
+    };
+    let skin_colour = doc.materials().next().and_then(colour_texture);
+    assert!(skin_colour.is_some());
     for mesh in doc.meshes().filter(|m| m.name() != Some("hair")) {
         let skin = !mesh.name().unwrap_or_default().contains("eye sockets");
         for prim in mesh.primitives() {
             assert_eq!(prim.material().index(), Some(usize::from(!skin)));
             assert_eq!(prim.material().normal_texture().is_some(), skin);
+            assert_eq!(colour_texture(prim.material()), skin_colour);
             let reader = prim.reader(|b| Some(&buffers[b.index()]));
             assert!(reader.read_tangents().is_some(), "tangents are written");
             assert!(reader.read_tex_coords(0).is_some());

@@ -78,7 +78,7 @@ pub(super) fn export_glb(
     // map's own size (`Scene::colour_px`; 1024² even for smaller GLB textures).
     let colour_px = scene.colour_px(atlas_px.max(1024));
     scene.bake_colour(colour_px, t, cancel)?;
-    let aged = scene.aged_colour().cloned();
+    let aged = scene.exported_colour();
     let base_colour = [1.0; 4];
     // One material per UDIM tile (one for a single-tile head), each with its tile's maps.
     let tiles = udim.as_ref().map_or(vec![0], |u| u.numbers());

@@ -113,7 +113,7 @@ pub fn bake_maps(
             let start = std::time::Instant::now();
             let aged = colour_scene.as_mut().map(|s| {
                 s.bake_colour(colour_px, t, cancel)?;
-                Ok::<_, agesim_core::Error>(s.aged_colour().cloned())
+                Ok::<_, agesim_core::Error>(s.exported_colour())
             });
             (aged.transpose(), ms(start))
         },

@@ -220,6 +220,22 @@ impl Scene {
         self.colour.image.as_ref()
     }
 
+    /// The aged base colour of the last [`Scene::bake_colour`] as an export writes it: with
+    /// an eye drawn on every blank eyeball, as the view shows them (without them the
+    /// eyeballs of a head whose map paints none were exported blank: white or the skin's
+    /// colour in Blender where the view drew eyes), without the view's hair alpha.
+    pub fn exported_colour(&mut self) -> Option<Arc<crate::maps::mask::HeadImage>> {
+        let aged = self.colour.image.clone()?;
+        let eyes = self.eye_texels(&aged);
+        if eyes.is_empty() {
+            return Some(aged);
+        }
+        let mut image = (*aged).clone();
+        let old = self.colour.factors().map_or(0.0, |f| f.pale);
+        eyes.draw(&mut image, old);
+        Some(Arc::new(image))
+    }
+
     /// The texels of the last [`Scene::bake_colour`]: the regions each stands for.
     pub fn colour_texels(&self) -> Option<&Arc<crate::layers::skin_colour::SurfaceTexels>> {
         self.colour.texels()

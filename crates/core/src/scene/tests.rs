@@ -692,3 +692,31 @@ fn the_crows_feet_are_laid_on_the_surface_and_only_they_change() {
     s.bake(&request, &never).unwrap();
     assert_eq!(scene_large(&s), laid);
 }
+
+/// An export's base colour has the eyes the view draws on blank eyeballs (the MakeHuman
+/// head's eyes are parts of their own whose UVs read blank skin): the eyeball texels
+/// differ from the aged colour's, no other texel does.
+#[test]
+fn the_exported_colour_has_the_views_eyes() {
+    let heads = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/heads");
+    let mut p = Project::default();
+    p.mesh.path = Some(heads.join("makehuman/mh_head.obj"));
+    p.mesh.landmarks = Some(heads.join("makehuman/landmarks.json").into());
+    let mut scene = Scene::new(p).unwrap();
+    scene.bake_colour(256, 1.0, &CancelToken::never()).unwrap();
+    let aged = scene.aged_colour().unwrap().clone();
+    let exported = scene.exported_colour().unwrap();
+    let changed = (aged.rgba.chunks(4).zip(exported.rgba.chunks(4)))
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(changed > 20, "{changed} texels with an eye");
+    assert!(
+        changed < aged.rgba.len() / 4 / 20,
+        "{changed} texels changed"
+    );
+    // A head whose eyeballs are not blank (the default head's are closed): the same.
+    let mut scene = Scene::new(Project::default()).unwrap();
+    scene.bake_colour(256, 1.0, &CancelToken::never()).unwrap();
+    let aged = scene.aged_colour().unwrap().clone();
+    assert_eq!(scene.exported_colour().unwrap().rgba, aged.rgba);
+}

@@ -335,6 +335,9 @@ pub fn write_glb_with_extras(
     if !materials.is_empty() || !extras.is_empty() {
         let mut images = Vec::new();
         let mut list = Vec::new();
+        // The first material's base colour texture: the parts that are not skin read it
+        // too, as the view draws them (an eye drawn on a blank eyeball is in it).
+        let mut first_colour = None;
         for m in materials {
             let mut normal = String::new();
             let mut colour = String::new();
@@ -365,7 +368,10 @@ pub fn write_glb_with_extras(
                         occlusion = format!(r#","occlusionTexture":{texture}"#);
                         metallic_roughness = format!(r#","metallicRoughnessTexture":{texture}"#);
                     }
-                    _ => colour = format!(r#","baseColorTexture":{texture}"#),
+                    _ => {
+                        first_colour.get_or_insert(index);
+                        colour = format!(r#","baseColorTexture":{texture}"#);
+                    }
                 }
             }
             let f = |x: f32| if x.is_finite() { x } else { 0.0 };
@@ -383,7 +389,15 @@ pub fn write_glb_with_extras(
             ));
         }
         if any_not_skin && !materials.is_empty() {
-            list.push(r#"{"name":"not skin (left as it is by agesim)","pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0,"roughnessFactor":0.3}}"#.to_owned());
+            let (factor, colour) = first_colour.map_or(("0.9,0.9,0.9", String::new()), |index| {
+                (
+                    "1,1,1",
+                    format!(r#","baseColorTexture":{{"index":{index}}}"#),
+                )
+            });
+            list.push(format!(
+                r#"{{"name":"not skin (not aged by agesim; as its view draws it)","pbrMetallicRoughness":{{"baseColorFactor":[{factor},1]{colour},"metallicFactor":0,"roughnessFactor":0.3}}}}"#
+            ));
         }
         for extra in extras {
             let r = if extra.roughness.is_finite() {

@@ -298,12 +298,23 @@ impl Regions {
     /// The outer part of the lips (their red's border, away from the mouth's line): what
     /// fades first as the lips thin (docs/models.md §12 "Lips").
     pub fn lip_rim(&self, p: Vec3) -> f32 {
+        self.lip_rim_reaching(p, 0.0)
+    }
+
+    /// [`Regions::lip_rim`] with the lower lip reaching `lower` further down
+    /// ([`Regions::lips_reaching`]).
+    pub fn lip_rim_reaching(&self, p: Vec3, lower: f32) -> f32 {
         let q = self.rel(p);
+        let dy = q.y - self.mouth.y + 0.02;
         let d = Vec2::new(
             (q.x - self.mouth.x) / (self.mouth_half_width + 0.05),
-            (q.y - self.mouth.y + 0.02) / 0.22,
+            dy / if dy < 0.0 {
+                0.22 + lower.max(0.0)
+            } else {
+                0.22
+            },
         );
-        smoothstep(0.45, 0.8, d.length()) * self.lips(p)
+        smoothstep(0.45, 0.8, d.length()) * self.lips_reaching(p, lower)
     }
 
     /// Cheeks and nose, where redness and thread veins come.

@@ -66,6 +66,9 @@ pub(super) struct Head<'a> {
     pub base: Option<&'a Arc<HeadImage>>,
     /// The hair painted on the map ([`skin_colour::PaintedHair`]), when it has some.
     pub painted: Option<skin_colour::PaintedHair<'a>>,
+    /// How much further down than the template's its lower lip's red reaches
+    /// ([`super::HeadLayout::lower_lip_reach`]).
+    pub lower_lip: f32,
     /// The identity of the painted hair's ages (their owner): the key of what was painted.
     pub painted_ages: Option<ArcKey<Vec<u8>>>,
 }
@@ -127,6 +130,7 @@ impl ColourStage {
                     Face {
                         regions,
                         drawn_crease: &crate::layers::shape::drawn_crease,
+                        lower_lip: head.lower_lip,
                     },
                     settings.seed,
                     cancel,

@@ -137,6 +137,7 @@ impl Scene {
             Face {
                 regions,
                 drawn_crease: &|_| 0.0,
+                lower_lip: self.inputs.layout.lower_lip_reach,
             },
             self.project.skin.colour_seed,
             cancel,

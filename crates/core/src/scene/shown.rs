@@ -87,6 +87,7 @@ impl Scene {
             template_point: &template_point,
             base: base.as_ref(),
             painted,
+            lower_lip: self.inputs.layout.lower_lip_reach,
             painted_ages: ages.as_ref().filter(|_| painted.is_some()).map(ArcKey::of),
         };
         self.colour.bake(&head, size, &settings, &factors, cancel)

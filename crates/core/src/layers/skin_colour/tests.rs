@@ -42,6 +42,7 @@ fn texels_of(mesh: &Mesh, template: &dyn Fn(usize) -> Option<Vec3>, size: u32) -
     let face = Face {
         regions,
         drawn_crease: &crate::layers::shape::drawn_crease,
+        lower_lip: 0.0,
     };
     SurfaceTexels::new(mesh, template, 1.0, size, face, 1, &CancelToken::never()).unwrap()
 }

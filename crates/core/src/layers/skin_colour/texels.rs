@@ -66,6 +66,9 @@ pub struct Face<'a> {
     pub regions: &'a Regions,
     /// The lid–cheek crease at a point of the face frame ([`Regions::relative`]).
     pub drawn_crease: &'a (dyn Fn(Vec3) -> f32 + Sync),
+    /// How much further down than the template's the head's lower lip's red reaches
+    /// ([`Regions::lips_reaching`]; 0: as the template's).
+    pub lower_lip: f32,
 }
 
 impl Fields {
@@ -86,8 +89,16 @@ impl Fields {
         Self {
             sun: unit_byte(sun),
             brows: unit_byte(brows),
-            lips: unit_byte(w(Regions::lips)),
-            lip_rim: unit_byte(w(Regions::lip_rim)),
+            lips: unit_byte(if face {
+                regions.lips_reaching(t, face_frame.lower_lip)
+            } else {
+                0.0
+            }),
+            lip_rim: unit_byte(if face {
+                regions.lip_rim_reaching(t, face_frame.lower_lip)
+            } else {
+                0.0
+            }),
             red: unit_byte(red),
             blotch: signed_byte(fbm(mm / MOTTLE_MM.0, keys[0])),
             grain: signed_byte(value3(mm / MOTTLE_MM.1, keys[1])),

@@ -40,6 +40,13 @@ pub struct LidPlace {
     pub side: i8,
 }
 
+/// How far below the mouth corners' line the template's lower lip's red reaches, in the
+/// face frame's units (the lips' ellipse, [`Regions::lips`]: 0.22 × 1.05 past 0.02 below).
+pub const LOWER_RED: f32 = 0.25;
+/// Over how much of the skin below the lower lip's red [`Regions::with_lower_lip_as_template`]
+/// returns to the template's points.
+pub const LOWER_CATCH_UP: f32 = 0.3;
+
 /// The regions of the aged colour on the template, from its landmarks (template metres,
 /// +Y up, +Z forward): each a weight in [0, 1] of a template point.
 #[derive(Clone, Debug, PartialEq)]
@@ -289,6 +296,38 @@ impl Regions {
         (1.0 - smoothstep(0.75, 1.05, d.length())) * front(q.z, self.ear_z)
     }
 
+    /// The template point `p` moved as if the head's lower lip reached no further down
+    /// than the template's, where it reaches `lower` further (frame units; 0: `p` as it
+    /// is): below the mouth corners' line, the head's red (down to [`LOWER_RED`] + `lower`)
+    /// is laid on the template's (down to [`LOWER_RED`]), and the skin below it on the
+    /// template's from there down to [`LOWER_RED`] + `lower` + [`LOWER_CATCH_UP`], where
+    /// the points are as they were; fading out beyond the mouth's corners over 0.4. What the
+    /// shape's lips region deflates and thins is then the head's whole lower lip.
+    pub fn with_lower_lip_as_template(&self, p: Vec3, lower: f32) -> Vec3 {
+        if lower <= 0.0 {
+            return p;
+        }
+        let q = self.rel(p);
+        let below = self.mouth.y - q.y;
+        let (r, f) = (LOWER_RED, LOWER_CATCH_UP);
+        let moved = if below <= 0.0 {
+            below
+        } else if below <= r + lower {
+            below * r / (r + lower)
+        } else if below <= r + lower + f {
+            r + (below - r - lower) * (lower + f) / f
+        } else {
+            below
+        };
+        let across = 1.0
+            - smoothstep(
+                self.mouth_half_width,
+                self.mouth_half_width + 0.4,
+                (q.x - self.mouth.x).abs(),
+            );
+        p + Vec3::Y * ((below - moved) * across * self.unit)
+    }
+
     /// How far below the mouth corners' line the template point `p` lies, in the frame's
     /// units.
     pub fn below_mouth(&self, p: Vec3) -> f32 {
@@ -389,4 +428,37 @@ fn front(z: f32, ear_z: f32) -> f32 {
 fn brow_middle(inner: Vec3, outer: Vec3, s: f32) -> f32 {
     let corners_y = inner.y + (outer.y - inner.y) * s.clamp(0.0, 1.0);
     corners_y + 0.34 + 0.14 * (std::f32::consts::PI * (s + 0.1) / 1.3).sin().max(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_fuller_lower_lip_is_laid_on_the_templates() {
+        let r = Regions::template().unwrap();
+        let at = |below: f32, across: f32| {
+            r.origin + Vec3::new(r.mouth.x + across, r.mouth.y - below, r.mouth.z) * r.unit
+        };
+        let below = |p: Vec3| r.below_mouth(p);
+        let lower = 0.17;
+        // The head's red's end lands on the template's, the mouth's line and the skin past
+        // the catching up stay, and the way down never turns back.
+        let moved = |b: f32| below(r.with_lower_lip_as_template(at(b, 0.0), lower));
+        assert!((moved(LOWER_RED + lower) - LOWER_RED).abs() < 1e-4);
+        assert!(moved(0.0).abs() < 1e-4);
+        let far = LOWER_RED + lower + LOWER_CATCH_UP + 0.05;
+        assert!((moved(far) - far).abs() < 1e-4);
+        let steps: Vec<f32> = (0..=100).map(|k| moved(0.01 * k as f32)).collect();
+        assert!(steps.windows(2).all(|w| w[1] > w[0]));
+        // Beyond the mouth's corners and above the mouth, nothing moves; none at all at 0.
+        let side = at(0.2, r.mouth_half_width + 0.5);
+        assert_eq!(r.with_lower_lip_as_template(side, lower), side);
+        let above = at(-0.1, 0.0);
+        assert_eq!(r.with_lower_lip_as_template(above, lower), above);
+        assert_eq!(
+            r.with_lower_lip_as_template(at(0.2, 0.0), 0.0),
+            at(0.2, 0.0)
+        );
+    }
 }

@@ -732,10 +732,20 @@ impl Scene {
 
     /// Each vertex's place on the template as the shape reads it: the fit's refined point
     /// ([`crate::head::fit::Fit::refined_point`], a smooth field's, which folds nowhere),
-    /// else [`Scene::template_points`].
+    /// its lower lip laid on the template's where it reaches further
+    /// ([`crate::head::frame::Regions::with_lower_lip_as_template`]), else
+    /// [`Scene::template_points`].
     pub fn shape_points(&self) -> Vec<Option<glam::Vec3>> {
         match &self.inputs.layout.fit {
-            Some(fit) => fit.refined_point.clone(),
+            Some(fit) => {
+                let lower = self.inputs.layout.lower_lip_reach;
+                match crate::head::frame::Regions::template().filter(|_| lower > 0.0) {
+                    Some(r) => (fit.refined_point.iter())
+                        .map(|p| p.map(|p| r.with_lower_lip_as_template(p, lower)))
+                        .collect(),
+                    None => fit.refined_point.clone(),
+                }
+            }
             None => self.template_points(),
         }
     }

@@ -152,7 +152,7 @@ pub(super) const JOWL_ROLL: Roll = Roll {
     crest: 0.12,
     reach: 0.5,
     height_mm: 1.5,
-    crease_mm: 0.6,
+    crease_mm: 0.0,
     crease_half: 0.06,
     mirrored: false,
     taper: None,

@@ -3,9 +3,10 @@
 //! that the view and the exported normal map read alike.
 //!
 //! The tile repeats over the head's UVs; the lips' red has no pores or furrows between
-//! them (it is mucosa, not skin), and on heads whose UVs squeeze the full lips the
-//! stretched pores drew "vertical hatching on the lower lip" (the African heads, blind
-//! rounds 55–59).
+//! them (it is mucosa, not skin), and on the smooth, frontally lit full lower lips of the
+//! African heads the tile's pores, elongated along the tension lines with age, drew
+//! "vertical hatching on the lower lip" (blind rounds 55–59; not the UVs' stretch: the
+//! lower lip's triangles are no more anisotropic than the cheeks').
 
 use glam::{Vec2, Vec3};
 

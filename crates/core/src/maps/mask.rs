@@ -119,9 +119,9 @@ impl HeadImage {
         })
     }
 
-    /// The tangent-space normal at (u, v) (bilinear, u wrapping, v clamped) of a normal
-    /// map, OpenGL convention (green = +v) unless `green_down` (DirectX).
-    pub fn normal_at(&self, u: f32, v: f32, green_down: bool) -> glam::Vec3 {
+    /// The colour at (u, v), 0–255 per channel, bilinear between texel centres, u
+    /// wrapping and v clamped (as the view's surface sampler reads a head's pictures).
+    pub fn rgb_at(&self, u: f32, v: f32) -> glam::Vec3 {
         let (w, h) = (self.width_px as i64, self.height_px as i64);
         let x = u * w as f32 - 0.5;
         let y = (1.0 - v) * h as f32 - 0.5;
@@ -138,7 +138,13 @@ impl HeadImage {
         let (x0, y0) = (x0 as i64, y0 as i64);
         let top = at(x0, y0).lerp(at(x0 + 1, y0), fx);
         let bottom = at(x0, y0 + 1).lerp(at(x0 + 1, y0 + 1), fx);
-        let mut n = top.lerp(bottom, fy) / 255.0 * 2.0 - glam::Vec3::ONE;
+        top.lerp(bottom, fy)
+    }
+
+    /// The tangent-space normal at (u, v) ([`HeadImage::rgb_at`]) of a normal map, OpenGL
+    /// convention (green = +v) unless `green_down` (DirectX).
+    pub fn normal_at(&self, u: f32, v: f32, green_down: bool) -> glam::Vec3 {
+        let mut n = self.rgb_at(u, v) / 255.0 * 2.0 - glam::Vec3::ONE;
         if green_down {
             n.y = -n.y;
         }

@@ -80,22 +80,10 @@ pub fn map(uvs: &[Vec2], indices: &[u32], lips: &[f32], size: u32) -> Result<Hea
     })
 }
 
-/// The weight of `map` at (u, v): bilinear between texel centres, wrapping in u and
-/// clamped in v, as the view's sampler reads it.
+/// The weight of `map` at (u, v): its red, bilinear between texel centres, wrapping in u
+/// and clamped in v, as the view's sampler reads it ([`HeadImage::rgb_at`]).
 pub fn sample(map: &HeadImage, u: f32, v: f32) -> f32 {
-    let (w, h) = (map.width_px as i64, map.height_px as i64);
-    let x = u * w as f32 - 0.5;
-    let y = (1.0 - v) * h as f32 - 0.5;
-    let (x0, y0) = (x.floor(), y.floor());
-    let (fx, fy) = (x - x0, y - y0);
-    let at = |xi: i64, yi: i64| {
-        let i = ((yi.clamp(0, h - 1) * w + xi.rem_euclid(w)) * 4) as usize;
-        f32::from(map.rgba[i]) / 255.0
-    };
-    let (x0, y0) = (x0 as i64, y0 as i64);
-    let top = at(x0, y0) + (at(x0 + 1, y0) - at(x0, y0)) * fx;
-    let bottom = at(x0, y0 + 1) + (at(x0 + 1, y0 + 1) - at(x0, y0 + 1)) * fx;
-    top + (bottom - top) * fy
+    map.rgb_at(u, v).x / 255.0
 }
 
 #[cfg(test)]

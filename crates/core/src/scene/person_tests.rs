@@ -646,7 +646,7 @@ fn the_neck_ages_with_the_face() {
             (0..(n * n) as usize)
                 .filter(|&i| {
                     let (sun, beard, bare) = texels.sun_beard_bare(i);
-                    texels.covers_skin(i) && pick(sun, beard, bare)
+                    texels.on_surface(i) && pick(sun, beard, bare)
                 })
                 .collect()
         };

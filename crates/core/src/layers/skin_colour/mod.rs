@@ -287,8 +287,8 @@ impl BaseColour {
                     a[x] = base.map_or(255, |img| alpha_at(img, x, y, n));
                 }
             });
-        let tone = local_tone(n, &texels.position, &texels.fields, &base_at);
-        let bare = bare_tone(n, &texels.position, &texels.fields, &base_at);
+        let tone = local_tone(n, texels, &base_at);
+        let bare = bare_tone(n, texels, &base_at);
         Self {
             size: texels.size,
             colour,

@@ -64,7 +64,7 @@ pub fn facial_contrast(texels: &SurfaceTexels, colour: &dyn Fn(usize) -> Vec3) -
     // The mean L* of a region's texels.
     let l_star = |pick: &dyn Fn(&Fields) -> bool| -> Option<f32> {
         let l: Vec<f32> = (0..texels.fields.len())
-            .filter(|&i| !texels.position[i].x.is_nan() && pick(&texels.fields[i]))
+            .filter(|&i| texels.on_surface(i) && pick(&texels.fields[i]))
             .map(|i| lab(colour(i)).x)
             .collect();
         (l.len() >= MIN_TEXELS).then(|| l.iter().sum::<f32>() / l.len() as f32)
@@ -103,7 +103,7 @@ pub fn measure(
     texels: &SurfaceTexels,
     scalp: &dyn Fn(usize) -> bool,
 ) -> OwnColours {
-    let on = |i: usize| !texels.position[i].x.is_nan();
+    let on = |i: usize| texels.on_surface(i);
     let labs = |pick: &dyn Fn(usize, &Fields) -> bool| -> Vec<(f32, usize)> {
         (0..texels.fields.len())
             .filter(|&i| on(i) && pick(i, &texels.fields[i]))

@@ -402,7 +402,7 @@ fn brows_gray_lips_fade_and_a_shadow_comes_under_the_eyes() {
     let (ly, lo) = (luminance(&young), luminance(&old));
     let in_region = |f: fn(&Fields) -> u8| -> Vec<usize> {
         (0..n * n)
-            .filter(|&i| from_unit(f(&texels.fields[i])) > 0.9)
+            .filter(|&i| texels.on_surface(i) && from_unit(f(&texels.fields[i])) > 0.9)
             .collect()
     };
     // Brow hair: the darkest quarter of the brows when young gets lighter.
@@ -646,7 +646,7 @@ fn the_bags_shadow_the_lid_cheek_junction_with_their_shape() {
         .filter(|&i| from_unit(texels.fields[i].crease) > 0.9)
         .collect();
     let elsewhere: Vec<usize> = (0..n * n)
-        .filter(|&i| texels.fields[i].crease == 0 && !texels.position[i].x.is_nan())
+        .filter(|&i| texels.fields[i].crease == 0 && texels.on_surface(i))
         .collect();
     assert!(junction.len() > 20, "{} junction texels", junction.len());
     let mean = |v: &[f32], idx: &[usize]| idx.iter().map(|&i| v[i]).sum::<f32>() / idx.len() as f32;
@@ -685,4 +685,66 @@ fn the_bags_shadow_the_lid_cheek_junction_with_their_shape() {
                 .all(|q| (0.2..1.1).contains(&q.x.abs()) && (-0.5..-0.1).contains(&q.y))
         );
     }
+}
+
+/// The skin's islands are padded ([`texels::PAD_PX`]) into the texels nothing covers, not
+/// into another part's: two skin islands 10 texels apart (the lips' parting) meet in the
+/// gap, an eye's island beside them keeps its texels, and the pad is aged as skin but not
+/// on the surface.
+#[test]
+fn the_pad_fills_the_gap_between_islands_and_spares_other_parts() {
+    use crate::head::mesh::{MeshPart, RawMesh};
+    let n = 64u32;
+    let px = |x: f32, y: f32| Vec2::new(x / n as f32, 1.0 - y / n as f32);
+    // Skin: two quads, columns 4–20 and 30–46 (a 10-texel gap); an eye: columns 50–60.
+    let quad = |x0: f32, x1: f32| [px(x0, 4.0), px(x1, 4.0), px(x1, 40.0), px(x0, 40.0)];
+    let mut uvs = Vec::new();
+    for (x0, x1) in [(4.0, 20.0), (30.0, 46.0), (50.0, 60.0)] {
+        uvs.extend(quad(x0, x1));
+    }
+    let positions: Vec<Vec3> = uvs.iter().map(|uv| Vec3::new(uv.x, uv.y, 0.0)).collect();
+    let indices: Vec<u32> = (0..3u32)
+        .flat_map(|q| [0, 1, 2, 0, 2, 3].map(|k| 4 * q + k))
+        .collect();
+    let part = |name: &str, first: u32, count: u32| MeshPart {
+        name: name.into(),
+        first_triangle: first,
+        triangle_count: count,
+    };
+    let raw = RawMesh {
+        positions,
+        uvs: Some(uvs),
+        indices,
+        parts: vec![
+            part("object \"head\"", 0, 4),
+            part("object \"eye_l\"", 4, 2),
+        ],
+        ..Default::default()
+    };
+    let mesh = crate::Mesh::build(raw, "islands").unwrap();
+    let regions = Regions::template().unwrap();
+    let face = Face {
+        regions,
+        drawn_crease: &|_| 0.0,
+        lower_lip: 0.0,
+    };
+    let texels =
+        SurfaceTexels::new(&mesh, &|_| None, 1.0, n, face, 1, &CancelToken::never()).unwrap();
+    let at = |x: usize, y: usize| y * n as usize + x;
+    // The gap's middle row: every texel aged as skin, none of them on the surface.
+    for x in 22..28 {
+        assert!(texels.covers_skin(at(x, 20)), "gap texel {x}");
+        assert!(
+            !texels.on_surface(at(x, 20)),
+            "gap texel {x} on the surface"
+        );
+    }
+    // Inside an island: on the surface.
+    assert!(texels.on_surface(at(10, 20)));
+    // The eye's texels stay the eye's; beyond the pad's reach nothing is skin.
+    for x in 51..59 {
+        assert!(!texels.covers_skin(at(x, 20)), "eye texel {x}");
+    }
+    assert!(!texels.covers_skin(at(10, 52)), "12 texels below an island");
+    assert!(texels.covers_skin(at(10, 46)), "6 texels below an island");
 }

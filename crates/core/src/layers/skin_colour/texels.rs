@@ -12,6 +12,9 @@ pub struct SurfaceTexels {
     pub(super) size: u32,
     pub(super) position: Vec<Vec3>,
     pub(super) fields: Vec<Fields>,
+    /// The texels of the pad round the skin's islands ([`PAD_PX`]): aged as the island's
+    /// edge, but not on the surface (no colour is measured there).
+    pub(super) padded: Vec<bool>,
 }
 
 /// The regions' weights and the uneven tone's noise at one texel, as bytes (weights
@@ -151,6 +154,72 @@ impl Fields {
 /// bilinear and mip filtering of an island's edge read aged texels.
 pub(super) const GUARD_PX: f32 = 1.5;
 
+/// How far (pixels) beyond the skin's islands a texel no triangle of any part covers still
+/// takes the nearest skin triangle's surface, so it ages as the island's edge does: a
+/// view reads the map's mip levels, which at 8× minification (the third level, a whole
+/// head on a portrait) mix an island's edge with texels 8 apart. Left as the map painted
+/// them, the unaged red between the lips' islands drew a red line along the lips' parting
+/// at 80 on the panel's textured heads (blind, rounds 60–64: "an odd red line along the
+/// lip seam"), and so would any painted gap next to an island that changes with age.
+pub(super) const PAD_PX: f32 = 8.0;
+
+/// Grows the skin's texels ([`PAD_PX`] rings, 8-connected) into the texels nothing
+/// covers: each takes the point and template point of its first neighbour (in a fixed
+/// order) of the rings before, so the result does not depend on the thread count. Costs
+/// what the rings hold, not the map.
+fn pad(n: usize, position: &mut [Vec3], template: &mut [Vec3], others: &[bool]) -> Vec<bool> {
+    const AROUND: [(isize, isize); 8] = [
+        (-1, 0),
+        (1, 0),
+        (0, -1),
+        (0, 1),
+        (-1, -1),
+        (1, -1),
+        (-1, 1),
+        (1, 1),
+    ];
+    const UNSET: u8 = u8::MAX;
+    let neighbours = move |i: usize| {
+        let (x, y) = (i % n, i / n);
+        AROUND.iter().filter_map(move |&(dx, dy)| {
+            let (xx, yy) = (x.checked_add_signed(dx)?, y.checked_add_signed(dy)?);
+            (xx < n && yy < n).then_some(yy * n + xx)
+        })
+    };
+    // The ring each texel was set in (0: covered).
+    let mut ring: Vec<u8> = position
+        .par_iter()
+        .map(|p| if p.x.is_nan() { UNSET } else { 0 })
+        .collect();
+    let mut frontier: Vec<usize> = (0..n * n)
+        .into_par_iter()
+        .filter(|&i| ring[i] == 0 && neighbours(i).any(|j| ring[j] == UNSET))
+        .collect();
+    for k in 1..=PAD_PX as u8 {
+        let mut next: Vec<usize> = frontier
+            .iter()
+            .flat_map(|&i| neighbours(i))
+            .filter(|&j| ring[j] == UNSET && !others[j])
+            .collect();
+        next.sort_unstable();
+        next.dedup();
+        for &j in &next {
+            if let Some(i) = neighbours(j).find(|&i| ring[i] < k) {
+                position[j] = position[i];
+                template[j] = template[i];
+            }
+        }
+        for &j in &next {
+            ring[j] = k;
+        }
+        if next.is_empty() {
+            break;
+        }
+        frontier = next;
+    }
+    ring.iter().map(|&r| r != 0 && r != UNSET).collect()
+}
+
 impl SurfaceTexels {
     /// Rasterises the skin triangles of `mesh` in its UV layout at `size`², and each
     /// covered texel's regions and noise (of `seed`).
@@ -171,6 +240,37 @@ impl SurfaceTexels {
         let template_points: Vec<Vec3> = (0..positions.len())
             .map(|i| template_point(i).unwrap_or(nan))
             .collect();
+        // The texels the other parts' triangles (eyes, teeth) cover: the skin's pad does
+        // not reach into them.
+        let skin_firsts: Vec<u32> = mesh.skin_parts().map(|p| p.first_triangle).collect();
+        let mut others = vec![false; n * n];
+        let all = mesh.indices();
+        for part in mesh.parts() {
+            if skin_firsts.contains(&part.first_triangle) {
+                continue;
+            }
+            let first = part.first_triangle as usize;
+            for k in first..first + part.triangle_count as usize {
+                let Some(tri) = all.get(k * 3..k * 3 + 3) else {
+                    break;
+                };
+                let Some(uv) = [0, 1, 2]
+                    .map(|i| uvs.get(tri[i] as usize).copied())
+                    .into_iter()
+                    .collect::<Option<Vec<Vec2>>>()
+                else {
+                    continue;
+                };
+                crate::maps::raster::raster_uv(
+                    [uv[0], uv[1], uv[2]],
+                    size,
+                    GUARD_PX,
+                    |x, y, _, _| {
+                        others[y * n + x] = true;
+                    },
+                );
+            }
+        }
         // Each texel's point and template point, and how far outside the triangle that
         // wrote them it lies: the nearest triangle's.
         let mut written = vec![(nan, nan, f32::INFINITY); n * n];
@@ -207,8 +307,10 @@ impl SurfaceTexels {
                 Ok(())
             },
         )?;
-        let (position, template): (Vec<Vec3>, Vec<Vec3>) =
+        let (mut position, mut template): (Vec<Vec3>, Vec<Vec3>) =
             written.into_iter().map(|(p, t, _)| (p, t)).unzip();
+        cancel.check()?;
+        let padded = pad(n, &mut position, &mut template, &others);
         let keys = noise_keys(seed);
         let mut fields = vec![Fields::default(); n * n];
         fields
@@ -230,6 +332,7 @@ impl SurfaceTexels {
             size,
             position,
             fields,
+            padded,
         })
     }
 
@@ -237,10 +340,17 @@ impl SurfaceTexels {
         self.size
     }
 
-    /// Whether a skin triangle covers texel `i` (or its guard band round a UV island):
-    /// texels only other parts (eyes, teeth) or nothing cover are not skin.
+    /// Whether texel `i` is aged as skin: a skin triangle covers it (or its guard band
+    /// round a UV island), or it lies in the pad round the islands ([`PAD_PX`]): texels
+    /// only other parts (eyes, teeth) or nothing near cover are not skin.
     pub fn covers_skin(&self, i: usize) -> bool {
         self.position.get(i).is_some_and(|p| !p.x.is_nan())
+    }
+
+    /// Whether texel `i` lies on the skin's surface ([`Self::covers_skin`] less the pad):
+    /// where a colour is measured.
+    pub fn on_surface(&self, i: usize) -> bool {
+        self.covers_skin(i) && !self.padded.get(i).copied().unwrap_or(false)
     }
 
     /// Texel `i`'s weights in the sun-exposed skin, the beard and the bare skin round it
@@ -252,13 +362,18 @@ impl SurfaceTexels {
     }
 
     /// Texel `i`'s weight in the cheeks and nose (row by row from the top), 0–1: where a
-    /// face's evenness of tone is measured (Matts et al. 2007 measured the cheek).
+    /// face's evenness of tone is measured (Matts et al. 2007 measured the cheek); 0 off
+    /// the surface ([`Self::on_surface`]).
     pub fn cheeks_and_nose(&self, i: usize) -> f32 {
-        self.fields.get(i).map_or(0.0, |f| from_unit(f.red))
+        self.surface_fields(i).map_or(0.0, |f| from_unit(f.red))
     }
 
-    /// The lips' weight at texel `i` (`Regions::lips`; 0 beyond the layout).
+    /// The lips' weight at texel `i` (`Regions::lips`; 0 off the surface).
     pub fn lips(&self, i: usize) -> f32 {
-        self.fields.get(i).map_or(0.0, |f| from_unit(f.lips))
+        self.surface_fields(i).map_or(0.0, |f| from_unit(f.lips))
+    }
+
+    fn surface_fields(&self, i: usize) -> Option<&Fields> {
+        self.fields.get(i).filter(|_| self.on_surface(i))
     }
 }

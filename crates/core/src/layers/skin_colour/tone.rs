@@ -10,11 +10,12 @@ use super::*;
 /// "barely thinner").
 pub(super) fn local_tone(
     n: usize,
-    position: &[Vec3],
-    fields: &[Fields],
+    texels: &SurfaceTexels,
     base_at: &(dyn Fn(usize, usize) -> Vec3 + Sync),
 ) -> Vec<Vec3> {
-    let cells = ToneCells::new(n, position, base_at, 2, |i| 1.0 - from_unit(fields[i].lips));
+    let cells = ToneCells::new(n, texels, base_at, 2, |i| {
+        1.0 - from_unit(texels.fields[i].lips)
+    });
     let mut out = vec![Vec3::ZERO; n * n];
     out.par_chunks_mut(n).enumerate().for_each(|(y, row)| {
         for (x, o) in row.iter_mut().enumerate() {
@@ -29,12 +30,11 @@ pub(super) fn local_tone(
 /// reach across the beard from the skin round it (the cheeks above, the neck below).
 pub(super) fn bare_tone(
     n: usize,
-    position: &[Vec3],
-    fields: &[Fields],
+    texels: &SurfaceTexels,
     base_at: &(dyn Fn(usize, usize) -> Vec3 + Sync),
 ) -> ToneCells {
-    ToneCells::new(n, position, base_at, BARE_TONE_PASSES, |i| {
-        let f = &fields[i];
+    ToneCells::new(n, texels, base_at, BARE_TONE_PASSES, |i| {
+        let f = &texels.fields[i];
         [f.beard, f.lips, f.red, f.under_eye]
             .iter()
             .map(|&b| 1.0 - from_unit(b))
@@ -44,8 +44,9 @@ pub(super) fn bare_tone(
 }
 
 /// A skin tone over the UV layout: the base colour averaged over a [`TONE_GRID`]² grid
-/// (only covered texels count, each with its weight, so the background does not darken
-/// island edges), blurred by a number of 3×3 box passes (normalised convolution).
+/// (only texels on the surface count, each with its weight, so the background and the
+/// pad round the islands do not darken their edges), blurred by a number of 3×3 box
+/// passes (normalised convolution).
 #[derive(Clone, Debug)]
 pub(super) struct ToneCells {
     /// The bake's side, texels.
@@ -57,7 +58,7 @@ pub(super) struct ToneCells {
 impl ToneCells {
     pub(super) fn new(
         n: usize,
-        position: &[Vec3],
+        texels: &SurfaceTexels,
         base_at: &(dyn Fn(usize, usize) -> Vec3 + Sync),
         passes: usize,
         weight_of: impl Fn(usize) -> f32,
@@ -70,7 +71,7 @@ impl ToneCells {
         for y in (0..n).step_by(step) {
             for x in (0..n).step_by(step) {
                 let i = y * n + x;
-                if position[i].x.is_nan() {
+                if !texels.on_surface(i) {
                     continue;
                 }
                 let w = weight_of(i);

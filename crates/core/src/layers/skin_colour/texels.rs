@@ -158,9 +158,9 @@ pub(super) const GUARD_PX: f32 = 1.5;
 /// takes the nearest skin triangle's surface, so it ages as the island's edge does: a
 /// view reads the map's mip levels, which at 8× minification (the third level, a whole
 /// head on a portrait) mix an island's edge with texels 8 apart. Left as the map painted
-/// them, the unaged red between the lips' islands drew a red line along the lips' parting
-/// at 80 on the panel's textured heads (blind, rounds 60–64: "an odd red line along the
-/// lip seam"), and so would any painted gap next to an island that changes with age.
+/// them, the unaged red in the gap between the lips' islands of the MakeHuman maps drew a
+/// red line along the lips' parting at 80 seen from the front, and so would any painted
+/// gap next to an island that changes with age.
 pub(super) const PAD_PX: f32 = 8.0;
 
 /// Grows the skin's texels ([`PAD_PX`] rings, 8-connected) into the texels nothing

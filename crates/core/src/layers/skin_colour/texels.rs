@@ -241,34 +241,29 @@ impl SurfaceTexels {
             .map(|i| template_point(i).unwrap_or(nan))
             .collect();
         // The texels the other parts' triangles (eyes, teeth) cover: the skin's pad does
-        // not reach into them.
-        let skin_firsts: Vec<u32> = mesh.skin_parts().map(|p| p.first_triangle).collect();
+        // not reach into them (none when every triangle is skin).
         let mut others = vec![false; n * n];
-        let all = mesh.indices();
-        for part in mesh.parts() {
-            if skin_firsts.contains(&part.first_triangle) {
-                continue;
-            }
-            let first = part.first_triangle as usize;
-            for k in first..first + part.triangle_count as usize {
-                let Some(tri) = all.get(k * 3..k * 3 + 3) else {
-                    break;
-                };
-                let Some(uv) = [0, 1, 2]
-                    .map(|i| uvs.get(tri[i] as usize).copied())
-                    .into_iter()
-                    .collect::<Option<Vec<Vec2>>>()
-                else {
+        if matches!(idx, std::borrow::Cow::Owned(_)) {
+            let all = mesh.indices();
+            for (p, part) in mesh.parts().iter().enumerate() {
+                if mesh.part_is_skin(p, part) {
                     continue;
-                };
-                crate::maps::raster::raster_uv(
-                    [uv[0], uv[1], uv[2]],
-                    size,
-                    GUARD_PX,
-                    |x, y, _, _| {
+                }
+                let first = part.first_triangle as usize;
+                let tris = first..first + part.triangle_count as usize;
+                for tri in all
+                    .get(tris.start * 3..tris.end * 3)
+                    .unwrap_or(&[])
+                    .chunks_exact(3)
+                {
+                    let [Some(a), Some(b), Some(c)] = [0, 1, 2].map(|k| uvs.get(tri[k] as usize))
+                    else {
+                        continue;
+                    };
+                    crate::maps::raster::raster_uv([*a, *b, *c], size, GUARD_PX, |x, y, _, _| {
                         others[y * n + x] = true;
-                    },
-                );
+                    });
+                }
             }
         }
         // Each texel's point and template point, and how far outside the triangle that

@@ -53,13 +53,16 @@ pub fn refine(
     start: Plane,
     reach: f32,
 ) -> (Plane, f32) {
+    use rayon::prelude::*;
     let mut plane = start;
     let mut median = f32::INFINITY;
     let mut start_median = None;
     for _ in 0..ITERATIONS {
         let (u, v) = plane.normal.any_orthonormal_pair();
+        // In parallel, in the points' order: the same rows on any thread count.
         let mut rows: Vec<([f32; 3], f32, f32)> = points
-            .iter()
+            .par_iter()
+            .with_min_len(64)
             .filter_map(|&p| {
                 let m = plane.mirror(p);
                 let hit = bvh.closest(m, reach)?;

@@ -41,9 +41,112 @@ impl Hasher for CubeHasher {
     }
 }
 
+/// Points kept by cube, for the distance from anywhere to the nearest of them: the cubes
+/// round the query in rings of growing reach, until no nearer point can lie beyond.
+#[derive(Clone, Debug, Default)]
+pub struct NearestPoints {
+    side: f32,
+    cubes: CubeMap<Vec<glam::Vec3>>,
+    /// The least and greatest cube holding a point.
+    bounds: Option<([i32; 3], [i32; 3])>,
+}
+
+impl NearestPoints {
+    /// `points` (finite) kept in cubes of side `side` (> 0; a few points a cube is best).
+    pub fn new(points: &[glam::Vec3], side: f32) -> Self {
+        let side = if side > 0.0 && side.is_finite() {
+            side
+        } else {
+            1.0
+        };
+        let mut cubes: CubeMap<Vec<glam::Vec3>> = CubeMap::default();
+        let mut bounds: Option<([i32; 3], [i32; 3])> = None;
+        for &p in points {
+            let c = cube_of(p, side);
+            cubes.entry(c).or_default().push(p);
+            bounds = Some(match bounds {
+                None => (c, c),
+                Some((lo, hi)) => (
+                    std::array::from_fn(|a| lo[a].min(c[a])),
+                    std::array::from_fn(|a| hi[a].max(c[a])),
+                ),
+            });
+        }
+        Self {
+            side,
+            cubes,
+            bounds,
+        }
+    }
+
+    /// The distance from `p` to the nearest point, infinite when there are none: the very
+    /// value the least of `p.distance(q)` over all of them gives (the same distances,
+    /// fewer of them).
+    pub fn distance(&self, p: glam::Vec3) -> f32 {
+        let Some((lo, hi)) = self.bounds else {
+            return f32::INFINITY;
+        };
+        let c = cube_of(p, self.side);
+        let reach = (0..3)
+            .map(|a| (c[a] - lo[a]).abs().max((hi[a] - c[a]).abs()))
+            .max()
+            .unwrap_or(0);
+        let mut best = f32::INFINITY;
+        for r in 0..=reach {
+            // A point r cubes away along some axis lies at least (r − 1) sides from p.
+            if best <= (r - 1).max(0) as f32 * self.side {
+                break;
+            }
+            let span = |a: usize| (c[a] - r).max(lo[a])..=(c[a] + r).min(hi[a]);
+            for x in span(0) {
+                for y in span(1) {
+                    for z in span(2) {
+                        let k = [x, y, z];
+                        let ring = (0..3).map(|a| (k[a] - c[a]).abs()).max().unwrap_or(0);
+                        if ring != r {
+                            continue;
+                        }
+                        if let Some(points) = self.cubes.get(&k) {
+                            for q in points {
+                                best = best.min(p.distance(*q));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_nearest_point_s_distance_is_the_scan_s() {
+        let mut rng = crate::base::rng::Rng::new(7);
+        let mut v = || glam::Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+        let points: Vec<glam::Vec3> = (0..500).map(|_| v() * 2.0 - 1.0).collect();
+        let near = NearestPoints::new(&points, 0.13);
+        // Queries inside the points' box, beyond it, and far away.
+        let queries: Vec<glam::Vec3> = (0..400)
+            .map(|i| (v() * 2.0 - 1.0) * [1.0, 1.5, 6.0][i % 3])
+            .collect();
+        for p in queries {
+            let scan = points
+                .iter()
+                .map(|q| p.distance(*q))
+                .fold(f32::INFINITY, f32::min);
+            assert_eq!(near.distance(p).to_bits(), scan.to_bits(), "{p}");
+        }
+        assert_eq!(
+            NearestPoints::new(&[], 1.0).distance(glam::Vec3::ZERO),
+            f32::INFINITY
+        );
+        let one = NearestPoints::new(&[glam::Vec3::new(3.0, 0.0, 0.0)], 0.5);
+        assert_eq!(one.distance(glam::Vec3::ZERO), 3.0);
+    }
 
     #[test]
     fn neighbouring_cubes_are_told_apart() {

@@ -41,6 +41,38 @@ impl Hasher for CubeHasher {
     }
 }
 
+/// Every cube of a box, no bound: for [`for_each_in_shell`].
+pub const EVERY_CUBE: ([i32; 3], [i32; 3]) = ([i32::MIN; 3], [i32::MAX; 3]);
+
+/// Calls `f` with each cube exactly `r` cubes from `home` along its farthest axis (the
+/// shell of the (2r + 1)-cube box about it; `home` itself for r = 0) that lies within the
+/// box of cubes `lo`–`hi`: the nearest-point searches' rings, each cube once.
+pub fn for_each_in_shell(
+    home: [i32; 3],
+    r: i32,
+    (lo, hi): ([i32; 3], [i32; 3]),
+    mut f: impl FnMut([i32; 3]),
+) {
+    let span =
+        |a: usize| home[a].saturating_sub(r).max(lo[a])..=home[a].saturating_add(r).min(hi[a]);
+    for x in span(0) {
+        for y in span(1) {
+            if (x - home[0]).abs() == r || (y - home[1]).abs() == r {
+                for z in span(2) {
+                    f([x, y, z]);
+                }
+            } else {
+                // Inside the shell's x–y outline (so r > 0): only its two z faces.
+                for z in [home[2] - r, home[2] + r] {
+                    if (lo[2]..=hi[2]).contains(&z) {
+                        f([x, y, z]);
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// Points kept by cube, for the distance from anywhere to the nearest of them: the cubes
 /// round the query in rings of growing reach, until no nearer point can lie beyond.
 #[derive(Clone, Debug, Default)]
@@ -97,23 +129,11 @@ impl NearestPoints {
             if best <= (r - 1).max(0) as f32 * self.side {
                 break;
             }
-            let span = |a: usize| (c[a] - r).max(lo[a])..=(c[a] + r).min(hi[a]);
-            for x in span(0) {
-                for y in span(1) {
-                    for z in span(2) {
-                        let k = [x, y, z];
-                        let ring = (0..3).map(|a| (k[a] - c[a]).abs()).max().unwrap_or(0);
-                        if ring != r {
-                            continue;
-                        }
-                        if let Some(points) = self.cubes.get(&k) {
-                            for q in points {
-                                best = best.min(p.distance(*q));
-                            }
-                        }
-                    }
+            for_each_in_shell(c, r, (lo, hi), |k| {
+                for q in self.cubes.get(&k).into_iter().flatten() {
+                    best = best.min(p.distance(*q));
                 }
-            }
+            });
         }
         best
     }
@@ -146,6 +166,25 @@ mod tests {
         );
         let one = NearestPoints::new(&[glam::Vec3::new(3.0, 0.0, 0.0)], 0.5);
         assert_eq!(one.distance(glam::Vec3::ZERO), 3.0);
+    }
+
+    #[test]
+    fn a_shell_holds_each_cube_of_its_ring_once() {
+        for r in 0..4 {
+            let mut seen = Vec::new();
+            for_each_in_shell([1, -2, 3], r, EVERY_CUBE, |k| seen.push(k));
+            let ring = |k: [i32; 3]| (k[0] - 1).abs().max((k[1] + 2).abs()).max((k[2] - 3).abs());
+            assert!(seen.iter().all(|&k| ring(k) == r));
+            let n = seen.len();
+            seen.sort_unstable();
+            seen.dedup();
+            assert_eq!(seen.len(), n);
+            let side = 2 * r + 1;
+            assert_eq!(n as i32, side.pow(3) - (side - 2).max(0).pow(3));
+        }
+        let mut clipped = 0;
+        for_each_in_shell([0, 0, 0], 2, ([0, 0, 0], [5, 5, 5]), |_| clipped += 1);
+        assert_eq!(clipped, 27 - 8);
     }
 
     #[test]

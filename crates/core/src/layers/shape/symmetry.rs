@@ -7,7 +7,7 @@
 
 use glam::Vec3;
 
-use crate::base::cells::{CubeMap, cube_of};
+use crate::base::cells::{CubeMap, EVERY_CUBE, cube_of, for_each_in_shell};
 
 /// Each point's mirror partner: the point nearest its mirror image about x = 0 (face
 /// units, [`crate::head::frame::Regions::relative`]) within `tolerance`; `None` for no
@@ -38,29 +38,18 @@ fn partners_of(points: &[Option<Vec3>], tolerance: f32, which: &[usize]) -> Vec<
         .par_iter()
         .map(|&i| {
             let mirrored = points.get(i).copied().flatten()? * Vec3::new(-1.0, 1.0, 1.0);
-            let home = glam::IVec3::from_array(cube_of(mirrored, cell));
+            let home = cube_of(mirrored, cell);
             let mut best: Option<(f32, u32)> = None;
             for r in 0..=SHELLS {
-                for dz in -r..=r {
-                    for dy in -r..=r {
-                        for dx in -r..=r {
-                            if dx.abs().max(dy.abs()).max(dz.abs()) != r {
-                                continue;
-                            }
-                            let at = (home + glam::IVec3::new(dx, dy, dz)).to_array();
-                            let Some(list) = grid.get(&at) else {
-                                continue;
-                            };
-                            for &j in list {
-                                let d = points[j as usize]
-                                    .map_or(f32::INFINITY, |q| q.distance_squared(mirrored));
-                                if d <= limit && best.is_none_or(|b| (d, j) < b) {
-                                    best = Some((d, j));
-                                }
-                            }
+                for_each_in_shell(home, r, EVERY_CUBE, |at| {
+                    for &j in grid.get(&at).into_iter().flatten() {
+                        let d = points[j as usize]
+                            .map_or(f32::INFINITY, |q| q.distance_squared(mirrored));
+                        if d <= limit && best.is_none_or(|b| (d, j) < b) {
+                            best = Some((d, j));
                         }
                     }
-                }
+                });
                 // A point in a cube past shell r lies at least r cubes away.
                 let reach = r as f32 * cell;
                 if best.is_some_and(|(d, _)| d <= reach * reach) {

@@ -143,21 +143,20 @@ impl EyeTexels {
                     if skin.is_some_and(|s| s.covers_skin(i)) {
                         return;
                     }
-                    let at = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
-                    if (at - centre).normalize_or_zero() != Vec3::ZERO {
-                        points.push((i as u32, at));
-                    }
+                    points.push((i as u32, p[0] * w[0] + p[1] * w[1] + p[2] * w[2]));
                 });
             }
             let mut own: Vec<(u32, f32, f32, f32)> = points
                 .par_iter()
                 .with_min_len(256)
-                .map(|&(i, at)| {
+                .filter_map(|&(i, at)| {
                     let d = (at - centre).normalize_or_zero();
+                    if d == Vec3::ZERO {
+                        return None;
+                    }
                     let from_front = d.dot(gaze).clamp(-1.0, 1.0).acos();
                     let round = d.dot(up).atan2(d.dot(across));
-                    let to_lid = lids.distance(at);
-                    (i, from_front, round, to_lid)
+                    Some((i, from_front, round, lids.distance(at)))
                 })
                 .collect();
             let opening = own

@@ -64,13 +64,20 @@ fn the_depth_slider_deepens_the_drawn_relief_without_a_bake() {
     let mut h = harness();
     settle(&mut h);
     let map_before = h.state().snapshot().large.clone().unwrap();
-    let relief_before =
-        agesim::view::relief_depth(h.state().project(), agesim::view::HeadScale::METRES);
+    let relief_before = agesim::view::relief_depth(
+        h.state().project(),
+        agesim::view::HeadScale::METRES,
+        h.state().project().age.t,
+    );
     h.get_by_role_and_label(Role::Slider, "depth")
         .set_value_accesskit(3.0);
     settle(&mut h);
     assert_eq!(h.state().project().large.depth, 3.0);
-    let relief = agesim::view::relief_depth(h.state().project(), agesim::view::HeadScale::METRES);
+    let relief = agesim::view::relief_depth(
+        h.state().project(),
+        agesim::view::HeadScale::METRES,
+        h.state().project().age.t,
+    );
     assert!(
         (relief / relief_before - 3.0).abs() < 1e-4,
         "{relief_before} → {relief}"

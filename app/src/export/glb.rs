@@ -61,7 +61,7 @@ pub(super) fn export_glb(
     let head = view::HeadScale::of(&scene);
     let mpu = head.metres_per_unit;
     let params = view::frame_params(project, head, t, view::camera(project, mpu, Vec3::ZERO));
-    let depth = project.large.depth;
+    let depth = scene.large_depth();
     let height = match scene.large() {
         Some(l) => l.scaled(depth)?,
         None => HeightMap::zeros(atlas_px, atlas_px)?,

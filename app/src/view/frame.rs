@@ -97,9 +97,11 @@ impl HeadScale {
 /// The relief depth of a normalised large-wrinkle height of 1, UV units: `view.disp_scale`
 /// (the depth the renderer gives the layer, in the template's UV units) × `large.depth`
 /// (the layer's own depth; the baked map is normalised, so this is where the depth slider
-/// acts) × the head's `relief_scale` (the same millimetres in its own UV units).
-pub fn relief_depth(project: &Project, head: HeadScale) -> f32 {
-    project.view.disp_scale * project.large.depth * head.relief_scale
+/// acts) at the age `t` (deeper in old age: `Project::large_depth_at`) × the head's
+/// `relief_scale` (the same millimetres in its own UV units).
+pub fn relief_depth(project: &Project, head: HeadScale, t: f32) -> f32 {
+    let years = project.age.mapping().years(t);
+    project.view.disp_scale * project.large_depth_at(years) * head.relief_scale
 }
 
 /// Where the micro-relief tile and the fine-wrinkle tile lie on the skin.
@@ -183,7 +185,7 @@ pub fn frame_params(project: &Project, head: HeadScale, t: f32, camera: Camera) 
             pom_mode: pom_mode(v.pom),
             linear_steps: v.linear_steps,
             binary_steps: v.binary_steps,
-            disp_scale: relief_depth(project, head),
+            disp_scale: relief_depth(project, head, t),
             fine_blend: if project.fine.enabled {
                 factors.fine_blend
             } else {
@@ -275,6 +277,21 @@ mod tests {
         assert_eq!(params(&p, 0.5).skin.disp_scale, base * 2.5);
         p.large.depth = 0.0;
         assert_eq!(params(&p, 0.5).skin.disp_scale, 0.0);
+    }
+
+    /// Past 80 the wrinkles are drawn deeper (`age::wrinkle_depth_gain`): none up to the
+    /// default range's old end, the whole gain at 90.
+    #[test]
+    fn old_age_draws_the_wrinkles_deeper() {
+        let mut p = Project::default();
+        let at_80 = params(&p, 1.0).skin.disp_scale;
+        assert_eq!(params(&p, 0.9).skin.disp_scale, at_80 * 1.0);
+        p.age.old_years = 90.0;
+        let gain = agesim_core::age::WRINKLE_LATE_DEPTH;
+        let at = |t: f32| params(&p, t).skin.disp_scale;
+        assert!((at(1.0) / at_80 - gain).abs() < 1e-5, "{}", at(1.0) / at_80);
+        assert!((at(65.0 / 70.0) / at_80 - 0.5 * (1.0 + gain)).abs() < 1e-5);
+        assert_eq!(at(60.0 / 70.0), at_80);
     }
 
     /// Old skin is drier: the project's roughness and specular young, rougher and less

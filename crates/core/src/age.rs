@@ -49,6 +49,26 @@ pub fn old_age_share(years: f32) -> f32 {
 pub const WRINKLE_LATE_GAIN: f32 = 1.4;
 pub const WRINKLE_LATE_YEARS: (f32, f32) = (80.0, 90.0);
 
+/// How much deeper every large wrinkle is drawn from the second of [`WRINKLE_LATE_YEARS`]
+/// on: the layer's depth (`large.depth`, the deepest line's) times this, 1 up to the first,
+/// linearly between ([`wrinkle_depth_gain`]; docs/models.md "Age"). [`WRINKLE_LATE_GAIN`]
+/// brings the shallower lines up toward the deepest (the normalised map is clamped to 1
+/// there), this deepens them all, the deepest too. With the gain alone, the default head
+/// and the African man at 85 read blind as 72–78 (rounds 50–66, every round); drawn 1.7 ×
+/// as deep at 85, as 79 and 77, the other heads' 85 as 81–86 (`docs/ratings.md` round
+/// 67). From 80, so the rubric's 80 keeps its bytes.
+pub const WRINKLE_LATE_DEPTH: f32 = 2.4;
+
+/// The large wrinkles' depth at `years` over the layer's depth: 1 up to
+/// [`WRINKLE_LATE_YEARS`]'s first, [`WRINKLE_LATE_DEPTH`] from its second, linear between.
+pub fn wrinkle_depth_gain(years: f32) -> f32 {
+    let (from, to) = WRINKLE_LATE_YEARS;
+    if years.is_nan() || years <= from {
+        return 1.0;
+    }
+    1.0 + (WRINKLE_LATE_DEPTH - 1.0) * ((years - from) / (to - from)).min(1.0)
+}
+
 /// A large wrinkle's depth factor at `years`: its curve's, times its old-age gain (1 up
 /// to [`WRINKLE_LATE_YEARS`]'s first, [`WRINKLE_LATE_GAIN`] from its second on).
 pub fn wrinkle_factor(curve: &AgeCurve, years: f32) -> f32 {
@@ -292,6 +312,10 @@ mod tests {
         assert!(at(82.0) > 1.0 && at(82.0) < at(85.0) && at(85.0) < at(90.0));
         assert!((at(85.0) - 1.2).abs() < 1e-5, "{}", at(85.0));
         assert_eq!(at(90.0), WRINKLE_LATE_GAIN);
+        assert_eq!(wrinkle_depth_gain(80.0), 1.0);
+        assert_eq!(wrinkle_depth_gain(f32::NAN), 1.0);
+        assert!((wrinkle_depth_gain(85.0) - 0.5 * (1.0 + WRINKLE_LATE_DEPTH)).abs() < 1e-6);
+        assert_eq!(wrinkle_depth_gain(120.0), WRINKLE_LATE_DEPTH);
         assert_eq!(at(120.0), WRINKLE_LATE_GAIN);
         // A curve not whole yet keeps its share.
         let late = AgeCurve::new(60.0, 100.0, CurveShape::Linear);

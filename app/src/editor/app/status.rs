@@ -72,7 +72,8 @@ impl EditorApp {
             if !std::ptr::eq(self.deepest.0.as_ptr(), std::sync::Arc::as_ptr(l)) {
                 self.deepest = (std::sync::Arc::downgrade(l), l.height.min_max().1);
             }
-            self.deepest.1 * self.doc.project.large.depth
+            let p = &self.doc.project;
+            self.deepest.1 * p.large_depth_at(p.age.mapping().years(p.age.t))
         });
         let status = Status {
             adapter: &self.adapter,

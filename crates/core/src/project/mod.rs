@@ -381,6 +381,13 @@ impl Project {
     /// (darker hair grays later: [`crate::layers::hair::graying_delay_years`]), not clamped
     /// above: an onset past t = 1 never grays within the mapping. [`crate::layers::hair::HairParams`]
     /// draws each hair's onset evenly between the two (t_k = U[min, max)).
+    /// The depth the large wrinkles are drawn with at `years`: `large.depth` times the
+    /// old-age depth gain ([`crate::age::wrinkle_depth_gain`]). Where a normalised
+    /// large-wrinkle map becomes heights (the view, the exports), this is its scale.
+    pub fn large_depth_at(&self, years: f32) -> f32 {
+        self.large.depth * crate::age::wrinkle_depth_gain(years)
+    }
+
     pub fn graying_onset_t(&self, delay_years: f32) -> (f32, f32) {
         let m = self.age.mapping();
         let span = (m.old_years - m.young_years).max(1e-3);

@@ -52,8 +52,11 @@ impl Scene {
         // The relief depth of the default view and wrinkle depth: the relief has its
         // millimetres there, and deepens with the wrinkles when either is turned up (a
         // slider that redraws without a bake stays so).
+        // Drawn deeper in old age (the wrinkles' depth gain), the map's relief is shallower
+        // by as much, so it keeps its millimetres.
         let depth_uv = crate::project::ViewSection::default().disp_scale
             * crate::project::LargeSection::default().depth
+            * crate::age::wrinkle_depth_gain(years)
             * self.relief_scale();
         let relief_at = relief.as_ref().map(|relief| large::ReliefAt {
             relief,

@@ -13,12 +13,20 @@ pub(super) fn no_layer() -> Error {
 }
 
 impl Scene {
+    /// The depth the kept large-wrinkle map's heights are drawn with: `large.depth` at
+    /// the age it was baked ([`Project::large_depth_at`]); the layer's depth when there
+    /// is no map.
+    pub fn large_depth(&self) -> f32 {
+        let years = self.large.map.as_ref().map_or(0.0, |l| l.years);
+        self.project.large_depth_at(years)
+    }
+
     /// The height and normal maps `agesim bake` writes: the micro-relief and the
     /// large-wrinkle map added pixel by pixel (both baked at the same size; a layer that is
     /// off adds nothing), and the RGB8 normal map of the sum.
     pub fn export_maps(&self) -> Result<(HeightMap, Vec<u8>), Error> {
         self.export_size()?;
-        let depth = self.project.large.depth;
+        let depth = self.large_depth();
         let height = match (&self.micro.tile, &self.large.map) {
             (Some(m), large) => {
                 let mut height = m.height.clone();
@@ -40,11 +48,11 @@ impl Scene {
     /// them; a later bake makes them again. The same heights as [`Scene::export_maps`].
     pub fn take_height(&mut self) -> Result<HeightMap, Error> {
         self.export_size()?;
+        let depth = self.large_depth();
         self.micro.key = None;
         self.large.key = None;
         let micro = self.micro.tile.take().map(|m| m.height);
         let large = self.large.map.take().map(|l| l.height);
-        let depth = self.project.large.depth;
         match (micro, large) {
             (Some(mut height), large) => {
                 if let Some(large) = large {

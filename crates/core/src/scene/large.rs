@@ -108,7 +108,7 @@ impl LargeStage {
             size,
             factors: factors.large.clone(),
             gamma: p.large.gamma,
-            packed_depth: request.packed.then_some(p.large.depth),
+            packed_depth: request.packed.then_some(p.large_depth_at(factors.years)),
             mask_generation: large_mask.generation,
             normal: request.packed.then_some(*normal),
             packed: request.packed,
@@ -176,7 +176,7 @@ impl LargeStage {
         self.keep(
             height,
             layout,
-            p.large.depth,
+            (p.large_depth_at(factors.years), factors.years),
             request,
             normal,
             relief,
@@ -195,7 +195,7 @@ impl LargeStage {
         &mut self,
         height: HeightMap,
         layout: HeadLayoutMap<'_>,
-        depth: f32,
+        (depth, years): (f32, f32),
         request: &BakeRequest,
         normal: &NormalSettings,
         relief: Option<ReliefAt<'_>>,
@@ -224,6 +224,7 @@ impl LargeStage {
         cancel.check()?;
         let previous = self.map.replace(LargeMap {
             height,
+            years,
             template,
             packed_rgba,
             packed_range,

@@ -212,6 +212,9 @@ pub struct LargeMap {
     /// The normalised heights (a wrinkle of full depth spans 1), in the head's own UV
     /// layout.
     pub height: HeightMap,
+    /// The age it was baked at, years: its heights are drawn `Project::large_depth_at`
+    /// these years deep.
+    pub years: f32,
     /// A fitted head's map in the template's layout, where the fibres are drawn (the map
     /// view's chart); `None` when the head reads the layers at its own UVs (`height` is
     /// then that chart).

@@ -359,6 +359,28 @@ fn a_depth_change_bakes_nothing_and_reaches_the_exported_heights() {
     assert!(before.min_max().1 > 0.1, "the map has wrinkles");
 }
 
+/// Past 80 the exported heights are the normalised map drawn deeper by the old-age gain
+/// (`age::wrinkle_depth_gain`): at 85, 1.7 × the layer's depth.
+#[test]
+fn the_exported_wrinkles_are_deeper_in_old_age() {
+    let mut p = project();
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
+    p.noise.details = 0.0;
+    p.age.old_years = 90.0;
+    let t = (85.0 - p.age.young_years) / (90.0 - p.age.young_years);
+    let request = BakeRequest::maps(64, t, false);
+    let s = fresh(&p, &request);
+    let gain = 0.5 * (1.0 + crate::age::WRINKLE_LATE_DEPTH);
+    assert!((s.large_depth() - gain * p.large.depth).abs() < 1e-5);
+    let kept = s.large().unwrap().height.data().to_vec();
+    let (exported, _) = s.export_maps().unwrap();
+    for (e, k) in exported.data().iter().zip(&kept) {
+        assert!((e + k * s.large_depth()).abs() <= 1e-6 * k.abs().max(1.0));
+    }
+    assert!(exported.min_max().0 < -0.1, "the map has wrinkles");
+}
+
 /// A mesh file's units: measured from its landmark file when the project names one
 /// (`mesh.landmarks`), else from its size; the project's own value wins.
 #[test]

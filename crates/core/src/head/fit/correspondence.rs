@@ -294,41 +294,50 @@ fn bilinear(src: &[f32], width: u32, height: u32, u: f32, v: f32) -> f32 {
 
 /// Fills every texel not `filled` with the value of its nearest filled texel (two
 /// chamfer passes propagating the nearest source, 8-neighbour: within a texel of the
-/// Euclidean nearest). Nothing covered: nothing changes.
+/// Euclidean nearest). Nothing covered: nothing changes. The passes visit only the texels
+/// not filled (a filled texel is its own nearest) and test the map's borders only on its
+/// border rows and columns.
 pub fn pad<T: Copy>(texels: &mut [T], filled: &[bool], n: usize) {
     let covered = filled;
-    if !covered.iter().any(|&c| c) {
+    if n == 0 || !covered.iter().any(|&c| c) {
         return;
     }
-    // The nearest covered texel found so far, as (x, y); u32::MAX = none yet.
-    let mut nearest: Vec<(u32, u32)> = (0..n * n)
-        .map(|i| {
-            if covered[i] {
-                ((i % n) as u32, (i / n) as u32)
-            } else {
-                (u32::MAX, u32::MAX)
-            }
-        })
+    // The nearest covered texel found so far, as a texel index; NONE = none yet.
+    const NONE: u32 = u32::MAX;
+    let mut nearest: Vec<u32> = (0..n * n)
+        .into_par_iter()
+        .map(|i| if covered[i] { i as u32 } else { NONE })
         .collect();
-    let d2 = |x: usize, y: usize, s: (u32, u32)| {
-        if s.0 == u32::MAX {
+    let d2 = |x: usize, y: usize, s: u32| {
+        if s == NONE {
             u64::MAX
         } else {
-            let dx = x as i64 - s.0 as i64;
-            let dy = y as i64 - s.1 as i64;
+            let (sx, sy) = ((s as usize % n) as i64, (s as usize / n) as i64);
+            let (dx, dy) = (x as i64 - sx, y as i64 - sy);
             (dx * dx + dy * dy) as u64
         }
     };
-    let relax = |x: usize, y: usize, offsets: &[(i64, i64)], nearest: &mut [(u32, u32)]| {
+    // Texel (x, y) takes the nearest of its neighbours' nearest where nearer than its
+    // own, the neighbours in `offsets`' order (the first on a tie).
+    let relax = |x: usize, y: usize, offsets: &[(isize, isize); 4], nearest: &mut [u32]| {
         let i = y * n + x;
         let mut best = nearest[i];
         let mut best_d = d2(x, y, best);
+        let inside = x > 0 && y > 0 && x + 1 < n && y + 1 < n;
         for &(dx, dy) in offsets {
-            let (nx, ny) = (x as i64 + dx, y as i64 + dy);
-            if nx < 0 || ny < 0 || nx >= n as i64 || ny >= n as i64 {
-                continue;
-            }
-            let s = nearest[ny as usize * n + nx as usize];
+            let j = if inside {
+                i.wrapping_add_signed(dy * n as isize + dx)
+            } else {
+                let (Some(nx), Some(ny)) = (x.checked_add_signed(dx), y.checked_add_signed(dy))
+                else {
+                    continue;
+                };
+                if nx >= n || ny >= n {
+                    continue;
+                }
+                ny * n + nx
+            };
+            let s = nearest[j];
             let d = d2(x, y, s);
             if d < best_d {
                 best = s;
@@ -337,24 +346,25 @@ pub fn pad<T: Copy>(texels: &mut [T], filled: &[bool], n: usize) {
         }
         nearest[i] = best;
     };
-    const FORWARD: [(i64, i64); 4] = [(-1, 0), (-1, -1), (0, -1), (1, -1)];
-    const BACKWARD: [(i64, i64); 4] = [(1, 0), (1, 1), (0, 1), (-1, 1)];
+    const FORWARD: [(isize, isize); 4] = [(-1, 0), (-1, -1), (0, -1), (1, -1)];
+    const BACKWARD: [(isize, isize); 4] = [(1, 0), (1, 1), (0, 1), (-1, 1)];
     for y in 0..n {
         for x in 0..n {
-            relax(x, y, &FORWARD, &mut nearest);
+            if !covered[y * n + x] {
+                relax(x, y, &FORWARD, &mut nearest);
+            }
         }
     }
     for y in (0..n).rev() {
         for x in (0..n).rev() {
-            relax(x, y, &BACKWARD, &mut nearest);
+            if !covered[y * n + x] {
+                relax(x, y, &BACKWARD, &mut nearest);
+            }
         }
     }
     for i in 0..n * n {
-        if !covered[i] {
-            let (sx, sy) = nearest[i];
-            if sx != u32::MAX {
-                texels[i] = texels[sy as usize * n + sx as usize];
-            }
+        if !covered[i] && nearest[i] != NONE {
+            texels[i] = texels[nearest[i] as usize];
         }
     }
 }

@@ -203,3 +203,43 @@ fn held_out_landmarks_land_nearer_with_the_refinement() {
     eprintln!("held-out landmarks: {warp:.2} mm warp only, {refined:.2} mm refined");
     assert!(refined < 0.95 * warp, "{refined} mm refined vs {warp} mm");
 }
+
+/// Every texel the pad fills takes a filled texel within a texel of the nearest (checked
+/// against every filled texel), on sparse, dense, one-texel and empty masks; filled texels
+/// keep their values.
+#[test]
+fn the_pad_takes_a_nearest_filled_texel() {
+    let mut rng = crate::base::rng::Rng::for_stream(7, 0);
+    for (n, share) in [(37, 0.02), (64, 0.3), (23, 0.9), (16, 0.0), (1, 1.0)] {
+        let mut filled: Vec<bool> = (0..n * n).map(|_| rng.next_f32() < share).collect();
+        if share == 0.0 {
+            filled[5 * n + 11] = true;
+        }
+        let mut texels: Vec<usize> = (0..n * n).collect();
+        pad(&mut texels, &filled, n);
+        let d = |a: usize, b: usize| {
+            let dx = (a % n) as f32 - (b % n) as f32;
+            let dy = (a / n) as f32 - (b / n) as f32;
+            (dx * dx + dy * dy).sqrt()
+        };
+        for i in 0..n * n {
+            let best = (0..n * n)
+                .filter(|&j| filled[j])
+                .map(|j| d(i, j))
+                .fold(f32::INFINITY, f32::min);
+            let s = texels[i];
+            assert!(filled[s], "n {n}: texel {i} took an unfilled texel");
+            assert!(
+                d(i, s) <= best + 1.0,
+                "n {n}: texel {i}: {} against {best}",
+                d(i, s)
+            );
+            if filled[i] {
+                assert_eq!(s, i);
+            }
+        }
+    }
+    let mut none = vec![1u8; 9];
+    pad(&mut none, &[false; 9], 3);
+    assert_eq!(none, vec![1u8; 9]);
+}

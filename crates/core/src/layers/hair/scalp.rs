@@ -37,34 +37,61 @@ pub fn hair_age_alpha(transition: &TransitionTexture, width: u32, height: u32) -
 const SCALP_EDGE: f32 = 0.02;
 
 /// The mean of `v` (`w`×`h`) over a (2r + 1)² box around each texel, the box clipped to
-/// the map: running sums along the rows, then along the columns.
+/// the map: running sums along the rows, then along the columns (the rows in parallel,
+/// then the columns in parallel blocks; each line's sums in one order, so the same on any
+/// thread count).
 fn box_blur(v: &[f32], w: usize, h: usize, r: usize) -> Vec<f32> {
-    let pass = |src: &[f32], len: usize, stride: usize, count: usize, step: usize| {
-        let mut out = vec![0.0f32; src.len()];
-        for line in 0..count {
-            let at = |i: usize| line * step + i * stride;
-            let mut sum = 0.0f64;
-            let mut n = 0usize;
-            for i in 0..len.min(r + 1) {
-                sum += f64::from(src[at(i)]);
+    // One line's running mean: `len` values `at(i)` apart, written through `put`.
+    let line = |len: usize, at: &dyn Fn(usize) -> f32, put: &mut dyn FnMut(usize, f32)| {
+        let mut sum = 0.0f64;
+        let mut n = 0usize;
+        for i in 0..len.min(r + 1) {
+            sum += f64::from(at(i));
+            n += 1;
+        }
+        for i in 0..len {
+            put(i, (sum / n as f64) as f32);
+            if i + r + 1 < len {
+                sum += f64::from(at(i + r + 1));
                 n += 1;
             }
-            for i in 0..len {
-                out[at(i)] = (sum / n as f64) as f32;
-                if i + r + 1 < len {
-                    sum += f64::from(src[at(i + r + 1)]);
-                    n += 1;
-                }
-                if i >= r {
-                    sum -= f64::from(src[at(i - r)]);
-                    n -= 1;
-                }
+            if i >= r {
+                sum -= f64::from(at(i - r));
+                n -= 1;
             }
         }
-        out
     };
-    let rows = pass(v, w, 1, h, w);
-    pass(&rows, h, w, w, 1)
+    if w == 0 || h == 0 {
+        return Vec::new();
+    }
+    let mut rows = vec![0.0f32; w * h];
+    rows.par_chunks_mut(w)
+        .zip(v.par_chunks(w))
+        .for_each(|(out, src)| line(w, &|i| src[i], &mut |i, m| out[i] = m));
+    // The columns in blocks of 64: each block's means gathered, then put in place.
+    const BLOCK: usize = 64;
+    let blocks: Vec<(usize, Vec<f32>)> = (0..w)
+        .step_by(BLOCK)
+        .collect::<Vec<_>>()
+        .into_par_iter()
+        .map(|x0| {
+            let bw = BLOCK.min(w - x0);
+            let mut out = vec![0.0f32; bw * h];
+            for c in 0..bw {
+                let x = x0 + c;
+                line(h, &|i| rows[i * w + x], &mut |i, m| out[i * bw + c] = m);
+            }
+            (x0, out)
+        })
+        .collect();
+    let mut out = vec![0.0f32; w * h];
+    for (x0, block) in blocks {
+        let bw = BLOCK.min(w - x0);
+        for (y, src) in block.chunks_exact(bw).enumerate() {
+            out[y * w + x0..y * w + x0 + bw].copy_from_slice(src);
+        }
+    }
+    out
 }
 
 /// A transition age as [`hair_age_alpha`] stores it.
@@ -73,5 +100,38 @@ fn hair_age_byte(age: f32) -> u8 {
         1 + (age.min(1.0) * 254.0).round() as u8
     } else {
         0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// The running sums give each texel the mean of its clipped box (checked against the
+    /// sum of every texel in it), on maps narrower and wider than a block of columns.
+    #[test]
+    fn the_blur_is_the_mean_of_each_clipped_box() {
+        let mut rng = crate::base::rng::Rng::for_stream(3, 1);
+        for (w, h, r) in [(7, 5, 2), (150, 9, 4), (3, 40, 10)] {
+            let v: Vec<f32> = (0..w * h).map(|_| rng.next_f32()).collect();
+            let blurred = super::box_blur(&v, w, h, r);
+            let v = &v;
+            for y in 0..h {
+                for x in 0..w {
+                    let (ys, xs) = (
+                        y.saturating_sub(r)..(y + r + 1).min(h),
+                        x.saturating_sub(r)..(x + r + 1).min(w),
+                    );
+                    let count = ys.len() * xs.len();
+                    let sum: f64 = ys
+                        .flat_map(|yy| xs.clone().map(move |xx| f64::from(v[yy * w + xx])))
+                        .sum();
+                    let want = sum / count as f64;
+                    assert!(
+                        (f64::from(blurred[y * w + x]) - want).abs() < 1e-5,
+                        "({x}, {y})"
+                    );
+                }
+            }
+        }
+        assert!(super::box_blur(&[], 0, 0, 3).is_empty());
     }
 }

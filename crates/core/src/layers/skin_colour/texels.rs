@@ -268,7 +268,10 @@ impl SurfaceTexels {
         }
         // Each texel's point and template point, and how far outside the triangle that
         // wrote them it lies: the nearest triangle's.
-        let mut written = vec![(nan, nan, f32::INFINITY); n * n];
+        let mut written: Vec<(Vec3, Vec3, f32)> = (0..n * n)
+            .into_par_iter()
+            .map(|_| (nan, nan, f32::INFINITY))
+            .collect();
         let uv_of = |k: usize| {
             let c = |i: usize| {
                 uvs.get(idx[k * 3 + i] as usize)
@@ -302,12 +305,16 @@ impl SurfaceTexels {
                 Ok(())
             },
         )?;
-        let (mut position, mut template): (Vec<Vec3>, Vec<Vec3>) =
-            written.into_iter().map(|(p, t, _)| (p, t)).unzip();
+        let mut position: Vec<Vec3> = written.par_iter().map(|w| w.0).collect();
+        let mut template: Vec<Vec3> = written.par_iter().map(|w| w.1).collect();
+        drop(written);
         cancel.check()?;
         let padded = pad(n, &mut position, &mut template, &others);
         let keys = noise_keys(seed);
-        let mut fields = vec![Fields::default(); n * n];
+        let mut fields: Vec<Fields> = (0..n * n)
+            .into_par_iter()
+            .map(|_| Fields::default())
+            .collect();
         fields
             .par_chunks_mut(n)
             .enumerate()

@@ -13,6 +13,7 @@
 use crate::base::error::Error;
 use crate::base::rng::Rng;
 use crate::maps::heightmap::{HeightMap, check_size};
+use rayon::prelude::*;
 
 /// Parameters of [`generate`]. Lengths are fractions of the tile's side.
 #[derive(Clone, Debug, PartialEq)]
@@ -79,38 +80,72 @@ pub fn generate(size_px: u32, s: &FineWrinkleSettings) -> Result<HeightMap, Erro
     }
     let n = size_px as usize;
     let size = size_px as f32;
-    // Per pixel: deepest crease and the sum of all.
+    // Each crease drawn once: where it lies, how it turns, its depth and width.
+    struct Crease {
+        centre: [f32; 2],
+        dir: (f32, f32),
+        half_len: f32,
+        depth: f32,
+        sigma: f32,
+        reach: i64,
+    }
+    let creases: Vec<Crease> = (0..s.crease_count)
+        .map(|i| {
+            let mut rng = Rng::for_stream(s.seed, u64::from(i));
+            let centre = [rng.next_f32() * size, rng.next_f32() * size];
+            let family = if rng.next_f32() < 0.5 { -0.5 } else { 0.5 };
+            let angle = (family * s.crossing_deg + (rng.next_f32() * 2.0 - 1.0) * s.spread_deg)
+                .to_radians();
+            let half_len = 0.5 * s.length_tile * size * rng.range_f32(0.5, 1.5);
+            let depth = rng.range_f32(0.4, 1.0);
+            let sigma = s.width_tile * size * rng.range_f32(0.7, 1.3);
+            Crease {
+                centre,
+                dir: (angle.cos(), angle.sin()),
+                half_len,
+                depth,
+                sigma,
+                reach: (half_len + 3.0 * sigma).ceil() as i64,
+            }
+        })
+        .collect();
+    // Per pixel: deepest crease and the sum of all, bands of rows in parallel, each
+    // pixel's creases added in their order (the same sums on any thread count).
+    const BAND_ROWS: usize = 16;
     let mut deepest = vec![0.0f32; n * n];
     let mut sum = vec![0.0f32; n * n];
-    for i in 0..s.crease_count {
-        let mut rng = Rng::for_stream(s.seed, u64::from(i));
-        let centre = [rng.next_f32() * size, rng.next_f32() * size];
-        let family = if rng.next_f32() < 0.5 { -0.5 } else { 0.5 };
-        let angle =
-            (family * s.crossing_deg + (rng.next_f32() * 2.0 - 1.0) * s.spread_deg).to_radians();
-        let half_len = 0.5 * s.length_tile * size * rng.range_f32(0.5, 1.5);
-        let depth = rng.range_f32(0.4, 1.0);
-        let sigma = s.width_tile * size * rng.range_f32(0.7, 1.3);
-        let (dx, dy) = (angle.cos(), angle.sin());
-        let reach = (half_len + 3.0 * sigma).ceil() as i64;
-        let (cx, cy) = (centre[0].floor() as i64, centre[1].floor() as i64);
-        for py in cy - reach..=cy + reach {
-            for px in cx - reach..=cx + reach {
-                let (rx, ry) = (px as f32 + 0.5 - centre[0], py as f32 + 0.5 - centre[1]);
-                let along = rx * dx + ry * dy;
-                let across = -rx * dy + ry * dx;
-                if along.abs() >= half_len || across.abs() > 3.0 * sigma {
-                    continue;
+    deepest
+        .par_chunks_mut(BAND_ROWS * n)
+        .zip(sum.par_chunks_mut(BAND_ROWS * n))
+        .enumerate()
+        .for_each(|(band, (deepest, sum))| {
+            let rows = band * BAND_ROWS..(band * BAND_ROWS + deepest.len() / n);
+            for c in &creases {
+                let (cx, cy) = (c.centre[0].floor() as i64, c.centre[1].floor() as i64);
+                let (dx, dy) = c.dir;
+                for py in cy - c.reach..=cy + c.reach {
+                    // Wrap: the tile repeats.
+                    let row = py.rem_euclid(n as i64) as usize;
+                    if !rows.contains(&row) {
+                        continue;
+                    }
+                    for px in cx - c.reach..=cx + c.reach {
+                        let (rx, ry) =
+                            (px as f32 + 0.5 - c.centre[0], py as f32 + 0.5 - c.centre[1]);
+                        let along = rx * dx + ry * dy;
+                        let across = -rx * dy + ry * dx;
+                        if along.abs() >= c.half_len || across.abs() > 3.0 * c.sigma {
+                            continue;
+                        }
+                        let taper = 1.0 - (along / c.half_len).powi(2);
+                        let h = c.depth * taper * taper * (-0.5 * (across / c.sigma).powi(2)).exp();
+                        let k = (row - rows.start) * n + px.rem_euclid(n as i64) as usize;
+                        deepest[k] = deepest[k].max(h);
+                        sum[k] += h;
+                    }
                 }
-                let taper = 1.0 - (along / half_len).powi(2);
-                let h = depth * taper * taper * (-0.5 * (across / sigma).powi(2)).exp();
-                // Wrap: the tile repeats.
-                let k = py.rem_euclid(n as i64) as usize * n + px.rem_euclid(n as i64) as usize;
-                deepest[k] = deepest[k].max(h);
-                sum[k] += h;
             }
-        }
-    }
+        });
     let values: Vec<f32> = deepest
         .iter()
         .zip(&sum)

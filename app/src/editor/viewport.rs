@@ -456,8 +456,8 @@ impl Viewport {
         let key = (
             params,
             size,
-            self.panes[MAIN].uploaded,
-            self.panes[i].uploaded,
+            self.panes[MAIN].uploaded.clone(),
+            self.panes[i].uploaded.clone(),
         );
         if self.panes[i].last.as_ref() == Some(&key) {
             return self.panes[i].shown.is_some();

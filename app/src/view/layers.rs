@@ -5,6 +5,7 @@
 use std::sync::Arc;
 
 use super::HeadScale;
+use agesim_core::base::arc_key::AnyKey;
 use agesim_core::layers::hair::HairInstances;
 use agesim_core::maps::mask::HeadImage;
 use agesim_core::scene::{Changed, Scene};
@@ -125,27 +126,31 @@ fn picture(p: &Option<Arc<HeadImage>>) -> Option<(u32, u32, &[u8])> {
         .map(|c| (c.width_px, c.height_px, c.rgba.as_slice()))
 }
 
-/// The identity of a shared layer: the address of its allocation (0: none).
-fn stamp<T>(a: &Option<Arc<T>>) -> usize {
-    a.as_ref().map_or(0, |a| Arc::as_ptr(a) as usize)
+/// The identity of a shared layer (`None`: none). An `AnyKey`, not the allocation's
+/// address: a new layer allocated where a dropped one was is not taken for it.
+fn stamp<T: std::any::Any + Send + Sync>(a: &Option<Arc<T>>) -> Stamp {
+    a.as_ref().map(AnyKey::of_any)
 }
+
+/// See [`stamp`].
+type Stamp = Option<AnyKey>;
 
 /// What one renderer was last given, by identity: compare two to know whether a frame
 /// drawn since shows the current layers.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Uploaded {
     /// The mesh and the metres per unit it was uploaded with (its bits).
-    mesh: (usize, u32),
-    large: usize,
-    micro: usize,
-    fine: usize,
-    hair: usize,
-    colour: usize,
-    aged: usize,
-    shape: usize,
-    brows: usize,
-    normal: usize,
-    micro_weight: usize,
+    mesh: (Stamp, u32),
+    large: Stamp,
+    micro: Stamp,
+    fine: Stamp,
+    hair: Stamp,
+    colour: Stamp,
+    aged: Stamp,
+    shape: Stamp,
+    brows: Stamp,
+    normal: Stamp,
+    micro_weight: Stamp,
 }
 
 impl Uploaded {

@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use agesim_core::base::arc_key::ArcKey;
 use agesim_core::project::Project;
 use agesim_core::scene::{BakeRequest, WrinkleSource};
 use serde_json::Value;
@@ -179,8 +180,8 @@ pub struct EditorApp {
     baked_normal_picture: (bool, bool),
     /// Whether the last job made the shape's pictures (the map view shows the shape).
     baked_shape_pictures: bool,
-    textures: Vec<(MapKind, egui::TextureHandle, usize)>,
-    layout_texture: Option<(egui::TextureHandle, usize)>,
+    textures: Vec<(MapKind, egui::TextureHandle, ArcKey<egui::ColorImage>)>,
+    layout_texture: Option<(egui::TextureHandle, ArcKey<egui::ColorImage>)>,
     /// The guided landmark mode, when open.
     landmark_mode: Option<landmarks::LandmarkMode>,
     autosave: autosave::Autosave,
@@ -568,16 +569,15 @@ impl EditorApp {
         } else {
             (snapshot.images.head_uv_layout.clone()).or(snapshot.images.uv_layout.clone())?
         };
-        let stamp = Arc::as_ptr(&image) as usize;
         match &mut self.layout_texture {
-            Some((t, s)) if *s == stamp => Some(t.clone()),
+            Some((t, s)) if s.is(&image) => Some(t.clone()),
             slot => {
                 let t = ctx.load_texture(
                     "uv layout",
                     image.as_ref().clone(),
                     egui::TextureOptions::LINEAR,
                 );
-                *slot = Some((t.clone(), stamp));
+                *slot = Some((t.clone(), ArcKey::of(&image)));
                 Some(t)
             }
         }
@@ -597,11 +597,10 @@ impl EditorApp {
             MapKind::LargeHead => images.large_head.clone().or(images.large_height.clone()),
             MapKind::Shape => images.shape.clone(),
         }?;
-        let stamp = Arc::as_ptr(&image) as usize;
         if let Some((_, t, s)) = self.textures.iter_mut().find(|(k, _, _)| *k == kind) {
-            if *s != stamp {
+            if !s.is(&image) {
                 t.set(image.as_ref().clone(), egui::TextureOptions::LINEAR);
-                *s = stamp;
+                *s = ArcKey::of(&image);
             }
             return Some(t.clone());
         }
@@ -610,7 +609,7 @@ impl EditorApp {
             image.as_ref().clone(),
             egui::TextureOptions::LINEAR,
         );
-        self.textures.push((kind, t.clone(), stamp));
+        self.textures.push((kind, t.clone(), ArcKey::of(&image)));
         Some(t)
     }
 }

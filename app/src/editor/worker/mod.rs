@@ -8,6 +8,7 @@ use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use std::time::Instant;
 
 use agesim_core::age::AgeFactors;
+use agesim_core::base::arc_key::ArcKey;
 use agesim_core::base::cancel::CancelToken;
 use agesim_core::head::mesh::units::Units;
 use agesim_core::layers::hair::HairInstances;
@@ -76,12 +77,15 @@ pub struct Snapshot {
     /// The compare view's second age, baked by a second scene.
     pub compare: Option<Box<Snapshot>>,
     /// Which mask `images.mask` shows.
-    mask_stamp: usize,
+    mask_stamp: Option<ArcKey<agesim_core::maps::mask::Mask>>,
     /// The aged colour tinted by the shape's movement (`images.shape` on the head): the
     /// 3D view's colour while the map view shows the shape.
     pub shape_overlay: Option<Arc<agesim_core::maps::mask::HeadImage>>,
     /// What `shape_overlay` and `images.shape` were made from (field, aged colour).
-    shape_stamps: (usize, usize),
+    shape_stamps: (
+        Option<ArcKey<agesim_core::layers::shape::ShapeField>>,
+        Option<ArcKey<agesim_core::maps::mask::HeadImage>>,
+    ),
     /// The shape's movement over the head's UVs (mm), kept while its field and size hold:
     /// an age change only tints the new colour with it.
     shape_movement: Option<ShapeMovement>,
@@ -515,7 +519,7 @@ fn fill(
     refresh_all: bool,
     cancel: &CancelToken,
 ) -> Result<(), Error> {
-    let mask_stamp = s.large_mask().map_or(0, |m| Arc::as_ptr(m) as usize);
+    let mask_stamp = s.large_mask().map(ArcKey::of);
     if mask_stamp != snapshot.mask_stamp {
         snapshot.mask_stamp = mask_stamp;
         snapshot.images.mask = s
@@ -584,11 +588,11 @@ fn fill(
         (None, None)
     };
     let stamps = (
-        field.as_ref().map_or(0, |f| Arc::as_ptr(f) as usize),
-        colour.as_ref().map_or(0, |c| Arc::as_ptr(c) as usize),
+        field.as_ref().map(ArcKey::of),
+        colour.as_ref().map(ArcKey::of),
     );
     if !job.shape_pictures {
-        snapshot.shape_stamps = (0, 0);
+        snapshot.shape_stamps = (None, None);
         (snapshot.images.shape, snapshot.shape_overlay) = (None, None);
     } else if stamps != snapshot.shape_stamps {
         snapshot.shape_stamps = stamps;

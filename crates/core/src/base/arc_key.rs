@@ -24,6 +24,18 @@ impl<T: ?Sized> ArcKey<T> {
     }
 }
 
+/// The identity of one `Arc`'s value, whatever its type: one key type for what holds
+/// values of several types (the layers a renderer was given).
+pub type AnyKey = ArcKey<dyn std::any::Any + Send + Sync>;
+
+impl AnyKey {
+    /// The key of `value`.
+    pub fn of_any<T: std::any::Any + Send + Sync>(value: &Arc<T>) -> Self {
+        let value: Arc<dyn std::any::Any + Send + Sync> = value.clone();
+        Self(Arc::downgrade(&value))
+    }
+}
+
 impl<T: ?Sized> Clone for ArcKey<T> {
     fn clone(&self) -> Self {
         Self(self.0.clone())
@@ -59,5 +71,18 @@ mod tests {
         // out again at once were the key not holding it.
         let later: Vec<Arc<[u64; 4]>> = (0..64).map(|_| Arc::new([7u64; 4])).collect();
         assert!(later.iter().all(|a| !key.is(a) && key != ArcKey::of(a)));
+    }
+
+    /// A key of any type names the value as its typed key does: the same value, the same
+    /// key, whatever the type; another value at the freed address, another key.
+    #[test]
+    fn an_any_key_is_the_value_s_identity() {
+        let first = Arc::new([3u32; 8]);
+        let key = AnyKey::of_any(&first);
+        assert_eq!(key, AnyKey::of_any(&first));
+        assert_ne!(key, AnyKey::of_any(&Arc::new([3u32; 8])));
+        drop(first);
+        let later: Vec<Arc<[u32; 8]>> = (0..64).map(|_| Arc::new([3u32; 8])).collect();
+        assert!(later.iter().all(|a| key != AnyKey::of_any(a)));
     }
 }

@@ -152,7 +152,7 @@ pub(super) fn export_glb(
                 "udim_tile": multi.then_some(number),
                 "height_map": height_name,
                 "height_range": range.map(|(lo, hi)| [lo, hi]),
-                "height_meaning": "large-wrinkle height = lo + (hi - lo) * p / 65535 for a 16-bit value p, in the project's height units (large.depth = deepest)",
+                "height_meaning": "large-wrinkle height = lo + (hi - lo) * p / 65535 for a 16-bit value p, in the project's height units (the deepest: large.depth, past 80 years times the old-age depth gain)",
             }),
         });
     }

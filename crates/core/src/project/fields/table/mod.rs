@@ -248,7 +248,7 @@ pub static FIELDS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(||
             HU,
             0.0,
             10.0,
-            "height of a normalised large wrinkle of 1",
+            "height of a normalised large wrinkle of 1 (past 80 years, times the old-age depth gain: 1.7 at 85, 2.4 from 90)",
         ),
         k(id!(pores.enabled), Kind::Bool, "bake pores"),
         i(

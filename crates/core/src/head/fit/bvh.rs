@@ -83,14 +83,17 @@ impl Bvh {
         }
         let mut best_d2 = max_distance * max_distance;
         let mut best: Option<(u32, Vec3, Vec3)> = None;
-        let mut stack = [0u32; 64];
+        // Each node with its box's squared distance from `q`, measured once when pushed.
+        let root = self.nodes[0];
+        let mut stack = [(0u32, box_distance2(q, root.min, root.max)); 64];
         let mut top = 1;
         while top > 0 {
             top -= 1;
-            let node = self.nodes[stack[top] as usize];
-            if box_distance2(q, node.min, node.max) > best_d2 {
+            let (index, d2) = stack[top];
+            if d2 > best_d2 {
                 continue;
             }
+            let node = self.nodes[index as usize];
             if node.count > 0 {
                 for slot in node.start..node.start + node.count {
                     let [a, b, c] = self.corners[slot as usize];
@@ -106,12 +109,15 @@ impl Bvh {
                 let (l, r) = (node.start, node.start + 1);
                 let dl = self.nodes[l as usize];
                 let dr = self.nodes[r as usize];
-                let (near, far) =
-                    if box_distance2(q, dl.min, dl.max) <= box_distance2(q, dr.min, dr.max) {
-                        (l, r)
-                    } else {
-                        (r, l)
-                    };
+                let (d_l, d_r) = (
+                    box_distance2(q, dl.min, dl.max),
+                    box_distance2(q, dr.min, dr.max),
+                );
+                let (near, far) = if d_l <= d_r {
+                    ((l, d_l), (r, d_r))
+                } else {
+                    ((r, d_r), (l, d_l))
+                };
                 if top + 2 <= stack.len() {
                     stack[top] = far;
                     stack[top + 1] = near;

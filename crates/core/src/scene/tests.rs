@@ -24,6 +24,14 @@ fn project() -> Project {
     p
 }
 
+/// [`project`] with the large wrinkles alone (no pores, furrows or noise details).
+fn large_only(mut p: Project) -> Project {
+    p.pores.enabled = false;
+    p.furrows.enabled = false;
+    p.noise.details = 0.0;
+    p
+}
+
 fn bytes(scene: &Scene) -> (Vec<f32>, Vec<u8>, Vec<f32>, Vec<u8>) {
     let l = scene.large().unwrap();
     let m = scene.micro().unwrap();
@@ -291,10 +299,7 @@ fn take_height_moves_what_export_maps_copies_and_the_scene_bakes_again() {
     assert!(c.large && c.micro, "{c:?}");
     assert_eq!(s.export_maps().unwrap().1, rgb);
     // The large map alone (no micro-relief layer) is moved, not summed onto zeros.
-    let mut large_only = p.clone();
-    large_only.pores.enabled = false;
-    large_only.furrows.enabled = false;
-    large_only.noise.details = 0.0;
+    let large_only = large_only(p.clone());
     let mut s = fresh(&large_only, &request);
     let (copied, _) = s.export_maps().unwrap();
     let kept = s.large().unwrap().height.data().to_vec();
@@ -363,10 +368,7 @@ fn a_depth_change_bakes_nothing_and_reaches_the_exported_heights() {
 /// (`age::wrinkle_depth_gain`): at 85, 1.7 × the layer's depth.
 #[test]
 fn the_exported_wrinkles_are_deeper_in_old_age() {
-    let mut p = project();
-    p.pores.enabled = false;
-    p.furrows.enabled = false;
-    p.noise.details = 0.0;
+    let mut p = large_only(project());
     p.age.old_years = 90.0;
     let t = (85.0 - p.age.young_years) / (90.0 - p.age.young_years);
     let request = BakeRequest::maps(64, t, false);
@@ -505,10 +507,7 @@ fn scene_large(s: &Scene) -> Vec<f32> {
 /// lines from 45–50, neck from 40), and in that order.
 #[test]
 fn each_region_appears_at_its_age_and_in_the_literatures_order() {
-    let mut p = project();
-    p.pores.enabled = false;
-    p.furrows.enabled = false;
-    p.noise.details = 0.0;
+    let mut p = large_only(project());
     let regions = [
         "forehead",
         "crows-feet",

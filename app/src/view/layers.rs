@@ -135,6 +135,15 @@ fn stamp<T: std::any::Any + Send + Sync>(a: &Option<Arc<T>>) -> Stamp {
 /// See [`stamp`].
 type Stamp = Option<AnyKey>;
 
+/// Whether `key` names the layer `a` (both none counts), without making a key.
+fn same<T: std::any::Any + Send + Sync>(key: &Stamp, a: &Option<Arc<T>>) -> bool {
+    match (key, a) {
+        (Some(k), Some(a)) => k.is_any(a),
+        (None, None) => true,
+        _ => false,
+    }
+}
+
 /// What one renderer was last given, by identity: compare two to know whether a frame
 /// drawn since shows the current layers.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -159,18 +168,18 @@ impl Uploaded {
     pub fn upload(&mut self, renderer: &mut Renderer, layers: &Layers) -> Result<(), RenderError> {
         let metres_per_unit = layers.metres_per_unit;
         let mut result = Ok(());
-        let mesh = (stamp(&layers.mesh), metres_per_unit.to_bits());
-        if mesh != self.mesh
+        let bits = metres_per_unit.to_bits();
+        if !(same(&self.mesh.0, &layers.mesh) && self.mesh.1 == bits)
             && let Some(m) = &layers.mesh
         {
             result = result.and(renderer.upload_mesh(m, metres_per_unit));
             if let Some(scale) = layers.surface_scale {
                 renderer.set_surface_scale(scale);
             }
-            self.mesh = mesh;
+            self.mesh = (stamp(&layers.mesh), bits);
         }
         result = result.and(self.upload_age_layers(renderer, ViewId::MAIN, layers));
-        if stamp(&layers.fine) != self.fine
+        if !same(&self.fine, &layers.fine)
             && let Some(fine) = &layers.fine
         {
             let tile = Upload::Tile {
@@ -180,21 +189,21 @@ impl Uploaded {
             result = result.and(renderer.upload_prepared(&tile));
             self.fine = stamp(&layers.fine);
         }
-        if stamp(&layers.hair) != self.hair
+        if !same(&self.hair, &layers.hair)
             && let Some(h) = &layers.hair
         {
             renderer.upload_hair(h);
             self.hair = stamp(&layers.hair);
         }
-        if stamp(&layers.colour) != self.colour {
+        if !same(&self.colour, &layers.colour) {
             result = result.and(renderer.upload_colour_map(picture(&layers.colour)));
             self.colour = stamp(&layers.colour);
         }
-        if stamp(&layers.normal) != self.normal {
+        if !same(&self.normal, &layers.normal) {
             result = result.and(renderer.upload_normal_map(picture(&layers.normal)));
             self.normal = stamp(&layers.normal);
         }
-        if stamp(&layers.micro_weight) != self.micro_weight {
+        if !same(&self.micro_weight, &layers.micro_weight) {
             result = result.and(renderer.upload_micro_weight(picture(&layers.micro_weight)));
             self.micro_weight = stamp(&layers.micro_weight);
         }
@@ -211,7 +220,7 @@ impl Uploaded {
         layers: &Layers,
     ) -> Result<(), RenderError> {
         let mut result = Ok(());
-        if stamp(&layers.large) != self.large {
+        if !same(&self.large, &layers.large) {
             result = result.and(match &layers.large {
                 Some(large) => renderer.upload_prepared_to(view, &Upload::LargeWrinkles(large)),
                 // The layer is off: flat skin (height 1 = the polygon), not the last map.
@@ -223,7 +232,7 @@ impl Uploaded {
             });
             self.large = stamp(&layers.large);
         }
-        if stamp(&layers.shape) != self.shape {
+        if !same(&self.shape, &layers.shape) {
             let shape = layers.shape.as_deref().map(|s| ShapeUpload {
                 delta: &s.delta,
                 normals: &s.normals,
@@ -233,18 +242,18 @@ impl Uploaded {
             result = result.and(renderer.upload_shape_to(view, shape));
             self.shape = stamp(&layers.shape);
         }
-        if stamp(&layers.brows) != self.brows {
+        if !same(&self.brows, &layers.brows) {
             result = result
                 .and(renderer.upload_brows_to(view, layers.brows.as_deref().map(Vec::as_slice)));
             self.brows = stamp(&layers.brows);
         }
-        if stamp(&layers.aged) != self.aged {
+        if !same(&self.aged, &layers.aged) {
             result = result.and(renderer.upload_colour_map_to(view, picture(&layers.aged)));
             self.aged = stamp(&layers.aged);
         }
         // A micro tile that is off stays uploaded: the frame turns the layer off
         // (`SkinParams::micro_relief`).
-        if stamp(&layers.micro) != self.micro
+        if !same(&self.micro, &layers.micro)
             && let Some(micro) = &layers.micro
         {
             let tile = Upload::Tile {

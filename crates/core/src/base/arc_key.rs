@@ -34,6 +34,11 @@ impl AnyKey {
         let value: Arc<dyn std::any::Any + Send + Sync> = value.clone();
         Self(Arc::downgrade(&value))
     }
+
+    /// Whether `value` is the one this key names (as [`ArcKey::is`], for any type).
+    pub fn is_any<T: std::any::Any + Send + Sync>(&self, value: &Arc<T>) -> bool {
+        std::ptr::addr_eq(self.0.as_ptr(), Arc::as_ptr(value))
+    }
 }
 
 impl<T: ?Sized> Clone for ArcKey<T> {
@@ -80,9 +85,14 @@ mod tests {
         let first = Arc::new([3u32; 8]);
         let key = AnyKey::of_any(&first);
         assert_eq!(key, AnyKey::of_any(&first));
+        assert!(key.is_any(&first));
         assert_ne!(key, AnyKey::of_any(&Arc::new([3u32; 8])));
         drop(first);
         let later: Vec<Arc<[u32; 8]>> = (0..64).map(|_| Arc::new([3u32; 8])).collect();
-        assert!(later.iter().all(|a| key != AnyKey::of_any(a)));
+        assert!(
+            later
+                .iter()
+                .all(|a| key != AnyKey::of_any(a) && !key.is_any(a))
+        );
     }
 }

@@ -223,3 +223,62 @@ fn a_dense_new_head_is_shown_before_its_shape() {
         "the head was shown bare again"
     );
 }
+
+/// A head being opened at full size is shown aged at the preview size first (a partial
+/// report of the same job: its maps at 1024², its aged colour), then at full size, with
+/// the same large map as the scene baking that size alone.
+#[test]
+fn a_head_opened_at_full_size_is_shown_first_at_the_preview_size() {
+    let mut worker = Worker::spawn(|| {});
+    let project = Project::default();
+    let request = BakeRequest {
+        large_size_px: 1100,
+        micro_size_px: 1100,
+        hair: false,
+        ..BakeRequest::preview(0.8)
+    };
+    let id = worker.submit(Job {
+        id: 0,
+        project: project.clone(),
+        wrinkles: None,
+        request,
+        what: "open".into(),
+        compare_t: None,
+        detect_units: false,
+        files: Default::default(),
+        shape_pictures: false,
+    });
+    let start = Instant::now();
+    let mut seen = Vec::new();
+    while seen
+        .last()
+        .is_none_or(|(partial, _): &(bool, Snapshot)| *partial)
+    {
+        for report in worker.poll().into_iter().filter(|r| r.id == id) {
+            match report.outcome {
+                Outcome::Done { snapshot, .. } => seen.push((report.partial, *snapshot)),
+                Outcome::Failed(e) => panic!("bake failed: {e}"),
+            }
+        }
+        assert!(start.elapsed() < Duration::from_secs(300), "no report");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert_eq!(seen.len(), 2, "a first look, then the end");
+    let (first, last) = (&seen[0].1, &seen[1].1);
+    assert!(seen[0].0);
+    assert_eq!(first.large.as_ref().unwrap().height.width_px(), 1024);
+    assert_eq!(first.micro.as_ref().unwrap().height.width_px(), 512);
+    assert!(first.layers.aged.is_some(), "the first look is not aged");
+    assert_eq!(first.factors.as_ref().unwrap().t, 0.8);
+    assert_eq!(sizes(last), [1100, 1100, 1100, 550]);
+    // The full size as the scene makes it alone: nothing of the first look in it.
+    let mut scene = agesim_core::scene::Scene::new(project).unwrap();
+    scene
+        .bake(&request, &agesim_core::base::cancel::CancelToken::never())
+        .unwrap();
+    let alone = scene.large().unwrap();
+    assert!(
+        alone.height.data() == last.large.as_ref().unwrap().height.data(),
+        "the full-size map differs from the scene's own"
+    );
+}

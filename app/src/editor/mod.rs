@@ -25,6 +25,7 @@ pub use app::{EditorApp, EditorOptions, Pending, soak_failed};
 /// Opens the editor window and runs until it is closed.
 pub fn run(mut options: EditorOptions) -> anyhow::Result<()> {
     options.cleared_to_panel_colour = true;
+    options.launched.get_or_insert_with(std::time::Instant::now);
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_inner_size([1280.0, 800.0])

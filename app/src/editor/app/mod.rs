@@ -126,6 +126,9 @@ pub struct EditorOptions {
     /// Drive the editor at random for this many seconds, print the figures and quit
     /// (`--soak`, `harness::soak`).
     pub soak_seconds: Option<f64>,
+    /// When the editor was started (a screenshot run prints its first aged frame's and
+    /// its settled frame's times from here).
+    pub launched: Option<std::time::Instant>,
 }
 
 impl EditorOptions {

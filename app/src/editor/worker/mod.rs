@@ -282,25 +282,13 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         let (job, cancel) = next;
         let start = Instant::now();
         let full = is_full(&job.request);
-        // A new scene starts as a fork of the other: the inputs (mesh, masks, files)
-        // are shared, not loaded again, and no map of the other size is copied.
-        let (scene, other) = if full {
-            (&mut full_scene, &preview_scene)
-        } else {
-            (&mut preview_scene, &full_scene)
-        };
-        let opening = [&*scene, other].iter().all(|s| {
+        let opening = [&preview_scene, &full_scene].iter().all(|s| {
             s.as_ref()
                 .is_none_or(|s| s.project().mesh != job.project.mesh)
         });
-        if scene.is_none() {
-            *scene = other.as_ref().map(Scene::fork);
-        }
-        // The snapshot shows the other scene's maps: take every layer from this one.
-        let switched = snapshot_full != Some(full);
         let mut outcome = Err(Error::Cancelled);
-        // A new dense head's first look, before its shape: reported to the UI (which
-        // polls while the worker is busy) as a partial outcome.
+        // A head's first looks, before the job's end: reported to the UI (which polls
+        // while the worker is busy) as partial outcomes.
         let mut early = |shown: &Snapshot| {
             let _ = reports.send(Report {
                 id: job.id,
@@ -314,16 +302,63 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
                 partial: true,
             });
         };
-        install(&job, opening, &mut || {
-            outcome = bake(
-                scene,
-                &mut snapshot,
-                &job,
-                (switched, opening),
-                &cancel,
-                &mut early,
-            )
-        });
+        // A head being opened at full size is first baked and shown aged at the preview
+        // size (its landmarks, fit, shape and hair are the same at any size, and shared
+        // by the full bake that follows in the same job: only the maps are made twice).
+        let mut first_failed = false;
+        if opening && full {
+            let first = first_look(&job);
+            let switched = snapshot_full != Some(false);
+            let mut first_outcome = Err(Error::Cancelled);
+            install(&first, true, &mut || {
+                first_outcome = bake(
+                    &mut preview_scene,
+                    &mut snapshot,
+                    &first,
+                    (switched, true),
+                    &cancel,
+                    &mut early,
+                )
+            });
+            match first_outcome {
+                Ok(_) => {
+                    snapshot_full = Some(false);
+                    early(&snapshot);
+                    wake();
+                    // The other head's full scene has nothing left to share.
+                    full_scene = None;
+                }
+                Err(Error::Cancelled) => continue,
+                Err(e) => {
+                    outcome = Err(e);
+                    first_failed = true;
+                }
+            }
+        }
+        // A new scene starts as a fork of the other: the inputs (mesh, masks, files)
+        // are shared, not loaded again, and no map of the other size is copied.
+        let (scene, other) = if full {
+            (&mut full_scene, &preview_scene)
+        } else {
+            (&mut preview_scene, &full_scene)
+        };
+        if scene.is_none() {
+            *scene = other.as_ref().map(Scene::fork);
+        }
+        // The snapshot shows the other scene's maps: take every layer from this one.
+        let switched = snapshot_full != Some(full);
+        if !first_failed {
+            install(&job, opening, &mut || {
+                outcome = bake(
+                    scene,
+                    &mut snapshot,
+                    &job,
+                    (switched, opening),
+                    &cancel,
+                    &mut early,
+                )
+            });
+        }
         let units = match &mut outcome {
             Ok((_, units)) => units.take(),
             Err(_) => None,
@@ -380,6 +415,19 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         }
         wake();
     }
+}
+
+/// The preview-sized first look at a head being opened by `job` (a full bake): its maps
+/// at [`PREVIEW_MAX_PX`] (the micro-relief at half), without the shape's relief finer
+/// than the triangles (a second of a dense head's open; the full bake adds it) and no
+/// compare age.
+fn first_look(job: &Job) -> Job {
+    let mut first = job.clone();
+    first.request.large_size_px = job.request.large_size_px.min(PREVIEW_MAX_PX);
+    first.request.micro_size_px = job.request.micro_size_px.min(PREVIEW_MAX_PX / 2);
+    first.request.shape_relief = false;
+    first.compare_t = None;
+    first
 }
 
 /// Whether a request goes to the full-resolution scene and pool.

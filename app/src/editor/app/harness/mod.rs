@@ -22,6 +22,9 @@ pub(super) struct Harness {
     soak: Option<SoakRun>,
     /// Frames drawn with maps before the screenshot, and whether it was asked for.
     frames_with_maps: u32,
+    /// Whether the first frame with aged maps (perhaps a first look at the preview size)
+    /// was reported.
+    first_aged_reported: bool,
     screenshot_requested: bool,
 }
 
@@ -127,7 +130,25 @@ impl EditorApp {
         let Some(path) = self.options.screenshot.clone() else {
             return;
         };
+        let since_launch = || {
+            self.options
+                .launched
+                .map_or(0.0, |l| l.elapsed().as_secs_f64())
+        };
+        if let Some(large) = &self.session.snapshot.large
+            && !self.harness.first_aged_reported
+        {
+            self.harness.first_aged_reported = true;
+            let px = large.height.width_px();
+            println!(
+                "first aged frame: {:.2} s after launch ({px}² maps)",
+                since_launch()
+            );
+        }
         if self.session.snapshot.large.is_some() && self.idle() {
+            if self.harness.frames_with_maps == 0 {
+                println!("settled: {:.2} s after launch", since_launch());
+            }
             self.harness.frames_with_maps += 1;
             ctx.request_repaint();
         } else {

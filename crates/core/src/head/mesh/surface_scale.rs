@@ -3,6 +3,7 @@
 //! the exported normal map (docs/models.md "Rendering").
 
 use glam::{Vec2, Vec3};
+use rayon::prelude::*;
 
 /// Fewest triangles [`SurfaceScale::measure_face`] measures the face over.
 const MIN_FACE_TRIANGLES: usize = 20;
@@ -23,31 +24,36 @@ impl SurfaceScale {
     /// Measures `mesh`; triangles with degenerate UVs are skipped. `None` when every
     /// triangle is degenerate.
     pub fn measure(positions: &[Vec3], uvs: &[Vec2], indices: &[u32]) -> Option<Self> {
-        // (|∂P/∂u|, |∂P/∂v|, area) per triangle.
-        let mut per: Vec<(f32, f32, f32)> = Vec::with_capacity(indices.len() / 3);
-        for tri in indices.chunks_exact(3) {
-            let [a, b, c] = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
-            let (e1, e2) = (positions[b] - positions[a], positions[c] - positions[a]);
-            let (d1, d2) = (uvs[b] - uvs[a], uvs[c] - uvs[a]);
-            let det = d1.x * d2.y - d2.x * d1.y;
-            let area = 0.5 * e1.cross(e2).length();
-            if det.abs() < 1e-12 || area <= 0.0 || !area.is_finite() {
-                continue;
-            }
-            // Solve [e1 e2] = [dP/du dP/dv]·[d1 d2] (Lengyel's tangent derivation).
-            let dp_du = (e1 * d2.y - e2 * d1.y) / det;
-            let dp_dv = (e2 * d1.x - e1 * d2.x) / det;
-            if !(dp_du.is_finite() && dp_dv.is_finite()) {
-                continue;
-            }
-            per.push((dp_du.length(), dp_dv.length(), area));
-        }
+        // (|∂P/∂u|, |∂P/∂v|, area) per triangle, in the triangles' order.
+        let per: Vec<(f32, f32, f32)> = indices
+            .par_chunks_exact(3)
+            .with_min_len(4096)
+            .filter_map(|tri| {
+                let [a, b, c] = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
+                let (e1, e2) = (positions[b] - positions[a], positions[c] - positions[a]);
+                let (d1, d2) = (uvs[b] - uvs[a], uvs[c] - uvs[a]);
+                let det = d1.x * d2.y - d2.x * d1.y;
+                let area = 0.5 * e1.cross(e2).length();
+                if det.abs() < 1e-12 || area <= 0.0 || !area.is_finite() {
+                    return None;
+                }
+                // Solve [e1 e2] = [dP/du dP/dv]·[d1 d2] (Lengyel's tangent derivation).
+                let dp_du = (e1 * d2.y - e2 * d1.y) / det;
+                let dp_dv = (e2 * d1.x - e1 * d2.x) / det;
+                (dp_du.is_finite() && dp_dv.is_finite())
+                    .then(|| (dp_du.length(), dp_dv.length(), area))
+            })
+            .collect();
         if per.is_empty() {
             return None;
         }
+        let (units_per_u, units_per_v) = rayon::join(
+            || weighted_median(per.iter().map(|p| (p.0, p.2)).collect()),
+            || weighted_median(per.iter().map(|p| (p.1, p.2)).collect()),
+        );
         Some(Self {
-            units_per_u: weighted_median(per.iter().map(|p| (p.0, p.2)).collect()),
-            units_per_v: weighted_median(per.iter().map(|p| (p.1, p.2)).collect()),
+            units_per_u,
+            units_per_v,
         })
     }
 
@@ -98,7 +104,9 @@ impl SurfaceScale {
 /// few triangles whose UVs are squeezed to a point (a scan's eyelid rim) do not move it,
 /// as they would an area-weighted mean.
 fn weighted_median(mut values: Vec<(f32, f32)>) -> f32 {
-    values.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Stable, so the same order as a serial sort (a dense head's 570k triangles: a fifth of
+    // a second on one core).
+    values.par_sort_by(|a, b| a.0.total_cmp(&b.0));
     let half = 0.5 * values.iter().map(|v| f64::from(v.1)).sum::<f64>();
     let mut below = 0.0f64;
     for &(value, weight) in &values {

@@ -225,8 +225,9 @@ fn a_dense_new_head_is_shown_before_its_shape() {
 }
 
 /// A head being opened at full size is shown aged at the preview size first (a partial
-/// report of the same job: its maps at 1024², its aged colour), then at full size, with
-/// the same large map as the scene baking that size alone.
+/// report of the same job: its maps at 1024², its aged colour, no compare age), then at
+/// full size with its compare age, with the same large map as the scene baking that size
+/// alone.
 #[test]
 fn a_head_opened_at_full_size_is_shown_first_at_the_preview_size() {
     let mut worker = Worker::spawn(|| {});
@@ -243,7 +244,7 @@ fn a_head_opened_at_full_size_is_shown_first_at_the_preview_size() {
         wrinkles: None,
         request,
         what: "open".into(),
-        compare_t: None,
+        compare_t: Some(0.2),
         detect_units: false,
         files: Default::default(),
         shape_pictures: false,
@@ -270,7 +271,9 @@ fn a_head_opened_at_full_size_is_shown_first_at_the_preview_size() {
     assert_eq!(first.micro.as_ref().unwrap().height.width_px(), 512);
     assert!(first.layers.aged.is_some(), "the first look is not aged");
     assert_eq!(first.factors.as_ref().unwrap().t, 0.8);
+    assert!(first.compare.is_none(), "the first look has a compare age");
     assert_eq!(sizes(last), [1100, 1100, 1100, 550]);
+    assert!(last.compare.is_some(), "the compare age did not come");
     // The full size as the scene makes it alone: nothing of the first look in it.
     let mut scene = agesim_core::scene::Scene::new(project).unwrap();
     scene

@@ -306,6 +306,10 @@ fn run(jobs: Receiver<(Job, CancelToken)>, reports: Sender<Report>, wake: impl F
         // size (its landmarks, fit, shape and hair are the same at any size, and shared
         // by the full bake that follows in the same job: only the maps are made twice).
         let mut first_failed = false;
+        if opening {
+            // The compare view's other age is the previous head's until the job's end.
+            snapshot.compare = None;
+        }
         if opening && full {
             let first = first_look(&job);
             let switched = snapshot_full != Some(false);

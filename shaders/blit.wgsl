@@ -34,3 +34,21 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     }
     return c;
 }
+
+// Over: a second texture laid over the first (the editor's map view: a map picture with
+// its UV layout over it), both premultiplied and sRGB-encoded as egui's pictures are,
+// composited as egui's blending would, in one unblended pass.
+@group(0) @binding(2) var overlay: texture_2d<f32>;
+
+@fragment
+fn fs_over(in: VertexOut) -> @location(0) vec4<f32> {
+    let base = textureSample(source, source_sampler, in.uv);
+    let over = textureSample(overlay, source_sampler, in.uv);
+    let c = over.rgb + base.rgb * (1.0 - over.a);
+    if DECODE_SRGB {
+        let lo = c / 12.92;
+        let hi = pow((c + 0.055) / 1.055, vec3<f32>(2.4));
+        return vec4<f32>(select(hi, lo, c <= vec3<f32>(0.04045)), 1.0);
+    }
+    return vec4<f32>(c, 1.0);
+}

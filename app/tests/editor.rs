@@ -205,6 +205,41 @@ fn main_window_snapshot_on_the_gpu_adapter() {
     );
 }
 
+/// On the GPU adapter the map shows in the map view both when its square lies whole in the
+/// view (one paint callback) and when it is zoomed past the view (egui's images).
+#[test]
+fn the_map_shows_zoomed_in_and_out_on_the_gpu_adapter() {
+    if !std::path::Path::new("/usr/share/vulkan/icd.d").exists() {
+        return agesim_render::ci::skip_or_fail(
+            "the_map_shows_zoomed_in_and_out_on_the_gpu_adapter",
+            "no Vulkan driver on this machine",
+        );
+    }
+    let mut h = Harness::builder()
+        .with_size([960.0, 600.0])
+        .wgpu()
+        .build_eframe(|cc| EditorApp::new(cc, EditorOptions::default()));
+    settle(&mut h);
+    // A point of the map a tenth in from the square's (or the view's) lower left corner:
+    // the map's colour there, not the panel's.
+    let shown = |h: &mut Harness<'static, EditorApp>, zoom: f32| {
+        h.state_mut().map_view_mut().zoom = zoom;
+        h.run_steps(2);
+        let state = h.state_mut().map_view_mut().clone();
+        let (square, (_, view)) = (state.last_square.unwrap(), state.picture_slot.unwrap());
+        let inside = square.intersect(view);
+        assert_eq!(view.contains_rect(square), zoom <= 1.0, "zoom {zoom}");
+        let at = inside.left_bottom() + egui::vec2(0.1, -0.1) * inside.size();
+        let image = h.render().unwrap();
+        let px = image.get_pixel(at.x as u32, at.y as u32).0;
+        let panel = image.get_pixel(2, image.height() / 2).0;
+        let apart = (0..3).map(|k| px[k].abs_diff(panel[k]) as u32).sum::<u32>();
+        assert!(apart > 30, "zoom {zoom}: {px:?} is the panel's {panel:?}");
+    };
+    shown(&mut h, 1.0);
+    shown(&mut h, 3.0);
+}
+
 #[test]
 fn the_normal_pictures_are_baked_only_while_shown() {
     use agesim::editor::map_view::MapKind;

@@ -95,6 +95,10 @@ pub struct MapViewState {
     /// Where the UV square was drawn last frame (for tests and picking).
     #[serde(skip)]
     pub last_square: Option<egui::Rect>,
+    /// The place kept for the map's picture last frame, and the view's rectangle (the
+    /// app fills it: [`picture_shapes`]).
+    #[serde(skip)]
+    pub picture_slot: Option<(egui::layers::ShapeIdx, Rect)>,
     /// A UV to mark (the point clicked on the head).
     #[serde(skip)]
     pub marker_uv: Option<[f32; 2]>,
@@ -113,6 +117,7 @@ impl Default for MapViewState {
             show_layout: true,
             selected: None,
             last_square: None,
+            picture_slot: None,
             marker_uv: None,
             hover_uv: None,
         }
@@ -151,12 +156,13 @@ impl UvRect {
     }
 }
 
-/// Draws the view and returns the fibre edit of this frame, if any.
+/// Draws the view and returns the fibre edit of this frame, if any. `picture`: whether
+/// there is a map to show; its place under the fibres is kept in
+/// [`MapViewState::picture_slot`] for the app to fill ([`picture_shapes`]).
 pub fn map_view_ui(
     ui: &mut egui::Ui,
     state: &mut MapViewState,
-    texture: Option<&egui::TextureHandle>,
-    layout: Option<&egui::TextureHandle>,
+    picture: bool,
     wrinkles: &[WrinkleSource],
     fitted: bool,
 ) -> Option<FibreEdit> {
@@ -195,34 +201,16 @@ pub fn map_view_ui(
         .hover_pos()
         .filter(|p| square.contains(*p))
         .map(|p| uv.to_uv(p));
-    match texture {
-        Some(t) => {
-            painter.image(
-                t.id(),
-                square,
-                Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0)),
-                Color32::WHITE,
-            );
-        }
-        None => {
-            painter.text(
-                rect.center(),
-                egui::Align2::CENTER_CENTER,
-                "baking…",
-                egui::FontId::proportional(16.0),
-                Color32::GRAY,
-            );
-        }
-    }
-    if state.show_layout
-        && state.kind.is_uv_map()
-        && let Some(l) = layout
-    {
-        painter.image(
-            l.id(),
-            square,
-            Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0)),
-            Color32::WHITE,
+    state.picture_slot = None;
+    if picture {
+        state.picture_slot = Some((painter.add(egui::Shape::Noop), rect));
+    } else {
+        painter.text(
+            rect.center(),
+            egui::Align2::CENTER_CENTER,
+            "baking…",
+            egui::FontId::proportional(16.0),
+            Color32::GRAY,
         );
     }
     painter.rect_stroke(
@@ -308,6 +296,51 @@ pub fn map_view_ui(
         }
     }
     edit
+}
+
+/// Whether the UV layout is drawn over the map this frame.
+pub fn shows_layout(state: &MapViewState) -> bool {
+    state.show_layout && state.kind.is_uv_map()
+}
+
+/// The place kept for the map's picture this frame ([`MapViewState::picture_slot`]).
+#[derive(Clone, Copy, Debug)]
+pub struct PicturePlace {
+    slot: egui::layers::ShapeIdx,
+    /// The view's rectangle (the picture is clipped to it).
+    pub view: Rect,
+    /// Where the UV square lies.
+    pub square: Rect,
+}
+
+impl PicturePlace {
+    /// `state`'s place, when a picture is to be shown.
+    pub fn of(state: &MapViewState) -> Option<Self> {
+        let ((slot, view), square) = (state.picture_slot?, state.last_square?);
+        Some(Self { slot, view, square })
+    }
+
+    /// Whether the whole square lies in the view: a paint callback (which fills its own
+    /// rectangle) can draw it.
+    pub fn fits(&self) -> bool {
+        self.view.contains_rect(self.square)
+    }
+
+    /// Puts `shape` in the place.
+    pub fn fill(&self, ui: &egui::Ui, shape: egui::Shape) {
+        ui.painter_at(self.view).set(self.slot, shape);
+    }
+
+    /// The egui images of the map and of the layout over it, on the square.
+    pub fn images(&self, textures: &[egui::TextureId]) -> egui::Shape {
+        let whole = Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
+        egui::Shape::Vec(
+            textures
+                .iter()
+                .map(|&t| egui::Shape::image(t, self.square, whole, Color32::WHITE))
+                .collect(),
+        )
+    }
 }
 
 /// The outline of a fibre's influence area: points within W·L of the segment (docs/models.md §2's

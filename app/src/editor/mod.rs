@@ -10,6 +10,7 @@ mod file_browser;
 pub mod files;
 mod governor;
 pub mod history;
+mod map_gpu;
 pub mod map_view;
 mod notices;
 pub mod pick;

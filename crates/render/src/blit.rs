@@ -17,26 +17,42 @@ impl Blit {
     /// values are written as they are; into an sRGB target they are decoded first, so
     /// the hardware's encoding gives them back.
     pub fn new(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> Self {
+        Self::build(device, target_format, false)
+    }
+
+    /// A pipeline drawing one texture with a second laid over it (`blit.wgsl`'s
+    /// `fs_over`: both premultiplied, as egui's pictures are; the result opaque), bound
+    /// by [`Blit::bind_over`].
+    pub fn new_over(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> Self {
+        Self::build(device, target_format, true)
+    }
+
+    fn build(device: &wgpu::Device, target_format: wgpu::TextureFormat, over: bool) -> Self {
+        let texture = |binding: u32| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let mut entries = vec![
+            texture(0),
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ];
+        if over {
+            entries.push(texture(2));
+        }
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("agesim blit bind group layout"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
+            entries: &entries,
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("agesim blit.wgsl"),
@@ -52,7 +68,7 @@ impl Blit {
             "agesim blit pipeline",
             &pipeline_layout,
             &module,
-            ("vs_main", "fs_main"),
+            ("vs_main", if over { "fs_over" } else { "fs_main" }),
             target_format,
             &[(
                 "DECODE_SRGB",
@@ -74,19 +90,45 @@ impl Blit {
 
     /// The bind group showing `view` (make one per texture, keep it while it lives).
     pub fn bind(&self, device: &wgpu::Device, view: &wgpu::TextureView) -> wgpu::BindGroup {
+        self.bind_entries(device, view, None)
+    }
+
+    /// The bind group of a [`Blit::new_over`] pipeline: `overlay` over `base`.
+    pub fn bind_over(
+        &self,
+        device: &wgpu::Device,
+        base: &wgpu::TextureView,
+        overlay: &wgpu::TextureView,
+    ) -> wgpu::BindGroup {
+        self.bind_entries(device, base, Some(overlay))
+    }
+
+    fn bind_entries(
+        &self,
+        device: &wgpu::Device,
+        view: &wgpu::TextureView,
+        overlay: Option<&wgpu::TextureView>,
+    ) -> wgpu::BindGroup {
+        let mut entries = vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&self.sampler),
+            },
+        ];
+        if let Some(o) = overlay {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(o),
+            });
+        }
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("agesim blit bind group"),
             layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
-            ],
+            entries: &entries,
         })
     }
 

@@ -430,6 +430,114 @@ fn the_blit_copies_texel_for_texel_into_the_viewport() {
     assert!(px(63, 47)[1] >= 5 * 46, "the bottom row last");
 }
 
+/// The blit with an overlay (the editor's map view: a map and its UV layout) lays the
+/// premultiplied overlay over the base as egui's blending would, in one opaque pass.
+#[test]
+fn the_blit_lays_the_overlay_over_the_base() {
+    let Some(gpu) = gpu_or_skip("the_blit_lays_the_overlay_over_the_base") else {
+        return;
+    };
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let (w, h) = (64u32, 4u32);
+    let texture = |usage| {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: None,
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    };
+    let filled = |texel: [u8; 4]| {
+        let t = texture(wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
+        queue.write_texture(
+            t.as_image_copy(),
+            &texel.repeat((w * h) as usize),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * w),
+                rows_per_image: None,
+            },
+            t.size(),
+        );
+        t.create_view(&Default::default())
+    };
+    let base = filled([200, 100, 50, 255]);
+    let blit = agesim_render::Blit::new_over(device, format);
+    let read = |overlay: &wgpu::TextureView| -> [u8; 4] {
+        let dst = texture(wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC);
+        let bind = blit.bind_over(device, &base, overlay);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let view = dst.create_view(&Default::default());
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: None,
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            blit.draw(&mut pass, &bind);
+        }
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: None,
+            size: u64::from(4 * w * h),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        encoder.copy_texture_to_buffer(
+            dst.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(4 * w),
+                    rows_per_image: Some(h),
+                },
+            },
+            dst.size(),
+        );
+        queue.submit([encoder.finish()]);
+        buffer
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, |r| r.unwrap());
+        device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+        let bytes = buffer.slice(..).get_mapped_range().unwrap().to_vec();
+        // A texel in the middle.
+        let i = (4 * (2 * w + 30)) as usize;
+        [bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]
+    };
+    // A transparent overlay: the base as it is.
+    assert_eq!(read(&filled([0, 0, 0, 0])), [200, 100, 50, 255]);
+    // Half-covering gray (premultiplied 64 at alpha 128): 64 + base × (1 − 128/255).
+    let over = read(&filled([64, 64, 64, 128]));
+    let expected = [200.0f32, 100.0, 50.0].map(|b| 64.0 + b * (1.0 - 128.0 / 255.0));
+    for k in 0..3 {
+        assert!(
+            (f32::from(over[k]) - expected[k]).abs() <= 1.0,
+            "{over:?} against {expected:?}"
+        );
+    }
+    assert_eq!(over[3], 255, "the result is opaque");
+}
+
 /// A second view of one renderer (the editor's compare view) draws its own large-wrinkle
 /// map with the shared mesh and hair: each view shows what a renderer of its own with
 /// the same inputs shows, and uploading to one leaves the other as it was.

@@ -15,10 +15,7 @@ impl EditorApp {
         frame: &mut eframe::Frame,
         central_frame: egui::Frame,
     ) -> (Option<FibreEdit>, Vec<agesim_core::scene::WrinkleSource>) {
-        let ctx = ui.ctx().clone();
         let kind = self.persisted.map_view.kind;
-        let texture = self.texture(&ctx, kind);
-        let layout_texture = self.layout_texture(&ctx, kind);
         let fitted = self.session.snapshot.fitted;
         let wrinkles = self.wrinkles().to_vec();
         let render_state = frame
@@ -92,7 +89,9 @@ impl EditorApp {
                 let mut edit = None;
                 if let Some(r) = map_rect {
                     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(r));
-                    edit = map_view::map_view_ui(&mut child, &mut self.persisted.map_view, texture.as_ref(), layout_texture.as_ref(), &wrinkles, fitted);
+                    let picture = self.map_image(kind).is_some();
+                    edit = map_view::map_view_ui(&mut child, &mut self.persisted.map_view, picture, &wrinkles, fitted);
+                    self.fill_map_picture(&child, kind, render_state.as_ref());
                 }
                 ui.allocate_rect(avail, egui::Sense::hover());
                 edit
@@ -148,6 +147,41 @@ impl EditorApp {
             }
         }
         (fibre_edit, wrinkles)
+    }
+
+    /// Fills the map view's picture place of this frame: on the GPU adapter, when the
+    /// square lies whole in the view, the map and its layout in one paint callback
+    /// (`editor::map_gpu`: on a CPU rasteriser egui's two blended images cost about 10 ms
+    /// a frame); else as egui images (zoomed past the view, or no adapter).
+    fn fill_map_picture(
+        &mut self,
+        ui: &egui::Ui,
+        kind: MapKind,
+        render_state: Option<&eframe::egui_wgpu::RenderState>,
+    ) {
+        let Some(place) = map_view::PicturePlace::of(&self.persisted.map_view) else {
+            return;
+        };
+        let layout_shown = map_view::shows_layout(&self.persisted.map_view);
+        if let (Some(rs), true, Some(map)) = (render_state, place.fits(), self.map_image(kind)) {
+            let layout = layout_shown.then(|| self.layout_image(kind)).flatten();
+            let gpu = self
+                .map_gpu
+                .get_or_insert_with(|| crate::editor::map_gpu::MapGpu::new(rs));
+            let callback = gpu.callback(rs, &map, layout.as_ref(), place.square);
+            place.fill(ui, egui::Shape::Callback(callback));
+            return;
+        }
+        let ctx = ui.ctx().clone();
+        let mut textures: Vec<egui::TextureId> = self
+            .texture(&ctx, kind)
+            .map(|t| t.id())
+            .into_iter()
+            .collect();
+        if layout_shown {
+            textures.extend(self.layout_texture(&ctx, kind).map(|t| t.id()));
+        }
+        place.fill(ui, place.images(&textures));
     }
 }
 

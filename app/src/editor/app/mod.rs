@@ -185,6 +185,8 @@ pub struct EditorApp {
     baked_shape_pictures: bool,
     textures: Vec<(MapKind, egui::TextureHandle, ArcKey<egui::ColorImage>)>,
     layout_texture: Option<(egui::TextureHandle, ArcKey<egui::ColorImage>)>,
+    /// The map view's pictures on the GPU adapter (made on first use).
+    map_gpu: Option<crate::editor::map_gpu::MapGpu>,
     /// The guided landmark mode, when open.
     landmark_mode: Option<landmarks::LandmarkMode>,
     autosave: autosave::Autosave,
@@ -283,6 +285,7 @@ impl EditorApp {
             baked_shape_pictures: false,
             textures: Vec::new(),
             layout_texture: None,
+            map_gpu: None,
             landmark_mode: None,
             autosave: autosave::Autosave::default(),
             persisted,
@@ -560,18 +563,23 @@ impl EditorApp {
         }
     }
 
+    /// The UV layout overlay's picture of `kind`'s chart.
+    fn layout_image(&self, kind: MapKind) -> Option<Arc<egui::ColorImage>> {
+        let snapshot = &self.session.snapshot;
+        if kind.on_fibre_chart(snapshot.fitted) {
+            snapshot.images.uv_layout.clone()
+        } else {
+            (snapshot.images.head_uv_layout.clone()).or(snapshot.images.uv_layout.clone())
+        }
+    }
+
     /// The UV layout overlay's texture of `kind`'s chart, made once per mesh.
     fn layout_texture(
         &mut self,
         ctx: &egui::Context,
         kind: MapKind,
     ) -> Option<egui::TextureHandle> {
-        let snapshot = &self.session.snapshot;
-        let image = if kind.on_fibre_chart(snapshot.fitted) {
-            snapshot.images.uv_layout.clone()?
-        } else {
-            (snapshot.images.head_uv_layout.clone()).or(snapshot.images.uv_layout.clone())?
-        };
+        let image = self.layout_image(kind)?;
         match &mut self.layout_texture {
             Some((t, s)) if s.is(&image) => Some(t.clone()),
             slot => {
@@ -586,10 +594,10 @@ impl EditorApp {
         }
     }
 
-    /// The texture of `kind`, remade when the snapshot's picture changed.
-    fn texture(&mut self, ctx: &egui::Context, kind: MapKind) -> Option<egui::TextureHandle> {
+    /// The snapshot's picture of `kind`.
+    fn map_image(&self, kind: MapKind) -> Option<Arc<egui::ColorImage>> {
         let images = &self.session.snapshot.images;
-        let image = match kind {
+        match kind {
             MapKind::LargeHeight => images.large_height.clone(),
             MapKind::LargeNormal => images.large_normal.clone(),
             MapKind::MicroHeight => images.micro_height.clone(),
@@ -599,7 +607,12 @@ impl EditorApp {
             MapKind::Mask => images.mask.clone(),
             MapKind::LargeHead => images.large_head.clone().or(images.large_height.clone()),
             MapKind::Shape => images.shape.clone(),
-        }?;
+        }
+    }
+
+    /// The texture of `kind`, remade when the snapshot's picture changed.
+    fn texture(&mut self, ctx: &egui::Context, kind: MapKind) -> Option<egui::TextureHandle> {
+        let image = self.map_image(kind)?;
         if let Some((_, t, s)) = self.textures.iter_mut().find(|(k, _, _)| *k == kind) {
             if !s.is(&image) {
                 t.set(image.as_ref().clone(), egui::TextureOptions::LINEAR);

@@ -180,21 +180,29 @@ fn compare_mode_bakes_two_different_ages() {
     assert!(hairs(right, fr.t) < hairs(left, fl.t));
 }
 
+/// The editor at 960 × 600 drawn by the GPU path (lavapipe in CI); `None` (after saying
+/// why, or failing under `CI=true`) without a Vulkan driver.
+fn gpu_harness(test: &str) -> Option<Harness<'static, EditorApp>> {
+    if !std::path::Path::new("/usr/share/vulkan/icd.d").exists() {
+        agesim_render::ci::skip_or_fail(test, "no Vulkan driver on this machine");
+        return None;
+    }
+    Some(
+        Harness::builder()
+            .with_size([960.0, 600.0])
+            .wgpu()
+            .build_eframe(|cc| EditorApp::new(cc, EditorOptions::default())),
+    )
+}
+
 #[test]
 fn main_window_snapshot_on_the_gpu_adapter() {
     // The whole window, head and map drawn by the GPU path (lavapipe in CI). Regenerate
     // with UPDATE_SNAPSHOTS=1 after a deliberate change; the tolerance absorbs driver
     // differences, not layout changes.
-    if !std::path::Path::new("/usr/share/vulkan/icd.d").exists() {
-        return agesim_render::ci::skip_or_fail(
-            "main_window_snapshot_on_the_gpu_adapter",
-            "no Vulkan driver on this machine",
-        );
-    }
-    let mut h = Harness::builder()
-        .with_size([960.0, 600.0])
-        .wgpu()
-        .build_eframe(|cc| EditorApp::new(cc, EditorOptions::default()));
+    let Some(mut h) = gpu_harness("main_window_snapshot_on_the_gpu_adapter") else {
+        return;
+    };
     settle(&mut h);
     h.run_steps(2);
     h.snapshot_options(
@@ -209,16 +217,9 @@ fn main_window_snapshot_on_the_gpu_adapter() {
 /// view (one paint callback) and when it is zoomed past the view (egui's images).
 #[test]
 fn the_map_shows_zoomed_in_and_out_on_the_gpu_adapter() {
-    if !std::path::Path::new("/usr/share/vulkan/icd.d").exists() {
-        return agesim_render::ci::skip_or_fail(
-            "the_map_shows_zoomed_in_and_out_on_the_gpu_adapter",
-            "no Vulkan driver on this machine",
-        );
-    }
-    let mut h = Harness::builder()
-        .with_size([960.0, 600.0])
-        .wgpu()
-        .build_eframe(|cc| EditorApp::new(cc, EditorOptions::default()));
+    let Some(mut h) = gpu_harness("the_map_shows_zoomed_in_and_out_on_the_gpu_adapter") else {
+        return;
+    };
     settle(&mut h);
     // A point of the map a tenth in from the square's (or the view's) lower left corner:
     // the map's colour there, not the panel's.

@@ -315,104 +315,21 @@ fn the_blit_copies_texel_for_texel_into_the_viewport() {
     let Some(gpu) = gpu_or_skip("the_blit_copies_texel_for_texel_into_the_viewport") else {
         return;
     };
-    let (device, queue) = (&gpu.device, &gpu.queue);
-    let format = wgpu::TextureFormat::Rgba8Unorm;
-    let (w, h) = (64u32, 48u32);
+    let size = (64u32, 48u32);
     // Every texel different: r = x·4, g = y·5, b = (x ^ y)·3.
-    let source: Vec<u8> = (0..h)
+    let source: Vec<u8> = (0..size.1)
         .flat_map(|y| {
-            (0..w).flat_map(move |x| [(x * 4) as u8, (y * 5) as u8, ((x ^ y) * 3) as u8, 255])
+            (0..size.0).flat_map(move |x| [(x * 4) as u8, (y * 5) as u8, ((x ^ y) * 3) as u8, 255])
         })
         .collect();
-    let texture = |format, usage| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size: wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
-    let src = texture(
-        format,
-        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-    );
-    queue.write_texture(
-        src.as_image_copy(),
-        &source,
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(4 * w),
-            rows_per_image: None,
-        },
-        src.size(),
-    );
+    let src = sampled(&gpu, size, &source).create_view(&Default::default());
     let read = |target: wgpu::TextureFormat, viewport: Option<[f32; 4]>| -> Vec<u8> {
-        let dst = texture(
-            target,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        );
-        let blit = agesim_render::Blit::new(device, target);
-        let bind = blit.bind(device, &src.create_view(&Default::default()));
-        let mut encoder = device.create_command_encoder(&Default::default());
-        {
-            let view = dst.create_view(&Default::default());
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: None,
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            if let Some([x, y, vw, vh]) = viewport {
-                pass.set_viewport(x, y, vw, vh, 0.0, 1.0);
-            }
-            blit.draw(&mut pass, &bind);
-        }
-        // 64 texels · 4 bytes = 256: rows need no padding.
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: None,
-            size: u64::from(4 * w * h),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        encoder.copy_texture_to_buffer(
-            dst.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(4 * w),
-                    rows_per_image: Some(h),
-                },
-            },
-            dst.size(),
-        );
-        queue.submit([encoder.finish()]);
-        buffer
-            .slice(..)
-            .map_async(wgpu::MapMode::Read, |r| r.unwrap());
-        device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
-        buffer.slice(..).get_mapped_range().unwrap().to_vec()
+        let blit = agesim_render::Blit::new(&gpu.device, target);
+        let bind = blit.bind(&gpu.device, &src);
+        blit_read(&gpu, &blit, &bind, target, size, viewport)
     };
     assert!(
-        read(format, None) == source,
+        read(wgpu::TextureFormat::Rgba8Unorm, None) == source,
         "a full-size blit changed texels"
     );
     // An sRGB target (egui's frame may be one) receives the same values.
@@ -423,8 +340,11 @@ fn the_blit_copies_texel_for_texel_into_the_viewport() {
         "into an sRGB target the values moved by {off:?}"
     );
     // Into the right half: the texture squeezed there, the left half untouched.
-    let half = read(format, Some([32.0, 0.0, 32.0, 48.0]));
-    let px = |x: u32, y: u32| &half[(4 * (y * w + x)) as usize..][..4];
+    let half = read(
+        wgpu::TextureFormat::Rgba8Unorm,
+        Some([32.0, 0.0, 32.0, 48.0]),
+    );
+    let px = |x: u32, y: u32| &half[(4 * (y * size.0 + x)) as usize..][..4];
     assert_eq!(px(10, 10), [0, 0, 0, 255]);
     assert_eq!(px(32, 0)[1], 0, "the top row first");
     assert!(px(63, 47)[1] >= 5 * 46, "the bottom row last");
@@ -437,91 +357,19 @@ fn the_blit_lays_the_overlay_over_the_base() {
     let Some(gpu) = gpu_or_skip("the_blit_lays_the_overlay_over_the_base") else {
         return;
     };
-    let (device, queue) = (&gpu.device, &gpu.queue);
+    let size = (64u32, 4u32);
     let format = wgpu::TextureFormat::Rgba8Unorm;
-    let (w, h) = (64u32, 4u32);
-    let texture = |usage| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size: wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
     let filled = |texel: [u8; 4]| {
-        let t = texture(wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
-        queue.write_texture(
-            t.as_image_copy(),
-            &texel.repeat((w * h) as usize),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(4 * w),
-                rows_per_image: None,
-            },
-            t.size(),
-        );
-        t.create_view(&Default::default())
+        sampled(&gpu, size, &texel.repeat((size.0 * size.1) as usize))
+            .create_view(&Default::default())
     };
     let base = filled([200, 100, 50, 255]);
-    let blit = agesim_render::Blit::new_over(device, format);
+    let blit = agesim_render::Blit::new_over(&gpu.device, format);
+    // A texel in the middle.
     let read = |overlay: &wgpu::TextureView| -> [u8; 4] {
-        let dst = texture(wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC);
-        let bind = blit.bind_over(device, &base, overlay);
-        let mut encoder = device.create_command_encoder(&Default::default());
-        {
-            let view = dst.create_view(&Default::default());
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: None,
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            blit.draw(&mut pass, &bind);
-        }
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: None,
-            size: u64::from(4 * w * h),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        encoder.copy_texture_to_buffer(
-            dst.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(4 * w),
-                    rows_per_image: Some(h),
-                },
-            },
-            dst.size(),
-        );
-        queue.submit([encoder.finish()]);
-        buffer
-            .slice(..)
-            .map_async(wgpu::MapMode::Read, |r| r.unwrap());
-        device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
-        let bytes = buffer.slice(..).get_mapped_range().unwrap().to_vec();
-        // A texel in the middle.
-        let i = (4 * (2 * w + 30)) as usize;
+        let bind = blit.bind_over(&gpu.device, &base, overlay);
+        let bytes = blit_read(&gpu, &blit, &bind, format, size, None);
+        let i = (4 * (2 * size.0 + 30)) as usize;
         [bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]
     };
     // A transparent overlay: the base as it is.
@@ -536,6 +384,118 @@ fn the_blit_lays_the_overlay_over_the_base() {
         );
     }
     assert_eq!(over[3], 255, "the result is opaque");
+}
+
+/// A `size` texture of `format` for `usage`.
+fn texture(
+    gpu: &Gpu,
+    format: wgpu::TextureFormat,
+    (w, h): (u32, u32),
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+/// An RGBA8 texture to sample holding `texels` (rows of `size.0`, top first).
+fn sampled(gpu: &Gpu, size: (u32, u32), texels: &[u8]) -> wgpu::Texture {
+    let t = texture(
+        gpu,
+        wgpu::TextureFormat::Rgba8Unorm,
+        size,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
+    gpu.queue.write_texture(
+        t.as_image_copy(),
+        texels,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * size.0),
+            rows_per_image: None,
+        },
+        t.size(),
+    );
+    t
+}
+
+/// `blit` drawing `bind` into a new `size` texture of `target` cleared to black (through
+/// `viewport`, x, y, width, height, when given), read back. `size.0` a multiple of 64:
+/// rows need no padding.
+fn blit_read(
+    gpu: &Gpu,
+    blit: &agesim_render::Blit,
+    bind: &wgpu::BindGroup,
+    target: wgpu::TextureFormat,
+    size: (u32, u32),
+    viewport: Option<[f32; 4]>,
+) -> Vec<u8> {
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let dst = texture(
+        gpu,
+        target,
+        size,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    );
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let view = dst.create_view(&Default::default());
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: None,
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if let Some([x, y, vw, vh]) = viewport {
+            pass.set_viewport(x, y, vw, vh, 0.0, 1.0);
+        }
+        blit.draw(&mut pass, bind);
+    }
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: u64::from(4 * size.0 * size.1),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    encoder.copy_texture_to_buffer(
+        dst.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * size.0),
+                rows_per_image: Some(size.1),
+            },
+        },
+        dst.size(),
+    );
+    queue.submit([encoder.finish()]);
+    buffer
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, |r| r.unwrap());
+    device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+    buffer.slice(..).get_mapped_range().unwrap().to_vec()
 }
 
 /// A second view of one renderer (the editor's compare view) draws its own large-wrinkle

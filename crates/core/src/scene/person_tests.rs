@@ -348,9 +348,11 @@ fn painted_hair_goes_with_the_hair_and_the_young_map_is_the_heads_own() {
 }
 
 /// On a woman (the female pattern keeps the hairline and thins the crown) the paint over
-/// her crown thins by the share of hairs she has lost there, not all of it: before, it went
+/// her crown thins by the share of hairs she has lost there, not all of it (before, it went
 /// where the crown's hair would go in the male pattern, a hard-edged bald oval under her
-/// full head of hair.
+/// full head of hair), and more than over her sides, as her strands do (read on the kept
+/// pattern's alpha, 255 over the whole crown, the paint thinned there as on the sides: a
+/// full painted cap under her thinned strands at 80).
 #[test]
 fn painted_hair_thins_on_a_woman_s_crown_and_does_not_go_bald() {
     let never = CancelToken::never();
@@ -359,11 +361,13 @@ fn painted_hair_thins_on_a_woman_s_crown_and_does_not_go_bald() {
     // No graying: the paint's lightness is then its share of skin.
     p.hair.graying_onset_min_years = 140.0;
     p.hair.graying_onset_max_years = 150.0;
+    let thinning = p.hair.thinning;
     let mut scene = Scene::new(p).unwrap();
     scene.bake(&hair_request(1.0), &never).unwrap();
     let skin = scene.own_colours(&never).unwrap().skin.unwrap();
     let n = 512u32;
-    let ages = scene.hair_alpha_at(n, n).unwrap();
+    // The male pattern's ages: where its hair goes is her crown.
+    let ages = scene.pattern_alpha_at(n, n).unwrap();
     let lum = |c: glam::Vec3| c.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722));
     let mut at = Vec::new();
     for t in [0.0, 1.0] {
@@ -378,19 +382,38 @@ fn painted_hair_thins_on_a_woman_s_crown_and_does_not_go_bald() {
                 .collect::<Vec<f32>>(),
         );
     }
-    // Her crown: the texels whose hair the transition has going before t = 0.9 (in the
-    // male pattern), painted dark at the young end.
-    let crown: Vec<usize> = (0..ages.len())
-        .filter(|&i| (2..230).contains(&ages[i]) && at[0][i] < 0.01)
-        .collect();
-    assert!(crown.len() > 200, "{}", crown.len());
-    let mean = |v: &[f32]| crown.iter().map(|&i| v[i]).sum::<f32>() / crown.len() as f32;
-    let (young, old, bald) = (mean(&at[0]), mean(&at[1]), lum(skin.linear));
-    let share = (old - young) / (bald - young);
-    eprintln!(
-        "crown luminance: {young:.4} young, {old:.4} at 80, bald {bald:.4}: {share:.2} of the way"
+    let bald = lum(skin.linear);
+    // The share of the way to her skin the paint went by 80 over the texels painted dark
+    // at the young end whose male-pattern age byte is in `bytes`.
+    let share = |bytes: std::ops::RangeInclusive<u8>| {
+        let texels: Vec<usize> = (0..ages.len())
+            .filter(|&i| bytes.contains(&ages[i]) && at[0][i] < 0.01)
+            .collect();
+        assert!(texels.len() > 200, "{bytes:?}: {}", texels.len());
+        let mean = |v: &[f32]| texels.iter().map(|&i| v[i]).sum::<f32>() / texels.len() as f32;
+        let (young, old) = (mean(&at[0]), mean(&at[1]));
+        (old - young) / (bald - young)
+    };
+    // Her crown: hair the male pattern has going between 0.45 and 0.75 (past the kept
+    // hairline's ramp, clear of the crown's edge); her sides and back: hair that stays.
+    let (crown, sides) = (share(115..=191), share(255..=255));
+    let [want_crown, want_sides] = crate::layers::skin_colour::PaintedHair::thinned_at(
+        1.0,
+        thinning,
+        crate::layers::hair::FEMALE_THINNING,
     );
-    assert!(share > 0.3 && share < 0.85, "{young} → {old}, bald {bald}");
+    eprintln!(
+        "painted hair gone by 80: crown {crown:.2} (its hairs {want_crown:.2}), sides {sides:.2} ({want_sides:.2})"
+    );
+    assert!(crown < 0.9, "the crown went bald: {crown}");
+    assert!(
+        (crown - want_crown).abs() < 0.15,
+        "{crown} against {want_crown}"
+    );
+    assert!(
+        (sides - want_sides).abs() < 0.15,
+        "{sides} against {want_sides}"
+    );
 }
 
 /// The luminance's high-pass deviation (less a 3 × box blur of radius 4 texels) over the

@@ -4,9 +4,8 @@
 use super::*;
 use crate::maps::mask::HeadImage;
 
-/// The transition generation, the width and height of a kept hair-age alpha, and whether
-/// the hair recedes (the male pattern).
-pub(super) type HairAlphaKey = (u64, u32, u32, bool);
+/// The transition generation, and the width and height of a kept hair-age alpha.
+pub(super) type HairAlphaKey = (u64, u32, u32);
 
 /// What the blank eyeballs' texels are found from: the mesh and layout generations, the
 /// colour map (its identity) and the size.
@@ -61,7 +60,7 @@ impl Scene {
         // against the measured skin).
         let own = self.own_colours(cancel)?;
         let ages = match (own.hair, own.skin) {
-            (Some(_), Some(_)) => self.hair_alpha_at(size, size),
+            (Some(_), Some(_)) => self.pattern_alpha_at(size, size),
             _ => None,
         };
         let loss = self.hair_loss().loss;
@@ -95,41 +94,41 @@ impl Scene {
 
     /// The hair's disappearance age per texel at `width × height`
     /// ([`crate::layers::hair::scalp::hair_age_alpha`]) of the last transition texture, in the
-    /// pattern of hair loss: the hairline is kept in the female pattern or none (the haired
-    /// texels from the kept hairline on, ramping to 255 over 0.3 of the male pattern's
-    /// ages; the female temples' small recession is the strands' alone). `None` without
-    /// hair or a transition texture. Kept per size.
-    pub(super) fn hair_alpha_at(&mut self, width: u32, height: u32) -> Option<Arc<Vec<u8>>> {
+    /// male pattern (where the crown's hair goes): what the aged colour's painted hair reads,
+    /// in every pattern (the female pattern thins the paint most where the male pattern's
+    /// hair goes). `None` without hair or a transition texture. Kept per size.
+    pub(super) fn pattern_alpha_at(&mut self, width: u32, height: u32) -> Option<Arc<Vec<u8>>> {
         let transition = self
             .transition
             .clone()
             .filter(|_| self.project.hair.enabled)?;
-        let receding = self.hair_loss().loss == crate::layers::hair::HairLoss::Male;
-        let k = (self.transition_generation, width, height, receding);
+        let k = (self.transition_generation, width, height);
         if let Some((kept, a)) = &self.hair_alpha
             && *kept == k
         {
             return Some(a.clone());
         }
-        let mut a = crate::layers::hair::scalp::hair_age_alpha(&transition, width, height);
-        if !receding {
-            // The hairline kept where the male pattern has it at KEPT_HAIRLINE_T, and the
-            // hair there as if it went late: the texels along the hairline (the taper's
-            // shorter, sparser hair) tint the scalp less (at 255 the tint ran full to the
-            // hairline's edge, a band of hair colour below the hair).
-            let kept = crate::layers::hair::KEPT_HAIRLINE_T;
-            a.iter_mut().filter(|a| **a > 0).for_each(|a| {
-                let age = (f32::from(*a) - 1.0) / 254.0;
-                *a = if age < kept {
-                    0
-                } else {
-                    1 + (254.0 * ((age - kept) / 0.3).min(1.0)).round() as u8
-                };
-            });
-        }
-        let a = Arc::new(a);
+        let a = Arc::new(crate::layers::hair::scalp::hair_age_alpha(
+            &transition,
+            width,
+            height,
+        ));
         self.hair_alpha = Some((k, a.clone()));
         Some(a)
+    }
+
+    /// The 3D view's alpha: [`Scene::pattern_alpha_at`] in the pattern of hair loss: the
+    /// hairline is kept in the female pattern or none
+    /// ([`crate::layers::hair::scalp::kept_hairline_alpha`]; the female temples' small
+    /// recession is the strands' alone). `None` without hair or a transition texture.
+    pub(super) fn hair_alpha_at(&mut self, width: u32, height: u32) -> Option<Arc<Vec<u8>>> {
+        let a = self.pattern_alpha_at(width, height)?;
+        if self.hair_loss().loss == crate::layers::hair::HairLoss::Male {
+            return Some(a);
+        }
+        Some(Arc::new(crate::layers::hair::scalp::kept_hairline_alpha(
+            &a,
+        )))
     }
 
     /// Makes [`Scene::shown_colour`] from the last [`Scene::bake_colour`] and the hair's

@@ -32,6 +32,29 @@ pub fn hair_age_alpha(transition: &TransitionTexture, width: u32, height: u32) -
         .collect()
 }
 
+/// [`hair_age_alpha`]'s bytes where the pattern keeps the hairline (female, none): the
+/// hairline kept where the male pattern has it at [`super::KEPT_HAIRLINE_T`] (0 below it),
+/// and the hair there as if it went late, the byte ramping to 255 over
+/// [`super::KEPT_HAIRLINE_RAMP`] of the male pattern's ages: the texels along the hairline (the taper's shorter, sparser hair) tint
+/// the scalp less (at 255 the tint ran full to the hairline's edge, a band of hair colour
+/// below the hair).
+pub fn kept_hairline_alpha(male: &[u8]) -> Vec<u8> {
+    let kept = super::KEPT_HAIRLINE_T;
+    male.par_iter()
+        .map(|&a| {
+            if a == 0 {
+                return 0;
+            }
+            let age = (f32::from(a) - 1.0) / 254.0;
+            if age < kept {
+                0
+            } else {
+                1 + (254.0 * ((age - kept) / super::KEPT_HAIRLINE_RAMP).min(1.0)).round() as u8
+            }
+        })
+        .collect()
+}
+
 /// The scalp tint's soft edge, as a fraction of the map's side (≈ 10 mm on the default
 /// head).
 const SCALP_EDGE: f32 = 0.02;

@@ -198,8 +198,10 @@ pub struct ColourSettings {
 /// (docs/models.md "Skin colour", "Painted hair").
 #[derive(Clone, Copy, Debug)]
 pub struct PaintedHair<'a> {
-    /// Per texel: the hair's disappearance age as [`crate::layers::hair::scalp::hair_age_alpha`]
-    /// writes it (0: no hair there, else 1 + 254·a).
+    /// Per texel: the hair's disappearance age in the male pattern as
+    /// [`crate::layers::hair::scalp::hair_age_alpha`] writes it (0: no hair there, else
+    /// 1 + 254·a), whatever the pattern: where the male pattern's hair goes is the crown that
+    /// the female pattern thins most.
     pub ages: &'a [u8],
     /// The age t.
     pub t: f32,
@@ -472,10 +474,20 @@ impl PaintedHair<'_> {
             smoothstep(a - PAINTED_EDGE, a + PAINTED_EDGE, self.t)
         };
         let [crown, rest] = self.thinned;
-        let gone = if self.keeps_hairline && a >= crate::layers::hair::KEPT_HAIRLINE_T {
+        let kept = crate::layers::hair::KEPT_HAIRLINE_T;
+        let gone = if self.keeps_hairline {
+            if a < kept {
+                // Below the kept hairline no strand grows at any age: the paint stays.
+                return c;
+            }
             // The crown (the male pattern's receding hair, its age blurred over its edge)
-            // thins most, the rest as the sides.
-            let w = ((1.0 - a) / PAINTED_CROWN_EDGE).clamp(0.0, 1.0);
+            // thins most, the rest as the sides, and the kept hairline as the sides too
+            // over its first 0.3 of the male pattern's ages (the strands' crown share fades
+            // in over `HAIRLINE_KEPT_MM` from it). (Read on the kept pattern's alpha, which
+            // is 255 over the whole crown, the women's painted crowns thinned as their
+            // sides: a full painted cap under their thinned strands at 80.)
+            let w = ((1.0 - a) / PAINTED_CROWN_EDGE).clamp(0.0, 1.0)
+                * ((a - kept) / crate::layers::hair::KEPT_HAIRLINE_RAMP).clamp(0.0, 1.0);
             rest + (crown - rest) * w
         } else {
             receded.max(rest)

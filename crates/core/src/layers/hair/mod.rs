@@ -673,8 +673,8 @@ pub const HAIRLINE_KEPT_MM: f32 = 25.0;
 /// male pattern recedes from at once; kept, it drew a band of hair down the forehead.
 pub const KEPT_HAIRLINE_T: f32 = 0.1;
 /// Over how much of the male pattern's ages (t) past [`KEPT_HAIRLINE_T`] the kept
-/// hairline's scalp tint and painted hair come to the crown's: the hair along the kept
-/// hairline (the taper's shorter, sparser hair) thins as the sides and tints the scalp less.
+/// hairline's scalp tint comes to the crown's: the hair along the kept hairline (the
+/// taper's shorter, sparser hair) tints the scalp less.
 pub const KEPT_HAIRLINE_RAMP: f32 = 0.3;
 
 /// In the female pattern the hairline recedes a little after the menopause, most at the

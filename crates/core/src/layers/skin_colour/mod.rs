@@ -466,7 +466,14 @@ impl PaintedHair<'_> {
         if span <= 1e-4 {
             return c;
         }
-        let share = ((lum(self.bald) - lum(c)) / span).clamp(0.0, 1.0);
+        // Skin a little darker than the measured tone is skin, not paint: the first
+        // [`PAINTED_SKIN_SHARE`] of the way to the hair's lightness counts for nothing
+        // (counted, the forehead's darker skin under a woman's kept hairline, where the
+        // masks' hair reaches at t = 0, paled toward the measured tone as her paint
+        // thinned: "a pale band like the edge of a bald cap", blind, round 69).
+        let share =
+            ((lum(self.bald) - lum(c)) / span - PAINTED_SKIN_SHARE) / (1.0 - PAINTED_SKIN_SHARE);
+        let share = share.clamp(0.0, 1.0);
         let a = f32::from(age - 1) / 254.0;
         let receded = if a >= 1.0 {
             0.0
@@ -481,13 +488,13 @@ impl PaintedHair<'_> {
                 return c;
             }
             // The crown (the male pattern's receding hair, its age blurred over its edge)
-            // thins most, the rest as the sides, and the kept hairline as the sides too
-            // over its first 0.3 of the male pattern's ages (the strands' crown share fades
-            // in over `HAIRLINE_KEPT_MM` from it). (Read on the kept pattern's alpha, which
-            // is 255 over the whole crown, the women's painted crowns thinned as their
-            // sides: a full painted cap under their thinned strands at 80.)
-            let w = ((1.0 - a) / PAINTED_CROWN_EDGE).clamp(0.0, 1.0)
-                * ((a - kept) / crate::layers::hair::KEPT_HAIRLINE_RAMP).clamp(0.0, 1.0);
+            // thins most, the rest as the sides; the paint along the kept hairline as the
+            // crown (kept as the sides, its remaining paint grayed into a pale band between
+            // the strands and the forehead, read blind as "the edge of a bald cap").
+            // (Read on the kept pattern's alpha, which is 255 over the whole crown, the
+            // women's painted crowns thinned as their sides: a full painted cap under
+            // their thinned strands at 80.)
+            let w = ((1.0 - a) / PAINTED_CROWN_EDGE).clamp(0.0, 1.0);
             rest + (crown - rest) * w
         } else {
             receded.max(rest)
@@ -496,6 +503,10 @@ impl PaintedHair<'_> {
         c.lerp(gray_colour, share * (1.0 - gone) * gray * PAINTED_GRAY)
     }
 }
+
+/// See [`PaintedHair::age`]: how far toward the hair's lightness a texel may be and still
+/// count as skin.
+const PAINTED_SKIN_SHARE: f32 = 0.3;
 
 /// What ages every texel alike at one age: the settings, the factors and the tints made
 /// from them, the spots that show.

@@ -748,3 +748,33 @@ fn the_pad_fills_the_gap_between_islands_and_spares_other_parts() {
     assert!(!texels.covers_skin(at(10, 52)), "12 texels below an island");
     assert!(texels.covers_skin(at(10, 46)), "6 texels below an island");
 }
+
+/// Painted hair thins and grays; the skin around it does not: a texel a little darker than
+/// the measured skin tone (under [`PAINTED_SKIN_SHARE`] of the way to the hair) keeps its
+/// colour where the paint goes, a texel of paint goes to the skin by the share lost. (Taken
+/// for paint, the darker forehead under a woman's kept hairline paled into "a pale band
+/// like the edge of a bald cap", blind.)
+#[test]
+fn only_paint_goes_with_the_hair() {
+    let (bald, hair) = (Vec3::splat(0.2), Vec3::splat(0.02));
+    let painted = PaintedHair {
+        ages: &[],
+        t: 1.0,
+        bald,
+        hair,
+        thinned: [0.6, 0.3],
+        keeps_hairline: true,
+    };
+    // A crown texel (the male pattern's hair goes at 0.5), not gray.
+    let byte = 1 + (0.5f32 * 254.0).round() as u8;
+    let age = |c: Vec3| painted.age(c, byte, 0.0, Vec3::ONE);
+    let skin = bald.lerp(hair, 0.8 * PAINTED_SKIN_SHARE);
+    assert_eq!(age(skin), skin);
+    let paint = age(hair);
+    assert!((paint.x - (0.02 + 0.6 * 0.18)).abs() < 1e-5, "{paint}");
+    // Between them, continuous: no edge where skin becomes paint.
+    let just = bald.lerp(hair, PAINTED_SKIN_SHARE + 0.01);
+    assert!((age(just) - just).length() < 2e-3, "{}", age(just));
+    // Below the kept hairline no strand grows: the paint stays.
+    assert_eq!(painted.age(hair, 1 + 10, 0.0, Vec3::ONE), hair);
+}
